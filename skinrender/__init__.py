@@ -1,0 +1,82 @@
+"""
+skinrender
+==========
+
+Design and validate three-channel cameras for skin detection under changing
+light: the analytic camera model of Martinkauppi et al. (Eqs. 1–11), its
+datasets, Stage 1 illuminant selection, and (in later modules) gamut
+evaluation, spectral rendering and skin detection.
+
+Units throughout: wavelength in nm, temperature in K, spectral radiance in
+W·m⁻²·sr⁻¹·nm⁻¹, reflectance as a fraction in [0, 1], responses in output
+units (255 for white at p = c).
+
+Examples
+--------
+>>> import skinrender as sr
+>>> cam = sr.camera("gbell:9@450,540,610")
+>>> rgb = sr.response(cam, sr.reflectances("macbeth"), prevailing=2856, calibration=2300)
+>>> rgb.shape
+(24, 3)
+"""
+
+from __future__ import annotations
+
+from .camera import (
+    CHANNELS,
+    NORMALISATIONS,
+    Camera,
+    camera,
+    knee,
+    measure,
+    ncc,
+    normalisation_factor,
+    response,
+    response_raw,
+    white_coefficient,
+)
+from .constants import TEMPERATURES_PAPER
+from .datasets import SpectralSet, list_cameras, list_reflectances, reflectances
+from .errors import SkinrenderError
+from .illuminant import Illuminant, illuminant
+from .illuminants import (
+    illuminant_selection,
+    illuminant_set,
+    illuminant_track,
+    select_illuminants,
+)
+from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse, planck, resample
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "CHANNELS",
+    "GRID_DEFAULT",
+    "NORMALISATIONS",
+    "TEMPERATURES_PAPER",
+    "Camera",
+    "Illuminant",
+    "SkinrenderError",
+    "SpectralSet",
+    "WavelengthGrid",
+    "camera",
+    "gbell",
+    "illuminant",
+    "illuminant_selection",
+    "illuminant_set",
+    "illuminant_track",
+    "impulse",
+    "knee",
+    "list_cameras",
+    "list_reflectances",
+    "measure",
+    "ncc",
+    "normalisation_factor",
+    "planck",
+    "reflectances",
+    "resample",
+    "response",
+    "response_raw",
+    "select_illuminants",
+    "white_coefficient",
+]

@@ -1,0 +1,529 @@
+"""
+Camera model
+============
+
+The paper's camera: three sensors (gbell, impulse or measured), the raw
+response of Eq. 1, the white-balanced response of Eq. 4 with the illuminant
+normalisations of Eqs. 5–8 (and the Eq. 10 factor), the knee of Eq. 11, the NCC
+chromaticities of Eq. 2 and the measure of Eq. 3.
+
+-   :class:`Camera`, :func:`camera`: a camera from a spec string.
+-   :data:`NORMALISATIONS`, :func:`normalisation_factor`, :func:`white_coefficient`.
+-   :func:`response_raw` (Eq. 1), :func:`response` (Eq. 4 / Eq. 10).
+-   :func:`knee` (Eq. 11), :func:`ncc` (Eq. 2), :func:`measure` (Eq. 3).
+
+Units: wavelength in nm, temperature in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹;
+white-balanced responses in output units (``v = 255`` for a white object at
+``p = c``).
+
+References
+----------
+-   :cite:`Martinkauppi2006` : the paper, ``../shared/paper/skin-camera-paper.txt``,
+    read as ``../shared/paper/NOTES.md`` fixes it.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .constants import (
+    CONSTANT_KNEE_CEILING,
+    CONSTANT_KNEE_FACTOR,
+    CONSTANT_KNEE_POINT,
+    CONSTANT_OUTPUT_SCALE,
+)
+from .datasets import SpectralSet, camera_sensitivities, looks_like_path, reflectances
+from .errors import SkinrenderError
+from .hints import ArrayLike, Literal, NDArrayFloat
+from .illuminant import Illuminant, illuminants_array
+from .spectra import EXTRAPOLATIONS, GRID_DEFAULT, WavelengthGrid, gbell, impulse, read_spectra_csv
+
+__all__ = [
+    "CHANNELS",
+    "GBELL_SLOPE_DEFAULT",
+    "Camera",
+    "camera",
+    "NORMALISATIONS",
+    "normalisation_factor",
+    "white_coefficient",
+    "response_raw",
+    "response",
+    "knee",
+    "ncc",
+    "measure",
+]
+
+CHANNELS = ("R", "G", "B")
+"""Channel order of every camera: R is the longest-wavelength sensor, B the shortest."""
+
+GBELL_SLOPE_DEFAULT = 2.0
+"""Default gbell slope *b* (the paper does not give it; see :func:`skinrender.spectra.gbell`)."""
+
+NORMALISATIONS = ("none", "560nm", "euclidean", "white")
+"""Illuminant normalisations: Eq. 5 (raw SPD), Eq. 6 (100 at 560 nm), Eq. 7
+(unit Euclidean norm over the grid), Eq. 8 (white coefficient WP)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Camera:
+    """
+    A three-channel camera.
+
+    Parameters
+    ----------
+    name
+        The spec it was made from (``gbell:9@450,540,610``, a camera name, a path).
+    kind
+        ``gbell``, ``impulse`` or ``measured``.
+    peaks
+        Sensor peaks in nm, in channel order R, G, B (longest first), for gbell
+        and impulse cameras.
+    fwhm
+        gbell full width at half maximum, nm (sensor *N* ⇒ ``N · 10`` nm).
+    slope
+        gbell slope *b*.
+    measured
+        Measured sensitivities (R, G, B rows) for ``kind == "measured"``.
+    """
+
+    name: str
+    kind: Literal["gbell", "impulse", "measured"]
+    peaks: tuple[float, float, float] | None = None
+    fwhm: float | None = None
+    slope: float = GBELL_SLOPE_DEFAULT
+    measured: SpectralSet | None = None
+    _cache: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def channels(self) -> tuple[str, str, str]:
+        """Channel names, ``("R", "G", "B")``."""
+        return CHANNELS
+
+    def sensitivities(self, grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
+        """
+        Sensitivities on ``grid``, shape ``(3, grid.size)``, rows R, G, B.
+
+        gbell curves are evaluated at the grid wavelengths (peak 1); the
+        impulse is a unit-area delta on the grid sample of its peak (the peak
+        must lie on the grid); measured curves are linearly interpolated with
+        the dataset's extrapolation rule (zero outside the measured range for
+        bundled cameras).
+        """
+        if grid not in self._cache:
+            if self.kind == "gbell":
+                values = gbell(grid.wavelengths[None, :], np.asarray(self.peaks)[:, None], self.fwhm, self.slope)
+            elif self.kind == "impulse":
+                values = np.array([impulse(grid, peak) for peak in self.peaks])
+            else:
+                values = self.measured.on(grid)
+            values = np.ascontiguousarray(values, dtype=np.float64)
+            values.setflags(write=False)
+            self._cache[grid] = values
+        return self._cache[grid]
+
+    def __str__(self) -> str:
+        return self.name
+
+
+_PATTERN_GBELL = re.compile(
+    r"^gbell:\s*(?P<n>[0-9.eE+-]+)\s*(,\s*b\s*=\s*(?P<b>[0-9.eE+-]+))?\s*@(?P<peaks>.*)$", re.IGNORECASE
+)
+_PATTERN_IMPULSE = re.compile(r"^impulse\s*@(?P<peaks>.*)$", re.IGNORECASE)
+
+
+def _parse_peaks(text: str, spec: str) -> tuple[float, float, float]:
+    try:
+        peaks = tuple(float(p) for p in text.replace("nm", "").split(","))
+    except ValueError:
+        peaks = ()
+    if len(peaks) != 3 or not all(np.isfinite(p) and p > 0 for p in peaks):
+        raise SkinrenderError(
+            f"camera {spec!r}: expected three peak wavelengths in nm after '@', e.g. @450,540,610"
+        )
+    # channel order R, G, B: longest wavelength first
+    return tuple(sorted(peaks, reverse=True))  # type: ignore[return-value]
+
+
+def camera(spec: str | Camera, extrapolation: str = "refuse") -> Camera:
+    """
+    A camera from its spec.
+
+    Parameters
+    ----------
+    spec
+        -   ``gbell:N@P1,P2,P3``: the paper's sensor *N* (FWHM ``N · 10`` nm,
+            ``N > 0``; the paper uses 3, 5, …, 15) at peaks P1, P2, P3 nm;
+            ``gbell:N,b=B@…`` sets the slope (default
+            :data:`GBELL_SLOPE_DEFAULT`).
+        -   ``impulse@P1,P2,P3``: the paper's sensor 1.
+        -   a bundled camera name (``skinrender cameras`` lists them).
+        -   a CSV path: wavelength (nm), then R, G, B sensitivities.
+
+        Channels are ordered R, G, B from the longest peak to the shortest,
+        whatever order the peaks are written in.
+    extrapolation
+        For a CSV camera: the rule where the integration grid leaves the
+        measured range (``refuse``, the default, ``zero`` or ``constant``).
+
+    Returns
+    -------
+    :class:`Camera`
+
+    Examples
+    --------
+    >>> camera("gbell:9@450,540,610").peaks
+    (610.0, 540.0, 450.0)
+    """
+
+    if isinstance(spec, Camera):
+        return spec
+    text = str(spec).strip()
+    match = _PATTERN_GBELL.match(text)
+    if match:
+        try:
+            n = float(match["n"])
+            slope = float(match["b"]) if match["b"] else GBELL_SLOPE_DEFAULT
+        except ValueError:
+            raise SkinrenderError(f"camera {text!r}: sensor number and slope must be numbers") from None
+        if not (np.isfinite(n) and n > 0):
+            raise SkinrenderError(f"camera {text!r}: sensor number N must be > 0 (FWHM = N·10 nm)")
+        if not (np.isfinite(slope) and slope > 0):
+            raise SkinrenderError(f"camera {text!r}: slope b must be > 0")
+        return Camera(text, "gbell", _parse_peaks(match["peaks"], text), n * 10.0, slope)
+    match = _PATTERN_IMPULSE.match(text)
+    if match:
+        return Camera(text, "impulse", _parse_peaks(match["peaks"], text))
+    if text.lower().startswith(("gbell", "impulse")):
+        raise SkinrenderError(
+            f"camera {text!r}: expected 'gbell:N@P1,P2,P3', 'gbell:N,b=B@P1,P2,P3' or 'impulse@P1,P2,P3'"
+        )
+    if looks_like_path(text):
+        if extrapolation not in EXTRAPOLATIONS:
+            raise SkinrenderError(f"extrapolation must be one of {', '.join(EXTRAPOLATIONS)}, got {extrapolation!r}")
+        table = read_spectra_csv(text, kind="sensitivity", expected_columns=3)
+        if np.any(table.values.max(axis=1) <= 0):
+            raise SkinrenderError(f"{text}: a channel is zero at every wavelength")
+        measured = SpectralSet(
+            Path(text).name, table.wavelengths, table.values, CHANNELS, source=text,
+            licence="user data", extrapolation=extrapolation, kind="sensitivity",
+        )
+        return Camera(text, "measured", measured=measured)
+    return Camera(text, "measured", measured=camera_sensitivities(text))
+
+
+def _spd_on(illuminants: list[Illuminant], grid: WavelengthGrid) -> NDArrayFloat:
+    return np.array([illuminant.spd(grid.wavelengths) for illuminant in illuminants])
+
+
+def normalisation_factor(
+    illuminants: ArrayLike | Illuminant | str,
+    method: Literal["none", "560nm", "euclidean"] | str,
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> NDArrayFloat:
+    """
+    The factor *F_n* with ``I_n = F_n · I_0`` (Eqs. 5–7).
+
+    Parameters
+    ----------
+    illuminants
+        Illuminant(s): kelvin, ``A``, ``H``, a CSV path or :class:`Illuminant`.
+    method
+        ``none`` (``F = 1``), ``560nm`` (``F = 100 / SPD(560 nm)``) or
+        ``euclidean`` (``F = 1 / sqrt(Σ SPD²)`` over the samples of ``grid``, so
+        it depends on the grid as the paper's sum does).
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Shape of ``illuminants``; unit the inverse of the SPD's.
+    """
+
+    items, shape = illuminants_array(illuminants)
+    if method == "none":
+        return np.ones(shape)
+    if method == "560nm":
+        return (100.0 / np.array([i.spd(np.array([560.0]))[0] for i in items])).reshape(shape)
+    if method == "euclidean":
+        return (1.0 / np.linalg.norm(_spd_on(items, grid), axis=-1)).reshape(shape)
+    raise SkinrenderError(
+        f"normalization must be one of none, 560nm, euclidean (white has no per-illuminant factor), got {method!r}"
+    )
+
+
+def white_coefficient(
+    camera_: Camera | str,
+    prevailing: ArrayLike | Illuminant | str,
+    calibration: ArrayLike | Illuminant | str,
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> NDArrayFloat:
+    """
+    The white coefficient *WP* of Eq. 8, scaled so that ``WP = 1`` at ``p = c``.
+
+    ``1 / WP = (1/3) Σ_k Σ_λ x_k I_0p / Σ_λ x_k I_0c``
+
+    Notes
+    -----
+    Taken literally, Eq. 8 gives ``WP = 1/3`` at ``p = c``; the paper says WP
+    "can be scaled to the wanted range" and equals 1 when ``p = c``, so the
+    project uses ``WP = 3 / Σ_k ratio_k`` (NOTES.md).
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Shape: ``prevailing`` broadcast against ``calibration``; unitless.
+    """
+
+    cam = camera(camera_)
+    p_items, p_shape = illuminants_array(prevailing)
+    c_items, c_shape = illuminants_array(calibration)
+    x = cam.sensitivities(grid)
+    white_p = _spd_on(p_items, grid) @ x.T
+    white_c = _spd_on(c_items, grid) @ x.T
+    pi, ci = np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape))
+    return 3.0 / np.sum(white_p[pi] / white_c[ci], axis=-1)
+
+
+def _reflectance_values(reflectance, grid: WavelengthGrid) -> NDArrayFloat:
+    if isinstance(reflectance, (str, SpectralSet)):
+        return reflectances(reflectance).on(grid)
+    values = np.asarray(reflectance, dtype=np.float64)
+    if values.shape[-1:] != (grid.size,):
+        raise SkinrenderError(
+            f"reflectance array must have the grid's {grid.size} samples ({grid}) on its last axis, "
+            f"got shape {values.shape}"
+        )
+    if not np.all(np.isfinite(values)):
+        raise SkinrenderError("reflectance array contains NaN or inf")
+    return values
+
+
+def response_raw(
+    camera_: Camera | str,
+    reflectance,
+    illuminant: ArrayLike | Illuminant | str,
+    normalization: Literal["none", "560nm", "euclidean"] | str = "none",
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> NDArrayFloat:
+    """
+    The raw camera response of Eq. 1, ``X = Σ_λ I_n(λ) x(λ) o(λ) Δλ``.
+
+    Parameters
+    ----------
+    camera_
+        Camera or camera spec.
+    reflectance
+        A reflectance set (name, :class:`SpectralSet`) or an array of
+        reflectances on ``grid``, shape ``(..., grid.size)``, fractions in [0, 1].
+    illuminant
+        Illuminant(s), shape ``S`` (kelvin, ``A``, ``H``, CSV, :class:`Illuminant`).
+    normalization
+        ``none`` (Eq. 5, absolute radiance), ``560nm`` (Eq. 6) or ``euclidean`` (Eq. 7).
+    grid
+        Integration grid.
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Shape ``S + reflectance.shape[:-1] + (3,)``. With ``none`` the unit is
+        W·m⁻²·sr⁻¹ times the sensitivity's unit (a Riemann sum over nm).
+    """
+
+    cam = camera(camera_)
+    o = _reflectance_values(reflectance, grid)
+    items, shape = illuminants_array(illuminant)
+    factor = normalisation_factor(items, normalization, grid)
+    weighted = _spd_on(items, grid)[:, None, :] * cam.sensitivities(grid)[None, :, :] * grid.step
+    out = np.einsum("...w,skw->s...k", o, weighted) * factor.reshape(-1, *([1] * o.ndim))
+    return out.reshape(*shape, *o.shape[:-1], 3)
+
+
+def response(
+    camera_: Camera | str,
+    reflectance,
+    prevailing: ArrayLike | Illuminant | str,
+    calibration: ArrayLike | Illuminant | str,
+    normalization: Literal["none", "560nm", "euclidean", "white"] | str = "white",
+    knee_: bool = False,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    scale: float = CONSTANT_OUTPUT_SCALE,
+    **kwargs,
+) -> NDArrayFloat:
+    """
+    The white-balanced camera response of Eq. 4 with normalisation (Eq. 10).
+
+    ``X_k = v · (F_p / F_c) · Σ_λ I_0p x_k o / Σ_λ I_0c x_k``
+
+    with ``F`` the normalisation factor of Eqs. 5–7, or, for ``white``,
+    ``F_p / F_c`` replaced by the white coefficient WP of Eq. 8.
+
+    Parameters
+    ----------
+    camera_
+        Camera or camera spec.
+    reflectance
+        A reflectance set (name, :class:`SpectralSet`) or an array on ``grid``,
+        shape ``(..., grid.size)``, fractions in [0, 1].
+    prevailing, calibration
+        Illuminants (kelvin, ``A``, ``H``, CSV, :class:`Illuminant`) or arrays
+        of kelvin; they are broadcast against each other (``p[:, None]`` and
+        ``c[None, :]`` give every pair at once).
+    normalization
+        ``none``, ``560nm``, ``euclidean`` or ``white`` (default).
+    knee_
+        Apply the knee of Eq. 11 (also accepted as ``knee=True``).
+    grid
+        Integration grid (default 400–700 nm every 1 nm).
+    scale
+        Output scale *v* (255).
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Shape ``broadcast(p, c) + reflectance.shape[:-1] + (3,)``, output units.
+        A white object (``o = 1``) at ``p = c`` gives ``v`` in every channel.
+
+    Notes
+    -----
+    Computed without a Python loop over samples: one weighted sensitivity per
+    distinct prevailing illuminant, one matrix product for all reflectances.
+
+    Examples
+    --------
+    >>> response("gbell:9@450,540,610", [[1.0] * 301], 3300, 3300)
+    array([[ 255.,  255.,  255.]])
+    """
+
+    knee_ = kwargs.pop("knee", knee_)
+    if kwargs:
+        raise TypeError(f"unexpected arguments {sorted(kwargs)}")
+    if normalization not in NORMALISATIONS:
+        raise SkinrenderError(f"normalization must be one of {', '.join(NORMALISATIONS)}, got {normalization!r}")
+    cam = camera(camera_)
+    o = _reflectance_values(reflectance, grid)
+    p_items, p_shape = illuminants_array(prevailing)
+    c_items, c_shape = illuminants_array(calibration)
+    x = cam.sensitivities(grid)
+    spd_p = _spd_on(p_items, grid)
+    spd_c = _spd_on(c_items, grid)
+    signal = np.einsum("...w,pkw->p...k", o, spd_p[:, None, :] * x[None, :, :])  # (P, ..., 3)
+    white_p = spd_p @ x.T  # (P, 3)
+    white_c = spd_c @ x.T  # (C, 3)
+    if np.any(white_c <= 0):
+        raise SkinrenderError(
+            f"camera {cam.name}: a channel has no response to the calibration illuminant on the grid {grid}"
+        )
+    pi, ci = np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape))
+    if normalization == "white":
+        factor = 3.0 / np.sum(white_p[pi] / white_c[ci], axis=-1)
+    else:
+        f_p = normalisation_factor(p_items, normalization, grid)
+        f_c = normalisation_factor(c_items, normalization, grid)
+        factor = f_p[pi] / f_c[ci]
+    extra = (1,) * (o.ndim - 1)
+    gain = (scale * factor)[..., None].reshape(*factor.shape, *extra, 1) / white_c[ci].reshape(
+        *factor.shape, *extra, 3
+    )
+    out = signal[pi] * gain
+    return knee(out) if knee_ else out
+
+
+def knee(
+    x: ArrayLike,
+    a: float = CONSTANT_KNEE_FACTOR,
+    point: float = CONSTANT_KNEE_POINT,
+    ceiling: float = CONSTANT_KNEE_CEILING,
+) -> NDArrayFloat:
+    """
+    The knee function of Eq. 11 (with the NOTES.md erratum).
+
+    ``X`` for ``X ≤ 244``; ``244 (1 − a) + a X`` above, up to the ceiling 255.
+
+    Parameters
+    ----------
+    x
+        Responses, output units.
+    a
+        Knee factor (0.0127, from the Sony manual).
+    point
+        Knee point (244).
+    ceiling
+        Output ceiling (255).
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Same shape, output units, in ``(-∞, ceiling]``.
+
+    Notes
+    -----
+    The slope reaches the ceiling at ``point + (ceiling − point) / a`` =
+    1110.14 for the paper's values; the paper prints 1109 (its last branch as
+    ``X > 255`` is an erratum). Ending the slope where it meets the ceiling
+    keeps the knee continuous everywhere; at 1109 it gives 254.9855.
+    """
+
+    x = np.asarray(x, dtype=np.float64)
+    if not 0 < a <= 1:
+        raise SkinrenderError(f"knee factor a must be in (0, 1], got {a}")
+    return np.where(x <= point, x, np.minimum(point * (1.0 - a) + a * x, ceiling))
+
+
+def ncc(rgb: ArrayLike) -> NDArrayFloat:
+    """
+    Normalised colour coordinates (Eq. 2): ``r = R / (R + G + B)``, likewise g, b.
+
+    Parameters
+    ----------
+    rgb
+        Responses, channels on the last axis, shape ``(..., 3)``.
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Same shape; each row sums to 1. A zero response (black) gives the
+        achromatic point (1/3, 1/3, 1/3) instead of 0/0.
+
+    Examples
+    --------
+    >>> ncc([2.0, 1.0, 1.0])
+    array([ 0.5 ,  0.25,  0.25])
+    """
+
+    rgb = np.asarray(rgb, dtype=np.float64)
+    if rgb.shape[-1:] != (3,):
+        raise SkinrenderError(f"ncc expects three channels on the last axis, got shape {rgb.shape}")
+    total = rgb.sum(axis=-1, keepdims=True)
+    safe = np.where(total == 0, 1.0, total)
+    return np.where(total == 0, 1.0 / 3.0, rgb / safe)
+
+
+_CHANNEL_INDEX = {"r": 0, "g": 1, "b": 2}
+
+
+def measure(chromaticity: ArrayLike, pair: str = "gb") -> NDArrayFloat:
+    """
+    The Euclidean measure of Eq. 3, ``m = sqrt(c1² + c2²)``.
+
+    Parameters
+    ----------
+    chromaticity
+        NCC chromaticities, shape ``(..., 3)``.
+    pair
+        The two coordinates: ``gb`` (Stage 1, grows with temperature), ``rg``
+        or ``rb``.
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Shape ``(...)``.
+    """
+
+    pair = pair.lower()
+    if len(pair) != 2 or any(c not in _CHANNEL_INDEX for c in pair) or pair[0] == pair[1]:
+        raise SkinrenderError(f"pair must be two of r, g, b (e.g. 'gb'), got {pair!r}")
+    c = np.asarray(chromaticity, dtype=np.float64)
+    return np.hypot(c[..., _CHANNEL_INDEX[pair[0]]], c[..., _CHANNEL_INDEX[pair[1]]])

@@ -1,0 +1,232 @@
+"""
+Command line
+============
+
+``skinrender COMMAND …``: the commands of CONTRACT.md. Thin: parse, call the
+package, print. Every command takes ``--json`` and then prints exactly one JSON
+document on stdout; progress and errors go to stderr. A bad input exits with
+status 2 and a one-line message, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+
+from .errors import SkinrenderError
+
+__all__ = ["main", "build_parser"]
+
+HELP_CAMERA = (
+    "camera: 'gbell:N@P1,P2,P3' (sensor N, FWHM N·10 nm, peaks in nm), 'gbell:N,b=B@…', "
+    "'impulse@P1,P2,P3', a bundled name (see 'skinrender cameras') or a CSV path "
+    "(wavelength nm, R, G, B)"
+)
+HELP_ILLUMINANT = "kelvin (3300 or 3300K, a Planckian radiator), A (2856 K), H (Horizon, 2300 K) or a CSV path"
+HELP_GRID = "integration grid START:END:STEP in nm (default 400:700:1)"
+
+
+def _add_common(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--json", action="store_true", help="print one JSON document on stdout")
+
+
+def _add_grid(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--grid", default="400:700:1", help=HELP_GRID)
+    parser.add_argument(
+        "--extrapolation", default="refuse", choices=["refuse", "zero", "constant"],
+        help="for CSV cameras and reflectances that do not cover the grid: refuse (default), "
+        "zero outside the measured range, or hold the end value",
+    )
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of every command."""
+    parser = argparse.ArgumentParser(
+        prog="skinrender",
+        description="Design and validate three-channel cameras for skin detection "
+        "(wavelengths in nm, temperatures in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹).",
+    )
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    p = commands.add_parser("cameras", help="list bundled cameras")
+    _add_common(p)
+
+    p = commands.add_parser("datasets", help="list reflectance sets with source, licence, count, range")
+    _add_common(p)
+
+    p = commands.add_parser("illuminants", help="Stage 1: illuminants equally spaced in the NCC measure")
+    p.add_argument("--camera", required=True, help=HELP_CAMERA)
+    p.add_argument("--range", nargs=2, type=float, default=[2000.0, 10000.0], metavar=("START_K", "END_K"),
+                   help="candidate temperatures, K (default 2000 10000)")
+    p.add_argument("--step", type=float, default=100.0, help="candidate spacing, K (default 100)")
+    p.add_argument("--count", type=int, default=10, help="how many illuminants (default 10)")
+    p.add_argument("--pair", default="gb", help="NCC pair of the Eq. 3 measure (default gb)")
+    _add_grid(p)
+    _add_common(p)
+
+    p = commands.add_parser("response", help="Eq. 4 white-balanced responses and NCC of a reflectance set")
+    p.add_argument("--camera", required=True, help=HELP_CAMERA)
+    p.add_argument("--reflectances", required=True,
+                   help="reflectance set: a name (see 'skinrender datasets') or a CSV path "
+                   "(wavelength nm, one column per sample, header row of names)")
+    p.add_argument("--prevailing", required=True, help="prevailing illuminant: " + HELP_ILLUMINANT)
+    p.add_argument("--calibration", required=True, help="calibration (white balance) illuminant: " + HELP_ILLUMINANT)
+    p.add_argument("--normalization", default="white", choices=["none", "560nm", "euclidean", "white"],
+                   help="illuminant normalisation: none (Eq. 5), 560nm (Eq. 6), euclidean (Eq. 7), "
+                   "white (Eq. 8, default)")
+    p.add_argument("--knee", action="store_true", help="apply the knee of Eq. 11 (output ≤ 255)")
+    _add_grid(p)
+    _add_common(p)
+
+    p = commands.add_parser("bench", help="speed and accuracy figures")
+    p.add_argument("what", choices=["analytic"], help="which benchmark")
+    p.add_argument("--repeat", type=int, default=3, help="timed repetitions, best kept (default 3)")
+    _add_common(p)
+    return parser
+
+
+def _print(args: argparse.Namespace, document: dict, text: str) -> None:
+    if args.json:
+        json.dump(document, sys.stdout, indent=2, allow_nan=False)
+        sys.stdout.write("\n")
+    else:
+        sys.stdout.write(text.rstrip("\n") + "\n")
+
+
+def _table(rows: list[list[str]], header: list[str]) -> str:
+    widths = [max(len(str(r[i])) for r in [header, *rows]) for i in range(len(header))]
+    lines = ["  ".join(str(c).ljust(w) for c, w in zip(header, widths))]
+    lines.append("  ".join("-" * w for w in widths))
+    lines += ["  ".join(str(c).ljust(w) for c, w in zip(row, widths)) for row in rows]
+    return "\n".join(lines)
+
+
+def _range_text(values: list) -> str:
+    start, end, step = values
+    return f"{start:g}–{end:g} nm" + (f" / {step:g}" if step else "")
+
+
+def command_cameras(args: argparse.Namespace) -> None:
+    from .datasets import list_cameras
+
+    cameras = list_cameras()
+    text = _table([[c["name"], _range_text(c["wavelengths"]), c["source"]] for c in cameras],
+                  ["name", "wavelengths", "source"])
+    _print(args, {"cameras": cameras}, text)
+
+
+def command_datasets(args: argparse.Namespace) -> None:
+    from .datasets import list_reflectances
+
+    datasets = list_reflectances()
+    text = _table(
+        [[d["name"], d["count"], _range_text(d["wavelengths"]), d["licence"]] for d in datasets],
+        ["name", "count", "wavelengths", "licence"],
+    )
+    _print(args, {"datasets": datasets}, text)
+
+
+def _grid(args: argparse.Namespace):
+    from .spectra import WavelengthGrid
+
+    return WavelengthGrid.parse(args.grid)
+
+
+def command_illuminants(args: argparse.Namespace) -> None:
+    from .camera import camera
+    from .illuminants import illuminant_selection
+
+    cam = camera(args.camera, extrapolation=args.extrapolation)
+    selection = illuminant_selection(
+        cam, args.count, args.range[0], args.range[1], args.step, _grid(args), args.pair
+    )
+    document = {
+        "camera": cam.name,
+        "pair": args.pair,
+        "temperatures": selection.temperatures.tolist(),
+        "measure": selection.measures.tolist(),
+        "targets": selection.targets.tolist(),
+        "monotonic": selection.monotonic,
+        "track": {
+            "temperatures_K": selection.track.temperatures.tolist(),
+            "ncc": selection.track.chromaticities.tolist(),
+            "measure": selection.track.measures.tolist(),
+        },
+    }
+    rows = [[f"{t:g} K", f"{m:.5f}", f"{g:.5f}"] for t, m, g in
+            zip(selection.temperatures, selection.measures, selection.targets)]
+    text = f"Stage 1 for {cam.name} (measure of NCC {args.pair}):\n" + _table(rows, ["temperature", "measure", "target"])
+    if not selection.monotonic:
+        text += "\nnote: the measure does not grow strictly with temperature for this camera"
+    _print(args, document, text)
+
+
+def command_response(args: argparse.Namespace) -> None:
+    from .camera import camera, ncc, response
+    from .datasets import reflectances
+    from .illuminant import illuminant
+
+    grid = _grid(args)
+    cam = camera(args.camera, extrapolation=args.extrapolation)
+    refl = reflectances(args.reflectances, extrapolation=args.extrapolation)
+    prevailing, calibration = illuminant(args.prevailing), illuminant(args.calibration)
+    rgb = response(cam, refl.on(grid), prevailing, calibration, args.normalization, args.knee, grid)
+    chromaticity = ncc(rgb)
+    samples = [
+        {"name": name, "rgb": values.tolist(), "ncc": c.tolist()}
+        for name, values, c in zip(refl.names, rgb, chromaticity)
+    ]
+    document = {
+        "camera": cam.name,
+        "reflectances": refl.name,
+        "prevailing": str(prevailing),
+        "calibration": str(calibration),
+        "normalization": args.normalization,
+        "knee": args.knee,
+        "grid": str(grid),
+        "samples": samples,
+    }
+    rows = [[s["name"], *(f"{v:.2f}" for v in s["rgb"]), *(f"{v:.4f}" for v in s["ncc"])] for s in samples]
+    text = (
+        f"Eq. 4 responses of {refl.name} through {cam.name}, prevailing {prevailing}, calibration "
+        f"{calibration}, normalization {args.normalization}{', knee' if args.knee else ''} (output units, v = 255):\n"
+        + _table(rows, ["sample", "R", "G", "B", "r", "g", "b"])
+    )
+    _print(args, document, text)
+
+
+def command_bench(args: argparse.Namespace) -> None:
+    from .bench import bench_analytic
+
+    result = bench_analytic(repeat=args.repeat)
+    text = "\n".join(f"{key}: {value}" for key, value in result.items())
+    _print(args, result, text)
+
+
+COMMANDS = {
+    "cameras": command_cameras,
+    "datasets": command_datasets,
+    "illuminants": command_illuminants,
+    "response": command_response,
+    "bench": command_bench,
+}
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        COMMANDS[args.command](args)
+    except SkinrenderError as error:
+        print(f"skinrender {args.command}: error: {error}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:
+        return 0
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

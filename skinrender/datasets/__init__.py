@@ -1,0 +1,118 @@
+"""
+Datasets
+========
+
+Reflectance sets and camera sensitivities, one module per source, reached by
+name through the registries. Nothing is loaded at import: each set is built on
+first use.
+
+-   :func:`reflectances`: a named set or a CSV path to a :class:`SpectralSet`.
+-   :func:`camera_sensitivities`: a named camera to a :class:`SpectralSet`.
+-   :func:`list_reflectances`, :func:`list_cameras`: what exists, with source,
+    licence, count and wavelength range.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..errors import SkinrenderError
+from ..spectra import EXTRAPOLATIONS, read_spectra_csv
+from . import colour_science, luxpy_munsell, psychtoolbox  # noqa: F401  (registration)
+from .registry import REGISTRY_CAMERAS, REGISTRY_REFLECTANCES, SpectralSet, lookup, unknown
+
+__all__ = [
+    "SpectralSet",
+    "REGISTRY_CAMERAS",
+    "REGISTRY_REFLECTANCES",
+    "reflectances",
+    "camera_sensitivities",
+    "list_reflectances",
+    "list_cameras",
+    "looks_like_path",
+]
+
+
+def looks_like_path(spec: str) -> bool:
+    """Whether a spec names a file rather than a registry entry."""
+    return str(spec).lower().endswith(".csv") or Path(str(spec)).is_file()
+
+
+def reflectances(spec: str | SpectralSet, extrapolation: str = "refuse") -> SpectralSet:
+    """
+    A reflectance set by name or CSV path.
+
+    Parameters
+    ----------
+    spec
+        A name from :data:`REGISTRY_REFLECTANCES` (``macbeth``, ``munsell``,
+        ``munsell-nickerson``, ``skin``, ``vrhel``, ``vrhel-nonskin``) or the path of
+        a CSV: first column wavelength in nm, one column per sample, a header row
+        with the sample names, reflectance as a fraction in [0, 1].
+    extrapolation
+        For a CSV: the rule for grid wavelengths outside its range
+        (``refuse``, the default, ``zero`` or ``constant``).
+
+    Returns
+    -------
+    :class:`SpectralSet`
+
+    Examples
+    --------
+    >>> reflectances("macbeth").count
+    24
+    """
+
+    if isinstance(spec, SpectralSet):
+        return spec
+    spec = str(spec).strip()
+    if looks_like_path(spec):
+        if extrapolation not in EXTRAPOLATIONS:
+            raise SkinrenderError(f"extrapolation must be one of {', '.join(EXTRAPOLATIONS)}, got {extrapolation!r}")
+        table = read_spectra_csv(spec, kind="reflectance")
+        return SpectralSet(
+            Path(spec).name, table.wavelengths, table.values, table.names, source=spec,
+            licence="user data", extrapolation=extrapolation,
+        )
+    entry = lookup(REGISTRY_REFLECTANCES, spec, "reflectance set")
+    if entry is None:
+        raise unknown(REGISTRY_REFLECTANCES, spec, "reflectance set", "or give a CSV path")
+    return entry.load()
+
+
+def camera_sensitivities(name: str) -> SpectralSet:
+    """Measured sensitivities of a camera in :data:`REGISTRY_CAMERAS`, channels R, G, B."""
+    entry = lookup(REGISTRY_CAMERAS, name, "camera")
+    if entry is None:
+        raise unknown(
+            REGISTRY_CAMERAS, name, "camera",
+            "or use 'gbell:N@P1,P2,P3', 'impulse@P1,P2,P3' or a CSV path (wavelength nm, R, G, B)",
+        )
+    return entry.load()
+
+
+def _describe(entry) -> dict:
+    spectra = entry.load()
+    return {
+        "name": entry.name,
+        "count": spectra.count,
+        "source": entry.source,
+        "licence": entry.licence,
+        "wavelengths": list(spectra.range),
+        "extrapolation": spectra.extrapolation,
+    }
+
+
+def list_reflectances() -> list[dict]:
+    """Every reflectance set: ``name, count, source, licence, wavelengths [min, max, step]``."""
+    return [_describe(entry) for entry in REGISTRY_REFLECTANCES.values()]
+
+
+def list_cameras() -> list[dict]:
+    """Every bundled camera: ``name, source, wavelengths [min, max, step]`` (and licence)."""
+    rows = []
+    for entry in REGISTRY_CAMERAS.values():
+        row = _describe(entry)
+        del row["count"]
+        rows.append(row)
+    return rows

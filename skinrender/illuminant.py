@@ -1,0 +1,133 @@
+"""
+Illuminant
+==========
+
+One light source: a Planckian radiator at a colour temperature, or a measured
+SPD from a CSV file, and the parsing of the illuminant specs users type.
+
+-   :class:`Illuminant`: ``spd(wavelengths)`` in W·m⁻²·sr⁻¹·nm⁻¹ (Planck) or the
+    file's relative units.
+-   :func:`illuminant`: ``3300``, ``"3300K"``, ``"A"``, ``"H"`` or a CSV path.
+-   :func:`illuminants_array`: any of those, or an array of kelvin, as a flat
+    list plus its shape (for broadcasting).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .constants import TEMPERATURE_A, TEMPERATURE_HORIZON
+from .errors import SkinrenderError
+from .hints import ArrayLike, NDArrayFloat
+from .spectra import planck, read_spectra_csv, resample
+
+__all__ = ["Illuminant", "illuminant", "illuminants_array", "NAMED_TEMPERATURES"]
+
+NAMED_TEMPERATURES = {"A": TEMPERATURE_A, "H": TEMPERATURE_HORIZON, "HORIZON": TEMPERATURE_HORIZON}
+"""Named Planckian illuminants, K: CIE A (2856 K) and the paper's Horizon (2300 K)."""
+
+
+@dataclass(frozen=True)
+class Illuminant:
+    """
+    A light source.
+
+    Parameters
+    ----------
+    name
+        ``3300K``, ``A``, ``H`` or a file name.
+    temperature
+        Planckian colour temperature, K, or ``None`` for a measured SPD.
+    wavelengths, values
+        The measured SPD (nm, relative units) when ``temperature`` is ``None``.
+    """
+
+    name: str
+    temperature: float | None = None
+    wavelengths: tuple[float, ...] | None = None
+    values: tuple[float, ...] | None = None
+
+    def spd(self, wavelengths: ArrayLike) -> NDArrayFloat:
+        """
+        Spectral power distribution at ``wavelengths`` (nm).
+
+        Planck radiance in W·m⁻²·sr⁻¹·nm⁻¹ (the paper's ``I_0``), or the
+        measured SPD linearly interpolated; a wavelength outside the measured
+        range is an error (no extrapolation).
+        """
+        wavelengths = np.asarray(wavelengths, dtype=np.float64)
+        if self.temperature is not None:
+            return planck(wavelengths, self.temperature)
+        return resample(
+            np.asarray(self.wavelengths), np.asarray(self.values), wavelengths, "refuse", f"illuminant {self.name}"
+        )
+
+    def __str__(self) -> str:
+        return self.name
+
+
+def _planckian(temperature: float, name: str | None = None) -> Illuminant:
+    if not np.isfinite(temperature) or temperature <= 0:
+        raise SkinrenderError(f"illuminant temperature must be a finite number of kelvin > 0, got {temperature:g}")
+    return Illuminant(name or f"{temperature:g}K", float(temperature))
+
+
+def illuminant(spec: Illuminant | float | str) -> Illuminant:
+    """
+    An illuminant from its spec.
+
+    Parameters
+    ----------
+    spec
+        A colour temperature in kelvin (``3300``, ``"3300K"``), meaning a
+        Planckian radiator; ``A`` (Planckian 2856 K) or ``H`` (Horizon,
+        Planckian 2300 K); or a CSV path (wavelength nm, one SPD column).
+
+    Returns
+    -------
+    :class:`Illuminant`
+
+    Examples
+    --------
+    >>> illuminant("3300K").temperature
+    3300.0
+    """
+
+    if isinstance(spec, Illuminant):
+        return spec
+    if isinstance(spec, (int, float, np.integer, np.floating)):
+        return _planckian(float(spec))
+    text = str(spec).strip()
+    if text.upper() in NAMED_TEMPERATURES:
+        return _planckian(NAMED_TEMPERATURES[text.upper()], text.upper())
+    number = text[:-1] if text.upper().endswith("K") else text
+    try:
+        value = float(number)
+    except ValueError:
+        value = None
+    if value is not None:
+        return _planckian(value)
+    if text.lower().endswith(".csv") or Path(text).is_file():
+        table = read_spectra_csv(text, kind="spd", expected_columns=1)
+        return Illuminant(Path(text).name, None, tuple(table.wavelengths), tuple(table.values[0]))
+    raise SkinrenderError(
+        f"illuminant {text!r} not understood: expected kelvin (3300 or 3300K), A, H or a CSV path"
+    )
+
+
+def illuminants_array(spec) -> tuple[list[Illuminant], tuple[int, ...]]:
+    """
+    Any illuminant spec, list or array of kelvin, as a flat list and its shape.
+
+    A single spec has shape ``()``.
+    """
+
+    if isinstance(spec, (str, Illuminant)) or np.isscalar(spec):
+        return [illuminant(spec)], ()
+    if isinstance(spec, list) and spec and all(isinstance(s, (str, Illuminant)) for s in spec):
+        return [illuminant(s) for s in spec], (len(spec),)
+    values = np.asarray(spec, dtype=np.float64)
+    return [_planckian(float(t)) for t in values.ravel()], values.shape

@@ -1,0 +1,224 @@
+"""
+Illuminant sets and Stage 1
+===========================
+
+The paper's Stage 1: the chromaticity track of Planckian illuminants seen by a
+camera (Eq. 1 on a white object, then Eq. 2), the measure of Eq. 3 along it,
+and the selection of illuminants equally spaced in that measure.
+
+-   :func:`illuminant_track`: NCC and measure over a temperature range.
+-   :func:`select_illuminants`, :func:`illuminant_selection`: Stage 1.
+-   :func:`illuminant_set`: the ``--illuminants`` spec (paper list, ``auto``,
+    comma-separated kelvin).
+
+References
+----------
+-   :cite:`Martinkauppi2006` : the paper, Stage 1 and Fig. 2.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .camera import Camera, camera, measure, ncc, response_raw
+from .constants import TEMPERATURES_PAPER
+from .errors import SkinrenderError
+from .hints import ArrayLike, NDArrayFloat
+from .spectra import GRID_DEFAULT, WavelengthGrid
+
+__all__ = [
+    "IlluminantTrack",
+    "illuminant_track",
+    "IlluminantSelection",
+    "illuminant_selection",
+    "select_illuminants",
+    "illuminant_set",
+    "temperature_range",
+]
+
+
+def temperature_range(start: float = 2000.0, end: float = 10000.0, step: float = 100.0) -> NDArrayFloat:
+    """Temperatures ``start, start + step, …, end`` in K (``end`` included)."""
+    for name, value in (("start", start), ("end", end), ("step", step)):
+        if not (np.isfinite(value) and value > 0):
+            raise SkinrenderError(f"temperature {name} must be a finite number of kelvin > 0, got {value}")
+    if end < start:
+        raise SkinrenderError(f"temperature range end {end:g} K is below its start {start:g} K")
+    count = int(np.floor((end - start) / step + 1e-9)) + 1
+    values = start + step * np.arange(count)
+    return values if np.isclose(values[-1], end) else np.append(values, end)
+
+
+@dataclass(frozen=True)
+class IlluminantTrack:
+    """Planckian track of a camera: temperatures (K), NCC ``(n, 3)`` and measure ``(n,)``."""
+
+    temperatures: NDArrayFloat
+    chromaticities: NDArrayFloat
+    measures: NDArrayFloat
+    pair: str
+
+
+def illuminant_track(
+    camera_: Camera | str,
+    temperatures: ArrayLike | None = None,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    pair: str = "gb",
+) -> IlluminantTrack:
+    """
+    The NCC chromaticities of a white object under Planckian light (Fig. 2).
+
+    Parameters
+    ----------
+    camera_
+        Camera or spec.
+    temperatures
+        Colour temperatures, K (default 2000–10000 K every 100 K).
+    grid
+        Integration grid.
+    pair
+        Chromaticity pair of the measure (Eq. 3); the paper uses ``gb``
+        because it grows with colour temperature.
+
+    Returns
+    -------
+    :class:`IlluminantTrack`
+
+    Notes
+    -----
+    Eq. 1 with the raw SPD (Eq. 5) and ``o(λ) = 1``; any normalisation would
+    cancel in Eq. 2.
+    """
+
+    temperatures = temperature_range() if temperatures is None else np.asarray(temperatures, dtype=np.float64)
+    white = np.ones((1, grid.size))
+    rgb = response_raw(camera(camera_), white, temperatures, "none", grid)[..., 0, :]
+    chromaticities = ncc(rgb)
+    return IlluminantTrack(temperatures, chromaticities, measure(chromaticities, pair), pair)
+
+
+@dataclass(frozen=True)
+class IlluminantSelection:
+    """
+    Stage 1 result.
+
+    Attributes
+    ----------
+    temperatures
+        Selected temperatures, K, ascending.
+    measures
+        Their measures (Eq. 3).
+    targets
+        The equally spaced measure values they were chosen for.
+    track
+        The full candidate track.
+    monotonic
+        Whether the measure grows strictly with temperature over the range
+        (the premise of the method; ``False`` is reported, not hidden).
+    """
+
+    temperatures: NDArrayFloat
+    measures: NDArrayFloat
+    targets: NDArrayFloat
+    track: IlluminantTrack
+    monotonic: bool
+
+
+def illuminant_selection(
+    camera_: Camera | str,
+    count: int = 10,
+    start: float = 2000.0,
+    end: float = 10000.0,
+    step: float = 100.0,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    pair: str = "gb",
+) -> IlluminantSelection:
+    """
+    Stage 1: ``count`` temperatures equally spaced in the measure of Eq. 3.
+
+    Parameters
+    ----------
+    camera_
+        Camera or spec.
+    count
+        How many illuminants (≥ 2); the first and last are the range ends.
+    start, end, step
+        Candidate temperatures, K (the paper: 2000–10000 K every 100 K).
+    grid
+        Integration grid.
+    pair
+        Chromaticity pair of the measure.
+
+    Returns
+    -------
+    :class:`IlluminantSelection`
+
+    Notes
+    -----
+    The targets are ``count`` values equally spaced between the measures at
+    ``start`` and ``end``; each is matched to the candidate whose measure is
+    nearest (ties to the lower temperature). A candidate chosen twice is kept
+    once, so fewer than ``count`` may come back for a very short range.
+    """
+
+    if int(count) != count or count < 2:
+        raise SkinrenderError(f"count must be an integer ≥ 2, got {count}")
+    track = illuminant_track(camera_, temperature_range(start, end, step), grid, pair)
+    m = track.measures
+    targets = np.linspace(m[0], m[-1], int(count))
+    index = np.argmin(np.abs(m[None, :] - targets[:, None]), axis=1)
+    index = np.unique(index)
+    return IlluminantSelection(
+        track.temperatures[index], m[index], targets, track, bool(np.all(np.diff(m) > 0))
+    )
+
+
+def select_illuminants(camera_: Camera | str, count: int = 10, **kwargs) -> NDArrayFloat:
+    """
+    Stage 1 temperatures (K) for a camera; see :func:`illuminant_selection`.
+
+    Examples
+    --------
+    >>> select_illuminants("Nikon 5100 (NPL)", count=3)  # doctest: +ELLIPSIS
+    array([  2000., ...,  10000.])
+    """
+
+    return illuminant_selection(camera_, count, **kwargs).temperatures
+
+
+def illuminant_set(spec: str | ArrayLike | None = None, camera_: Camera | str | None = None) -> NDArrayFloat:
+    """
+    Temperatures (K) from an ``--illuminants`` spec.
+
+    Parameters
+    ----------
+    spec
+        ``None`` or ``paper``: the paper's ten (2000 … 10000 K); ``auto``: Stage 1
+        for ``camera_``; a comma-separated list of kelvin (``2000,3300K,A``) or
+        a sequence of numbers.
+    camera_
+        Needed for ``auto``.
+    """
+
+    if spec is None or (isinstance(spec, str) and spec.strip().lower() == "paper"):
+        return np.array(TEMPERATURES_PAPER)
+    if isinstance(spec, str):
+        text = spec.strip()
+        if text.lower() == "auto":
+            if camera_ is None:
+                raise SkinrenderError("--illuminants auto needs a camera (--camera)")
+            return select_illuminants(camera_)
+        from .illuminant import illuminant
+
+        items = [illuminant(part) for part in text.split(",") if part.strip()]
+        if not items or any(item.temperature is None for item in items):
+            raise SkinrenderError(
+                f"illuminants must be 'paper', 'auto' or comma-separated kelvin (e.g. 2000,3300,A), got {spec!r}"
+            )
+        return np.array([item.temperature for item in items])
+    values = np.asarray(spec, dtype=np.float64).ravel()
+    if values.size == 0 or not np.all(np.isfinite(values) & (values > 0)):
+        raise SkinrenderError(f"illuminant temperatures must be kelvin > 0, got {values.tolist()}")
+    return values

@@ -1,0 +1,497 @@
+"""
+Spectra
+=======
+
+The wavelength grid, explicit resampling, Planck's law and the paper's sensor
+shapes, plus the validating reader for spectral CSV files.
+
+-   :class:`WavelengthGrid`, :data:`GRID_DEFAULT`: the uniform integration grid.
+-   :func:`resample`: linear interpolation with a stated extrapolation rule.
+-   :func:`planck`: blackbody spectral radiance.
+-   :func:`gbell`, :func:`impulse`: the paper's sensor shapes.
+-   :func:`read_spectra_csv`: a CSV of spectra, validated line by line.
+
+Units: wavelength in nm, temperature in K, spectral radiance in
+W·m⁻²·sr⁻¹·nm⁻¹; reflectances and sensitivities are unitless.
+
+References
+----------
+-   :cite:`CODATA2018`, see :mod:`skinrender.constants`.
+-   :cite:`MathWorksGbellmf` : MathWorks, ``gbellmf`` — generalised bell-shaped
+    membership function, ``f(x; a, b, c) = 1 / (1 + |(x - c)/a|^(2b))``.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .constants import CONSTANT_C, CONSTANT_H, CONSTANT_K_B
+from .errors import SkinrenderError
+from .hints import ArrayLike, Literal, NDArrayFloat
+
+__all__ = [
+    "WavelengthGrid",
+    "GRID_DEFAULT",
+    "EXTRAPOLATIONS",
+    "resample",
+    "planck",
+    "gbell",
+    "impulse",
+    "SpectraTable",
+    "read_spectra_csv",
+    "validate_spectra",
+]
+
+EXTRAPOLATIONS = ("refuse", "zero", "constant")
+"""Rules for wavelengths of the grid outside the measured range:
+``refuse`` (an error), ``zero`` (the value is 0 there, the usual rule for
+sensor sensitivities) and ``constant`` (the nearest measured value is held)."""
+
+
+@dataclass(frozen=True)
+class WavelengthGrid:
+    """
+    A uniform wavelength grid for the spectral sums of Eqs. 1 and 4.
+
+    Parameters
+    ----------
+    start, end
+        First and last wavelength, nm; ``end`` is included.
+    step
+        Spacing, nm; ``end - start`` must be a whole number of steps.
+
+    Notes
+    -----
+    The paper sums over 400–700 nm; the default grid does so every 1 nm.
+    Integrals are Riemann sums ``Σ f(λ) Δλ`` over the grid samples.
+
+    Examples
+    --------
+    >>> WavelengthGrid(400, 700, 10).wavelengths[:3]
+    array([ 400.,  410.,  420.])
+    """
+
+    start: float = 400.0
+    end: float = 700.0
+    step: float = 1.0
+
+    def __post_init__(self) -> None:
+        for name in ("start", "end", "step"):
+            value = getattr(self, name)
+            if not np.isfinite(value):
+                raise SkinrenderError(f"grid {name} must be a finite number of nm, got {value!r}")
+        if self.start <= 0:
+            raise SkinrenderError(f"grid start must be > 0 nm, got {self.start}")
+        if self.step <= 0:
+            raise SkinrenderError(f"grid step must be > 0 nm, got {self.step}")
+        if self.end < self.start:
+            raise SkinrenderError(
+                f"grid end ({self.end} nm) must not be below grid start ({self.start} nm)"
+            )
+        count = (self.end - self.start) / self.step
+        if abs(count - round(count)) > 1e-9 * max(1.0, count):
+            raise SkinrenderError(
+                f"grid {self.start}–{self.end} nm is not a whole number of {self.step} nm steps"
+            )
+
+    @property
+    def size(self) -> int:
+        """Number of samples."""
+        return int(round((self.end - self.start) / self.step)) + 1
+
+    @property
+    def wavelengths(self) -> NDArrayFloat:
+        """The sample wavelengths, nm, shape ``(size,)``."""
+        return self.start + self.step * np.arange(self.size, dtype=np.float64)
+
+    def index_of(self, wavelength: float) -> int:
+        """Index of a wavelength that lies on the grid; an error otherwise."""
+        position = (wavelength - self.start) / self.step
+        index = int(round(position))
+        if abs(position - index) > 1e-6 or not 0 <= index < self.size:
+            raise SkinrenderError(
+                f"wavelength {wavelength} nm is not a sample of the grid "
+                f"{self.start:g}:{self.end:g}:{self.step:g} nm"
+            )
+        return index
+
+    def __str__(self) -> str:
+        return f"{self.start:g}:{self.end:g}:{self.step:g} nm"
+
+    @classmethod
+    def parse(cls, text: str) -> WavelengthGrid:
+        """Parse ``START:END:STEP`` (nm), e.g. ``400:700:5``."""
+        parts = str(text).replace("nm", "").split(":")
+        try:
+            if len(parts) != 3:
+                raise ValueError
+            start, end, step = (float(part) for part in parts)
+        except ValueError:
+            raise SkinrenderError(
+                f"grid must be START:END:STEP in nm (e.g. 400:700:1), got {text!r}"
+            ) from None
+        return cls(start, end, step)
+
+
+GRID_DEFAULT = WavelengthGrid(400.0, 700.0, 1.0)
+"""The default integration grid: 400–700 nm every 1 nm, as the paper."""
+
+
+def resample(
+    wavelengths: ArrayLike,
+    values: ArrayLike,
+    grid: WavelengthGrid | ArrayLike,
+    extrapolation: Literal["refuse", "zero", "constant"] | str = "refuse",
+    source: str = "spectra",
+) -> NDArrayFloat:
+    """
+    Resample spectra onto a grid by linear interpolation.
+
+    Parameters
+    ----------
+    wavelengths
+        Measured wavelengths, nm, strictly increasing, shape ``(n,)``.
+    values
+        Spectra with wavelength on the last axis, shape ``(..., n)``.
+    grid
+        Target grid or target wavelengths, nm.
+    extrapolation
+        What to do where the grid leaves the measured range: ``refuse``
+        (raise :class:`SkinrenderError`), ``zero`` or ``constant`` (hold the
+        end value). See :data:`EXTRAPOLATIONS`.
+    source
+        Name used in error messages (a file, a dataset).
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Shape ``(..., grid size)``.
+
+    Notes
+    -----
+    Linear interpolation never creates values outside the range of its two
+    neighbours, so a non-negative reflectance stays non-negative.
+    """
+
+    x = np.asarray(wavelengths, dtype=np.float64)
+    y = np.asarray(values, dtype=np.float64)
+    target = grid.wavelengths if isinstance(grid, WavelengthGrid) else np.asarray(grid, np.float64)
+    if extrapolation not in EXTRAPOLATIONS:
+        raise SkinrenderError(
+            f"extrapolation must be one of {', '.join(EXTRAPOLATIONS)}, got {extrapolation!r}"
+        )
+    if x.ndim != 1 or x.size != y.shape[-1]:
+        raise SkinrenderError(
+            f"{source}: {x.size} wavelengths but spectra of length {y.shape[-1]}"
+        )
+    if x.size >= 2 and np.any(np.diff(x) <= 0):
+        raise SkinrenderError(f"{source}: wavelengths must be strictly increasing")
+    tolerance = 1e-9
+    outside = (target < x[0] - tolerance) | (target > x[-1] + tolerance)
+    if np.any(outside) and extrapolation == "refuse":
+        raise SkinrenderError(
+            f"{source}: measured over {x[0]:g}–{x[-1]:g} nm, which does not cover the "
+            f"grid {target[0]:g}–{target[-1]:g} nm; choose a grid inside the data or "
+            f"state an extrapolation ('zero' or 'constant')"
+        )
+    flat = y.reshape(-1, x.size)
+    if x.size == 1:
+        out = np.repeat(flat, target.size, axis=1)
+    else:
+        # Vectorised linear interpolation over every spectrum at once.
+        index = np.clip(np.searchsorted(x, target, side="right") - 1, 0, x.size - 2)
+        t = np.clip((target - x[index]) / (x[index + 1] - x[index]), 0.0, 1.0)
+        out = flat[:, index] * (1.0 - t) + flat[:, index + 1] * t
+    if extrapolation == "zero":
+        out[:, outside] = 0.0
+    return out.reshape(*y.shape[:-1], target.size)
+
+
+def planck(wavelength: ArrayLike, temperature: ArrayLike) -> NDArrayFloat:
+    """
+    Spectral radiance of a blackbody (Planck's law).
+
+    ``L(λ, T) = 2hc² / λ⁵ / (exp(hc / (λ k T)) − 1)``
+
+    Parameters
+    ----------
+    wavelength
+        Wavelength λ, nm, > 0.
+    temperature
+        Temperature T, K, > 0. Broadcast against ``wavelength``.
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹, finite and non-negative.
+
+    Notes
+    -----
+    The exponent is evaluated with ``expm1`` (no loss at high T where
+    ``hc/λkT`` is small) and in log space where it is large, so 300 K gives a
+    tiny positive or zero value instead of an overflow warning.
+
+    References
+    ----------
+    :cite:`CODATA2018`
+
+    Examples
+    --------
+    >>> planck(560, 5000)  # doctest: +ELLIPSIS
+    array(1.2...e+10)
+    """
+
+    lam = np.asarray(wavelength, dtype=np.float64)
+    t = np.asarray(temperature, dtype=np.float64)
+    if np.any(~np.isfinite(t)) or np.any(t <= 0):
+        raise SkinrenderError(f"temperature must be a finite number of kelvin > 0, got {_show(t)}")
+    if np.any(~np.isfinite(lam)) or np.any(lam <= 0):
+        raise SkinrenderError(f"wavelength must be a finite number of nm > 0, got {_show(lam)}")
+    lam_m = lam * 1e-9
+    x = CONSTANT_H * CONSTANT_C / (lam_m * CONSTANT_K_B * t)
+    prefactor = 2.0 * CONSTANT_H * CONSTANT_C**2 / lam_m**5 * 1e-9  # per nm
+    # For x > 700, exp(x) overflows float64; there 1/(e^x − 1) = e^−x (1 + e^−x …)
+    # to machine precision, computed as exp(log(prefactor) − x), which underflows
+    # gracefully to 0 instead of warning.
+    large = x > 700.0
+    with np.errstate(over="ignore", under="ignore"):
+        small_part = prefactor / np.expm1(np.where(large, 1.0, x))
+        large_part = np.exp(np.log(prefactor) - np.where(large, x, 0.0))
+    return np.where(large, large_part, small_part)
+
+
+def gbell(
+    wavelength: ArrayLike, peak: ArrayLike, fwhm: ArrayLike, slope: ArrayLike = 2.0
+) -> NDArrayFloat:
+    """
+    The generalised bell curve of Matlab's ``gbellmf``.
+
+    ``f(λ) = 1 / (1 + |(λ − c) / a|^(2b))`` with ``c`` the peak, ``a = FWHM / 2``.
+
+    Parameters
+    ----------
+    wavelength
+        Wavelength λ, nm.
+    peak
+        Peak position *c*, nm; the curve is 1 there.
+    fwhm
+        Full width at half maximum, nm (the paper's sensor *n* has ``n · 10``).
+    slope
+        Slope parameter *b* (> 0), unitless. The paper does not give it; the
+        default 2 gives a curve with clear shoulders and tails that fall as
+        ``λ⁻⁴``. The value is 1/2 at ``c ± a`` for every *b*.
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Relative sensitivity in [0, 1], broadcast of the inputs.
+
+    References
+    ----------
+    :cite:`MathWorksGbellmf`
+
+    Examples
+    --------
+    >>> gbell([540, 585], 540, 90)
+    array([ 1. ,  0.5])
+    """
+
+    lam = np.asarray(wavelength, dtype=np.float64)
+    a = np.asarray(fwhm, dtype=np.float64) / 2.0
+    b = np.asarray(slope, dtype=np.float64)
+    if np.any(~(a > 0)) or np.any(~np.isfinite(a)):
+        raise SkinrenderError(f"fwhm must be a finite number of nm > 0, got {_show(2 * a)}")
+    if np.any(~(b > 0)) or np.any(~np.isfinite(b)):
+        raise SkinrenderError(f"slope b must be a finite number > 0, got {_show(b)}")
+    with np.errstate(over="ignore"):
+        return 1.0 / (1.0 + np.abs((lam - peak) / a) ** (2.0 * b))
+
+
+def impulse(grid: WavelengthGrid, peak: float) -> NDArrayFloat:
+    """
+    The paper's "sensor 1": an impulse at ``peak`` on the grid.
+
+    Parameters
+    ----------
+    grid
+        Integration grid; ``peak`` must be one of its samples.
+    peak
+        Impulse position, nm.
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Shape ``(grid.size,)``: ``1 / Δλ`` at the peak sample, 0 elsewhere.
+
+    Notes
+    -----
+    The impulse is a unit-area delta, so that the integral ``Σ x(λ) f(λ) Δλ``
+    equals ``f(peak)`` whatever the grid step. The paper's "value one at a
+    wavelength" differs by the constant ``Δλ``, which Eq. 4 cancels.
+    """
+
+    values = np.zeros(grid.size)
+    values[grid.index_of(peak)] = 1.0 / grid.step
+    return values
+
+
+@dataclass(frozen=True)
+class SpectraTable:
+    """Spectra read from a table: wavelengths (nm), names and values ``(n_spectra, n_wl)``."""
+
+    wavelengths: NDArrayFloat
+    names: tuple[str, ...]
+    values: NDArrayFloat
+    source: str
+
+
+def validate_spectra(
+    wavelengths: NDArrayFloat,
+    values: NDArrayFloat,
+    source: str,
+    kind: Literal["reflectance", "sensitivity", "spd"] = "reflectance",
+    lines: "list[int] | None" = None,
+) -> None:
+    """
+    Refuse NaN, infinite or negative values and non-monotonic wavelengths.
+
+    Parameters
+    ----------
+    wavelengths
+        Shape ``(n,)``, nm.
+    values
+        Shape ``(n_spectra, n)``.
+    source
+        File or dataset name for the message.
+    kind
+        What the values are (named in the message). Reflectances must also be
+        at most 1.5 — a table in percent is refused rather than rescaled.
+    lines
+        The file line number of each wavelength row, for the message; with
+        ``None`` messages give the row index.
+    """
+
+    def where(row: int) -> str:
+        return f"{source}, line {lines[row]}" if lines is not None else f"{source}, row {row}"
+
+    if not np.all(np.isfinite(wavelengths)):
+        row = int(np.flatnonzero(~np.isfinite(wavelengths))[0])
+        raise SkinrenderError(f"{where(row)}: wavelength is not a finite number")
+    steps = np.diff(wavelengths)
+    if np.any(steps <= 0):
+        row = int(np.flatnonzero(steps <= 0)[0]) + 1
+        raise SkinrenderError(
+            f"{where(row)}: wavelength {wavelengths[row]:g} nm does not increase on the "
+            f"previous {wavelengths[row - 1]:g} nm (the wavelength column must be strictly increasing)"
+        )
+    if np.any(wavelengths <= 0):
+        row = int(np.flatnonzero(wavelengths <= 0)[0])
+        raise SkinrenderError(f"{where(row)}: wavelength must be > 0 nm")
+    bad = ~np.isfinite(values)
+    if np.any(bad):
+        spectrum, row = (int(i[0]) for i in np.nonzero(bad))
+        raise SkinrenderError(f"{where(row)}: {kind} in column {spectrum + 2} is not a finite number")
+    negative = values < 0
+    if np.any(negative):
+        spectrum, row = (int(i[0]) for i in np.nonzero(negative))
+        raise SkinrenderError(
+            f"{where(row)}: negative {kind} {values[spectrum, row]:g} in column {spectrum + 2}"
+        )
+    if kind == "reflectance" and values.size and values.max() > 1.5:
+        spectrum, row = np.unravel_index(int(np.argmax(values)), values.shape)
+        raise SkinrenderError(
+            f"{where(int(row))}: reflectance {values[spectrum, row]:g} in column {spectrum + 2} "
+            f"is above 1.5; reflectances are fractions in [0, 1], not percent"
+        )
+
+
+def read_spectra_csv(
+    path: str | Path,
+    kind: Literal["reflectance", "sensitivity", "spd"] = "reflectance",
+    expected_columns: int | None = None,
+) -> SpectraTable:
+    """
+    Read a CSV of spectra: first column wavelength (nm), one column per spectrum.
+
+    Parameters
+    ----------
+    path
+        The CSV file. A header row (any first cell that is not a number) gives
+        the spectrum names; without one, the names are ``column 2`` …
+    kind
+        ``reflectance`` (fractions in [0, 1]), ``sensitivity`` or ``spd``.
+    expected_columns
+        Number of spectrum columns required (3 for a camera), or ``None``.
+
+    Returns
+    -------
+    :class:`SpectraTable`
+
+    Raises
+    ------
+    SkinrenderError
+        For a missing file, a non-numeric cell, a ragged row, NaN, negative
+        values or a wavelength column that is not strictly increasing, naming
+        the file and line.
+    """
+
+    path = Path(path)
+    if not path.is_file():
+        raise SkinrenderError(f"{path}: no such file")
+    rows: list[list[float]] = []
+    lines: list[int] = []
+    names: list[str] | None = None
+    with path.open(newline="", encoding="utf-8-sig") as handle:
+        for line_number, row in enumerate(csv.reader(handle), start=1):
+            cells = [cell.strip() for cell in row]
+            if not cells or all(cell == "" for cell in cells) or cells[0].startswith("#"):
+                continue
+            if names is None and not rows and not _is_number(cells[0]):
+                names = cells[1:]
+                continue
+            try:
+                numbers = [float(cell) if cell != "" else math.nan for cell in cells]
+            except ValueError:
+                bad = next(cell for cell in cells if cell != "" and not _is_number(cell))
+                raise SkinrenderError(f"{path}, line {line_number}: {bad!r} is not a number") from None
+            width = len(names) + 1 if names is not None else (len(rows[0]) if rows else len(numbers))
+            if len(numbers) != width:
+                raise SkinrenderError(
+                    f"{path}, line {line_number}: {len(numbers)} columns, expected {width}"
+                )
+            rows.append(numbers)
+            lines.append(line_number)
+    if not rows:
+        raise SkinrenderError(f"{path}: no data rows")
+    data = np.asarray(rows, dtype=np.float64)
+    if data.shape[1] < 2:
+        raise SkinrenderError(f"{path}: needs a wavelength column and at least one spectrum column")
+    if names is None:
+        names = [f"column {i}" for i in range(2, data.shape[1] + 1)]
+    if expected_columns is not None and data.shape[1] - 1 != expected_columns:
+        raise SkinrenderError(
+            f"{path}: {data.shape[1] - 1} spectrum columns, expected {expected_columns} "
+            f"(wavelength in nm, then {expected_columns} columns)"
+        )
+    wavelengths, values = data[:, 0], data[:, 1:].T.copy()
+    validate_spectra(wavelengths, values, str(path), kind, lines=lines)
+    return SpectraTable(wavelengths, tuple(names), values, str(path))
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _show(values: NDArrayFloat) -> str:
+    flat = np.ravel(values)
+    bad = flat[~(np.isfinite(flat) & (flat > 0))]
+    return repr(float(bad[0])) if bad.size else repr(flat.tolist())
