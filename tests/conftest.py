@@ -1,0 +1,36 @@
+"""Shared fixtures: a seeded generator and the reference data beside the checkout."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT_REPOSITORY = Path(__file__).resolve().parents[1]
+ROOT_SHARED_DATA = ROOT_REPOSITORY.parent / "shared" / "data"
+
+
+@pytest.fixture
+def rng() -> np.random.Generator:
+    """A seeded random generator."""
+    return np.random.default_rng(12345)
+
+
+@pytest.fixture
+def shared_data() -> Path:
+    """``../shared/data`` beside the checkout; the test is skipped without it."""
+    if not ROOT_SHARED_DATA.is_dir():
+        pytest.skip(f"reference data not found at {ROOT_SHARED_DATA} (a fresh clone has no ../shared)")
+    return ROOT_SHARED_DATA
+
+
+def sony_dxc930_csv(shared_data: Path, tmp_path: Path) -> Path:
+    """The Sony DXC-930 sensitivities with the R and B measurement floors (82.2, 21.2) subtracted."""
+    data = np.genfromtxt(shared_data / "camera_sony_dxc930_sfu.csv", delimiter=",", names=True)
+    out = tmp_path / "sony_dxc930.csv"
+    rows = np.column_stack(
+        [data["wavelength_nm"], np.maximum(data["R"] - 82.2, 0), data["G"], np.maximum(data["B"] - 21.2, 0)]
+    )
+    np.savetxt(out, rows, delimiter=",", header="wavelength_nm,R,G,B", comments="", fmt="%.6g")
+    return out
