@@ -1,0 +1,124 @@
+"""Tests for :mod:`skinrender.cli`: the commands of CONTRACT.md with ``--json``, and clean errors."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from skinrender.cli import main
+
+
+def run_json(capsys, *argv):
+    assert main([*argv, "--json"]) == 0
+    captured = capsys.readouterr()
+    return json.loads(captured.out)
+
+
+def run_error(capsys, *argv):
+    status = main(list(argv))
+    captured = capsys.readouterr()
+    assert status == 2
+    assert captured.out == ""
+    assert "Traceback" not in captured.err
+    return captured.err
+
+
+class TestCommands:
+    def test_cameras(self, capsys):
+        document = run_json(capsys, "cameras")
+        names = {c["name"] for c in document["cameras"]}
+        assert "Nikon 5100 (NPL)" in names
+        assert all(set(c) >= {"name", "source", "wavelengths"} for c in document["cameras"])
+
+    def test_datasets(self, capsys):
+        document = run_json(capsys, "datasets")
+        rows = {d["name"]: d for d in document["datasets"]}
+        assert rows["munsell"]["count"] == 1269 and rows["skin"]["count"] == 30
+        assert all(set(d) >= {"name", "count", "source", "licence", "wavelengths"} for d in rows.values())
+
+    def test_illuminants(self, capsys):
+        document = run_json(capsys, "illuminants", "--camera", "Kodak DCS-200")
+        assert len(document["temperatures"]) == len(document["measure"]) == 10
+        assert document["temperatures"][0] == 2000 and document["temperatures"][-1] == 10000
+
+    def test_illuminants_options(self, capsys):
+        document = run_json(capsys, "illuminants", "--camera", "gbell:9@450,540,610",
+                            "--range", "2500", "8000", "--step", "50", "--count", "5")
+        assert document["temperatures"][0] == 2500 and len(document["temperatures"]) == 5
+
+    def test_response(self, capsys):
+        document = run_json(capsys, "response", "--camera", "gbell:9@450,540,610", "--reflectances", "macbeth",
+                            "--prevailing", "A", "--calibration", "H")
+        assert len(document["samples"]) == 24
+        sample = document["samples"][0]
+        assert sample["name"] == "dark skin" and len(sample["rgb"]) == 3
+        assert sum(sample["ncc"]) == pytest.approx(1)
+
+    def test_response_white_at_p_equals_c(self, capsys, tmp_path):
+        path = tmp_path / "white.csv"
+        path.write_text("nm,white\n380,1\n780,1\n")
+        document = run_json(capsys, "response", "--camera", "Nikon 5100 (NPL)", "--reflectances", str(path),
+                            "--prevailing", "3300K", "--calibration", "3300", "--normalization", "euclidean")
+        np.testing.assert_allclose(document["samples"][0]["rgb"], 255, rtol=1e-12)
+
+    def test_response_knee_and_grid(self, capsys):
+        document = run_json(capsys, "response", "--camera", "gbell:9@450,540,610", "--reflectances", "skin",
+                            "--prevailing", "10000", "--calibration", "2000", "--normalization", "560nm",
+                            "--knee", "--grid", "400:700:5")
+        assert max(max(s["rgb"]) for s in document["samples"]) <= 255
+        assert document["grid"] == "400:700:5 nm"
+
+    def test_text_output(self, capsys):
+        assert main(["response", "--camera", "Kodak DCS-200", "--reflectances", "macbeth",
+                     "--prevailing", "A", "--calibration", "A"]) == 0
+        assert "dark skin" in capsys.readouterr().out
+
+
+class TestErrors:
+    def test_unknown_camera(self, capsys):
+        err = run_error(capsys, "illuminants", "--camera", "Sony 755")
+        assert "unknown camera 'Sony 755'" in err and "Nikon 5100 (NPL)" in err
+
+    def test_unknown_dataset(self, capsys):
+        err = run_error(capsys, "response", "--camera", "Kodak DCS-200", "--reflectances", "skins",
+                        "--prevailing", "A", "--calibration", "H")
+        assert "unknown reflectance set 'skins'" in err and "'skin'" in err
+
+    @pytest.mark.parametrize("temperature", ["0", "-300", "-5K"])
+    def test_bad_temperature(self, capsys, temperature):
+        err = run_error(capsys, "response", "--camera", "Kodak DCS-200", "--reflectances", "macbeth",
+                        f"--prevailing={temperature}", "--calibration", "H")
+        assert "kelvin > 0" in err
+
+    def test_csv_with_nan(self, capsys, tmp_path):
+        path = tmp_path / "bad.csv"
+        path.write_text("nm,a\n380,0.1\n500,nan\n780,0.2\n")
+        err = run_error(capsys, "response", "--camera", "Kodak DCS-200", "--reflectances", str(path),
+                        "--prevailing", "A", "--calibration", "H")
+        assert "bad.csv, line 3" in err
+
+    def test_grid_not_covered(self, capsys):
+        err = run_error(capsys, "response", "--camera", "Kodak DCS-200", "--reflectances", "vrhel",
+                        "--prevailing", "A", "--calibration", "H", "--grid", "380:780:5")
+        assert "does not cover" in err
+
+    def test_bad_grid(self, capsys):
+        err = run_error(capsys, "illuminants", "--camera", "Kodak DCS-200", "--grid", "400-700")
+        assert "START:END:STEP" in err
+
+    def test_missing_camera_csv(self, capsys):
+        err = run_error(capsys, "illuminants", "--camera", "nothing/here.csv")
+        assert "no such file" in err
+
+
+def test_entry_point_subprocess():
+    """``python -m skinrender`` prints one JSON document on stdout and exits 0; a bad camera exits 2."""
+    ok = subprocess.run([sys.executable, "-m", "skinrender", "cameras", "--json"], capture_output=True, text=True)
+    assert ok.returncode == 0 and "cameras" in json.loads(ok.stdout)
+    bad = subprocess.run([sys.executable, "-m", "skinrender", "illuminants", "--camera", "nope", "--json"],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and bad.stdout == "" and "unknown camera" in bad.stderr
