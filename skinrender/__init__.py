@@ -38,6 +38,7 @@ from .camera import (
 from .constants import TEMPERATURES_PAPER
 from .datasets import SpectralSet, list_cameras, list_reflectances, reflectances
 from .errors import SkinrenderError
+from .gamut import Gamut, gamut, gamut_all_calibrations, gamut_calibration, gamut_volume
 from .illuminant import Illuminant, illuminant
 from .illuminants import (
     illuminant_selection,
@@ -59,7 +60,12 @@ __all__ = [
     "SkinrenderError",
     "SpectralSet",
     "WavelengthGrid",
+    "Gamut",
     "camera",
+    "gamut",
+    "gamut_all_calibrations",
+    "gamut_calibration",
+    "gamut_volume",
     "gbell",
     "illuminant",
     "illuminant_selection",

@@ -80,6 +80,25 @@ def build_parser() -> argparse.ArgumentParser:
     _add_grid(p)
     _add_common(p)
 
+    p = commands.add_parser("gamut", help="convex-hull gamut volume of Eq. 4 responses (output units³)")
+    p.add_argument("--camera", required=True, help=HELP_CAMERA)
+    p.add_argument("--reflectances", help="reflectance set (name or CSV path); not with --ratio")
+    case = p.add_mutually_exclusive_group(required=True)
+    case.add_argument("--calibration", help="one calibration case: this calibration illuminant with every "
+                      "prevailing illuminant of the set; " + HELP_ILLUMINANT)
+    case.add_argument("--all-calibrations", action="store_true",
+                      help="the union over every (prevailing, calibration) pair of the set")
+    p.add_argument("--illuminants", default="paper",
+                   help="illuminant set: 'paper' (the ten, default), 'auto' (Stage 1) or comma-separated kelvin")
+    p.add_argument("--ratio", action="store_true", help="skin volume / Munsell volume")
+    p.add_argument("--skin", default="skin", help="skin set for --ratio (default skin)")
+    p.add_argument("--munsell", default="munsell", help="Munsell set for --ratio (default munsell)")
+    p.add_argument("--normalization", default="white", choices=["none", "560nm", "euclidean", "white"],
+                   help="illuminant normalisation (default white)")
+    p.add_argument("--knee", action="store_true", help="apply the knee of Eq. 11")
+    _add_grid(p)
+    _add_common(p)
+
     p = commands.add_parser("bench", help="speed and accuracy figures")
     p.add_argument("what", choices=["analytic"], help="which benchmark")
     p.add_argument("--repeat", type=int, default=3, help="timed repetitions, best kept (default 3)")
@@ -197,6 +216,58 @@ def command_response(args: argparse.Namespace) -> None:
     _print(args, document, text)
 
 
+def command_gamut(args: argparse.Namespace) -> None:
+    from .camera import camera
+    from .datasets import reflectances
+    from .gamut import gamut_all_calibrations, gamut_calibration
+    from .illuminant import illuminant
+    from .illuminants import illuminant_set
+
+    grid = _grid(args)
+    cam = camera(args.camera, extrapolation=args.extrapolation)
+    temperatures = illuminant_set(args.illuminants, cam)
+    if args.ratio == bool(args.reflectances):
+        raise SkinrenderError("give either --reflectances R or --ratio (with --skin and --munsell), not both or neither")
+    if args.calibration is not None:
+        calibration = illuminant(args.calibration)
+        if calibration.temperature is None:
+            raise SkinrenderError("--calibration must be a Planckian illuminant (kelvin, A or H) for a gamut case")
+
+    def volume_of(spec: str):
+        refl = reflectances(spec, extrapolation=args.extrapolation)
+        if args.all_calibrations:
+            result = gamut_all_calibrations(cam, refl, temperatures, args.normalization, args.knee, grid)
+        else:
+            result = gamut_calibration(cam, refl, calibration.temperature, temperatures, args.normalization,
+                                       args.knee, grid)
+        return refl.name, result
+
+    document = {
+        "camera": cam.name,
+        "case": "all calibrations" if args.all_calibrations else f"calibration {args.calibration}",
+        "illuminants_K": temperatures.tolist(),
+        "normalization": args.normalization,
+        "knee": args.knee,
+    }
+    if args.ratio:
+        (skin_name, skin), (munsell_name, munsell) = volume_of(args.skin), volume_of(args.munsell)
+        ratio = skin.volume / munsell.volume if munsell.volume > 0 else None
+        document.update(
+            skin={"name": skin_name, "volume": skin.volume, "points": skin.points, "degenerate": skin.degenerate},
+            munsell={"name": munsell_name, "volume": munsell.volume, "points": munsell.points,
+                     "degenerate": munsell.degenerate},
+            ratio=ratio, volume=skin.volume, points=skin.points, degenerate=skin.degenerate or munsell.degenerate,
+        )
+        text = (f"{cam.name}, {document['case']}: skin {skin.volume:.6g}, Munsell {munsell.volume:.6g} "
+                f"(output units³), ratio {'undefined (degenerate Munsell gamut)' if ratio is None else f'{ratio:.6g}'}")
+    else:
+        name, result = volume_of(args.reflectances)
+        document.update(reflectances=name, volume=result.volume, points=result.points, degenerate=result.degenerate)
+        text = (f"{name} through {cam.name}, {document['case']}: volume {result.volume:.6g} output units³ "
+                f"({result.points} points{', degenerate' if result.degenerate else ''})")
+    _print(args, document, text)
+
+
 def command_bench(args: argparse.Namespace) -> None:
     from .bench import bench_analytic
 
@@ -210,6 +281,7 @@ COMMANDS = {
     "datasets": command_datasets,
     "illuminants": command_illuminants,
     "response": command_response,
+    "gamut": command_gamut,
     "bench": command_bench,
 }
 

@@ -122,3 +122,23 @@ def test_entry_point_subprocess():
     bad = subprocess.run([sys.executable, "-m", "skinrender", "illuminants", "--camera", "nope", "--json"],
                          capture_output=True, text=True)
     assert bad.returncode == 2 and bad.stdout == "" and "unknown camera" in bad.stderr
+
+
+class TestGamutCommand:
+    def test_volume(self, capsys):
+        document = run_json(capsys, "gamut", "--camera", "gbell:9@450,540,610", "--reflectances", "skin",
+                            "--calibration", "3300")
+        assert document["volume"] > 0 and document["points"] == 300 and document["degenerate"] is False
+
+    def test_ratio_all_calibrations(self, capsys):
+        document = run_json(capsys, "gamut", "--camera", "gbell:9@450,540,610", "--ratio", "--all-calibrations",
+                            "--munsell", "munsell-nickerson")
+        assert document["ratio"] == pytest.approx(document["skin"]["volume"] / document["munsell"]["volume"])
+
+    def test_degenerate(self, capsys):
+        document = run_json(capsys, "gamut", "--camera", "gbell:9@550,550,550", "--ratio", "--calibration", "A")
+        assert document["degenerate"] is True and document["volume"] == 0 and document["ratio"] is None
+
+    def test_needs_reflectances_or_ratio(self, capsys):
+        err = run_error(capsys, "gamut", "--camera", "Kodak DCS-200", "--calibration", "A")
+        assert "--reflectances" in err

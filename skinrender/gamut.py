@@ -1,0 +1,146 @@
+"""
+Gamut volumes
+=============
+
+The evaluator that analytic and rendered responses both feed: the convex-hull
+volume of a cloud of RGB responses (Qhull, as Matlab's ``convhulln``), safe for
+degenerate clouds, and the paper's two gamut cases.
+
+-   :class:`Gamut`, :func:`gamut`: volume, point count and a ``degenerate`` flag.
+-   :func:`gamut_volume`: the volume alone, 0.0 for a degenerate cloud.
+-   :func:`gamut_calibration`: one calibration case (the union over the
+    prevailing illuminants for one calibration illuminant).
+-   :func:`gamut_all_calibrations`: the union over every (prevailing,
+    calibration) pair.
+
+Volumes are in output units cubed (Eq. 4 responses, v = 255).
+
+References
+----------
+-   :cite:`Barber1996` : Barber, C. B., Dobkin, D. P., & Huhdanpaa, H. (1996).
+    The Quickhull algorithm for convex hulls. ACM TOMS, 22(4), 469–483.
+-   :cite:`Martinkauppi2006` : the paper, Stages 2 and 3; NOTES.md "Gamuts".
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import ConvexHull, QhullError
+
+from .camera import Camera, response
+from .constants import TEMPERATURES_PAPER
+from .errors import SkinrenderError
+from .hints import ArrayLike
+from .spectra import GRID_DEFAULT, WavelengthGrid
+
+__all__ = [
+    "TOLERANCE_GAMUT_FLATNESS",
+    "Gamut",
+    "gamut",
+    "gamut_volume",
+    "gamut_calibration",
+    "gamut_all_calibrations",
+]
+
+TOLERANCE_GAMUT_FLATNESS = 1e-10
+"""A cloud whose smallest principal extent is below this fraction of its
+largest is flat (coplanar, collinear or coincident): its volume is 0 and it is
+flagged degenerate rather than handed to Qhull, which fails or returns round-off
+noise on such input. 1e-10 is far above float64 round-off on responses of
+order 1–1000 and far below any real gamut's aspect ratio."""
+
+
+@dataclass(frozen=True)
+class Gamut:
+    """A gamut: ``volume`` (output units³), ``points`` (count) and ``degenerate``."""
+
+    volume: float
+    points: int
+    degenerate: bool
+
+
+def gamut(points: ArrayLike) -> Gamut:
+    """
+    The convex-hull gamut of a cloud of responses.
+
+    Parameters
+    ----------
+    points
+        Responses with channels on the last axis, shape ``(..., 3)``, output units.
+
+    Returns
+    -------
+    :class:`Gamut`
+        Volume 0.0 and ``degenerate=True`` for fewer than four distinct points
+        or a flat cloud (coplanar, collinear, coincident), never an exception.
+
+    Raises
+    ------
+    SkinrenderError
+        For NaN or infinite coordinates, or a last axis other than 3.
+
+    Examples
+    --------
+    >>> gamut(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])).volume  # doctest: +ELLIPSIS
+    0.1666...
+    """
+
+    cloud = np.asarray(points, dtype=np.float64)
+    if cloud.shape[-1:] != (3,):
+        raise SkinrenderError(f"gamut points must have three channels on the last axis, got shape {cloud.shape}")
+    cloud = cloud.reshape(-1, 3)
+    if not np.all(np.isfinite(cloud)):
+        raise SkinrenderError("gamut points contain NaN or inf")
+    count = cloud.shape[0]
+    if count < 4:
+        return Gamut(0.0, count, True)
+    centred = cloud - cloud.mean(axis=0)
+    extents = np.linalg.svd(centred, compute_uv=False)
+    if extents[0] == 0 or extents[-1] <= TOLERANCE_GAMUT_FLATNESS * extents[0]:
+        return Gamut(0.0, count, True)
+    try:
+        hull = ConvexHull(centred)
+    except QhullError:
+        return Gamut(0.0, count, True)
+    return Gamut(float(hull.volume), count, False)
+
+
+def gamut_volume(points: ArrayLike) -> float:
+    """The convex-hull volume of ``points`` (output units³); 0.0 for a degenerate cloud."""
+    return gamut(points).volume
+
+
+def gamut_calibration(
+    camera_: Camera | str,
+    reflectance,
+    calibration: float | str,
+    illuminants: ArrayLike = TEMPERATURES_PAPER,
+    normalization: str = "white",
+    knee: bool = False,
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> Gamut:
+    """
+    One calibration case: the hull of the responses under every prevailing
+    illuminant of the set, all white-balanced to ``calibration`` (K).
+
+    With the paper's ten illuminants that is one canonical case (p = c) and nine
+    uncanonical ones.
+    """
+
+    prevailing = np.asarray(illuminants, dtype=np.float64)
+    return gamut(response(camera_, reflectance, prevailing, calibration, normalization, knee, grid))
+
+
+def gamut_all_calibrations(
+    camera_: Camera | str,
+    reflectance,
+    illuminants: ArrayLike = TEMPERATURES_PAPER,
+    normalization: str = "white",
+    knee: bool = False,
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> Gamut:
+    """All calibrations: the hull of the union over every (prevailing, calibration) pair of the set."""
+    t = np.asarray(illuminants, dtype=np.float64)
+    return gamut(response(camera_, reflectance, t[:, None], t[None, :], normalization, knee, grid))
