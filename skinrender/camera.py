@@ -347,10 +347,9 @@ def response(
     prevailing: ArrayLike | Illuminant | str,
     calibration: ArrayLike | Illuminant | str,
     normalization: Literal["none", "560nm", "euclidean", "white"] | str = "white",
-    knee_: bool = False,
+    knee: bool = False,
     grid: WavelengthGrid = GRID_DEFAULT,
     scale: float = CONSTANT_OUTPUT_SCALE,
-    **kwargs,
 ) -> NDArrayFloat:
     """
     The white-balanced camera response of Eq. 4 with normalisation (Eq. 10).
@@ -373,8 +372,8 @@ def response(
         ``c[None, :]`` give every pair at once).
     normalization
         ``none``, ``560nm``, ``euclidean`` or ``white`` (default).
-    knee_
-        Apply the knee of Eq. 11 (also accepted as ``knee=True``).
+    knee
+        Apply the knee of Eq. 11.
     grid
         Integration grid (default 400–700 nm every 1 nm).
     scale
@@ -397,9 +396,6 @@ def response(
     array([[ 255.,  255.,  255.]])
     """
 
-    knee_ = kwargs.pop("knee", knee_)
-    if kwargs:
-        raise TypeError(f"unexpected arguments {sorted(kwargs)}")
     if normalization not in NORMALISATIONS:
         raise SkinrenderError(f"normalization must be one of {', '.join(NORMALISATIONS)}, got {normalization!r}")
     cam = camera(camera_)
@@ -428,7 +424,7 @@ def response(
         *factor.shape, *extra, 3
     )
     out = signal[pi] * gain
-    return knee(out) if knee_ else out
+    return _apply_knee(out) if knee else out
 
 
 def knee(
@@ -470,6 +466,9 @@ def knee(
     if not 0 < a <= 1:
         raise SkinrenderError(f"knee factor a must be in (0, 1], got {a}")
     return np.where(x <= point, x, np.minimum(point * (1.0 - a) + a * x, ceiling))
+
+
+_apply_knee = knee  # module-level name: inside response() "knee" is the flag
 
 
 def ncc(rgb: ArrayLike) -> NDArrayFloat:

@@ -74,7 +74,7 @@ def reflectances(spec: str | SpectralSet, extrapolation: str = "refuse") -> Spec
             Path(spec).name, table.wavelengths, table.values, table.names, source=spec,
             licence="user data", extrapolation=extrapolation,
         )
-    entry = lookup(REGISTRY_REFLECTANCES, spec, "reflectance set")
+    entry = lookup(REGISTRY_REFLECTANCES, spec)
     if entry is None:
         raise unknown(REGISTRY_REFLECTANCES, spec, "reflectance set", "or give a CSV path")
     return entry.load()
@@ -82,7 +82,7 @@ def reflectances(spec: str | SpectralSet, extrapolation: str = "refuse") -> Spec
 
 def camera_sensitivities(name: str) -> SpectralSet:
     """Measured sensitivities of a camera in :data:`REGISTRY_CAMERAS`, channels R, G, B."""
-    entry = lookup(REGISTRY_CAMERAS, name, "camera")
+    entry = lookup(REGISTRY_CAMERAS, name)
     if entry is None:
         raise unknown(
             REGISTRY_CAMERAS, name, "camera",

@@ -28,7 +28,7 @@ import numpy as np
 
 from .registry import REGISTRY_CAMERAS, REGISTRY_REFLECTANCES, SpectralSet, register
 
-__all__ = ["sds_macbeth", "msds_camera_colour"]
+__all__ = ["sds_macbeth", "msds_camera_canon"]
 
 LICENCE_COLOUR = "BSD-3-Clause (colour-science package data)"
 SOURCE_MACBETH = "ColorChecker 24 patches measured by N. Ohta, colour-science SDS_COLOURCHECKERS['ColorChecker N Ohta']"
@@ -86,5 +86,3 @@ def msds_camera_canon() -> SpectralSet:
         LICENCE_COLOUR + " / AMPAS rawtoaces", extrapolation="zero", kind="sensitivity",
     )
 
-
-msds_camera_colour = _camera_loader

@@ -36,6 +36,7 @@ __all__ = [
     "REGISTRY_CAMERAS",
     "register",
     "lookup",
+    "unknown",
     "read_bundled_csv",
 ]
 
@@ -166,15 +167,11 @@ def register(registry: dict[str, DatasetEntry], name: str, source: str, licence:
     return decorate
 
 
-def lookup(registry: dict[str, DatasetEntry], name: str, what: str) -> DatasetEntry | None:
+def lookup(registry: dict[str, DatasetEntry], name: str) -> DatasetEntry | None:
     """
     The entry called ``name`` (case and spacing insensitive), or ``None``.
 
-    Raises
-    ------
-    SkinrenderError
-        Never for a miss; callers decide whether a miss is an error (see
-        :func:`unknown`).
+    A miss is not an error here; callers raise :func:`unknown` for it.
     """
 
     def key(text: str) -> str:
