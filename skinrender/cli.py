@@ -41,6 +41,15 @@ def _add_grid(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def _add_model(parser: argparse.ArgumentParser) -> None:
+    from .camera import NORMALISATIONS
+
+    parser.add_argument("--normalization", default="white", choices=NORMALISATIONS,
+                        help="illuminant normalisation: none (Eq. 5), 560nm (Eq. 6), euclidean (Eq. 7), "
+                        "white (Eq. 8, default)")
+    parser.add_argument("--knee", action="store_true", help="apply the knee of Eq. 11 (output ≤ 255)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of every command."""
     parser = argparse.ArgumentParser(
@@ -73,10 +82,7 @@ def build_parser() -> argparse.ArgumentParser:
                    "(wavelength nm, one column per sample, header row of names)")
     p.add_argument("--prevailing", required=True, help="prevailing illuminant: " + HELP_ILLUMINANT)
     p.add_argument("--calibration", required=True, help="calibration (white balance) illuminant: " + HELP_ILLUMINANT)
-    p.add_argument("--normalization", default="white", choices=["none", "560nm", "euclidean", "white"],
-                   help="illuminant normalisation: none (Eq. 5), 560nm (Eq. 6), euclidean (Eq. 7), "
-                   "white (Eq. 8, default)")
-    p.add_argument("--knee", action="store_true", help="apply the knee of Eq. 11 (output ≤ 255)")
+    _add_model(p)
     _add_grid(p)
     _add_common(p)
 
@@ -93,9 +99,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--ratio", action="store_true", help="skin volume / Munsell volume")
     p.add_argument("--skin", default="skin", help="skin set for --ratio (default skin)")
     p.add_argument("--munsell", default="munsell", help="Munsell set for --ratio (default munsell)")
-    p.add_argument("--normalization", default="white", choices=["none", "560nm", "euclidean", "white"],
-                   help="illuminant normalisation (default white)")
-    p.add_argument("--knee", action="store_true", help="apply the knee of Eq. 11")
+    _add_model(p)
     _add_grid(p)
     _add_common(p)
 
