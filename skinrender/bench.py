@@ -5,6 +5,7 @@ Benchmarks
 Speed figures printed by ``skinrender bench``; measured here, never asserted
 in unit tests.
 
+-   :func:`bench_search`: the Stage 3 search, straightforward vs fast.
 -   :func:`bench_analytic`: Eq. 4 responses per second for the 1269 Munsell
     chips under all 100 (prevailing, calibration) pairs of the paper's ten
     illuminants, beside colour-science's ``training_data_sds_to_RGB`` doing the
@@ -24,7 +25,7 @@ from .constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
 from .datasets import reflectances
 from .spectra import GRID_DEFAULT, planck
 
-__all__ = ["machine", "bench_analytic"]
+__all__ = ["machine", "bench_analytic", "bench_search"]
 
 
 def machine() -> dict:
@@ -117,4 +118,82 @@ def bench_analytic(camera_spec: str = "Nikon 5100 (NPL)", repeat: int = 3) -> di
         "speedup": colour_elapsed / elapsed,
         "max_rel_difference": float(relative.max()),
         "output_scale": CONSTANT_OUTPUT_SCALE,
+    }
+
+
+def bench_search(
+    sensor: float = 9,
+    sample: int = 20,
+    steps: tuple[float, ...] = (20.0, 10.0, 5.0),
+    full_steps: tuple[float, ...] = (20.0, 10.0),
+    workers: int | None = None,
+) -> dict:
+    """
+    Time the Stage 3 search: straightforward vs fast method, and the full search.
+
+    -   ``naive_ms_per_triplet`` and ``fast_ms_per_triplet``: one core, the same
+        ``sample`` triplets (evenly spread over the 4495 of the 10 nm grid),
+        skin and Munsell sets, all eleven cases each; ``speedup`` their ratio,
+        ``max_rel_difference`` the largest relative volume difference.
+    -   ``full_search_s``: the whole 10 nm search on every core.
+    -   ``growth``: per grid step, the triplet count and the time — measured in
+        full for ``full_steps``, estimated from ``sample`` triplets timed on
+        one core (divided by the worker count) for the others, and marked so.
+    """
+
+    from .search import positions_grid, search, sensor_bank, triplet_volumes_fast, triplet_volumes_naive, triplets
+
+    grid = GRID_DEFAULT
+    skin, munsell = reflectances("skin").on(grid), reflectances("munsell").on(grid)
+    where = positions_grid("400:700:10")
+    banks = [sensor_bank(sensor, values, where) for values in (skin, munsell)]
+    index = triplets(where.size)
+    chosen = index[np.linspace(0, len(index) - 1, sample).astype(int)]
+
+    def run(method):
+        return np.array([[method(bank, t) for t in chosen] for bank in banks])
+
+    start = time.perf_counter()
+    naive = run(triplet_volumes_naive)
+    naive_s = time.perf_counter() - start
+    start = time.perf_counter()
+    fast = run(triplet_volumes_fast)
+    fast_s = time.perf_counter() - start
+    relative = np.abs(fast - naive) / np.where(naive > 0, naive, 1.0)
+    cores = workers or os.cpu_count() or 1
+
+    growth = []
+    full_search_s = None
+    for step in steps:
+        spec = f"400:700:{step:g}"
+        count = len(triplets(positions_grid(spec).size))
+        if step in full_steps:
+            result = search(sensor, skin, munsell, spec, workers=workers)
+            growth.append({"step_nm": step, "triplets": count, "seconds": result.elapsed_s, "measured": "full"})
+            if step == 10.0:
+                full_search_s = result.elapsed_s
+        else:
+            fine = positions_grid(spec)
+            fine_banks = [sensor_bank(sensor, values, fine) for values in (skin, munsell)]
+            fine_index = triplets(fine.size)
+            picked = fine_index[np.linspace(0, len(fine_index) - 1, sample).astype(int)]
+            start = time.perf_counter()
+            for bank in fine_banks:
+                for t in picked:
+                    triplet_volumes_fast(bank, t)
+            per = (time.perf_counter() - start) / sample
+            growth.append({"step_nm": step, "triplets": count, "seconds": per * count / cores,
+                           "measured": f"estimated from {sample} triplets on one core / {cores} workers"})
+    return {
+        "machine": machine(),
+        "sensor": sensor,
+        "sample_triplets": sample,
+        "naive_ms_per_triplet": 1e3 * naive_s / sample,
+        "fast_ms_per_triplet": 1e3 * fast_s / sample,
+        "speedup": naive_s / fast_s,
+        "max_rel_difference": float(relative.max()),
+        "full_search_s": full_search_s,
+        "elapsed_s": full_search_s,
+        "workers": cores,
+        "growth": growth,
     }

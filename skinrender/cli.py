@@ -50,6 +50,14 @@ def _add_model(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--knee", action="store_true", help="apply the knee of Eq. 11 (output ≤ 255)")
 
 
+def _add_search(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--skin", default="skin", help="skin reflectance set, name or CSV path (default skin)")
+    parser.add_argument("--munsell", default="munsell", help="Munsell reflectance set, name or CSV path (default munsell)")
+    parser.add_argument("--workers", type=int, help="processes (default: every core)")
+    parser.add_argument("--dask", metavar="ADDRESS", help="run on a Dask cluster (scheduler address, tcp://host:8786)")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of every command."""
     parser = argparse.ArgumentParser(
@@ -103,9 +111,39 @@ def build_parser() -> argparse.ArgumentParser:
     _add_grid(p)
     _add_common(p)
 
+    p = commands.add_parser("search", help="Stage 3: gamut volumes of every sensor triplet (Tables 2–5)")
+    p.add_argument("--sensor", required=True, type=float,
+                   help="the paper's sensor: 1 (impulse) or N = 3, 5, … (gbell, FWHM N·10 nm)")
+    p.add_argument("--slope", type=float, default=2.0, help="gbell slope b (default 2; the paper does not give it)")
+    p.add_argument("--positions", default="400:700:10",
+                   help="peak positions START:END:STEP in nm (default 400:700:10: 31 positions, 4495 triplets)")
+    _add_search(p)
+    p.add_argument("--csv", help="write every triplet's volumes (output units³) and ratios to this CSV file")
+    p.add_argument("--method", default="fast", choices=["fast", "naive"],
+                   help="fast (hull vertices only, exact; default) or naive (Qhull on every full point set)")
+    p.add_argument("--tie-tolerance", type=float, default=1e-9,
+                   help="relative difference under which two values tie (default 1e-9); ties are all listed")
+    p.add_argument("--illuminants", default="paper",
+                   help="illuminant set: 'paper' (the ten, default) or comma-separated kelvin")
+    _add_grid(p)
+    _add_common(p)
+
+    p = commands.add_parser("reproduce", help="the paper's Figs. 3–7 (PNG) and Tables 2–5 (Markdown, CSV)")
+    p.add_argument("-o", "--output", required=True, help="output folder")
+    p.add_argument("--sensors", default="1,3,5,7,9,11,13,15", help="sensor numbers (default 1,3,…,15)")
+    p.add_argument("--positions", default="400:700:10", help="peak positions START:END:STEP in nm (default 400:700:10)")
+    p.add_argument("--camera", default="Nikon 5100 (NPL)",
+                   help="Stage 2 camera for Figs. 3–7 (the paper's Sony is not public); " + HELP_CAMERA)
+    p.add_argument("--slope", type=float, default=2.0, help="gbell slope b (default 2)")
+    _add_search(p)
+    _add_common(p)
+
     p = commands.add_parser("bench", help="speed and accuracy figures")
-    p.add_argument("what", choices=["analytic"], help="which benchmark")
-    p.add_argument("--repeat", type=int, default=3, help="timed repetitions, best kept (default 3)")
+    p.add_argument("what", choices=["analytic", "search"], help="which benchmark")
+    p.add_argument("--repeat", type=int, default=3, help="analytic: timed repetitions, best kept (default 3)")
+    p.add_argument("--sensor", type=float, default=9, help="search: sensor number (default 9)")
+    p.add_argument("--sample", type=int, default=20, help="search: triplets timed per method (default 20)")
+    p.add_argument("--workers", type=int, help="search: processes (default: every core)")
     _add_common(p)
     return parser
 
@@ -272,10 +310,72 @@ def command_gamut(args: argparse.Namespace) -> None:
     _print(args, document, text)
 
 
-def command_bench(args: argparse.Namespace) -> None:
-    from .bench import bench_analytic
+def _row_text(row: dict) -> str:
+    kelvin = "all calibrations" if row["temperature_K"] is None else f"{row['temperature_K']:g} K"
+    return f"{' '.join(f'{v:g}' for v in row['triplet'])} nm, {kelvin}: {row['value']:.6g}"
 
-    result = bench_analytic(repeat=args.repeat)
+
+def command_search(args: argparse.Namespace) -> None:
+    from .datasets import reflectances
+    from .illuminants import illuminant_set
+    from .search import search
+
+    grid = _grid(args)
+    skin = reflectances(args.skin, extrapolation=args.extrapolation)
+    munsell = reflectances(args.munsell, extrapolation=args.extrapolation)
+    temperatures = illuminant_set(args.illuminants)
+    result = search(
+        args.sensor, skin.on(grid), munsell.on(grid), args.positions, temperatures, args.slope, grid=grid,
+        method=args.method, workers=args.workers, dask=args.dask,
+        progress=None if args.quiet else sys.stderr, label=f"sensor {args.sensor:g}",
+    )
+    if args.csv:
+        result.to_csv(args.csv)
+    table = result.table(args.tie_tolerance)
+    document = {
+        "sensor": args.sensor,
+        "slope": args.slope,
+        "positions": result.positions.tolist(),
+        "triplets": int(len(result.triplets)),
+        "illuminants_K": result.temperatures.tolist(),
+        "skin": skin.name,
+        "munsell": munsell.name,
+        "method": result.method,
+        "workers": result.workers,
+        **table,
+        "elapsed_s": result.elapsed_s,
+        "csv": args.csv,
+    }
+    lines = [f"sensor {args.sensor:g}: {len(result.triplets)} triplets in {result.elapsed_s:.1f} s "
+             f"({result.method}, {result.workers} workers); volumes in output units³"]
+    for key, label in (("max_skin", "max skin gamut"), ("max_munsell", "max Munsell gamut"),
+                       ("min_ratio", "min skin/Munsell ratio")):
+        lines += [f"{label}:"] + [f"  {_row_text(row)}" for row in table[key]]
+    _print(args, document, "\n".join(lines))
+
+
+def command_reproduce(args: argparse.Namespace) -> None:
+    from .reproduce import reproduce
+
+    try:
+        sensors = [float(v) for v in args.sensors.split(",")]
+    except ValueError:
+        raise SkinrenderError(f"--sensors must be comma-separated numbers, got {args.sensors!r}") from None
+    result = reproduce(
+        args.output, sensors, args.positions, args.camera, args.skin, args.munsell, args.slope,
+        workers=args.workers, dask=args.dask, progress=None if args.quiet else sys.stderr,
+    )
+    text = "\n".join(["wrote:"] + [f"  {p}" for p in result["artifacts"]])
+    _print(args, result, text)
+
+
+def command_bench(args: argparse.Namespace) -> None:
+    from .bench import bench_analytic, bench_search
+
+    if args.what == "search":
+        result = bench_search(args.sensor, args.sample, workers=args.workers)
+    else:
+        result = bench_analytic(repeat=args.repeat)
     text = "\n".join(f"{key}: {value}" for key, value in result.items())
     _print(args, result, text)
 
@@ -286,6 +386,8 @@ COMMANDS = {
     "illuminants": command_illuminants,
     "response": command_response,
     "gamut": command_gamut,
+    "search": command_search,
+    "reproduce": command_reproduce,
     "bench": command_bench,
 }
 

@@ -40,6 +40,7 @@ __all__ = [
     "Gamut",
     "gamut",
     "gamut_volume",
+    "gamut_hull",
     "gamut_calibration",
     "gamut_all_calibrations",
 ]
@@ -87,6 +88,16 @@ def gamut(points: ArrayLike) -> Gamut:
     0.1666...
     """
 
+    return gamut_hull(points)[0]
+
+
+def gamut_hull(points: ArrayLike) -> tuple[Gamut, np.ndarray]:
+    """
+    :func:`gamut` and the indices of the hull's vertices in the flattened cloud.
+
+    For a degenerate cloud the indices are every point's (none can be ruled out).
+    """
+
     cloud = np.asarray(points, dtype=np.float64)
     if cloud.shape[-1:] != (3,):
         raise SkinrenderError(f"gamut points must have three channels on the last axis, got shape {cloud.shape}")
@@ -94,17 +105,18 @@ def gamut(points: ArrayLike) -> Gamut:
     if not np.all(np.isfinite(cloud)):
         raise SkinrenderError("gamut points contain NaN or inf")
     count = cloud.shape[0]
+    every = np.arange(count)
     if count < 4:
-        return Gamut(0.0, count, True)
+        return Gamut(0.0, count, True), every
     centred = cloud - cloud.mean(axis=0)
     extents = np.linalg.svd(centred, compute_uv=False)
     if extents[0] == 0 or extents[-1] <= TOLERANCE_GAMUT_FLATNESS * extents[0]:
-        return Gamut(0.0, count, True)
+        return Gamut(0.0, count, True), every
     try:
         hull = ConvexHull(centred)
     except QhullError:
-        return Gamut(0.0, count, True)
-    return Gamut(float(hull.volume), count, False)
+        return Gamut(0.0, count, True), every
+    return Gamut(float(hull.volume), count, False), hull.vertices
 
 
 def gamut_volume(points: ArrayLike) -> float:

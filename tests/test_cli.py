@@ -142,3 +142,31 @@ class TestGamutCommand:
     def test_needs_reflectances_or_ratio(self, capsys):
         err = run_error(capsys, "gamut", "--camera", "Kodak DCS-200", "--calibration", "A")
         assert "--reflectances" in err
+
+
+class TestSearchCommands:
+    def test_search_json_keys(self, capsys, tmp_path):
+        path = tmp_path / "volumes.csv"
+        document = run_json(capsys, "search", "--sensor", "9", "--positions", "400:700:75", "--workers", "1",
+                            "--quiet", "--csv", str(path))
+        assert document["triplets"] == 10
+        for key in ("max_skin", "max_munsell", "min_ratio"):
+            rows = document[key]
+            assert rows and all(set(r) >= {"triplet", "temperature_K", "value"} for r in rows)
+            assert any(r["temperature_K"] is None for r in rows)  # the all-calibration row
+        assert document["elapsed_s"] > 0
+        assert path.read_text().count("\n") == 11
+
+    def test_search_bad_positions(self, capsys):
+        err = run_error(capsys, "search", "--sensor", "9", "--positions", "700:400:10")
+        assert "positions" in err
+
+    def test_reproduce_writes_tables_and_figures(self, capsys, tmp_path):
+        document = run_json(capsys, "reproduce", "-o", str(tmp_path), "--sensors", "1,9", "--positions",
+                            "400:700:100", "--workers", "1", "--quiet")
+        names = {p.split("/")[-1] for p in document["artifacts"]}
+        assert {"tables.md", "table2_skin.csv", "table5_ratio.csv", "fig3_560nm.png", "fig4_euclidean.png",
+                "fig5_white.png", "fig6_gamuts.png", "fig7_cases.png", "sensor_9.csv"} <= names
+        markdown = (tmp_path / "tables.md").read_text()
+        assert "Table 3" in markdown and "| 9 |" in markdown and "400 550 700, 3300 K" in markdown  # the paper's
+        assert set(document["stage2"]) == {"560nm", "euclidean", "white"}
