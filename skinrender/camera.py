@@ -350,6 +350,7 @@ def response(
     knee: bool = False,
     grid: WavelengthGrid = GRID_DEFAULT,
     scale: float = CONSTANT_OUTPUT_SCALE,
+    quadrature: Literal["sum", "trapezoid"] | str = "sum",
 ) -> NDArrayFloat:
     """
     The white-balanced camera response of Eq. 4 with normalisation (Eq. 10).
@@ -378,6 +379,11 @@ def response(
         Integration grid (default 400–700 nm every 1 nm).
     scale
         Output scale *v* (255).
+    quadrature
+        ``sum`` (the paper's Σ over the grid samples, default) or
+        ``trapezoid`` (end samples weighted ½: the integral of the linearly
+        interpolated spectra, which is what a spectral renderer estimates).
+        They differ by up to ~1 % for sensors peaking at the grid's ends.
 
     Returns
     -------
@@ -405,6 +411,12 @@ def response(
     x = cam.sensitivities(grid)
     spd_p = _spd_on(p_items, grid)
     spd_c = _spd_on(c_items, grid)
+    if quadrature == "trapezoid":
+        weights = np.ones(grid.size)
+        weights[[0, -1]] = 0.5
+        spd_p, spd_c = spd_p * weights, spd_c * weights
+    elif quadrature != "sum":
+        raise SkinrenderError(f"quadrature must be 'sum' or 'trapezoid', got {quadrature!r}")
     signal = np.einsum("...w,pkw->p...k", o, spd_p[:, None, :] * x[None, :, :])  # (P, ..., 3)
     white_p = spd_p @ x.T  # (P, 3)
     white_c = spd_c @ x.T  # (C, 3)

@@ -1,0 +1,468 @@
+"""
+Spectral rendering of chart scenes with Mitsuba 3
+=================================================
+
+A chart scene (:mod:`skinrender.scene`) under a Planck blackbody emitter, seen
+through a camera's three sensor curves with Mitsuba's ``specfilm``, then white
+balanced as Eq. 4 does.
+
+-   :func:`scene_dict`: the Mitsuba scene of a chart, camera and temperature.
+-   :func:`render_raw`: one render: per pixel and channel the specfilm value
+    ``∫ L(λ) s_k(λ) dλ`` (L in W·m⁻²·sr⁻¹·nm⁻¹, λ in nm), float32.
+-   :func:`patch_statistics`: patch means and standard errors.
+-   :func:`render`, :class:`Rendering`: the Eq. 4 image of a (prevailing,
+    calibration) pair; the white balance comes from the white reference patch
+    rendered under the calibration illuminant.
+-   :func:`write_exr`, :func:`read_exr`, :func:`write_preview`: float32 EXR
+    with channels named by the camera, and a tone-mapped PNG.
+
+Modelling choices
+-----------------
+-   The emitter is ``directional`` along the view axis with a ``blackbody``
+    irradiance (absolute Planck, W·m⁻²·nm⁻¹ per unit: Mitsuba's blackbody, zero
+    outside 360–830 nm); a patch returns ``ρ E / π``. Normalisations (Eqs.
+    5–8) are scalars per illuminant and are applied after rendering, exactly
+    as Eq. 10 applies them.
+-   Sensor curves and reflectances are given to Mitsuba as ``irregular``
+    spectra on the integration grid (zero outside it), so the renderer
+    estimates the integral of the linearly interpolated spectra over the grid:
+    the analytic reference for validation is Eq. 4 with ``quadrature =
+    "trapezoid"`` on the same grid.
+-   ``specfilm`` samples wavelengths from the sum of its channel curves: a
+    narrow channel beside broad ones gets few samples. With ``channels =
+    "auto"`` a camera whose channel areas differ by more than
+    :data:`CHANNEL_AREA_RATIO_SEPARATE` (the impulse always) is rendered one
+    channel per pass.
+-   The impulse sensor (a unit-area delta on one grid sample) becomes, as a
+    linearly interpolated curve, a triangle of unit area and base 2 Δλ: its
+    bias against the exact sample is second order in Δλ and measured by the
+    tests.
+-   A ``box`` reconstruction filter keeps pixels independent, so a patch's
+    standard error is its pixel standard deviation over √pixels.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .camera import Camera, camera, knee as apply_knee, normalisation_factor
+from .constants import CONSTANT_OUTPUT_SCALE
+from .errors import SkinrenderError
+from .hints import NDArrayFloat
+from .illuminant import illuminant
+from .scene import ChartScene, load_scene
+from .spectra import GRID_DEFAULT, WavelengthGrid
+from .variants import choose_variant, mitsuba
+
+__all__ = [
+    "SAMPLERS",
+    "CHANNEL_AREA_RATIO_SEPARATE",
+    "FWHM_SEPARATE",
+    "QUALITY_PRESETS",
+    "scene_dict",
+    "RawRender",
+    "render_raw",
+    "PatchStatistics",
+    "patch_statistics",
+    "Rendering",
+    "render",
+    "write_exr",
+    "read_exr",
+    "write_preview",
+    "channel_names",
+]
+
+SAMPLERS = ("independent", "stratified", "multijitter", "orthogonal", "ldsampler")
+"""Mitsuba samplers; ``multijitter`` (stratified) is far better on flat patches."""
+
+CHANNEL_AREA_RATIO_SEPARATE = 4.0
+"""With ``channels="auto"``, render channels separately when the largest
+channel area ∫ s_k dλ exceeds the smallest by this factor."""
+
+FWHM_SEPARATE = 50.0
+"""With ``channels="auto"``, render gbell channels of at most this FWHM (nm)
+separately: three narrow, disjoint channels in one pass share the wavelength
+samples three ways and their patch means get heavy-tailed at low spp
+(measured: 5σ excursions at 64 spp for sensor 3)."""
+
+QUALITY_PRESETS = {
+    "draft": {"spp": 16, "sampler": "multijitter"},
+    "standard": {"spp": 256, "sampler": "multijitter"},
+    "reference": {"spp": 4096, "sampler": "multijitter"},
+}
+"""Named settings; their expected error and time are measured by
+``skinrender bench render`` (README table)."""
+
+
+def channel_names(cam: Camera) -> tuple[str, str, str]:
+    """EXR channel names: ``R``, ``G``, ``B`` with the peak for gbell/impulse cameras (``R_610nm``)."""
+    if cam.peaks is None:
+        return cam.channels
+    return tuple(f"{c}_{p:g}nm" for c, p in zip(cam.channels, cam.peaks))
+
+
+def _spectrum(wavelengths: NDArrayFloat, values: NDArrayFloat) -> dict:
+    return {
+        "type": "irregular",
+        "wavelengths": ",".join(f"{w:.10g}" for w in wavelengths),
+        "values": ",".join(f"{v:.10g}" for v in values),
+    }
+
+
+def scene_dict(
+    scene: ChartScene,
+    cam: Camera,
+    temperature: float,
+    spp: int,
+    seed: int,
+    sampler: str,
+    grid: WavelengthGrid,
+    channels: tuple[int, ...] = (0, 1, 2),
+    variant: str | None = None,
+) -> dict:
+    """
+    The Mitsuba scene dictionary: an orthographic camera over the chart, one
+    directional blackbody emitter at ``temperature`` (K), a ``specfilm`` with
+    the camera's ``channels`` (indices into R, G, B), float32, box filter.
+    """
+
+    mi = mitsuba(choose_variant_cached(variant))
+    width, height = scene.size
+    wavelengths = grid.wavelengths
+    curves = cam.sensitivities(grid)
+    names = channel_names(cam)
+    film = {"type": "specfilm", "width": width, "height": height, "component_format": "float32",
+            "rfilter": {"type": "box"}}
+    for k in channels:
+        film[names[k]] = _spectrum(wavelengths, curves[k])
+    transform = mi.ScalarTransform4f
+    document = {
+        "type": "scene",
+        "integrator": {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0},
+        "sensor": {
+            "type": "orthographic",
+            "to_world": transform().look_at(origin=[0, 0, 10], target=[0, 0, 0], up=[0, 1, 0])
+            @ transform().scale([width / 2, width / 2, 1]),  # y extent = x extent / aspect
+            "sampler": {"type": sampler, "sample_count": int(spp), "seed": int(seed)},
+            "film": film,
+        },
+        "light": {"type": "directional", "direction": [0, 0, -1],
+                  "irradiance": {"type": "blackbody", "temperature": float(temperature)}},
+    }
+    values = scene.reflectances(grid)
+    for index, patch in enumerate(scene.patches):
+        x0, y0, x1, y1 = scene.patch_box(index)
+        centre = [(x0 + x1) / 2 - width / 2, height / 2 - (y0 + y1) / 2, 0.0]
+        half = scene.patch_px / 2
+        # The orthographic camera looks down -z with +y up: image rows grow downwards, world y upwards.
+        document[f"patch_{index:03d}"] = {
+            "type": "rectangle",
+            "to_world": transform().translate(centre) @ transform().scale([half, half, 1]),
+            "bsdf": {"type": "diffuse", "reflectance": _spectrum(wavelengths, values[index])},
+        }
+    return document
+
+
+_VARIANT: list[str] = []
+
+
+def choose_variant_cached(requested: str | None = None) -> str:
+    """:func:`skinrender.variants.choose_variant`, remembered for this process."""
+    if requested is not None:
+        return choose_variant(requested)
+    if not _VARIANT:
+        _VARIANT.append(choose_variant())
+    return _VARIANT[0]
+
+
+@dataclass(frozen=True)
+class RawRender:
+    """
+    One render: ``image`` ``(height, width, 3)`` float32, per channel the
+    specfilm value ``∫ L s_k dλ`` (W·m⁻²·sr⁻¹ times the sensitivity's unit).
+    """
+
+    image: NDArrayFloat
+    temperature: float
+    spp: int
+    seed: int
+    sampler: str
+    variant: str
+    seconds: float
+    passes: int
+
+
+def _separate(cam: Camera, grid: WavelengthGrid, channels: str) -> bool:
+    if channels not in ("auto", "together", "separate"):
+        raise SkinrenderError(f"channels must be auto, together or separate, got {channels!r}")
+    if channels != "auto":
+        return channels == "separate"
+    if cam.kind == "impulse" or (cam.kind == "gbell" and cam.fwhm <= FWHM_SEPARATE):
+        return True
+    areas = cam.sensitivities(grid).sum(axis=1)
+    return bool(areas.max() > CHANNEL_AREA_RATIO_SEPARATE * areas.min())
+
+
+def render_raw(
+    scene: ChartScene | str,
+    camera_: Camera | str,
+    temperature: float,
+    spp: int = 256,
+    seed: int = 0,
+    sampler: str = "multijitter",
+    variant: str | None = None,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    channels: str = "auto",
+) -> RawRender:
+    """
+    Render a chart under a blackbody at ``temperature`` (K).
+
+    Parameters
+    ----------
+    scene
+        Scene name or :class:`ChartScene`.
+    camera_
+        Camera or spec.
+    temperature
+        Emitter temperature, K (any finite value > 0).
+    spp
+        Samples per pixel.
+    seed
+        Sampler seed: the same seed gives the same image.
+    sampler
+        One of :data:`SAMPLERS`.
+    variant
+        Mitsuba variant, or ``None`` for the fastest that works.
+    grid
+        Wavelength grid of the sensor curves and reflectances, nm.
+    channels
+        ``auto``, ``together`` (one pass) or ``separate`` (one pass per channel).
+    """
+
+    chart = load_scene(scene)
+    cam = camera(camera_)
+    if sampler not in SAMPLERS:
+        raise SkinrenderError(f"sampler must be one of {', '.join(SAMPLERS)}, got {sampler!r}")
+    if not (isinstance(spp, (int, np.integer)) and spp >= 1):
+        raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
+    if not (np.isfinite(temperature) and temperature > 0):
+        raise SkinrenderError(f"temperature must be a finite number of kelvin > 0, got {temperature}")
+    chosen = choose_variant_cached(variant)
+    mi = mitsuba(chosen)
+    groups = [(0,), (1,), (2,)] if _separate(cam, grid, channels) else [(0, 1, 2)]
+    width, height = chart.size
+    image = np.zeros((height, width, 3), dtype=np.float32)
+    start = time.perf_counter()
+    for group in groups:
+        loaded = mi.load_dict(scene_dict(chart, cam, temperature, spp, seed, sampler, grid, group, chosen))
+        values = np.array(mi.render(loaded, seed=int(seed)), dtype=np.float32).reshape(height, width, len(group))
+        image[:, :, list(group)] = values
+    seconds = time.perf_counter() - start
+    return RawRender(image, float(temperature), int(spp), int(seed), sampler, chosen, seconds, len(groups))
+
+
+@dataclass(frozen=True)
+class PatchStatistics:
+    """Per patch and channel: ``mean``, ``standard_error`` (std/√n) and pixel ``count``."""
+
+    mean: NDArrayFloat
+    standard_error: NDArrayFloat
+    count: NDArrayFloat
+
+
+def patch_statistics(image: NDArrayFloat, scene: ChartScene) -> PatchStatistics:
+    """Means and standard errors of every patch's inner pixels, shape ``(patches, channels)``."""
+    means, errors, counts = [], [], []
+    for index in range(len(scene.patches)):
+        rows, columns = scene.patch_pixels(index)
+        pixels = np.asarray(image[rows, columns], dtype=np.float64).reshape(-1, image.shape[-1])
+        means.append(pixels.mean(axis=0))
+        errors.append(pixels.std(axis=0, ddof=1) / np.sqrt(len(pixels)))
+        counts.append(len(pixels))
+    return PatchStatistics(np.array(means), np.array(errors), np.array(counts))
+
+
+@dataclass(frozen=True)
+class Rendering:
+    """
+    The Eq. 4 image of a (prevailing, calibration) pair.
+
+    Attributes
+    ----------
+    image
+        ``(height, width, 3)`` float32, output units (white = 255 at p = c).
+    patches
+        Patch statistics of ``image``.
+    white_relative_error
+        Relative standard error of the white reference under the prevailing
+        and the calibration illuminant, shape ``(2, 3)``.
+    """
+
+    scene: ChartScene
+    camera: Camera
+    prevailing: float
+    calibration: float
+    normalization: str
+    knee: bool
+    image: NDArrayFloat
+    patches: PatchStatistics
+    white_relative_error: NDArrayFloat
+    raw: tuple[RawRender, ...]
+    info: dict = field(default_factory=dict)
+
+    @property
+    def variant(self) -> str:
+        """The Mitsuba variant used."""
+        return self.raw[0].variant
+
+    @property
+    def seconds(self) -> float:
+        """Rendering time, s."""
+        return sum(r.seconds for r in self.raw)
+
+
+def _temperature(spec) -> float:
+    item = illuminant(spec)
+    if item.temperature is None:
+        raise SkinrenderError(f"rendering needs a Planckian illuminant (kelvin, A or H), got {spec!r}")
+    return float(item.temperature)
+
+
+def balance(
+    raw_prevailing: RawRender,
+    raw_calibration: RawRender,
+    scene: ChartScene,
+    cam: Camera,
+    normalization: str = "white",
+    knee: bool = False,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    scale: float = CONSTANT_OUTPUT_SCALE,
+) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat]:
+    """
+    Eq. 4 (with Eq. 10) applied to raw renders: ``v · F · raw_p / white_c``.
+
+    ``white_c`` is the white reference's mean under the calibration render;
+    ``F`` is WP (Eq. 8) from the two renders' whites for ``white``, or
+    ``F_p / F_c`` (Eqs. 5–7) for the others. Returns the image, the
+    whites' relative standard errors ``(2, 3)`` and the white ratios
+    ``white_p / white_c`` ``(3,)``.
+    """
+
+    white = scene.white_index
+    stats_p = patch_statistics(raw_prevailing.image, scene)
+    stats_c = patch_statistics(raw_calibration.image, scene)
+    white_p, white_c = stats_p.mean[white], stats_c.mean[white]
+    if np.any(white_c <= 0):
+        raise SkinrenderError(f"camera {cam.name}: a channel sees no light from the white reference at "
+                              f"{raw_calibration.temperature:g} K")
+    if normalization == "white":
+        factor = 3.0 / np.sum(white_p / white_c)
+    else:
+        f = normalisation_factor([raw_prevailing.temperature, raw_calibration.temperature], normalization, grid)
+        factor = f[0] / f[1]
+    image = (scale * factor / white_c) * raw_prevailing.image.astype(np.float64)
+    if knee:
+        image = apply_knee(image)
+    relative = np.array([stats_p.standard_error[white] / white_p, stats_c.standard_error[white] / white_c])
+    return image.astype(np.float32), relative, white_p / white_c
+
+
+def render(
+    scene: ChartScene | str,
+    camera_: Camera | str,
+    prevailing,
+    calibration,
+    normalization: str = "white",
+    knee: bool = False,
+    spp: int = 256,
+    seed: int = 0,
+    sampler: str = "multijitter",
+    variant: str | None = None,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    channels: str = "auto",
+    cache: dict | None = None,
+) -> Rendering:
+    """
+    Render a chart through a camera under ``prevailing`` light, white balanced
+    to ``calibration`` (Eq. 4).
+
+    Parameters
+    ----------
+    prevailing, calibration
+        Planckian illuminants: kelvin, ``A`` (2856 K) or ``H`` (2300 K).
+    normalization, knee
+        As :func:`skinrender.response`.
+    spp, seed, sampler, variant, grid, channels
+        As :func:`render_raw`. The calibration render uses ``seed + 1`` so
+        that its noise is independent of the prevailing render's.
+    cache
+        A dict to reuse raw renders across calls, keyed by temperature.
+
+    Returns
+    -------
+    :class:`Rendering`
+    """
+
+    chart = load_scene(scene)
+    cam = camera(camera_)
+    from .camera import NORMALISATIONS
+
+    if normalization not in NORMALISATIONS:
+        raise SkinrenderError(f"normalization must be one of {', '.join(NORMALISATIONS)}, got {normalization!r}")
+    p, c = _temperature(prevailing), _temperature(calibration)
+    cache = {} if cache is None else cache
+
+    def raw(temperature: float, offset: int) -> RawRender:
+        key = (temperature, offset)
+        if key not in cache:
+            cache[key] = render_raw(chart, cam, temperature, spp, seed + offset, sampler, variant, grid, channels)
+        return cache[key]
+
+    raw_p = raw(p, 0)
+    raw_c = raw_p if c == p else raw(c, 1)
+    image, white_error, white_ratio = balance(raw_p, raw_c, chart, cam, normalization, knee, grid)
+    return Rendering(chart, cam, p, c, normalization, knee, image, patch_statistics(image, chart), white_error,
+                     (raw_p,) if raw_c is raw_p else (raw_p, raw_c), {"white_ratio": white_ratio})
+
+
+def write_exr(path: str | Path, image: NDArrayFloat, names: tuple[str, ...], attributes: dict | None = None) -> Path:
+    """Write a float32 EXR with one named channel per last-axis slice."""
+    import OpenEXR
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    header = {"compression": OpenEXR.ZIP_COMPRESSION, "type": OpenEXR.scanlineimage}
+    for key, value in (attributes or {}).items():
+        header[key] = str(value)
+    data = {name: np.ascontiguousarray(image[..., k], dtype=np.float32) for k, name in enumerate(names)}
+    with OpenEXR.File(header, data) as handle:
+        handle.write(str(path))
+    return path
+
+
+def read_exr(path: str | Path, names: tuple[str, ...]) -> NDArrayFloat:
+    """Read the named channels of an EXR (EXR files sort channels by name: look them up by name)."""
+    import OpenEXR
+
+    with OpenEXR.File(str(path)) as handle:
+        channels = handle.channels()
+        missing = [n for n in names if n not in channels]
+        if missing:
+            raise SkinrenderError(f"{path}: no channel(s) {', '.join(missing)}; it has {', '.join(sorted(channels))}")
+        return np.stack([np.asarray(channels[n].pixels, dtype=np.float32) for n in names], axis=-1)
+
+
+def write_preview(path: str | Path, image: NDArrayFloat, scale: float = CONSTANT_OUTPUT_SCALE) -> Path:
+    """A tone-mapped PNG preview: output units / ``scale``, clipped to [0, 1], sRGB transfer curve."""
+    import matplotlib.image
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    linear = np.clip(np.asarray(image, dtype=np.float64) / scale, 0.0, 1.0)
+    encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
+    matplotlib.image.imsave(path, encoded)
+    return path

@@ -1,0 +1,231 @@
+"""
+Chart scenes
+============
+
+A chart scene is a plain TOML file (``scenes/*.toml``): a grid of flat
+Lambertian patches, each naming its reflectance, plus an ideal white
+reference patch, seen straight on by an orthographic camera under one
+directional emitter. The renderer models only that: direct lighting, no
+interreflection (a flat chart has none), no polarisation, no depth of field.
+
+-   :class:`Patch`, :class:`ChartScene`: a parsed scene.
+-   :func:`load_scene`: a scene from a name in ``scenes/`` or a path; a bad
+    file gets an error naming the file and the field.
+-   :func:`list_scenes`: the bundled scene names.
+
+Scene file fields
+-----------------
+``name`` (str), ``description`` (str), ``columns`` (int ≥ 1),
+``patch_px`` (int ≥ 3, patch side in pixels), ``gap_px`` (int ≥ 0, black
+gap), ``border_px`` (int ≥ 0, pixels left out at each patch edge when
+averaging), ``white`` (reflectance of the white reference, default
+``perfect``), and ``[[patch]]`` tables with ``reflectance`` and optional
+``name`` and ``skin`` (bool, for detection).
+
+A reflectance is ``SET:SAMPLE`` (a set name from ``skinrender datasets`` and
+a sample name), ``SET:#N`` (the N-th sample, from 0), ``perfect`` (ρ = 1) or
+``grey:F`` (ρ = F for every wavelength).
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .datasets import reflectances
+from .errors import SkinrenderError
+from .hints import NDArrayFloat
+from .spectra import WavelengthGrid
+
+__all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_scene", "list_scenes", "reflectance_of"]
+
+ROOT_SCENES = Path(__file__).resolve().parent / "scenes"
+"""Bundled scene files (installed with the package; ``scenes/`` in the repository links here)."""
+
+
+@dataclass(frozen=True)
+class Patch:
+    """One chart patch: its ``name``, ``reflectance`` spec and whether it is ``skin``."""
+
+    name: str
+    reflectance: str
+    skin: bool = False
+
+
+@dataclass(frozen=True)
+class ChartScene:
+    """
+    A parsed chart scene.
+
+    Attributes
+    ----------
+    patches
+        The patches in reading order (left to right, top to bottom); the
+        white reference is the last one.
+    """
+
+    name: str
+    description: str
+    columns: int
+    patch_px: int
+    gap_px: int
+    border_px: int
+    patches: tuple[Patch, ...]
+    source: str = ""
+
+    @property
+    def rows(self) -> int:
+        """Rows of patches."""
+        return -(-len(self.patches) // self.columns)
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """Image ``(width, height)`` in pixels."""
+        step = self.patch_px + self.gap_px
+        return self.columns * step + self.gap_px, self.rows * step + self.gap_px
+
+    @property
+    def white_index(self) -> int:
+        """Index of the white reference patch (the last)."""
+        return len(self.patches) - 1
+
+    def patch_box(self, index: int) -> tuple[int, int, int, int]:
+        """Pixel box ``(x0, y0, x1, y1)`` (end exclusive) of a patch, image rows from the top."""
+        step = self.patch_px + self.gap_px
+        row, column = divmod(index, self.columns)
+        x0, y0 = self.gap_px + column * step, self.gap_px + row * step
+        return x0, y0, x0 + self.patch_px, y0 + self.patch_px
+
+    def patch_pixels(self, index: int) -> tuple[slice, slice]:
+        """Row and column slices of the pixels averaged for a patch (its border left out)."""
+        x0, y0, x1, y1 = self.patch_box(index)
+        b = self.border_px
+        return slice(y0 + b, y1 - b), slice(x0 + b, x1 - b)
+
+    def reflectances(self, grid: WavelengthGrid) -> NDArrayFloat:
+        """Patch reflectances on ``grid``, shape ``(len(patches), grid.size)``, fractions."""
+        return np.array([reflectance_of(p.reflectance, grid, f"{self.source}: patch {p.name!r}") for p in self.patches])
+
+
+def reflectance_of(spec: str, grid: WavelengthGrid, where: str = "reflectance") -> NDArrayFloat:
+    """The reflectance named by a scene spec on ``grid`` (see the module docstring)."""
+    text = str(spec).strip()
+    if text == "perfect":
+        return np.ones(grid.size)
+    if text.startswith("grey:"):
+        try:
+            value = float(text[5:])
+        except ValueError:
+            value = np.nan
+        if not 0 <= value <= 1:
+            raise SkinrenderError(f"{where}: grey reflectance must be grey:F with F in [0, 1], got {text!r}")
+        return np.full(grid.size, value)
+    if ":" not in text:
+        raise SkinrenderError(f"{where}: reflectance must be SET:SAMPLE, SET:#N, perfect or grey:F, got {text!r}")
+    set_name, sample = text.split(":", 1)
+    dataset = reflectances(set_name)
+    if sample.startswith("#"):
+        try:
+            index = int(sample[1:])
+        except ValueError:
+            index = -1
+        if not 0 <= index < dataset.count:
+            raise SkinrenderError(f"{where}: {text!r}: index must be #0 … #{dataset.count - 1}")
+    else:
+        if sample not in dataset.names:
+            raise SkinrenderError(f"{where}: {text!r}: no sample {sample!r} in set {set_name!r}")
+        index = dataset.names.index(sample)
+    return dataset.on(grid)[index]
+
+
+def list_scenes() -> list[str]:
+    """Names of the bundled scenes."""
+    return sorted(p.stem for p in ROOT_SCENES.glob("*.toml"))
+
+
+def _field(table: dict, key: str, kind, where: str, default=None, minimum: int | None = None):
+    if key not in table:
+        if default is None:
+            raise SkinrenderError(f"{where}: missing field {key!r}")
+        return default
+    value = table[key]
+    if kind is int and (isinstance(value, bool) or not isinstance(value, int)):
+        raise SkinrenderError(f"{where}: field {key!r} must be an integer, got {value!r}")
+    if kind is str and not isinstance(value, str):
+        raise SkinrenderError(f"{where}: field {key!r} must be a string, got {value!r}")
+    if kind is bool and not isinstance(value, bool):
+        raise SkinrenderError(f"{where}: field {key!r} must be true or false, got {value!r}")
+    if minimum is not None and value < minimum:
+        raise SkinrenderError(f"{where}: field {key!r} must be ≥ {minimum}, got {value}")
+    return value
+
+
+_KNOWN_FIELDS = {"name", "description", "columns", "patch_px", "gap_px", "border_px", "white", "patch"}
+
+
+def load_scene(spec: str | Path | ChartScene) -> ChartScene:
+    """
+    A chart scene from a bundled name (``macbeth``, ``skin_patches``,
+    ``face_chart``) or a path to a TOML file of the same format.
+
+    Raises
+    ------
+    SkinrenderError
+        Unknown name (the known ones are listed), unreadable TOML, a missing
+        or mistyped field (named), or an unknown reflectance.
+    """
+
+    if isinstance(spec, ChartScene):
+        return spec
+    text = str(spec)
+    path = Path(text)
+    if not (path.suffix == ".toml" or path.exists()):
+        path = ROOT_SCENES / f"{text}.toml"
+        if not path.exists():
+            raise SkinrenderError(f"unknown scene {text!r}; bundled scenes: {', '.join(list_scenes())}, or a .toml path")
+    elif not path.exists():
+        raise SkinrenderError(f"scene file {text} does not exist")
+    try:
+        table = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
+        raise SkinrenderError(f"{path}: not valid TOML: {error}") from None
+    where = str(path)
+    unknown = set(table) - _KNOWN_FIELDS
+    if unknown:
+        raise SkinrenderError(f"{where}: unknown field(s) {', '.join(sorted(unknown))}; known: {', '.join(sorted(_KNOWN_FIELDS))}")
+    patches_table = table.get("patch")
+    if not isinstance(patches_table, list) or not patches_table:
+        raise SkinrenderError(f"{where}: needs at least one [[patch]] table with a 'reflectance' field")
+    patches = []
+    for number, entry in enumerate(patches_table):
+        at = f"{where}: patch {number + 1}"
+        if not isinstance(entry, dict):
+            raise SkinrenderError(f"{at}: must be a table")
+        extra = set(entry) - {"name", "reflectance", "skin"}
+        if extra:
+            raise SkinrenderError(f"{at}: unknown field(s) {', '.join(sorted(extra))}; known: name, reflectance, skin")
+        reflectance = _field(entry, "reflectance", str, at)
+        name = _field(entry, "name", str, at, default=reflectance.split(":", 1)[-1])
+        patches.append(Patch(name, reflectance, _field(entry, "skin", bool, at, default=False)))
+    white = _field(table, "white", str, where, default="perfect")
+    patches.append(Patch("white reference", white, False))
+    scene = ChartScene(
+        name=_field(table, "name", str, where, default=path.stem),
+        description=_field(table, "description", str, where, default=""),
+        columns=_field(table, "columns", int, where, minimum=1),
+        patch_px=_field(table, "patch_px", int, where, default=14, minimum=3),
+        gap_px=_field(table, "gap_px", int, where, default=2, minimum=0),
+        border_px=_field(table, "border_px", int, where, default=0, minimum=0),
+        patches=tuple(patches),
+        source=where,
+    )
+    if 2 * scene.border_px >= scene.patch_px:
+        raise SkinrenderError(f"{where}: field 'border_px' ({scene.border_px}) leaves no pixel of a "
+                              f"{scene.patch_px}-pixel patch")
+    from .spectra import GRID_DEFAULT
+
+    scene.reflectances(GRID_DEFAULT)  # every reflectance resolves, or the error names the patch
+    return scene

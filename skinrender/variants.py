@@ -1,0 +1,158 @@
+"""
+Mitsuba variants
+================
+
+Picks the fastest spectral Mitsuba 3 variant that works on this machine:
+``cuda_ad_spectral`` where an NVIDIA GPU answers, ``llvm_ad_spectral`` where a
+libLLVM 16 or newer is found, else ``scalar_spectral`` (about 7× slower) with a
+one-line notice on stderr.
+
+drjit aborts the whole process (it does not raise) when its LLVM backend meets
+too old a libLLVM (Debian 12's libllvm15: "Cannot select … fmaximum"), so
+each candidate is first tried in a child process. ``DRJIT_LIBLLVM_PATH`` is set
+to the newest libLLVM ≥ 16 found in the usual places unless the user set it.
+
+-   :func:`choose_variant`: the variant to use (cached per process).
+-   :func:`libllvm_path`: the libLLVM drjit will load, or ``None``.
+-   :func:`mitsuba`: the ``mitsuba`` module with the chosen variant set.
+"""
+
+from __future__ import annotations
+
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+from .errors import SkinrenderError
+
+__all__ = ["VARIANTS_SPECTRAL", "LIBLLVM_MINIMUM", "libllvm_path", "choose_variant", "mitsuba"]
+
+VARIANTS_SPECTRAL = ("cuda_ad_spectral", "llvm_ad_spectral", "scalar_spectral")
+"""Spectral variants, fastest first."""
+
+LIBLLVM_MINIMUM = 16
+"""Oldest libLLVM major version drjit's LLVM backend works with."""
+
+_LIBLLVM_PATTERNS = (
+    "/usr/lib/x86_64-linux-gnu/libLLVM.so.*",
+    "/usr/lib/x86_64-linux-gnu/libLLVM-*.so*",
+    "/usr/lib/llvm-*/lib/libLLVM*.so*",
+    "/usr/lib/aarch64-linux-gnu/libLLVM*.so*",
+    "/usr/lib64/libLLVM*.so*",
+    "/opt/homebrew/opt/llvm/lib/libLLVM.dylib",
+)
+
+_CHOSEN: dict[str | None, str] = {}
+
+
+def libllvm_path() -> str | None:
+    """
+    The libLLVM that drjit will load: ``DRJIT_LIBLLVM_PATH`` if set, else the
+    newest libLLVM ≥ :data:`LIBLLVM_MINIMUM` found (and then set in the
+    environment), else ``None``.
+    """
+
+    if os.environ.get("DRJIT_LIBLLVM_PATH"):
+        return os.environ["DRJIT_LIBLLVM_PATH"]
+    best: tuple[int, str] | None = None
+    for pattern in _LIBLLVM_PATTERNS:
+        for path in glob.glob(pattern):
+            match = re.search(r"LLVM[.-](?:so\.)?(\d+)", os.path.basename(path)) or re.search(r"llvm-(\d+)", path)
+            if match and int(match.group(1)) >= LIBLLVM_MINIMUM and (best is None or int(match.group(1)) > best[0]):
+                best = (int(match.group(1)), path)
+    if best is None:
+        return None
+    os.environ["DRJIT_LIBLLVM_PATH"] = best[1]
+    return best[1]
+
+
+_PROBE = (
+    "import mitsuba as mi, drjit as dr, sys\n"
+    "mi.set_variant(sys.argv[1])\n"
+    "x = mi.Float([1.0, 2.0, 3.0])\n"
+    "y = dr.maximum(x * 2.0, 3.0)\n"
+    "dr.eval(y)\n"
+    "s = mi.load_dict({'type': 'blackbody', 'temperature': 3000.0})\n"
+    "print(float(dr.sum(y)[0] if hasattr(dr.sum(y), '__len__') else dr.sum(y)))\n"
+)
+
+
+def _works(variant: str) -> bool:
+    if variant.startswith("cuda") and not (shutil.which("nvidia-smi") or os.path.exists("/dev/nvidia0")):
+        return False
+    if variant.startswith("llvm") and libllvm_path() is None:
+        return False
+    try:
+        done = subprocess.run([sys.executable, "-c", _PROBE, variant], capture_output=True, text=True,
+                              timeout=180, env=os.environ.copy())
+    except (OSError, subprocess.TimeoutExpired):
+        return False
+    return done.returncode == 0
+
+
+def choose_variant(requested: str | None = None, notice=sys.stderr) -> str:
+    """
+    The Mitsuba variant to render with.
+
+    Parameters
+    ----------
+    requested
+        A variant name to force (``llvm_ad_spectral`` …), or ``None`` for the
+        fastest that works here.
+    notice
+        Stream for the one-line notice when falling back to ``scalar_spectral``.
+
+    Raises
+    ------
+    SkinrenderError
+        Mitsuba is not installed, the requested variant is not spectral or
+        not in this build, or it does not run here (the reason is named).
+    """
+
+    if requested in _CHOSEN:
+        return _CHOSEN[requested]
+    try:
+        import importlib.util
+
+        if importlib.util.find_spec("mitsuba") is None:
+            raise ImportError
+    except ImportError:
+        raise SkinrenderError("rendering needs Mitsuba 3: pip install mitsuba") from None
+    libllvm_path()  # before drjit is imported anywhere
+    if requested is not None:
+        if requested not in VARIANTS_SPECTRAL:
+            raise SkinrenderError(f"variant must be one of {', '.join(VARIANTS_SPECTRAL)} (spectral), got {requested!r}")
+        if not _works(requested):
+            hint = ""
+            if requested.startswith("llvm"):
+                hint = (f" (it needs libLLVM ≥ {LIBLLVM_MINIMUM}: on Debian/Ubuntu 'apt-get install libllvm19', or set "
+                        "DRJIT_LIBLLVM_PATH)")
+            elif requested.startswith("cuda"):
+                hint = " (it needs an NVIDIA GPU and driver)"
+            raise SkinrenderError(f"variant {requested} does not run on this machine{hint}")
+        _CHOSEN[requested] = requested
+        return requested
+    for variant in VARIANTS_SPECTRAL:
+        if _works(variant):
+            if variant == "scalar_spectral" and notice is not None:
+                print(
+                    "skinrender: notice: llvm_ad_spectral unavailable (needs libLLVM ≥ 16, e.g. Debian 'libllvm19'); "
+                    "rendering with scalar_spectral, about 7× slower",
+                    file=notice,
+                )
+            _CHOSEN[None] = variant
+            return variant
+    raise SkinrenderError("no spectral Mitsuba variant runs on this machine (tried " + ", ".join(VARIANTS_SPECTRAL) + ")")
+
+
+def mitsuba(variant: str):
+    """The ``mitsuba`` module with ``variant`` set."""
+    libllvm_path()
+    import mitsuba as mi
+
+    if mi.variant() != variant:
+        mi.set_variant(variant)
+    return mi
