@@ -25,7 +25,7 @@ from .constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
 from .datasets import reflectances
 from .spectra import GRID_DEFAULT, planck
 
-__all__ = ["machine", "bench_analytic", "bench_search"]
+__all__ = ["machine", "bench_analytic", "bench_search", "bench_render"]
 
 
 def machine() -> dict:
@@ -196,4 +196,92 @@ def bench_search(
         "elapsed_s": full_search_s,
         "workers": cores,
         "growth": growth,
+    }
+
+
+def bench_render(
+    camera_spec: str = "gbell:9@450,540,610",
+    quick: bool = False,
+    variants: tuple[str, ...] | None = None,
+    spps: tuple[int, ...] | None = None,
+    samplers: tuple[str, ...] = ("independent", "multijitter"),
+    seed: int = 1,
+    all_pairs: bool = True,
+) -> dict:
+    """
+    Error against time of the Mitsuba render of the Macbeth chart.
+
+    -   ``curve``: for every variant that runs here, sampler and spp, the
+        render time (s, best of two after a warm-up, kernel compilation
+        excluded) and the RMS relative error of the 25 patch means (Eq. 4 at
+        p = c = A, 144 pixels averaged per patch) against
+        :func:`skinrender.validate.analytic_reference`; plus the analytic
+        model's own error on 5 and 10 nm grids against 1 nm
+        (``variant = "analytic"``).
+    -   ``all_pairs_s``: rendering all three charts at every paper
+        illuminant (standard quality) and validating all 100 (prevailing,
+        calibration) pairs of each — one render per chart and temperature,
+        the pairs are Eq. 4 applied afterwards.
+    """
+
+    from .render import QUALITY_PRESETS, render, render_raw
+    from .scene import load_scene
+    from .validate import analytic_reference, validate
+    from .variants import VARIANTS_SPECTRAL, _works, choose_variant
+
+    chart = load_scene("macbeth")
+    cam = camera(camera_spec)
+    reference = analytic_reference(cam, chart.reflectances(GRID_DEFAULT), 2856.0, 2856.0)
+    if variants is None:
+        variants = (choose_variant(),) if quick else tuple(v for v in VARIANTS_SPECTRAL if _works(v))
+    curve = []
+    for variant in variants:
+        top = 256 if quick or variant.startswith("scalar") else 4096
+        for sampler in samplers:
+            for spp in spps or tuple(s for s in (4, 16, 64, 256, 1024, 4096) if s <= top):
+                render_raw(chart, cam, 2856.0, spp, seed, sampler, variant)  # warm-up: compile kernels
+                best, rendering = np.inf, None
+                for repeat in range(2):
+                    rendering = render(chart, cam, 2856.0, 2856.0, spp=spp, seed=seed + repeat, sampler=sampler,
+                                       variant=variant)
+                    best = min(best, rendering.seconds)
+                error = float(np.sqrt(np.mean((rendering.patches.mean / reference - 1) ** 2)))
+                curve.append({"variant": variant, "sampler": sampler, "spp": spp, "seconds": best, "rel_error": error})
+    for step in (5.0, 10.0):
+        from .spectra import WavelengthGrid
+
+        coarse = WavelengthGrid(400.0, 700.0, step)
+        start = time.perf_counter()
+        approx = analytic_reference(cam, chart.reflectances(coarse), 2856.0, 2856.0, grid=coarse)
+        seconds = time.perf_counter() - start
+        error = float(np.sqrt(np.mean((approx / reference - 1) ** 2)))
+        curve.append({"variant": "analytic", "sampler": f"grid {step:g} nm", "spp": 0, "seconds": seconds,
+                      "rel_error": error})
+
+    all_pairs_s = None
+    all_pairs_worst = None
+    if all_pairs:
+        spp = QUALITY_PRESETS["standard"]["spp"]
+        temperatures = np.array(TEMPERATURES_PAPER)
+        start = time.perf_counter()
+        worst = 0.0
+        passed = True
+        for name in ("macbeth", "skin_patches", "face_chart"):
+            cache: dict = {}
+            for p in temperatures:
+                for q in temperatures:
+                    # one render per temperature: the calibration white comes from the same cache
+                    r = render(name, cam, p, q, spp=spp, seed=seed, cache=cache)
+                    v = validate(name, cam, p, q, rendering=r)
+                    worst = max(worst, float(v.rel_error.max()))
+                    passed &= v.passed
+        all_pairs_s = time.perf_counter() - start
+        all_pairs_worst = {"max_rel_error": worst, "passed": bool(passed), "spp": spp}
+    return {
+        "machine": machine(),
+        "camera": cam.name,
+        "curve": curve,
+        "all_pairs_s": all_pairs_s,
+        "all_pairs": all_pairs_worst,
+        "elapsed_s": sum(row["seconds"] for row in curve),
     }

@@ -58,6 +58,21 @@ def _add_search(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
 
 
+def _add_render(parser: argparse.ArgumentParser) -> None:
+    from .render import QUALITY_PRESETS, SAMPLERS
+
+    parser.add_argument("--quality", choices=list(QUALITY_PRESETS), default="standard",
+                        help="preset: draft (16 spp), standard (256 spp, default), reference (4096 spp), multijitter")
+    parser.add_argument("--spp", type=int, help="samples per pixel (overrides --quality)")
+    parser.add_argument("--sampler", choices=SAMPLERS, help="Mitsuba sampler (default multijitter)")
+    parser.add_argument("--seed", type=int, default=0, help="sampler seed; the same seed gives the same image (default 0)")
+    parser.add_argument("--variant", help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral); "
+                        "default: the fastest that works here")
+    parser.add_argument("--channels", choices=["auto", "together", "separate"], default="auto",
+                        help="render the three channels in one pass or one pass each (auto: separate for the "
+                        "impulse, narrow gbell or very unequal channels)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of every command."""
     parser = argparse.ArgumentParser(
@@ -138,8 +153,25 @@ def build_parser() -> argparse.ArgumentParser:
     _add_search(p)
     _add_common(p)
 
+    for name, text in (("render", "spectral render of a chart scene with Mitsuba 3 (float32 EXR + PNG preview)"),
+                       ("validate", "render a chart and check every patch against Eq. 4 within its noise")):
+        p = commands.add_parser(name, help=text)
+        p.add_argument("scene", help="scene: macbeth, skin_patches, face_chart or a .toml path (see scenes/)")
+        p.add_argument("--camera", required=True, help=HELP_CAMERA)
+        p.add_argument("--prevailing", required=True, help="prevailing (emitter) illuminant, Planckian: " + HELP_ILLUMINANT)
+        p.add_argument("--calibration", required=True, help="calibration (white balance) illuminant: " + HELP_ILLUMINANT)
+        _add_render(p)
+        _add_model(p)
+        _add_grid(p)
+        if name == "render":
+            p.add_argument("-o", "--output", default="render.exr",
+                           help="output EXR (float32, Eq. 4 output units, channels named by the camera); "
+                           "a PNG preview is written beside it")
+        _add_common(p)
+
     p = commands.add_parser("bench", help="speed and accuracy figures")
-    p.add_argument("what", choices=["analytic", "search"], help="which benchmark")
+    p.add_argument("what", choices=["analytic", "search", "render"], help="which benchmark")
+    p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant)")
     p.add_argument("--repeat", type=int, default=3, help="analytic: timed repetitions, best kept (default 3)")
     p.add_argument("--sensor", type=float, default=9, help="search: sensor number (default 9)")
     p.add_argument("--sample", type=int, default=20, help="search: triplets timed per method (default 20)")
@@ -369,10 +401,79 @@ def command_reproduce(args: argparse.Namespace) -> None:
     _print(args, result, text)
 
 
+def _render_options(args: argparse.Namespace) -> dict:
+    from .render import QUALITY_PRESETS
+
+    preset = QUALITY_PRESETS[args.quality]
+    spp = args.spp if args.spp is not None else preset["spp"]
+    if spp < 1:
+        raise SkinrenderError(f"--spp must be ≥ 1, got {spp}")
+    return {"spp": spp, "sampler": args.sampler or preset["sampler"], "seed": args.seed, "variant": args.variant,
+            "channels": args.channels}
+
+
+def command_render(args: argparse.Namespace) -> None:
+    from pathlib import Path
+
+    from .render import channel_names, render, write_exr, write_preview
+
+    options = _render_options(args)
+    print(f"rendering {args.scene} at {options['spp']} spp …", file=sys.stderr)
+    result = render(args.scene, args.camera, args.prevailing, args.calibration, args.normalization, args.knee,
+                    grid=_grid(args), **options)
+    output = Path(args.output)
+    if output.suffix.lower() != ".exr":
+        raise SkinrenderError(f"--output must end in .exr, got {output}")
+    names = channel_names(result.camera)
+    write_exr(output, result.image, names, {"camera": result.camera.name, "prevailing_K": result.prevailing,
+                                            "calibration_K": result.calibration, "spp": options["spp"],
+                                            "seed": args.seed, "variant": result.variant, "units": "Eq. 4 output units"})
+    preview = write_preview(output.with_suffix(".png"), result.image)
+    document = {"image": str(output), "preview_png": str(preview), "channels": list(names), "spp": options["spp"],
+                "sampler": options["sampler"], "seed": args.seed, "variant": result.variant,
+                "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
+                "prevailing_K": result.prevailing, "calibration_K": result.calibration,
+                "normalization": args.normalization, "knee": args.knee}
+    text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "
+            f"{result.calibration:g} K: {output} (+ {preview}), {options['spp']} spp, {result.variant}, "
+            f"{result.seconds:.2f} s")
+    _print(args, document, text)
+
+
+def command_validate(args: argparse.Namespace) -> None:
+    from .validate import SIGMAS, validate
+
+    options = _render_options(args)
+    result = validate(args.scene, args.camera, args.prevailing, args.calibration, args.normalization, args.knee,
+                      grid=_grid(args), **options)
+    r = result.rendering
+    document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
+                "calibration_K": r.calibration, "normalization": args.normalization, "knee": args.knee,
+                "spp": options["spp"], "sampler": options["sampler"], "seed": args.seed, "variant": r.variant,
+                "elapsed_s": r.seconds, "sigmas": SIGMAS, "patches": result.patches(), "worst": result.worst(),
+                "max_rel_error": float(result.rel_error.max()), "quadrature_rel_difference": result.quadrature,
+                "passed": result.passed}
+    lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
+             f"{options['spp']} spp {options['sampler']}, {r.variant}, {r.seconds:.2f} s"]
+    rows = [[p["name"][:28], *(f"{v:.3f}" for v in p["rendered"]), *(f"{v:.1e}" for v in p["rel_error"]),
+             "ok" if p["passed"] else "FAIL"] for p in document["patches"]]
+    lines.append(_table(rows, ["patch", "R", "G", "B", "relerr R", "relerr G", "relerr B", ""]))
+    lines += [f"worst {w['channel']}: {w['patch']} ({w['z']:+.2f} σ, {w['rel_error']:.1e} relative)" for w in result.worst()]
+    lines.append(f"paper Σ vs rendered integral (quadrature): {result.quadrature:.1e} relative; "
+                 f"{'PASSED' if result.passed else 'FAILED'} (tolerance {SIGMAS:g} σ of the measured noise)")
+    _print(args, document, "\n".join(lines))
+    if not result.passed:
+        raise SystemExit(1)
+
+
 def command_bench(args: argparse.Namespace) -> None:
     from .bench import bench_analytic, bench_search
 
-    if args.what == "search":
+    if args.what == "render":
+        from .bench import bench_render
+
+        result = bench_render(quick=args.quick)
+    elif args.what == "search":
         result = bench_search(args.sensor, args.sample, workers=args.workers)
     else:
         result = bench_analytic(repeat=args.repeat)
@@ -388,6 +489,8 @@ COMMANDS = {
     "gamut": command_gamut,
     "search": command_search,
     "reproduce": command_reproduce,
+    "render": command_render,
+    "validate": command_validate,
     "bench": command_bench,
 }
 

@@ -259,6 +259,7 @@ def render_raw(
     start = time.perf_counter()
     for group in groups:
         loaded = mi.load_dict(scene_dict(chart, cam, temperature, spp, seed, sampler, grid, group, chosen))
+        spp = int(loaded.sensors()[0].sampler().sample_count())  # multijitter rounds to a product of two ints
         values = np.array(mi.render(loaded, seed=int(seed)), dtype=np.float32).reshape(height, width, len(group))
         image[:, :, list(group)] = values
     seconds = time.perf_counter() - start

@@ -126,7 +126,10 @@ def reflectance_of(spec: str, grid: WavelengthGrid, where: str = "reflectance") 
     if ":" not in text:
         raise SkinrenderError(f"{where}: reflectance must be SET:SAMPLE, SET:#N, perfect or grey:F, got {text!r}")
     set_name, sample = text.split(":", 1)
-    dataset = reflectances(set_name)
+    try:
+        dataset = reflectances(set_name)
+    except SkinrenderError as error:
+        raise SkinrenderError(f"{where}: {error}") from None
     if sample.startswith("#"):
         try:
             index = int(sample[1:])

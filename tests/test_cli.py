@@ -170,3 +170,27 @@ class TestSearchCommands:
         markdown = (tmp_path / "tables.md").read_text()
         assert "Table 3" in markdown and "| 9 |" in markdown and "400 550 700, 3300 K" in markdown  # the paper's
         assert set(document["stage2"]) == {"560nm", "euclidean", "white"}
+
+
+class TestRenderCommands:
+    def test_render_writes_exr_and_png(self, capsys, tmp_path):
+        pytest.importorskip("mitsuba")
+        out = tmp_path / "face.exr"
+        document = run_json(capsys, "render", "face_chart", "--camera", "gbell:9@450,540,610", "--prevailing", "2000",
+                            "--calibration", "5900", "--quality", "draft", "--seed", "3", "-o", str(out))
+        assert {"image", "preview_png", "spp", "variant", "elapsed_s"} <= set(document)
+        assert out.exists() and (tmp_path / "face.png").exists()
+        assert document["spp"] == 16 and document["variant"].endswith("_spectral")
+
+    def test_validate_json(self, capsys):
+        pytest.importorskip("mitsuba")
+        document = run_json(capsys, "validate", "macbeth", "--camera", "Nikon 5100 (NPL)", "--prevailing", "A",
+                            "--calibration", "H", "--spp", "64")
+        assert document["passed"] is True
+        assert len(document["patches"]) == 25
+        assert set(document["patches"][0]) >= {"name", "rendered", "analytic", "rel_error", "tolerance"}
+
+    def test_render_bad_scene(self, capsys):
+        err = run_error(capsys, "render", "nope", "--camera", "gbell:9@450,540,610", "--prevailing", "A",
+                        "--calibration", "A")
+        assert "unknown scene 'nope'" in err

@@ -293,11 +293,105 @@ def notebook_03() -> nbformat.NotebookNode:
     return _kernel(new_notebook(cells=cells))
 
 
+def notebook_04() -> nbformat.NotebookNode:
+    cells = [
+        new_markdown_cell(
+            "# 04 · Rendering the charts with Mitsuba 3 and validating them against Eq. 4\n\n"
+            "## Overview\n"
+            "The chart scenes (`scenes/*.toml`) are rendered spectrally by Mitsuba 3 under a Planck blackbody "
+            "emitter and seen through a candidate camera's sensor curves (`specfilm`). The white reference "
+            "rendered under the calibration illuminant white-balances the image (Eq. 4). Every patch mean is "
+            "then checked against the analytic model within a tolerance derived from its measured noise. "
+            "Low spp here so that the notebook runs in the tests; `skinrender bench render` measures the "
+            "full error-against-time curve.\n\n"
+            "**What you will learn**: how close a Monte Carlo spectral renderer gets to Eq. 4, what limits it, "
+            "and the paper's Table 1 with the render as the real camera."
+        ),
+        new_code_cell(
+            "import time\n"
+            "import matplotlib\n"
+            "matplotlib.use('Agg')\n"
+            "import matplotlib.pyplot as plt\n"
+            "import numpy as np\n"
+            "import skinrender as sr\n"
+            "from skinrender.render import render\n"
+            "from skinrender.validate import validate, table1, analytic_reference\n\n"
+            "CAMERA = 'gbell:9@450,540,610'\n"
+            "SPP = 64\n"
+            "renders = {name: render(name, CAMERA, 2000, 5900, spp=SPP, seed=1) for name in ('macbeth', 'skin_patches', 'face_chart')}\n"
+            "renders['macbeth'].variant"
+        ),
+        new_markdown_cell("## Step 1: the three charts, 2000 K white-balanced to 5900 K"),
+        new_code_cell(
+            "fig, axes = plt.subplots(1, 3, figsize=(13, 3.5))\n"
+            "for axis, (name, r) in zip(axes, renders.items()):\n"
+            "    axis.imshow(np.clip(r.image / 255, 0, 1) ** (1 / 2.2))\n"
+            "    axis.set(title=name); axis.axis('off')\n"
+            "fig.tight_layout()"
+        ),
+        new_markdown_cell("## Step 2: per-patch errors (face chart)"),
+        new_code_cell(
+            "v = validate('face_chart', CAMERA, 2000, 5900, rendering=renders['face_chart'])\n"
+            "for row in v.patches()[:8]:\n"
+            "    print(f\"{row['name'][:30]:30s}\", ' '.join(f'{e:.1e}' for e in row['rel_error']), 'ok' if row['passed'] else 'FAIL')\n"
+            "print('worst:', v.worst())\n"
+            "print('passed:', v.passed, '| paper Σ vs rendered integral:', f'{v.quadrature:.1e}')"
+        ),
+        new_markdown_cell(
+            "The tolerance is 5σ of the measured noise (patch standard error, plus the white reference's "
+            "through the white balance). The analytic reference integrates the linearly interpolated spectra "
+            "as the renderer does; the paper's plain Σ over 1 nm samples differs from it by the printed "
+            "quadrature term (up to ~1 % for sensors at the ends of 400–700 nm)."
+        ),
+        new_markdown_cell("## Step 3: Table 1, render as the real camera (Macbeth, A and Horizon)"),
+        new_code_cell(
+            "t1 = table1(CAMERA, spp=SPP)\n"
+            "print(len(t1['patches']), 'patches kept by the 10–245 rule')\n"
+            "for row in t1['rows']:\n"
+            "    print(f\"{row['model']:18s} {row['case']}  mean {row['mean']:.5f}  std {row['std']:.5f}\")"
+        ),
+        new_markdown_cell(
+            "As in the paper, Eq. 1 with WP (no white balance) is far from the white-balanced camera, and all "
+            "Eq. 4 normalisations give the same chromaticities (the factor cancels in NCC). The paper's Eq. 4 "
+            "rows (~0.04) measured a model against a real camera; ours measure the model against a render of the "
+            "same physics, so they fall to the noise level."
+        ),
+        new_markdown_cell("## Step 4: error against time (a short curve)"),
+        new_code_cell(
+            "chart = sr.scene.load_scene('macbeth')\n"
+            "reference = analytic_reference(CAMERA, chart.reflectances(sr.GRID_DEFAULT), 2856, 2856)\n"
+            "curve = []\n"
+            "for sampler in ('independent', 'multijitter'):\n"
+            "    for spp in (4, 16, 64):\n"
+            "        r = render('macbeth', CAMERA, 2856, 2856, spp=spp, seed=2, sampler=sampler)\n"
+            "        curve.append((sampler, spp, r.seconds, np.sqrt(np.mean((r.patches.mean / reference - 1) ** 2))))\n"
+            "fig, ax = plt.subplots(figsize=(5, 3.5))\n"
+            "for sampler in ('independent', 'multijitter'):\n"
+            "    rows = [c for c in curve if c[0] == sampler]\n"
+            "    ax.loglog([c[2] for c in rows], [c[3] for c in rows], 'o-', label=sampler)\n"
+            "ax.set(xlabel='render time (s, includes kernel compilation)', ylabel='RMS relative error'); ax.legend()\n"
+            "fig.tight_layout()\n"
+            "for c in curve: print(c)"
+        ),
+        new_markdown_cell(
+            "## What the figures say\n"
+            "- Every patch of every chart agrees with Eq. 4 within its noise; the error falls as 1/√(pixels·spp) "
+            "and the stratified multijitter sampler is far better on flat patches than the independent one.\n"
+            "- The README's speed table gives the full curve from `skinrender bench render` and the quality "
+            "presets chosen from it.\n\n"
+            "## References\n"
+            "Mitsuba 3 (Jakob et al. 2022), specfilm and blackbody plugins; the paper's Table 1."
+        ),
+    ]
+    return _kernel(new_notebook(cells=cells))
+
+
 def main() -> None:
     ROOT_NOTEBOOKS.mkdir(exist_ok=True)
     nbformat.write(notebook_01(), ROOT_NOTEBOOKS / "01_illuminants.ipynb")
     nbformat.write(notebook_02(), ROOT_NOTEBOOKS / "02_normalisation.ipynb")
     nbformat.write(notebook_03(), ROOT_NOTEBOOKS / "03_sensor_search.ipynb")
+    nbformat.write(notebook_04(), ROOT_NOTEBOOKS / "04_render_validation.ipynb")
 
 
 if __name__ == "__main__":

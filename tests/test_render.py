@@ -1,0 +1,181 @@
+"""Tests for :mod:`skinrender.render` and :mod:`skinrender.validate`: renders agree with Eq. 4 within their noise.
+
+These render with the fastest Mitsuba variant on the machine (llvm_ad_spectral where libLLVM ≥ 16
+is installed, which CI does) at small spp; one test covers the scalar fallback.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import skinrender as sr
+from skinrender.errors import SkinrenderError
+from skinrender.render import channel_names, read_exr, render, render_raw, write_exr, write_preview
+from skinrender.validate import analytic_reference, table1, validate
+from skinrender import variants
+
+pytest.importorskip("mitsuba")
+
+CAMERA = "gbell:9@450,540,610"
+TINY = """
+name = "tiny"
+columns = 3
+patch_px = 8
+gap_px = 1
+border_px = 1
+[[patch]]
+reflectance = "macbeth:dark skin"
+[[patch]]
+name = "near black"
+reflectance = "grey:0.001"
+[[patch]]
+reflectance = "skin:#14"
+"""
+
+
+@pytest.fixture
+def tiny(tmp_path):
+    path = tmp_path / "tiny.toml"
+    path.write_text(TINY)
+    return str(path)
+
+
+class TestVariants:
+    def test_fastest_spectral_variant(self):
+        assert variants.choose_variant() in variants.VARIANTS_SPECTRAL
+
+    def test_unknown_variant(self):
+        with pytest.raises(SkinrenderError, match="variant must be one of"):
+            variants.choose_variant("llvm_ad_rgb")
+
+    def test_fallback_to_scalar_with_a_notice(self, monkeypatch, capsys):
+        monkeypatch.setattr(variants, "_CHOSEN", {})
+        monkeypatch.setattr(variants, "_works", lambda v: v == "scalar_spectral")
+        import sys
+
+        assert variants.choose_variant(notice=sys.stderr) == "scalar_spectral"
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "scalar_spectral" in err and "libllvm19" in err
+
+    def test_scalar_variant_renders_and_validates(self, tiny):
+        result = validate(tiny, CAMERA, 3300, 3300, spp=16, seed=3, variant="scalar_spectral")
+        assert result.rendering.variant == "scalar_spectral"
+        assert result.passed, result.worst()
+
+
+class TestRender:
+    def test_same_seed_same_image(self, tiny):
+        a = render_raw(tiny, CAMERA, 3000, spp=8, seed=7)
+        b = render_raw(tiny, CAMERA, 3000, spp=8, seed=7)
+        c = render_raw(tiny, CAMERA, 3000, spp=8, seed=8)
+        np.testing.assert_array_equal(a.image, b.image)
+        assert not np.array_equal(a.image, c.image)
+
+    def test_raw_is_the_specfilm_integral(self, tiny):
+        """A patch returns ρ E / π: the raw mean of the white reference is ∫ B(λ, T) s_k(λ) dλ / π."""
+        raw = render_raw(tiny, CAMERA, 4000, spp=64, seed=1)
+        scene = sr.scene.load_scene(tiny)
+        rows, columns = scene.patch_pixels(scene.white_index)
+        white = raw.image[rows, columns].reshape(-1, 3).mean(axis=0)
+        lam = sr.GRID_DEFAULT.wavelengths
+        x = sr.camera(CAMERA).sensitivities(sr.GRID_DEFAULT)
+        expected = np.trapezoid(sr.planck(lam, 4000) * x, lam, axis=1) / np.pi
+        np.testing.assert_allclose(white, expected, rtol=2e-3)
+
+    @pytest.mark.parametrize("scene", ["macbeth", "skin_patches", "face_chart"])
+    def test_bundled_charts_agree_with_eq4(self, scene):
+        """Regression: every patch within its noise-derived tolerance of the analytic Eq. 4 value."""
+        result = validate(scene, CAMERA, 2300, 5900, spp=64, seed=11)
+        assert result.passed, result.worst()
+        assert np.all(np.isfinite(result.rendered))
+
+    def test_a_broken_model_fails_validation(self):
+        """The check can fail: the paper's Σ on a 10 nm grid is not what the renderer integrates."""
+        result = validate("macbeth", "gbell:3@400,550,700", 2856, 2856, spp=256, seed=2)
+        coarse = sr.response("gbell:3@400,550,700", sr.scene.load_scene("macbeth").reflectances(sr.GRID_DEFAULT),
+                             2856, 2856)
+        assert result.passed
+        assert np.any(np.abs(result.rendered - coarse) > result.tolerance)
+
+    @pytest.mark.parametrize(
+        "camera, prevailing, calibration",
+        [
+            ("gbell:3@400,550,700", 25000, 1000),
+            ("gbell:3,b=6@400,410,700", 1000, 1000),
+            ("impulse@450,550,650", 25000, 1000),
+        ],
+    )
+    def test_extremes_finite_and_within_tolerance(self, tiny, camera, prevailing, calibration):
+        result = validate(tiny, camera, prevailing, calibration, spp=64, seed=5)
+        assert np.all(np.isfinite(result.rendered)) and np.all(np.isfinite(result.analytic))
+        assert result.passed, result.worst()
+
+    def test_impulse_at_the_range_end_under_1000K_has_a_stated_bias(self, tiny):
+        """An impulse at 400 nm under 1000 K: Planck changes ~9 % per nm there, and the render of the
+        half-triangle at the grid's end is biased beyond its (tiny) noise. Measured: < 1e-3 relative."""
+        result = validate(tiny, "impulse@400,550,700", 1000, 25000, spp=64, seed=5)
+        assert np.all(np.isfinite(result.rendered))
+        assert result.rel_error.max() < 1e-3
+
+    def test_impulse_bias_is_small(self, tiny):
+        """The impulse is rendered as a unit-area triangle of base 2 nm; against the exact sample (Eq. 4's Σ)
+        it is biased by the reflectance's curvature within ±1 nm: measured 1.9e-3 at most here (a 2 nm-sampled
+        skin spectrum at a kink), stated as < 3e-3 in the README."""
+        result = validate(tiny, "impulse@450,550,650", 3300, 3300, spp=16, seed=1)
+        reflectance = sr.scene.load_scene(tiny).reflectances(sr.GRID_DEFAULT)
+        exact = sr.response("impulse@450,550,650", reflectance, 3300, 3300)
+        assert result.passed
+        assert np.max(np.abs(result.rendered / exact - 1)) < 3e-3
+
+    def test_knee_and_normalisation(self, tiny):
+        result = validate(tiny, CAMERA, 2000, 10000, normalization="560nm", knee=True, spp=32, seed=2)
+        assert result.passed and result.rendered.max() <= 255
+
+    def test_data_ending_before_the_range_is_refused(self, tmp_path, tiny):
+        csv = tmp_path / "short.csv"
+        lam = np.arange(420, 681, 5.0)
+        rows = np.column_stack([lam, np.exp(-((lam - 600) / 40) ** 2), np.exp(-((lam - 530) / 40) ** 2),
+                                np.exp(-((lam - 460) / 40) ** 2)])
+        np.savetxt(csv, rows, delimiter=",", header="wavelength,R,G,B", comments="")
+        with pytest.raises(SkinrenderError, match="420"):
+            render(tiny, str(csv), 3000, 3000, spp=4)
+        zero = sr.camera(str(csv), extrapolation="zero")
+        result = validate(tiny, zero, 3000, 3000, spp=16)
+        assert result.passed and np.all(np.isfinite(result.rendered))
+
+    def test_bad_arguments(self, tiny, tmp_path):
+        with pytest.raises(SkinrenderError, match="sampler"):
+            render_raw(tiny, CAMERA, 3000, sampler="sobol")
+        with pytest.raises(SkinrenderError, match="spp"):
+            render_raw(tiny, CAMERA, 3000, spp=0)
+        spd = tmp_path / "flat.csv"
+        spd.write_text("wavelength,value\n380,1\n780,1\n")
+        with pytest.raises(SkinrenderError, match="Planckian"):
+            render(tiny, CAMERA, str(spd), 3000)
+
+
+class TestFiles:
+    def test_exr_float32_named_channels(self, tmp_path, tiny):
+        result = render(tiny, CAMERA, 25000, 1000, spp=4)  # large values: float16 would overflow
+        names = channel_names(result.camera)
+        assert names == ("R_610nm", "G_540nm", "B_450nm")
+        path = write_exr(tmp_path / "x.exr", result.image * 1e5, names)
+        back = read_exr(path, names)
+        assert back.dtype == np.float32 and np.all(np.isfinite(back))
+        np.testing.assert_array_equal(back, result.image * np.float32(1e5))
+        with pytest.raises(SkinrenderError, match="no channel"):
+            read_exr(path, ("R", "G", "B"))
+        png = write_preview(tmp_path / "x.png", result.image)
+        assert png.stat().st_size > 0
+
+
+def test_table1_eq4_rows_agree_and_eq1_is_worse():
+    result = table1(spp=64)
+    assert len(result["patches"]) >= 12
+    rows = {(r["model"], r["case"]): r["mean"] for r in result["rows"]}
+    for case in ("AA", "AH", "HH", "HA"):
+        eq4 = [rows[(f"Eq. 4, {n}", case)] for n in ("none", "560nm", "euclidean", "white")]
+        assert max(eq4) - min(eq4) < 1e-12  # normalisation and WP cancel in NCC
+        assert eq4[0] < 1e-3
+        assert rows[("Eq. 1, WP", case)] > 10 * eq4[0]
