@@ -207,6 +207,7 @@ def bench_render(
     samplers: tuple[str, ...] = ("independent", "multijitter"),
     seed: int = 1,
     all_pairs: bool = True,
+    all_pairs_spp: int = 64,
 ) -> dict:
     """
     Error against time of the Mitsuba render of the Macbeth chart.
@@ -219,7 +220,7 @@ def bench_render(
         model's own error on 5 and 10 nm grids against 1 nm
         (``variant = "analytic"``).
     -   ``all_pairs_s``: rendering all three charts at every paper
-        illuminant (standard quality) and validating all 100 (prevailing,
+        illuminant (``all_pairs_spp``, multijitter) and validating all 100 (prevailing,
         calibration) pairs of each — one render per chart and temperature,
         the pairs are Eq. 4 applied afterwards.
     """
@@ -261,7 +262,7 @@ def bench_render(
     all_pairs_s = None
     all_pairs_worst = None
     if all_pairs:
-        spp = QUALITY_PRESETS["standard"]["spp"]
+        spp = all_pairs_spp
         temperatures = np.array(TEMPERATURES_PAPER)
         start = time.perf_counter()
         worst = 0.0
@@ -285,3 +286,29 @@ def bench_render(
         "all_pairs": all_pairs_worst,
         "elapsed_s": sum(row["seconds"] for row in curve),
     }
+
+
+def plot_render_curve(result: dict, path) -> "Path":
+    """Error against time (log–log) of :func:`bench_render`'s curve, one line per variant and sampler."""
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axis = plt.subplots(figsize=(6, 4.2))
+    lines = sorted({(r["variant"], r["sampler"]) for r in result["curve"] if r["variant"] != "analytic"})
+    for variant, sampler in lines:
+        rows = [r for r in result["curve"] if (r["variant"], r["sampler"]) == (variant, sampler)]
+        axis.loglog([r["seconds"] for r in rows], [r["rel_error"] for r in rows], "o-", label=f"{variant}, {sampler}")
+        for r in rows:
+            axis.annotate(str(r["spp"]), (r["seconds"], r["rel_error"]), fontsize=6)
+    axis.set(xlabel="render time per Macbeth image (s)", ylabel="RMS relative error of patch means",
+             title="Render error against time (labels: spp)")
+    axis.legend(fontsize=7)
+    figure.tight_layout()
+    path = Path(path)
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    return path

@@ -163,15 +163,26 @@ def build_parser() -> argparse.ArgumentParser:
         _add_render(p)
         _add_model(p)
         _add_grid(p)
+        if name == "validate":
+            p.add_argument("--gamut", action="store_true",
+                           help="also render the chart under every paper illuminant and compare its gamut volumes "
+                           "(one calibration case each, and all calibrations) with the analytic ones")
         if name == "render":
             p.add_argument("-o", "--output", default="render.exr",
                            help="output EXR (float32, Eq. 4 output units, channels named by the camera); "
                            "a PNG preview is written beside it")
         _add_common(p)
 
+    p = commands.add_parser("table1", help="the paper's Table 1: NCC differences, render vs model, Macbeth under A and H")
+    p.add_argument("--camera", default="gbell:9@450,540,610", help=HELP_CAMERA)
+    p.add_argument("--spp", type=int, default=256, help="samples per pixel (default 256)")
+    p.add_argument("--seed", type=int, default=0, help="sampler seed (default 0)")
+    _add_common(p)
+
     p = commands.add_parser("bench", help="speed and accuracy figures")
     p.add_argument("what", choices=["analytic", "search", "render"], help="which benchmark")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant)")
+    p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG")
     p.add_argument("--repeat", type=int, default=3, help="analytic: timed repetitions, best kept (default 3)")
     p.add_argument("--sensor", type=float, default=9, help="search: sensor number (default 9)")
     p.add_argument("--sample", type=int, default=20, help="search: triplets timed per method (default 20)")
@@ -461,9 +472,34 @@ def command_validate(args: argparse.Namespace) -> None:
     lines += [f"worst {w['channel']}: {w['patch']} ({w['z']:+.2f} σ, {w['rel_error']:.1e} relative)" for w in result.worst()]
     lines.append(f"paper Σ vs rendered integral (quadrature): {result.quadrature:.1e} relative; "
                  f"{'PASSED' if result.passed else 'FAILED'} (tolerance {SIGMAS:g} σ of the measured noise)")
+    passed = result.passed
+    if args.gamut:
+        from .validate import validate_gamut
+
+        gamuts = validate_gamut(args.scene, args.camera, spp=options["spp"], seed=args.seed,
+                                sampler=options["sampler"], variant=args.variant, grid=_grid(args))
+        document["gamut"] = gamuts
+        passed = passed and gamuts["passed"]
+        lines.append(f"gamut volumes (output units³), rendered vs analytic, {len(gamuts['illuminants_K'])} illuminants:")
+        labels = [f"calibration {t:g} K" for t in gamuts["illuminants_K"]] + ["all calibrations"]
+        for label, r, a, sg in zip(labels, gamuts["rendered"], gamuts["analytic"], gamuts["sigma"]):
+            lines.append(f"  {label:20s} {r:.6g} vs {a:.6g} (σ {sg:.2g})")
+        lines.append("gamuts " + ("agree within 5 σ" if gamuts["passed"] else "DISAGREE"))
+    document["passed"] = passed
     _print(args, document, "\n".join(lines))
-    if not result.passed:
+    if not passed:
         raise SystemExit(1)
+
+
+def command_table1(args: argparse.Namespace) -> None:
+    from .validate import table1
+
+    result = table1(args.camera, spp=args.spp, seed=args.seed)
+    rows = [[r["model"], r["case"], f"{r['mean']:.5f}", f"{r['std']:.5f}"] for r in result["rows"]]
+    text = (f"Table 1 for {result['camera']} ({len(result['patches'])} Macbeth patches with 90 % of values in "
+            f"10–245; render at {result['spp']} spp as the real camera):\n"
+            + _table(rows, ["model", "case", "mean |ΔNCC|", "std"]))
+    _print(args, result, text)
 
 
 def command_bench(args: argparse.Namespace) -> None:
@@ -473,6 +509,10 @@ def command_bench(args: argparse.Namespace) -> None:
         from .bench import bench_render
 
         result = bench_render(quick=args.quick)
+        if args.plot:
+            from .bench import plot_render_curve
+
+            result["plot"] = str(plot_render_curve(result, args.plot))
     elif args.what == "search":
         result = bench_search(args.sensor, args.sample, workers=args.workers)
     else:
@@ -491,6 +531,7 @@ COMMANDS = {
     "reproduce": command_reproduce,
     "render": command_render,
     "validate": command_validate,
+    "table1": command_table1,
     "bench": command_bench,
 }
 

@@ -179,3 +179,19 @@ def test_table1_eq4_rows_agree_and_eq1_is_worse():
         assert max(eq4) - min(eq4) < 1e-12  # normalisation and WP cancel in NCC
         assert eq4[0] < 1e-3
         assert rows[("Eq. 1, WP", case)] > 10 * eq4[0]
+
+
+@pytest.mark.parametrize("scene", ["skin_patches", "face_chart"])
+def test_rendered_gamuts_equal_analytic_within_noise(scene):
+    from skinrender.validate import validate_gamut
+
+    result = validate_gamut(scene, CAMERA, illuminants=[2000, 3300, 5900, 10000], spp=64, seed=4)
+    assert result["passed"], result
+    assert len(result["rendered"]) == 5 and min(result["analytic"]) > 0
+
+
+def test_tabulated_emitter_matches_mitsubas_blackbody(tiny):
+    a = render_raw(tiny, CAMERA, 3300, spp=16, seed=2, emitter="tabulated")
+    b = render_raw(tiny, CAMERA, 3300, spp=16, seed=2, emitter="blackbody")
+    lit = b.image > 0
+    np.testing.assert_allclose(a.image[lit], b.image[lit], rtol=1e-4)
