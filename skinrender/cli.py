@@ -173,6 +173,31 @@ def build_parser() -> argparse.ArgumentParser:
                            "a PNG preview is written beside it")
         _add_common(p)
 
+    p = commands.add_parser("locus", help="skin locus in NCC (r, g) over the illuminant set, and its false positives")
+    p.add_argument("--camera", required=True, help=HELP_CAMERA)
+    p.add_argument("--illuminants", default="paper",
+                   help="illuminant set: 'paper' (the ten, default), 'auto' (Stage 1) or comma-separated kelvin")
+    p.add_argument("--calibration", help="one white balancing at this illuminant (kelvin, A, H); "
+                   "default: every calibration of the set")
+    p.add_argument("--boundary", choices=["hull", "quadratic"], default="hull",
+                   help="convex hull (default) or two quadratics (Soriano et al. 2003)")
+    p.add_argument("--skin", default="skin", help="skin reflectance set (default skin)")
+    p.add_argument("--nonskin", default="munsell,vrhel-nonskin,macbeth",
+                   help="comma-separated non-skin sets for false-positive rates (default munsell,vrhel-nonskin,macbeth)")
+    p.add_argument("--plot", help="write the locus, the training chromaticities and the Planckian track to this PNG")
+    _add_common(p)
+
+    p = commands.add_parser("detect", help="skin detection on a rendered chart with the camera's skin locus")
+    p.add_argument("scene", help="scene: macbeth, skin_patches, face_chart or a .toml path")
+    p.add_argument("--camera", required=True, help=HELP_CAMERA)
+    p.add_argument("--prevailing", required=True, help="prevailing illuminant, Planckian: " + HELP_ILLUMINANT)
+    p.add_argument("--calibration", required=True, help="calibration illuminant: " + HELP_ILLUMINANT)
+    p.add_argument("--boundary", choices=["hull", "quadratic"], default="hull", help="locus boundary (default hull)")
+    p.add_argument("--skin", default="skin", help="skin set the locus is trained on (default skin)")
+    p.add_argument("-o", "--output", default="detect.png", help="mask PNG (a preview PNG is written beside it)")
+    _add_render(p)
+    _add_common(p)
+
     p = commands.add_parser("table1", help="the paper's Table 1: NCC differences, render vs model, Macbeth under A and H")
     p.add_argument("--camera", default="gbell:9@450,540,610", help=HELP_CAMERA)
     p.add_argument("--spp", type=int, default=256, help="samples per pixel (default 256)")
@@ -491,6 +516,83 @@ def command_validate(args: argparse.Namespace) -> None:
         raise SystemExit(1)
 
 
+def command_locus(args: argparse.Namespace) -> None:
+    from .camera import camera
+    from .datasets import reflectances
+    from .illuminant import illuminant
+    from .illuminants import illuminant_set
+    from .locus import false_positive_rate, locus_points, skin_locus
+
+    cam = camera(args.camera)
+    temperatures = illuminant_set(args.illuminants, cam)
+    calibration = None
+    if args.calibration:
+        calibration = illuminant(args.calibration).temperature
+        if calibration is None:
+            raise SkinrenderError("--calibration must be Planckian (kelvin, A or H)")
+    skin = reflectances(args.skin)
+    locus = skin_locus(cam, skin, temperatures, calibration, args.boundary)
+    rates = {name: false_positive_rate(locus, cam, reflectances(name)) for name in args.nonskin.split(",") if name}
+    document = {"camera": cam.name, "boundary": args.boundary, "polygon": locus.polygon.tolist(), "area": locus.area,
+                "illuminants_K": temperatures.tolist(), "calibration_K": calibration, "skin": skin.name,
+                "false_positive_rate": rates}
+    if args.plot:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        import numpy as np
+
+        from .camera import ncc, response
+
+        figure, axis = plt.subplots(figsize=(5.5, 5))
+        training = locus_points(cam, skin, temperatures, calibration)
+        axis.plot(*training.T, ".", ms=2, color="tab:orange", label=f"{skin.name} ({len(training)} points)")
+        closed = np.vstack([locus.polygon, locus.polygon[:1]])
+        axis.plot(*closed.T, "-", color="tab:red", label=f"locus ({args.boundary}), area {locus.area:.4f}")
+        track_t = np.linspace(2000, 10000, 81)
+        reference = calibration if calibration is not None else 5900.0
+        track = ncc(response(cam, [[1.0] * 301], track_t, reference))[:, 0, :2]
+        axis.plot(*track.T, "k--", label=f"Planckian track (white, calibration {reference:g} K)")
+        axis.set(xlabel="NCC r", ylabel="NCC g", title=f"Skin locus of {cam.name}")
+        axis.legend(fontsize=7)
+        figure.tight_layout()
+        figure.savefig(args.plot, dpi=110)
+        plt.close(figure)
+        document["plot"] = args.plot
+    text = (f"skin locus of {cam.name} ({args.boundary}, {len(locus.polygon)} vertices, area {locus.area:.5f} in r,g) "
+            f"over {len(temperatures)} illuminants, "
+            + ("every calibration" if calibration is None else f"calibration {calibration:g} K") + "\n"
+            + "\n".join(f"  false positives, {k}: {v:.3f}" for k, v in rates.items()))
+    _print(args, document, text)
+
+
+def command_detect(args: argparse.Namespace) -> None:
+    from pathlib import Path
+
+    import matplotlib.image
+
+    from .locus import detect, skin_locus
+    from .render import render, write_preview
+
+    options = _render_options(args)
+    rendering = render(args.scene, args.camera, args.prevailing, args.calibration, **options)
+    # the camera is white-balanced to the calibration light: the locus of that one balancing
+    locus = skin_locus(rendering.camera, args.skin, calibration=rendering.calibration, boundary=args.boundary)
+    result = detect(rendering, locus)
+    output = Path(args.output)
+    output.parent.mkdir(parents=True, exist_ok=True)
+    matplotlib.image.imsave(output, result.mask.astype(float), cmap="gray", vmin=0, vmax=1)
+    preview = write_preview(output.with_name(output.stem + "_preview.png"), rendering.image)
+    document = {"scene": rendering.scene.name, "camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
+                "calibration_K": rendering.calibration, "tpr": result.tpr, "fpr": result.fpr,
+                "mask_png": str(output), "preview_png": str(preview), "per_patch": result.per_patch,
+                "boundary": args.boundary, "spp": options["spp"], "variant": rendering.variant}
+    rows = [[p["name"][:30], "skin" if p["is_skin"] else "", f"{p['detected_fraction']:.2f}"] for p in result.per_patch]
+    text = (_table(rows, ["patch", "", "detected"]) + f"\nTPR {result.tpr:.3f}, FPR {result.fpr:.3f}; mask {output}")
+    _print(args, document, text)
+
+
 def command_table1(args: argparse.Namespace) -> None:
     from .validate import table1
 
@@ -532,6 +634,8 @@ COMMANDS = {
     "render": command_render,
     "validate": command_validate,
     "table1": command_table1,
+    "locus": command_locus,
+    "detect": command_detect,
     "bench": command_bench,
 }
 

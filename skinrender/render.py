@@ -290,7 +290,8 @@ class ChartRenderer:
         else:
             values = planck(emitter_grid(self.grid), temperature).astype(np.float32)
             for _, _, params in self._loaded:
-                params["light.irradiance.values"] = mi.Float(values)
+                kind = type(params["light.irradiance.values"])  # mi.Float, or a dynamic array in scalar variants
+                params["light.irradiance.values"] = kind(values)
                 params.update()
         width, height = self.scene.size
         image = np.zeros((height, width, 3), dtype=np.float32)

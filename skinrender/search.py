@@ -127,6 +127,9 @@ class SensorBank:
     factor: NDArrayFloat | None
     scale: float = CONSTANT_OUTPUT_SCALE
     knee: bool = False
+    diagonal: bool = False
+    """True for the impulse: each prevailing cloud is a per-channel scaling of
+    every other (``I_p(λ_k) o_i(λ_k)``), so all share one vertex set."""
 
     def gains(self, triplet: ArrayLike) -> NDArrayFloat:
         """Eq. 4 gains ``v · F_pq / W_qk`` for one index triplet (channels R, G, B), shape ``(P, Q, 3)``."""
@@ -199,7 +202,7 @@ def sensor_bank(
     white = spd @ x.T
     factor = None if normalization == "white" else normalisation_factor(items, normalization, grid)
     temperatures = np.array([item.temperature if item.temperature is not None else np.nan for item in items])
-    return SensorBank(positions, temperatures, signal, white, factor, knee=knee)
+    return SensorBank(positions, temperatures, signal, white, factor, knee=knee, diagonal=sensor == 1)
 
 
 def triplet_volumes_naive(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
@@ -238,23 +241,30 @@ def _flat(points: NDArrayFloat) -> bool:
     return bool(extents[0] == 0 or extents[-1] <= TOLERANCE_GAMUT_FLATNESS * extents[0])
 
 
-def _hull(cloud: NDArrayFloat) -> tuple[float, np.ndarray]:
+FLAT_SUSPECT = 1e-6
+"""A hull whose volume exceeds this fraction of its bounding box's is not flat
+(a cloud flat to 1e-10, the test of :func:`skinrender.gamut.gamut`, has a hull
+far thinner); only thinner hulls pay for the SVD flatness test."""
+
+
+def _hull(cloud: NDArrayFloat) -> tuple[float, np.ndarray | None]:
     """
     Volume and vertex indices of the hull of ``cloud``; for a degenerate cloud
-    (flat by the test of :func:`skinrender.gamut.gamut`, applied to the
-    vertices) volume 0 and every index, since none can be ruled out.
+    (flat by the test of :func:`skinrender.gamut.gamut`) volume 0 and ``None``
+    (every point is kept, since none can be ruled out).
     """
 
-    every = np.arange(len(cloud))
     if len(cloud) < 4:
-        return 0.0, every
+        return 0.0, None
     try:
         hull = ConvexHull(cloud, qhull_options=QHULL_OPTIONS)
     except QhullError:
-        return 0.0, every
-    if _flat(cloud[hull.vertices]):
-        return 0.0, every
-    return float(hull.volume), hull.vertices
+        return 0.0, None
+    volume = float(hull.volume)
+    box = float(np.prod(hull.max_bound - hull.min_bound))
+    if not volume > FLAT_SUSPECT * box and _flat(cloud[hull.vertices]):
+        return 0.0, None
+    return volume, hull.vertices
 
 
 def triplet_volumes_fast(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
@@ -277,15 +287,23 @@ def triplet_volumes_fast(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
     gains = bank.gains(triplet)
     count_p, count_q = gains.shape[:2]
     if clouds.shape[1] > SMALL_SET:
-        reduced = [cloud[_hull(cloud)[1]] for cloud in clouds]
+        parts = []
+        shared = _hull(clouds[0])[1] if bank.diagonal else None
+        for cloud in clouds:
+            vertices = shared if bank.diagonal else _hull(cloud)[1]
+            parts.append(cloud if vertices is None else cloud[vertices])
+        owner = np.repeat(np.arange(count_p), [len(part) for part in parts])
+        reduced = np.concatenate(parts)
     else:
-        reduced = list(clouds)
+        owner = np.repeat(np.arange(count_p), clouds.shape[1])
+        reduced = clouds.reshape(-1, 3)
     volumes = np.empty(count_q + 1)
     case_vertices = []
+    scale = gains[owner]  # (points, Q, 3)
     for q in range(count_q):
-        points = np.concatenate([reduced[p] * gains[p, q] for p in range(count_p)])
+        points = reduced * scale[:, q]
         volumes[q], vertices = _hull(points)
-        case_vertices.append(points[vertices])
+        case_vertices.append(points if vertices is None else points[vertices])
     volumes[count_q] = _hull(np.concatenate(case_vertices))[0]
     return volumes
 

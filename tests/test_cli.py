@@ -194,3 +194,22 @@ class TestRenderCommands:
         err = run_error(capsys, "render", "nope", "--camera", "gbell:9@450,540,610", "--prevailing", "A",
                         "--calibration", "A")
         assert "unknown scene 'nope'" in err
+
+
+class TestLocusCommands:
+    def test_locus_json_and_plot(self, capsys, tmp_path):
+        plot = tmp_path / "locus.png"
+        document = run_json(capsys, "locus", "--camera", "gbell:9@450,540,610", "--calibration", "5900",
+                            "--boundary", "quadratic", "--plot", str(plot))
+        assert {"polygon", "area", "illuminants_K"} <= set(document)
+        assert document["area"] > 0 and len(document["polygon"]) > 3 and plot.exists()
+        assert 0 <= document["false_positive_rate"]["munsell"] < 1
+
+    def test_detect_face_chart(self, capsys, tmp_path):
+        pytest.importorskip("mitsuba")
+        mask = tmp_path / "mask.png"
+        document = run_json(capsys, "detect", "face_chart", "--camera", "gbell:9@450,540,610", "--prevailing", "2000",
+                            "--calibration", "5900", "--spp", "16", "-o", str(mask))
+        assert {"tpr", "fpr", "mask_png", "per_patch"} <= set(document)
+        assert mask.exists() and 0 <= document["tpr"] <= 1 and 0 <= document["fpr"] <= 1
+        assert any(p["is_skin"] for p in document["per_patch"])

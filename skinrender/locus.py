@@ -1,0 +1,228 @@
+"""
+Skin locus and skin detection
+=============================
+
+The skin locus of a camera (Störring et al.; Martinkauppi & Soriano): the
+region of NCC (r, g) that skin occupies under a set of illuminants, with one
+white balancing (one calibration illuminant) or with several.
+
+-   :func:`locus_points`: NCC (r, g) of a reflectance set over the illuminant
+    set (one calibration, or every pair).
+-   :class:`SkinLocus`, :func:`skin_locus`: the locus as a polygon — the convex
+    hull, or the tighter two-quadratic boundary of Soriano et al. (2003)
+    (upper and lower quadratics g(r) fitted to the cloud's per-bin extremes
+    and offset so that every training point lies inside), with its area.
+-   :meth:`SkinLocus.contains`: the classifier.
+-   :func:`false_positive_rate`: the share of a non-skin set's chromaticities
+    inside the locus.
+-   :func:`detect`: classify every pixel of a rendered chart.
+
+References
+----------
+-   :cite:`Storring2001` : Störring, M., Andersen, H. J., & Granum, E. (2001).
+    Physics-based modelling of human skin colour under mixed illuminants.
+    Robotics and Autonomous Systems, 35(3–4), 131–142.
+-   :cite:`Soriano2003` : Soriano, M., Martinkauppi, B., Huovinen, S., &
+    Laaksonen, M. (2003). Adaptive skin color modeling using the skin locus for
+    selecting training pixels. Pattern Recognition, 36(3), 681–690.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from matplotlib.path import Path as PolygonPath
+from scipy.spatial import ConvexHull, QhullError
+
+from .camera import Camera, camera, ncc, response
+from .constants import TEMPERATURES_PAPER
+from .errors import SkinrenderError
+from .hints import ArrayLike, NDArrayFloat
+from .spectra import GRID_DEFAULT, WavelengthGrid
+
+__all__ = ["BOUNDARIES", "locus_points", "SkinLocus", "skin_locus", "false_positive_rate", "Detection", "detect"]
+
+BOUNDARIES = ("hull", "quadratic")
+"""Locus boundaries: the convex hull, or two quadratics (Soriano et al. 2003)."""
+
+QUADRATIC_BINS = 24
+"""r bins whose g extremes the two quadratics are fitted to."""
+
+
+def locus_points(
+    cam: Camera | str,
+    reflectance,
+    illuminants: ArrayLike = TEMPERATURES_PAPER,
+    calibration: float | None = None,
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> NDArrayFloat:
+    """
+    NCC (r, g) of ``reflectance`` under every illuminant of the set.
+
+    ``calibration`` (K) fixes one white balancing (every prevailing light
+    balanced to it); ``None`` takes every (prevailing, calibration) pair of
+    the set. Shape ``(n, 2)``.
+    """
+
+    t = np.asarray(illuminants, dtype=np.float64)
+    if calibration is None:
+        rgb = response(cam, reflectance, t[:, None], t[None, :], grid=grid)
+    else:
+        rgb = response(cam, reflectance, t, float(calibration), grid=grid)
+    return ncc(rgb).reshape(-1, 3)[:, :2]
+
+
+@dataclass(frozen=True)
+class SkinLocus:
+    """
+    A skin locus in NCC (r, g).
+
+    Attributes
+    ----------
+    polygon
+        Boundary vertices ``(m, 2)``, counter-clockwise.
+    area
+        Area in (r, g) units².
+    boundary
+        ``hull`` or ``quadratic``.
+    illuminants
+        The illuminant set, K; ``calibration`` the one white balancing or ``None``.
+    """
+
+    polygon: NDArrayFloat
+    area: float
+    boundary: str
+    illuminants: NDArrayFloat
+    calibration: float | None
+    quadratics: tuple | None = None
+    """For ``quadratic``: (upper, lower) polynomial coefficients in r and the r range."""
+
+    def contains(self, rg: ArrayLike, tolerance: float = 1e-9) -> NDArrayFloat:
+        """Whether each (r, g) lies in the locus (boundary included); shape ``rg.shape[:-1]``."""
+        points = np.asarray(rg, dtype=np.float64)
+        flat = points.reshape(-1, 2)
+        if self.quadratics is not None:
+            upper, lower, (r_min, r_max) = self.quadratics
+            r, g = flat[:, 0], flat[:, 1]
+            inside = ((r >= r_min - tolerance) & (r <= r_max + tolerance)
+                      & (g <= np.polyval(upper, r) + tolerance) & (g >= np.polyval(lower, r) - tolerance))
+        else:
+            inside = PolygonPath(self.polygon).contains_points(flat, radius=tolerance) | PolygonPath(
+                self.polygon[::-1]).contains_points(flat, radius=-tolerance)
+            # points exactly on the hull (training vertices) count as inside
+            inside |= PolygonPath(self.polygon).contains_points(flat, radius=-tolerance)
+        return inside.reshape(points.shape[:-1])
+
+
+def _polygon_area(polygon: NDArrayFloat) -> float:
+    x, y = polygon[:, 0], polygon[:, 1]
+    return float(0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+
+
+def _quadratic_polygon(points: NDArrayFloat, samples: int = 64) -> NDArrayFloat:
+    r, g = points[:, 0], points[:, 1]
+    edges = np.linspace(r.min(), r.max(), QUADRATIC_BINS + 1)
+    which = np.clip(np.digitize(r, edges) - 1, 0, QUADRATIC_BINS - 1)
+    upper, lower = [], []
+    for b in range(QUADRATIC_BINS):
+        members = which == b
+        if members.any():
+            upper.append((r[members][np.argmax(g[members])], g[members].max()))
+            lower.append((r[members][np.argmin(g[members])], g[members].min()))
+    upper, lower = np.array(upper), np.array(lower)
+    if len(upper) < 3:
+        raise SkinrenderError("quadratic locus needs chromaticities spread over at least three r bins")
+    fit_upper = np.polyfit(upper[:, 0], upper[:, 1], 2)
+    fit_lower = np.polyfit(lower[:, 0], lower[:, 1], 2)
+    # offset so that every training point lies between the two curves
+    fit_upper[-1] += max(0.0, float(np.max(g - np.polyval(fit_upper, r))))
+    fit_lower[-1] -= max(0.0, float(np.max(np.polyval(fit_lower, r) - g)))
+    rr = np.linspace(r.min(), r.max(), samples)
+    top, bottom = np.polyval(fit_upper, rr), np.polyval(fit_lower, rr)
+    polygon = np.vstack([np.column_stack([rr, bottom]), np.column_stack([rr[::-1], top[::-1]])])
+    return polygon, (fit_upper, fit_lower, (float(r.min()), float(r.max())))
+
+
+def skin_locus(
+    cam: Camera | str,
+    skin="skin",
+    illuminants: ArrayLike = TEMPERATURES_PAPER,
+    calibration: float | None = None,
+    boundary: str = "hull",
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> SkinLocus:
+    """
+    The skin locus of a camera.
+
+    Parameters
+    ----------
+    cam
+        Camera or spec.
+    skin
+        Skin reflectance set (name, CSV, :class:`SpectralSet` or array on ``grid``).
+    illuminants
+        Illuminant set, K (the paper's ten by default).
+    calibration
+        One white balancing at this temperature (K), or ``None`` for every
+        calibration of the set (the locus for several white balancings).
+    boundary
+        ``hull`` (convex hull, default) or ``quadratic`` (two quadratics in r,
+        tighter on the curved skin locus; it contains every training point).
+    """
+
+    if boundary not in BOUNDARIES:
+        raise SkinrenderError(f"boundary must be one of {', '.join(BOUNDARIES)}, got {boundary!r}")
+    points = locus_points(cam, skin, illuminants, calibration, grid)
+    if boundary == "hull":
+        try:
+            hull = ConvexHull(points)
+        except QhullError:
+            raise SkinrenderError("the skin chromaticities are collinear: the locus has no area") from None
+        polygon, quadratics = points[hull.vertices], None
+    else:
+        polygon, quadratics = _quadratic_polygon(points)
+    return SkinLocus(polygon, _polygon_area(polygon), boundary, np.asarray(illuminants, dtype=np.float64),
+                     calibration, quadratics)
+
+
+def false_positive_rate(locus: SkinLocus, cam: Camera | str, nonskin, grid: WavelengthGrid = GRID_DEFAULT) -> float:
+    """Share of a non-skin set's chromaticities (same illuminants and white balancing) inside the locus."""
+    points = locus_points(cam, nonskin, locus.illuminants, locus.calibration, grid)
+    return float(np.mean(locus.contains(points)))
+
+
+@dataclass(frozen=True)
+class Detection:
+    """Detection on a rendered chart: per-pixel ``mask``, per-patch rates, ``tpr`` and ``fpr``."""
+
+    mask: NDArrayFloat
+    per_patch: list
+    tpr: float
+    fpr: float
+
+
+def detect(rendering, locus: SkinLocus) -> Detection:
+    """
+    Classify every pixel of a rendered chart by the skin locus.
+
+    ``tpr`` is the share of skin patches' pixels inside the locus, ``fpr``
+    that of the other patches' pixels (the white reference and the black gaps
+    are left out).
+    """
+
+    chart = rendering.scene
+    rg = ncc(rendering.image.astype(np.float64))[..., :2]
+    mask = locus.contains(rg)
+    per_patch, skin_hits, skin_total, other_hits, other_total = [], 0, 0, 0, 0
+    for i, patch in enumerate(chart.patches[:-1]):
+        rows, columns = chart.patch_pixels(i)
+        hits = mask[rows, columns]
+        per_patch.append({"name": patch.name, "is_skin": patch.skin, "detected_fraction": float(hits.mean())})
+        if patch.skin:
+            skin_hits, skin_total = skin_hits + hits.sum(), skin_total + hits.size
+        else:
+            other_hits, other_total = other_hits + hits.sum(), other_total + hits.size
+    tpr = float(skin_hits / skin_total) if skin_total else float("nan")
+    fpr = float(other_hits / other_total) if other_total else float("nan")
+    return Detection(mask, per_patch, tpr, fpr)
