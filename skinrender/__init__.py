@@ -47,6 +47,13 @@ from .illuminants import (
     select_illuminants,
 )
 from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse, planck, resample
+# Submodules search, render and validate keep their names: their main
+# functions are imported from them (from skinrender.render import render).
+from .search import SearchResult
+from .scene import ChartScene, load_scene
+from .render import Rendering
+from .validate import table1, validate_gamut
+from .locus import SkinLocus, detect, skin_locus
 
 __version__ = "0.1.0"
 
@@ -85,4 +92,13 @@ __all__ = [
     "response_raw",
     "select_illuminants",
     "white_coefficient",
+    "SearchResult",
+    "ChartScene",
+    "load_scene",
+    "Rendering",
+    "validate_gamut",
+    "table1",
+    "SkinLocus",
+    "skin_locus",
+    "detect",
 ]

@@ -428,6 +428,19 @@ def _temperature(spec) -> float:
     return float(item.temperature)
 
 
+def pair_factor(white_p: NDArrayFloat, white_c: NDArrayFloat, normalization: str, prevailing: float,
+                calibration: float, grid: WavelengthGrid = GRID_DEFAULT) -> float:
+    """
+    The Eq. 10 factor of one (prevailing, calibration) pair: WP (Eq. 8) from the
+    channel whites for ``white``, else ``F_p / F_c`` (Eqs. 5–7) of the two Planck SPDs (K).
+    """
+
+    if normalization == "white":
+        return float(3.0 / np.sum(white_p / white_c))
+    f = normalisation_factor([prevailing, calibration], normalization, grid)
+    return float(f[0] / f[1])
+
+
 def balance(
     raw_prevailing: RawRender,
     raw_calibration: RawRender,
@@ -455,11 +468,8 @@ def balance(
     if np.any(white_c <= 0):
         raise SkinrenderError(f"camera {cam.name}: a channel sees no light from the white reference at "
                               f"{raw_calibration.temperature:g} K")
-    if normalization == "white":
-        factor = 3.0 / np.sum(white_p / white_c)
-    else:
-        f = normalisation_factor([raw_prevailing.temperature, raw_calibration.temperature], normalization, grid)
-        factor = f[0] / f[1]
+    factor = pair_factor(white_p, white_c, normalization, raw_prevailing.temperature, raw_calibration.temperature,
+                         grid)
     image = (scale * factor / white_c) * raw_prevailing.image.astype(np.float64)
     if knee:
         image = apply_knee(image)

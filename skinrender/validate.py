@@ -27,11 +27,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .camera import Camera, camera, knee as apply_knee, ncc, normalisation_factor, response
+from .camera import Camera, camera, knee as apply_knee, ncc, response
 from .constants import CONSTANT_OUTPUT_SCALE
 from .errors import SkinrenderError
 from .hints import NDArrayFloat
-from .render import Rendering, render
+from .render import Rendering, pair_factor, render
 from .scene import ChartScene, load_scene
 from .spectra import GRID_DEFAULT, WavelengthGrid, planck
 
@@ -85,11 +85,7 @@ def analytic_reference(
     spd_p, spd_c = planck(lam, prevailing) * weights, planck(lam, calibration) * weights
     signal = (o_fine * spd_p) @ x.T
     white_p, white_c = spd_p @ x.T, spd_c @ x.T
-    if normalization == "white":
-        factor = 3.0 / np.sum(white_p / white_c)
-    else:
-        f = normalisation_factor([prevailing, calibration], normalization, grid)
-        factor = f[0] / f[1]
+    factor = pair_factor(white_p, white_c, normalization, prevailing, calibration, grid)
     out = scale * factor * signal / white_c
     out = apply_knee(out) if knee else out
     return out.reshape(*o.shape[:-1], 3)
