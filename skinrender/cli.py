@@ -134,6 +134,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="peak positions START:END:STEP in nm (default 400:700:10: 31 positions, 4495 triplets)")
     _add_search(p)
     p.add_argument("--csv", help="write every triplet's volumes (output units³) and ratios to this CSV file")
+    p.add_argument("--detection", action="store_true",
+                   help="also rank triplets by detection: the share of Munsell chromaticities inside the skin "
+                   "locus (false-positive rate at 100 %% skin acceptance), per calibration (JSON min_fpr)")
     p.add_argument("--method", default="fast", choices=["fast", "naive"],
                    help="fast (hull vertices only, exact; default) or naive (Qhull on every full point set)")
     p.add_argument("--tie-tolerance", type=float, default=1e-9,
@@ -395,7 +398,7 @@ def command_search(args: argparse.Namespace) -> None:
     result = search(
         args.sensor, skin.on(grid), munsell.on(grid), args.positions, temperatures, args.slope, grid=grid,
         method=args.method, workers=args.workers, dask=args.dask,
-        progress=None if args.quiet else sys.stderr, label=f"sensor {args.sensor:g}",
+        progress=None if args.quiet else sys.stderr, label=f"sensor {args.sensor:g}", detection=args.detection,
     )
     if args.csv:
         result.to_csv(args.csv)
@@ -417,8 +420,9 @@ def command_search(args: argparse.Namespace) -> None:
     lines = [f"sensor {args.sensor:g}: {len(result.triplets)} triplets in {result.elapsed_s:.1f} s "
              f"({result.method}, {result.workers} workers); volumes in output units³"]
     for key, label in (("max_skin", "max skin gamut"), ("max_munsell", "max Munsell gamut"),
-                       ("min_ratio", "min skin/Munsell ratio")):
-        lines += [f"{label}:"] + [f"  {_row_text(row)}" for row in table[key]]
+                       ("min_ratio", "min skin/Munsell ratio"), ("min_fpr", "min false-positive rate")):
+        if key in table:
+            lines += [f"{label}:"] + [f"  {_row_text(row)}" for row in table[key]]
     _print(args, document, "\n".join(lines))
 
 

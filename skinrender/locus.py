@@ -41,7 +41,8 @@ from .errors import SkinrenderError
 from .hints import ArrayLike, NDArrayFloat
 from .spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["BOUNDARIES", "locus_points", "SkinLocus", "skin_locus", "false_positive_rate", "Detection", "detect"]
+__all__ = ["BOUNDARIES", "locus_points", "SkinLocus", "skin_locus", "false_positive_rate", "Detection", "detect",
+           "triplet_false_positive_rates", "search_false_positive_rates"]
 
 BOUNDARIES = ("hull", "quadratic")
 """Locus boundaries: the convex hull, or two quadratics (Soriano et al. 2003)."""
@@ -226,3 +227,45 @@ def detect(rendering, locus: SkinLocus) -> Detection:
     tpr = float(skin_hits / skin_total) if skin_total else float("nan")
     fpr = float(other_hits / other_total) if other_total else float("nan")
     return Detection(mask, per_patch, tpr, fpr)
+
+
+def _ncc_rg(points: NDArrayFloat) -> NDArrayFloat:
+    total = points.sum(axis=-1, keepdims=True)
+    return (points / np.where(total > 0, total, 1.0))[..., :2]
+
+
+def triplet_false_positive_rates(bank_skin, bank_nonskin, triplet: ArrayLike) -> NDArrayFloat:
+    """
+    The detection criterion of one Stage 3 triplet: for each calibration q, the
+    share of the non-skin set's chromaticities (every prevailing light,
+    balanced to q) inside the convex-hull skin locus of the skin set under the
+    same lights — the false-positive rate at 100 % acceptance of the training
+    skin. Shape ``(Q,)``; NaN where the skin locus has no area.
+
+    ``bank_skin``, ``bank_nonskin``: :class:`skinrender.search.SensorBank` of the
+    two sets (responses are gathered, not recomputed).
+    """
+
+    skin = bank_skin.clouds(triplet)[:, None] * bank_skin.gains(triplet)[:, :, None]  # (P, Q, N, 3)
+    other = bank_nonskin.clouds(triplet)[:, None] * bank_nonskin.gains(triplet)[:, :, None]
+    rates = np.full(skin.shape[1], np.nan)
+    for q in range(skin.shape[1]):
+        rg = _ncc_rg(skin[:, q].reshape(-1, 3))
+        try:
+            hull = ConvexHull(rg)
+        except QhullError:
+            continue
+        polygon = PolygonPath(rg[hull.vertices])
+        rates[q] = np.mean(polygon.contains_points(_ncc_rg(other[:, q].reshape(-1, 3))))
+    return rates
+
+
+def search_false_positive_rates(sensor: float, skin: NDArrayFloat, nonskin: NDArrayFloat,
+                                positions="400:700:10", illuminants: ArrayLike = TEMPERATURES_PAPER,
+                                slope: float = 2.0, grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
+    """:func:`triplet_false_positive_rates` for every triplet of a position grid, shape ``(T, Q)``."""
+    from .search import positions_grid, sensor_bank, triplets
+
+    where = positions_grid(positions)
+    banks = [sensor_bank(sensor, values, where, illuminants, slope, grid=grid) for values in (skin, nonskin)]
+    return np.array([triplet_false_positive_rates(*banks, t) for t in triplets(where.size)])

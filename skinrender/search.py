@@ -320,15 +320,23 @@ def _init_worker(banks: tuple[SensorBank, ...]) -> None:
     _WORKER_BANKS = banks
 
 
-def _volumes_chunk(chunk: np.ndarray, method: str, banks: tuple[SensorBank, ...] | None = None) -> np.ndarray:
-    """Volumes of a chunk of index triplets for every bank: shape ``(len(banks), T, Q + 1)``."""
+def _volumes_chunk(chunk: np.ndarray, method: str, banks: tuple[SensorBank, ...] | None = None,
+                   detection: bool = False):
+    """
+    Volumes of a chunk of index triplets for every bank, shape ``(len(banks), T, Q + 1)``,
+    and with ``detection`` the false-positive rates of the skin locus ``(T, Q)`` (else ``None``).
+    """
     banks = banks if banks is not None else _WORKER_BANKS
     out = np.empty((len(banks), len(chunk), banks[0].white.shape[0] + 1))
     for b, bank in enumerate(banks):
         volumes = triplet_volumes_fast if method == "fast" else triplet_volumes_naive
         for t, triplet in enumerate(chunk):
             out[b, t] = volumes(bank, triplet)
-    return out
+    if not detection:
+        return out, None
+    from .locus import triplet_false_positive_rates
+
+    return out, np.array([triplet_false_positive_rates(banks[0], banks[1], t) for t in chunk])
 
 
 def _chunks(index: np.ndarray, count: int) -> list[np.ndarray]:
@@ -370,6 +378,10 @@ class SearchResult:
     normalization: str = "white"
     knee: bool = False
     info: dict = field(default_factory=dict)
+    fpr: NDArrayFloat | None = None
+    """With ``detection=True``: false-positive rate of the Munsell set inside the
+    skin locus, per triplet and calibration, ``(T, Q)`` (see
+    :func:`skinrender.locus.triplet_false_positive_rates`)."""
 
     @property
     def ratio(self) -> NDArrayFloat:
@@ -410,7 +422,14 @@ class SearchResult:
             "max_munsell": self._rows(self.munsell, one, "max", tolerance)
             + self._rows(self.munsell, everything, "max", tolerance),
             "min_ratio": self._rows(self.ratio, one, "min", tolerance) + self._rows(self.ratio, everything, "min", tolerance),
+            **({} if self.fpr is None else {"min_fpr": self._rows(self.fpr_table, one, "min", tolerance)
+                                            + self._rows(self.fpr_table, everything, "min", tolerance)}),
         }
+
+    @property
+    def fpr_table(self) -> NDArrayFloat:
+        """False-positive rates per calibration and their mean over calibrations, ``(T, Q + 1)``."""
+        return np.hstack([self.fpr, np.nanmean(self.fpr, axis=1, keepdims=True)])
 
     def to_csv(self, path) -> None:
         """Every triplet's volumes (output units³) and ratios as CSV."""
@@ -418,7 +437,11 @@ class SearchResult:
         header = ["p1_nm", "p2_nm", "p3_nm"]
         header += [f"skin_{label}" for label in labels] + [f"munsell_{label}" for label in labels]
         header += [f"ratio_{label}" for label in labels]
-        data = np.hstack([self.triplets, self.skin, self.munsell, self.ratio])
+        blocks = [self.triplets, self.skin, self.munsell, self.ratio]
+        if self.fpr is not None:
+            header += [f"fpr_{label}" for label in labels[:-1]] + ["fpr_mean"]
+            blocks.append(self.fpr_table)
+        data = np.hstack(blocks)
         with open(path, "w", encoding="utf-8", newline="\n") as handle:
             handle.write(",".join(header) + "\n")
             for row in data:
@@ -456,6 +479,7 @@ def search(
     dask: str | object | None = None,
     progress=None,
     label: str = "search",
+    detection: bool = False,
 ) -> SearchResult:
     """
     The Stage 3 search: every triplet's per-calibration and all-calibration
@@ -486,6 +510,9 @@ def search(
         ``distributed.Client``: chunks run on the cluster instead.
     progress
         A stream (``sys.stderr``) for a progress bar, or ``None``.
+    detection
+        Also compute the detection criterion: the false-positive rate of the
+        Munsell set inside the skin locus, per calibration (``result.fpr``).
 
     Returns
     -------
@@ -507,15 +534,23 @@ def search(
     # is lexicographic so that consecutive triplets warm-start each other.
     chunks = _chunks(np.arange(len(index)), 1 if workers == 1 and dask is None else 8 * max(workers, 4))
     out = np.empty((2, len(index), banks[0].white.shape[0] + 1))
+    fpr = np.empty((len(index), banks[0].white.shape[0])) if detection else None
     done = 0
+
+    def store(chunk, result) -> None:
+        out[:, chunk] = result[0]
+        if detection:
+            fpr[chunk] = result[1]
+
     _progress(0, 0, len(index), label, progress)
     if dask is not None:
         client, own = _dask_client(dask)
         try:
             remote_banks = client.scatter(banks, broadcast=True)
-            futures = [client.submit(_volumes_chunk, index[c], method, remote_banks, pure=False) for c in chunks]
+            futures = [client.submit(_volumes_chunk, index[c], method, remote_banks, detection, pure=False)
+                       for c in chunks]
             for chunk, future in zip(chunks, futures):
-                out[:, chunk] = future.result()
+                store(chunk, future.result())
                 done += len(chunk)
                 _progress(done - len(chunk), done, len(index), label, progress)
         finally:
@@ -523,20 +558,20 @@ def search(
                 client.close()
     elif workers == 1:
         for chunk in chunks:
-            out[:, chunk] = _volumes_chunk(index[chunk], method, banks)
+            store(chunk, _volumes_chunk(index[chunk], method, banks, detection))
             done += len(chunk)
             _progress(done - len(chunk), done, len(index), label, progress)
     else:
         with ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(banks,)) as pool:
-            futures = [pool.submit(_volumes_chunk, index[c], method) for c in chunks]
+            futures = [pool.submit(_volumes_chunk, index[c], method, None, detection) for c in chunks]
             for chunk, future in zip(chunks, futures):
-                out[:, chunk] = future.result()
+                store(chunk, future.result())
                 done += len(chunk)
                 _progress(done - len(chunk), done, len(index), label, progress)
     elapsed = time.perf_counter() - start
     return SearchResult(
         float(sensor), float(slope), where, where[index], banks[0].temperatures, out[0], out[1], elapsed,
-        method, 1 if dask is not None else workers, normalization, knee,
+        method, 1 if dask is not None else workers, normalization, knee, fpr=fpr,
     )
 
 

@@ -142,3 +142,19 @@ class TestSearch:
             search(3, *sets, POSITIONS_SMALL, workers=0)
         with pytest.raises(SkinrenderError, match="sensor"):
             sensor_bank(-1, sets[0])
+
+
+def test_detection_criterion_alongside_the_volumes(sets):
+    from skinrender.locus import false_positive_rate, skin_locus
+
+    result = search(9, *sets, POSITIONS_SMALL, workers=1, detection=True)
+    assert result.fpr.shape == (35, 10) and np.all((result.fpr >= 0) & (result.fpr <= 1))
+    # one entry against the direct route: locus of the camera, one calibration, Munsell inside it
+    t = 12
+    p1, p2, p3 = (int(v) for v in result.triplets[t])
+    locus = skin_locus(f"gbell:9@{p1},{p2},{p3}", "skin", calibration=5900.0)
+    assert result.fpr[t, 7] == pytest.approx(false_positive_rate(locus, f"gbell:9@{p1},{p2},{p3}", "munsell"))
+    rows = result.table()["min_fpr"]
+    assert rows and rows[0]["value"] == pytest.approx(np.nanmin(result.fpr))
+    two = search(9, *sets, POSITIONS_SMALL, workers=2, detection=True)
+    np.testing.assert_array_equal(two.fpr, result.fpr)
