@@ -201,6 +201,20 @@ def build_parser() -> argparse.ArgumentParser:
     _add_render(p)
     _add_common(p)
 
+    p = commands.add_parser("design", help="optimise a gbell camera's peaks off the grid (derivative-free, several starts)")
+    p.add_argument("--objective", choices=["detection", "ratio"], default="detection",
+                   help="detection: Munsell false-positive rate in the skin locus (default); ratio: skin/Munsell "
+                   "all-calibration gamut volume")
+    p.add_argument("--sensor", type=float, default=9, help="gbell sensor N (FWHM N·10 nm) of the start (default 9)")
+    p.add_argument("--slope", type=float, default=2.0, help="gbell slope b of the start (default 2)")
+    p.add_argument("--free-shape", action="store_true", help="also optimise the shared FWHM (nm) and slope")
+    p.add_argument("--starts", default="450,540,610;420,550,680;480,560,640",
+                   help="starting peak triplets in nm, ';'-separated (default three)")
+    p.add_argument("--evaluations", type=int, default=150, help="objective evaluations per start (default 150)")
+    p.add_argument("--skin", default="skin", help="skin set (default skin)")
+    p.add_argument("--munsell", default="munsell", help="Munsell set (default munsell)")
+    _add_common(p)
+
     p = commands.add_parser("table1", help="the paper's Table 1: NCC differences, render vs model, Macbeth under A and H")
     p.add_argument("--camera", default="gbell:9@450,540,610", help=HELP_CAMERA)
     p.add_argument("--spp", type=int, default=256, help="samples per pixel (default 256)")
@@ -597,6 +611,29 @@ def command_detect(args: argparse.Namespace) -> None:
     _print(args, document, text)
 
 
+def command_design(args: argparse.Namespace) -> None:
+    from .datasets import reflectances
+    from .design import optimise_camera
+
+    try:
+        starts = [[float(v) for v in part.split(",")] for part in args.starts.split(";")]
+    except ValueError:
+        starts = []
+    if not starts or any(len(s) != 3 for s in starts):
+        raise SkinrenderError("--starts must be triplets of nm separated by ';', e.g. 450,540,610;420,550,680")
+    from .spectra import GRID_DEFAULT as grid
+
+    result = optimise_camera(args.objective, reflectances(args.skin).on(grid), reflectances(args.munsell).on(grid),
+                             starts, args.sensor * 10.0, args.slope, args.free_shape, args.evaluations)
+    document = {"objective": args.objective, "camera": result.camera_spec, "peaks": result.peaks.tolist(),
+                "fwhm_nm": result.fwhm, "slope": result.slope, "value": result.value, "starts": result.starts,
+                "method": "Nelder-Mead (derivative-free)"}
+    lines = [f"{args.objective}: best {result.camera_spec} = {result.value:.5g}"]
+    lines += [f"  start {s['start']} ({s['start_value']:.5g}) -> {[round(p, 1) for p in s['peaks']]} ({s['value']:.5g})"
+              for s in result.starts]
+    _print(args, document, "\n".join(lines))
+
+
 def command_table1(args: argparse.Namespace) -> None:
     from .validate import table1
 
@@ -639,6 +676,7 @@ COMMANDS = {
     "validate": command_validate,
     "table1": command_table1,
     "locus": command_locus,
+    "design": command_design,
     "detect": command_detect,
     "bench": command_bench,
 }

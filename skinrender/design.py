@@ -1,0 +1,149 @@
+"""
+Continuous camera design
+========================
+
+Optimise a gbell camera's three peaks (and, optionally, the shared width and
+slope) off the 10 nm grid, for the paper's ratio or for the detection
+criterion.
+
+-   :func:`objective`: the value of one camera under ``ratio`` (skin/Munsell
+    all-calibration volume, lower is better) or ``detection`` (share of
+    Munsell chromaticities inside the skin locus, lower is better).
+-   :func:`optimise_camera`, :class:`Design`: derivative-free search
+    (Nelder–Mead) from several starts.
+
+Why derivative-free: the detection criterion is a count (piecewise constant in
+the peaks), and the hull volume is differentiable only while its facet
+structure stays fixed, which changes along any path of interest; Nelder–Mead
+needs neither gradient nor smoothness, and several starts guard against its
+local stalls. drjit's automatic differentiation is therefore not used here.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import minimize
+
+from .constants import TEMPERATURES_PAPER
+from .errors import SkinrenderError
+from .hints import ArrayLike, NDArrayFloat
+from .search import sensor_bank, triplet_volumes_fast
+from .spectra import GRID_DEFAULT, WavelengthGrid
+
+__all__ = ["OBJECTIVES", "objective", "Design", "optimise_camera"]
+
+OBJECTIVES = ("ratio", "detection")
+"""``ratio``: skin/Munsell all-calibration gamut volume (the paper's Table 5);
+``detection``: Munsell false-positive rate inside the skin locus."""
+
+BOUNDS_NM = (400.0, 700.0)
+"""Peaks stay on the integration range, nm."""
+
+
+def objective(
+    kind: str,
+    peaks: ArrayLike,
+    fwhm: float,
+    skin: NDArrayFloat,
+    munsell: NDArrayFloat,
+    slope: float = 2.0,
+    illuminants: ArrayLike = TEMPERATURES_PAPER,
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> float:
+    """
+    The objective of a gbell camera with ``peaks`` (nm, any order), ``fwhm`` (nm) and ``slope``.
+
+    Returns ``inf`` for a camera outside the bounds or with a degenerate skin
+    or Munsell gamut (nothing to minimise there).
+    """
+
+    if kind not in OBJECTIVES:
+        raise SkinrenderError(f"objective must be one of {', '.join(OBJECTIVES)}, got {kind!r}")
+    peaks = np.sort(np.asarray(peaks, dtype=np.float64))
+    if peaks[0] < BOUNDS_NM[0] or peaks[-1] > BOUNDS_NM[1] or np.any(np.diff(peaks) <= 0) or fwhm <= 0 or slope <= 0:
+        return np.inf
+    banks = [sensor_bank(fwhm / 10.0, values, peaks, illuminants, slope, grid=grid) for values in (skin, munsell)]
+    if kind == "ratio":
+        volumes = [triplet_volumes_fast(bank, [0, 1, 2])[-1] for bank in banks]
+        return volumes[0] / volumes[1] if volumes[0] > 0 and volumes[1] > 0 else np.inf
+    from .locus import triplet_false_positive_rates
+
+    rates = triplet_false_positive_rates(banks[0], banks[1], [0, 1, 2])
+    return float(rates[0]) if np.isfinite(rates[0]) else np.inf  # the same for every calibration
+
+
+@dataclass(frozen=True)
+class Design:
+    """An optimised camera: ``peaks`` (nm, ascending), ``fwhm`` (nm), ``slope``, ``value``, per-start results."""
+
+    objective: str
+    peaks: NDArrayFloat
+    fwhm: float
+    slope: float
+    value: float
+    starts: list
+
+    @property
+    def camera_spec(self) -> str:
+        """The camera as a spec string (``gbell:N,b=B@P1,P2,P3``)."""
+        return f"gbell:{self.fwhm / 10:g},b={self.slope:g}@" + ",".join(f"{p:.1f}" for p in self.peaks)
+
+
+def optimise_camera(
+    kind: str,
+    skin: NDArrayFloat,
+    munsell: NDArrayFloat,
+    starts: ArrayLike = ((450.0, 540.0, 610.0), (420.0, 550.0, 680.0), (480.0, 560.0, 640.0)),
+    fwhm: float = 90.0,
+    slope: float = 2.0,
+    free_shape: bool = False,
+    max_evaluations: int = 200,
+    illuminants: ArrayLike = TEMPERATURES_PAPER,
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> Design:
+    """
+    Minimise ``kind`` over the peaks (and the width and slope with ``free_shape``) from each start.
+
+    Parameters
+    ----------
+    kind
+        ``ratio`` or ``detection``.
+    skin, munsell
+        Reflectances on ``grid``.
+    starts
+        Starting peak triplets, nm.
+    fwhm, slope
+        The sensor shape (the starting one with ``free_shape``).
+    max_evaluations
+        Objective evaluations per start.
+
+    Returns
+    -------
+    :class:`Design`
+        The best over the starts, with every start's result.
+    """
+
+    def unpack(x):
+        if free_shape:
+            return x[:3], x[3], x[4]
+        return x, fwhm, slope
+
+    def f(x):
+        p, w, b = unpack(x)
+        return objective(kind, p, w, skin, munsell, b, illuminants, grid)
+
+    results = []
+    for start in np.atleast_2d(np.asarray(starts, dtype=np.float64)):
+        x0 = np.concatenate([np.sort(start), [fwhm, slope]]) if free_shape else np.sort(start)
+        simplex = [x0] + [x0 + np.eye(len(x0))[i] * (15.0 if i < 3 else (20.0 if i == 3 else 0.5)) for i in range(len(x0))]
+        first = f(x0)
+        found = minimize(f, x0, method="Nelder-Mead",
+                         options={"maxfev": max_evaluations, "initial_simplex": np.array(simplex), "xatol": 0.5,
+                                  "fatol": 1e-6})
+        p, w, b = unpack(found.x)
+        results.append({"start": np.sort(start).tolist(), "start_value": first, "peaks": np.sort(p).tolist(),
+                        "fwhm": float(w), "slope": float(b), "value": float(found.fun), "evaluations": int(found.nfev)})
+    best = min(results, key=lambda r: r["value"])
+    return Design(kind, np.array(best["peaks"]), best["fwhm"], best["slope"], best["value"], results)
