@@ -198,7 +198,15 @@ def _emitter(temperature: float, grid: WavelengthGrid, kind: str) -> dict:
     if kind != "tabulated":
         raise SkinrenderError(f"emitter must be one of {', '.join(EMITTERS)}, got {kind!r}")
     lam = emitter_grid(grid)
-    return _spectrum(lam, planck(lam, temperature))
+    values = planck(lam, temperature)
+    return _spectrum(lam, values / _peak(values))
+
+
+def _peak(values: NDArrayFloat) -> float:
+    peak = float(np.max(values))
+    if not (np.isfinite(peak) and peak > 0):
+        raise SkinrenderError("the Planck emitter is zero (or not finite) over the whole grid at this temperature")
+    return peak
 
 
 _VARIANT: list[str] = []
@@ -216,8 +224,14 @@ def choose_variant_cached(requested: str | None = None) -> str:
 @dataclass(frozen=True)
 class RawRender:
     """
-    One render: ``image`` ``(height, width, 3)`` float32, per channel the
-    specfilm value ``∫ L s_k dλ`` (W·m⁻²·sr⁻¹ times the sensitivity's unit).
+    One render: ``image`` ``(height, width, 3)`` float32 such that
+    ``image · emitter_scale`` is, per channel, the specfilm value ``∫ L s_k dλ``
+    (W·m⁻²·sr⁻¹ times the sensitivity's unit).
+
+    The tabulated emitter is handed to Mitsuba divided by its peak
+    (``emitter_scale``, float64) so that float32 holds any temperature: at
+    300 K absolute Planck radiance over 400–700 nm is ~1e-35 and its products
+    would fall into float32's denormals.
     """
 
     image: NDArrayFloat
@@ -228,6 +242,12 @@ class RawRender:
     variant: str
     seconds: float
     passes: int
+    emitter_scale: float = 1.0
+
+    @property
+    def radiance(self) -> NDArrayFloat:
+        """``∫ L s_k dλ`` per pixel and channel, float64, absolute units."""
+        return self.image.astype(np.float64) * self.emitter_scale
 
 
 def _separate(cam: Camera, grid: WavelengthGrid, channels: str) -> bool:
@@ -285,10 +305,15 @@ class ChartRenderer:
             raise SkinrenderError(f"temperature must be a finite number of kelvin > 0, got {temperature}")
         mi = mitsuba(self.variant)
         start = time.perf_counter()
+        scale = 1.0
+        if self.emitter == "tabulated":
+            radiance = planck(emitter_grid(self.grid), temperature)
+            scale = _peak(radiance)
         if not self._loaded or self.emitter == "blackbody":
             self._load(temperature)
-        else:
-            values = planck(emitter_grid(self.grid), temperature).astype(np.float32)
+        if self.emitter == "tabulated":
+            # always set through the parameters (the scene file's text values round differently by an ulp)
+            values = (radiance / scale).astype(np.float32)
             for _, _, params in self._loaded:
                 kind = type(params["light.irradiance.values"])  # mi.Float, or a dynamic array in scalar variants
                 params["light.irradiance.values"] = kind(values)
@@ -300,7 +325,7 @@ class ChartRenderer:
             image[:, :, list(group)] = values
         seconds = time.perf_counter() - start
         return RawRender(image, float(temperature), self.spp, int(seed), self.sampler, self.variant, seconds,
-                         len(self.groups))
+                         len(self.groups), scale)
 
 
 _RENDERERS: dict = {}
@@ -462,15 +487,15 @@ def balance(
     """
 
     white = scene.white_index
-    stats_p = patch_statistics(raw_prevailing.image, scene)
-    stats_c = patch_statistics(raw_calibration.image, scene)
+    stats_p = patch_statistics(raw_prevailing.radiance, scene)
+    stats_c = patch_statistics(raw_calibration.radiance, scene)
     white_p, white_c = stats_p.mean[white], stats_c.mean[white]
     if np.any(white_c <= 0):
         raise SkinrenderError(f"camera {cam.name}: a channel sees no light from the white reference at "
                               f"{raw_calibration.temperature:g} K")
     factor = pair_factor(white_p, white_c, normalization, raw_prevailing.temperature, raw_calibration.temperature,
                          grid)
-    image = (scale * factor / white_c) * raw_prevailing.image.astype(np.float64)
+    image = (scale * factor / white_c) * raw_prevailing.radiance
     if knee:
         image = apply_knee(image)
     relative = np.array([stats_p.standard_error[white] / white_p, stats_c.standard_error[white] / white_c])

@@ -324,7 +324,7 @@ def validate_gamut(
     means, errors, seconds = [], [], 0.0
     for i, t in enumerate(temperatures):
         raw = renderer.raw(float(t), seed + i)
-        stats = patch_statistics(raw.image, chart)
+        stats = patch_statistics(raw.radiance, chart)
         means.append(stats.mean)
         errors.append(stats.standard_error)
         seconds += raw.seconds
