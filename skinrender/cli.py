@@ -498,6 +498,7 @@ def command_validate(args: argparse.Namespace) -> None:
     from .validate import SIGMAS, validate
 
     options = _render_options(args)
+    print(f"rendering {args.scene} at {options['spp']} spp and validating …", file=sys.stderr)
     result = validate(args.scene, args.camera, args.prevailing, args.calibration, args.normalization, args.knee,
                       grid=_grid(args), **options)
     r = result.rendering
@@ -594,6 +595,7 @@ def command_detect(args: argparse.Namespace) -> None:
     from .render import render, write_preview
 
     options = _render_options(args)
+    print(f"rendering {args.scene} at {options['spp']} spp …", file=sys.stderr)
     rendering = render(args.scene, args.camera, args.prevailing, args.calibration, **options)
     # the camera is white-balanced to the calibration light: the locus of that one balancing
     locus = skin_locus(rendering.camera, args.skin, calibration=rendering.calibration, boundary=args.boundary)
