@@ -50,6 +50,7 @@ __all__ = [
     "NORMALISATIONS",
     "normalisation_factor",
     "white_coefficient",
+    "white_coefficient_from_whites",
     "response_raw",
     "response",
     "knee",
@@ -254,6 +255,15 @@ def normalisation_factor(
     )
 
 
+def white_coefficient_from_whites(white_p: ArrayLike, white_c: ArrayLike) -> NDArrayFloat:
+    """
+    WP (Eq. 8, scaled to 1 at ``p = c``) from the channel responses to white
+    under the prevailing and the calibration light (channels on the last
+    axis, broadcast against each other): ``WP = 3 / Σ_k white_p,k / white_c,k``.
+    """
+    return 3.0 / np.sum(np.asarray(white_p) / np.asarray(white_c), axis=-1)
+
+
 def white_coefficient(
     camera_: Camera | str,
     prevailing: ArrayLike | Illuminant | str,
@@ -284,7 +294,7 @@ def white_coefficient(
     white_p = _spd_on(p_items, grid) @ x.T
     white_c = _spd_on(c_items, grid) @ x.T
     pi, ci = np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape))
-    return 3.0 / np.sum(white_p[pi] / white_c[ci], axis=-1)
+    return white_coefficient_from_whites(white_p[pi], white_c[ci])
 
 
 def _reflectance_values(reflectance, grid: WavelengthGrid) -> NDArrayFloat:
@@ -426,7 +436,7 @@ def response(
         )
     pi, ci = np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape))
     if normalization == "white":
-        factor = 3.0 / np.sum(white_p[pi] / white_c[ci], axis=-1)
+        factor = white_coefficient_from_whites(white_p[pi], white_c[ci])
     else:
         f_p = normalisation_factor(p_items, normalization, grid)
         f_c = normalisation_factor(c_items, normalization, grid)

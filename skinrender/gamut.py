@@ -32,7 +32,7 @@ from scipy.spatial import ConvexHull, QhullError
 from .camera import Camera, response
 from .constants import TEMPERATURES_PAPER
 from .errors import SkinrenderError
-from .hints import ArrayLike
+from .hints import ArrayLike, NDArrayFloat
 from .spectra import GRID_DEFAULT, WavelengthGrid
 
 __all__ = [
@@ -41,6 +41,7 @@ __all__ = [
     "gamut",
     "gamut_volume",
     "gamut_hull",
+    "is_flat",
     "gamut_calibration",
     "gamut_all_calibrations",
 ]
@@ -109,14 +110,23 @@ def gamut_hull(points: ArrayLike) -> tuple[Gamut, np.ndarray]:
     if count < 4:
         return Gamut(0.0, count, True), every
     centred = cloud - cloud.mean(axis=0)
-    extents = np.linalg.svd(centred, compute_uv=False)
-    if extents[0] == 0 or extents[-1] <= TOLERANCE_GAMUT_FLATNESS * extents[0]:
+    if is_flat(centred):
         return Gamut(0.0, count, True), every
     try:
         hull = ConvexHull(centred)
     except QhullError:
         return Gamut(0.0, count, True), every
     return Gamut(float(hull.volume), count, False), hull.vertices
+
+
+def is_flat(points: NDArrayFloat) -> bool:
+    """
+    Whether a cloud ``(n, 3)`` is flat (coplanar, collinear or coincident): its
+    smallest principal extent is at most :data:`TOLERANCE_GAMUT_FLATNESS` of
+    its largest (or it has no extent at all).
+    """
+    extents = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
+    return bool(extents[0] == 0 or extents[-1] <= TOLERANCE_GAMUT_FLATNESS * extents[0])
 
 
 def gamut_volume(points: ArrayLike) -> float:

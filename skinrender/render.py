@@ -54,7 +54,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .camera import Camera, camera, knee as apply_knee, normalisation_factor
+from .camera import Camera, camera, knee as apply_knee, normalisation_factor, white_coefficient_from_whites
 from .constants import CONSTANT_OUTPUT_SCALE
 from .errors import SkinrenderError
 from .hints import NDArrayFloat
@@ -461,7 +461,7 @@ def pair_factor(white_p: NDArrayFloat, white_c: NDArrayFloat, normalization: str
     """
 
     if normalization == "white":
-        return float(3.0 / np.sum(white_p / white_c))
+        return float(white_coefficient_from_whites(white_p, white_c))
     f = normalisation_factor([prevailing, calibration], normalization, grid)
     return float(f[0] / f[1])
 

@@ -51,10 +51,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
-from .camera import NORMALISATIONS, _spd_on, knee as apply_knee, normalisation_factor
+from .camera import NORMALISATIONS, _spd_on, knee as apply_knee, normalisation_factor, white_coefficient_from_whites
 from .constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
 from .errors import SkinrenderError
-from .gamut import TOLERANCE_GAMUT_FLATNESS, gamut
+from .gamut import gamut, is_flat
 from .hints import ArrayLike, NDArrayFloat
 from .illuminant import illuminants_array
 from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse
@@ -136,8 +136,7 @@ class SensorBank:
         index = np.asarray(triplet)[::-1]  # R is the longest peak
         white = self.white[:, index]
         if self.factor is None:
-            ratio = white[:, None, :] / white[None, :, :]
-            factor = 3.0 / ratio.sum(axis=-1)  # WP (Eq. 8), 1 at p = q
+            factor = white_coefficient_from_whites(white[:, None, :], white[None, :, :])  # WP (Eq. 8)
         else:
             factor = self.factor[:, None] / self.factor[None, :]
         return self.scale * factor[:, :, None] / white[None, :, :]
@@ -236,14 +235,9 @@ near-inside points): neither changes which points are vertices or the volume
 beyond round-off, and together they save ~15–20 % on these clouds."""
 
 
-def _flat(points: NDArrayFloat) -> bool:
-    extents = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
-    return bool(extents[0] == 0 or extents[-1] <= TOLERANCE_GAMUT_FLATNESS * extents[0])
-
-
 FLAT_SUSPECT = 1e-6
 """A hull whose volume exceeds this fraction of its bounding box's is not flat
-(a cloud flat to 1e-10, the test of :func:`skinrender.gamut.gamut`, has a hull
+(a cloud flat to 1e-10, the test of :func:`skinrender.gamut.is_flat`, has a hull
 far thinner); only thinner hulls pay for the SVD flatness test."""
 
 
@@ -262,7 +256,7 @@ def _hull(cloud: NDArrayFloat) -> tuple[float, np.ndarray | None]:
         return 0.0, None
     volume = float(hull.volume)
     box = float(np.prod(hull.max_bound - hull.min_bound))
-    if not volume > FLAT_SUSPECT * box and _flat(cloud[hull.vertices]):
+    if not volume > FLAT_SUSPECT * box and is_flat(cloud[hull.vertices]):
         return 0.0, None
     return volume, hull.vertices
 

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .camera import Camera, camera, knee as apply_knee, ncc, response
+from .camera import Camera, camera, knee as apply_knee, ncc, response, white_coefficient_from_whites
 from .constants import CONSTANT_OUTPUT_SCALE
 from .errors import SkinrenderError
 from .hints import NDArrayFloat
@@ -332,8 +332,7 @@ def validate_gamut(
 
     def volumes(m: NDArrayFloat) -> NDArrayFloat:
         white = m[:, -1, :]
-        ratio = white[:, None, :] / white[None, :, :]
-        wp = 3.0 / ratio.sum(axis=-1)
+        wp = white_coefficient_from_whites(white[:, None, :], white[None, :, :])
         points = CONSTANT_OUTPUT_SCALE * wp[:, :, None, None] * m[:, None, :-1, :] / white[None, :, None, :]
         return np.array([gamut(points[:, q]).volume for q in range(len(temperatures))] + [gamut(points).volume])
 
