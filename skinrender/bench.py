@@ -225,7 +225,7 @@ def bench_render(
         the pairs are Eq. 4 applied afterwards.
     """
 
-    from .render import QUALITY_PRESETS, render, render_raw
+    from .render import render, render_raw
     from .scene import load_scene
     from .validate import analytic_reference, validate
     from .variants import VARIANTS_SPECTRAL, _works, choose_variant

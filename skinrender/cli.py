@@ -571,7 +571,9 @@ def command_locus(args: argparse.Namespace) -> None:
         axis.plot(*closed.T, "-", color="tab:red", label=f"locus ({args.boundary}), area {locus.area:.4f}")
         track_t = np.linspace(2000, 10000, 81)
         reference = calibration if calibration is not None else 5900.0
-        track = ncc(response(cam, [[1.0] * 301], track_t, reference))[:, 0, :2]
+        from .spectra import GRID_DEFAULT
+
+        track = ncc(response(cam, np.ones((1, GRID_DEFAULT.size)), track_t, reference))[:, 0, :2]
         axis.plot(*track.T, "k--", label=f"Planckian track (white, calibration {reference:g} K)")
         axis.set(xlabel="NCC r", ylabel="NCC g", title=f"Skin locus of {cam.name}")
         axis.legend(fontsize=7)

@@ -145,7 +145,7 @@ def scene_dict(
     compiled into the kernel: every new temperature costs a compilation).
     """
 
-    mi = mitsuba(choose_variant_cached(variant))
+    mi = mitsuba(choose_variant(variant))  # remembered per process by choose_variant
     width, height = scene.size
     wavelengths = grid.wavelengths
     curves = cam.sensitivities(grid)
@@ -207,18 +207,6 @@ def _peak(values: NDArrayFloat) -> float:
     if not (np.isfinite(peak) and peak > 0):
         raise SkinrenderError("the Planck emitter is zero (or not finite) over the whole grid at this temperature")
     return peak
-
-
-_VARIANT: list[str] = []
-
-
-def choose_variant_cached(requested: str | None = None) -> str:
-    """:func:`skinrender.variants.choose_variant`, remembered for this process."""
-    if requested is not None:
-        return choose_variant(requested)
-    if not _VARIANT:
-        _VARIANT.append(choose_variant())
-    return _VARIANT[0]
 
 
 @dataclass(frozen=True)
@@ -283,7 +271,7 @@ class ChartRenderer:
         if emitter not in EMITTERS:
             raise SkinrenderError(f"emitter must be one of {', '.join(EMITTERS)}, got {emitter!r}")
         self.sampler, self.grid, self.emitter = sampler, grid, emitter
-        self.variant = choose_variant_cached(variant)
+        self.variant = choose_variant(variant)
         self.groups = [(0,), (1,), (2,)] if _separate(self.camera, grid, channels) else [(0, 1, 2)]
         self.requested_spp = int(spp)
         self._loaded: list = []
