@@ -518,8 +518,9 @@ def ncc(rgb: ArrayLike) -> NDArrayFloat:
     if rgb.shape[-1:] != (3,):
         raise SkinrenderError(f"ncc expects three channels on the last axis, got shape {rgb.shape}")
     total = rgb.sum(axis=-1, keepdims=True)
-    safe = np.where(total == 0, 1.0, total)
-    return np.where(total == 0, 1.0 / 3.0, rgb / safe)
+    black = total == 0
+    out = rgb / np.where(black, 1.0, total)
+    return np.where(black, 1.0 / 3.0, out) if black.any() else out
 
 
 _CHANNEL_INDEX = {"r": 0, "g": 1, "b": 2}

@@ -32,7 +32,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from matplotlib.path import Path as PolygonPath
 from scipy.spatial import ConvexHull, QhullError
 
 from .camera import Camera, camera, ncc, response
@@ -109,10 +108,18 @@ class SkinLocus:
             inside = ((r >= r_min - tolerance) & (r <= r_max + tolerance)
                       & (g <= np.polyval(upper, r) + tolerance) & (g >= np.polyval(lower, r) - tolerance))
         else:
-            inside = PolygonPath(self.polygon).contains_points(flat, radius=tolerance) | PolygonPath(
-                self.polygon[::-1]).contains_points(flat, radius=-tolerance)
-            # points exactly on the hull (training vertices) count as inside
-            inside |= PolygonPath(self.polygon).contains_points(flat, radius=-tolerance)
+            # convex, counter-clockwise: inside (or within tolerance of) every edge's half-plane
+            start = self.polygon
+            edge = np.roll(start, -1, axis=0) - start
+            # p is inside an edge's half-plane when cross(edge, p − start) ≥ −tolerance·|edge|;
+            # test edge by edge, keeping only the points still inside (most leave after a few edges)
+            bound = edge[:, 0] * start[:, 1] - edge[:, 1] * start[:, 0] - tolerance * np.hypot(edge[:, 0], edge[:, 1])
+            candidates = np.arange(len(flat))
+            x, y = flat[:, 0], flat[:, 1]
+            for (ex, ey), limit in zip(edge, bound):
+                candidates = candidates[ex * y[candidates] - ey * x[candidates] >= limit]
+            inside = np.zeros(len(flat), dtype=bool)
+            inside[candidates] = True
         return inside.reshape(points.shape[:-1])
 
 
@@ -175,16 +182,24 @@ def skin_locus(
     if boundary not in BOUNDARIES:
         raise SkinrenderError(f"boundary must be one of {', '.join(BOUNDARIES)}, got {boundary!r}")
     points = locus_points(cam, skin, illuminants, calibration, grid)
+    illuminants = np.asarray(illuminants, dtype=np.float64)
     if boundary == "hull":
-        try:
-            hull = ConvexHull(points)
-        except QhullError:
-            raise SkinrenderError("the skin chromaticities are collinear: the locus has no area") from None
-        polygon, quadratics = points[hull.vertices], None
-    else:
-        polygon, quadratics = _quadratic_polygon(points)
-    return SkinLocus(polygon, _polygon_area(polygon), boundary, np.asarray(illuminants, dtype=np.float64),
-                     calibration, quadratics)
+        locus = _hull_locus(points, illuminants, calibration)
+        if locus is None:
+            raise SkinrenderError("the skin chromaticities are collinear: the locus has no area")
+        return locus
+    polygon, quadratics = _quadratic_polygon(points)
+    return SkinLocus(polygon, _polygon_area(polygon), boundary, illuminants, calibration, quadratics)
+
+
+def _hull_locus(points: NDArrayFloat, illuminants: NDArrayFloat, calibration: float | None) -> SkinLocus | None:
+    """The convex-hull locus of (r, g) ``points`` (vertices counter-clockwise), ``None`` if it has no area."""
+    try:
+        hull = ConvexHull(points)
+    except QhullError:
+        return None
+    polygon = points[hull.vertices]  # scipy gives 2-D hull vertices counter-clockwise
+    return SkinLocus(polygon, _polygon_area(polygon), "hull", illuminants, calibration)
 
 
 def false_positive_rate(locus: SkinLocus, cam: Camera | str, nonskin, grid: WavelengthGrid = GRID_DEFAULT) -> float:
@@ -229,11 +244,6 @@ def detect(rendering, locus: SkinLocus) -> Detection:
     return Detection(mask, per_patch, tpr, fpr)
 
 
-def _ncc_rg(points: NDArrayFloat) -> NDArrayFloat:
-    total = points.sum(axis=-1, keepdims=True)
-    return (points / np.where(total > 0, total, 1.0))[..., :2]
-
-
 def triplet_false_positive_rates(bank_skin, bank_nonskin, triplet: ArrayLike) -> NDArrayFloat:
     """
     The detection criterion of one Stage 3 triplet: for each calibration q, the
@@ -250,13 +260,9 @@ def triplet_false_positive_rates(bank_skin, bank_nonskin, triplet: ArrayLike) ->
     other = bank_nonskin.clouds(triplet)[:, None] * bank_nonskin.gains(triplet)[:, :, None]
     rates = np.full(skin.shape[1], np.nan)
     for q in range(skin.shape[1]):
-        rg = _ncc_rg(skin[:, q].reshape(-1, 3))
-        try:
-            hull = ConvexHull(rg)
-        except QhullError:
-            continue
-        polygon = PolygonPath(rg[hull.vertices])
-        rates[q] = np.mean(polygon.contains_points(_ncc_rg(other[:, q].reshape(-1, 3))))
+        locus = _hull_locus(ncc(skin[:, q].reshape(-1, 3))[:, :2], bank_skin.temperatures, bank_skin.temperatures[q])
+        if locus is not None:
+            rates[q] = np.mean(locus.contains(ncc(other[:, q].reshape(-1, 3))[:, :2]))
     return rates
 
 
