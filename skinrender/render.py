@@ -54,7 +54,14 @@ from pathlib import Path
 
 import numpy as np
 
-from .camera import Camera, camera, knee as apply_knee, normalisation_factor, white_coefficient_from_whites
+from .camera import (
+    NORMALISATIONS,
+    Camera,
+    camera,
+    knee as apply_knee,
+    normalisation_factor,
+    white_coefficient_from_whites,
+)
 from .constants import CONSTANT_OUTPUT_SCALE
 from .errors import SkinrenderError
 from .hints import NDArrayFloat
@@ -529,8 +536,6 @@ def render(
 
     chart = load_scene(scene)
     cam = camera(camera_)
-    from .camera import NORMALISATIONS
-
     if normalization not in NORMALISATIONS:
         raise SkinrenderError(f"normalization must be one of {', '.join(NORMALISATIONS)}, got {normalization!r}")
     p, c = _temperature(prevailing), _temperature(calibration)

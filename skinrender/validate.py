@@ -27,7 +27,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .camera import Camera, camera, knee as apply_knee, ncc, response, white_coefficient_from_whites
+from .camera import (
+    Camera,
+    camera,
+    knee as apply_knee,
+    ncc,
+    response,
+    response_raw,
+    white_coefficient,
+    white_coefficient_from_whites,
+)
 from .constants import CONSTANT_OUTPUT_SCALE
 from .errors import SkinrenderError
 from .hints import NDArrayFloat
@@ -93,11 +102,15 @@ def analytic_reference(
 
 def quadrature_difference(
     cam: Camera | str, reflectance: NDArrayFloat, prevailing: float, calibration: float,
-    normalization: str = "white", grid: WavelengthGrid = GRID_DEFAULT,
+    normalization: str = "white", grid: WavelengthGrid = GRID_DEFAULT, exact: NDArrayFloat | None = None,
 ) -> float:
-    """Largest relative difference between the paper's Σ (Eq. 4 on ``grid``) and :func:`analytic_reference`."""
+    """
+    Largest relative difference between the paper's Σ (Eq. 4 on ``grid``) and
+    :func:`analytic_reference` (pass it as ``exact`` when already computed, without the knee).
+    """
     paper = response(cam, reflectance, prevailing, calibration, normalization, False, grid)
-    exact = analytic_reference(cam, reflectance, prevailing, calibration, normalization, False, grid)
+    if exact is None:
+        exact = analytic_reference(cam, reflectance, prevailing, calibration, normalization, False, grid)
     return float(np.max(np.abs(paper - exact) / np.maximum(np.abs(exact), 1e-300)))
 
 
@@ -202,17 +215,18 @@ def validate(
     analytic reference within its noise-derived tolerance.
 
     ``render_options`` go to :func:`skinrender.render.render` (``spp``,
-    ``seed``, ``sampler``, ``variant``, ``channels``, ``cache``).
+    ``seed``, ``sampler``, ``variant``, ``channels``, ``cache``). A given
+    ``rendering`` is checked with its own normalisation and knee.
     """
 
     chart = load_scene(scene)
     if rendering is None:
         rendering = render(chart, camera_, prevailing, calibration, normalization, knee, grid=grid, **render_options)
     reflectance = chart.reflectances(grid)
-    reference = analytic_reference(rendering.camera, reflectance, rendering.prevailing, rendering.calibration,
-                                   normalization, knee, grid)
-    quadrature = quadrature_difference(rendering.camera, reflectance, rendering.prevailing, rendering.calibration,
-                                       normalization, grid)
+    r = rendering
+    reference = analytic_reference(r.camera, reflectance, r.prevailing, r.calibration, r.normalization, r.knee, grid)
+    quadrature = quadrature_difference(r.camera, reflectance, r.prevailing, r.calibration, r.normalization, grid,
+                                       exact=None if r.knee else reference)
     return Validation(rendering, rendering.patches.mean, reference, tolerance_of(rendering, reference, grid), quadrature)
 
 
@@ -270,8 +284,6 @@ def table1(
             r = renders[case]
             rendered = ncc(r.patches.mean[keep])
             if normalization is None:
-                from .camera import response_raw, white_coefficient
-
                 model = response_raw(cam, reflectance, r.prevailing, "none", grid) * white_coefficient(
                     cam, r.prevailing, r.calibration, grid)
             else:
