@@ -29,7 +29,7 @@ import numpy as np
 from .camera import camera, response
 from .constants import TEMPERATURES_PAPER
 from .datasets import reflectances
-from .gamut import gamut, gamut_hull
+from .gamut import gamut, gamut_calibration, gamut_hull
 from .hints import ArrayLike, NDArrayFloat
 from .search import SENSORS_PAPER, TOLERANCE_TIE, SearchResult, search
 from .spectra import GRID_DEFAULT, WavelengthGrid
@@ -125,8 +125,8 @@ def stage2_cases(
     cam = camera(camera_spec)
     out = {}
     for name, spec in (("skin", skin), ("munsell", munsell)):
-        points = response(cam, reflectances(spec).on(grid), t[:, None], t[None, :], "white", False, grid)
-        out[name] = np.array([gamut(points[:, q]).volume for q in range(t.size)])
+        values = reflectances(spec).on(grid)
+        out[name] = np.array([gamut_calibration(cam, values, q, t, "white", False, grid).volume for q in t])
     out["ratio"] = out["skin"] / out["munsell"]
     out["temperatures"] = t
     return out
