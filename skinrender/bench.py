@@ -228,13 +228,13 @@ def bench_render(
     from .render import render, render_raw
     from .scene import load_scene
     from .validate import analytic_reference, validate
-    from .variants import VARIANTS_SPECTRAL, _works, choose_variant
+    from .variants import VARIANTS_SPECTRAL, variant_works, choose_variant
 
     chart = load_scene("macbeth")
     cam = camera(camera_spec)
     reference = analytic_reference(cam, chart.reflectances(GRID_DEFAULT), 2856.0, 2856.0)
     if variants is None:
-        variants = (choose_variant(),) if quick else tuple(v for v in VARIANTS_SPECTRAL if _works(v))
+        variants = (choose_variant(),) if quick else tuple(v for v in VARIANTS_SPECTRAL if variant_works(v))
     curve = []
     for variant in variants:
         top = 256 if quick or variant.startswith("scalar") else 4096

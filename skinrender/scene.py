@@ -38,7 +38,7 @@ import numpy as np
 from .datasets import reflectances
 from .errors import SkinrenderError
 from .hints import NDArrayFloat
-from .spectra import WavelengthGrid
+from .spectra import GRID_DEFAULT, WavelengthGrid
 
 __all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_scene", "list_scenes", "reflectance_of"]
 
@@ -228,7 +228,5 @@ def load_scene(spec: str | Path | ChartScene) -> ChartScene:
     if 2 * scene.border_px >= scene.patch_px:
         raise SkinrenderError(f"{where}: field 'border_px' ({scene.border_px}) leaves no pixel of a "
                               f"{scene.patch_px}-pixel patch")
-    from .spectra import GRID_DEFAULT
-
     scene.reflectances(GRID_DEFAULT)  # every reflectance resolves, or the error names the patch
     return scene

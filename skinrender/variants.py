@@ -28,7 +28,7 @@ import sys
 
 from .errors import SkinrenderError
 
-__all__ = ["VARIANTS_SPECTRAL", "LIBLLVM_MINIMUM", "libllvm_path", "choose_variant", "mitsuba"]
+__all__ = ["VARIANTS_SPECTRAL", "LIBLLVM_MINIMUM", "libllvm_path", "variant_works", "choose_variant", "mitsuba"]
 
 VARIANTS_SPECTRAL = ("cuda_ad_spectral", "llvm_ad_spectral", "scalar_spectral")
 """Spectral variants, fastest first."""
@@ -84,7 +84,8 @@ _PROBE = (
 drjit aborts on with too old a libLLVM."""
 
 
-def _works(variant: str) -> bool:
+def variant_works(variant: str) -> bool:
+    """Whether ``variant`` renders a tiny specfilm scene in a child process on this machine."""
     if variant.startswith("cuda") and not (shutil.which("nvidia-smi") or os.path.exists("/dev/nvidia0")):
         return False
     if variant.startswith("llvm") and libllvm_path() is None:
@@ -129,7 +130,7 @@ def choose_variant(requested: str | None = None, notice=sys.stderr) -> str:
     if requested is not None:
         if requested not in VARIANTS_SPECTRAL:
             raise SkinrenderError(f"variant must be one of {', '.join(VARIANTS_SPECTRAL)} (spectral), got {requested!r}")
-        if not _works(requested):
+        if not variant_works(requested):
             hint = ""
             if requested.startswith("llvm"):
                 hint = (f" (it needs libLLVM ≥ {LIBLLVM_MINIMUM}: on Debian/Ubuntu 'apt-get install libllvm19', or set "
@@ -140,7 +141,7 @@ def choose_variant(requested: str | None = None, notice=sys.stderr) -> str:
         _CHOSEN[requested] = requested
         return requested
     for variant in VARIANTS_SPECTRAL:
-        if _works(variant):
+        if variant_works(variant):
             if variant == "scalar_spectral" and notice is not None:
                 print(
                     "skinrender: notice: llvm_ad_spectral unavailable (needs libLLVM ≥ 16, e.g. Debian 'libllvm19'); "

@@ -51,7 +51,7 @@ class TestVariants:
 
     def test_fallback_to_scalar_with_a_notice(self, monkeypatch, capsys):
         monkeypatch.setattr(variants, "_CHOSEN", {})
-        monkeypatch.setattr(variants, "_works", lambda v: v == "scalar_spectral")
+        monkeypatch.setattr(variants, "variant_works", lambda v: v == "scalar_spectral")
         import sys
 
         assert variants.choose_variant(notice=sys.stderr) == "scalar_spectral"
