@@ -125,7 +125,7 @@ def bench_search(
     sensor: float = 9,
     sample: int = 20,
     steps: tuple[float, ...] = (20.0, 10.0, 5.0),
-    full_steps: tuple[float, ...] = (20.0, 10.0),
+    full_steps: tuple[float, ...] = (20.0, 10.0, 5.0),
     workers: int | None = None,
 ) -> dict:
     """
@@ -136,12 +136,15 @@ def bench_search(
         skin and Munsell sets, all eleven cases each; ``speedup`` their ratio,
         ``max_rel_difference`` the largest relative volume difference.
     -   ``full_search_s``: the whole 10 nm search on every core.
+    -   ``hull_kernel``: ``quickhull`` (compiled) or ``qhull`` (no C compiler
+        at install time; see :data:`skinrender.search.HULL_KERNEL`).
     -   ``growth``: per grid step, the triplet count and the time — measured in
         full for ``full_steps``, estimated from ``sample`` triplets timed on
         one core (divided by the worker count) for the others, and marked so.
     """
 
-    from .search import positions_grid, search, sensor_bank, triplet_volumes_fast, triplet_volumes_naive, triplets
+    from .search import (HULL_KERNEL, positions_grid, search, sensor_bank, triplet_volumes_fast,
+                         triplet_volumes_naive, triplets)
 
     grid = GRID_DEFAULT
     skin, munsell = reflectances("skin").on(grid), reflectances("munsell").on(grid)
@@ -195,6 +198,7 @@ def bench_search(
         "full_search_s": full_search_s,
         "elapsed_s": full_search_s,
         "workers": cores,
+        "hull_kernel": HULL_KERNEL,
         "growth": growth,
     }
 

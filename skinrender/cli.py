@@ -426,6 +426,7 @@ def command_search(args: argparse.Namespace) -> None:
         "skin": skin.name,
         "munsell": munsell.name,
         "method": result.method,
+        "hull_kernel": result.info["hull_kernel"],
         "workers": result.workers,
         **table,
         "elapsed_s": result.elapsed_s,

@@ -27,7 +27,9 @@ The fast method is exact (NOTES.md; the issue's hints), not an approximation:
     hull from the case hulls' vertices.
 
 Single-sensor responses are computed once per position and gathered per
-triplet. Volumes agree with the straightforward method to ~1e-13 relative
+triplet. The hulls are built by a compiled Quickhull (``skinrender/_hull3d.c``,
+:data:`HULL_KERNEL`), with Qhull for the flat or doubtful clouds it declines;
+volumes agree with the straightforward method to ~1e-12 relative
 (tests/test_search.py checks < 1e-9 triplet by triplet).
 
 The knee (Eq. 11) is not a diagonal scaling: with ``knee=True`` the search
@@ -43,6 +45,7 @@ from __future__ import annotations
 
 import itertools
 import os
+import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
@@ -57,6 +60,17 @@ from .gamut import gamut, is_flat
 from .hints import ArrayLike, NDArrayFloat
 from .illuminant import illuminants_array
 from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse
+
+try:
+    from . import _hull3d
+except ImportError:  # built without a C compiler: Qhull does every hull
+    _hull3d = None
+
+HULL_KERNEL = "quickhull" if _hull3d is not None else "qhull"
+"""The fast method's hull kernel: ``quickhull`` (the compiled Quickhull of
+``skinrender/_hull3d.c``, with Qhull for the flat and doubtful clouds it
+declines) or ``qhull`` (scipy's Qhull for every hull, when the package was
+installed without a C compiler; several times slower)."""
 
 __all__ = [
     "TOLERANCE_TIE",
@@ -237,9 +251,16 @@ machines, so no saving is claimed."""
 
 
 FLAT_SUSPECT = 1e-6
-"""A hull whose volume exceeds this fraction of its bounding box's is not flat
-(a cloud flat to 1e-10, the test of :func:`skinrender.gamut.is_flat`, has a hull
-far thinner); only thinner hulls pay for the SVD flatness test."""
+"""A hull whose volume exceeds this fraction of ``L³`` (``L`` the bounding
+box's longest side) is not flat by the test of
+:func:`skinrender.gamut.is_flat`; only thinner hulls pay for that SVD test (and
+the compiled kernel hands them to Qhull).
+
+Why it is safe: a cloud of ``n`` points whose smallest principal extent is at
+most 1e-10 of its largest has widths ``w1, w2 ≤ √3·L`` and ``w3 ≤ 2e-10·√(3n)·L``
+(a width is at most twice the largest projection, a singular value at most √n
+times it), so its hull volume is at most ``1.04e-9·√n·L³``: below this fraction
+for every cloud of up to 900 000 points (the search's largest has 126 900)."""
 
 
 def _hull(cloud: NDArrayFloat) -> tuple[float, np.ndarray | None]:
@@ -247,17 +268,24 @@ def _hull(cloud: NDArrayFloat) -> tuple[float, np.ndarray | None]:
     Volume and vertex indices of the hull of ``cloud``; for a degenerate cloud
     (flat by the test of :func:`skinrender.gamut.gamut`) volume 0 and ``None``
     (every point is kept, since none can be ruled out).
+
+    The compiled Quickhull (:data:`HULL_KERNEL`) answers the general case;
+    Qhull answers what it declines (flat or nearly flat clouds, numerical
+    doubt) and everything when the kernel was not built.
     """
 
     if len(cloud) < 4:
         return 0.0, None
+    if _hull3d is not None:
+        answer = _hull3d.hull(np.ascontiguousarray(cloud, dtype=np.float64), FLAT_SUSPECT)
+        if answer is not None:
+            return answer[0], np.frombuffer(answer[1], dtype=np.int32)
     try:
         hull = ConvexHull(cloud, qhull_options=QHULL_OPTIONS)
     except QhullError:
         return 0.0, None
     volume = float(hull.volume)
-    box = float(np.prod(hull.max_bound - hull.min_bound))
-    if not volume > FLAT_SUSPECT * box and is_flat(cloud[hull.vertices]):
+    if not volume > FLAT_SUSPECT * float(np.max(hull.max_bound - hull.min_bound)) ** 3 and is_flat(cloud):
         return 0.0, None
     return volume, hull.vertices
 
@@ -475,6 +503,7 @@ def search(
     progress=None,
     label: str = "search",
     detection: bool = False,
+    notice=sys.stderr,
 ) -> SearchResult:
     """
     The Stage 3 search: every triplet's per-calibration and all-calibration
@@ -508,6 +537,9 @@ def search(
     detection
         Also compute the detection criterion: the false-positive rate of the
         Munsell set inside the skin locus, per calibration (``result.fpr``).
+    notice
+        Stream for the one-line notice when the compiled hull kernel is
+        missing (``result.info["hull_kernel"]`` says which kernel ran).
 
     Returns
     -------
@@ -525,8 +557,9 @@ def search(
     if workers < 1:
         raise SkinrenderError(f"workers must be ≥ 1, got {workers}")
     start = time.perf_counter()
-    # Several chunks per worker keep every core busy to the end; each chunk
-    # is lexicographic so that consecutive triplets warm-start each other.
+    if method == "fast":
+        _notice_kernel(notice)
+    # Several chunks per worker keep every core busy to the end.
     chunks = _chunks(np.arange(len(index)), 1 if workers == 1 and dask is None else 8 * max(workers, 4))
     out = np.empty((2, len(index), banks[0].white.shape[0] + 1))
     fpr = np.empty((len(index), banks[0].white.shape[0])) if detection else None
@@ -567,7 +600,22 @@ def search(
     return SearchResult(
         float(sensor), float(slope), where, where[index], banks[0].temperatures, out[0], out[1], elapsed,
         method, 1 if dask is not None else workers, normalization, knee, fpr=fpr,
+        info={"hull_kernel": HULL_KERNEL if method == "fast" else "qhull"},
     )
+
+
+_NOTICED: list[bool] = []
+
+
+def _notice_kernel(stream) -> None:
+    """One line on ``stream``, once per process, when the compiled hull kernel is missing."""
+    if _hull3d is None and stream is not None and not _NOTICED:
+        _NOTICED.append(True)
+        print(
+            "skinrender: notice: the compiled hull kernel skinrender._hull3d is missing (installed without a C "
+            "compiler); the search uses Qhull for every hull, about 5x slower. Reinstall with gcc present.",
+            file=stream,
+        )
 
 
 def _dask_client(dask):

@@ -18,5 +18,6 @@ def test_bench_search_keys_and_agreement():
 
     result = bench_search(sensor=9, sample=3, steps=(100.0, 75.0), full_steps=(100.0,), workers=1)
     assert {"naive_ms_per_triplet", "fast_ms_per_triplet", "speedup", "full_search_s", "growth", "machine"} <= set(result)
+    assert result["hull_kernel"] in ("quickhull", "qhull")
     assert result["max_rel_difference"] < 1e-9
     assert [g["triplets"] for g in result["growth"]] == [4, 10]

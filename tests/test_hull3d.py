@@ -1,0 +1,138 @@
+"""Tests for :mod:`skinrender._hull3d`, the compiled Quickhull of the Stage 3 search, against Qhull."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.spatial import ConvexHull
+
+import skinrender.search as search_module
+from skinrender.search import FLAT_SUSPECT, HULL_KERNEL
+
+_hull3d = pytest.importorskip(
+    "skinrender._hull3d",
+    reason="skinrender was installed without a C compiler; see test_the_kernel_was_built",
+)
+
+KERNEL_VS_QHULL = 1e-12
+"""Relative volume difference allowed between the kernel and Qhull: both are
+exact hulls up to rounding; a point within the kernel's tolerance (1e-12 of the
+scaled cloud) of a facet may be kept by one and dropped by the other."""
+
+
+def kernel(points):
+    answer = _hull3d.hull(np.ascontiguousarray(points, dtype=np.float64), FLAT_SUSPECT)
+    return None if answer is None else (answer[0], np.frombuffer(answer[1], dtype=np.int32))
+
+
+def clouds(rng):
+    """Clouds of every shape the search meets and some it does not."""
+    for count in (4, 5, 12, 100, 1269, 3000):
+        yield "gaussian", rng.normal(size=(count, 3))
+        sphere = rng.normal(size=(count, 3))
+        yield "sphere", sphere / np.linalg.norm(sphere, axis=1)[:, None]  # every point a vertex
+        yield "anisotropic", rng.random((count, 3)) * [1.0, 0.05, 30.0]
+        yield "cone", np.abs(rng.normal(size=(count, 3))) * rng.random((count, 1))  # like reflectance clouds
+        yield "grid", rng.integers(0, 4, size=(count, 3)).astype(float)  # duplicates, coplanar runs
+
+
+def test_the_kernel_was_built():
+    """The fast search needs the compiled kernel; pip builds it when a C compiler is present."""
+    assert HULL_KERNEL == "quickhull", "skinrender._hull3d is missing: reinstall with a C compiler (gcc) present"
+
+
+class TestHull:
+    def test_unit_cube_with_interior_points(self, rng):
+        corners = np.array(np.meshgrid([0, 1], [0, 1], [0, 1])).reshape(3, -1).T.astype(float)
+        points = np.vstack([rng.random((500, 3)) * 0.98 + 0.01, corners])
+        volume, vertices = kernel(points)
+        assert volume == pytest.approx(1.0, rel=1e-14)
+        assert sorted(vertices) == list(range(500, 508))
+
+    def test_volume_and_vertices_equal_qhull(self, rng):
+        for shape, points in clouds(rng):
+            qhull = ConvexHull(points)
+            answer = kernel(points)
+            assert answer is not None, shape
+            volume, vertices = answer
+            assert volume == pytest.approx(qhull.volume, rel=KERNEL_VS_QHULL), shape
+            assert np.all(np.diff(vertices) > 0) and vertices.min() >= 0 and vertices.max() < len(points)
+            if shape != "grid":  # on a grid Qhull may also keep points in the middle of an edge
+                assert set(qhull.vertices) == set(vertices), shape
+            # what the kernel keeps spans the whole hull
+            assert ConvexHull(points[vertices]).volume == pytest.approx(qhull.volume, rel=KERNEL_VS_QHULL)
+
+    def test_diagonal_scaling_scales_the_volume_and_keeps_the_vertices(self, rng):
+        points = np.abs(rng.normal(size=(800, 3)))
+        scales = np.array([0.03, 2.0, 40.0])
+        volume, vertices = kernel(points)
+        scaled_volume, scaled_vertices = kernel(points * scales)
+        assert scaled_volume == pytest.approx(volume * np.prod(scales), rel=1e-13)
+        np.testing.assert_array_equal(vertices, scaled_vertices)
+
+    @pytest.mark.parametrize(
+        "points",
+        [
+            np.zeros((0, 3)),
+            np.eye(3),  # three points
+            np.ones((10, 3)),  # coincident
+            np.outer(np.linspace(0, 1, 30), [1.0, 2.0, 3.0]),  # collinear
+            np.c_[np.random.default_rng(1).random((50, 2)), np.zeros(50)],  # flat
+            np.c_[np.random.default_rng(2).random((50, 2)), 1e-9 * np.random.default_rng(3).random(50)],  # nearly
+        ],
+        ids=["empty", "three", "coincident", "collinear", "flat", "nearly-flat"],
+    )
+    def test_degenerate_clouds_are_declined_for_qhull(self, points):
+        assert kernel(points) is None
+
+    def test_very_thin_clouds_go_to_qhull_and_get_the_same_answer(self, rng):
+        """Volume below FLAT_SUSPECT·L³ (here 1e-9·L³): the kernel declines, the search's hull
+        routine asks Qhull, and an axis-aligned cloud flat by is_flat has volume 0 as in gamut()."""
+        thin = rng.random((300, 3)) * [1.0, 1e-3, 1e3]
+        assert kernel(thin) is None
+        volume, vertices = search_module._hull(thin)
+        assert volume == pytest.approx(ConvexHull(thin).volume, rel=1e-12)
+        flat = rng.random((300, 3)) * [1.0, 1e-12, 1.0]
+        assert search_module._hull(flat) == (0.0, None)
+        assert search_module.gamut(flat).volume == 0.0
+
+    @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+    def test_non_finite_points_are_declined(self, rng, bad):
+        points = rng.random((20, 3))
+        points[7, 1] = bad
+        assert kernel(points) is None
+
+    @pytest.mark.parametrize(
+        "points",
+        [np.zeros((5, 2)), np.zeros((5, 3), dtype=np.float32), np.zeros((3, 5)).T, np.zeros(15)],
+        ids=["two-columns", "float32", "not-contiguous", "flat-array"],
+    )
+    def test_wrong_arrays_are_refused(self, points):
+        with pytest.raises(ValueError, match=r"float64 array of shape \(n, 3\)"):
+            _hull3d.hull(points, FLAT_SUSPECT)
+
+
+class TestSearchWithoutTheKernel:
+    def test_qhull_everywhere_gives_the_same_volumes(self, monkeypatch, rng):
+        """With no compiled kernel (installed without a C compiler) every hull goes to Qhull."""
+        from skinrender import reflectances
+        from skinrender.spectra import GRID_DEFAULT
+
+        bank = search_module.sensor_bank(9, reflectances("munsell").on(GRID_DEFAULT)[::4], [420, 500, 580, 660])
+        with_kernel = [search_module.triplet_volumes_fast(bank, t) for t in search_module.triplets(4)]
+        monkeypatch.setattr(search_module, "_hull3d", None)
+        for triplet, expected in zip(search_module.triplets(4), with_kernel):
+            np.testing.assert_allclose(search_module.triplet_volumes_fast(bank, triplet), expected, rtol=1e-9)
+
+    def test_the_search_says_once_which_kernel_ran(self, monkeypatch):
+        import io
+
+        grey = np.linspace(0.05, 0.9, 12)[:, None] * np.linspace(0.5, 1.5, 301)[None, :] ** np.arange(12)[:, None]
+        monkeypatch.setattr(search_module, "_hull3d", None)
+        monkeypatch.setattr(search_module, "HULL_KERNEL", "qhull")
+        monkeypatch.setattr(search_module, "_NOTICED", [])
+        stream = io.StringIO()
+        for _ in range(2):
+            result = search_module.search(9, grey, grey, "400:700:100", workers=1, notice=stream)
+        assert result.info["hull_kernel"] == "qhull"
+        assert stream.getvalue().count("notice") == 1 and "_hull3d" in stream.getvalue()
