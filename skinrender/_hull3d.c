@@ -23,6 +23,9 @@
  *     points: C-contiguous float64 buffer of shape (n, 3)
  *     volume: float, in the points' units cubed
  *     vertices: bytes holding int32 vertex indices, ascending
+ *   triplet_volumes(clouds, gains, reduce, shared, flat_fraction) -> bytes or None
+ *     the whole per-triplet pipeline of search.triplet_volumes_fast in one call,
+ *     one workspace reused by all 21 hulls
  *
  * SPDX-License-Identifier: BSD-3-Clause
  */
@@ -64,8 +67,9 @@ typedef struct {
     int *vstamp;  /* per point: iteration that last put it on the horizon */
     int *vis;     /* visible faces of this step */
     int nvis, viscap;
-    int iter;
+    int iter;     /* never reset: stamps stay valid when the workspace is reused */
     int failed;
+    int xcap, nextcap, vstampcap; /* capacities (doubles, ints, ints) */
 } Hull;
 
 static int grow(void **array, int *cap, int need, size_t size) {
@@ -350,69 +354,193 @@ static int quickhull(Hull *h, double flat_fraction, double *volume, char *is_ver
     return 0;
 }
 
+/* Load n points (n x 3, any scale) into the reusable workspace and build their
+ * hull; is_vertex (n bytes) receives the vertex flags. */
+static int hull_points(Hull *h, const double *points, int n, double flat_fraction, double *volume, char *is_vertex) {
+    int stamped = h->vstampcap;
+    if (grow((void **)&h->x, &h->xcap, 3 * (n ? n : 1), sizeof(double)) ||
+        grow((void **)&h->next, &h->nextcap, n ? n : 1, sizeof(int)) ||
+        grow((void **)&h->vstamp, &h->vstampcap, n ? n : 1, sizeof(int)))
+        return -2;
+    if (h->vstampcap > stamped) memset(h->vstamp + stamped, 0, sizeof(int) * (size_t)(h->vstampcap - stamped));
+    memcpy(h->x, points, sizeof(double) * 3 * (size_t)n);
+    h->n = n;
+    h->nf = 0;
+    h->failed = 0;
+    return quickhull(h, flat_fraction, volume, is_vertex);
+}
+
+static void release(Hull *h) {
+    free(h->x);
+    free(h->next);
+    free(h->vstamp);
+    free(h->f);
+    free(h->hf);
+    free(h->he);
+    free(h->vis);
+}
+
+/* A C-contiguous float64 array of `ndim` dimensions whose last is 3; 0 or -1 with ValueError set. */
+static int get_points(PyObject *object, int ndim, const char *name, Py_buffer *view) {
+    if (PyObject_GetBuffer(object, view, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT | PyBUF_ND)) {
+        PyErr_Clear();
+        view->obj = NULL;
+    } else if (view->ndim == ndim && view->shape[ndim - 1] == 3 && view->itemsize == 8 && view->format &&
+               !strcmp(view->format, "d") && view->len / 8 < 300000000) {
+        return 0;
+    } else {
+        PyBuffer_Release(view);
+    }
+    PyErr_Format(PyExc_ValueError, "%s must be a C-contiguous float64 array of shape (%s3)", name,
+                 ndim == 2 ? "n, " : "P, n, ");
+    return -1;
+}
+
+static PyObject *result_or_none(int status, PyObject *(*build)(void *), void *data) {
+    if (status == -2) return PyErr_NoMemory();
+    if (status != 0) return Py_NewRef(Py_None);
+    return build(data);
+}
+
+typedef struct {
+    double volume;
+    const char *is_vertex;
+    int n;
+} HullAnswer;
+
+static PyObject *build_hull(void *data) {
+    HullAnswer *a = data;
+    int vertices = 0;
+    for (int i = 0; i < a->n; i++) vertices += a->is_vertex[i];
+    PyObject *bytes = PyBytes_FromStringAndSize(NULL, (Py_ssize_t)vertices * (Py_ssize_t)sizeof(int));
+    if (!bytes) return NULL;
+    int *out = (int *)PyBytes_AS_STRING(bytes);
+    for (int i = 0, j = 0; i < a->n; i++)
+        if (a->is_vertex[i]) out[j++] = i;
+    return Py_BuildValue("(dN)", a->volume, bytes);
+}
+
 static PyObject *hull(PyObject *self, PyObject *args) {
     PyObject *object;
     double flat_fraction;
     (void)self;
     if (!PyArg_ParseTuple(args, "Od", &object, &flat_fraction)) return NULL;
     Py_buffer view;
-    if (PyObject_GetBuffer(object, &view, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT | PyBUF_ND)) {
-        PyErr_Clear();
-        PyErr_SetString(PyExc_ValueError, "points must be a C-contiguous float64 array of shape (n, 3)");
-        return NULL;
-    }
-    if (view.ndim != 2 || view.shape[1] != 3 || view.itemsize != 8 || !view.format || strcmp(view.format, "d")) {
-        PyBuffer_Release(&view);
-        PyErr_SetString(PyExc_ValueError, "points must be a C-contiguous float64 array of shape (n, 3)");
-        return NULL;
-    }
-    Py_ssize_t count = view.shape[0];
-    if (count > 100000000) {
-        PyBuffer_Release(&view);
-        PyErr_SetString(PyExc_ValueError, "points: too many");
-        return NULL;
-    }
+    if (get_points(object, 2, "points", &view)) return NULL;
+    int n = (int)view.shape[0];
     Hull h;
     memset(&h, 0, sizeof(h));
-    h.n = (int)count;
-    h.x = malloc(sizeof(double) * 3 * (size_t)(count ? count : 1));
-    h.next = malloc(sizeof(int) * (size_t)(count ? count : 1));
-    h.vstamp = calloc((size_t)(count ? count : 1), sizeof(int));
-    char *is_vertex = malloc((size_t)(count ? count : 1));
-    int status = -1;
-    double volume = 0.0;
-    if (h.x && h.next && h.vstamp && is_vertex) {
-        memcpy(h.x, view.buf, sizeof(double) * 3 * (size_t)count);
-        PyBuffer_Release(&view);
-        Py_BEGIN_ALLOW_THREADS status = quickhull(&h, flat_fraction, &volume, is_vertex);
+    char *is_vertex = malloc((size_t)(n ? n : 1));
+    HullAnswer answer = {0.0, is_vertex, n};
+    int status = -2;
+    if (is_vertex) {
+        Py_BEGIN_ALLOW_THREADS status = hull_points(&h, view.buf, n, flat_fraction, &answer.volume, is_vertex);
         Py_END_ALLOW_THREADS
-    } else {
-        PyBuffer_Release(&view);
     }
-    PyObject *result = NULL;
-    if (status == 0) {
-        int vertices = 0;
-        for (int i = 0; i < h.n; i++) vertices += is_vertex[i];
-        PyObject *bytes = PyBytes_FromStringAndSize(NULL, (Py_ssize_t)vertices * (Py_ssize_t)sizeof(int));
-        if (bytes) {
-            int *out = (int *)PyBytes_AS_STRING(bytes);
-            for (int i = 0, j = 0; i < h.n; i++)
-                if (is_vertex[i]) out[j++] = i;
-            result = Py_BuildValue("(dN)", volume, bytes);
-        }
-    } else if (!h.x || !h.next || !h.vstamp || !is_vertex) {
-        PyErr_NoMemory();
-    } else {
-        result = Py_NewRef(Py_None);
-    }
-    free(h.x);
-    free(h.next);
-    free(h.vstamp);
+    PyBuffer_Release(&view);
+    PyObject *result = result_or_none(status, build_hull, &answer);
     free(is_vertex);
-    free(h.f);
-    free(h.hf);
-    free(h.he);
-    free(h.vis);
+    release(&h);
+    return result;
+}
+
+/* The volumes of one sensor triplet (see triplet_volumes_fast in search.py):
+ * the prevailing clouds reduced to their vertices, the Q calibration cases
+ * from the scaled vertices, the all-calibration hull from the cases' vertices. */
+static int triplet(Hull *h, const double *clouds, const double *gains, int P, int N, int Q, int reduce, int shared,
+                   double flat, double *volumes) {
+    size_t most = (size_t)P * (size_t)N;
+    double *reduced = malloc(sizeof(double) * 3 * (most ? most : 1));
+    double *points = malloc(sizeof(double) * 3 * (most ? most : 1));
+    double *all = malloc(sizeof(double) * 3 * (most ? most : 1) * (size_t)Q);
+    int *owner = malloc(sizeof(int) * (most ? most : 1));
+    char *is_vertex = malloc(most ? most : 1);
+    int status = -2;
+    if (!reduced || !points || !all || !owner || !is_vertex) goto done;
+    int count = 0;
+    for (int p = 0; p < P; p++) {
+        const double *cloud = clouds + (size_t)p * N * 3;
+        if (reduce && (!shared || p == 0)) {
+            double volume;
+            status = hull_points(h, cloud, N, flat, &volume, is_vertex);
+            if (status) goto done;
+        }
+        for (int i = 0; i < N; i++)
+            if (!reduce || is_vertex[i]) {
+                memcpy(reduced + 3 * (size_t)count, cloud + 3 * (size_t)i, 3 * sizeof(double));
+                owner[count++] = p;
+            }
+    }
+    size_t total = 0;
+    for (int q = 0; q < Q; q++) {
+        for (int i = 0; i < count; i++) {
+            const double *gain = gains + 3 * ((size_t)owner[i] * Q + q);
+            for (int k = 0; k < 3; k++) points[3 * i + k] = reduced[3 * i + k] * gain[k];
+        }
+        status = hull_points(h, points, count, flat, &volumes[q], is_vertex);
+        if (status) goto done;
+        for (int i = 0; i < count; i++)
+            if (is_vertex[i]) memcpy(all + 3 * total++, points + 3 * i, 3 * sizeof(double));
+    }
+    if (total > 2000000000u) {
+        status = -1;
+        goto done;
+    }
+    char *all_vertex = malloc(total ? total : 1);
+    if (!all_vertex) {
+        status = -2;
+        goto done;
+    }
+    status = hull_points(h, all, (int)total, flat, &volumes[Q], all_vertex);
+    free(all_vertex);
+done:
+    free(reduced);
+    free(points);
+    free(all);
+    free(owner);
+    free(is_vertex);
+    return status;
+}
+
+static PyObject *build_volumes(void *data) {
+    Py_buffer *volumes = data;
+    return PyBytes_FromStringAndSize(volumes->buf, volumes->len);
+}
+
+static PyObject *triplet_volumes(PyObject *self, PyObject *args) {
+    PyObject *clouds_object, *gains_object;
+    int reduce, shared;
+    double flat_fraction;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "OOppd", &clouds_object, &gains_object, &reduce, &shared, &flat_fraction)) return NULL;
+    Py_buffer clouds, gains;
+    if (get_points(clouds_object, 3, "clouds", &clouds)) return NULL;
+    if (get_points(gains_object, 3, "gains", &gains)) {
+        PyBuffer_Release(&clouds);
+        return NULL;
+    }
+    int P = (int)clouds.shape[0], N = (int)clouds.shape[1], Q = (int)gains.shape[1];
+    if (gains.shape[0] != P || P < 1 || Q < 1) {
+        PyBuffer_Release(&clouds);
+        PyBuffer_Release(&gains);
+        PyErr_SetString(PyExc_ValueError, "gains must have shape (P, Q, 3) for clouds of shape (P, n, 3)");
+        return NULL;
+    }
+    double *volumes = malloc(sizeof(double) * (size_t)(Q + 1));
+    int status = -2;
+    Hull h;
+    memset(&h, 0, sizeof(h));
+    if (volumes) {
+        Py_BEGIN_ALLOW_THREADS status =
+            triplet(&h, clouds.buf, gains.buf, P, N, Q, reduce, shared, flat_fraction, volumes);
+        Py_END_ALLOW_THREADS
+    }
+    PyBuffer_Release(&clouds);
+    PyBuffer_Release(&gains);
+    release(&h);
+    Py_buffer out = {.buf = volumes, .len = (Py_ssize_t)sizeof(double) * (Q + 1)};
+    PyObject *result = result_or_none(status, build_volumes, &out);
+    free(volumes);
     return result;
 }
 
@@ -424,6 +552,15 @@ static PyMethodDef methods[] = {
      "None where the caller must use Qhull: a flat or nearly flat cloud (volume\n"
      "not above flat_fraction times the cube of the bounding box's longest side)\n"
      "or a numerical inconsistency."},
+    {"triplet_volumes", triplet_volumes, METH_VARARGS,
+     "triplet_volumes(clouds, gains, reduce, shared, flat_fraction) -> bytes or None\n\n"
+     "The Q + 1 gamut volumes of one sensor triplet (float64 bytes): clouds (P, n, 3)\n"
+     "are the prevailing clouds, gains (P, Q, 3) Eq. 4's per-channel gains; with\n"
+     "reduce each cloud is first cut to its hull vertices (shared: all clouds share\n"
+     "the first one's, as for the impulse sensor); case q is the hull of every\n"
+     "cloud scaled by its gains for q, the last volume the hull of the cases'\n"
+     "vertices. None when any hull is declined (see hull): the caller redoes the\n"
+     "triplet with Qhull where needed."},
     {NULL, NULL, 0, NULL}};
 
 static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_hull3d",

@@ -452,7 +452,9 @@ def command_reproduce(args: argparse.Namespace) -> None:
         args.output, sensors, args.positions, args.camera, args.skin, args.munsell, args.slope,
         workers=args.workers, dask=args.dask, progress=None if args.quiet else sys.stderr,
     )
-    text = "\n".join(["wrote:"] + [f"  {p}" for p in result["artifacts"]])
+    searches = ", ".join(f"sensor {k}: {v:.1f} s" for k, v in result["search_s"].items())
+    text = "\n".join(["wrote:"] + [f"  {p}" for p in result["artifacts"]]
+                     + [f"searches: {sum(result['search_s'].values()):.1f} s ({searches})"])
     _print(args, result, text)
 
 

@@ -297,7 +297,11 @@ def triplet_volumes_fast(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
 
     Each prevailing cloud is reduced to its hull vertices (sets larger than
     :data:`SMALL_SET`), the calibration cases are built from the scaled
-    vertices and the all-calibration hull from the cases' vertices.
+    vertices and the all-calibration hull from the cases' vertices. With the
+    compiled kernel the whole triplet is one call
+    (``_hull3d.triplet_volumes``); where it declines a hull (a flat or
+    doubtful cloud) the triplet is redone here, hull by hull, with Qhull
+    answering what the kernel declines.
 
     Returns
     -------
@@ -309,6 +313,11 @@ def triplet_volumes_fast(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
         return triplet_volumes_naive(bank, triplet)
     clouds = bank.clouds(triplet)
     gains = bank.gains(triplet)
+    if _hull3d is not None:  # the same steps in one compiled call
+        answer = _hull3d.triplet_volumes(clouds, np.ascontiguousarray(gains), clouds.shape[1] > SMALL_SET,
+                                         bank.diagonal, FLAT_SUSPECT)
+        if answer is not None:
+            return np.frombuffer(answer, dtype=np.float64).copy()
     count_p, count_q = gains.shape[:2]
     if clouds.shape[1] > SMALL_SET:
         parts = []

@@ -141,3 +141,39 @@ class TestSearchWithoutTheKernel:
             result = search_module.search(9, grey, grey, "400:700:100", workers=1, notice=stream)
         assert result.info["hull_kernel"] == "qhull"
         assert stream.getvalue().count("notice") == 1 and "_hull3d" in stream.getvalue()
+
+
+class TestTripletVolumes:
+    """``_hull3d.triplet_volumes``, the whole triplet in one call, against the hull-by-hull Python route."""
+
+    class _HullsOnly:
+        """The kernel with its triplet call declining, so that search takes the Python route."""
+
+        hull = staticmethod(_hull3d.hull)
+
+        @staticmethod
+        def triplet_volumes(*args):
+            return None
+
+    @pytest.mark.parametrize("sensor", [1, 9])
+    @pytest.mark.parametrize("name", ["skin", "munsell"])
+    def test_one_call_equals_the_python_route(self, monkeypatch, sensor, name):
+        from skinrender import reflectances
+        from skinrender.spectra import GRID_DEFAULT
+
+        bank = search_module.sensor_bank(sensor, reflectances(name).on(GRID_DEFAULT), [410, 470, 530, 600, 690])
+        chosen = search_module.triplets(5)
+        one_call = [search_module.triplet_volumes_fast(bank, t) for t in chosen]
+        monkeypatch.setattr(search_module, "_hull3d", self._HullsOnly)
+        for triplet, expected in zip(chosen, one_call):
+            np.testing.assert_allclose(search_module.triplet_volumes_fast(bank, triplet), expected, rtol=1e-12)
+
+    def test_a_declined_hull_declines_the_triplet(self):
+        grey = np.ones((1, 40, 3)) * np.linspace(0.1, 1.0, 40)[None, :, None]  # one collinear cloud
+        assert _hull3d.triplet_volumes(grey, np.ones((1, 1, 3)), False, False, FLAT_SUSPECT) is None
+
+    def test_mismatched_gains_are_refused(self, rng):
+        with pytest.raises(ValueError, match=r"gains must have shape \(P, Q, 3\)"):
+            _hull3d.triplet_volumes(rng.random((3, 50, 3)), np.ones((2, 3, 3)), True, False, FLAT_SUSPECT)
+        with pytest.raises(ValueError, match="clouds must be a C-contiguous float64 array"):
+            _hull3d.triplet_volumes(rng.random((50, 3)), np.ones((1, 3, 3)), True, False, FLAT_SUSPECT)
