@@ -96,7 +96,7 @@ static int set_plane(Hull *h, Face *f) {
     double length2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
     double scale2 = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
     /* |u x w| > 1e3 eps |u||w|: the facet's angle is not lost in rounding */
-    if (!(length2 > 1e6 * DBL_EPSILON * DBL_EPSILON * scale2) || !(length2 > 0.0)) return -1;
+    if (!(length2 > 1e6 * DBL_EPSILON * DBL_EPSILON * scale2)) return -1; /* also 0 and NaN */
     double inverse = 1.0 / sqrt(length2);
     for (int k = 0; k < 3; k++) f->n[k] = n[k] * inverse;
     f->d = (f->n[0] * (a[0] + b[0] + c[0]) + f->n[1] * (a[1] + b[1] + c[1]) + f->n[2] * (a[2] + b[2] + c[2])) / 3.0;
@@ -150,7 +150,6 @@ static void horizon(Hull *h, int fi, int e0, const double *eye, int depth) {
     int count = e0 < 0 ? 3 : 2;
     for (int k = 0; k < count; k++) {
         int e = (first + k) % 3;
-        f = &h->f[fi];
         int g = f->nb[e];
         Face *fg = &h->f[g];
         if (fg->stamp == h->iter && fg->visible) continue;
@@ -197,9 +196,8 @@ static int add_point(Hull *h, int fi) {
     }
     int base = h->nf;
     for (int k = 0; k < h->nh; k++) {
-        const Face *f = &h->f[h->hf[k]];
-        int a = f->v[h->he[k]], b = f->v[(h->he[k] + 1) % 3];
-        int out = h->f[h->hf[k]].nb[h->he[k]], oute = h->f[h->hf[k]].nbe[h->he[k]];
+        const Face *f = &h->f[h->hf[k]]; /* read before new_face may move the faces */
+        int a = f->v[h->he[k]], b = f->v[(h->he[k] + 1) % 3], out = f->nb[h->he[k]], oute = f->nbe[h->he[k]];
         int g = new_face(h, a, b, eye);
         if (g < 0) return -1;
         link_faces(h, g, 0, out, oute);
@@ -452,11 +450,12 @@ static int triplet(Hull *h, const double *clouds, const double *gains, int P, in
     size_t most = (size_t)P * (size_t)N;
     double *reduced = malloc(sizeof(double) * 3 * (most ? most : 1));
     double *points = malloc(sizeof(double) * 3 * (most ? most : 1));
-    double *all = malloc(sizeof(double) * 3 * (most ? most : 1) * (size_t)Q);
+    double *all = NULL; /* the cases' vertices: at most Q times the reduced count */
+    char *all_vertex = NULL;
     int *owner = malloc(sizeof(int) * (most ? most : 1));
     char *is_vertex = malloc(most ? most : 1);
     int status = -2;
-    if (!reduced || !points || !all || !owner || !is_vertex) goto done;
+    if (!reduced || !points || !owner || !is_vertex) goto done;
     int count = 0;
     for (int p = 0; p < P; p++) {
         const double *cloud = clouds + (size_t)p * N * 3;
@@ -472,6 +471,11 @@ static int triplet(Hull *h, const double *clouds, const double *gains, int P, in
             }
     }
     size_t total = 0;
+    all = malloc(sizeof(double) * 3 * (size_t)(count ? count : 1) * (size_t)Q);
+    if (!all) {
+        status = -2;
+        goto done;
+    }
     for (int q = 0; q < Q; q++) {
         for (int i = 0; i < count; i++) {
             const double *gain = gains + 3 * ((size_t)owner[i] * Q + q);
@@ -486,14 +490,14 @@ static int triplet(Hull *h, const double *clouds, const double *gains, int P, in
         status = -1;
         goto done;
     }
-    char *all_vertex = malloc(total ? total : 1);
+    all_vertex = malloc(total ? total : 1);
     if (!all_vertex) {
         status = -2;
         goto done;
     }
     status = hull_points(h, all, (int)total, flat, &volumes[Q], all_vertex);
-    free(all_vertex);
 done:
+    free(all_vertex);
     free(reduced);
     free(points);
     free(all);

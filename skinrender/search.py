@@ -239,8 +239,9 @@ def triplet_volumes_naive(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
 
 SMALL_SET = 100
 """Reflectance sets up to this size skip the per-illuminant vertex reduction:
-ten more hulls cost more than they save (30 skin spectra, sensor 9, best of
-five runs over 100 triplets: 0.91 ms per triplet without, 1.08 ms with)."""
+for them ten more hulls save nothing (30 skin spectra, sensor 9, compiled
+kernel, three alternating runs over 60 triplets: 0.63–0.70 ms per triplet
+either way); the 1269 Munsell chips need it."""
 
 QHULL_OPTIONS = "Qt Q5 Q8"
 """Qhull options of the fast method: ``Qt`` (triangulated output, scipy's
