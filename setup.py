@@ -1,7 +1,7 @@
 """
 Build of skinrender's one compiled module; everything else is in pyproject.toml.
 
-``skinrender._hull3d`` is the Stage 3 search's convex-hull kernel (C, needing
+``skinrender.evaluation._hull3d`` is the Stage 3 search's convex-hull kernel (C, needing
 only Python's headers). It is optional: without a C compiler the package still
 installs, and the search uses Qhull for every hull (several times slower) and
 says so once.
@@ -9,4 +9,4 @@ says so once.
 
 from setuptools import Extension, setup
 
-setup(ext_modules=[Extension("skinrender._hull3d", sources=["skinrender/_hull3d.c"], optional=True)])
+setup(ext_modules=[Extension("skinrender.evaluation._hull3d", sources=["skinrender/evaluation/_hull3d.c"], optional=True)])

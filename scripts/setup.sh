@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Create .venv (Python >= 3.11) and install skinrender with its test extras.
+# Create .venv (Python >= 3.11) and install skinrender with every extra and the test tools.
 # Needs: python3 with venv (Debian: apt-get install python3 python3-venv).
 # Rendering is fastest with Mitsuba's llvm_ad_spectral, which needs libLLVM >= 16
 # (Debian 12 ships 15, which makes drjit abort): when none is found and apt-get
@@ -24,4 +24,4 @@ if [ -z "${SKINRENDER_NO_APT:-}" ] && ! ls /usr/lib/*/libLLVM.so.1[6-9]* /usr/li
     fi
 fi
 .venv/bin/python -m pip install --quiet --upgrade pip
-.venv/bin/python -m pip install --quiet -e ".[test]"
+.venv/bin/python -m pip install --quiet -e ".[all,test]"

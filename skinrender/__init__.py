@@ -4,8 +4,26 @@ skinrender
 
 Design and validate three-channel cameras for skin detection under changing
 light: the analytic camera model of Martinkauppi et al. (Eqs. 1–11), its
-datasets, Stage 1 illuminant selection, and (in later modules) gamut
-evaluation, spectral rendering and skin detection.
+datasets, Stage 1 illuminant selection, gamut evaluation and the Stage 3
+sensor search, the skin locus and detection, continuous camera design, and
+spectral rendering with Mitsuba 3 validated against the analytic model.
+
+The package is built in layers, each importing only from those below it
+(import-linter contracts in ``pyproject.toml`` keep it so):
+
+1.  :mod:`~skinrender.spectra`, :mod:`~skinrender.constants`,
+    :mod:`~skinrender.errors`, :mod:`~skinrender.hints`,
+    :mod:`~skinrender.methods`, :mod:`~skinrender.extras`;
+2.  :mod:`~skinrender.datasets`;
+3.  :mod:`~skinrender.model`: illuminants, camera, Eqs. 1–11, Stage 1;
+4.  :mod:`~skinrender.evaluation`: gamut, locus, detection;
+5.  :mod:`~skinrender.design` (bank, criteria, search, optimisation) and,
+    independent of it, :mod:`~skinrender.rendering`;
+6.  :mod:`~skinrender.studies`: tables, figures, reproduction, benchmarks;
+7.  :mod:`~skinrender.cli`.
+
+A name ``skinrender.<name>`` is either one of these layer modules or a public
+function, class or constant (below); never both.
 
 Units throughout: wavelength in nm, temperature in K, spectral radiance in
 W·m⁻²·sr⁻¹·nm⁻¹, reflectance as a fraction in [0, 1], responses in output
@@ -22,11 +40,19 @@ Examples
 
 from __future__ import annotations
 
-from .camera import (
-    CHANNELS,
+from .constants import TEMPERATURES_PAPER
+from .datasets import SpectralSet, list_cameras, list_reflectances, reflectances
+from .design.optimise import Design, optimise_camera
+from .design.search import SearchResult, search
+from .errors import SkinrenderError
+from .evaluation.detection import Detection, detect
+from .evaluation.gamut import Gamut, gamut, gamut_all_calibrations, gamut_calibration, gamut_volume
+from .evaluation.locus import SkinLocus, skin_locus
+from .model.camera import CHANNELS, Camera, camera
+from .model.illuminant import Illuminant, illuminant
+from .model.response import (
     NORMALISATIONS,
-    Camera,
-    camera,
+    gain,
     knee,
     measure,
     ncc,
@@ -35,25 +61,12 @@ from .camera import (
     response_raw,
     white_coefficient,
 )
-from .constants import TEMPERATURES_PAPER
-from .datasets import SpectralSet, list_cameras, list_reflectances, reflectances
-from .errors import SkinrenderError
-from .gamut import Gamut, gamut, gamut_all_calibrations, gamut_calibration, gamut_volume
-from .illuminant import Illuminant, illuminant
-from .illuminants import (
-    illuminant_selection,
-    illuminant_set,
-    illuminant_track,
-    select_illuminants,
-)
+from .model.stage1 import illuminant_selection, illuminant_set, illuminant_track, select_illuminants
+from .rendering.balance import Rendering, render
+from .rendering.scene import ChartScene, load_scene
+from .rendering.validation import validate, validate_gamut
 from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse, planck, resample
-# Submodules search, render and validate keep their names: their main
-# functions are imported from them (from skinrender.render import render).
-from .search import SearchResult
-from .scene import ChartScene, load_scene
-from .render import Rendering
-from .validate import table1, validate_gamut
-from .locus import SkinLocus, detect, skin_locus
+from .studies.tables import table1
 
 __version__ = "0.1.0"
 
@@ -63,12 +76,20 @@ __all__ = [
     "NORMALISATIONS",
     "TEMPERATURES_PAPER",
     "Camera",
+    "ChartScene",
+    "Design",
+    "Detection",
+    "Gamut",
     "Illuminant",
+    "Rendering",
+    "SearchResult",
+    "SkinLocus",
     "SkinrenderError",
     "SpectralSet",
     "WavelengthGrid",
-    "Gamut",
     "camera",
+    "detect",
+    "gain",
     "gamut",
     "gamut_all_calibrations",
     "gamut_calibration",
@@ -82,23 +103,22 @@ __all__ = [
     "knee",
     "list_cameras",
     "list_reflectances",
+    "load_scene",
     "measure",
     "ncc",
     "normalisation_factor",
+    "optimise_camera",
     "planck",
     "reflectances",
+    "render",
     "resample",
     "response",
     "response_raw",
+    "search",
     "select_illuminants",
-    "white_coefficient",
-    "SearchResult",
-    "ChartScene",
-    "load_scene",
-    "Rendering",
-    "validate_gamut",
-    "table1",
-    "SkinLocus",
     "skin_locus",
-    "detect",
+    "table1",
+    "validate",
+    "validate_gamut",
+    "white_coefficient",
 ]

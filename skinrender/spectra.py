@@ -33,6 +33,7 @@ import numpy as np
 from .constants import CONSTANT_C, CONSTANT_H, CONSTANT_K_B
 from .errors import SkinrenderError
 from .hints import ArrayLike, Literal, NDArrayFloat
+from .methods import parse_range, validate_method
 
 __all__ = [
     "WavelengthGrid",
@@ -47,10 +48,12 @@ __all__ = [
     "validate_spectra",
 ]
 
-EXTRAPOLATIONS = ("refuse", "zero", "constant")
-"""Rules for wavelengths of the grid outside the measured range:
-``refuse`` (an error), ``zero`` (the value is 0 there, the usual rule for
-sensor sensitivities) and ``constant`` (the nearest measured value is held)."""
+EXTRAPOLATIONS = {
+    "refuse": "an error (default)",
+    "zero": "0 outside the measured range (the usual rule for sensor sensitivities)",
+    "constant": "the nearest measured value is held",
+}
+"""Rules for wavelengths of the grid outside the measured range, name → meaning."""
 
 
 @dataclass(frozen=True)
@@ -126,16 +129,7 @@ class WavelengthGrid:
     @classmethod
     def parse(cls, text: str) -> WavelengthGrid:
         """Parse ``START:END:STEP`` (nm), e.g. ``400:700:5``."""
-        parts = str(text).replace("nm", "").split(":")
-        try:
-            if len(parts) != 3:
-                raise ValueError
-            start, end, step = (float(part) for part in parts)
-        except ValueError:
-            raise SkinrenderError(
-                f"grid must be START:END:STEP in nm (e.g. 400:700:1), got {text!r}"
-            ) from None
-        return cls(start, end, step)
+        return cls(*parse_range(text, "grid", "400:700:1"))
 
 
 GRID_DEFAULT = WavelengthGrid(400.0, 700.0, 1.0)
@@ -181,10 +175,7 @@ def resample(
     x = np.asarray(wavelengths, dtype=np.float64)
     y = np.asarray(values, dtype=np.float64)
     target = grid.wavelengths if isinstance(grid, WavelengthGrid) else np.asarray(grid, np.float64)
-    if extrapolation not in EXTRAPOLATIONS:
-        raise SkinrenderError(
-            f"extrapolation must be one of {', '.join(EXTRAPOLATIONS)}, got {extrapolation!r}"
-        )
+    validate_method(extrapolation, EXTRAPOLATIONS, "extrapolation")
     if x.ndim != 1 or x.size != y.shape[-1]:
         raise SkinrenderError(
             f"{source}: {x.size} wavelengths but spectra of length {y.shape[-1]}"

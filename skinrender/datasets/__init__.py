@@ -17,6 +17,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import SkinrenderError
+from ..methods import validate_method
 from ..spectra import EXTRAPOLATIONS, read_spectra_csv
 from . import colour_science, luxpy_munsell, psychtoolbox, skin_model  # noqa: F401  (registration)
 from .registry import REGISTRY_CAMERAS, REGISTRY_REFLECTANCES, SpectralSet, lookup, unknown
@@ -67,8 +68,7 @@ def reflectances(spec: str | SpectralSet, extrapolation: str = "refuse") -> Spec
         return spec
     spec = str(spec).strip()
     if looks_like_path(spec):
-        if extrapolation not in EXTRAPOLATIONS:
-            raise SkinrenderError(f"extrapolation must be one of {', '.join(EXTRAPOLATIONS)}, got {extrapolation!r}")
+        validate_method(extrapolation, EXTRAPOLATIONS, "extrapolation")
         table = read_spectra_csv(spec, kind="reflectance")
         return SpectralSet(
             Path(spec).name, table.wavelengths, table.values, table.names, source=spec,

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import SkinrenderError
+from ..extras import require
 from .registry import REGISTRY_REFLECTANCES, SpectralSet, register
 
 __all__ = ["sds_munsell_joensuu", "path_luxpy_rfls"]
@@ -37,12 +37,8 @@ LICENCE_MUNSELL = "luxpy package data (GPLv3 package; data free for research); r
 
 def path_luxpy_rfls() -> Path:
     """Folder of luxpy's reflectance data files, found without importing luxpy."""
+    require("munsell", "the 'munsell' set (read from the luxpy package)")
     spec = importlib.util.find_spec("luxpy")
-    if spec is None or spec.origin is None:
-        raise SkinrenderError(
-            "the 'munsell' set is read from the luxpy package, which is not installed: "
-            "pip install luxpy"
-        )
     return Path(spec.origin).parent / "data" / "rfls"
 
 

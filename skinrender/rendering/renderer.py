@@ -2,19 +2,18 @@
 Spectral rendering of chart scenes with Mitsuba 3
 =================================================
 
-A chart scene (:mod:`skinrender.scene`) under a Planck blackbody emitter, seen
+A chart scene (:mod:`skinrender.rendering.scene`) under a Planck blackbody emitter, seen
 through a camera's three sensor curves with Mitsuba's ``specfilm``, then white
 balanced as Eq. 4 does.
 
 -   :func:`scene_dict`: the Mitsuba scene of a chart, camera and temperature.
 -   :func:`render_raw`: one render: per pixel and channel the specfilm value
     ``∫ L(λ) s_k(λ) dλ`` (L in W·m⁻²·sr⁻¹·nm⁻¹, λ in nm), float32.
--   :func:`patch_statistics`: patch means and standard errors.
--   :func:`render`, :class:`Rendering`: the Eq. 4 image of a (prevailing,
-    calibration) pair; the white balance comes from the white reference patch
-    rendered under the calibration illuminant.
--   :func:`write_exr`, :func:`read_exr`, :func:`write_preview`: float32 EXR
-    with channels named by the camera, and a tone-mapped PNG.
+-   :class:`ChartRenderer`, :func:`chart_renderer`: a chart and camera loaded
+    once, rendered at any temperature.
+
+The white balance of renders is :mod:`skinrender.rendering.balance`; EXR and
+PNG files are :mod:`skinrender.rendering.exr`.
 
 Modelling choices
 -----------------
@@ -48,51 +47,51 @@ Modelling choices
 
 from __future__ import annotations
 
+from __future__ import annotations
+
 import time
-from dataclasses import dataclass, field
-from pathlib import Path
+from dataclasses import dataclass
 
 import numpy as np
 
-from .camera import (
-    NORMALISATIONS,
-    Camera,
-    camera,
-    knee as apply_knee,
-    normalisation_factor,
-    white_coefficient_from_whites,
-)
-from .constants import CONSTANT_OUTPUT_SCALE
-from .errors import SkinrenderError
-from .hints import NDArrayFloat
-from .illuminant import illuminant
+from ..errors import SkinrenderError
+from ..hints import NDArrayFloat
+from ..methods import validate_method
+from ..model.camera import Camera, camera
+from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .scene import ChartScene, load_scene
-from .spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .variants import choose_variant, mitsuba
 
 __all__ = [
     "SAMPLERS",
     "CHANNEL_AREA_RATIO_SEPARATE",
+    "CHANNEL_GROUPINGS",
     "FWHM_SEPARATE",
     "QUALITY_PRESETS",
+    "EMITTERS",
+    "channel_names",
     "scene_dict",
     "RawRender",
     "render_raw",
     "ChartRenderer",
     "chart_renderer",
-    "EMITTERS",
-    "PatchStatistics",
-    "patch_statistics",
-    "Rendering",
-    "render",
-    "write_exr",
-    "read_exr",
-    "write_preview",
-    "channel_names",
 ]
 
-SAMPLERS = ("independent", "stratified", "multijitter", "orthogonal", "ldsampler")
-"""Mitsuba samplers; ``multijitter`` (stratified) is far better on flat patches."""
+SAMPLERS = {
+    "independent": "independent uniform samples",
+    "stratified": "stratified samples",
+    "multijitter": "correlated multi-jittered samples (default; far better on flat patches)",
+    "orthogonal": "orthogonal-array samples",
+    "ldsampler": "low-discrepancy (Sobol-type) samples",
+}
+"""Mitsuba samplers, name → meaning."""
+
+CHANNEL_GROUPINGS = {
+    "auto": "separate passes for the impulse, narrow gbell or very unequal channels, else one",
+    "together": "the three channels in one pass",
+    "separate": "one pass per channel",
+}
+"""How the three channels are rendered, name → meaning."""
 
 CHANNEL_AREA_RATIO_SEPARATE = 4.0
 """With ``channels="auto"``, render channels separately when the largest
@@ -191,7 +190,11 @@ def scene_dict(
 EMITTER_REFINE = 10
 """The tabulated Planck emitter is sampled every ``grid.step / EMITTER_REFINE`` nm."""
 
-EMITTERS = ("tabulated", "blackbody")
+EMITTERS = {
+    "tabulated": "Planck tabulated every grid.step / EMITTER_REFINE nm, one kernel for every temperature (default)",
+    "blackbody": "Mitsuba's blackbody plugin (recompiled for every temperature)",
+}
+"""Planck emitters, name → meaning."""
 
 
 def emitter_grid(grid: WavelengthGrid) -> NDArrayFloat:
@@ -202,8 +205,7 @@ def emitter_grid(grid: WavelengthGrid) -> NDArrayFloat:
 def _emitter(temperature: float, grid: WavelengthGrid, kind: str) -> dict:
     if kind == "blackbody":
         return {"type": "blackbody", "temperature": float(temperature)}
-    if kind != "tabulated":
-        raise SkinrenderError(f"emitter must be one of {', '.join(EMITTERS)}, got {kind!r}")
+    validate_method(kind, EMITTERS, "emitter")
     lam = emitter_grid(grid)
     values = planck(lam, temperature)
     return _spectrum(lam, values / _peak(values))
@@ -246,8 +248,7 @@ class RawRender:
 
 
 def _separate(cam: Camera, grid: WavelengthGrid, channels: str) -> bool:
-    if channels not in ("auto", "together", "separate"):
-        raise SkinrenderError(f"channels must be auto, together or separate, got {channels!r}")
+    validate_method(channels, CHANNEL_GROUPINGS, "channels")
     if channels != "auto":
         return channels == "separate"
     if cam.kind == "impulse" or (cam.kind == "gbell" and cam.fwhm <= FWHM_SEPARATE):
@@ -271,12 +272,10 @@ class ChartRenderer:
                  grid: WavelengthGrid = GRID_DEFAULT, channels: str = "auto", emitter: str = "tabulated"):
         self.scene = load_scene(scene)
         self.camera = camera(camera_)
-        if sampler not in SAMPLERS:
-            raise SkinrenderError(f"sampler must be one of {', '.join(SAMPLERS)}, got {sampler!r}")
+        validate_method(sampler, SAMPLERS, "sampler")
         if not (isinstance(spp, (int, np.integer)) and not isinstance(spp, bool) and spp >= 1):
             raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
-        if emitter not in EMITTERS:
-            raise SkinrenderError(f"emitter must be one of {', '.join(EMITTERS)}, got {emitter!r}")
+        validate_method(emitter, EMITTERS, "emitter")
         self.sampler, self.grid, self.emitter = sampler, grid, emitter
         self.variant = choose_variant(variant)
         self.groups = [(0,), (1,), (2,)] if _separate(self.camera, grid, channels) else [(0, 1, 2)]
@@ -380,215 +379,3 @@ def render_raw(
 
     return chart_renderer(scene, camera_, spp, sampler, variant, grid, channels, emitter).raw(temperature, seed)
 
-
-@dataclass(frozen=True)
-class PatchStatistics:
-    """Per patch and channel: ``mean``, ``standard_error`` (std/√n) and pixel ``count``."""
-
-    mean: NDArrayFloat
-    standard_error: NDArrayFloat
-    count: NDArrayFloat
-
-
-def patch_statistics(image: NDArrayFloat, scene: ChartScene) -> PatchStatistics:
-    """Means and standard errors of every patch's inner pixels, shape ``(patches, channels)``."""
-    means, errors, counts = [], [], []
-    for index in range(len(scene.patches)):
-        rows, columns = scene.patch_pixels(index)
-        pixels = np.asarray(image[rows, columns], dtype=np.float64).reshape(-1, image.shape[-1])
-        means.append(pixels.mean(axis=0))
-        errors.append(pixels.std(axis=0, ddof=1) / np.sqrt(len(pixels)))
-        counts.append(len(pixels))
-    return PatchStatistics(np.array(means), np.array(errors), np.array(counts))
-
-
-@dataclass(frozen=True)
-class Rendering:
-    """
-    The Eq. 4 image of a (prevailing, calibration) pair.
-
-    Attributes
-    ----------
-    image
-        ``(height, width, 3)`` float32, output units (white = 255 at p = c).
-    patches
-        Patch statistics of ``image``.
-    white_relative_error
-        Relative standard error of the white reference under the prevailing
-        and the calibration illuminant, shape ``(2, 3)``.
-    """
-
-    scene: ChartScene
-    camera: Camera
-    prevailing: float
-    calibration: float
-    normalization: str
-    knee: bool
-    image: NDArrayFloat
-    patches: PatchStatistics
-    white_relative_error: NDArrayFloat
-    raw: tuple[RawRender, ...]
-    info: dict = field(default_factory=dict)
-
-    @property
-    def variant(self) -> str:
-        """The Mitsuba variant used."""
-        return self.raw[0].variant
-
-    @property
-    def seconds(self) -> float:
-        """Rendering time, s."""
-        return sum(r.seconds for r in self.raw)
-
-
-def _temperature(spec) -> float:
-    item = illuminant(spec)
-    if item.temperature is None:
-        raise SkinrenderError(f"rendering needs a Planckian illuminant (kelvin, A or H), got {spec!r}")
-    return float(item.temperature)
-
-
-def pair_factor(white_p: NDArrayFloat, white_c: NDArrayFloat, normalization: str, prevailing: float,
-                calibration: float, grid: WavelengthGrid = GRID_DEFAULT) -> float:
-    """
-    The Eq. 10 factor of one (prevailing, calibration) pair: WP (Eq. 8) from the
-    channel whites for ``white``, else ``F_p / F_c`` (Eqs. 5–7) of the two Planck SPDs (K).
-    """
-
-    if normalization == "white":
-        return float(white_coefficient_from_whites(white_p, white_c))
-    f = normalisation_factor([prevailing, calibration], normalization, grid)
-    return float(f[0] / f[1])
-
-
-def balance(
-    raw_prevailing: RawRender,
-    raw_calibration: RawRender,
-    scene: ChartScene,
-    cam: Camera,
-    normalization: str = "white",
-    knee: bool = False,
-    grid: WavelengthGrid = GRID_DEFAULT,
-    scale: float = CONSTANT_OUTPUT_SCALE,
-) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat]:
-    """
-    Eq. 4 (with Eq. 10) applied to raw renders: ``v · F · raw_p / white_c``.
-
-    ``white_c`` is the white reference's mean under the calibration render;
-    ``F`` is WP (Eq. 8) from the two renders' whites for ``white``, or
-    ``F_p / F_c`` (Eqs. 5–7) for the others. Returns the image, the
-    whites' relative standard errors ``(2, 3)`` and the white ratios
-    ``white_p / white_c`` ``(3,)``.
-    """
-
-    white = scene.white_index
-    stats_p = patch_statistics(raw_prevailing.radiance, scene)
-    stats_c = patch_statistics(raw_calibration.radiance, scene)
-    white_p, white_c = stats_p.mean[white], stats_c.mean[white]
-    if np.any(white_c <= 0):
-        raise SkinrenderError(f"camera {cam.name}: a channel sees no light from the white reference at "
-                              f"{raw_calibration.temperature:g} K")
-    factor = pair_factor(white_p, white_c, normalization, raw_prevailing.temperature, raw_calibration.temperature,
-                         grid)
-    image = (scale * factor / white_c) * raw_prevailing.radiance
-    if knee:
-        image = apply_knee(image)
-    relative = np.array([stats_p.standard_error[white] / white_p, stats_c.standard_error[white] / white_c])
-    return image.astype(np.float32), relative, white_p / white_c
-
-
-def render(
-    scene: ChartScene | str,
-    camera_: Camera | str,
-    prevailing,
-    calibration,
-    normalization: str = "white",
-    knee: bool = False,
-    spp: int = 256,
-    seed: int = 0,
-    sampler: str = "multijitter",
-    variant: str | None = None,
-    grid: WavelengthGrid = GRID_DEFAULT,
-    channels: str = "auto",
-    cache: dict | None = None,
-    emitter: str = "tabulated",
-) -> Rendering:
-    """
-    Render a chart through a camera under ``prevailing`` light, white balanced
-    to ``calibration`` (Eq. 4).
-
-    Parameters
-    ----------
-    prevailing, calibration
-        Planckian illuminants: kelvin, ``A`` (2856 K) or ``H`` (2300 K).
-    normalization, knee
-        As :func:`skinrender.response`.
-    spp, seed, sampler, variant, grid, channels
-        As :func:`render_raw`. The calibration render uses ``seed + 1`` so
-        that its noise is independent of the prevailing render's.
-    cache
-        A dict to reuse raw renders across calls, keyed by temperature.
-
-    Returns
-    -------
-    :class:`Rendering`
-    """
-
-    chart = load_scene(scene)
-    cam = camera(camera_)
-    if normalization not in NORMALISATIONS:
-        raise SkinrenderError(f"normalization must be one of {', '.join(NORMALISATIONS)}, got {normalization!r}")
-    p, c = _temperature(prevailing), _temperature(calibration)
-    cache = {} if cache is None else cache
-
-    def raw(temperature: float, offset: int) -> RawRender:
-        key = (temperature, offset)
-        if key not in cache:
-            cache[key] = render_raw(chart, cam, temperature, spp, seed + offset, sampler, variant, grid, channels,
-                                    emitter)
-        return cache[key]
-
-    raw_p = raw(p, 0)
-    raw_c = raw_p if c == p else raw(c, 1)
-    image, white_error, white_ratio = balance(raw_p, raw_c, chart, cam, normalization, knee, grid)
-    return Rendering(chart, cam, p, c, normalization, knee, image, patch_statistics(image, chart), white_error,
-                     (raw_p,) if raw_c is raw_p else (raw_p, raw_c), {"white_ratio": white_ratio})
-
-
-def write_exr(path: str | Path, image: NDArrayFloat, names: tuple[str, ...], attributes: dict | None = None) -> Path:
-    """Write a float32 EXR with one named channel per last-axis slice."""
-    import OpenEXR
-
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    header = {"compression": OpenEXR.ZIP_COMPRESSION, "type": OpenEXR.scanlineimage}
-    for key, value in (attributes or {}).items():
-        header[key] = str(value)
-    data = {name: np.ascontiguousarray(image[..., k], dtype=np.float32) for k, name in enumerate(names)}
-    with OpenEXR.File(header, data) as handle:
-        handle.write(str(path))
-    return path
-
-
-def read_exr(path: str | Path, names: tuple[str, ...]) -> NDArrayFloat:
-    """Read the named channels of an EXR (EXR files sort channels by name: look them up by name)."""
-    import OpenEXR
-
-    with OpenEXR.File(str(path)) as handle:
-        channels = handle.channels()
-        missing = [n for n in names if n not in channels]
-        if missing:
-            raise SkinrenderError(f"{path}: no channel(s) {', '.join(missing)}; it has {', '.join(sorted(channels))}")
-        return np.stack([np.asarray(channels[n].pixels, dtype=np.float32) for n in names], axis=-1)
-
-
-def write_preview(path: str | Path, image: NDArrayFloat, scale: float = CONSTANT_OUTPUT_SCALE) -> Path:
-    """A tone-mapped PNG preview: output units / ``scale``, clipped to [0, 1], sRGB transfer curve."""
-    import matplotlib.image
-
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    linear = np.clip(np.asarray(image, dtype=np.float64) / scale, 0.0, 1.0)
-    encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
-    matplotlib.image.imsave(path, encoded)
-    return path

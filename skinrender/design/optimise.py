@@ -26,17 +26,20 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize
 
-from .constants import TEMPERATURES_PAPER
-from .errors import SkinrenderError
-from .hints import ArrayLike, NDArrayFloat
-from .search import sensor_bank, triplet_volumes_fast
-from .spectra import GRID_DEFAULT, WavelengthGrid
+from ..constants import TEMPERATURES_PAPER
+from ..hints import ArrayLike, NDArrayFloat
+from ..methods import validate_method
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+from .bank import sensor_bank
+from .criteria import triplet_false_positive_rates, triplet_volumes_fast
 
 __all__ = ["OBJECTIVES", "objective", "Design", "optimise_camera"]
 
-OBJECTIVES = ("ratio", "detection")
-"""``ratio``: skin/Munsell all-calibration gamut volume (the paper's Table 5);
-``detection``: Munsell false-positive rate inside the skin locus."""
+OBJECTIVES = {
+    "detection": "Munsell false-positive rate inside the skin locus",
+    "ratio": "skin/Munsell all-calibration gamut volume (the paper's Table 5)",
+}
+"""Design objectives (lower is better), name → meaning."""
 
 BOUNDS_NM = (400.0, 700.0)
 """Peaks stay on the integration range, nm."""
@@ -59,8 +62,7 @@ def objective(
     or Munsell gamut (nothing to minimise there).
     """
 
-    if kind not in OBJECTIVES:
-        raise SkinrenderError(f"objective must be one of {', '.join(OBJECTIVES)}, got {kind!r}")
+    validate_method(kind, OBJECTIVES, "objective")
     peaks = np.sort(np.asarray(peaks, dtype=np.float64))
     if peaks[0] < BOUNDS_NM[0] or peaks[-1] > BOUNDS_NM[1] or np.any(np.diff(peaks) <= 0) or fwhm <= 0 or slope <= 0:
         return np.inf
@@ -68,8 +70,6 @@ def objective(
     if kind == "ratio":
         volumes = [triplet_volumes_fast(bank, [0, 1, 2])[-1] for bank in banks]
         return volumes[0] / volumes[1] if volumes[0] > 0 and volumes[1] > 0 else np.inf
-    from .locus import triplet_false_positive_rates
-
     rates = triplet_false_positive_rates(banks[0], banks[1], [0, 1, 2])
     return float(rates[0]) if np.isfinite(rates[0]) else np.inf  # the same for every calibration
 

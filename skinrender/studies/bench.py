@@ -20,10 +20,11 @@ import time
 
 import numpy as np
 
-from .camera import camera, response
-from .constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
-from .datasets import reflectances
-from .spectra import GRID_DEFAULT, planck
+from ..model.camera import camera
+from ..model.response import response
+from ..constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
+from ..datasets import reflectances
+from ..spectra import GRID_DEFAULT, planck
 
 __all__ = ["machine", "bench_analytic", "bench_search", "bench_render"]
 
@@ -137,14 +138,16 @@ def bench_search(
         ``max_rel_difference`` the largest relative volume difference.
     -   ``full_search_s``: the whole 10 nm search on every core.
     -   ``hull_kernel``: ``quickhull`` (compiled) or ``qhull`` (no C compiler
-        at install time; see :data:`skinrender.search.HULL_KERNEL`).
+        at install time; see :data:`skinrender.evaluation.hull.HULL_KERNEL`).
     -   ``growth``: per grid step, the triplet count and the time — measured in
         full for ``full_steps``, estimated from ``sample`` triplets timed on
         one core (divided by the worker count) for the others, and marked so.
     """
 
-    from .search import (HULL_KERNEL, positions_grid, search, sensor_bank, triplet_volumes_fast,
-                         triplet_volumes_naive, triplets)
+    from ..design.bank import positions_grid, sensor_bank, triplets
+    from ..design.criteria import triplet_volumes_fast, triplet_volumes_naive
+    from ..design.search import search
+    from ..evaluation.hull import HULL_KERNEL
 
     grid = GRID_DEFAULT
     skin, munsell = reflectances("skin").on(grid), reflectances("munsell").on(grid)
@@ -229,10 +232,11 @@ def bench_render(
         the pairs are Eq. 4 applied afterwards.
     """
 
-    from .render import render, render_raw
-    from .scene import load_scene
-    from .validate import analytic_reference, validate
-    from .variants import VARIANTS_SPECTRAL, variant_works, choose_variant
+    from ..rendering.balance import render
+    from ..rendering.renderer import render_raw
+    from ..rendering.scene import load_scene
+    from ..rendering.validation import analytic_reference, validate
+    from ..rendering.variants import VARIANTS_SPECTRAL, variant_works, choose_variant
 
     chart = load_scene("macbeth")
     cam = camera(camera_spec)
@@ -253,7 +257,7 @@ def bench_render(
                 error = float(np.sqrt(np.mean((rendering.patches.mean / reference - 1) ** 2)))
                 curve.append({"variant": variant, "sampler": sampler, "spp": spp, "seconds": best, "rel_error": error})
     for step in (5.0, 10.0):
-        from .spectra import WavelengthGrid
+        from ..spectra import WavelengthGrid
 
         coarse = WavelengthGrid(400.0, 700.0, step)
         start = time.perf_counter()
@@ -290,29 +294,3 @@ def bench_render(
         "all_pairs": all_pairs_worst,
         "elapsed_s": sum(row["seconds"] for row in curve),
     }
-
-
-def plot_render_curve(result: dict, path) -> "Path":
-    """Error against time (log–log) of :func:`bench_render`'s curve, one line per variant and sampler."""
-    from pathlib import Path
-
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure, axis = plt.subplots(figsize=(6, 4.2))
-    lines = sorted({(r["variant"], r["sampler"]) for r in result["curve"] if r["variant"] != "analytic"})
-    for variant, sampler in lines:
-        rows = [r for r in result["curve"] if (r["variant"], r["sampler"]) == (variant, sampler)]
-        axis.loglog([r["seconds"] for r in rows], [r["rel_error"] for r in rows], "o-", label=f"{variant}, {sampler}")
-        for r in rows:
-            axis.annotate(str(r["spp"]), (r["seconds"], r["rel_error"]), fontsize=6)
-    axis.set(xlabel="render time per Macbeth image (s)", ylabel="RMS relative error of patch means",
-             title="Render error against time (labels: spp)")
-    axis.legend(fontsize=7)
-    figure.tight_layout()
-    path = Path(path)
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return path

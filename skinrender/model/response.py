@@ -1,14 +1,16 @@
 """
-Camera model
-============
+Camera response
+===============
 
-The paper's camera: three sensors (gbell, impulse or measured), the raw
+The paper's Eqs. 1–11 for a :class:`~skinrender.model.camera.Camera`: the raw
 response of Eq. 1, the white-balanced response of Eq. 4 with the illuminant
-normalisations of Eqs. 5–8 (and the Eq. 10 factor), the knee of Eq. 11, the NCC
+normalisations of Eqs. 5–8 (the Eq. 10 factor), the knee of Eq. 11, the NCC
 chromaticities of Eq. 2 and the measure of Eq. 3.
 
--   :class:`Camera`, :func:`camera`: a camera from a spec string.
 -   :data:`NORMALISATIONS`, :func:`normalisation_factor`, :func:`white_coefficient`.
+-   :func:`gain`: the one implementation of the Eq. 4 gain ``v · F / W_c``
+    (white balance and Eq. 10 factor), used by the analytic model, the
+    Stage 3 search, the renderer's white balance and the validation.
 -   :func:`response_raw` (Eq. 1), :func:`response` (Eq. 4 / Eq. 10).
 -   :func:`knee` (Eq. 11), :func:`ncc` (Eq. 2), :func:`measure` (Eq. 3).
 
@@ -18,39 +20,36 @@ white-balanced responses in output units (``v = 255`` for a white object at
 
 References
 ----------
--   :cite:`Martinkauppi2006` : the paper, ``../shared/paper/skin-camera-paper.txt``,
-    read as ``../shared/paper/NOTES.md`` fixes it.
+-   [Martinkauppi2006]_ : the paper, Eqs. 1–11, with the errata of
+    docs/references.md (Eq. 8 scaled to 1 at p = c, Eq. 11's knee).
 """
 
 from __future__ import annotations
 
-import re
-from dataclasses import dataclass, field
-from pathlib import Path
-
 import numpy as np
 
-from .constants import (
+from ..constants import (
     CONSTANT_KNEE_CEILING,
     CONSTANT_KNEE_FACTOR,
     CONSTANT_KNEE_POINT,
     CONSTANT_OUTPUT_SCALE,
 )
-from .datasets import SpectralSet, camera_sensitivities, looks_like_path, reflectances
-from .errors import SkinrenderError
-from .hints import ArrayLike, Literal, NDArrayFloat
+from ..datasets import SpectralSet, reflectances
+from ..errors import SkinrenderError
+from ..hints import ArrayLike, Literal, NDArrayFloat
+from ..methods import validate_method
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+from .camera import Camera, camera
 from .illuminant import Illuminant, illuminants_array
-from .spectra import EXTRAPOLATIONS, GRID_DEFAULT, WavelengthGrid, gbell, impulse, read_spectra_csv
 
 __all__ = [
-    "CHANNELS",
-    "GBELL_SLOPE_DEFAULT",
-    "Camera",
-    "camera",
     "NORMALISATIONS",
+    "QUADRATURES",
     "normalisation_factor",
     "white_coefficient",
     "white_coefficient_from_whites",
+    "gain",
+    "spds_on",
     "response_raw",
     "response",
     "knee",
@@ -58,165 +57,23 @@ __all__ = [
     "measure",
 ]
 
-CHANNELS = ("R", "G", "B")
-"""Channel order of every camera: R is the longest-wavelength sensor, B the shortest."""
+NORMALISATIONS = {
+    "none": "Eq. 5: the absolute Planck SPD",
+    "560nm": "Eq. 6: SPD scaled to 100 at 560 nm",
+    "euclidean": "Eq. 7: SPD of unit Euclidean norm over the grid samples",
+    "white": "Eq. 8: the white coefficient WP (default)",
+}
+"""Illuminant normalisations (Eqs. 5–8), name → meaning."""
 
-GBELL_SLOPE_DEFAULT = 2.0
-"""Default gbell slope *b* (the paper does not give it; see :func:`skinrender.spectra.gbell`)."""
-
-NORMALISATIONS = ("none", "560nm", "euclidean", "white")
-"""Illuminant normalisations: Eq. 5 (raw SPD), Eq. 6 (100 at 560 nm), Eq. 7
-(unit Euclidean norm over the grid), Eq. 8 (white coefficient WP)."""
-
-
-@dataclass(frozen=True, eq=False)
-class Camera:
-    """
-    A three-channel camera.
-
-    Parameters
-    ----------
-    name
-        The spec it was made from (``gbell:9@450,540,610``, a camera name, a path).
-    kind
-        ``gbell``, ``impulse`` or ``measured``.
-    peaks
-        Sensor peaks in nm, in channel order R, G, B (longest first), for gbell
-        and impulse cameras.
-    fwhm
-        gbell full width at half maximum, nm (sensor *N* ⇒ ``N · 10`` nm).
-    slope
-        gbell slope *b*.
-    measured
-        Measured sensitivities (R, G, B rows) for ``kind == "measured"``.
-    """
-
-    name: str
-    kind: Literal["gbell", "impulse", "measured"]
-    peaks: tuple[float, float, float] | None = None
-    fwhm: float | None = None
-    slope: float = GBELL_SLOPE_DEFAULT
-    measured: SpectralSet | None = None
-    _cache: dict = field(default_factory=dict, repr=False)
-
-    @property
-    def channels(self) -> tuple[str, str, str]:
-        """Channel names, ``("R", "G", "B")``."""
-        return CHANNELS
-
-    def sensitivities(self, grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
-        """
-        Sensitivities on ``grid``, shape ``(3, grid.size)``, rows R, G, B.
-
-        gbell curves are evaluated at the grid wavelengths (peak 1); the
-        impulse is a unit-area delta on the grid sample of its peak (the peak
-        must lie on the grid); measured curves are linearly interpolated with
-        the dataset's extrapolation rule (zero outside the measured range for
-        bundled cameras).
-        """
-        if grid not in self._cache:
-            if self.kind == "gbell":
-                values = gbell(grid.wavelengths[None, :], np.asarray(self.peaks)[:, None], self.fwhm, self.slope)
-            elif self.kind == "impulse":
-                values = np.array([impulse(grid, peak) for peak in self.peaks])
-            else:
-                values = self.measured.on(grid)
-            values = np.ascontiguousarray(values, dtype=np.float64)
-            values.setflags(write=False)
-            self._cache[grid] = values
-        return self._cache[grid]
-
-    def __str__(self) -> str:
-        return self.name
+QUADRATURES = {
+    "sum": "the paper's Σ over the grid samples",
+    "trapezoid": "end samples weighted ½: the integral of the linearly interpolated spectra (what a renderer estimates)",
+}
+"""Quadrature rules of :func:`response`, name → meaning."""
 
 
-_PATTERN_GBELL = re.compile(
-    r"^gbell:\s*(?P<n>[0-9.eE+-]+)\s*(,\s*b\s*=\s*(?P<b>[0-9.eE+-]+))?\s*@(?P<peaks>.*)$", re.IGNORECASE
-)
-_PATTERN_IMPULSE = re.compile(r"^impulse\s*@(?P<peaks>.*)$", re.IGNORECASE)
-
-
-def _parse_peaks(text: str, spec: str) -> tuple[float, float, float]:
-    try:
-        peaks = tuple(float(p) for p in text.replace("nm", "").split(","))
-    except ValueError:
-        peaks = ()
-    if len(peaks) != 3 or not all(np.isfinite(p) and p > 0 for p in peaks):
-        raise SkinrenderError(
-            f"camera {spec!r}: expected three peak wavelengths in nm after '@', e.g. @450,540,610"
-        )
-    # channel order R, G, B: longest wavelength first
-    return tuple(sorted(peaks, reverse=True))  # type: ignore[return-value]
-
-
-def camera(spec: str | Camera, extrapolation: str = "refuse") -> Camera:
-    """
-    A camera from its spec.
-
-    Parameters
-    ----------
-    spec
-        -   ``gbell:N@P1,P2,P3``: the paper's sensor *N* (FWHM ``N · 10`` nm,
-            ``N > 0``; the paper uses 3, 5, …, 15) at peaks P1, P2, P3 nm;
-            ``gbell:N,b=B@…`` sets the slope (default
-            :data:`GBELL_SLOPE_DEFAULT`).
-        -   ``impulse@P1,P2,P3``: the paper's sensor 1.
-        -   a bundled camera name (``skinrender cameras`` lists them).
-        -   a CSV path: wavelength (nm), then R, G, B sensitivities.
-
-        Channels are ordered R, G, B from the longest peak to the shortest,
-        whatever order the peaks are written in.
-    extrapolation
-        For a CSV camera: the rule where the integration grid leaves the
-        measured range (``refuse``, the default, ``zero`` or ``constant``).
-
-    Returns
-    -------
-    :class:`Camera`
-
-    Examples
-    --------
-    >>> camera("gbell:9@450,540,610").peaks
-    (610.0, 540.0, 450.0)
-    """
-
-    if isinstance(spec, Camera):
-        return spec
-    text = str(spec).strip()
-    match = _PATTERN_GBELL.match(text)
-    if match:
-        try:
-            n = float(match["n"])
-            slope = float(match["b"]) if match["b"] else GBELL_SLOPE_DEFAULT
-        except ValueError:
-            raise SkinrenderError(f"camera {text!r}: sensor number and slope must be numbers") from None
-        if not (np.isfinite(n) and n > 0):
-            raise SkinrenderError(f"camera {text!r}: sensor number N must be > 0 (FWHM = N·10 nm)")
-        if not (np.isfinite(slope) and slope > 0):
-            raise SkinrenderError(f"camera {text!r}: slope b must be > 0")
-        return Camera(text, "gbell", _parse_peaks(match["peaks"], text), n * 10.0, slope)
-    match = _PATTERN_IMPULSE.match(text)
-    if match:
-        return Camera(text, "impulse", _parse_peaks(match["peaks"], text))
-    if text.lower().startswith(("gbell", "impulse")):
-        raise SkinrenderError(
-            f"camera {text!r}: expected 'gbell:N@P1,P2,P3', 'gbell:N,b=B@P1,P2,P3' or 'impulse@P1,P2,P3'"
-        )
-    if looks_like_path(text):
-        if extrapolation not in EXTRAPOLATIONS:
-            raise SkinrenderError(f"extrapolation must be one of {', '.join(EXTRAPOLATIONS)}, got {extrapolation!r}")
-        table = read_spectra_csv(text, kind="sensitivity", expected_columns=3)
-        if np.any(table.values.max(axis=1) <= 0):
-            raise SkinrenderError(f"{text}: a channel is zero at every wavelength")
-        measured = SpectralSet(
-            Path(text).name, table.wavelengths, table.values, CHANNELS, source=text,
-            licence="user data", extrapolation=extrapolation, kind="sensitivity",
-        )
-        return Camera(text, "measured", measured=measured)
-    return Camera(text, "measured", measured=camera_sensitivities(text))
-
-
-def _spd_on(illuminants: list[Illuminant], grid: WavelengthGrid) -> NDArrayFloat:
+def spds_on(illuminants: list[Illuminant], grid: WavelengthGrid) -> NDArrayFloat:
+    """SPDs of illuminants on ``grid``, shape ``(len(illuminants), grid.size)``, W·m⁻²·sr⁻¹·nm⁻¹."""
     return np.array([illuminant.spd(grid.wavelengths) for illuminant in illuminants])
 
 
@@ -249,10 +106,61 @@ def normalisation_factor(
     if method == "560nm":
         return (100.0 / np.array([i.spd(np.array([560.0]))[0] for i in items])).reshape(shape)
     if method == "euclidean":
-        return (1.0 / np.linalg.norm(_spd_on(items, grid), axis=-1)).reshape(shape)
+        return (1.0 / np.linalg.norm(spds_on(items, grid), axis=-1)).reshape(shape)
     raise SkinrenderError(
         f"normalization must be one of none, 560nm, euclidean (white has no per-illuminant factor), got {method!r}"
     )
+
+
+def gain(
+    white_p: ArrayLike,
+    white_c: ArrayLike,
+    normalization: str = "white",
+    factor_p: ArrayLike | None = None,
+    factor_c: ArrayLike | None = None,
+    scale: float = CONSTANT_OUTPUT_SCALE,
+) -> NDArrayFloat:
+    """
+    The Eq. 4 gain ``v · F / W_c`` of each channel: the white balance to the
+    calibration light with the Eq. 10 factor.
+
+    Parameters
+    ----------
+    white_p, white_c
+        Channel responses to a white object under the prevailing and the
+        calibration light (channels on the last axis; broadcast against each
+        other), e.g. ``Σ_λ I_p x_k Δλ`` or a rendered white reference.
+    normalization
+        ``white``: ``F`` is WP (Eq. 8) from the two whites; ``none``,
+        ``560nm``, ``euclidean``: ``F = F_p / F_c`` (Eqs. 5–7).
+    factor_p, factor_c
+        ``F_p`` and ``F_c`` for the non-white normalisations (broadcast
+        against the whites without their channel axis).
+    scale
+        Output scale *v* (255).
+
+    Returns
+    -------
+    :class:`numpy.ndarray`
+        Shape ``broadcast(white_p, white_c)``; output units per unit of
+        ``white_c``. Multiplying the prevailing-light response by it gives
+        Eq. 4.
+
+    Examples
+    --------
+    >>> gain([1.0, 2.0, 4.0], [1.0, 2.0, 4.0]).tolist()
+    [255.0, 127.5, 63.75]
+    """
+
+    validate_method(normalization, NORMALISATIONS, "normalization")
+    white_p, white_c = np.asarray(white_p, dtype=np.float64), np.asarray(white_c, dtype=np.float64)
+    if normalization == "white":
+        factor = white_coefficient_from_whites(white_p, white_c)
+    else:
+        if factor_p is None or factor_c is None:
+            raise SkinrenderError(f"normalization {normalization!r} needs the factors F_p and F_c (Eqs. 5–7)")
+        factor = np.asarray(factor_p, dtype=np.float64) / np.asarray(factor_c, dtype=np.float64)
+    return scale * np.asarray(factor)[..., None] / white_c
 
 
 def white_coefficient_from_whites(white_p: ArrayLike, white_c: ArrayLike) -> NDArrayFloat:
@@ -291,8 +199,8 @@ def white_coefficient(
     p_items, p_shape = illuminants_array(prevailing)
     c_items, c_shape = illuminants_array(calibration)
     x = cam.sensitivities(grid)
-    white_p = _spd_on(p_items, grid) @ x.T
-    white_c = _spd_on(c_items, grid) @ x.T
+    white_p = spds_on(p_items, grid) @ x.T
+    white_c = spds_on(c_items, grid) @ x.T
     pi, ci = np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape))
     return white_coefficient_from_whites(white_p[pi], white_c[ci])
 
@@ -346,7 +254,7 @@ def response_raw(
     o = _reflectance_values(reflectance, grid)
     items, shape = illuminants_array(illuminant)
     factor = normalisation_factor(items, normalization, grid)
-    weighted = _spd_on(items, grid)[:, None, :] * cam.sensitivities(grid)[None, :, :] * grid.step
+    weighted = spds_on(items, grid)[:, None, :] * cam.sensitivities(grid)[None, :, :] * grid.step
     out = np.einsum("...w,skw->s...k", o, weighted) * factor.reshape(-1, *([1] * o.ndim))
     return out.reshape(*shape, *o.shape[:-1], 3)
 
@@ -412,21 +320,18 @@ def response(
     array([[ 255.,  255.,  255.]])
     """
 
-    if normalization not in NORMALISATIONS:
-        raise SkinrenderError(f"normalization must be one of {', '.join(NORMALISATIONS)}, got {normalization!r}")
+    validate_method(normalization, NORMALISATIONS, "normalization")
     cam = camera(camera_)
     o = _reflectance_values(reflectance, grid)
     p_items, p_shape = illuminants_array(prevailing)
     c_items, c_shape = illuminants_array(calibration)
     x = cam.sensitivities(grid)
-    spd_p = _spd_on(p_items, grid)
-    spd_c = _spd_on(c_items, grid)
-    if quadrature == "trapezoid":
+    spd_p = spds_on(p_items, grid)
+    spd_c = spds_on(c_items, grid)
+    if validate_method(quadrature, QUADRATURES, "quadrature") == "trapezoid":
         weights = np.ones(grid.size)
         weights[[0, -1]] = 0.5
         spd_p, spd_c = spd_p * weights, spd_c * weights
-    elif quadrature != "sum":
-        raise SkinrenderError(f"quadrature must be 'sum' or 'trapezoid', got {quadrature!r}")
     signal = np.einsum("...w,pkw->p...k", o, spd_p[:, None, :] * x[None, :, :])  # (P, ..., 3)
     white_p = spd_p @ x.T  # (P, 3)
     white_c = spd_c @ x.T  # (C, 3)
@@ -435,17 +340,11 @@ def response(
             f"camera {cam.name}: a channel has no response to the calibration illuminant on the grid {grid}"
         )
     pi, ci = np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape))
-    if normalization == "white":
-        factor = white_coefficient_from_whites(white_p[pi], white_c[ci])
-    else:
-        f_p = normalisation_factor(p_items, normalization, grid)
-        f_c = normalisation_factor(c_items, normalization, grid)
-        factor = f_p[pi] / f_c[ci]
-    extra = (1,) * (o.ndim - 1)
-    gain = (scale * factor)[..., None].reshape(*factor.shape, *extra, 1) / white_c[ci].reshape(
-        *factor.shape, *extra, 3
-    )
-    out = signal[pi] * gain
+    factors = (None, None) if normalization == "white" else (
+        normalisation_factor(p_items, normalization, grid)[pi], normalisation_factor(c_items, normalization, grid)[ci])
+    gains = gain(white_p[pi], white_c[ci], normalization, *factors, scale=scale)
+    gains = gains.reshape(*gains.shape[:-1], *((1,) * (o.ndim - 1)), 3)
+    out = signal[pi] * gains
     return _apply_knee(out) if knee else out
 
 

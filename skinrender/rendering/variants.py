@@ -26,7 +26,8 @@ import shutil
 import subprocess
 import sys
 
-from .errors import SkinrenderError
+from ..errors import SkinrenderError
+from ..extras import require
 
 __all__ = ["VARIANTS_SPECTRAL", "LIBLLVM_MINIMUM", "libllvm_path", "variant_works", "choose_variant", "mitsuba"]
 
@@ -119,13 +120,7 @@ def choose_variant(requested: str | None = None, notice=sys.stderr) -> str:
 
     if requested in _CHOSEN:
         return _CHOSEN[requested]
-    try:
-        import importlib.util
-
-        if importlib.util.find_spec("mitsuba") is None:
-            raise ImportError
-    except ImportError:
-        raise SkinrenderError("rendering needs Mitsuba 3: pip install mitsuba") from None
+    require("render", "rendering")
     libllvm_path()  # before drjit is imported anywhere
     if requested is not None:
         if requested not in VARIANTS_SPECTRAL:

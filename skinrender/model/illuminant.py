@@ -19,10 +19,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .constants import TEMPERATURE_A, TEMPERATURE_HORIZON
-from .errors import SkinrenderError
-from .hints import ArrayLike, NDArrayFloat
-from .spectra import planck, read_spectra_csv, resample
+from ..constants import TEMPERATURE_A, TEMPERATURE_HORIZON
+from ..errors import SkinrenderError
+from ..hints import ArrayLike, NDArrayFloat
+from ..spectra import planck, read_spectra_csv, resample
 
 __all__ = ["Illuminant", "illuminant", "illuminants_array", "NAMED_TEMPERATURES"]
 

@@ -1,6 +1,6 @@
 """
-Skin locus and skin detection
-=============================
+Skin locus
+==========
 
 The skin locus of a camera (Störring et al.; Martinkauppi & Soriano): the
 region of NCC (r, g) that skin occupies under a set of illuminants, with one
@@ -15,14 +15,14 @@ white balancing (one calibration illuminant) or with several.
 -   :meth:`SkinLocus.contains`: the classifier.
 -   :func:`false_positive_rate`: the share of a non-skin set's chromaticities
     inside the locus.
--   :func:`detect`: classify every pixel of a rendered chart.
+-   :func:`hull_locus`: the convex-hull locus of a cloud of chromaticities.
 
 References
 ----------
--   :cite:`Storring2001` : Störring, M., Andersen, H. J., & Granum, E. (2001).
+-   [Storring2001]_ : Störring, M., Andersen, H. J., & Granum, E. (2001).
     Physics-based modelling of human skin colour under mixed illuminants.
     Robotics and Autonomous Systems, 35(3–4), 131–142.
--   :cite:`Soriano2003` : Soriano, M., Martinkauppi, B., Huovinen, S., &
+-   [Soriano2003]_ : Soriano, M., Martinkauppi, B., Huovinen, S., &
     Laaksonen, M. (2003). Adaptive skin color modeling using the skin locus for
     selecting training pixels. Pattern Recognition, 36(3), 681–690.
 """
@@ -34,17 +34,21 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
-from .camera import Camera, camera, ncc, response
-from .constants import TEMPERATURES_PAPER
-from .errors import SkinrenderError
-from .hints import ArrayLike, NDArrayFloat
-from .spectra import GRID_DEFAULT, WavelengthGrid
+from ..constants import TEMPERATURES_PAPER
+from ..errors import SkinrenderError
+from ..hints import ArrayLike, NDArrayFloat
+from ..methods import validate_method
+from ..model.camera import Camera
+from ..model.response import ncc, response
+from ..spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["BOUNDARIES", "locus_points", "SkinLocus", "skin_locus", "false_positive_rate", "Detection", "detect",
-           "triplet_false_positive_rates", "search_false_positive_rates"]
+__all__ = ["BOUNDARIES", "locus_points", "SkinLocus", "skin_locus", "false_positive_rate", "hull_locus"]
 
-BOUNDARIES = ("hull", "quadratic")
-"""Locus boundaries: the convex hull, or two quadratics (Soriano et al. 2003)."""
+BOUNDARIES = {
+    "hull": "the convex hull of the training chromaticities (default)",
+    "quadratic": "two quadratics g(r) (Soriano et al. 2003)",
+}
+"""Locus boundaries, name → meaning."""
 
 QUADRATIC_BINS = 24
 """r bins whose g extremes the two quadratics are fitted to."""
@@ -179,12 +183,11 @@ def skin_locus(
         tighter on the curved skin locus; it contains every training point).
     """
 
-    if boundary not in BOUNDARIES:
-        raise SkinrenderError(f"boundary must be one of {', '.join(BOUNDARIES)}, got {boundary!r}")
+    validate_method(boundary, BOUNDARIES, "boundary")
     points = locus_points(cam, skin, illuminants, calibration, grid)
     illuminants = np.asarray(illuminants, dtype=np.float64)
     if boundary == "hull":
-        locus = _hull_locus(points, illuminants, calibration)
+        locus = hull_locus(points, illuminants, calibration)
         if locus is None:
             raise SkinrenderError("the skin chromaticities are collinear: the locus has no area")
         return locus
@@ -192,7 +195,7 @@ def skin_locus(
     return SkinLocus(polygon, _polygon_area(polygon), boundary, illuminants, calibration, quadratics)
 
 
-def _hull_locus(points: NDArrayFloat, illuminants: NDArrayFloat, calibration: float | None) -> SkinLocus | None:
+def hull_locus(points: NDArrayFloat, illuminants: NDArrayFloat, calibration: float | None) -> SkinLocus | None:
     """The convex-hull locus of (r, g) ``points`` (vertices counter-clockwise), ``None`` if it has no area."""
     try:
         hull = ConvexHull(points)
@@ -206,72 +209,3 @@ def false_positive_rate(locus: SkinLocus, cam: Camera | str, nonskin, grid: Wave
     """Share of a non-skin set's chromaticities (same illuminants and white balancing) inside the locus."""
     points = locus_points(cam, nonskin, locus.illuminants, locus.calibration, grid)
     return float(np.mean(locus.contains(points)))
-
-
-@dataclass(frozen=True)
-class Detection:
-    """Detection on a rendered chart: per-pixel ``mask``, per-patch rates, ``tpr`` and ``fpr``."""
-
-    mask: NDArrayFloat
-    per_patch: list
-    tpr: float
-    fpr: float
-
-
-def detect(rendering, locus: SkinLocus) -> Detection:
-    """
-    Classify every pixel of a rendered chart by the skin locus.
-
-    ``tpr`` is the share of skin patches' pixels inside the locus, ``fpr``
-    that of the other patches' pixels (the white reference and the black gaps
-    are left out).
-    """
-
-    chart = rendering.scene
-    rg = ncc(rendering.image.astype(np.float64))[..., :2]
-    mask = locus.contains(rg)
-    per_patch, skin_hits, skin_total, other_hits, other_total = [], 0, 0, 0, 0
-    for i, patch in enumerate(chart.patches[:-1]):
-        rows, columns = chart.patch_pixels(i)
-        hits = mask[rows, columns]
-        per_patch.append({"name": patch.name, "is_skin": patch.skin, "detected_fraction": float(hits.mean())})
-        if patch.skin:
-            skin_hits, skin_total = skin_hits + hits.sum(), skin_total + hits.size
-        else:
-            other_hits, other_total = other_hits + hits.sum(), other_total + hits.size
-    tpr = float(skin_hits / skin_total) if skin_total else float("nan")
-    fpr = float(other_hits / other_total) if other_total else float("nan")
-    return Detection(mask, per_patch, tpr, fpr)
-
-
-def triplet_false_positive_rates(bank_skin, bank_nonskin, triplet: ArrayLike) -> NDArrayFloat:
-    """
-    The detection criterion of one Stage 3 triplet: for each calibration q, the
-    share of the non-skin set's chromaticities (every prevailing light,
-    balanced to q) inside the convex-hull skin locus of the skin set under the
-    same lights — the false-positive rate at 100 % acceptance of the training
-    skin. Shape ``(Q,)``; NaN where the skin locus has no area.
-
-    ``bank_skin``, ``bank_nonskin``: :class:`skinrender.search.SensorBank` of the
-    two sets (responses are gathered, not recomputed).
-    """
-
-    skin = bank_skin.clouds(triplet)[:, None] * bank_skin.gains(triplet)[:, :, None]  # (P, Q, N, 3)
-    other = bank_nonskin.clouds(triplet)[:, None] * bank_nonskin.gains(triplet)[:, :, None]
-    rates = np.full(skin.shape[1], np.nan)
-    for q in range(skin.shape[1]):
-        locus = _hull_locus(ncc(skin[:, q].reshape(-1, 3))[:, :2], bank_skin.temperatures, bank_skin.temperatures[q])
-        if locus is not None:
-            rates[q] = np.mean(locus.contains(ncc(other[:, q].reshape(-1, 3))[:, :2]))
-    return rates
-
-
-def search_false_positive_rates(sensor: float, skin: NDArrayFloat, nonskin: NDArrayFloat,
-                                positions="400:700:10", illuminants: ArrayLike = TEMPERATURES_PAPER,
-                                slope: float = 2.0, grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
-    """:func:`triplet_false_positive_rates` for every triplet of a position grid, shape ``(T, Q)``."""
-    from .search import positions_grid, sensor_bank, triplets
-
-    where = positions_grid(positions)
-    banks = [sensor_bank(sensor, values, where, illuminants, slope, grid=grid) for values in (skin, nonskin)]
-    return np.array([triplet_false_positive_rates(*banks, t) for t in triplets(where.size)])

@@ -35,10 +35,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .datasets import reflectances
-from .errors import SkinrenderError
-from .hints import NDArrayFloat
-from .spectra import GRID_DEFAULT, WavelengthGrid
+from ..datasets import reflectances
+from ..errors import SkinrenderError
+from ..hints import NDArrayFloat
+from ..spectra import GRID_DEFAULT, WavelengthGrid
 
 __all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_scene", "list_scenes", "reflectance_of"]
 

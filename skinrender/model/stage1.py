@@ -22,11 +22,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .camera import Camera, camera, measure, ncc, response_raw
-from .constants import TEMPERATURES_PAPER
-from .errors import SkinrenderError
-from .hints import ArrayLike, NDArrayFloat
-from .spectra import GRID_DEFAULT, WavelengthGrid
+from ..constants import TEMPERATURES_PAPER
+from ..errors import SkinrenderError
+from ..hints import ArrayLike, NDArrayFloat
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+from .camera import Camera, camera
+from .illuminant import illuminant
+from .response import measure, ncc, response_raw
 
 __all__ = [
     "IlluminantTrack",
@@ -210,7 +212,6 @@ def illuminant_set(spec: str | ArrayLike | None = None, camera_: Camera | str | 
             if camera_ is None:
                 raise SkinrenderError("--illuminants auto needs a camera (--camera)")
             return select_illuminants(camera_)
-        from .illuminant import illuminant
 
         items = [illuminant(part) for part in text.split(",") if part.strip()]
         if not items or any(item.temperature is None for item in items):

@@ -8,8 +8,8 @@ Render validation against the analytic model
     a quadrature term that :func:`quadrature_difference` reports).
 -   :func:`validate`, :class:`Validation`: every patch's rendered mean against
     the reference, with a tolerance derived from the measured noise.
--   :func:`table1`: the paper's Table 1 recomputed, render (the "real camera")
-    against the analytic model.
+-   :func:`validate_gamut`: gamut volumes of a rendered chart against the
+    analytic ones.
 
 The tolerance of a patch channel is ``k σ`` with ``k =`` :data:`SIGMAS` and
 ``σ² = SE_patch² + X² (e_c,k² + Σ_j w_j² (e_p,j² + e_c,j²))``: the patch's
@@ -27,25 +27,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .camera import (
-    Camera,
-    camera,
-    knee as apply_knee,
-    ncc,
-    response,
-    response_raw,
-    white_coefficient,
-    white_coefficient_from_whites,
-)
-from .constants import CONSTANT_OUTPUT_SCALE
-from .errors import SkinrenderError
-from .hints import NDArrayFloat
-from .render import Rendering, pair_factor, render
+from ..constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
+from ..evaluation.gamut import gamut
+from ..hints import NDArrayFloat
+from ..model.camera import Camera, camera
+from ..model.response import gain, knee as apply_knee, response
+from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
+from .balance import Rendering, pair_gain, patch_statistics, render
+from .renderer import chart_renderer
 from .scene import ChartScene, load_scene
-from .spectra import GRID_DEFAULT, WavelengthGrid, planck
 
 __all__ = ["SIGMAS", "FLOAT32_FLOOR", "REFINE", "analytic_reference", "quadrature_difference", "Validation",
-           "validate", "table1", "validate_gamut"]
+           "validate", "validate_gamut"]
 
 SIGMAS = 5.0
 """Tolerance in standard errors. With ~100 patch channels per chart a correct
@@ -94,8 +87,7 @@ def analytic_reference(
     spd_p, spd_c = planck(lam, prevailing) * weights, planck(lam, calibration) * weights
     signal = (o_fine * spd_p) @ x.T
     white_p, white_c = spd_p @ x.T, spd_c @ x.T
-    factor = pair_factor(white_p, white_c, normalization, prevailing, calibration, grid)
-    out = scale * factor * signal / white_c
+    out = pair_gain(white_p, white_c, normalization, prevailing, calibration, grid, scale) * signal
     out = apply_knee(out) if knee else out
     return out.reshape(*o.shape[:-1], 3)
 
@@ -230,70 +222,6 @@ def validate(
     return Validation(rendering, rendering.patches.mean, reference, tolerance_of(rendering, reference, grid), quadrature)
 
 
-TABLE1_CASES = (("AA", "A", "A"), ("AH", "A", "H"), ("HH", "H", "H"), ("HA", "H", "A"))
-"""Table 1's (prevailing, calibration) pairs: A = 2856 K, H (Horizon) = 2300 K."""
-
-
-def table1(
-    camera_: Camera | str = "gbell:9@450,540,610",
-    spp: int = 256,
-    seed: int = 0,
-    grid: WavelengthGrid = GRID_DEFAULT,
-    low: float = 10.0,
-    high: float = 245.0,
-    fraction: float = 0.9,
-    **render_options,
-) -> dict:
-    """
-    The paper's Table 1 with the render as the "real camera".
-
-    Patches are kept when at least ``fraction`` of their pixel values (all
-    channels) lie in ``[low, high]`` in all four cases (the paper's rule).
-    For each case, the mean and standard deviation of the absolute NCC
-    differences (r, g, b pooled) between the rendered patch means and the
-    model: Eq. 1 with WP (no white balance), and Eq. 4 with each
-    normalisation.
-
-    Returns
-    -------
-    dict
-        ``patches`` (kept names) and ``rows``: ``[{model, case, mean, std}]``.
-    """
-
-    chart = load_scene("macbeth")
-    cam = camera(camera_)
-    cache: dict = {}
-    renders = {case: render(chart, cam, p, q, "white", False, spp=spp, seed=seed, grid=grid, cache=cache,
-                            **render_options) for case, p, q in TABLE1_CASES}
-    keep = []
-    for i in range(len(chart.patches) - 1):  # not the white reference
-        ok = True
-        for r in renders.values():
-            rows, columns = chart.patch_pixels(i)
-            values = r.image[rows, columns].ravel()
-            ok &= np.mean((values >= low) & (values <= high)) >= fraction
-        if ok:
-            keep.append(i)
-    if not keep:
-        raise SkinrenderError("Table 1: no Macbeth patch has 90 % of its values within 10–245 in all four cases")
-    reflectance = chart.reflectances(grid)[keep]
-    rows = []
-    models = [("Eq. 1, WP", None)] + [(f"Eq. 4, {n}", n) for n in ("none", "560nm", "euclidean", "white")]
-    for label, normalization in models:
-        for case, p, q in TABLE1_CASES:
-            r = renders[case]
-            rendered = ncc(r.patches.mean[keep])
-            if normalization is None:
-                model = response_raw(cam, reflectance, r.prevailing, "none", grid) * white_coefficient(
-                    cam, r.prevailing, r.calibration, grid)
-            else:
-                model = analytic_reference(cam, reflectance, r.prevailing, r.calibration, normalization, False, grid)
-            difference = np.abs(rendered - ncc(model)).ravel()
-            rows.append({"model": label, "case": case, "mean": float(difference.mean()),
-                         "std": float(difference.std(ddof=1))})
-    return {"camera": cam.name, "patches": [chart.patches[i].name for i in keep], "rows": rows, "spp": spp}
-
-
 def validate_gamut(
     scene: ChartScene | str,
     camera_: Camera | str,
@@ -325,10 +253,6 @@ def validate_gamut(
         output units³), ``rel_difference``, ``passed``, ``seconds``.
     """
 
-    from .constants import TEMPERATURES_PAPER
-    from .gamut import gamut
-    from .render import chart_renderer, patch_statistics
-
     chart = load_scene(scene)
     cam = camera(camera_)
     temperatures = np.asarray(TEMPERATURES_PAPER if illuminants is None else illuminants, dtype=np.float64)
@@ -344,8 +268,7 @@ def validate_gamut(
 
     def volumes(m: NDArrayFloat) -> NDArrayFloat:
         white = m[:, -1, :]
-        wp = white_coefficient_from_whites(white[:, None, :], white[None, :, :])
-        points = CONSTANT_OUTPUT_SCALE * wp[:, :, None, None] * m[:, None, :-1, :] / white[None, :, None, :]
+        points = m[:, None, :-1, :] * gain(white[:, None, :], white[None, :, :])[:, :, None, :]
         return np.array([gamut(points[:, q]).volume for q in range(len(temperatures))] + [gamut(points).volume])
 
     rendered = volumes(means)

@@ -29,11 +29,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
-from .camera import Camera, response
-from .constants import TEMPERATURES_PAPER
-from .errors import SkinrenderError
-from .hints import ArrayLike, NDArrayFloat
-from .spectra import GRID_DEFAULT, WavelengthGrid
+from ..constants import TEMPERATURES_PAPER
+from ..errors import SkinrenderError
+from ..hints import ArrayLike, NDArrayFloat
+from ..model.camera import Camera
+from ..model.response import response
+from ..spectra import GRID_DEFAULT, WavelengthGrid
 
 __all__ = [
     "TOLERANCE_GAMUT_FLATNESS",

@@ -1,0 +1,76 @@
+"""
+Command line
+============
+
+``skinrender COMMAND …``: the commands of the contract (README). The command
+line only parses, calls the package and prints: every command takes
+``--json`` and then prints exactly one JSON document on stdout; progress and
+errors go to stderr. A bad input exits with status 2 and a one-line message,
+never a traceback.
+
+One module per command group: :mod:`~skinrender.cli.data`,
+:mod:`~skinrender.cli.model`, :mod:`~skinrender.cli.evaluation`,
+:mod:`~skinrender.cli.design`, :mod:`~skinrender.cli.rendering`,
+:mod:`~skinrender.cli.studies`; :mod:`~skinrender.cli.common` holds what
+they share.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+
+from ..errors import SkinrenderError
+from . import data, design, evaluation, model, rendering, studies
+
+__all__ = ["main", "build_parser", "COMMANDS"]
+
+COMMANDS = {
+    "cameras": data.command_cameras,
+    "datasets": data.command_datasets,
+    "illuminants": model.command_illuminants,
+    "response": model.command_response,
+    "gamut": model.command_gamut,
+    "search": design.command_search,
+    "reproduce": studies.command_reproduce,
+    "render": rendering.command_render,
+    "validate": rendering.command_validate,
+    "table1": studies.command_table1,
+    "locus": evaluation.command_locus,
+    "design": design.command_design,
+    "detect": rendering.command_detect,
+    "bench": studies.command_bench,
+}
+"""Command name → the function that runs it."""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of every command."""
+    parser = argparse.ArgumentParser(
+        prog="skinrender",
+        description="Design and validate three-channel cameras for skin detection "
+        "(wavelengths in nm, temperatures in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹).",
+    )
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for group in (data, model, design, studies, rendering, evaluation):
+        group.add_parsers(commands)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        COMMANDS[args.command](args)
+    except SkinrenderError as error:
+        print(f"skinrender {args.command}: error: {error}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:
+        return 0
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,122 @@
+"""
+Camera design: ``search`` (Stage 3) and ``design`` (continuous optimisation).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..errors import SkinrenderError
+from .common import (add_common, add_grid, add_search,
+                     emit, grid_of)
+
+
+def add_parsers(commands) -> None:
+    """Add the parsers of search, design."""
+    p = commands.add_parser("search", help="Stage 3: gamut volumes of every sensor triplet (Tables 2–5)")
+    p.add_argument("--sensor", required=True, type=float,
+                   help="the paper's sensor: 1 (impulse) or N = 3, 5, … (gbell, FWHM N·10 nm)")
+    p.add_argument("--slope", type=float, default=2.0, help="gbell slope b (default 2; the paper does not give it)")
+    p.add_argument("--positions", default="400:700:10",
+                   help="peak positions START:END:STEP in nm (default 400:700:10: 31 positions, 4495 triplets)")
+    add_search(p)
+    p.add_argument("--csv", help="write every triplet's volumes (output units³) and ratios to this CSV file")
+    p.add_argument("--detection", action="store_true",
+                   help="also rank triplets by detection: the share of Munsell chromaticities inside the skin "
+                   "locus (false-positive rate at 100 %% skin acceptance), per calibration (JSON min_fpr)")
+    from ..design.optimise import OBJECTIVES
+    from ..design.search import SEARCH_METHODS
+
+    p.add_argument("--method", default="fast", choices=list(SEARCH_METHODS),
+                   help="fast (hull vertices only, exact; default) or naive (Qhull on every full point set)")
+    p.add_argument("--tie-tolerance", type=float, default=1e-9,
+                   help="relative difference under which two values tie (default 1e-9); ties are all listed")
+    p.add_argument("--illuminants", default="paper",
+                   help="illuminant set: 'paper' (the ten, default) or comma-separated kelvin")
+    add_grid(p)
+    add_common(p)
+
+    p = commands.add_parser("design", help="optimise a gbell camera's peaks off the grid (derivative-free, several starts)")
+    p.add_argument("--objective", choices=list(OBJECTIVES), default="detection",
+                   help="detection: Munsell false-positive rate in the skin locus (default); ratio: skin/Munsell "
+                   "all-calibration gamut volume")
+    p.add_argument("--sensor", type=float, default=9, help="gbell sensor N (FWHM N·10 nm) of the start (default 9)")
+    p.add_argument("--slope", type=float, default=2.0, help="gbell slope b of the start (default 2)")
+    p.add_argument("--free-shape", action="store_true", help="also optimise the shared FWHM (nm) and slope")
+    p.add_argument("--starts", default="450,540,610;420,550,680;480,560,640",
+                   help="starting peak triplets in nm, ';'-separated (default three)")
+    p.add_argument("--evaluations", type=int, default=150, help="objective evaluations per start (default 150)")
+    p.add_argument("--skin", default="skin", help="skin set (default skin)")
+    p.add_argument("--munsell", default="munsell", help="Munsell set (default munsell)")
+    add_common(p)
+
+
+def _row_text(row: dict) -> str:
+    kelvin = "all calibrations" if row["temperature_K"] is None else f"{row['temperature_K']:g} K"
+    return f"{' '.join(f'{v:g}' for v in row['triplet'])} nm, {kelvin}: {row['value']:.6g}"
+
+
+def command_search(args: argparse.Namespace) -> None:
+    from ..datasets import reflectances
+    from ..model.stage1 import illuminant_set
+    from ..design.search import search
+
+    grid = grid_of(args)
+    skin = reflectances(args.skin, extrapolation=args.extrapolation)
+    munsell = reflectances(args.munsell, extrapolation=args.extrapolation)
+    temperatures = illuminant_set(args.illuminants)
+    result = search(
+        args.sensor, skin.on(grid), munsell.on(grid), args.positions, temperatures, args.slope, grid=grid,
+        method=args.method, workers=args.workers, dask=args.dask,
+        progress=None if args.quiet else sys.stderr, label=f"sensor {args.sensor:g}", detection=args.detection,
+    )
+    if args.csv:
+        result.to_csv(args.csv)
+    best = result.table(args.tie_tolerance)
+    document = {
+        "sensor": args.sensor,
+        "slope": args.slope,
+        "positions": result.positions.tolist(),
+        "triplets": int(len(result.triplets)),
+        "illuminants_K": result.temperatures.tolist(),
+        "skin": skin.name,
+        "munsell": munsell.name,
+        "method": result.method,
+        "hull_kernel": result.info["hull_kernel"],
+        "workers": result.workers,
+        **best,
+        "elapsed_s": result.elapsed_s,
+        "csv": args.csv,
+    }
+    lines = [f"sensor {args.sensor:g}: {len(result.triplets)} triplets in {result.elapsed_s:.1f} s "
+             f"({result.method}, {result.workers} workers); volumes in output units³"]
+    for key, label in (("max_skin", "max skin gamut"), ("max_munsell", "max Munsell gamut"),
+                       ("min_ratio", "min skin/Munsell ratio"), ("min_fpr", "min false-positive rate")):
+        if key in best:
+            lines += [f"{label}:"] + [f"  {_row_text(row)}" for row in best[key]]
+    emit(args, document, "\n".join(lines))
+
+
+def command_design(args: argparse.Namespace) -> None:
+    from ..datasets import reflectances
+    from ..design.optimise import optimise_camera
+    from ..spectra import GRID_DEFAULT
+
+    try:
+        starts = [[float(v) for v in part.split(",")] for part in args.starts.split(";")]
+    except ValueError:
+        starts = []
+    if not starts or any(len(s) != 3 for s in starts):
+        raise SkinrenderError("--starts must be triplets of nm separated by ';', e.g. 450,540,610;420,550,680")
+    grid = GRID_DEFAULT
+
+    result = optimise_camera(args.objective, reflectances(args.skin).on(grid), reflectances(args.munsell).on(grid),
+                             starts, args.sensor * 10.0, args.slope, args.free_shape, args.evaluations)
+    document = {"objective": args.objective, "camera": result.camera_spec, "peaks": result.peaks.tolist(),
+                "fwhm_nm": result.fwhm, "slope": result.slope, "value": result.value, "starts": result.starts,
+                "method": "Nelder-Mead (derivative-free)"}
+    lines = [f"{args.objective}: best {result.camera_spec} = {result.value:.5g}"]
+    lines += [f"  start {s['start']} ({s['start_value']:.5g}) -> {[round(p, 1) for p in s['peaks']]} ({s['value']:.5g})"
+              for s in result.starts]
+    emit(args, document, "\n".join(lines))

@@ -1,0 +1,69 @@
+"""
+The skin locus: ``locus``.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+import numpy as np
+
+from ..errors import SkinrenderError
+from .common import (HELP_CAMERA, add_common, emit)
+
+
+def add_parsers(commands) -> None:
+    """Add the parsers of locus."""
+    p = commands.add_parser("locus", help="skin locus in NCC (r, g) over the illuminant set, and its false positives")
+    p.add_argument("--camera", required=True, help=HELP_CAMERA)
+    p.add_argument("--illuminants", default="paper",
+                   help="illuminant set: 'paper' (the ten, default), 'auto' (Stage 1) or comma-separated kelvin")
+    p.add_argument("--calibration", help="one white balancing at this illuminant (kelvin, A, H); "
+                   "default: every calibration of the set")
+    from ..evaluation.locus import BOUNDARIES
+
+    p.add_argument("--boundary", choices=list(BOUNDARIES), default="hull",
+                   help="convex hull (default) or two quadratics (Soriano et al. 2003)")
+    p.add_argument("--skin", default="skin", help="skin reflectance set (default skin)")
+    p.add_argument("--nonskin", default="munsell,vrhel-nonskin,macbeth",
+                   help="comma-separated non-skin sets for false-positive rates (default munsell,vrhel-nonskin,macbeth)")
+    p.add_argument("--plot", help="write the locus, the training chromaticities and the Planckian track to this PNG")
+    add_common(p)
+
+
+def command_locus(args: argparse.Namespace) -> None:
+    from ..datasets import reflectances
+    from ..evaluation.locus import false_positive_rate, locus_points, skin_locus
+    from ..model.camera import camera
+    from ..model.illuminant import illuminant
+    from ..model.response import ncc, response
+    from ..model.stage1 import illuminant_set
+    from ..spectra import GRID_DEFAULT
+    from ..studies.figures import figure_locus
+
+    cam = camera(args.camera)
+    temperatures = illuminant_set(args.illuminants, cam)
+    calibration = None
+    if args.calibration:
+        calibration = illuminant(args.calibration).temperature
+        if calibration is None:
+            raise SkinrenderError("--calibration must be Planckian (kelvin, A or H)")
+    skin = reflectances(args.skin)
+    locus = skin_locus(cam, skin, temperatures, calibration, args.boundary)
+    rates = {name: false_positive_rate(locus, cam, reflectances(name)) for name in args.nonskin.split(",") if name}
+    document = {"camera": cam.name, "boundary": args.boundary, "polygon": locus.polygon.tolist(), "area": locus.area,
+                "illuminants_K": temperatures.tolist(), "calibration_K": calibration, "skin": skin.name,
+                "false_positive_rate": rates}
+    if args.plot:
+        # the Planckian track: a white object under 2000–10000 K, balanced to the calibration (or 5900 K)
+        reference = calibration if calibration is not None else 5900.0
+        track = ncc(response(cam, np.ones((1, GRID_DEFAULT.size)), np.linspace(2000, 10000, 81), reference))[:, 0, :2]
+        figure_locus(locus.polygon, locus.area, args.boundary, locus_points(cam, skin, temperatures, calibration),
+                     skin.name, track, f"Planckian track (white, calibration {reference:g} K)",
+                     f"Skin locus of {cam.name}", args.plot)
+        document["plot"] = args.plot
+    text = (f"skin locus of {cam.name} ({args.boundary}, {len(locus.polygon)} vertices, area {locus.area:.5f} in r,g) "
+            f"over {len(temperatures)} illuminants, "
+            + ("every calibration" if calibration is None else f"calibration {calibration:g} K") + "\n"
+            + "\n".join(f"  false positives, {k}: {v:.3f}" for k, v in rates.items()))
+    emit(args, document, text)

@@ -1,0 +1,145 @@
+"""
+Rendering commands: ``render``, ``validate``, ``detect``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..errors import SkinrenderError
+from .common import (HELP_CAMERA, HELP_ILLUMINANT, add_common, add_grid, add_model, add_render, choices_help, emit, grid_of, render_options, table)
+
+
+def add_parsers(commands) -> None:
+    """Add the parsers of render, validate, detect."""
+    from ..evaluation.locus import BOUNDARIES
+
+    for name, text in (("render", "spectral render of a chart scene with Mitsuba 3 (float32 EXR + PNG preview)"),
+                       ("validate", "render a chart and check every patch against Eq. 4 within its noise")):
+        p = commands.add_parser(name, help=text)
+        p.add_argument("scene", help="scene: macbeth, skin_patches, face_chart or a .toml path (see scenes/)")
+        p.add_argument("--camera", required=True, help=HELP_CAMERA)
+        p.add_argument("--prevailing", required=True, help="prevailing (emitter) illuminant, Planckian: " + HELP_ILLUMINANT)
+        p.add_argument("--calibration", required=True, help="calibration (white balance) illuminant: " + HELP_ILLUMINANT)
+        add_render(p)
+        add_model(p)
+        add_grid(p)
+        if name == "validate":
+            p.add_argument("--gamut", action="store_true",
+                           help="also render the chart under every paper illuminant and compare its gamut volumes "
+                           "(one calibration case each, and all calibrations) with the analytic ones")
+        if name == "render":
+            p.add_argument("-o", "--output", default="render.exr",
+                           help="output EXR (float32, Eq. 4 output units, channels named by the camera); "
+                           "a PNG preview is written beside it")
+        add_common(p)
+
+    p = commands.add_parser("detect", help="skin detection on a rendered chart with the camera's skin locus")
+    p.add_argument("scene", help="scene: macbeth, skin_patches, face_chart or a .toml path")
+    p.add_argument("--camera", required=True, help=HELP_CAMERA)
+    p.add_argument("--prevailing", required=True, help="prevailing illuminant, Planckian: " + HELP_ILLUMINANT)
+    p.add_argument("--calibration", required=True, help="calibration illuminant: " + HELP_ILLUMINANT)
+    p.add_argument("--boundary", choices=list(BOUNDARIES), default="hull", help="locus boundary: " + choices_help(BOUNDARIES))
+    p.add_argument("--skin", default="skin", help="skin set the locus is trained on (default skin)")
+    p.add_argument("-o", "--output", default="detect.png", help="mask PNG (a preview PNG is written beside it)")
+    add_render(p)
+    add_common(p)
+
+
+def command_render(args: argparse.Namespace) -> None:
+    from pathlib import Path
+
+    from ..rendering.balance import render
+    from ..rendering.exr import write_exr, write_preview
+    from ..rendering.renderer import channel_names
+
+    options = render_options(args)
+    print(f"rendering {args.scene} at {options['spp']} spp …", file=sys.stderr)
+    result = render(args.scene, args.camera, args.prevailing, args.calibration, args.normalization, args.knee,
+                    grid=grid_of(args), **options)
+    output = Path(args.output)
+    if output.suffix.lower() != ".exr":
+        raise SkinrenderError(f"--output must end in .exr, got {output}")
+    names = channel_names(result.camera)
+    write_exr(output, result.image, names, {"camera": result.camera.name, "prevailing_K": result.prevailing,
+                                            "calibration_K": result.calibration, "spp": options["spp"],
+                                            "seed": args.seed, "variant": result.variant, "units": "Eq. 4 output units"})
+    preview = write_preview(output.with_suffix(".png"), result.image)
+    document = {"image": str(output), "preview_png": str(preview), "channels": list(names), "spp": options["spp"],
+                "sampler": options["sampler"], "seed": args.seed, "variant": result.variant,
+                "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
+                "prevailing_K": result.prevailing, "calibration_K": result.calibration,
+                "normalization": args.normalization, "knee": args.knee}
+    text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "
+            f"{result.calibration:g} K: {output} (+ {preview}), {options['spp']} spp, {result.variant}, "
+            f"{result.seconds:.2f} s")
+    emit(args, document, text)
+
+
+def command_validate(args: argparse.Namespace) -> None:
+    from ..rendering.validation import SIGMAS, validate
+
+    options = render_options(args)
+    print(f"rendering {args.scene} at {options['spp']} spp and validating …", file=sys.stderr)
+    result = validate(args.scene, args.camera, args.prevailing, args.calibration, args.normalization, args.knee,
+                      grid=grid_of(args), **options)
+    r = result.rendering
+    document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
+                "calibration_K": r.calibration, "normalization": args.normalization, "knee": args.knee,
+                "spp": options["spp"], "sampler": options["sampler"], "seed": args.seed, "variant": r.variant,
+                "elapsed_s": r.seconds, "sigmas": SIGMAS, "patches": result.patches(), "worst": result.worst(),
+                "max_rel_error": float(result.rel_error.max()), "quadrature_rel_difference": result.quadrature,
+                "passed": result.passed}
+    lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
+             f"{options['spp']} spp {options['sampler']}, {r.variant}, {r.seconds:.2f} s"]
+    rows = [[p["name"][:28], *(f"{v:.3f}" for v in p["rendered"]), *(f"{v:.1e}" for v in p["rel_error"]),
+             "ok" if p["passed"] else "FAIL"] for p in document["patches"]]
+    lines.append(table(rows, ["patch", "R", "G", "B", "relerr R", "relerr G", "relerr B", ""]))
+    lines += [f"worst {w['channel']}: {w['patch']} ({w['z']:+.2f} σ, {w['rel_error']:.1e} relative)" for w in result.worst()]
+    lines.append(f"paper Σ vs rendered integral (quadrature): {result.quadrature:.1e} relative; "
+                 f"{'PASSED' if result.passed else 'FAILED'} (tolerance {SIGMAS:g} σ of the measured noise)")
+    passed = result.passed
+    if args.gamut:
+        from ..rendering.validation import validate_gamut
+
+        gamuts = validate_gamut(args.scene, args.camera, spp=options["spp"], seed=args.seed,
+                                sampler=options["sampler"], variant=args.variant, grid=grid_of(args))
+        document["gamut"] = gamuts
+        passed = passed and gamuts["passed"]
+        lines.append(f"gamut volumes (output units³), rendered vs analytic, {len(gamuts['illuminants_K'])} illuminants:")
+        labels = [f"calibration {t:g} K" for t in gamuts["illuminants_K"]] + ["all calibrations"]
+        for label, r, a, sg in zip(labels, gamuts["rendered"], gamuts["analytic"], gamuts["sigma"]):
+            lines.append(f"  {label:20s} {r:.6g} vs {a:.6g} (σ {sg:.2g})")
+        lines.append("gamuts " + ("agree within 5 σ" if gamuts["passed"] else "DISAGREE"))
+    document["passed"] = passed
+    emit(args, document, "\n".join(lines))
+    if not passed:
+        raise SystemExit(1)
+
+
+def command_detect(args: argparse.Namespace) -> None:
+    from pathlib import Path
+
+    from ..evaluation.detection import detect
+    from ..evaluation.locus import skin_locus
+    from ..rendering.balance import render
+    from ..rendering.exr import write_png, write_preview
+
+    options = render_options(args)
+    print(f"rendering {args.scene} at {options['spp']} spp …", file=sys.stderr)
+    rendering = render(args.scene, args.camera, args.prevailing, args.calibration, **options)
+    # the camera is white-balanced to the calibration light: the locus of that one balancing
+    locus = skin_locus(rendering.camera, args.skin, calibration=rendering.calibration, boundary=args.boundary)
+    result = detect(rendering, locus)
+    output = Path(args.output)
+    output.parent.mkdir(parents=True, exist_ok=True)
+    write_png(output, result.mask.astype(float))
+    preview = write_preview(output.with_name(output.stem + "_preview.png"), rendering.image)
+    document = {"scene": rendering.scene.name, "camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
+                "calibration_K": rendering.calibration, "tpr": result.tpr, "fpr": result.fpr,
+                "mask_png": str(output), "preview_png": str(preview), "per_patch": result.per_patch,
+                "boundary": args.boundary, "spp": options["spp"], "variant": rendering.variant}
+    rows = [[p["name"][:30], "skin" if p["is_skin"] else "", f"{p['detected_fraction']:.2f}"] for p in result.per_patch]
+    text = (table(rows, ["patch", "", "detected"]) + f"\nTPR {result.tpr:.3f}, FPR {result.fpr:.3f}; mask {output}")
+    emit(args, document, text)

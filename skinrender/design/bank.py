@@ -1,0 +1,163 @@
+"""
+Sensor bank
+===========
+
+The Stage 3 search's single sensors: every sensor position's responses to a
+reflectance set under every illuminant, computed once per search and
+gathered per triplet.
+
+-   :func:`positions_grid`: sensor peak positions from ``START:END:STEP`` (nm).
+-   :func:`triplets`: the ascending triplets of distinct positions.
+-   :class:`SensorBank`, :func:`sensor_bank`: the single-sensor responses,
+    with each triplet's Eq. 4 gains (:func:`skinrender.model.response.gain`)
+    and prevailing clouds.
+-   :data:`SENSORS_PAPER`: the paper's sensors 1, 3, …, 15.
+
+Units: wavelength in nm, temperature in K; responses as Eq. 1 sums (radiance
+times unitless sensitivities and reflectances, times nm).
+
+References
+----------
+-   [Martinkauppi2006]_ : the paper, Stage 3 (docs/references.md).
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
+from ..errors import SkinrenderError
+from ..hints import ArrayLike, NDArrayFloat
+from ..methods import parse_range, validate_method
+from ..model.camera import sensor_curves
+from ..model.illuminant import illuminants_array
+from ..model.response import NORMALISATIONS, gain, normalisation_factor, spds_on
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+
+__all__ = ["SENSORS_PAPER", "positions_grid", "triplets", "SensorBank", "sensor_bank"]
+
+SENSORS_PAPER = (1, 3, 5, 7, 9, 11, 13, 15)
+"""The paper's sensors: 1 is the impulse, N ≥ 3 a gbell of FWHM N·10 nm."""
+
+
+def positions_grid(spec: str | ArrayLike = "400:700:10") -> NDArrayFloat:
+    """Sensor peak positions in nm from ``start:end:step`` (end included) or a sequence."""
+    if isinstance(spec, str):
+        start, end, step = parse_range(spec, "positions")
+        if not (step > 0 and end > start):
+            raise SkinrenderError(f"positions {spec!r}: need END > START and STEP > 0 (nm)")
+        values = start + step * np.arange(int(np.floor((end - start) / step + 1e-9)) + 1)
+    else:
+        values = np.asarray(spec, dtype=np.float64).ravel()
+    if values.size < 3 or not np.all(np.isfinite(values)) or np.any(np.diff(values) <= 0):
+        raise SkinrenderError("positions must be at least three increasing wavelengths in nm")
+    return values
+
+
+def triplets(count: int) -> np.ndarray:
+    """Index triplets ``(i, j, k)``, ``i < j < k``, of ``count`` positions, lexicographic; shape ``(T, 3)``."""
+    return np.array(list(itertools.combinations(range(count), 3)), dtype=np.intp).reshape(-1, 3)
+
+
+@dataclass(frozen=True)
+class SensorBank:
+    """
+    Single-sensor responses of one reflectance set.
+
+    Attributes
+    ----------
+    positions
+        Sensor peaks, nm, shape ``(J,)``.
+    temperatures
+        Illuminants, K, shape ``(P,)``; they serve as prevailing and calibration.
+    signal
+        ``Σ_λ I_p(λ) x_j(λ) o_i(λ)``, shape ``(P, J, N)``.
+    white
+        ``Σ_λ I_p(λ) x_j(λ)``, shape ``(P, J)``.
+    factor
+        Normalisation factor ``F_p`` (Eqs. 5–7), shape ``(P,)``; ``None`` for ``white``.
+    """
+
+    positions: NDArrayFloat
+    temperatures: NDArrayFloat
+    signal: NDArrayFloat
+    white: NDArrayFloat
+    factor: NDArrayFloat | None
+    scale: float = CONSTANT_OUTPUT_SCALE
+    knee: bool = False
+    diagonal: bool = False
+    """True for the impulse: each prevailing cloud is a per-channel scaling of
+    every other (``I_p(λ_k) o_i(λ_k)``), so all share one vertex set."""
+    normalization: str = "white"
+    """The Eq. 10 factor of the gains: ``white`` (WP) or the normalisation of ``factor``."""
+
+    def gains(self, triplet: ArrayLike) -> NDArrayFloat:
+        """Eq. 4 gains ``v · F_pq / W_qk`` for one index triplet (channels R, G, B), shape ``(P, Q, 3)``."""
+        index = np.asarray(triplet)[::-1]  # R is the longest peak
+        white = self.white[:, index]
+        if self.factor is None:  # WP (Eq. 8)
+            return gain(white[:, None, :], white[None, :, :], scale=self.scale)
+        return gain(white[:, None, :], white[None, :, :], self.normalization, self.factor[:, None],
+                    self.factor[None, :], self.scale)
+
+    def clouds(self, triplet: ArrayLike) -> NDArrayFloat:
+        """Prevailing clouds ``C_p`` (channels R, G, B), shape ``(P, N, 3)``."""
+        index = np.asarray(triplet)[::-1]
+        return np.ascontiguousarray(self.signal[:, index, :].transpose(0, 2, 1))
+
+
+def sensor_bank(
+    sensor: float,
+    reflectance: NDArrayFloat,
+    positions: ArrayLike = positions_grid(),
+    illuminants: ArrayLike = TEMPERATURES_PAPER,
+    slope: float = 2.0,
+    normalization: str = "white",
+    knee: bool = False,
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> SensorBank:
+    """
+    Single-sensor responses at every position, computed once for a search.
+
+    Parameters
+    ----------
+    sensor
+        The paper's sensor number: 1 (impulse, a unit-area delta on the grid
+        sample of its peak) or N > 1 (gbell, FWHM = N·10 nm).
+    reflectance
+        Reflectances on ``grid``, shape ``(N, grid.size)``, fractions.
+    positions
+        Sensor peaks, nm.
+    illuminants
+        Prevailing and calibration illuminants (K, ``A``, ``H`` …).
+    slope
+        gbell slope *b*.
+    normalization
+        ``white`` (Eq. 8, the paper's Stage 3) or ``none``/``560nm``/``euclidean``.
+    knee
+        Apply Eq. 11 (forces the straightforward method).
+    grid
+        Integration grid, nm.
+    """
+
+    validate_method(normalization, NORMALISATIONS, "normalization")
+    if not (np.isfinite(sensor) and sensor > 0):
+        raise SkinrenderError(f"sensor must be 1 (impulse) or a gbell number N > 1 (FWHM N·10 nm), got {sensor}")
+    positions = np.asarray(positions, dtype=np.float64)
+    if positions.min() < grid.start or positions.max() > grid.end:
+        raise SkinrenderError(
+            f"positions {positions.min():g}–{positions.max():g} nm leave the integration grid {grid}"
+        )
+    items, _ = illuminants_array(illuminants)
+    spd = spds_on(items, grid)  # (P, W)
+    x = sensor_curves(positions, grid, None if sensor == 1 else float(sensor) * 10.0, slope)
+    o = np.asarray(reflectance, dtype=np.float64)
+    signal = np.einsum("iw,pjw->pji", o, spd[:, None, :] * x[None, :, :], optimize=True)
+    white = spd @ x.T
+    factor = None if normalization == "white" else normalisation_factor(items, normalization, grid)
+    temperatures = np.array([item.temperature if item.temperature is not None else np.nan for item in items])
+    return SensorBank(positions, temperatures, signal, white, factor, knee=knee, diagonal=sensor == 1,
+                      normalization=normalization)

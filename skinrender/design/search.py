@@ -1,0 +1,323 @@
+"""
+Sensor-triplet search (Stage 3)
+===============================
+
+Every triplet of distinct sensor peaks on a position grid, each with its
+per-calibration gamuts (one calibration case = the union over the prevailing
+illuminants) and its all-calibration gamut, for a skin and a Munsell set: the
+data behind the paper's Tables 2–5. The single sensors come from
+:mod:`~skinrender.design.bank`, each triplet's volumes and detection
+criterion from :mod:`~skinrender.design.criteria`; this module spreads the
+triplets over every core (processes) or a Dask cluster and ranks them.
+
+-   :func:`search`, :class:`SearchResult`: the whole search and the rows of
+    Tables 2–5 with ties; CSV export of every triplet.
+-   :data:`TOLERANCE_TIE`, :data:`SEARCH_METHODS`.
+
+References
+----------
+-   [Martinkauppi2006]_ : Stage 3, Tables 2–5 (docs/references.md).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..constants import TEMPERATURES_PAPER
+from ..errors import SkinrenderError
+from ..extras import require
+from ..evaluation.hull import HULL_KERNEL, notice_kernel
+from ..hints import ArrayLike, NDArrayFloat
+from ..methods import validate_method
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+from .bank import SensorBank, positions_grid, sensor_bank, triplets
+from .criteria import triplet_false_positive_rates, triplet_volumes_fast, triplet_volumes_naive
+
+__all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "SearchResult", "search", "progress_bar"]
+
+TOLERANCE_TIE = 1e-9
+"""Two values within this relative difference are a tie; ties are reported."""
+
+SEARCH_METHODS = {
+    "fast": "hull vertices only, exact (default)",
+    "naive": "Qhull on every case's full point set",
+}
+"""How the search computes each triplet's volumes, name → meaning."""
+
+
+# --------------------------------------------------------------------------- #
+# Parallel search
+# --------------------------------------------------------------------------- #
+
+_WORKER_BANKS: tuple[SensorBank, ...] = ()
+
+
+def _init_worker(banks: tuple[SensorBank, ...]) -> None:
+    global _WORKER_BANKS
+    _WORKER_BANKS = banks
+
+
+def _volumes_chunk(chunk: np.ndarray, method: str, banks: tuple[SensorBank, ...] | None = None,
+                   detection: bool = False):
+    """
+    Volumes of a chunk of index triplets for every bank, shape ``(len(banks), T, Q + 1)``,
+    and with ``detection`` the false-positive rates of the skin locus ``(T, Q)`` (else ``None``).
+    """
+    banks = banks if banks is not None else _WORKER_BANKS
+    out = np.empty((len(banks), len(chunk), banks[0].white.shape[0] + 1))
+    for b, bank in enumerate(banks):
+        volumes = triplet_volumes_fast if method == "fast" else triplet_volumes_naive
+        for t, triplet in enumerate(chunk):
+            out[b, t] = volumes(bank, triplet)
+    if not detection:
+        return out, None
+    return out, np.array([triplet_false_positive_rates(banks[0], banks[1], t) for t in chunk])
+
+
+def _chunks(index: np.ndarray, count: int) -> list[np.ndarray]:
+    return [part for part in np.array_split(index, max(1, count)) if len(part)]
+
+
+@dataclass(frozen=True)
+class SearchResult:
+    """
+    The volumes of a Stage 3 search.
+
+    Attributes
+    ----------
+    sensor, slope
+        Sensor number (1 = impulse) and gbell slope.
+    positions
+        Peak positions, nm, ``(J,)``.
+    triplets
+        Peak triplets in nm, ascending, ``(T, 3)``.
+    temperatures
+        Calibration illuminants, K, ``(Q,)``.
+    skin, munsell
+        Volumes, output units³, ``(T, Q + 1)``: one column per calibration
+        case, the last for all calibrations.
+    elapsed_s
+        Wall time of the volume computation, s.
+    """
+
+    sensor: float
+    slope: float
+    positions: NDArrayFloat
+    triplets: NDArrayFloat
+    temperatures: NDArrayFloat
+    skin: NDArrayFloat
+    munsell: NDArrayFloat
+    elapsed_s: float
+    method: str = "fast"
+    workers: int = 1
+    normalization: str = "white"
+    knee: bool = False
+    info: dict = field(default_factory=dict)
+    fpr: NDArrayFloat | None = None
+    """With ``detection=True``: false-positive rate of the Munsell set inside the
+    skin locus, per triplet and calibration, ``(T, Q)`` (see
+    :func:`skinrender.design.criteria.triplet_false_positive_rates`)."""
+
+    @property
+    def ratio(self) -> NDArrayFloat:
+        """Skin / Munsell volume, NaN where either gamut is degenerate (zero volume)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where((self.skin > 0) & (self.munsell > 0), self.skin / np.where(self.munsell > 0, self.munsell, 1.0), np.nan)
+
+    def _rows(self, values: NDArrayFloat, columns: slice, best: str, tolerance: float) -> list[dict]:
+        block = values[:, columns]
+        finite = np.isfinite(block)
+        if not finite.any():
+            return []
+        target = np.nanmax(block) if best == "max" else np.nanmin(block)
+        close = finite & (np.abs(block - target) <= tolerance * abs(target))
+        rows = []
+        for t, c in zip(*np.nonzero(close)):
+            temperature = None if columns.start == self.temperatures.size else float(self.temperatures[c])
+            rows.append(
+                {"triplet": [float(v) for v in self.triplets[t]], "temperature_K": temperature, "value": float(block[t, c])}
+            )
+        return rows
+
+    def table(self, tolerance: float = TOLERANCE_TIE) -> dict:
+        """
+        The rows of Tables 2–5 with ties.
+
+        Returns
+        -------
+        dict
+            ``max_skin``, ``max_munsell``, ``min_ratio``: each a list of
+            ``{triplet, temperature_K, value}``; one-calibration rows (Tables
+            2, 3) carry the calibration temperature, all-calibration rows
+            (Tables 4, 5) ``temperature_K = None``.
+        """
+        one, everything = slice(0, self.temperatures.size), slice(self.temperatures.size, self.temperatures.size + 1)
+        return {
+            "max_skin": self._rows(self.skin, one, "max", tolerance) + self._rows(self.skin, everything, "max", tolerance),
+            "max_munsell": self._rows(self.munsell, one, "max", tolerance)
+            + self._rows(self.munsell, everything, "max", tolerance),
+            "min_ratio": self._rows(self.ratio, one, "min", tolerance) + self._rows(self.ratio, everything, "min", tolerance),
+            **({} if self.fpr is None else {"min_fpr": self._rows(self.fpr_table, one, "min", tolerance)
+                                            + self._rows(self.fpr_table, everything, "min", tolerance)}),
+        }
+
+    @property
+    def fpr_table(self) -> NDArrayFloat:
+        """False-positive rates per calibration and their mean over calibrations, ``(T, Q + 1)``."""
+        return np.hstack([self.fpr, np.nanmean(self.fpr, axis=1, keepdims=True)])
+
+    def to_csv(self, path) -> None:
+        """Every triplet's volumes (output units³) and ratios as CSV."""
+        labels = [f"{t:g}K" for t in self.temperatures] + ["all"]
+        header = ["p1_nm", "p2_nm", "p3_nm"]
+        header += [f"skin_{label}" for label in labels] + [f"munsell_{label}" for label in labels]
+        header += [f"ratio_{label}" for label in labels]
+        blocks = [self.triplets, self.skin, self.munsell, self.ratio]
+        if self.fpr is not None:
+            header += [f"fpr_{label}" for label in labels[:-1]] + ["fpr_mean"]
+            blocks.append(self.fpr_table)
+        data = np.hstack(blocks)
+        with open(path, "w", encoding="utf-8", newline="\n") as handle:
+            handle.write(",".join(header) + "\n")
+            for row in data:
+                handle.write(",".join(f"{v:.17g}" for v in row) + "\n")
+
+
+def progress_bar(total: int, label: str, stream):
+    """
+    A tqdm progress bar on ``stream``, disabled when ``stream`` is ``None``
+    (``--quiet``) or not a terminal (a log file, a pipe, CI).
+    """
+    from tqdm import tqdm
+
+    enabled = stream is not None and getattr(stream, "isatty", lambda: False)()
+    return tqdm(total=total, desc=label, file=stream, disable=not enabled, unit="triplet", leave=True)
+
+
+def search(
+    sensor: float,
+    skin: NDArrayFloat,
+    munsell: NDArrayFloat,
+    positions: ArrayLike | str = "400:700:10",
+    illuminants: ArrayLike = TEMPERATURES_PAPER,
+    slope: float = 2.0,
+    normalization: str = "white",
+    knee: bool = False,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    method: str = "fast",
+    workers: int | None = None,
+    dask: str | object | None = None,
+    progress=None,
+    label: str = "search",
+    detection: bool = False,
+    notice=sys.stderr,
+) -> SearchResult:
+    """
+    The Stage 3 search: every triplet's per-calibration and all-calibration
+    gamut volumes for a skin and a Munsell set.
+
+    Parameters
+    ----------
+    sensor
+        1 (impulse) or gbell N (FWHM N·10 nm).
+    skin, munsell
+        Reflectances on ``grid``, shape ``(N, grid.size)``.
+    positions
+        Peak positions (``"400:700:10"`` nm gives the paper's 31, 4495 triplets).
+    illuminants
+        The prevailing/calibration set (K).
+    slope
+        gbell slope *b*.
+    normalization, knee
+        Eq. 4 options (the paper's Stage 3: ``white``, no knee).
+    grid
+        Integration grid, nm.
+    method
+        ``fast`` (hull vertices, exact) or ``naive`` (Qhull on every full set).
+    workers
+        Processes; ``None`` uses every core (``os.cpu_count()``).
+    dask
+        A Dask scheduler address (``tcp://host:8786``) or a
+        ``distributed.Client``: chunks run on the cluster instead.
+    progress
+        A stream (``sys.stderr``) for a progress bar, or ``None``.
+    detection
+        Also compute the detection criterion: the false-positive rate of the
+        Munsell set inside the skin locus, per calibration (``result.fpr``).
+    notice
+        Stream for the one-line notice when the compiled hull kernel is
+        missing (``result.info["hull_kernel"]`` says which kernel ran).
+
+    Returns
+    -------
+    :class:`SearchResult`
+    """
+
+    validate_method(method, SEARCH_METHODS, "method")
+    where = positions_grid(positions)
+    banks = tuple(
+        sensor_bank(sensor, values, where, illuminants, slope, normalization, knee, grid) for values in (skin, munsell)
+    )
+    index = triplets(where.size)
+    workers = (os.cpu_count() or 1) if workers is None else int(workers)
+    if workers < 1:
+        raise SkinrenderError(f"workers must be ≥ 1, got {workers}")
+    start = time.perf_counter()
+    if method == "fast":
+        notice_kernel(notice)
+    # Several chunks per worker keep every core busy to the end.
+    chunks = _chunks(np.arange(len(index)), 1 if workers == 1 and dask is None else 8 * max(workers, 4))
+    out = np.empty((2, len(index), banks[0].white.shape[0] + 1))
+    fpr = np.empty((len(index), banks[0].white.shape[0])) if detection else None
+
+    def store(chunk, result) -> None:
+        out[:, chunk] = result[0]
+        if detection:
+            fpr[chunk] = result[1]
+
+    bar = progress_bar(len(index), label, progress)
+    if dask is not None:
+        client, own = _dask_client(dask)
+        try:
+            remote_banks = client.scatter(banks, broadcast=True)
+            futures = [client.submit(_volumes_chunk, index[c], method, remote_banks, detection, pure=False)
+                       for c in chunks]
+            for chunk, future in zip(chunks, futures):
+                store(chunk, future.result())
+                bar.update(len(chunk))
+        finally:
+            if own:
+                client.close()
+    elif workers == 1:
+        for chunk in chunks:
+            store(chunk, _volumes_chunk(index[chunk], method, banks, detection))
+            bar.update(len(chunk))
+    else:
+        with ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(banks,)) as pool:
+            futures = [pool.submit(_volumes_chunk, index[c], method, None, detection) for c in chunks]
+            for chunk, future in zip(chunks, futures):
+                store(chunk, future.result())
+                bar.update(len(chunk))
+    bar.close()
+    elapsed = time.perf_counter() - start
+    return SearchResult(
+        float(sensor), float(slope), where, where[index], banks[0].temperatures, out[0], out[1], elapsed,
+        method, 1 if dask is not None else workers, normalization, knee, fpr=fpr,
+        info={"hull_kernel": HULL_KERNEL if method == "fast" else "qhull"},
+    )
+
+
+def _dask_client(dask):
+    require("dask", "--dask")
+    from distributed import Client
+
+    if isinstance(dask, Client):
+        return dask, False
+    return Client(dask), True
+

@@ -1,0 +1,16 @@
+"""
+Spectral rendering with Mitsuba 3
+=================================
+
+Layer 5 (beside design, independent of it): scene files, Mitsuba variants, the renderer, the white balance of renders, EXR/PNG files and the validation against the analytic model. Rendering itself needs the ``[render]`` extra (mitsuba, drjit, OpenEXR); importing this package does not.
+
+-   :mod:`skinrender.rendering.scene`
+-   :mod:`skinrender.rendering.variants`
+-   :mod:`skinrender.rendering.renderer`
+-   :mod:`skinrender.rendering.balance`
+-   :mod:`skinrender.rendering.exr`
+-   :mod:`skinrender.rendering.validation`
+
+A name under ``skinrender.rendering`` is always a module; the public functions
+and classes are imported from their modules, or from ``skinrender`` itself.
+"""

@@ -1,0 +1,215 @@
+"""
+White balance of renders
+========================
+
+Eq. 4 applied to rendered images: the white reference rendered under the
+calibration light gives the white balance, the two whites give WP (Eq. 8) or
+the Eq. 10 factor, through the one gain of the analytic model
+(:func:`skinrender.model.response.gain`).
+
+-   :class:`PatchStatistics`, :func:`patch_statistics`: patch means and
+    standard errors.
+-   :func:`balance`: Eq. 4 on a pair of raw renders.
+-   :func:`render`, :class:`Rendering`: the Eq. 4 image of a (prevailing,
+    calibration) pair.
+
+Units: raw renders in W·m⁻²·sr⁻¹ times the sensitivity's unit; balanced
+images in output units (255 for white at p = c).
+
+References
+----------
+-   [Martinkauppi2006]_ : Eqs. 4, 8, 10 (docs/references.md).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..constants import CONSTANT_OUTPUT_SCALE
+from ..errors import SkinrenderError
+from ..hints import NDArrayFloat
+from ..methods import validate_method
+from ..model.camera import Camera, camera
+from ..model.illuminant import illuminant
+from ..model.response import NORMALISATIONS, gain, knee as apply_knee, normalisation_factor
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+from .renderer import RawRender, render_raw
+from .scene import ChartScene, load_scene
+
+__all__ = ["PatchStatistics", "patch_statistics", "Rendering", "pair_gain", "balance", "render"]
+
+
+@dataclass(frozen=True)
+class PatchStatistics:
+    """Per patch and channel: ``mean``, ``standard_error`` (std/√n) and pixel ``count``."""
+
+    mean: NDArrayFloat
+    standard_error: NDArrayFloat
+    count: NDArrayFloat
+
+
+def patch_statistics(image: NDArrayFloat, scene: ChartScene) -> PatchStatistics:
+    """Means and standard errors of every patch's inner pixels, shape ``(patches, channels)``."""
+    means, errors, counts = [], [], []
+    for index in range(len(scene.patches)):
+        rows, columns = scene.patch_pixels(index)
+        pixels = np.asarray(image[rows, columns], dtype=np.float64).reshape(-1, image.shape[-1])
+        means.append(pixels.mean(axis=0))
+        errors.append(pixels.std(axis=0, ddof=1) / np.sqrt(len(pixels)))
+        counts.append(len(pixels))
+    return PatchStatistics(np.array(means), np.array(errors), np.array(counts))
+
+
+@dataclass(frozen=True)
+class Rendering:
+    """
+    The Eq. 4 image of a (prevailing, calibration) pair.
+
+    Attributes
+    ----------
+    image
+        ``(height, width, 3)`` float32, output units (white = 255 at p = c).
+    patches
+        Patch statistics of ``image``.
+    white_relative_error
+        Relative standard error of the white reference under the prevailing
+        and the calibration illuminant, shape ``(2, 3)``.
+    """
+
+    scene: ChartScene
+    camera: Camera
+    prevailing: float
+    calibration: float
+    normalization: str
+    knee: bool
+    image: NDArrayFloat
+    patches: PatchStatistics
+    white_relative_error: NDArrayFloat
+    raw: tuple[RawRender, ...]
+    info: dict = field(default_factory=dict)
+
+    @property
+    def variant(self) -> str:
+        """The Mitsuba variant used."""
+        return self.raw[0].variant
+
+    @property
+    def seconds(self) -> float:
+        """Rendering time, s."""
+        return sum(r.seconds for r in self.raw)
+
+
+def _temperature(spec) -> float:
+    item = illuminant(spec)
+    if item.temperature is None:
+        raise SkinrenderError(f"rendering needs a Planckian illuminant (kelvin, A or H), got {spec!r}")
+    return float(item.temperature)
+
+def pair_gain(white_p: NDArrayFloat, white_c: NDArrayFloat, normalization: str, prevailing: float,
+              calibration: float, grid: WavelengthGrid = GRID_DEFAULT,
+              scale: float = CONSTANT_OUTPUT_SCALE) -> NDArrayFloat:
+    """
+    The Eq. 4 gain of one (prevailing, calibration) pair of Planckian lights
+    (K) from the channel whites ``(3,)``: :func:`skinrender.model.response.gain`
+    with WP for ``white``, else ``F_p / F_c`` (Eqs. 5–7) of the two Planck SPDs.
+    """
+
+    if normalization == "white":
+        return gain(white_p, white_c, scale=scale)
+    f = normalisation_factor([prevailing, calibration], normalization, grid)
+    return gain(white_p, white_c, normalization, f[0], f[1], scale)
+
+
+def balance(
+    raw_prevailing: RawRender,
+    raw_calibration: RawRender,
+    scene: ChartScene,
+    cam: Camera,
+    normalization: str = "white",
+    knee: bool = False,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    scale: float = CONSTANT_OUTPUT_SCALE,
+) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat]:
+    """
+    Eq. 4 (with Eq. 10) applied to raw renders: ``v · F · raw_p / white_c``.
+
+    ``white_c`` is the white reference's mean under the calibration render;
+    ``F`` is WP (Eq. 8) from the two renders' whites for ``white``, or
+    ``F_p / F_c`` (Eqs. 5–7) for the others. Returns the image, the
+    whites' relative standard errors ``(2, 3)`` and the white ratios
+    ``white_p / white_c`` ``(3,)``.
+    """
+
+    white = scene.white_index
+    stats_p = patch_statistics(raw_prevailing.radiance, scene)
+    stats_c = patch_statistics(raw_calibration.radiance, scene)
+    white_p, white_c = stats_p.mean[white], stats_c.mean[white]
+    if np.any(white_c <= 0):
+        raise SkinrenderError(f"camera {cam.name}: a channel sees no light from the white reference at "
+                              f"{raw_calibration.temperature:g} K")
+    image = pair_gain(white_p, white_c, normalization, raw_prevailing.temperature, raw_calibration.temperature,
+                      grid, scale) * raw_prevailing.radiance
+    if knee:
+        image = apply_knee(image)
+    relative = np.array([stats_p.standard_error[white] / white_p, stats_c.standard_error[white] / white_c])
+    return image.astype(np.float32), relative, white_p / white_c
+
+
+def render(
+    scene: ChartScene | str,
+    camera_: Camera | str,
+    prevailing,
+    calibration,
+    normalization: str = "white",
+    knee: bool = False,
+    spp: int = 256,
+    seed: int = 0,
+    sampler: str = "multijitter",
+    variant: str | None = None,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    channels: str = "auto",
+    cache: dict | None = None,
+    emitter: str = "tabulated",
+) -> Rendering:
+    """
+    Render a chart through a camera under ``prevailing`` light, white balanced
+    to ``calibration`` (Eq. 4).
+
+    Parameters
+    ----------
+    prevailing, calibration
+        Planckian illuminants: kelvin, ``A`` (2856 K) or ``H`` (2300 K).
+    normalization, knee
+        As :func:`skinrender.response`.
+    spp, seed, sampler, variant, grid, channels
+        As :func:`render_raw`. The calibration render uses ``seed + 1`` so
+        that its noise is independent of the prevailing render's.
+    cache
+        A dict to reuse raw renders across calls, keyed by temperature.
+
+    Returns
+    -------
+    :class:`Rendering`
+    """
+
+    chart = load_scene(scene)
+    cam = camera(camera_)
+    validate_method(normalization, NORMALISATIONS, "normalization")
+    p, c = _temperature(prevailing), _temperature(calibration)
+    cache = {} if cache is None else cache
+
+    def raw(temperature: float, offset: int) -> RawRender:
+        key = (temperature, offset)
+        if key not in cache:
+            cache[key] = render_raw(chart, cam, temperature, spp, seed + offset, sampler, variant, grid, channels,
+                                    emitter)
+        return cache[key]
+
+    raw_p = raw(p, 0)
+    raw_c = raw_p if c == p else raw(c, 1)
+    image, white_error, white_ratio = balance(raw_p, raw_c, chart, cam, normalization, knee, grid)
+    return Rendering(chart, cam, p, c, normalization, knee, image, patch_statistics(image, chart), white_error,
+                     (raw_p,) if raw_c is raw_p else (raw_p, raw_c), {"white_ratio": white_ratio})
+

@@ -1,0 +1,72 @@
+"""
+Image files
+===========
+
+-   :func:`write_exr`, :func:`read_exr`: float32 OpenEXR with one named channel
+    per last-axis slice (EXR files sort channels by name: they are looked up
+    by name).
+-   :func:`write_preview`: a tone-mapped 8-bit PNG (sRGB transfer curve).
+
+Units: whatever the image holds (output units for balanced renders).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..constants import CONSTANT_OUTPUT_SCALE
+from ..errors import SkinrenderError
+from ..extras import require
+from ..hints import NDArrayFloat
+
+__all__ = ["write_exr", "read_exr", "write_preview", "write_png"]
+
+
+def write_exr(path: str | Path, image: NDArrayFloat, names: tuple[str, ...], attributes: dict | None = None) -> Path:
+    """Write a float32 EXR with one named channel per last-axis slice."""
+    require("render", "writing EXR files")
+    import OpenEXR
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    header = {"compression": OpenEXR.ZIP_COMPRESSION, "type": OpenEXR.scanlineimage}
+    for key, value in (attributes or {}).items():
+        header[key] = str(value)
+    data = {name: np.ascontiguousarray(image[..., k], dtype=np.float32) for k, name in enumerate(names)}
+    with OpenEXR.File(header, data) as handle:
+        handle.write(str(path))
+    return path
+
+
+def read_exr(path: str | Path, names: tuple[str, ...]) -> NDArrayFloat:
+    """Read the named channels of an EXR (EXR files sort channels by name: look them up by name)."""
+    require("render", "reading EXR files")
+    import OpenEXR
+
+    with OpenEXR.File(str(path)) as handle:
+        channels = handle.channels()
+        missing = [n for n in names if n not in channels]
+        if missing:
+            raise SkinrenderError(f"{path}: no channel(s) {', '.join(missing)}; it has {', '.join(sorted(channels))}")
+        return np.stack([np.asarray(channels[n].pixels, dtype=np.float32) for n in names], axis=-1)
+
+
+
+def write_png(path: str | Path, image: NDArrayFloat) -> Path:
+    """Write an 8-bit PNG of ``image`` in [0, 1] (grey ``(h, w)`` or colour ``(h, w, 3)``), rounded to 0–255."""
+    from PIL import Image
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    values = np.clip(np.asarray(image, dtype=np.float64), 0.0, 1.0)
+    Image.fromarray(np.round(values * 255.0).astype(np.uint8)).save(path, format="PNG")
+    return path
+
+
+def write_preview(path: str | Path, image: NDArrayFloat, scale: float = CONSTANT_OUTPUT_SCALE) -> Path:
+    """A tone-mapped PNG preview: output units / ``scale``, clipped to [0, 1], sRGB transfer curve."""
+    linear = np.clip(np.asarray(image, dtype=np.float64) / scale, 0.0, 1.0)
+    encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
+    return write_png(path, encoded)

@@ -1,0 +1,14 @@
+"""
+Studies
+=======
+
+Layer 6: the paper's tables and figures, the reproduction and the benchmarks. :mod:`~skinrender.studies.figures` is the only module that imports matplotlib.
+
+-   :mod:`skinrender.studies.tables`
+-   :mod:`skinrender.studies.figures`
+-   :mod:`skinrender.studies.reproduce`
+-   :mod:`skinrender.studies.bench`
+
+A name under ``skinrender.studies`` is always a module; the public functions
+and classes are imported from their modules, or from ``skinrender`` itself.
+"""
