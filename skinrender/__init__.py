@@ -50,12 +50,11 @@ from .evaluation.gamut import Gamut, gamut, gamut_all_calibrations, gamut_calibr
 from .evaluation.locus import SkinLocus, skin_locus
 from .model.camera import CHANNELS, Camera, camera
 from .model.illuminant import Illuminant, illuminant
+from .model.chromaticity import measure, ncc
 from .model.response import (
     NORMALISATIONS,
     gain,
     knee,
-    measure,
-    ncc,
     normalisation_factor,
     response,
     response_raw,

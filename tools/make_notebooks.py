@@ -144,7 +144,7 @@ def notebook_02() -> nbformat.NotebookNode:
             "import matplotlib.pyplot as plt\n"
             "import numpy as np\n"
             "import skinrender as sr\n"
-            "from skinrender.reproduce import STAGE2_CAMERA, STAGE2_NORMALISATIONS, stage2_cases, stage2_observation, stage2_pairs\n\n"
+            "from skinrender.studies.reproduce import STAGE2_CAMERA, STAGE2_NORMALISATIONS, stage2_cases, stage2_observation, stage2_pairs\n\n"
             "T = np.array(sr.TEMPERATURES_PAPER)  # K\n"
             "CAMERA = STAGE2_CAMERA  # the paper's Sony is not public\n"
             "volumes = {n: stage2_pairs(CAMERA, 'munsell', n, knee) for n, knee in STAGE2_NORMALISATIONS}\n"
@@ -235,8 +235,8 @@ def notebook_03() -> nbformat.NotebookNode:
             "matplotlib.use('Agg')\n"
             "import matplotlib.pyplot as plt\n"
             "import skinrender as sr\n"
-            "from skinrender.search import search, sensor_bank, triplet_volumes_fast, triplet_volumes_naive, positions_grid\n"
-            "from skinrender.reproduce import PAPER_TABLES, table_rows\n\n"
+            "from skinrender.design.bank import sensor_bank, positions_grid\nfrom skinrender.design.criteria import triplet_volumes_fast, triplet_volumes_naive\nfrom skinrender.design.search import search\n"
+            "from skinrender.studies.tables import PAPER_TABLES, table_rows\n\n"
             "POSITIONS = '400:700:50'  # nm; the paper: 400:700:10\n"
             "skin = sr.reflectances('skin').on(sr.GRID_DEFAULT)\n"
             "munsell = sr.reflectances('munsell').on(sr.GRID_DEFAULT)\n"
@@ -250,7 +250,7 @@ def notebook_03() -> nbformat.NotebookNode:
             "about 6× faster than Qhull through scipy on a Munsell cloud); `HULL_KERNEL` says which kernel ran."
         ),
         new_code_cell(
-            "from skinrender.search import HULL_KERNEL\n"
+            "from skinrender.evaluation.hull import HULL_KERNEL\n"
             "print('hull kernel:', HULL_KERNEL)\n"
             "bank = sensor_bank(9, munsell, positions_grid(POSITIONS))\n"
             "worst = max(np.max(np.abs(triplet_volumes_fast(bank, t) / triplet_volumes_naive(bank, t) - 1))\n"
@@ -317,8 +317,8 @@ def notebook_04() -> nbformat.NotebookNode:
             "import matplotlib.pyplot as plt\n"
             "import numpy as np\n"
             "import skinrender as sr\n"
-            "from skinrender.render import render\n"
-            "from skinrender.validate import validate, table1, analytic_reference\n\n"
+            "from skinrender.rendering.balance import render\n"
+            "from skinrender.rendering.validation import validate, analytic_reference\nfrom skinrender.studies.tables import table1\n\n"
             "CAMERA = 'gbell:9@450,540,610'\n"
             "SPP = 64\n"
             "renders = {name: render(name, CAMERA, 2000, 5900, spp=SPP, seed=1) for name in ('macbeth', 'skin_patches', 'face_chart')}\n"
@@ -361,7 +361,7 @@ def notebook_04() -> nbformat.NotebookNode:
         ),
         new_markdown_cell("## Step 4: error against time (a short curve)"),
         new_code_cell(
-            "chart = sr.scene.load_scene('macbeth')\n"
+            "chart = sr.load_scene('macbeth')\n"
             "reference = analytic_reference(CAMERA, chart.reflectances(sr.GRID_DEFAULT), 2856, 2856)\n"
             "curve = []\n"
             "for sampler in ('independent', 'multijitter'):\n"
@@ -408,9 +408,9 @@ def notebook_05() -> nbformat.NotebookNode:
             "import matplotlib.pyplot as plt\n"
             "import numpy as np\n"
             "import skinrender as sr\n"
-            "from skinrender.locus import skin_locus, locus_points, false_positive_rate, detect\n"
-            "from skinrender.render import render\n"
-            "from skinrender.search import search\n\n"
+            "from skinrender.evaluation.locus import skin_locus, locus_points, false_positive_rate\nfrom skinrender.evaluation.detection import detect\n"
+            "from skinrender.rendering.balance import render\n"
+            "from skinrender.design.search import search\n\n"
             "CAMERAS = ['gbell:9@470,590,700', 'gbell:9@560,570,590', 'gbell:9@450,540,610', 'Nikon 5100 (NPL)']"
         ),
         new_markdown_cell("## Step 1: loci, one white balancing (5900 K) and every calibration"),
@@ -455,7 +455,7 @@ def notebook_05() -> nbformat.NotebookNode:
         ),
         new_markdown_cell("## Step 4: the optimised camera (peaks off the grid, detection criterion)"),
         new_code_cell(
-            "from skinrender.design import optimise_camera\n"
+            "from skinrender.design.optimise import optimise_camera\n"
             "design = optimise_camera('detection', sr.reflectances('skin').on(g), sr.reflectances('munsell').on(g),\n"
             "                         starts=[(450.0, 540.0, 610.0)], max_evaluations=40)\n"
             "print(design.camera_spec, 'FPR', round(design.value, 3), 'from', round(design.starts[0]['start_value'], 3))\n"

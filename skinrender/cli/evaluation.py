@@ -36,7 +36,8 @@ def command_locus(args: argparse.Namespace) -> None:
     from ..evaluation.locus import false_positive_rate, locus_points, skin_locus
     from ..model.camera import camera
     from ..model.illuminant import illuminant
-    from ..model.response import ncc, response
+    from ..model.chromaticity import ncc
+    from ..model.response import response
     from ..model.stage1 import illuminant_set
     from ..spectra import GRID_DEFAULT
     from ..studies.figures import figure_locus

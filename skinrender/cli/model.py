@@ -82,7 +82,8 @@ def command_illuminants(args: argparse.Namespace) -> None:
 
 def command_response(args: argparse.Namespace) -> None:
     from ..model.camera import camera
-    from ..model.response import ncc, response
+    from ..model.chromaticity import ncc
+    from ..model.response import response
     from ..datasets import reflectances
     from ..model.illuminant import illuminant
 

@@ -18,7 +18,8 @@ from pathlib import Path
 
 from ..errors import SkinrenderError
 from ..methods import validate_method
-from ..spectra import EXTRAPOLATIONS, read_spectra_csv
+from ..spectra import EXTRAPOLATIONS
+from ..spectral_csv import read_spectra_csv
 from . import colour_science, luxpy_munsell, psychtoolbox, skin_model  # noqa: F401  (registration)
 from .registry import REGISTRY_CAMERAS, REGISTRY_REFLECTANCES, SpectralSet, lookup, unknown
 

@@ -75,7 +75,7 @@ def msds_camera_canon() -> SpectralSet:
     """Canon EOS 5D Mark II sensitivities from rawtoaces, 380–780 nm every 5 nm."""
     from colour.characterisation.aces_it import ROOT_RESOURCES_RAWTOACES
 
-    from ..spectra import read_spectra_csv
+    from ..spectral_csv import read_spectra_csv
 
     table = read_spectra_csv(
         os.path.join(ROOT_RESOURCES_RAWTOACES, "CANON_EOS_5DMark_II_RGB_Sensitivities.csv"),

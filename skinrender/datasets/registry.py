@@ -26,7 +26,8 @@ import numpy as np
 
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
-from ..spectra import GRID_DEFAULT, WavelengthGrid, read_spectra_csv, resample, validate_spectra
+from ..spectra import GRID_DEFAULT, WavelengthGrid, resample
+from ..spectral_csv import read_spectra_csv, validate_spectra
 
 __all__ = [
     "ROOT_RESOURCES",

@@ -40,7 +40,8 @@ from ..evaluation.gamut import gamut
 from ..evaluation.hull import FLAT_SUSPECT, compiled_kernel, hull_volume_vertices
 from ..evaluation.locus import hull_locus
 from ..hints import ArrayLike, NDArrayFloat
-from ..model.response import knee as apply_knee, ncc
+from ..model.chromaticity import ncc
+from ..model.response import knee as apply_knee
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import SensorBank, positions_grid, sensor_bank, triplets
 
@@ -121,6 +122,7 @@ def triplet_volumes_fast(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
         volumes[q], vertices = hull_volume_vertices(points)
         case_vertices.append(points if vertices is None else points[vertices])
     volumes[count_q] = hull_volume_vertices(np.concatenate(case_vertices))[0]
+    return volumes
 
 
 def triplet_false_positive_rates(bank_skin, bank_nonskin, triplet: ArrayLike) -> NDArrayFloat:

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..hints import NDArrayFloat
-from ..model.response import ncc
+from ..model.chromaticity import ncc
 from .locus import SkinLocus
 
 __all__ = ["Detection", "detect"]

@@ -39,7 +39,8 @@ from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from ..model.camera import Camera
-from ..model.response import ncc, response
+from ..model.chromaticity import ncc
+from ..model.response import response
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
 __all__ = ["BOUNDARIES", "locus_points", "SkinLocus", "skin_locus", "false_positive_rate", "hull_locus"]

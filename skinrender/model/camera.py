@@ -31,7 +31,8 @@ from ..datasets import SpectralSet, camera_sensitivities, looks_like_path
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, Literal, NDArrayFloat
 from ..methods import validate_method
-from ..spectra import EXTRAPOLATIONS, GRID_DEFAULT, WavelengthGrid, gbell, impulse, read_spectra_csv
+from ..spectra import EXTRAPOLATIONS, GRID_DEFAULT, WavelengthGrid, gbell, impulse
+from ..spectral_csv import read_spectra_csv
 
 __all__ = ["CHANNELS", "GBELL_SLOPE_DEFAULT", "Camera", "camera", "sensor_curves"]
 
@@ -196,8 +197,11 @@ def sensor_curves(peaks: ArrayLike, grid: WavelengthGrid, fwhm: float | None = N
 
     Examples
     --------
-    >>> sensor_curves([540.0], WavelengthGrid(530, 550, 10), fwhm=90.0).round(4).tolist()
-    [[0.9524, 1.0, 0.9524]]
+    Sensor 9 (FWHM 90 nm, so a = 45 nm) with b = 2, 10 nm off its peak:
+    ``1 / (1 + (10/45)⁴) = 0.99757``.
+
+    >>> sensor_curves([540.0], WavelengthGrid(530, 550, 10), fwhm=90.0).round(5).tolist()
+    [[0.99757, 1.0, 0.99757]]
     """
     peaks = np.asarray(peaks, dtype=np.float64)
     if fwhm is None:

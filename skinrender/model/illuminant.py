@@ -22,7 +22,8 @@ import numpy as np
 from ..constants import TEMPERATURE_A, TEMPERATURE_HORIZON
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
-from ..spectra import planck, read_spectra_csv, resample
+from ..spectra import planck, resample
+from ..spectral_csv import read_spectra_csv
 
 __all__ = ["Illuminant", "illuminant", "illuminants_array", "NAMED_TEMPERATURES"]
 

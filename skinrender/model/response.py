@@ -4,15 +4,15 @@ Camera response
 
 The paper's Eqs. 1–11 for a :class:`~skinrender.model.camera.Camera`: the raw
 response of Eq. 1, the white-balanced response of Eq. 4 with the illuminant
-normalisations of Eqs. 5–8 (the Eq. 10 factor), the knee of Eq. 11, the NCC
-chromaticities of Eq. 2 and the measure of Eq. 3.
+normalisations of Eqs. 5–8 (the Eq. 10 factor), and the knee of Eq. 11.
 
 -   :data:`NORMALISATIONS`, :func:`normalisation_factor`, :func:`white_coefficient`.
 -   :func:`gain`: the one implementation of the Eq. 4 gain ``v · F / W_c``
     (white balance and Eq. 10 factor), used by the analytic model, the
     Stage 3 search, the renderer's white balance and the validation.
 -   :func:`response_raw` (Eq. 1), :func:`response` (Eq. 4 / Eq. 10).
--   :func:`knee` (Eq. 11), :func:`ncc` (Eq. 2), :func:`measure` (Eq. 3).
+-   :func:`knee` (Eq. 11); the NCC of Eq. 2 and the measure of Eq. 3 are
+    :mod:`skinrender.model.chromaticity`.
 
 Units: wavelength in nm, temperature in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹;
 white-balanced responses in output units (``v = 255`` for a white object at
@@ -53,8 +53,6 @@ __all__ = [
     "response_raw",
     "response",
     "knee",
-    "ncc",
-    "measure",
 ]
 
 NORMALISATIONS = {
@@ -316,8 +314,8 @@ def response(
 
     Examples
     --------
-    >>> response("gbell:9@450,540,610", [[1.0] * 301], 3300, 3300)
-    array([[ 255.,  255.,  255.]])
+    >>> response("gbell:9@450,540,610", [[1.0] * 301], 3300, 3300).tolist()
+    [[255.0, 255.0, 255.0]]
     """
 
     validate_method(normalization, NORMALISATIONS, "normalization")
@@ -390,61 +388,3 @@ def knee(
 
 
 _apply_knee = knee  # module-level name: inside response() "knee" is the flag
-
-
-def ncc(rgb: ArrayLike) -> NDArrayFloat:
-    """
-    Normalised colour coordinates (Eq. 2): ``r = R / (R + G + B)``, likewise g, b.
-
-    Parameters
-    ----------
-    rgb
-        Responses, channels on the last axis, shape ``(..., 3)``.
-
-    Returns
-    -------
-    :class:`numpy.ndarray`
-        Same shape; each row sums to 1. A zero response (black) gives the
-        achromatic point (1/3, 1/3, 1/3) instead of 0/0.
-
-    Examples
-    --------
-    >>> ncc([2.0, 1.0, 1.0])
-    array([ 0.5 ,  0.25,  0.25])
-    """
-
-    rgb = np.asarray(rgb, dtype=np.float64)
-    if rgb.shape[-1:] != (3,):
-        raise SkinrenderError(f"ncc expects three channels on the last axis, got shape {rgb.shape}")
-    total = rgb.sum(axis=-1, keepdims=True)
-    black = total == 0
-    out = rgb / np.where(black, 1.0, total)
-    return np.where(black, 1.0 / 3.0, out) if black.any() else out
-
-
-_CHANNEL_INDEX = {"r": 0, "g": 1, "b": 2}
-
-
-def measure(chromaticity: ArrayLike, pair: str = "gb") -> NDArrayFloat:
-    """
-    The Euclidean measure of Eq. 3, ``m = sqrt(c1² + c2²)``.
-
-    Parameters
-    ----------
-    chromaticity
-        NCC chromaticities, shape ``(..., 3)``.
-    pair
-        The two coordinates: ``gb`` (Stage 1, grows with temperature), ``rg``
-        or ``rb``.
-
-    Returns
-    -------
-    :class:`numpy.ndarray`
-        Shape ``(...)``.
-    """
-
-    pair = pair.lower()
-    if len(pair) != 2 or any(c not in _CHANNEL_INDEX for c in pair) or pair[0] == pair[1]:
-        raise SkinrenderError(f"pair must be two of r, g, b (e.g. 'gb'), got {pair!r}")
-    c = np.asarray(chromaticity, dtype=np.float64)
-    return np.hypot(c[..., _CHANNEL_INDEX[pair[0]]], c[..., _CHANNEL_INDEX[pair[1]]])

@@ -28,7 +28,8 @@ from ..hints import ArrayLike, NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .camera import Camera, camera
 from .illuminant import illuminant
-from .response import measure, ncc, response_raw
+from .chromaticity import measure, ncc
+from .response import response_raw
 
 __all__ = [
     "IlluminantTrack",

@@ -28,7 +28,8 @@ import numpy as np
 from ..design.search import TOLERANCE_TIE, SearchResult
 from ..errors import SkinrenderError
 from ..model.camera import Camera, camera
-from ..model.response import ncc, response_raw, white_coefficient
+from ..model.chromaticity import ncc
+from ..model.response import response_raw, white_coefficient
 from ..rendering.balance import render
 from ..rendering.scene import load_scene
 from ..rendering.validation import analytic_reference

@@ -7,16 +7,10 @@ import pytest
 
 import skinrender as sr
 from skinrender.errors import SkinrenderError
-from skinrender.gamut import gamut_calibration, gamut_all_calibrations
-from skinrender.search import (
-    SearchResult,
-    positions_grid,
-    search,
-    sensor_bank,
-    triplet_volumes_fast,
-    triplet_volumes_naive,
-    triplets,
-)
+from skinrender.evaluation.gamut import gamut_calibration, gamut_all_calibrations
+from skinrender.design.bank import positions_grid, sensor_bank, triplets
+from skinrender.design.criteria import triplet_volumes_fast, triplet_volumes_naive
+from skinrender.design.search import SearchResult, search
 from skinrender.spectra import GRID_DEFAULT
 
 POSITIONS_SMALL = "400:700:50"  # 7 positions, 35 triplets
@@ -145,7 +139,7 @@ class TestSearch:
 
 
 def test_detection_criterion_alongside_the_volumes(sets):
-    from skinrender.locus import false_positive_rate, skin_locus
+    from skinrender.evaluation.locus import false_positive_rate, skin_locus
 
     result = search(9, *sets, POSITIONS_SMALL, workers=1, detection=True)
     assert result.fpr.shape == (35, 10) and np.all((result.fpr >= 0) & (result.fpr <= 1))

@@ -8,7 +8,7 @@ import pytest
 pytest.importorskip("skinoptics")
 
 import skinrender as sr  # noqa: E402
-from skinrender.skin_model import PARAMETER_BOUNDS, SkinParameters, fit_skin, skin_reflectance  # noqa: E402
+from skinrender.datasets.skin_model import PARAMETER_BOUNDS, SkinParameters, fit_skin, skin_reflectance  # noqa: E402
 
 LAMBDA = np.arange(400.0, 701.0, 5.0)
 

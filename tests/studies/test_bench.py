@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from skinrender.bench import bench_analytic
+from skinrender.studies.bench import bench_analytic
 from skinrender.constants import TOLERANCE_RELATIVE_TESTS
 
 
@@ -14,7 +14,7 @@ def test_bench_analytic_routes_agree():
 
 
 def test_bench_search_keys_and_agreement():
-    from skinrender.bench import bench_search
+    from skinrender.studies.bench import bench_search
 
     result = bench_search(sensor=9, sample=3, steps=(100.0, 75.0), full_steps=(100.0,), workers=1)
     assert {"naive_ms_per_triplet", "fast_ms_per_triplet", "speedup", "full_search_s", "growth", "machine"} <= set(result)

@@ -7,9 +7,9 @@ import pytest
 
 from skinrender.constants import TEMPERATURES_PAPER
 from skinrender.errors import SkinrenderError
-from skinrender.illuminants import illuminant_selection, illuminant_set, illuminant_track, select_illuminants, temperature_range
+from skinrender.model.stage1 import illuminant_selection, illuminant_set, illuminant_track, select_illuminants, temperature_range
 
-from .conftest import sony_dxc930_csv
+from tests.conftest import sony_dxc930_csv
 
 CAMERAS = ["Nikon 5100 (NPL)", "Sigma SDMerill (NPL)", "Canon EOS 5D Mark II", "Kodak DCS-200", "gbell:9@450,540,610"]
 

@@ -6,8 +6,11 @@ import numpy as np
 import pytest
 from scipy.spatial import ConvexHull
 
-import skinrender.search as search_module
-from skinrender.search import FLAT_SUSPECT, HULL_KERNEL
+import skinrender.design.bank as bank_module
+import skinrender.design.search as search_module
+import skinrender.evaluation.hull as hull_module
+import skinrender.design.criteria as criteria_module
+from skinrender.evaluation.hull import FLAT_SUSPECT, HULL_KERNEL
 
 _hull3d = pytest.importorskip(
     "skinrender._hull3d",
@@ -95,11 +98,11 @@ class TestHull:
         routine asks Qhull, and an axis-aligned cloud flat by is_flat has volume 0 as in gamut()."""
         thin = rng.random((300, 3)) * [1.0, 1e-3, 1e3]
         assert kernel(thin) is None
-        volume, vertices = search_module._hull(thin)
+        volume, vertices = hull_module.hull_volume_vertices(thin)
         assert volume == pytest.approx(ConvexHull(thin).volume, rel=1e-12)
         flat = rng.random((300, 3)) * [1.0, 1e-12, 1.0]
-        assert search_module._hull(flat) == (0.0, None)
-        assert search_module.gamut(flat).volume == 0.0
+        assert hull_module.hull_volume_vertices(flat) == (0.0, None)
+        assert criteria_module.gamut(flat).volume == 0.0
 
     @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
     def test_non_finite_points_are_declined(self, rng, bad):
@@ -123,19 +126,19 @@ class TestSearchWithoutTheKernel:
         from skinrender import reflectances
         from skinrender.spectra import GRID_DEFAULT
 
-        bank = search_module.sensor_bank(9, reflectances("munsell").on(GRID_DEFAULT)[::4], [420, 500, 580, 660])
-        with_kernel = [search_module.triplet_volumes_fast(bank, t) for t in search_module.triplets(4)]
-        monkeypatch.setattr(search_module, "_hull3d", None)
-        for triplet, expected in zip(search_module.triplets(4), with_kernel):
-            np.testing.assert_allclose(search_module.triplet_volumes_fast(bank, triplet), expected, rtol=1e-9)
+        bank = bank_module.sensor_bank(9, reflectances("munsell").on(GRID_DEFAULT)[::4], [420, 500, 580, 660])
+        with_kernel = [criteria_module.triplet_volumes_fast(bank, t) for t in bank_module.triplets(4)]
+        monkeypatch.setattr(hull_module, "_hull3d", None)
+        for triplet, expected in zip(bank_module.triplets(4), with_kernel):
+            np.testing.assert_allclose(criteria_module.triplet_volumes_fast(bank, triplet), expected, rtol=1e-9)
 
     def test_the_search_says_once_which_kernel_ran(self, monkeypatch):
         import io
 
         grey = np.linspace(0.05, 0.9, 12)[:, None] * np.linspace(0.5, 1.5, 301)[None, :] ** np.arange(12)[:, None]
-        monkeypatch.setattr(search_module, "_hull3d", None)
+        monkeypatch.setattr(hull_module, "_hull3d", None)
         monkeypatch.setattr(search_module, "HULL_KERNEL", "qhull")
-        monkeypatch.setattr(search_module, "_NOTICED", [])
+        monkeypatch.setattr(hull_module, "_NOTICED", [])
         stream = io.StringIO()
         for _ in range(2):
             result = search_module.search(9, grey, grey, "400:700:100", workers=1, notice=stream)
@@ -161,12 +164,12 @@ class TestTripletVolumes:
         from skinrender import reflectances
         from skinrender.spectra import GRID_DEFAULT
 
-        bank = search_module.sensor_bank(sensor, reflectances(name).on(GRID_DEFAULT), [410, 470, 530, 600, 690])
-        chosen = search_module.triplets(5)
-        one_call = [search_module.triplet_volumes_fast(bank, t) for t in chosen]
-        monkeypatch.setattr(search_module, "_hull3d", self._HullsOnly)
+        bank = bank_module.sensor_bank(sensor, reflectances(name).on(GRID_DEFAULT), [410, 470, 530, 600, 690])
+        chosen = bank_module.triplets(5)
+        one_call = [criteria_module.triplet_volumes_fast(bank, t) for t in chosen]
+        monkeypatch.setattr(hull_module, "_hull3d", self._HullsOnly)
         for triplet, expected in zip(chosen, one_call):
-            np.testing.assert_allclose(search_module.triplet_volumes_fast(bank, triplet), expected, rtol=1e-12)
+            np.testing.assert_allclose(criteria_module.triplet_volumes_fast(bank, triplet), expected, rtol=1e-12)
 
     def test_a_declined_hull_declines_the_triplet(self):
         grey = np.ones((1, 40, 3)) * np.linspace(0.1, 1.0, 40)[None, :, None]  # one collinear cloud

@@ -11,9 +11,12 @@ import pytest
 
 import skinrender as sr
 from skinrender.errors import SkinrenderError
-from skinrender.render import channel_names, read_exr, render, render_raw, write_exr, write_preview
-from skinrender.validate import analytic_reference, table1, validate
-from skinrender import variants
+from skinrender.rendering.balance import render
+from skinrender.rendering.exr import read_exr, write_exr, write_preview
+from skinrender.rendering.renderer import channel_names, render_raw
+from skinrender.rendering.validation import validate
+from skinrender.studies.tables import table1
+from skinrender.rendering import variants
 
 pytest.importorskip("mitsuba")
 
@@ -75,7 +78,7 @@ class TestRender:
     def test_raw_is_the_specfilm_integral(self, tiny):
         """A patch returns ρ E / π: the raw mean of the white reference is ∫ B(λ, T) s_k(λ) dλ / π."""
         raw = render_raw(tiny, CAMERA, 4000, spp=64, seed=1)
-        scene = sr.scene.load_scene(tiny)
+        scene = sr.load_scene(tiny)
         rows, columns = scene.patch_pixels(scene.white_index)
         white = raw.radiance[rows, columns].reshape(-1, 3).mean(axis=0)
         lam = sr.GRID_DEFAULT.wavelengths
@@ -93,7 +96,7 @@ class TestRender:
     def test_a_broken_model_fails_validation(self):
         """The check can fail: the paper's Σ on a 10 nm grid is not what the renderer integrates."""
         result = validate("macbeth", "gbell:3@400,550,700", 2856, 2856, spp=256, seed=2)
-        coarse = sr.response("gbell:3@400,550,700", sr.scene.load_scene("macbeth").reflectances(sr.GRID_DEFAULT),
+        coarse = sr.response("gbell:3@400,550,700", sr.load_scene("macbeth").reflectances(sr.GRID_DEFAULT),
                              2856, 2856)
         assert result.passed
         assert np.any(np.abs(result.rendered - coarse) > result.tolerance)
@@ -131,7 +134,7 @@ class TestRender:
         it is biased by the reflectance's curvature within ±1 nm: measured 1.9e-3 at most here (a 2 nm-sampled
         skin spectrum at a kink), stated as < 3e-3 in the README."""
         result = validate(tiny, "impulse@450,550,650", 3300, 3300, spp=16, seed=1)
-        reflectance = sr.scene.load_scene(tiny).reflectances(sr.GRID_DEFAULT)
+        reflectance = sr.load_scene(tiny).reflectances(sr.GRID_DEFAULT)
         exact = sr.response("impulse@450,550,650", reflectance, 3300, 3300)
         assert result.passed
         assert np.max(np.abs(result.rendered / exact - 1)) < 3e-3
@@ -191,7 +194,7 @@ def test_table1_eq4_rows_agree_and_eq1_is_worse():
 
 @pytest.mark.parametrize("scene", ["skin_patches", "face_chart"])
 def test_rendered_gamuts_equal_analytic_within_noise(scene):
-    from skinrender.validate import validate_gamut
+    from skinrender.rendering.validation import validate_gamut
 
     result = validate_gamut(scene, CAMERA, illuminants=[2000, 3300, 5900, 10000], spp=64, seed=4)
     assert result["passed"], result

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.illuminant import illuminant, illuminants_array
+from skinrender.model.illuminant import illuminant, illuminants_array
 from skinrender.spectra import planck
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.scene import list_scenes, load_scene
+from skinrender.rendering.scene import list_scenes, load_scene
 from skinrender.spectra import GRID_DEFAULT
 
 GOOD = """

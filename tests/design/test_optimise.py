@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import skinrender as sr
-from skinrender.design import objective, optimise_camera
+from skinrender.design.optimise import objective, optimise_camera
 from skinrender.errors import SkinrenderError
 
 
@@ -25,7 +25,7 @@ def test_improves_from_a_poor_start(sets, kind):
 
 
 def test_objective_matches_the_search(sets):
-    from skinrender.search import search
+    from skinrender.design.search import search
 
     result = search(9, *sets, "400:700:100", workers=1, detection=True)  # 400, 500, 600, 700 nm
     t = 1  # 400 500 700

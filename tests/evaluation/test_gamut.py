@@ -9,7 +9,7 @@ import pytest
 
 import skinrender as sr
 from skinrender.errors import SkinrenderError
-from skinrender.gamut import gamut, gamut_all_calibrations, gamut_calibration, gamut_volume
+from skinrender.evaluation.gamut import gamut, gamut_all_calibrations, gamut_calibration, gamut_volume
 
 CUBE = np.array(list(itertools.product([0.0, 1.0], repeat=3)))
 

@@ -7,7 +7,8 @@ import pytest
 
 import skinrender as sr
 from skinrender.errors import SkinrenderError
-from skinrender.locus import Detection, detect, false_positive_rate, locus_points, skin_locus
+from skinrender.evaluation.detection import Detection, detect
+from skinrender.evaluation.locus import false_positive_rate, locus_points, skin_locus
 
 CAMERA = "gbell:9@450,540,610"
 
@@ -43,7 +44,7 @@ def test_detection_rates_on_a_synthetic_chart():
     """Known labels: skin patches and one blue patch, rendered analytically into a fake image."""
     from types import SimpleNamespace
 
-    from skinrender.scene import ChartScene, Patch
+    from skinrender.rendering.scene import ChartScene, Patch
 
     patches = (Patch("s1", "skin:#0", True), Patch("s2", "skin:#9", True), Patch("blue", "macbeth:blue", False),
                Patch("white reference", "perfect", False))

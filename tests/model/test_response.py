@@ -8,7 +8,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import skinrender as sr
-from skinrender.camera import camera, knee, measure, ncc, normalisation_factor, response, response_raw, white_coefficient
+from skinrender.model.camera import camera
+from skinrender.model.chromaticity import measure, ncc
+from skinrender.model.response import knee, normalisation_factor, response, response_raw, white_coefficient
 from skinrender.constants import CONSTANT_KNEE_FACTOR, TEMPERATURES_PAPER, TOLERANCE_ABSOLUTE_TESTS
 from skinrender.errors import SkinrenderError
 from skinrender.spectra import GRID_DEFAULT, WavelengthGrid, planck
@@ -80,7 +82,7 @@ class TestResponseRaw:
 
     def test_flat_spectrum_furnace(self):
         """A flat SPD of 1 through a camera on the grid gives Σ S_c(λ) Δλ per channel."""
-        from skinrender.illuminant import Illuminant
+        from skinrender.model.illuminant import Illuminant
 
         flat = Illuminant("flat", None, (380.0, 780.0), (1.0, 1.0))
         cam = camera("gbell:9@450,540,610")

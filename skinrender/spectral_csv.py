@@ -1,0 +1,180 @@
+"""
+Spectral CSV files
+==================
+
+The validating reader of every spectral table a user can give (cameras,
+reflectance sets, illuminants): a CSV whose first column is wavelength in nm
+and whose other columns are spectra, checked line by line so that a bad file
+is refused with the file, line and column named.
+
+-   :class:`SpectraTable`, :func:`read_spectra_csv`: a CSV of spectra.
+-   :func:`validate_spectra`: the checks on wavelengths and values.
+
+Units: wavelength in nm; values in the file's unit (unitless reflectances and
+sensitivities, W·m⁻²·sr⁻¹·nm⁻¹ for illuminants).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .errors import SkinrenderError
+from .hints import NDArrayFloat
+
+__all__ = ["SpectraTable", "read_spectra_csv", "validate_spectra"]
+
+
+@dataclass(frozen=True)
+class SpectraTable:
+    """Spectra read from a table: wavelengths (nm), names and values ``(n_spectra, n_wl)``."""
+
+    wavelengths: NDArrayFloat
+    names: tuple[str, ...]
+    values: NDArrayFloat
+    source: str
+
+
+def validate_spectra(
+    wavelengths: NDArrayFloat,
+    values: NDArrayFloat,
+    source: str,
+    kind: Literal["reflectance", "sensitivity", "spd"] = "reflectance",
+    lines: "list[int] | None" = None,
+) -> None:
+    """
+    Refuse NaN, infinite or negative values and non-monotonic wavelengths.
+
+    Parameters
+    ----------
+    wavelengths
+        Shape ``(n,)``, nm.
+    values
+        Shape ``(n_spectra, n)``.
+    source
+        File or dataset name for the message.
+    kind
+        What the values are (named in the message). Reflectances must also be
+        at most 1.5 — a table in percent is refused rather than rescaled.
+    lines
+        The file line number of each wavelength row, for the message; with
+        ``None`` messages give the row index.
+    """
+
+    def where(row: int) -> str:
+        return f"{source}, line {lines[row]}" if lines is not None else f"{source}, row {row}"
+
+    if not np.all(np.isfinite(wavelengths)):
+        row = int(np.flatnonzero(~np.isfinite(wavelengths))[0])
+        raise SkinrenderError(f"{where(row)}: wavelength is not a finite number")
+    steps = np.diff(wavelengths)
+    if np.any(steps <= 0):
+        row = int(np.flatnonzero(steps <= 0)[0]) + 1
+        raise SkinrenderError(
+            f"{where(row)}: wavelength {wavelengths[row]:g} nm does not increase on the "
+            f"previous {wavelengths[row - 1]:g} nm (the wavelength column must be strictly increasing)"
+        )
+    if np.any(wavelengths <= 0):
+        row = int(np.flatnonzero(wavelengths <= 0)[0])
+        raise SkinrenderError(f"{where(row)}: wavelength must be > 0 nm")
+    bad = ~np.isfinite(values)
+    if np.any(bad):
+        spectrum, row = (int(i[0]) for i in np.nonzero(bad))
+        raise SkinrenderError(f"{where(row)}: {kind} in column {spectrum + 2} is not a finite number")
+    negative = values < 0
+    if np.any(negative):
+        spectrum, row = (int(i[0]) for i in np.nonzero(negative))
+        raise SkinrenderError(
+            f"{where(row)}: negative {kind} {values[spectrum, row]:g} in column {spectrum + 2}"
+        )
+    if kind == "reflectance" and values.size and values.max() > 1.5:
+        spectrum, row = np.unravel_index(int(np.argmax(values)), values.shape)
+        raise SkinrenderError(
+            f"{where(int(row))}: reflectance {values[spectrum, row]:g} in column {spectrum + 2} "
+            f"is above 1.5; reflectances are fractions in [0, 1], not percent"
+        )
+
+
+def read_spectra_csv(
+    path: str | Path,
+    kind: Literal["reflectance", "sensitivity", "spd"] = "reflectance",
+    expected_columns: int | None = None,
+) -> SpectraTable:
+    """
+    Read a CSV of spectra: first column wavelength (nm), one column per spectrum.
+
+    Parameters
+    ----------
+    path
+        The CSV file. A header row (any first cell that is not a number) gives
+        the spectrum names; without one, the names are ``column 2`` …
+    kind
+        ``reflectance`` (fractions in [0, 1]), ``sensitivity`` or ``spd``.
+    expected_columns
+        Number of spectrum columns required (3 for a camera), or ``None``.
+
+    Returns
+    -------
+    :class:`SpectraTable`
+
+    Raises
+    ------
+    SkinrenderError
+        For a missing file, a non-numeric cell, a ragged row, NaN, negative
+        values or a wavelength column that is not strictly increasing, naming
+        the file and line.
+    """
+
+    path = Path(path)
+    if not path.is_file():
+        raise SkinrenderError(f"{path}: no such file")
+    rows: list[list[float]] = []
+    lines: list[int] = []
+    names: list[str] | None = None
+    with path.open(newline="", encoding="utf-8-sig") as handle:
+        for line_number, row in enumerate(csv.reader(handle), start=1):
+            cells = [cell.strip() for cell in row]
+            if not cells or all(cell == "" for cell in cells) or cells[0].startswith("#"):
+                continue
+            if names is None and not rows and not _is_number(cells[0]):
+                names = cells[1:]
+                continue
+            try:
+                numbers = [float(cell) if cell != "" else math.nan for cell in cells]
+            except ValueError:
+                bad = next(cell for cell in cells if cell != "" and not _is_number(cell))
+                raise SkinrenderError(f"{path}, line {line_number}: {bad!r} is not a number") from None
+            width = len(names) + 1 if names is not None else (len(rows[0]) if rows else len(numbers))
+            if len(numbers) != width:
+                raise SkinrenderError(
+                    f"{path}, line {line_number}: {len(numbers)} columns, expected {width}"
+                )
+            rows.append(numbers)
+            lines.append(line_number)
+    if not rows:
+        raise SkinrenderError(f"{path}: no data rows")
+    data = np.asarray(rows, dtype=np.float64)
+    if data.shape[1] < 2:
+        raise SkinrenderError(f"{path}: needs a wavelength column and at least one spectrum column")
+    if names is None:
+        names = [f"column {i}" for i in range(2, data.shape[1] + 1)]
+    if expected_columns is not None and data.shape[1] - 1 != expected_columns:
+        raise SkinrenderError(
+            f"{path}: {data.shape[1] - 1} spectrum columns, expected {expected_columns} "
+            f"(wavelength in nm, then {expected_columns} columns)"
+        )
+    wavelengths, values = data[:, 0], data[:, 1:].T.copy()
+    validate_spectra(wavelengths, values, str(path), kind, lines=lines)
+    return SpectraTable(wavelengths, tuple(names), values, str(path))
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True

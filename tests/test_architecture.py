@@ -1,0 +1,125 @@
+"""
+The house rules of the package (README, "How the pieces fit"): layers kept by
+import-linter, no import cycles, one meaning per ``skinrender.<name>``, no
+two module names a letter apart, small modules, doctests that pass on their
+own, and a core that runs without the optional extras.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import skinrender
+
+ROOT = Path(skinrender.__file__).parent
+REPOSITORY = ROOT.parent
+LAYER_MODULES = {"constants", "errors", "hints", "spectra", "spectral_csv", "methods", "extras", "datasets", "model", "evaluation",
+                 "design", "rendering", "studies", "cli"}
+"""What ``skinrender.<name>`` may be when it is a module."""
+MODULE_LINES_MAX = 450
+"""'None over ~400 lines': the largest module may exceed 400 by little."""
+
+
+def modules() -> list[str]:
+    """Every module of the package, dotted."""
+    return sorted(m.name for m in pkgutil.walk_packages([str(ROOT)], "skinrender.") if not m.name.endswith("_hull3d"))
+
+
+def source_of(module: str) -> Path:
+    """The file of a dotted module name (a package's ``__init__.py``)."""
+    path = ROOT.joinpath(*module.split(".")[1:]) if module != "skinrender" else ROOT
+    return path / "__init__.py" if path.is_dir() else path.with_suffix(".py")
+
+
+def test_import_linter_contracts_are_kept():
+    """The layers (and the figures/render-extra rules) of pyproject.toml hold."""
+    importlinter_cli = pytest.importorskip("importlinter.cli")
+    code = importlinter_cli.lint_imports(config_filename=str(REPOSITORY / "pyproject.toml"), no_cache=True)
+    assert code == 0, "import-linter found a broken contract: run `lint-imports` for the details"
+
+
+def test_no_import_cycles():
+    """No module imports (at module level or inside a function) a module that imports it back, directly or not.
+
+    A package's ``__init__`` importing its own modules is not counted (the command line's registry does)."""
+    grimp = pytest.importorskip("grimp")
+    graph = grimp.build_graph("skinrender")
+    cycles = []
+    for importer in sorted(graph.modules):
+        for imported in graph.find_modules_directly_imported_by(importer):
+            if importer.startswith(imported + ".") or imported.startswith(importer + "."):
+                continue
+            chain = graph.find_shortest_chain(importer=imported, imported=importer)
+            if chain:
+                cycles.append(" -> ".join((importer, *chain)))
+    assert cycles == []
+
+
+def test_one_meaning_per_top_level_name():
+    """``skinrender.<name>`` is a layer module or a public object, never a module shadowed by a function."""
+    for name in skinrender.__all__:
+        assert not isinstance(getattr(skinrender, name), type(skinrender)), f"skinrender.{name} is a module"
+    for name, value in vars(skinrender).items():
+        if isinstance(value, type(skinrender)) and not name.startswith("_"):
+            assert name in LAYER_MODULES, f"skinrender.{name} is a module outside the layers"
+    for package in ("model", "evaluation", "design", "rendering", "studies", "cli", "datasets"):
+        module = importlib.import_module(f"skinrender.{package}")
+        for info in pkgutil.iter_modules(module.__path__):
+            value = getattr(module, info.name, None)
+            importlib.import_module(f"skinrender.{package}.{info.name}")
+            value = getattr(module, info.name)
+            assert isinstance(value, type(skinrender)), f"skinrender.{package}.{info.name} is not its module"
+
+
+def test_no_two_module_names_a_letter_apart():
+    """``illuminant`` beside ``illuminants`` confused readers: no two module names differ by one letter."""
+    names = sorted({m.rpartition(".")[2] for m in modules()} - {"__init__"})
+
+    def one_apart(a: str, b: str) -> bool:
+        if abs(len(a) - len(b)) > 1 or a == b:
+            return False
+        if len(a) == len(b):
+            return sum(x != y for x, y in zip(a, b)) == 1
+        short, long = sorted((a, b), key=len)
+        return any(long[:i] + long[i + 1:] == short for i in range(len(long)))
+
+    pairs = [(a, b) for i, a in enumerate(names) for b in names[i + 1:] if one_apart(a, b)]
+    assert not pairs
+
+
+def test_modules_are_small():
+    """One job per module: none over :data:`MODULE_LINES_MAX` lines (the C kernel aside)."""
+    sizes = {str(p.relative_to(ROOT)): len(p.read_text(encoding="utf-8").splitlines()) for p in ROOT.rglob("*.py")}
+    assert {k: v for k, v in sizes.items() if v > MODULE_LINES_MAX} == {}
+
+
+def test_tests_mirror_the_package():
+    """Every test module names a module of the package at the same place (tests/model/test_response.py ↔ model/response.py)."""
+    tests = REPOSITORY / "tests"
+    orphans = []
+    for path in tests.rglob("test_*.py"):
+        relative = path.relative_to(tests)
+        stem = path.stem[len("test_"):]
+        target = ROOT.joinpath(*relative.parts[:-1], stem)
+        if not (target.with_suffix(".py").exists() or target.is_dir() or stem in {"architecture", "notebooks", "bad_input"}):
+            orphans.append(str(relative))
+    assert orphans == []
+
+
+DOCTESTED = sorted(m for m in ["skinrender", *modules()] if ">>>" in source_of(m).read_text(encoding="utf-8"))
+
+
+@pytest.mark.parametrize("module", DOCTESTED)
+def test_doctests_pass_on_their_own(module):
+    """Each module's doctests in a fresh interpreter: no reliance on another import changing numpy's printing."""
+    path = source_of(module)
+    run = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "--doctest-modules",
+                          "-o", "addopts=", "-o", "doctest_optionflags=ELLIPSIS NORMALIZE_WHITESPACE NUMBER",
+                          str(path)], capture_output=True, text=True, cwd=REPOSITORY)
+    assert run.returncode == 0, run.stdout[-3000:]
