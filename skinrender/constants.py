@@ -29,6 +29,7 @@ __all__ = [
     "TEMPERATURES_PAPER",
     "TEMPERATURE_A",
     "TEMPERATURE_HORIZON",
+    "TEMPERATURE_MAX",
     "TOLERANCE_ABSOLUTE_TESTS",
     "TOLERANCE_RELATIVE_TESTS",
 ]
@@ -78,6 +79,11 @@ TEMPERATURE_A: float = 2856.0
 
 TEMPERATURE_HORIZON: float = 2300.0
 """The paper's Horizon (H) light, a Planckian radiator, K."""
+
+TEMPERATURE_MAX: float = 1e12
+"""Highest temperature accepted, K. Planck radiance grows as ``2ckT/λ⁴`` far
+above the visible Wien peak and overflows float64 near 1e300 K; 1e12 K keeps
+it below ~1e15 W·m⁻²·sr⁻¹·nm⁻¹ with all digits, far beyond any light source."""
 
 TOLERANCE_ABSOLUTE_TESTS: float = 1e-7
 """Absolute tolerance for deterministic (analytic) tests: float64 sums of a

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .constants import CONSTANT_C, CONSTANT_H, CONSTANT_K_B
+from .constants import CONSTANT_C, CONSTANT_H, CONSTANT_K_B, TEMPERATURE_MAX
 from .errors import SkinrenderError
 from .hints import ArrayLike, Literal, NDArrayFloat
 from .methods import parse_range, validate_method
@@ -37,11 +37,16 @@ __all__ = [
     "WavelengthGrid",
     "GRID_DEFAULT",
     "EXTRAPOLATIONS",
+    "GRID_SIZE_MAX",
     "resample",
     "planck",
     "gbell",
     "impulse",
 ]
+
+GRID_SIZE_MAX = 100_001
+"""Most samples a wavelength grid may have (400–700 nm every 0.003 nm): a
+reflectance set of 1269 spectra on it takes 1 GB."""
 
 EXTRAPOLATIONS = {
     "refuse": "an error (default)",
@@ -87,11 +92,16 @@ class WavelengthGrid:
             raise SkinrenderError(f"grid start must be > 0 nm, got {self.start}")
         if self.step <= 0:
             raise SkinrenderError(f"grid step must be > 0 nm, got {self.step}")
-        if self.end < self.start:
+        if not self.end > self.start:
             raise SkinrenderError(
-                f"grid end ({self.end} nm) must not be below grid start ({self.start} nm)"
+                f"grid end ({self.end:g} nm) must be above grid start ({self.start:g} nm): a grid needs two samples"
             )
         count = (self.end - self.start) / self.step
+        if count + 1 > GRID_SIZE_MAX:
+            raise SkinrenderError(
+                f"grid {self.start:g}:{self.end:g}:{self.step:g} nm has {count + 1:.3g} samples, more than "
+                f"{GRID_SIZE_MAX} (every spectrum would need {8 * (count + 1) / 1e6:.3g} MB); use a larger step"
+            )
         if abs(count - round(count)) > 1e-9 * max(1.0, count):
             raise SkinrenderError(
                 f"grid {self.start}–{self.end} nm is not a whole number of {self.step} nm steps"
@@ -234,21 +244,28 @@ def planck(wavelength: ArrayLike, temperature: ArrayLike) -> NDArrayFloat:
 
     lam = np.asarray(wavelength, dtype=np.float64)
     t = np.asarray(temperature, dtype=np.float64)
-    if np.any(~np.isfinite(t)) or np.any(t <= 0):
-        raise SkinrenderError(f"temperature must be a finite number of kelvin > 0, got {show_values(t)}")
+    if np.any(~np.isfinite(t)) or np.any(t <= 0) or np.any(t > TEMPERATURE_MAX):
+        bad = t[~(np.isfinite(t) & (t > 0) & (t <= TEMPERATURE_MAX))]
+        raise SkinrenderError(f"temperature must be a finite number of kelvin in (0, {TEMPERATURE_MAX:g}], "
+                              f"got {float(np.ravel(bad)[0])!r}")
     if np.any(~np.isfinite(lam)) or np.any(lam <= 0):
         raise SkinrenderError(f"wavelength must be a finite number of nm > 0, got {show_values(lam)}")
     lam_m = lam * 1e-9
-    x = CONSTANT_H * CONSTANT_C / (lam_m * CONSTANT_K_B * t)
-    prefactor = 2.0 * CONSTANT_H * CONSTANT_C**2 / lam_m**5 * 1e-9  # per nm
+    with np.errstate(divide="ignore", over="ignore", under="ignore", invalid="ignore"):  # T → 0: x → inf, radiance 0
+        x = CONSTANT_H * CONSTANT_C / (lam_m * CONSTANT_K_B * t)
+        prefactor = 2.0 * CONSTANT_H * CONSTANT_C**2 / lam_m**5 * 1e-9  # per nm
     # For x > 700, exp(x) overflows float64; there 1/(e^x − 1) = e^−x (1 + e^−x …)
     # to machine precision, computed as exp(log(prefactor) − x), which underflows
     # gracefully to 0 instead of warning.
     large = x > 700.0
-    with np.errstate(over="ignore", under="ignore"):
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
         small_part = prefactor / np.expm1(np.where(large, 1.0, x))
         large_part = np.exp(np.log(prefactor) - np.where(large, x, 0.0))
-    return np.where(large, large_part, small_part)
+    radiance = np.where(large, large_part, small_part)
+    if not np.all(np.isfinite(radiance)):
+        raise SkinrenderError(f"Planck radiance overflows float64 at wavelength {show_values(lam)} nm: "
+                              "wavelengths must be of a physical size (e.g. 1–1e6 nm)")
+    return radiance
 
 
 def gbell(

@@ -17,6 +17,7 @@ sensitivities, W·m⁻²·sr⁻¹·nm⁻¹ for illuminants).
 from __future__ import annotations
 
 import csv
+import io
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,9 +25,12 @@ from pathlib import Path
 import numpy as np
 
 from .errors import SkinrenderError
-from .hints import NDArrayFloat
+from .hints import Literal, NDArrayFloat
 
-__all__ = ["SpectraTable", "read_spectra_csv", "validate_spectra"]
+__all__ = ["CSV_BYTES_MAX", "SpectraTable", "read_spectra_csv", "validate_spectra"]
+
+CSV_BYTES_MAX = 64_000_000
+"""Largest spectral CSV read, bytes: a 1 nm table of 10 000 spectra is ~30 MB."""
 
 
 @dataclass(frozen=True)
@@ -135,7 +139,19 @@ def read_spectra_csv(
     rows: list[list[float]] = []
     lines: list[int] = []
     names: list[str] | None = None
-    with path.open(newline="", encoding="utf-8-sig") as handle:
+    if path.stat().st_size > CSV_BYTES_MAX:
+        raise SkinrenderError(f"{path}: {path.stat().st_size / 1e6:.0f} MB is larger than a spectral table can be "
+                              f"({CSV_BYTES_MAX / 1e6:.0f} MB)")
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except UnicodeDecodeError as error:
+        raise SkinrenderError(f"{path}: not a UTF-8 text file (byte {error.start}); expected a CSV of numbers") from None
+    except OSError as error:
+        raise SkinrenderError(f"{path}: cannot be read ({error.strerror})") from None
+    if "\x00" in text:
+        raise SkinrenderError(f"{path}: a binary file, not a CSV of numbers")
+    try:
+        handle = io.StringIO(text, newline="")
         for line_number, row in enumerate(csv.reader(handle), start=1):
             cells = [cell.strip() for cell in row]
             if not cells or all(cell == "" for cell in cells) or cells[0].startswith("#"):
@@ -155,6 +171,8 @@ def read_spectra_csv(
                 )
             rows.append(numbers)
             lines.append(line_number)
+    except csv.Error as error:
+        raise SkinrenderError(f"{path}: not a readable CSV ({error})") from None
     if not rows:
         raise SkinrenderError(f"{path}: no data rows")
     data = np.asarray(rows, dtype=np.float64)

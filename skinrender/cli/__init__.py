@@ -23,6 +23,7 @@ from collections.abc import Sequence
 
 from ..errors import SkinrenderError
 from . import data, design, evaluation, model, rendering, studies
+from .common import Parser
 
 __all__ = ["main", "build_parser", "COMMANDS"]
 
@@ -47,12 +48,12 @@ COMMANDS = {
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of every command."""
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog="skinrender",
         description="Design and validate three-channel cameras for skin detection "
         "(wavelengths in nm, temperatures in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹).",
     )
-    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser)
     for group in (data, model, design, studies, rendering, evaluation):
         group.add_parsers(commands)
     return parser
@@ -65,10 +66,21 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         COMMANDS[args.command](args)
     except SkinrenderError as error:
-        print(f"skinrender {args.command}: error: {error}", file=sys.stderr)
+        print(f"skinrender {args.command}: error: {' '.join(str(error).split())}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print(f"skinrender {args.command}: interrupted", file=sys.stderr)
+        return 130
     except BrokenPipeError:
         return 0
+    except MemoryError:
+        print(f"skinrender {args.command}: error: out of memory: ask for less (a coarser grid, fewer positions)",
+              file=sys.stderr)
+        return 2
+    except Exception as error:  # the last resort: one line, never a traceback (a bug to report)
+        print(f"skinrender {args.command}: internal error: {type(error).__name__}: "
+              f"{' '.join(str(error).split())[:300]} (please report this)", file=sys.stderr)
+        return 1
     return 0
 
 

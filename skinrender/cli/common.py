@@ -12,11 +12,14 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
+from pathlib import Path
 
 from ..errors import SkinrenderError
 
 __all__ = [
+    "Parser", "flag", "camera_of", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "render_options", "choices_help",
 ]
@@ -111,7 +114,7 @@ def grid_of(args: argparse.Namespace):
     """The :class:`~skinrender.spectra.WavelengthGrid` of ``--grid``."""
     from ..spectra import WavelengthGrid
 
-    return WavelengthGrid.parse(args.grid)
+    return flag("--grid", WavelengthGrid.parse, args.grid)
 
 
 def render_options(args: argparse.Namespace) -> dict:
@@ -120,7 +123,89 @@ def render_options(args: argparse.Namespace) -> dict:
 
     preset = QUALITY_PRESETS[args.quality]
     spp = args.spp if args.spp is not None else preset["spp"]
-    if spp < 1:
-        raise SkinrenderError(f"--spp must be ≥ 1, got {spp}")
-    return {"spp": spp, "sampler": args.sampler or preset["sampler"], "seed": args.seed, "variant": args.variant,
-            "channels": args.channels}
+    if not 1 <= spp <= SPP_MAX:
+        raise SkinrenderError(f"--spp must be an integer in [1, {SPP_MAX}], got {spp}")
+    from ..rendering.variants import VARIANTS_SPECTRAL
+
+    if args.variant is not None and args.variant not in VARIANTS_SPECTRAL:
+        raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, got {args.variant!r}")
+    return {"spp": spp, "sampler": args.sampler or preset["sampler"], "seed": check_seed(args.seed),
+            "variant": args.variant, "channels": args.channels}
+
+
+SPP_MAX = 1 << 20
+"""Most samples per pixel a render may ask for (the reference preset uses 4096)."""
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line, ``skinrender COMMAND: error: …``, exit status 2."""
+
+    def error(self, message: str):  # noqa: D102 - argparse's hook
+        self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
+
+
+def flag(name: str, function, *args, **kwargs):
+    """``function(*args, **kwargs)``, its :class:`SkinrenderError` prefixed with the flag ``name`` it came from."""
+    try:
+        return function(*args, **kwargs)
+    except SkinrenderError as error:
+        text = str(error)
+        raise SkinrenderError(text if text.startswith(name) else f"{name}: {text}") from None
+
+
+def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = (), folder: bool = False) -> Path | None:
+    """
+    Check an output path before any work is done (nothing is created).
+
+    Refused, with the flag ``name`` in the message: an empty path; a file path
+    that is an existing folder (or a folder path that is an existing file);
+    a suffix not in ``suffixes``; a parent that is a file; a place that cannot
+    be written. A missing parent folder is fine (it is created on writing).
+    ``None`` (the flag not given) passes through.
+    """
+    if path is None:
+        return None
+    if not str(path).strip():
+        raise SkinrenderError(f"{name}: expected a {'folder' if folder else 'file'} path, got an empty one")
+    target = Path(path)
+    if folder and target.exists() and not target.is_dir():
+        raise SkinrenderError(f"{name}: {target} is an existing file, expected a folder")
+    if not folder:
+        if target.is_dir():
+            raise SkinrenderError(f"{name}: {target} is a folder, expected a file")
+        if suffixes and target.suffix.lower() not in suffixes:
+            raise SkinrenderError(f"{name}: {target} must end in {' or '.join(suffixes)}")
+    parent = target if folder else target.parent
+    existing = parent
+    while not existing.exists():
+        if existing == existing.parent:
+            break
+        existing = existing.parent
+    if existing.exists() and not existing.is_dir():
+        raise SkinrenderError(f"{name}: {existing} is a file, so {target} cannot be created")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise SkinrenderError(f"{name}: {existing} cannot be written")
+    return target
+
+
+SEED_MAX = 2**32 - 2
+"""Largest sampler seed: Mitsuba takes 32-bit seeds and the calibration render uses ``seed + 1``."""
+
+
+def check_seed(seed: int, name: str = "--seed") -> int:
+    """A seed in ``[0, SEED_MAX]``, else a one-line error naming the flag."""
+    if not 0 <= seed <= SEED_MAX:
+        raise SkinrenderError(f"{name} must be an integer in [0, {SEED_MAX}] (32-bit, and the calibration render "
+                              f"uses seed + 1), got {seed}")
+    return seed
+
+
+def camera_of(args: argparse.Namespace, grid=None, name: str = "--camera"):
+    """The camera of ``--camera`` (with ``--extrapolation`` where the command has it), its curves checked on ``grid``."""
+    from ..model.camera import camera
+    from ..spectra import GRID_DEFAULT
+
+    extrapolation = getattr(args, "extrapolation", "refuse")
+    cam = flag(name, camera, getattr(args, name.lstrip("-").replace("-", "_")), extrapolation=extrapolation)
+    flag(name, cam.sensitivities, grid or GRID_DEFAULT)
+    return cam

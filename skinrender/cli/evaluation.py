@@ -9,7 +9,7 @@ import argparse
 import numpy as np
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, add_common, emit)
+from .common import HELP_CAMERA, camera_of, add_common, check_output, emit, flag
 
 
 def add_parsers(commands) -> None:
@@ -34,7 +34,6 @@ def add_parsers(commands) -> None:
 def command_locus(args: argparse.Namespace) -> None:
     from ..datasets import reflectances
     from ..evaluation.locus import false_positive_rate, locus_points, skin_locus
-    from ..model.camera import camera
     from ..model.illuminant import illuminant
     from ..model.chromaticity import ncc
     from ..model.response import response
@@ -42,17 +41,22 @@ def command_locus(args: argparse.Namespace) -> None:
     from ..spectra import GRID_DEFAULT
     from ..studies.figures import figure_locus
 
-    cam = camera(args.camera)
-    temperatures = illuminant_set(args.illuminants, cam)
+    check_output(args.plot, "--plot", (".png",))
+    cam = camera_of(args)
+    temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
     calibration = None
-    if args.calibration:
-        calibration = illuminant(args.calibration).temperature
+    if args.calibration is not None:
+        calibration = flag("--calibration", illuminant, args.calibration).temperature
         if calibration is None:
             raise SkinrenderError("--calibration must be Planckian (kelvin, A or H)")
-    skin = reflectances(args.skin)
+    skin = flag("--skin", reflectances, args.skin)
     locus = skin_locus(cam, skin, temperatures, calibration, args.boundary)
-    rates = {name: false_positive_rate(locus, cam, reflectances(name)) for name in args.nonskin.split(",") if name}
-    document = {"camera": cam.name, "boundary": args.boundary, "polygon": locus.polygon.tolist(), "area": locus.area,
+    names = [name.strip() for name in args.nonskin.split(",") if name.strip()]
+    if not names:
+        raise SkinrenderError(f"--nonskin: expected comma-separated reflectance sets, got {args.nonskin!r}")
+    sets = {name: flag("--nonskin", reflectances, name) for name in names}
+    rates = {name: false_positive_rate(locus, cam, values) for name, values in sets.items()}
+    document = {"camera": cam.name, "boundary": args.boundary, "polygon": locus.polygon.tolist(), "area": locus.area, "degenerate": locus.degenerate,
                 "illuminants_K": temperatures.tolist(), "calibration_K": calibration, "skin": skin.name,
                 "false_positive_rate": rates}
     if args.plot:

@@ -7,7 +7,7 @@ from __future__ import annotations
 import argparse
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, HELP_ILLUMINANT, add_common, add_grid, add_model, emit, grid_of, table)
+from .common import HELP_CAMERA, camera_of, HELP_ILLUMINANT, add_common, add_grid, add_model, emit, flag, grid_of, table
 
 
 def add_parsers(commands) -> None:
@@ -52,10 +52,9 @@ def add_parsers(commands) -> None:
 
 
 def command_illuminants(args: argparse.Namespace) -> None:
-    from ..model.camera import camera
     from ..model.stage1 import illuminant_selection
 
-    cam = camera(args.camera, extrapolation=args.extrapolation)
+    cam = camera_of(args, grid_of(args))
     selection = illuminant_selection(
         cam, args.count, args.range[0], args.range[1], args.step, grid_of(args), args.pair
     )
@@ -81,16 +80,15 @@ def command_illuminants(args: argparse.Namespace) -> None:
 
 
 def command_response(args: argparse.Namespace) -> None:
-    from ..model.camera import camera
     from ..model.chromaticity import ncc
     from ..model.response import response
     from ..datasets import reflectances
     from ..model.illuminant import illuminant
 
     grid = grid_of(args)
-    cam = camera(args.camera, extrapolation=args.extrapolation)
-    refl = reflectances(args.reflectances, extrapolation=args.extrapolation)
-    prevailing, calibration = illuminant(args.prevailing), illuminant(args.calibration)
+    cam = camera_of(args, grid_of(args))
+    refl = flag("--reflectances", reflectances, args.reflectances, extrapolation=args.extrapolation)
+    prevailing, calibration = flag("--prevailing", illuminant, args.prevailing), flag("--calibration", illuminant, args.calibration)
     rgb = response(cam, refl.on(grid), prevailing, calibration, args.normalization, args.knee, grid)
     chromaticity = ncc(rgb)
     samples = [
@@ -117,19 +115,18 @@ def command_response(args: argparse.Namespace) -> None:
 
 
 def command_gamut(args: argparse.Namespace) -> None:
-    from ..model.camera import camera
     from ..datasets import reflectances
     from ..evaluation.gamut import gamut_all_calibrations, gamut_calibration
     from ..model.illuminant import illuminant
     from ..model.stage1 import illuminant_set
 
     grid = grid_of(args)
-    cam = camera(args.camera, extrapolation=args.extrapolation)
-    temperatures = illuminant_set(args.illuminants, cam)
+    cam = camera_of(args, grid_of(args))
+    temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
     if args.ratio == bool(args.reflectances):
         raise SkinrenderError("give either --reflectances R or --ratio (with --skin and --munsell), not both or neither")
     if args.calibration is not None:
-        calibration = illuminant(args.calibration)
+        calibration = flag("--calibration", illuminant, args.calibration)
         if calibration.temperature is None:
             raise SkinrenderError("--calibration must be a Planckian illuminant (kelvin, A or H) for a gamut case")
 

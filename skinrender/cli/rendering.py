@@ -8,7 +8,8 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, HELP_ILLUMINANT, add_common, add_grid, add_model, add_render, choices_help, emit, grid_of, render_options, table)
+from .common import (HELP_CAMERA, HELP_ILLUMINANT, add_common, camera_of, add_grid, add_model, add_render, check_output,
+                     choices_help, emit, flag, grid_of, render_options, table)
 
 
 def add_parsers(commands) -> None:
@@ -47,32 +48,61 @@ def add_parsers(commands) -> None:
     add_common(p)
 
 
+def render_inputs(args: argparse.Namespace) -> dict:
+    """
+    The scene, camera and the two Planckian temperatures (K) of a render
+    command, each parsed once here with its flag named in any error, and
+    checked to give the camera light on the grid before anything renders.
+    """
+    import numpy as np
+
+    from ..model.illuminant import illuminant
+    from ..model.response import response
+    from ..rendering.scene import load_scene
+
+    scene = flag("SCENE", load_scene, args.scene)
+    grid = grid_of(args) if hasattr(args, "grid") else None
+    cam = camera_of(args, grid)
+    temperatures = {}
+    for name in ("prevailing", "calibration"):
+        light = flag(f"--{name}", illuminant, getattr(args, name))
+        if light.temperature is None:
+            raise SkinrenderError(f"--{name}: rendering needs a Planckian illuminant (kelvin, A or H), got {light}")
+        temperatures[name] = light.temperature
+    from ..spectra import GRID_DEFAULT
+
+    grid = grid or GRID_DEFAULT
+    response(cam, np.ones((1, grid.size)), temperatures["prevailing"], temperatures["calibration"], grid=grid)
+    return {"scene": scene, "camera_": cam, "prevailing": temperatures["prevailing"],
+            "calibration": temperatures["calibration"]}
+
+
 def command_render(args: argparse.Namespace) -> None:
-    from pathlib import Path
 
     from ..rendering.balance import render
     from ..rendering.exr import write_exr, write_preview
     from ..rendering.renderer import channel_names
 
     options = render_options(args)
-    print(f"rendering {args.scene} at {options['spp']} spp …", file=sys.stderr)
-    result = render(args.scene, args.camera, args.prevailing, args.calibration, args.normalization, args.knee,
-                    grid=grid_of(args), **options)
-    output = Path(args.output)
-    if output.suffix.lower() != ".exr":
-        raise SkinrenderError(f"--output must end in .exr, got {output}")
+    output = check_output(args.output, "--output", (".exr",))
+    check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
+    inputs = render_inputs(args)
+    print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
+    result = render(**inputs, normalization=args.normalization, knee=args.knee, grid=grid_of(args), **options)
+    spp = result.raw[0].spp
     names = channel_names(result.camera)
     write_exr(output, result.image, names, {"camera": result.camera.name, "prevailing_K": result.prevailing,
-                                            "calibration_K": result.calibration, "spp": options["spp"],
+                                            "calibration_K": result.calibration, "spp": spp,
                                             "seed": args.seed, "variant": result.variant, "units": "Eq. 4 output units"})
     preview = write_preview(output.with_suffix(".png"), result.image)
-    document = {"image": str(output), "preview_png": str(preview), "channels": list(names), "spp": options["spp"],
+    document = {"image": str(output), "preview_png": str(preview), "channels": list(names), "spp": spp,
+                "spp_requested": options["spp"],
                 "sampler": options["sampler"], "seed": args.seed, "variant": result.variant,
                 "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
                 "normalization": args.normalization, "knee": args.knee}
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "
-            f"{result.calibration:g} K: {output} (+ {preview}), {options['spp']} spp, {result.variant}, "
+            f"{result.calibration:g} K: {output} (+ {preview}), {spp} spp, {result.variant}, "
             f"{result.seconds:.2f} s")
     emit(args, document, text)
 
@@ -81,13 +111,13 @@ def command_validate(args: argparse.Namespace) -> None:
     from ..rendering.validation import SIGMAS, validate
 
     options = render_options(args)
-    print(f"rendering {args.scene} at {options['spp']} spp and validating …", file=sys.stderr)
-    result = validate(args.scene, args.camera, args.prevailing, args.calibration, args.normalization, args.knee,
-                      grid=grid_of(args), **options)
+    inputs = render_inputs(args)
+    print(f"rendering {inputs['scene'].name} at {options['spp']} spp and validating …", file=sys.stderr)
+    result = validate(**inputs, normalization=args.normalization, knee=args.knee, grid=grid_of(args), **options)
     r = result.rendering
     document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
                 "calibration_K": r.calibration, "normalization": args.normalization, "knee": args.knee,
-                "spp": options["spp"], "sampler": options["sampler"], "seed": args.seed, "variant": r.variant,
+                "spp": r.raw[0].spp, "spp_requested": options["spp"], "sampler": options["sampler"], "seed": args.seed, "variant": r.variant,
                 "elapsed_s": r.seconds, "sigmas": SIGMAS, "patches": result.patches(), "worst": result.worst(),
                 "max_rel_error": float(result.rel_error.max()), "quadrature_rel_difference": result.quadrature,
                 "passed": result.passed}
@@ -119,27 +149,33 @@ def command_validate(args: argparse.Namespace) -> None:
 
 
 def command_detect(args: argparse.Namespace) -> None:
-    from pathlib import Path
 
     from ..evaluation.detection import detect
+    from ..datasets import reflectances
     from ..evaluation.locus import skin_locus
     from ..rendering.balance import render
     from ..rendering.exr import write_png, write_preview
 
     options = render_options(args)
-    print(f"rendering {args.scene} at {options['spp']} spp …", file=sys.stderr)
-    rendering = render(args.scene, args.camera, args.prevailing, args.calibration, **options)
+    output = check_output(args.output, "--output", (".png",))
+    check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
+    inputs = render_inputs(args)
+    skin = flag("--skin", reflectances, args.skin)
+    print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
+    rendering = render(**inputs, **options)
     # the camera is white-balanced to the calibration light: the locus of that one balancing
-    locus = skin_locus(rendering.camera, args.skin, calibration=rendering.calibration, boundary=args.boundary)
+    locus = skin_locus(rendering.camera, skin, calibration=rendering.calibration, boundary=args.boundary)
     result = detect(rendering, locus)
-    output = Path(args.output)
-    output.parent.mkdir(parents=True, exist_ok=True)
     write_png(output, result.mask.astype(float))
     preview = write_preview(output.with_name(output.stem + "_preview.png"), rendering.image)
     document = {"scene": rendering.scene.name, "camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
                 "calibration_K": rendering.calibration, "tpr": result.tpr, "fpr": result.fpr,
+                "undefined": result.undefined, "locus_degenerate": locus.degenerate,
                 "mask_png": str(output), "preview_png": str(preview), "per_patch": result.per_patch,
-                "boundary": args.boundary, "spp": options["spp"], "variant": rendering.variant}
+                "boundary": args.boundary, "spp": rendering.raw[0].spp, "spp_requested": options["spp"],
+                "variant": rendering.variant}
     rows = [[p["name"][:30], "skin" if p["is_skin"] else "", f"{p['detected_fraction']:.2f}"] for p in result.per_patch]
-    text = (table(rows, ["patch", "", "detected"]) + f"\nTPR {result.tpr:.3f}, FPR {result.fpr:.3f}; mask {output}")
+    rate = lambda value, key: "undefined (" + result.undefined[key] + ")" if value is None else f"{value:.3f}"  # noqa: E731
+    text = (table(rows, ["patch", "", "detected"])
+            + f"\nTPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}; mask {output}")
     emit(args, document, text)

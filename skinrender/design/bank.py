@@ -37,10 +37,14 @@ from ..model.illuminant import illuminants_array
 from ..model.response import NORMALISATIONS, gain, normalisation_factor, spds_on
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["SENSORS_PAPER", "positions_grid", "triplets", "SensorBank", "sensor_bank"]
+__all__ = ["SENSORS_PAPER", "POSITIONS_MAX", "positions_grid", "triplets", "SensorBank", "sensor_bank"]
 
 SENSORS_PAPER = (1, 3, 5, 7, 9, 11, 13, 15)
 """The paper's sensors: 1 is the impulse, N ≥ 3 a gbell of FWHM N·10 nm."""
+
+
+POSITIONS_MAX = 3001
+"""Most sensor positions of a search (every 0.1 nm over 400–700 nm; 4.5e9 triplets)."""
 
 
 def positions_grid(spec: str | ArrayLike = "400:700:10") -> NDArrayFloat:
@@ -49,7 +53,14 @@ def positions_grid(spec: str | ArrayLike = "400:700:10") -> NDArrayFloat:
         start, end, step = parse_range(spec, "positions")
         if not (step > 0 and end > start):
             raise SkinrenderError(f"positions {spec!r}: need END > START and STEP > 0 (nm)")
-        values = start + step * np.arange(int(np.floor((end - start) / step + 1e-9)) + 1)
+        steps = (end - start) / step
+        if steps + 1 > POSITIONS_MAX:
+            raise SkinrenderError(f"positions {spec!r}: {steps + 1:.3g} positions, more than {POSITIONS_MAX} "
+                                  f"({(steps + 1) ** 3 / 6:.3g} triplets); use a larger step")
+        if abs(steps - round(steps)) > 1e-9 * max(1.0, steps):
+            raise SkinrenderError(f"positions {spec!r}: {end:g} nm is not START + a whole number of {step:g} nm "
+                                  "steps (the end is included, never dropped)")
+        values = start + step * np.arange(int(round(steps)) + 1)
     else:
         values = np.asarray(spec, dtype=np.float64).ravel()
     if values.size < 3 or not np.all(np.isfinite(values)) or np.any(np.diff(values) <= 0):
@@ -157,6 +168,10 @@ def sensor_bank(
     o = np.asarray(reflectance, dtype=np.float64)
     signal = np.einsum("iw,pjw->pji", o, spd[:, None, :] * x[None, :, :], optimize=True)
     white = spd @ x.T
+    for item, row in zip(items, white):
+        if not np.all(np.isfinite(row) & (row > 1e-300)):
+            raise SkinrenderError(f"illuminant {item} gives no light in the sensors' range ({grid}) at every position: "
+                                  "every response would be 0/0")
     factor = None if normalization == "white" else normalisation_factor(items, normalization, grid)
     temperatures = np.array([item.temperature if item.temperature is not None else np.nan for item in items])
     return SensorBank(positions, temperatures, signal, white, factor, knee=knee, diagonal=sensor == 1,

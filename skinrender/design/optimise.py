@@ -27,6 +27,7 @@ import numpy as np
 from scipy.optimize import minimize
 
 from ..constants import TEMPERATURES_PAPER
+from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
@@ -91,6 +92,11 @@ class Design:
         return f"gbell:{self.fwhm / 10:g},b={self.slope:g}@" + ",".join(f"{p:.1f}" for p in self.peaks)
 
 
+def _finite_or_none(value: float) -> float | None:
+    """The objective's value, or ``None`` where it is undefined (``inf``: a degenerate camera)."""
+    return float(value) if np.isfinite(value) else None
+
+
 def optimise_camera(
     kind: str,
     skin: NDArrayFloat,
@@ -125,6 +131,23 @@ def optimise_camera(
         The best over the starts, with every start's result.
     """
 
+    validate_method(kind, OBJECTIVES, "objective")
+    if not (isinstance(max_evaluations, (int, np.integer)) and max_evaluations >= 1):
+        raise SkinrenderError(f"evaluations must be an integer ≥ 1 per start, got {max_evaluations!r}")
+    if not (np.isfinite(fwhm) and fwhm > 0):
+        raise SkinrenderError(f"sensor width must be a finite FWHM > 0 nm (sensor N > 0), got {fwhm!r}")
+    if not (np.isfinite(slope) and slope > 0):
+        raise SkinrenderError(f"slope must be a finite number > 0, got {slope!r}")
+    starts = np.atleast_2d(np.asarray(starts, dtype=np.float64))
+    if starts.ndim != 2 or starts.shape[1] != 3 or len(starts) == 0:
+        raise SkinrenderError(f"starts must be triplets of peaks in nm, got shape {starts.shape}")
+    for start in starts:
+        ordered = np.sort(start)
+        if not (np.all(np.isfinite(start)) and ordered[0] >= BOUNDS_NM[0] and ordered[-1] <= BOUNDS_NM[1]
+                and np.all(np.diff(ordered) > 0)):
+            raise SkinrenderError(f"starts: each start must be three distinct peaks in {BOUNDS_NM[0]:g}–"
+                                  f"{BOUNDS_NM[1]:g} nm, got {start.tolist()}")
+
     def unpack(x):
         if free_shape:
             return x[:3], x[3], x[4]
@@ -135,7 +158,7 @@ def optimise_camera(
         return objective(kind, p, w, skin, munsell, b, illuminants, grid)
 
     results = []
-    for start in np.atleast_2d(np.asarray(starts, dtype=np.float64)):
+    for start in starts:
         x0 = np.concatenate([np.sort(start), [fwhm, slope]]) if free_shape else np.sort(start)
         simplex = [x0] + [x0 + np.eye(len(x0))[i] * (15.0 if i < 3 else (20.0 if i == 3 else 0.5)) for i in range(len(x0))]
         first = f(x0)
@@ -143,7 +166,12 @@ def optimise_camera(
                          options={"maxfev": max_evaluations, "initial_simplex": np.array(simplex), "xatol": 0.5,
                                   "fatol": 1e-6})
         p, w, b = unpack(found.x)
-        results.append({"start": np.sort(start).tolist(), "start_value": first, "peaks": np.sort(p).tolist(),
-                        "fwhm": float(w), "slope": float(b), "value": float(found.fun), "evaluations": int(found.nfev)})
-    best = min(results, key=lambda r: r["value"])
+        results.append({"start": np.sort(start).tolist(), "start_value": _finite_or_none(first),
+                        "peaks": np.sort(p).tolist(), "fwhm": float(w), "slope": float(b),
+                        "value": _finite_or_none(found.fun), "evaluations": int(found.nfev)})
+    scored = [r for r in results if r["value"] is not None]
+    if not scored:
+        raise SkinrenderError(f"no start reached a camera whose {kind} criterion is defined (every camera tried had a "
+                              "degenerate skin or Munsell gamut or locus); try other starts")
+    best = min(scored, key=lambda r: r["value"])
     return Design(kind, np.array(best["peaks"]), best["fwhm"], best["slope"], best["value"], results)

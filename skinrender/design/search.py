@@ -22,10 +22,12 @@ References
 from __future__ import annotations
 
 import os
+import signal
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -40,6 +42,12 @@ from .bank import SensorBank, positions_grid, sensor_bank, triplets
 from .criteria import triplet_false_positive_rates, triplet_volumes_fast, triplet_volumes_naive
 
 __all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "SearchResult", "search", "progress_bar"]
+
+DASK_TIMEOUT_S = 10.0
+"""Seconds to wait for a Dask scheduler before giving up."""
+
+WORKERS_MAX = max(64, 4 * (os.cpu_count() or 1))
+"""Most worker processes a search may start (each holds the sensor banks)."""
 
 TOLERANCE_TIE = 1e-9
 """Two values within this relative difference are a tie; ties are reported."""
@@ -61,6 +69,7 @@ _WORKER_BANKS: tuple[SensorBank, ...] = ()
 def _init_worker(banks: tuple[SensorBank, ...]) -> None:
     global _WORKER_BANKS
     _WORKER_BANKS = banks
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: no traceback per worker
 
 
 def _volumes_chunk(chunk: np.ndarray, method: str, banks: tuple[SensorBank, ...] | None = None,
@@ -147,7 +156,7 @@ class SearchResult:
 
     def table(self, tolerance: float = TOLERANCE_TIE) -> dict:
         """
-        The rows of Tables 2–5 with ties.
+        The rows of Tables 2–5 with ties (``tolerance``: relative, finite, ≥ 0).
 
         Returns
         -------
@@ -157,6 +166,8 @@ class SearchResult:
             2, 3) carry the calibration temperature, all-calibration rows
             (Tables 4, 5) ``temperature_K = None``.
         """
+        if not (np.isfinite(tolerance) and tolerance >= 0):
+            raise SkinrenderError(f"tie tolerance must be a finite relative difference ≥ 0, got {tolerance!r}")
         one, everything = slice(0, self.temperatures.size), slice(self.temperatures.size, self.temperatures.size + 1)
         return {
             "max_skin": self._rows(self.skin, one, "max", tolerance) + self._rows(self.skin, everything, "max", tolerance),
@@ -183,10 +194,14 @@ class SearchResult:
             header += [f"fpr_{label}" for label in labels[:-1]] + ["fpr_mean"]
             blocks.append(self.fpr_table)
         data = np.hstack(blocks)
-        with open(path, "w", encoding="utf-8", newline="\n") as handle:
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        partial = path.with_name(path.name + ".partial")
+        with open(partial, "w", encoding="utf-8", newline="\n") as handle:  # complete or absent, never half
             handle.write(",".join(header) + "\n")
             for row in data:
                 handle.write(",".join(f"{v:.17g}" for v in row) + "\n")
+        os.replace(partial, path)
 
 
 def progress_bar(total: int, label: str, stream):
@@ -217,6 +232,7 @@ def search(
     label: str = "search",
     detection: bool = False,
     notice=sys.stderr,
+    max_triplets: int = 1_000_000,
 ) -> SearchResult:
     """
     The Stage 3 search: every triplet's per-calibration and all-calibration
@@ -250,6 +266,9 @@ def search(
     detection
         Also compute the detection criterion: the false-positive rate of the
         Munsell set inside the skin locus, per calibration (``result.fpr``).
+    max_triplets
+        Refuse a search of more triplets than this (an estimate of its time is
+        in the message).
     notice
         Stream for the one-line notice when the compiled hull kernel is
         missing (``result.info["hull_kernel"]`` says which kernel ran).
@@ -261,13 +280,18 @@ def search(
 
     validate_method(method, SEARCH_METHODS, "method")
     where = positions_grid(positions)
+    count = where.size * (where.size - 1) * (where.size - 2) // 6
+    if count > max_triplets:
+        raise SkinrenderError(f"{count} triplets ({where.size} positions) is more than max_triplets = {max_triplets} "
+                              f"(about {count * 2.2e-3 / 3600:.2g} h on 2 cores at the measured ~2 ms per triplet "
+                              "per core); raise the limit (--max-triplets) or use fewer positions")
+    workers = (os.cpu_count() or 1) if workers is None else workers
+    if not (isinstance(workers, (int, np.integer)) and 1 <= workers <= WORKERS_MAX):
+        raise SkinrenderError(f"workers must be an integer in [1, {WORKERS_MAX}] processes, got {workers!r}")
     banks = tuple(
         sensor_bank(sensor, values, where, illuminants, slope, normalization, knee, grid) for values in (skin, munsell)
     )
     index = triplets(where.size)
-    workers = (os.cpu_count() or 1) if workers is None else int(workers)
-    if workers < 1:
-        raise SkinrenderError(f"workers must be ≥ 1, got {workers}")
     start = time.perf_counter()
     if method == "fast":
         notice_kernel(notice)
@@ -299,11 +323,18 @@ def search(
             store(chunk, _volumes_chunk(index[chunk], method, banks, detection))
             bar.update(len(chunk))
     else:
-        with ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(banks,)) as pool:
+        pool = ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(banks,))
+        try:
             futures = [pool.submit(_volumes_chunk, index[c], method, None, detection) for c in chunks]
             for chunk, future in zip(chunks, futures):
                 store(chunk, future.result())
                 bar.update(len(chunk))
+        except BaseException:  # Ctrl-C or an error: drop the queued chunks and stop the workers now
+            pool.shutdown(wait=False, cancel_futures=True)
+            for process in list(getattr(pool, "_processes", {}).values()):
+                process.terminate()
+            raise
+        pool.shutdown()
     bar.close()
     elapsed = time.perf_counter() - start
     return SearchResult(
@@ -317,7 +348,11 @@ def _dask_client(dask):
     require("dask", "--dask")
     from distributed import Client
 
-    if isinstance(dask, Client):
-        return dask, False
-    return Client(dask), True
+    if not isinstance(dask, Client):
+        try:
+            return Client(dask, timeout=DASK_TIMEOUT_S), True
+        except (OSError, ValueError, TypeError, TimeoutError) as error:
+            raise SkinrenderError(f"--dask: cannot reach a Dask scheduler at {dask!r} within {DASK_TIMEOUT_S:g} s "
+                                  f"({type(error).__name__}: {' '.join(str(error).split())[:120]})") from None
+    return dask, False
 

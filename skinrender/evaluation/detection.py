@@ -15,7 +15,7 @@ Units: the image in output units (Eq. 4); rates are fractions in [0, 1].
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -28,12 +28,18 @@ __all__ = ["Detection", "detect"]
 
 @dataclass(frozen=True)
 class Detection:
-    """Detection on a rendered chart: per-pixel ``mask``, per-patch rates, ``tpr`` and ``fpr``."""
+    """
+    Detection on a rendered chart: per-pixel ``mask``, per-patch rates,
+    ``tpr`` and ``fpr`` (fractions), each ``None`` where it is undefined (a
+    chart without skin, or without non-skin patches), with the reason in
+    ``undefined`` (``{"tpr": reason}``).
+    """
 
     mask: NDArrayFloat
     per_patch: list
-    tpr: float
-    fpr: float
+    tpr: float | None
+    fpr: float | None
+    undefined: dict = field(default_factory=dict)
 
 
 def detect(rendering, locus: SkinLocus) -> Detection:
@@ -57,6 +63,11 @@ def detect(rendering, locus: SkinLocus) -> Detection:
             skin_hits, skin_total = skin_hits + hits.sum(), skin_total + hits.size
         else:
             other_hits, other_total = other_hits + hits.sum(), other_total + hits.size
-    tpr = float(skin_hits / skin_total) if skin_total else float("nan")
-    fpr = float(other_hits / other_total) if other_total else float("nan")
-    return Detection(mask, per_patch, tpr, fpr)
+    undefined = {}
+    if not skin_total:
+        undefined["tpr"] = "the chart has no skin patch"
+    if not other_total:
+        undefined["fpr"] = "the chart has no non-skin patch"
+    tpr = float(skin_hits / skin_total) if skin_total else None
+    fpr = float(other_hits / other_total) if other_total else None
+    return Detection(mask, per_patch, tpr, fpr, undefined)

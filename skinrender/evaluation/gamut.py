@@ -38,6 +38,7 @@ from ..spectra import GRID_DEFAULT, WavelengthGrid
 
 __all__ = [
     "TOLERANCE_GAMUT_FLATNESS",
+    "COORDINATE_MAX",
     "Gamut",
     "gamut",
     "gamut_volume",
@@ -46,6 +47,9 @@ __all__ = [
     "gamut_calibration",
     "gamut_all_calibrations",
 ]
+
+COORDINATE_MAX = 1e100
+"""Largest coordinate of a gamut point (output units are ~1–1e4); beyond, volumes overflow float64."""
 
 TOLERANCE_GAMUT_FLATNESS = 1e-10
 """A cloud whose smallest principal extent is below this fraction of its
@@ -110,14 +114,20 @@ def gamut_hull(points: ArrayLike) -> tuple[Gamut, np.ndarray]:
     every = np.arange(count)
     if count < 4:
         return Gamut(0.0, count, True), every
+    if np.max(np.abs(cloud)) > COORDINATE_MAX:
+        raise SkinrenderError(f"gamut points beyond ±{COORDINATE_MAX:g}: their volume would overflow float64")
     centred = cloud - cloud.mean(axis=0)
-    if is_flat(centred):
+    scale = np.max(np.abs(centred), axis=0)  # each axis to [-1, 1]: flatness and Qhull alike are scale-free
+    if np.any(scale == 0):
+        return Gamut(0.0, count, True), every
+    unit = centred / scale
+    if is_flat(unit):
         return Gamut(0.0, count, True), every
     try:
-        hull = ConvexHull(centred)
+        hull = ConvexHull(unit)
     except QhullError:
         return Gamut(0.0, count, True), every
-    return Gamut(float(hull.volume), count, False), hull.vertices
+    return Gamut(float(hull.volume * np.prod(scale)), count, False), hull.vertices
 
 
 def is_flat(points: NDArrayFloat) -> bool:

@@ -102,11 +102,16 @@ class SkinLocus:
     calibration: float | None
     quadratics: tuple | None = None
     """For ``quadratic``: (upper, lower) polynomial coefficients in r and the r range."""
+    degenerate: str | None = None
+    """Why the locus has no area (skin chromaticities on a line or a point, e.g. coincident sensors), or ``None``.
+    A degenerate locus contains nothing: detection with it finds no skin."""
 
     def contains(self, rg: ArrayLike, tolerance: float = 1e-9) -> NDArrayFloat:
         """Whether each (r, g) lies in the locus (boundary included); shape ``rg.shape[:-1]``."""
         points = np.asarray(rg, dtype=np.float64)
         flat = points.reshape(-1, 2)
+        if self.degenerate is not None:
+            return np.zeros(points.shape[:-1], dtype=bool)
         if self.quadratics is not None:
             upper, lower, (r_min, r_max) = self.quadratics
             r, g = flat[:, 0], flat[:, 1]
@@ -187,10 +192,11 @@ def skin_locus(
     validate_method(boundary, BOUNDARIES, "boundary")
     points = locus_points(cam, skin, illuminants, calibration, grid)
     illuminants = np.asarray(illuminants, dtype=np.float64)
+    locus = hull_locus(points, illuminants, calibration)
+    if locus is None:  # degenerate is not an error: a locus of no area, which contains nothing
+        return SkinLocus(np.unique(points.round(12), axis=0), 0.0, boundary, illuminants, calibration,
+                         degenerate="the skin chromaticities lie on a line or a point (coincident sensors?)")
     if boundary == "hull":
-        locus = hull_locus(points, illuminants, calibration)
-        if locus is None:
-            raise SkinrenderError("the skin chromaticities are collinear: the locus has no area")
         return locus
     polygon, quadratics = _quadratic_polygon(points)
     return SkinLocus(polygon, _polygon_area(polygon), boundary, illuminants, calibration, quadratics)

@@ -161,7 +161,7 @@ def camera(spec: str | Camera, extrapolation: str = "refuse") -> Camera:
             slope = float(match["b"]) if match["b"] else GBELL_SLOPE_DEFAULT
         except ValueError:
             raise SkinrenderError(f"camera {text!r}: sensor number and slope must be numbers") from None
-        if not (np.isfinite(n) and n > 0):
+        if not (np.isfinite(n * 10.0) and n > 0):
             raise SkinrenderError(f"camera {text!r}: sensor number N must be > 0 (FWHM = N·10 nm)")
         if not (np.isfinite(slope) and slope > 0):
             raise SkinrenderError(f"camera {text!r}: slope b must be > 0")

@@ -48,9 +48,14 @@ def ncc(rgb: ArrayLike) -> NDArrayFloat:
     rgb = np.asarray(rgb, dtype=np.float64)
     if rgb.shape[-1:] != (3,):
         raise SkinrenderError(f"ncc expects three channels on the last axis, got shape {rgb.shape}")
-    total = rgb.sum(axis=-1, keepdims=True)
+    if not np.all(np.isfinite(rgb)) or np.any(rgb < 0):
+        raise SkinrenderError("ncc expects finite, non-negative responses (Eq. 2 is defined for light, not for "
+                              "NaN, inf or negative values)")
+    peak = rgb.max(axis=-1, keepdims=True)  # scaled first, so that sums near float64's limit cannot overflow
+    scaled = rgb / np.where(peak > 0, peak, 1.0)
+    total = scaled.sum(axis=-1, keepdims=True)
     black = total == 0
-    out = rgb / np.where(black, 1.0, total)
+    out = scaled / np.where(black, 1.0, total)
     return np.where(black, 1.0 / 3.0, out) if black.any() else out
 
 

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..constants import TEMPERATURE_A, TEMPERATURE_HORIZON
+from ..constants import TEMPERATURE_A, TEMPERATURE_HORIZON, TEMPERATURE_MAX
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..spectra import planck, resample
@@ -71,8 +71,9 @@ class Illuminant:
 
 
 def _planckian(temperature: float, name: str | None = None) -> Illuminant:
-    if not np.isfinite(temperature) or temperature <= 0:
-        raise SkinrenderError(f"illuminant temperature must be a finite number of kelvin > 0, got {temperature:g}")
+    if not (np.isfinite(temperature) and 0 < temperature <= TEMPERATURE_MAX):
+        raise SkinrenderError(f"illuminant temperature must be a finite number of kelvin in (0, {TEMPERATURE_MAX:g}], "
+                              f"got {temperature:g}")
     return Illuminant(name or f"{temperature:g}K", float(temperature))
 
 
@@ -131,4 +132,6 @@ def illuminants_array(spec) -> tuple[list[Illuminant], tuple[int, ...]]:
     if isinstance(spec, list) and spec and all(isinstance(s, (str, Illuminant)) for s in spec):
         return [illuminant(s) for s in spec], (len(spec),)
     values = np.asarray(spec, dtype=np.float64)
+    if values.size == 0:
+        raise SkinrenderError("illuminants: expected at least one temperature (K), got none")
     return [_planckian(float(t)) for t in values.ravel()], values.shape

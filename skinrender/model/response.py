@@ -49,6 +49,7 @@ __all__ = [
     "white_coefficient",
     "white_coefficient_from_whites",
     "gain",
+    "check_light",
     "spds_on",
     "response_raw",
     "response",
@@ -102,12 +103,40 @@ def normalisation_factor(
     if method == "none":
         return np.ones(shape)
     if method == "560nm":
-        return (100.0 / np.array([i.spd(np.array([560.0]))[0] for i in items])).reshape(shape)
+        level = np.array([i.spd(np.array([560.0]))[0] for i in items])
+        dark = [str(i) for i, v in zip(items, level) if not (np.isfinite(v) and v > 1e-300)]
+        if dark:
+            raise SkinrenderError(f"illuminant {dark[0]} has no light at 560 nm (Planck underflows): the 560nm "
+                                  "normalisation (Eq. 6) is undefined for it")
+        return (100.0 / level).reshape(shape)
     if method == "euclidean":
-        return (1.0 / np.linalg.norm(spds_on(items, grid), axis=-1)).reshape(shape)
+        norm = np.linalg.norm(spds_on(items, grid), axis=-1)
+        dark = [str(i) for i, v in zip(items, norm) if not (np.isfinite(v) and v > 1e-300)]
+        if dark:
+            raise SkinrenderError(f"illuminant {dark[0]} has no light on the grid {grid}: the euclidean "
+                                  "normalisation (Eq. 7) is undefined for it")
+        return (1.0 / norm).reshape(shape)
     raise SkinrenderError(
         f"normalization must be one of none, 560nm, euclidean (white has no per-illuminant factor), got {method!r}"
     )
+
+
+def check_light(cam: Camera, items: list[Illuminant], spds: NDArrayFloat, grid: WavelengthGrid, role: str) -> None:
+    """
+    Refuse illuminants that give a channel of ``cam`` no light on ``grid``
+    (Planck underflows below ~40 K over 400–700 nm; an all-zero CSV), and a
+    camera with a channel that is zero over the grid: Eq. 4 divides by the
+    white's response, which would be 0.
+    """
+    x = cam.sensitivities(grid)
+    for channel, row in zip(cam.channels, x):
+        if not np.any(row > 0):
+            raise SkinrenderError(f"camera {cam.name}: channel {channel} is zero at every wavelength of the grid {grid}")
+    white = spds @ x.T
+    for item, row in zip(items, white):
+        if not np.all(np.isfinite(row) & (row > 1e-300)):
+            raise SkinrenderError(f"{role} {item} gives no light in the sensors' range ({grid}) of camera "
+                                  f"{cam.name}: every response would be 0/0")
 
 
 def gain(
@@ -214,7 +243,15 @@ def _reflectance_values(reflectance, grid: WavelengthGrid) -> NDArrayFloat:
         )
     if not np.all(np.isfinite(values)):
         raise SkinrenderError("reflectance array contains NaN or inf")
+    if values.size and (values.min() < 0 or values.max() > REFLECTANCE_MAX):
+        raise SkinrenderError(f"reflectance array must hold fractions in [0, {REFLECTANCE_MAX:g}] (as a CSV does), "
+                              f"got values from {values.min():g} to {values.max():g}")
     return values
+
+
+REFLECTANCE_MAX = 1.5
+"""Largest reflectance accepted (fractions; a little above 1 for measurement noise or fluorescence, as the
+CSV reader of :mod:`skinrender.spectral_csv` allows), so that percent is never taken for a fraction."""
 
 
 def response_raw(
@@ -251,6 +288,7 @@ def response_raw(
     cam = camera(camera_)
     o = _reflectance_values(reflectance, grid)
     items, shape = illuminants_array(illuminant)
+    check_light(cam, items, spds_on(items, grid), grid, "illuminant")
     factor = normalisation_factor(items, normalization, grid)
     weighted = spds_on(items, grid)[:, None, :] * cam.sensitivities(grid)[None, :, :] * grid.step
     out = np.einsum("...w,skw->s...k", o, weighted) * factor.reshape(-1, *([1] * o.ndim))
@@ -333,10 +371,8 @@ def response(
     signal = np.einsum("...w,pkw->p...k", o, spd_p[:, None, :] * x[None, :, :])  # (P, ..., 3)
     white_p = spd_p @ x.T  # (P, 3)
     white_c = spd_c @ x.T  # (C, 3)
-    if np.any(white_c <= 0):
-        raise SkinrenderError(
-            f"camera {cam.name}: a channel has no response to the calibration illuminant on the grid {grid}"
-        )
+    check_light(cam, p_items, spd_p, grid, "prevailing illuminant")
+    check_light(cam, c_items, spd_c, grid, "calibration illuminant")
     pi, ci = np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape))
     factors = (None, None) if normalization == "white" else (
         normalisation_factor(p_items, normalization, grid)[pi], normalisation_factor(c_items, normalization, grid)[ci])
@@ -384,6 +420,8 @@ def knee(
     x = np.asarray(x, dtype=np.float64)
     if not 0 < a <= 1:
         raise SkinrenderError(f"knee factor a must be in (0, 1], got {a}")
+    if not np.all(np.isfinite(x)):
+        raise SkinrenderError("knee expects finite responses, got NaN or inf")
     return np.where(x <= point, x, np.minimum(point * (1.0 - a) + a * x, ceiling))
 
 

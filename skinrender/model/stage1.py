@@ -42,16 +42,24 @@ __all__ = [
 ]
 
 
+CANDIDATES_MAX = 100_001
+"""Most Stage 1 candidate temperatures (2000–10000 K every 0.08 K)."""
+
+
 def temperature_range(start: float = 2000.0, end: float = 10000.0, step: float = 100.0) -> NDArrayFloat:
     """Temperatures ``start, start + step, …, end`` in K (``end`` included)."""
     for name, value in (("start", start), ("end", end), ("step", step)):
         if not (np.isfinite(value) and value > 0):
             raise SkinrenderError(f"temperature {name} must be a finite number of kelvin > 0, got {value}")
-    if end < start:
-        raise SkinrenderError(f"temperature range end {end:g} K is below its start {start:g} K")
-    count = int(np.floor((end - start) / step + 1e-9)) + 1
-    values = start + step * np.arange(count)
-    return values if np.isclose(values[-1], end) else np.append(values, end)
+    if not end > start:
+        raise SkinrenderError(f"temperature range end {end:g} K must be above its start {start:g} K")
+    steps = (end - start) / step
+    if steps + 1 > CANDIDATES_MAX:
+        raise SkinrenderError(f"temperature range {start:g}–{end:g} K every {step:g} K has {steps + 1:.3g} candidates, "
+                              f"more than {CANDIDATES_MAX}; use a larger step")
+    if abs(steps - round(steps)) > 1e-9 * max(1.0, steps):
+        raise SkinrenderError(f"temperature range {start:g}–{end:g} K is not a whole number of {step:g} K steps")
+    return start + step * np.arange(int(round(steps)) + 1)
 
 
 @dataclass(frozen=True)
@@ -162,17 +170,28 @@ def illuminant_selection(
     -----
     The targets are ``count`` values equally spaced between the measures at
     ``start`` and ``end``; each is matched to the candidate whose measure is
-    nearest (ties to the lower temperature). A candidate chosen twice is kept
-    once, so fewer than ``count`` may come back for a very short range.
+    nearest (ties to the lower temperature). When two targets would fall on
+    the same candidate (a short range or a coarse step), or the measure does
+    not change with temperature (coincident sensors), the selection is
+    refused with the reason rather than returning fewer than ``count``.
     """
 
-    if int(count) != count or count < 2:
+    if not (isinstance(count, (int, np.integer)) or (isinstance(count, float) and count.is_integer())) or count < 2:
         raise SkinrenderError(f"count must be an integer ≥ 2, got {count}")
-    track = illuminant_track(camera_, temperature_range(start, end, step), grid, pair)
+    candidates = temperature_range(start, end, step)
+    if count > candidates.size:
+        raise SkinrenderError(f"count {int(count)} is more than the {candidates.size} candidate temperatures "
+                              f"({start:g}–{end:g} K every {step:g} K)")
+    track = illuminant_track(camera_, candidates, grid, pair)
     m = track.measures
+    if not np.all(np.isfinite(m)) or abs(m[-1] - m[0]) <= 1e-12 * max(1.0, abs(m[0])):
+        raise SkinrenderError(f"the Stage 1 measure (NCC {pair}) does not change from {start:g} K to {end:g} K for "
+                              f"this camera (coincident sensors?): no temperatures can be spaced in it")
     targets = np.linspace(m[0], m[-1], int(count))
     index = np.argmin(np.abs(m[None, :] - targets[:, None]), axis=1)
-    index = np.unique(index)
+    if np.unique(index).size < index.size:
+        raise SkinrenderError(f"only {np.unique(index).size} distinct temperatures of the {int(count)} asked for: "
+                              f"candidates every {step:g} K are too coarse for this range; use a smaller step or count")
     return IlluminantSelection(
         track.temperatures[index], m[index], targets, track, bool(np.all(np.diff(m) > 0))
     )

@@ -66,6 +66,7 @@ __all__ = [
     "SAMPLERS",
     "CHANNEL_AREA_RATIO_SEPARATE",
     "CHANNEL_GROUPINGS",
+    "SAMPLES_MAX",
     "FWHM_SEPARATE",
     "QUALITY_PRESETS",
     "EMITTERS",
@@ -85,6 +86,9 @@ SAMPLERS = {
     "ldsampler": "low-discrepancy (Sobol-type) samples",
 }
 """Mitsuba samplers, name → meaning."""
+
+SAMPLES_MAX = 2**31 - 1
+"""Most samples one render pass may take (pixels × spp): drjit sizes its wavefront with 32-bit integers."""
 
 CHANNEL_GROUPINGS = {
     "auto": "separate passes for the impulse, narrow gbell or very unequal channels, else one",
@@ -120,6 +124,10 @@ def channel_names(cam: Camera) -> tuple[str, str, str]:
 
 
 def _spectrum(wavelengths: NDArrayFloat, values: NDArrayFloat) -> dict:
+    """A Mitsuba spectrum: ``irregular`` on the wavelengths (nm), or ``uniform`` 0 for an all-zero one (a black
+    patch), which Mitsuba refuses as an irregular spectrum ("no probability mass found")."""
+    if not np.any(np.asarray(values) != 0):
+        return {"type": "uniform", "value": 0.0}
     return {
         "type": "irregular",
         "wavelengths": ",".join(f"{w:.10g}" for w in wavelengths),
@@ -275,6 +283,11 @@ class ChartRenderer:
         validate_method(sampler, SAMPLERS, "sampler")
         if not (isinstance(spp, (int, np.integer)) and not isinstance(spp, bool) and spp >= 1):
             raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
+        width, height = self.scene.size
+        if spp * width * height > SAMPLES_MAX:
+            raise SkinrenderError(f"spp {spp} × {width * height} pixels = {spp * width * height:.3g} samples per pass, "
+                                  f"more than {SAMPLES_MAX:.3g} (Mitsuba's 32-bit wavefront); at most "
+                                  f"{SAMPLES_MAX // (width * height)} spp for this chart")
         validate_method(emitter, EMITTERS, "emitter")
         self.sampler, self.grid, self.emitter = sampler, grid, emitter
         self.variant = choose_variant(variant)
@@ -294,9 +307,11 @@ class ChartRenderer:
         self.spp = int(self._loaded[0][1].sensors()[0].sampler().sample_count())
 
     def raw(self, temperature: float, seed: int = 0) -> "RawRender":
-        """Render at ``temperature`` (K) with ``seed``: the specfilm image, float32."""
+        """Render at ``temperature`` (K) with ``seed`` (an integer in [0, 2³²)): the specfilm image, float32."""
         if not (np.isfinite(temperature) and temperature > 0):
             raise SkinrenderError(f"temperature must be a finite number of kelvin > 0, got {temperature}")
+        if not (isinstance(seed, (int, np.integer)) and 0 <= seed < 2**32):
+            raise SkinrenderError(f"seed must be an integer in [0, 2^32) (Mitsuba's seeds are 32-bit), got {seed!r}")
         mi = mitsuba(self.variant)
         start = time.perf_counter()
         scale = 1.0

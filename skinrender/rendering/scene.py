@@ -169,6 +169,10 @@ def _field(table: dict, key: str, kind, where: str, default=None, minimum: int |
 _KNOWN_FIELDS = {"name", "description", "columns", "patch_px", "gap_px", "border_px", "white", "patch"}
 
 
+PIXELS_MAX = 4_000_000
+"""Most pixels a chart may have (2000 × 2000)."""
+
+
 def load_scene(spec: str | Path | ChartScene) -> ChartScene:
     """
     A chart scene from a bundled name (``macbeth``, ``skin_patches``,
@@ -183,8 +187,12 @@ def load_scene(spec: str | Path | ChartScene) -> ChartScene:
 
     if isinstance(spec, ChartScene):
         return spec
-    text = str(spec)
+    text = str(spec).strip()
+    if not text:
+        raise SkinrenderError(f"expected a scene name ({', '.join(list_scenes())}) or a .toml path, got an empty one")
     path = Path(text)
+    if path.is_dir():
+        raise SkinrenderError(f"scene {text} is a folder, expected a .toml file or a bundled name")
     if not (path.suffix == ".toml" or path.exists()):
         path = ROOT_SCENES / f"{text}.toml"
         if not path.exists():
@@ -194,7 +202,9 @@ def load_scene(spec: str | Path | ChartScene) -> ChartScene:
     try:
         table = tomllib.loads(path.read_text(encoding="utf-8"))
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
-        raise SkinrenderError(f"{path}: not valid TOML: {error}") from None
+        raise SkinrenderError(f"{path}: not valid TOML: {' '.join(str(error).split())}") from None
+    except OSError as error:
+        raise SkinrenderError(f"{path}: cannot be read ({error.strerror})") from None
     where = str(path)
     unknown = set(table) - _KNOWN_FIELDS
     if unknown:
@@ -228,5 +238,16 @@ def load_scene(spec: str | Path | ChartScene) -> ChartScene:
     if 2 * scene.border_px >= scene.patch_px:
         raise SkinrenderError(f"{where}: field 'border_px' ({scene.border_px}) leaves no pixel of a "
                               f"{scene.patch_px}-pixel patch")
-    scene.reflectances(GRID_DEFAULT)  # every reflectance resolves, or the error names the patch
+    width, height = scene.size
+    if width * height > PIXELS_MAX:
+        raise SkinrenderError(f"{where}: the chart is {width} × {height} = {width * height:.3g} pixels, more than "
+                              f"{PIXELS_MAX:.3g} (a render holds ~{width * height * 12 / 1e9:.2g} GB per image); "
+                              "use a smaller patch_px or fewer patches")
+    inner = scene.patch_px - 2 * scene.border_px
+    if inner * inner < 2:
+        raise SkinrenderError(f"{where}: a patch keeps {inner * inner} inner pixel(s); patch statistics need at least 2")
+    values = scene.reflectances(GRID_DEFAULT)  # every reflectance resolves, or the error names the patch
+    if not np.any(values[-1] > 0):
+        raise SkinrenderError(f"{where}: field 'white' ({white}) reflects no light: the white reference balances "
+                              "every channel and must not be black")
     return scene

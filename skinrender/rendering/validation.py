@@ -135,7 +135,9 @@ class Validation:
     def z(self) -> NDArrayFloat:
         """Difference in units of the noise σ (tolerance / :data:`SIGMAS`)."""
         sigma = self.tolerance / SIGMAS
-        return (self.rendered - self.analytic) / sigma
+        difference = self.rendered - self.analytic
+        # a black patch renders exactly 0 with no noise: 0 σ off, not 0/0
+        return np.divide(difference, sigma, out=np.zeros_like(difference), where=sigma > 0)
 
     @property
     def passed(self) -> bool:

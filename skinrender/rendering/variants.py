@@ -155,4 +155,27 @@ def mitsuba(variant: str):
 
     if mi.variant() != variant:
         mi.set_variant(variant)
+    _log_to_stderr(mi)
     return mi
+
+
+_LOGGING: list = []
+
+
+def _log_to_stderr(mi) -> None:
+    """Mitsuba's log (e.g. "Sample count rounded up") to stderr, never stdout, which is the JSON's."""
+    if _LOGGING:
+        return
+
+    class StderrAppender(mi.Appender):
+        def append(self, level, text):
+            print(text, file=sys.stderr)
+
+        def log_progress(self, progress, name, formatted, eta, ptr=None):
+            pass
+
+    logger = mi.logger() if hasattr(mi, "logger") else mi.Thread.thread().logger()
+    logger.clear_appenders()
+    appender = StderrAppender()
+    logger.add_appender(appender)
+    _LOGGING.append(appender)  # kept alive: the logger holds it by reference

@@ -191,7 +191,7 @@ class TestResponse:
             response("Kodak DCS-200", WHITE, 3000, 3000, "max")
 
     def test_bad_temperature(self):
-        with pytest.raises(SkinrenderError, match="kelvin > 0"):
+        with pytest.raises(SkinrenderError, match=r"kelvin in \(0, "):
             response("Kodak DCS-200", WHITE, -100, 3000)
 
     def test_bad_array(self):
@@ -213,16 +213,17 @@ class TestResponse:
 
 class TestLinearity:
     @settings(max_examples=40, deadline=None)
-    @given(st.floats(-3, 3), st.floats(-3, 3), st.integers(0, 2**32 - 1), st.floats(1500, 20000))
+    @given(st.floats(0, 0.75), st.floats(0, 0.75), st.integers(0, 2**32 - 1), st.floats(1500, 20000))
     def test_eq1_linear_in_reflectance(self, a, b, seed, t):
-        """Property: Eq. 1 is linear in o, X(a·o1 + b·o2) = a·X(o1) + b·X(o2)."""
+        """Property: Eq. 1 is linear in o, X(a·o1 + b·o2) = a·X(o1) + b·X(o2) (combinations kept within the
+        reflectances the API accepts, [0, 1.5])."""
         rng = np.random.default_rng(seed)
         o1, o2 = rng.random((2, 1, GRID_DEFAULT.size))
         left = response_raw("Nikon 5100 (NPL)", a * o1 + b * o2, t, "euclidean")
         right = a * response_raw("Nikon 5100 (NPL)", o1, t, "euclidean") + b * response_raw(
             "Nikon 5100 (NPL)", o2, t, "euclidean"
         )
-        scale = np.abs(response_raw("Nikon 5100 (NPL)", o1 + o2, t, "euclidean")).max() * (abs(a) + abs(b) + 1)
+        scale = np.abs(response_raw("Nikon 5100 (NPL)", np.ones_like(o1), t, "euclidean")).max() * (a + b + 1)
         np.testing.assert_allclose(left, right, atol=1e-12 * scale)
 
 

@@ -1,0 +1,76 @@
+"""
+Shared check for the bad-input tests of the command line: a refusal is exit
+status 2, exactly one line on stderr that names the argument, no traceback,
+nothing on stdout (so ``--json`` prints one document or nothing), and no file
+left behind in the output folder.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from skinrender.cli import main
+
+BAD_BINARY = bytes(range(256)) * 4
+"""Content of a binary 'CSV' file."""
+
+
+def run(argv: list[str], capsys) -> tuple[int, str, str]:
+    """Run the command line in this process; returns (status, stdout, stderr)."""
+    try:
+        status = main([str(a) for a in argv])
+    except SystemExit as exit_:  # argparse's own refusals
+        status = exit_.code
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def assert_refused(argv: list[str], names: str | tuple[str, ...], capsys, output: Path | None = None) -> str:
+    """``argv`` (``--json`` added) is refused cleanly, the one line naming each of ``names``; returns the line."""
+    before = sorted(output.rglob("*")) if output is not None and output.exists() else None
+    status, out, err = run([*argv, "--json"], capsys)
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert status == 2, f"exit {status}, stderr: {err[-500:]}"
+    assert len(lines) == 1, f"expected one line, got: {err[-800:]}"
+    assert "Traceback" not in err and "internal error" not in err
+    assert out == "", f"stdout must stay empty on a refusal, got {out[:200]!r}"
+    for name in (names,) if isinstance(names, str) else names:
+        assert name in lines[0], f"{name!r} not named in: {lines[0]}"
+    if before is not None:
+        assert sorted(output.rglob("*")) == before, "a refused command left files behind"
+    return lines[0]
+
+
+@pytest.fixture(scope="session")
+def bad_files(tmp_path_factory) -> dict[str, Path]:
+    """Malformed input files: binary, Latin-1, zero-valued, header-only CSVs and broken scene files."""
+    folder = tmp_path_factory.mktemp("bad")
+    files = {
+        "binary.csv": BAD_BINARY,
+        "latin1.csv": "nm,h\u00e4ut\n400,0.5\n700,0.5\n".encode("latin-1"),
+        "header_only.csv": b"nm,a\n",
+        "zero_spd.csv": b"nm,spd\n400,0\n550,0\n700,0\n",
+        "camera_zero.csv": b"nm,R,G,B\n400,0,0,0\n700,0,0,0\n",
+        "camera_two.csv": b"nm,R,G\n400,1,1\n700,1,1\n",
+        "refl_negative.csv": b"nm,a\n400,-0.5\n700,0.5\n",
+        "refl_nan.csv": b"nm,a\n400,nan\n700,0.5\n",
+        "refl_unsorted.csv": b"nm,a\n700,0.5\n400,0.5\n",
+        "scene_bad_toml.toml": b"name = [\n",
+        "scene_unknown_field.toml": b"columns = 2\ncolour = 'red'\n[[patch]]\nreflectance = 'grey:0.5'\n",
+        "scene_no_patch.toml": b"columns = 2\n",
+        "scene_black_white.toml": b"columns = 2\nwhite = 'grey:0'\n[[patch]]\nreflectance = 'grey:0.5'\n",
+        "scene_huge.toml": b"columns = 1\npatch_px = 100000\n[[patch]]\nreflectance = 'grey:0.5'\n",
+        "scene_one_pixel.toml": b"columns = 1\npatch_px = 3\nborder_px = 1\n[[patch]]\nreflectance = 'grey:0.5'\n",
+        "scene_unknown_reflectance.toml": b"columns = 1\n[[patch]]\nreflectance = 'nosuchset:3'\n",
+    }
+    paths = {}
+    for name, content in files.items():
+        paths[name] = folder / name
+        paths[name].write_bytes(content)
+    (folder / "folder.toml").mkdir()
+    paths["folder.toml"] = folder / "folder.toml"
+    paths["a_file"] = folder / "a_file"
+    paths["a_file"].write_text("not a folder")
+    return paths

@@ -1,0 +1,84 @@
+"""Bad inputs to ``search`` and ``design`` (:mod:`skinrender.cli.design`) are refused cleanly, before any work."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from .refusal import assert_refused, bad_files, run  # noqa: F401  (fixture)
+
+SEARCH = ["search", "--sensor", "9", "--quiet", "--workers", "1"]
+DESIGN = ["design", "--evaluations", "3"]
+
+
+@pytest.mark.parametrize("extra, names", [
+    (["--positions", "400:700:70"], ("positions", "not START")),
+    (["--positions", "400:690:50"], ("positions", "not START")),
+    (["--positions", "400:inf:10"], "positions"),
+    (["--positions", "400:700:inf"], "positions"),
+    (["--positions", "400:700:0"], "positions"),
+    (["--positions", "700:400:10"], "positions"),
+    (["--positions", "400:700:0.01"], ("positions", "triplets")),
+    (["--positions", "400:410:10"], "positions"),
+    (["--positions", "x"], "positions"),
+    (["--positions", "400:700:1", "--max-triplets", "1000"], ("max_triplets", "--max-triplets")),
+    (["--tie-tolerance", "-1"], "--tie-tolerance"),
+    (["--tie-tolerance", "nan"], "--tie-tolerance"),
+    (["--workers", "0"], "workers"),
+    (["--workers", "1000"], "workers"),
+    (["--sensor", "0"], "sensor"),
+    (["--sensor", "-3"], "sensor"),
+    (["--sensor", "nan"], "sensor"),
+    (["--slope", "0"], "slope"),
+    (["--illuminants", "20,3300"], ("20K", "no light")),
+    (["--illuminants", "2000,,x"], "--illuminants"),
+    (["--skin", "skn"], ("--skin", "skn")),
+    (["--munsell", ""], "--munsell"),
+    (["--method", "quick"], "--method"),
+    (["--grid", "400:700:0"], "--grid"),
+    (["--dask", ""], "--dask"),
+])
+def test_search_refuses(extra, names, capsys):
+    argv = list(SEARCH)
+    if "--sensor" in extra:
+        argv = ["search", "--quiet", "--workers", "1"]
+    if "--workers" in extra:
+        argv = ["search", "--sensor", "9", "--quiet"]
+    assert_refused(argv + (["--positions", "400:700:50"] if "--positions" not in extra else []) + extra, names, capsys)
+
+
+@pytest.mark.parametrize("key", ["binary.csv", "latin1.csv", "refl_nan.csv"])
+def test_search_refuses_bad_sets(key, bad_files, capsys):
+    assert_refused(SEARCH + ["--positions", "400:700:50", "--skin", bad_files[key]], "--skin", capsys)
+
+
+@pytest.mark.parametrize("target", ["folder", "empty", "parent_file", "suffix"])
+def test_search_checks_the_csv_path_before_searching(target, bad_files, tmp_path, capsys):
+    path = {"folder": tmp_path, "empty": "", "parent_file": bad_files["a_file"] / "x.csv",
+            "suffix": tmp_path / "out.txt"}[target]
+    assert_refused(SEARCH + ["--positions", "400:700:50", "--csv", path], "--csv", capsys, output=tmp_path)
+
+
+def test_search_writes_its_csv_where_told(tmp_path, capsys):
+    status, out, _ = run(SEARCH + ["--positions", "400:700:100", "--csv", tmp_path / "new" / "s.csv", "--json"], capsys)
+    assert status == 0 and json.loads(out)["triplets"] == 4 and (tmp_path / "new" / "s.csv").is_file()
+
+
+@pytest.mark.parametrize("extra, names", [
+    (["--evaluations", "0"], "evaluations"),
+    (["--evaluations", "-1"], "evaluations"),
+    (["--sensor", "-3"], "--sensor"),
+    (["--sensor", "0"], "--sensor"),
+    (["--slope", "0"], "slope"),
+    (["--slope", "-2"], "slope"),
+    (["--starts", "550,550,550"], "starts"),
+    (["--starts", "300,540,800"], "starts"),
+    (["--starts", "nan,540,610"], "starts"),
+    (["--starts", "450,540"], "--starts"),
+    (["--starts", ""], "--starts"),
+    (["--objective", "beauty"], "--objective"),
+    (["--munsell", "nosuch"], "--munsell"),
+])
+def test_design_refuses(extra, names, capsys):
+    assert_refused(DESIGN + extra, names, capsys)

@@ -1,0 +1,108 @@
+"""
+Bad inputs to ``render``, ``validate`` and ``detect`` (:mod:`skinrender.cli.rendering`) are refused before
+anything renders; Mitsuba's own warnings stay off stdout; undefined rates are null with their reason.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from .refusal import assert_refused, bad_files, run  # noqa: F401  (fixture)
+
+pytest.importorskip("mitsuba")
+
+CAM = "gbell:9@450,540,610"
+LIGHTS = ["--prevailing", "A", "--calibration", "H"]
+
+
+@pytest.fixture(params=["render", "validate", "detect"])
+def command(request, tmp_path):
+    """Each render command with a valid output in ``tmp_path``."""
+    output = {"render": ["-o", tmp_path / "r.exr"], "detect": ["-o", tmp_path / "m.png"], "validate": []}
+    return [request.param], output[request.param], tmp_path
+
+
+@pytest.mark.parametrize("extra, names", [
+    (["--seed", "-1"], "--seed"),
+    (["--seed", "4294967295"], "--seed"),
+    (["--seed", "99999999999999"], "--seed"),
+    (["--seed", "1.5"], "--seed"),
+    (["--spp", "0"], "--spp"),
+    (["--spp", "1000000000"], "--spp"),
+    (["--camera", "Sony 755"], "--camera"),
+    (["--camera", "impulse@401.5,500,600"], "--camera"),
+    (["--prevailing", "20"], ("prevailing", "no light")),
+    (["--calibration", "20"], ("calibration", "no light")),
+    (["--prevailing", "x"], "--prevailing"),
+    (["--sampler", "random"], "--sampler"),
+    (["--quality", "ultra"], "--quality"),
+    (["--channels", "two"], "--channels"),
+    (["--variant", "nosuch_spectral"], "variant"),
+])
+def test_render_commands_refuse(command, extra, names, capsys):
+    name, output, folder = command
+    argv = [*name, "macbeth", "--camera", CAM, *LIGHTS, "--spp", "4", *output]
+    assert_refused(argv + extra, names, capsys, output=folder)
+
+
+@pytest.mark.parametrize("key, names", [
+    ("folder.toml", "folder"), ("scene_bad_toml.toml", "TOML"), ("scene_unknown_field.toml", "colour"),
+    ("scene_no_patch.toml", "patch"), ("scene_black_white.toml", "white"), ("scene_huge.toml", "pixels"),
+    ("scene_one_pixel.toml", "pixel"), ("scene_unknown_reflectance.toml", "nosuchset"),
+])
+def test_bad_scene_files_are_refused(key, names, bad_files, capsys):
+    assert_refused(["render", bad_files[key], "--camera", CAM, *LIGHTS], ("SCENE", names), capsys)
+
+
+@pytest.mark.parametrize("scene", ["", "no_such_scene"])
+def test_bad_scene_names_are_refused(scene, capsys):
+    assert_refused(["validate", scene, "--camera", CAM, *LIGHTS], "SCENE", capsys)
+
+
+@pytest.mark.parametrize("output", ["folder", "png", "empty", "parent_file"])
+def test_render_checks_its_output_before_rendering(output, bad_files, tmp_path, capsys):
+    path = {"folder": tmp_path, "png": tmp_path / "r.png", "empty": "", "parent_file": bad_files["a_file"] / "r.exr"}
+    assert_refused(["render", "macbeth", "--camera", CAM, *LIGHTS, "-o", path[output]], "--output", capsys,
+                   output=tmp_path)
+
+
+def test_render_with_a_preview_path_taken_by_a_folder_writes_nothing(tmp_path, capsys):
+    (tmp_path / "r.png").mkdir()
+    assert_refused(["render", "macbeth", "--camera", CAM, *LIGHTS, "-o", tmp_path / "r.exr"], "--output", capsys,
+                   output=tmp_path)
+
+
+@pytest.mark.parametrize("output", ["folder", "txt", "empty"])
+def test_detect_checks_its_output_before_rendering(output, tmp_path, capsys):
+    path = {"folder": tmp_path, "txt": tmp_path / "m.txt", "empty": ""}
+    assert_refused(["detect", "skin_patches", "--camera", CAM, *LIGHTS, "-o", path[output]], "--output", capsys,
+                   output=tmp_path)
+
+
+def test_rounded_spp_is_reported_and_the_json_stays_one_document(tmp_path, capsys):
+    """multijitter rounds 7 spp up to 8; Mitsuba's warning goes to stderr, the JSON reports the count used."""
+    status, out, err = run(["render", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "7", "-o", tmp_path / "r.exr",
+                            "--json"], capsys)
+    document = json.loads(out)
+    assert status == 0 and document["spp"] == 8 and document["spp_requested"] == 7
+
+
+def test_a_black_patch_renders_and_validates(tmp_path, capsys):
+    scene = tmp_path / "black.toml"
+    scene.write_text("columns = 2\n[[patch]]\nname = 'black'\nreflectance = 'grey:0'\n"
+                     "[[patch]]\nreflectance = 'grey:0.5'\n")
+    status, out, err = run(["validate", scene, "--camera", CAM, *LIGHTS, "--spp", "4", "--json"], capsys)
+    document = json.loads(out)
+    assert status == 0, err
+    assert document["patches"][0]["rendered"] == [0.0, 0.0, 0.0] and document["passed"]
+
+
+def test_detect_on_a_chart_without_non_skin_says_the_rate_is_undefined(tmp_path, capsys):
+    status, out, err = run(["detect", "skin_patches", "--camera", CAM, "--prevailing", "A", "--calibration", "A",
+                            "--spp", "4", "-o", tmp_path / "m.png", "--json"], capsys)
+    document = json.loads(out)
+    assert status == 0, err
+    assert document["fpr"] is None and "no non-skin" in document["undefined"]["fpr"]
+    assert 0.0 <= document["tpr"] <= 1.0
