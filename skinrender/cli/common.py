@@ -12,14 +12,14 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
+import tempfile
 from pathlib import Path
 
 from ..errors import SkinrenderError
 
 __all__ = [
-    "Parser", "flag", "camera_of", "check_output", "check_seed", "SEED_MAX",
+    "Parser", "flag", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "render_options", "choices_help",
 ]
@@ -183,9 +183,23 @@ def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = (), fo
         existing = existing.parent
     if existing.exists() and not existing.is_dir():
         raise SkinrenderError(f"{name}: {existing} is a file, so {target} cannot be created")
-    if not os.access(existing, os.W_OK | os.X_OK):
-        raise SkinrenderError(f"{name}: {existing} cannot be written")
+    try:  # the only sure test that a place takes files: make one there, and remove it
+        with tempfile.TemporaryFile(dir=existing):
+            pass
+    except OSError as error:
+        raise SkinrenderError(f"{name}: {target} cannot be written ({error.strerror or error})") from None
     return target
+
+
+def check_lights(args: argparse.Namespace, cam, temperatures, grid=None, name: str = "--illuminants") -> None:
+    """Every illuminant of a set gives the camera light on the grid; otherwise a one-line error naming ``name``."""
+    from ..model.illuminant import illuminants_array
+    from ..model.response import check_light, spds_on
+    from ..spectra import GRID_DEFAULT
+
+    grid = grid or GRID_DEFAULT
+    items, _ = illuminants_array(temperatures)
+    flag(name, check_light, cam, items, spds_on(items, grid), grid, "illuminant")
 
 
 SEED_MAX = 2**32 - 2

@@ -64,7 +64,9 @@ def _row_text(row: dict) -> str:
 def command_search(args: argparse.Namespace) -> None:
     from ..datasets import reflectances
     from ..model.stage1 import illuminant_set
+    from ..design.bank import positions_grid, sensor_bank
     from ..design.search import search
+    from ..model.camera import sensor_curves
 
     check_output(args.csv, "--csv", (".csv",))
     if not (math.isfinite(args.tie_tolerance) and args.tie_tolerance >= 0):
@@ -73,6 +75,12 @@ def command_search(args: argparse.Namespace) -> None:
     skin = flag("--skin", reflectances, args.skin, extrapolation=args.extrapolation)
     munsell = flag("--munsell", reflectances, args.munsell, extrapolation=args.extrapolation)
     temperatures = flag("--illuminants", illuminant_set, args.illuminants)
+    positions = flag("--positions", positions_grid, args.positions)
+    if not (math.isfinite(args.sensor) and args.sensor > 0):
+        raise SkinrenderError(f"--sensor must be 1 (impulse) or a gbell number N > 1 (FWHM N·10 nm), got {args.sensor}")
+    flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, args.slope)
+    flag("--illuminants", sensor_bank, args.sensor, skin.on(grid)[:1], positions[:3], temperatures, args.slope,
+         grid=grid)
     result = search(
         args.sensor, skin.on(grid), munsell.on(grid), args.positions, temperatures, args.slope, grid=grid,
         method=args.method, workers=args.workers, dask=args.dask,

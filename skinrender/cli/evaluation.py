@@ -9,7 +9,7 @@ import argparse
 import numpy as np
 
 from ..errors import SkinrenderError
-from .common import HELP_CAMERA, camera_of, add_common, check_output, emit, flag
+from .common import HELP_CAMERA, camera_of, check_lights, add_common, check_output, emit, flag
 
 
 def add_parsers(commands) -> None:
@@ -44,6 +44,7 @@ def command_locus(args: argparse.Namespace) -> None:
     check_output(args.plot, "--plot", (".png",))
     cam = camera_of(args)
     temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
+    check_lights(args, cam, temperatures)
     calibration = None
     if args.calibration is not None:
         calibration = flag("--calibration", illuminant, args.calibration).temperature

@@ -7,7 +7,7 @@ from __future__ import annotations
 import argparse
 
 from ..errors import SkinrenderError
-from .common import HELP_CAMERA, camera_of, HELP_ILLUMINANT, add_common, add_grid, add_model, emit, flag, grid_of, table
+from .common import HELP_CAMERA, camera_of, check_lights, HELP_ILLUMINANT, add_common, add_grid, add_model, emit, flag, grid_of, table
 
 
 def add_parsers(commands) -> None:
@@ -81,14 +81,18 @@ def command_illuminants(args: argparse.Namespace) -> None:
 
 def command_response(args: argparse.Namespace) -> None:
     from ..model.chromaticity import ncc
-    from ..model.response import response
     from ..datasets import reflectances
     from ..model.illuminant import illuminant
+    from ..model.response import normalisation_factor, response
 
     grid = grid_of(args)
-    cam = camera_of(args, grid_of(args))
+    cam = camera_of(args, grid)
     refl = flag("--reflectances", reflectances, args.reflectances, extrapolation=args.extrapolation)
     prevailing, calibration = flag("--prevailing", illuminant, args.prevailing), flag("--calibration", illuminant, args.calibration)
+    for name, light in (("--prevailing", prevailing), ("--calibration", calibration)):
+        check_lights(args, cam, light, grid, name)
+        if args.normalization != "white":
+            flag(name, normalisation_factor, light, args.normalization, grid)
     rgb = response(cam, refl.on(grid), prevailing, calibration, args.normalization, args.knee, grid)
     chromaticity = ncc(rgb)
     samples = [
@@ -123,6 +127,7 @@ def command_gamut(args: argparse.Namespace) -> None:
     grid = grid_of(args)
     cam = camera_of(args, grid_of(args))
     temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
+    check_lights(args, cam, temperatures, grid)
     if args.ratio == bool(args.reflectances):
         raise SkinrenderError("give either --reflectances R or --ratio (with --skin and --munsell), not both or neither")
     if args.calibration is not None:

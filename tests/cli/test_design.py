@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -31,8 +32,9 @@ DESIGN = ["design", "--evaluations", "3"]
     (["--sensor", "-3"], "sensor"),
     (["--sensor", "nan"], "sensor"),
     (["--slope", "0"], "slope"),
-    (["--illuminants", "20,3300"], ("20K", "no light")),
+    (["--illuminants", "20,3300"], ("--illuminants", "20K", "no light")),
     (["--illuminants", "2000,,x"], "--illuminants"),
+    (["--sensor", "1", "--positions", "400.5:650.5:50"], ("--positions", "400.5")),
     (["--skin", "skn"], ("--skin", "skn")),
     (["--munsell", ""], "--munsell"),
     (["--method", "quick"], "--method"),
@@ -53,10 +55,12 @@ def test_search_refuses_bad_sets(key, bad_files, capsys):
     assert_refused(SEARCH + ["--positions", "400:700:50", "--skin", bad_files[key]], "--skin", capsys)
 
 
-@pytest.mark.parametrize("target", ["folder", "empty", "parent_file", "suffix"])
+@pytest.mark.parametrize("target", ["folder", "empty", "parent_file", "suffix", "unwritable"])
 def test_search_checks_the_csv_path_before_searching(target, bad_files, tmp_path, capsys):
+    if target == "unwritable" and not Path("/proc/self").is_dir():
+        pytest.skip("needs Linux's /proc, a place no one can create files in")
     path = {"folder": tmp_path, "empty": "", "parent_file": bad_files["a_file"] / "x.csv",
-            "suffix": tmp_path / "out.txt"}[target]
+            "suffix": tmp_path / "out.txt", "unwritable": "/proc/skinrender/x.csv"}[target]
     assert_refused(SEARCH + ["--positions", "400:700:50", "--csv", path], "--csv", capsys, output=tmp_path)
 
 

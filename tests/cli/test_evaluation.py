@@ -14,7 +14,7 @@ LOCUS = ["locus", "--camera", "gbell:9@450,540,610"]
 @pytest.mark.parametrize("extra, names", [
     (["--calibration", ""], "--calibration"),
     (["--calibration", "nan"], "--calibration"),
-    (["--illuminants", "20,3300"], ("20K", "no light")),
+    (["--illuminants", "20,3300"], ("--illuminants", "20K", "no light")),
     (["--illuminants", "x"], "--illuminants"),
     (["--boundary", "circle"], "--boundary"),
     (["--skin", "nosuch"], "--skin"),

@@ -60,7 +60,7 @@ def test_response_refuses_bad_prevailing(prevailing, names, capsys):
 
 @pytest.mark.parametrize("extra, names", [
     (["--prevailing", "A", "--calibration", "20"], ("calibration", "no light")),
-    (["--prevailing", "35", "--calibration", "H", "--normalization", "560nm"], ("35K", "no light")),
+    (["--prevailing", "35", "--calibration", "H", "--normalization", "560nm"], ("--prevailing", "35K", "no light")),
     (["--prevailing", "A", "--calibration", "H", "--normalization", "loud"], "--normalization"),
     (["--prevailing", "A", "--calibration", "H", "--grid", "400:700:0.0001"], "--grid"),
     (["--prevailing", "A"], "--calibration"),
@@ -93,7 +93,7 @@ def test_bad_illuminant_files(key, bad_files, capsys):
 
 @pytest.mark.parametrize("extra, names", [
     (["--all-calibrations", "--illuminants", "2000,x"], "--illuminants"),
-    (["--all-calibrations", "--illuminants", "20,3300"], ("20K", "no light")),
+    (["--all-calibrations", "--illuminants", "20,3300"], ("--illuminants", "20K", "no light")),
     (["--all-calibrations", "--illuminants", ""], "--illuminants"),
     (["--calibration", "nan"], "--calibration"),
     (["--calibration", "3300", "--ratio"], "--ratio"),
