@@ -18,11 +18,12 @@ they share.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Sequence
 
 from ..errors import SkinrenderError
-from . import data, design, evaluation, model, rendering, studies
+from . import data, design, evaluation, imaging, model, rendering, studies
 from .common import Parser
 
 __all__ = ["main", "build_parser", "COMMANDS"]
@@ -42,6 +43,8 @@ COMMANDS = {
     "design": design.command_design,
     "detect": rendering.command_detect,
     "bench": studies.command_bench,
+    "imagers": imaging.command_imagers,
+    "score": imaging.command_score,
 }
 """Command name → the function that runs it."""
 
@@ -54,7 +57,7 @@ def build_parser() -> argparse.ArgumentParser:
         "(wavelengths in nm, temperatures in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹).",
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser)
-    for group in (data, model, design, studies, rendering, evaluation):
+    for group in (data, model, design, studies, rendering, evaluation, imaging):
         group.add_parsers(commands)
     return parser
 
@@ -69,8 +72,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"skinrender {args.command}: error: {' '.join(str(error).split())}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
-        print(f"skinrender {args.command}: interrupted", file=sys.stderr)
-        return 130
+        print(f"skinrender {args.command}: interrupted", file=sys.stderr, flush=True)
+        # at once: the interpreter's exit would wait on worker pipes that no one reads any more
+        os._exit(130)
     except BrokenPipeError:
         return 0
     except MemoryError:

@@ -329,10 +329,10 @@ def search(
             for chunk, future in zip(chunks, futures):
                 store(chunk, future.result())
                 bar.update(len(chunk))
-        except BaseException:  # Ctrl-C or an error: drop the queued chunks and stop the workers now
-            pool.shutdown(wait=False, cancel_futures=True)
-            for process in list(getattr(pool, "_processes", {}).values()):
+        except BaseException:  # Ctrl-C or an error: stop the workers now and drop the queued chunks
+            for process in list((getattr(pool, "_processes", None) or {}).values()):
                 process.terminate()
+            pool.shutdown(wait=False, cancel_futures=True)
             raise
         pool.shutdown()
     bar.close()

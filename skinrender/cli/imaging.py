@@ -1,0 +1,160 @@
+"""
+The image sensor: ``imagers`` (the presets) and ``score`` (the criteria for one
+camera, with the noise-aware detection rates through an imager).
+
+Units: pixel pitch µm, charge e⁻, system gain DN/e⁻, illuminance lx, exposure
+s, temperatures K; rates are fractions in [0, 1].
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from ..errors import SkinrenderError
+from .common import HELP_CAMERA, add_common, camera_of, emit, flag, table
+
+__all__ = [
+    "SAMPLES_DEFAULT",
+    "SEED_LIMIT",
+    "add_parsers",
+    "command_imagers",
+    "command_score",
+    "integer_in",
+    "positive_number",
+]
+
+SAMPLES_DEFAULT = 16
+"""``score --samples``: noisy pixels per (reflectance, prevailing, calibration)."""
+
+SEED_LIMIT = 2**32
+"""``score --seed`` lies in [0, 2³²): numpy's seed range as a 32-bit integer."""
+
+
+def add_parsers(commands) -> None:
+    """Add the parsers of imagers, score."""
+    p = commands.add_parser("imagers", help="list the imager presets (pixel µm, full well e⁻, read noise e⁻, "
+                            "gain DN/e⁻, ADC bits)")
+    add_common(p)
+
+    p = commands.add_parser("score", help="the criteria for one camera: skin/Munsell gamut ratio, Munsell false "
+                            "positives in the skin locus, and with --imager the rates on noisy pixels")
+    p.add_argument("--camera", required=True, help=HELP_CAMERA)
+    p.add_argument("--illuminants", default="paper",
+                   help="illuminant set: 'paper' (the ten, default), 'auto' (Stage 1) or comma-separated kelvin")
+    p.add_argument("--skin", default="skin", help="skin reflectance set, name or CSV path (default skin)")
+    p.add_argument("--munsell", default="munsell", help="Munsell reflectance set, name or CSV path (default munsell)")
+    p.add_argument("--imager", help="image sensor: a preset (see 'skinrender imagers') or a TOML file; adds the "
+                   "detection rates on its noisy pixels (needs --illuminance)")
+    p.add_argument("--illuminance", metavar="LUX", help="illuminance of the chart, lx > 0, under every illuminant")
+    p.add_argument("--exposure", metavar="auto|SECONDS",
+                   help="exposure: 'auto' (default: the white under the calibration light at 70 %% of the full "
+                   "well) or seconds > 0")
+    p.add_argument("--samples", metavar="N",
+                   help=f"noisy pixels per reflectance and (prevailing, calibration) pair (default {SAMPLES_DEFAULT})")
+    p.add_argument("--seed", metavar="S", help="random seed, an integer in [0, 2**32) (default 0)")
+    add_common(p)
+
+
+def command_imagers(args: argparse.Namespace) -> None:
+    from ..model.imager import list_imagers
+
+    imagers = list_imagers()
+    rows = [[i["name"], f"{i['pixel_um']:g}", f"{i['full_well_e']:g}", f"{i['read_noise_e']:g}",
+             f"{i['gain_dn_per_e']:g}", i["bits"], i["source"]] for i in imagers]
+    text = table(rows, ["name", "pixel µm", "full well e⁻", "read noise e⁻", "gain DN/e⁻", "bits", "source"])
+    emit(args, {"imagers": imagers}, text)
+
+
+def positive_number(text: str, name: str, unit: str) -> float:
+    """``text`` as a finite number > 0, else a one-line :class:`SkinrenderError` naming the flag ``name``."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value) or value <= 0:
+        raise SkinrenderError(f"{name} must be a finite number > 0 ({unit}), got {text!r}")
+    return value
+
+
+def integer_in(text: str, name: str, low: int, high: int | None = None) -> int:
+    """``text`` as an integer in [low, high), else a one-line :class:`SkinrenderError` naming the flag ``name``."""
+    try:
+        value = int(text.strip())
+    except ValueError:
+        value = None
+    if value is None or value < low or (high is not None and value >= high):
+        bounds = f"≥ {low}" if high is None else f"in [{low}, {high})"
+        raise SkinrenderError(f"{name} must be an integer {bounds}, got {text!r}")
+    return value
+
+
+def _noise_options(args: argparse.Namespace) -> dict | None:
+    """The checked imager flags, or ``None`` without ``--imager``; nothing heavy is done here."""
+    given = [name for name in ("illuminance", "exposure", "samples", "seed") if getattr(args, name) is not None]
+    if args.imager is None:
+        if given:
+            raise SkinrenderError(f"--{given[0]} applies to the noisy rates: give --imager S too")
+        return None
+    from ..model.imager import imager
+
+    if args.illuminance is None:
+        raise SkinrenderError("--imager needs --illuminance LUX (the chart's illuminance, lx > 0)")
+    exposure = args.exposure if args.exposure is not None else "auto"
+    if exposure.strip().lower() == "auto":
+        exposure = "auto"
+    else:
+        exposure = positive_number(exposure, "--exposure", "s, or 'auto'")
+    return {
+        "imager_": flag("--imager", imager, args.imager),
+        "illuminance_lux": positive_number(args.illuminance, "--illuminance", "lx"),
+        "exposure": exposure,
+        "samples": SAMPLES_DEFAULT if args.samples is None else integer_in(args.samples, "--samples", 1),
+        "seed": 0 if args.seed is None else integer_in(args.seed, "--seed", 0, SEED_LIMIT),
+    }
+
+
+def command_score(args: argparse.Namespace) -> None:
+    from ..datasets import reflectances
+    from ..evaluation.gamut import gamut_all_calibrations
+    from ..evaluation.locus import false_positive_rate, skin_locus
+    from ..evaluation.noisy_detection import noisy_detection
+    from ..model.stage1 import illuminant_set
+    from ..spectra import GRID_DEFAULT
+
+    noise = _noise_options(args)
+    cam = camera_of(args)
+    temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
+    skin, munsell = flag("--skin", reflectances, args.skin), flag("--munsell", reflectances, args.munsell)
+    skin_gamut = gamut_all_calibrations(cam, skin, temperatures)
+    munsell_gamut = gamut_all_calibrations(cam, munsell, temperatures)
+    ratio = skin_gamut.volume / munsell_gamut.volume if munsell_gamut.volume > 0 else None
+    locus = skin_locus(cam, skin, temperatures)
+    fpr = false_positive_rate(locus, cam, munsell)
+    document = {
+        "camera": cam.name, "illuminants_K": temperatures.tolist(), "skin": skin.name, "munsell": munsell.name,
+        "ratio_all": ratio, "skin_volume": skin_gamut.volume, "munsell_volume": munsell_gamut.volume, "fpr": fpr,
+    }
+    text = (f"{cam.name} over {len(temperatures)} illuminants (every calibration):\n"
+            f"  gamut ratio {skin.name}/{munsell.name}: "
+            + ("undefined (degenerate Munsell gamut)" if ratio is None else f"{ratio:.6g}") + "\n"
+            f"  false positives ({munsell.name} in the {skin.name} locus, noise-free): {fpr:.4f}")
+    if noise is not None:
+        result = noisy_detection(cam, skin.on(GRID_DEFAULT), munsell.on(GRID_DEFAULT), temperatures, locus=locus,
+                                 **noise)
+        document["noisy"] = {
+            "imager": result.imager, "illuminance_lux": result.illuminance_lux, "exposure_s": list(result.exposure_s),
+            "calibrations_K": list(result.calibrations_K), "samples": result.samples, "seed": noise["seed"],
+            "tpr": result.tpr, "fpr": result.fpr, "tpr_se": result.tpr_se, "fpr_se": result.fpr_se,
+            "tpr_noise_free": result.tpr_noise_free, "fpr_noise_free": result.fpr_noise_free,
+            "skin_ncc_std": [None if math.isnan(v) else v for v in result.skin_ncc_std],
+        }
+        exposures = (f"{min(result.exposure_s) * 1e3:.4g}–{max(result.exposure_s) * 1e3:.4g} ms"
+                     if noise["exposure"] == "auto" else f"{result.exposure_s[0] * 1e3:.4g} ms")
+        text += (f"\nthrough {result.imager} at {result.illuminance_lux:g} lx, exposure {exposures} "
+                 f"({result.samples} noisy pixels per sample and pair, seed {noise['seed']}):\n"
+                 f"  skin detected (TPR): {result.tpr:.4f} ± {result.tpr_se:.4f} "
+                 f"(noise-free {result.tpr_noise_free:.4f})\n"
+                 f"  false positives (FPR): {result.fpr:.4f} ± {result.fpr_se:.4f} "
+                 f"(noise-free {result.fpr_noise_free:.4f})")
+    emit(args, document, text)

@@ -1,0 +1,352 @@
+"""
+Noisy detection
+===============
+
+The skin-locus criterion through an image sensor: the locus is drawn from the
+noise-free Eq. 4 chromaticities, and the skin and non-skin pixels it is scored
+on are noisy frames of an :class:`~skinrender.model.imager.Imager` at a stated
+illuminance and exposure.
+
+-   :class:`PixelElectrons`, :func:`pixel_electrons`: the expected electrons
+    and white-balance gains of a reflectance set (steps 1–3 below).
+-   :class:`NoisyDetection`, :func:`noisy_detection`: seeded Monte Carlo
+    true- and false-positive rates with their binomial standard errors, the
+    noise-free rates beside them, and the skin's NCC noise by the delta method.
+
+The chain, for each (prevailing p, calibration c) pair of the illuminant set
+and each reflectance ρ:
+
+1.  the chart's irradiance E_p (W·m⁻²·nm⁻¹) is the Planckian of temperature p
+    at ``illuminance_lux`` (:func:`~skinrender.model.exposure.irradiance_planck`);
+    a patch's radiance is ρ E_p / π (W·m⁻²·sr⁻¹·nm⁻¹);
+2.  the camera curves weight energy, as in Eq. 1, so a channel's quantum
+    efficiency is proportional to x_k(λ) / λ (peak ``qe_peak``): the white's
+    electron rate (e⁻/s) is :func:`~skinrender.model.exposure.electrons_mean`,
+    and a patch's is the white's times the Eq. 1 ratio
+    ``response_raw(ρ) / response_raw(white)`` (:mod:`skinrender.model.response`);
+3.  the exposure (s) is given, or ``auto``: the white under the calibration
+    light c at 0.7 of the full well (:func:`~skinrender.model.exposure.auto_exposure`);
+4.  a noisy frame (:func:`~skinrender.model.noise.simulate_dn`), less the black
+    level and clipped at 0 DN (as a raw pipeline does), is white-balanced by the Eq. 4 gain of the noise-free whites under
+    p and c (:func:`~skinrender.model.response.gain`), and its NCC (r, g) is
+    classified by the locus; a pixel with every channel at or below the black
+    level is not skin.
+
+Without noise, dark current and clipping, step 4 gives exactly the Eq. 4
+chromaticities, so the noisy rates tend to the noise-free ones as the
+collected charge grows (more light at a fixed exposure, on a well that does
+not fill). With ``auto`` exposure the charge is fixed by the full well, not by
+the illuminance: the illuminance then only changes the dark current's share.
+
+Units: wavelength nm, temperature K, illuminance lx, exposure s, charge e⁻,
+output DN; rates are fractions in [0, 1].
+
+References
+----------
+-   :cite:`EMVA1288` : the linear camera model of
+    :mod:`skinrender.model.noise`.
+-   [Martinkauppi2006]_ : Eqs. 1, 2 and 4 (docs/references.md).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import SkinrenderError
+from ..hints import ArrayLike, NDArrayFloat
+from ..model.camera import Camera
+from ..model.chromaticity import ncc
+from ..model.exposure import auto_exposure, electrons_mean, irradiance_planck
+from ..model.illuminant import illuminants_array
+from ..model.imager import Imager, checked_array, imager
+from ..model.noise import ncc_covariance, random_generator, simulate_dn, statistics_dn
+from ..model.response import gain, response_raw, spds_on
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+from .locus import SkinLocus, false_positive_rate, locus_points, skin_locus
+
+__all__ = ["AUTO_EXPOSURE_FRACTION", "NoisyDetection", "PixelElectrons", "noisy_detection", "pixel_electrons"]
+
+AUTO_EXPOSURE_FRACTION = 0.7
+"""``auto`` exposure: the white's brightest channel under the calibration light at this share of the full well."""
+
+
+@dataclass(frozen=True)
+class NoisyDetection:
+    """
+    Skin detection rates on noisy pixels.
+
+    Attributes
+    ----------
+    tpr, fpr
+        Shares of noisy skin and non-skin pixels inside the skin locus, in [0, 1].
+    tpr_se, fpr_se
+        Their binomial standard errors, sqrt(p (1 − p) / n) over the n pixels
+        drawn (an upper bound on the Monte Carlo error: the pixels of one
+        reflectance and pair share their mean).
+    samples
+        Noisy pixels drawn per (reflectance, prevailing, calibration).
+    exposure_s
+        Exposure, s, per calibration illuminant (in the order of ``calibrations_K``).
+    illuminance_lux
+        The chart's illuminance, lx.
+    imager
+        The imager's name.
+    tpr_noise_free, fpr_noise_free
+        The same shares for the noise-free Eq. 4 chromaticities.
+    calibrations_K
+        The calibration illuminants, K.
+    skin_ncc_std
+        Root mean square over the skin pixels of the NCC (r, g, b) standard
+        deviations by the delta method (:func:`~skinrender.model.noise.ncc_covariance`), unitless.
+    """
+
+    tpr: float
+    fpr: float
+    tpr_se: float
+    fpr_se: float
+    samples: int
+    exposure_s: tuple[float, ...]
+    illuminance_lux: float
+    imager: str
+    tpr_noise_free: float
+    fpr_noise_free: float
+    calibrations_K: tuple[float, ...]
+    skin_ncc_std: tuple[float, float, float]
+
+
+def _reflectance_array(values: ArrayLike, name: str, grid: WavelengthGrid) -> NDArrayFloat:
+    out = checked_array(values, name, "(reflectance, fraction)", grid=grid)
+    if out.ndim != 2 or out.shape[0] == 0:
+        raise SkinrenderError(f"{name} must be an array (samples, {grid.size}) on the grid {grid}, got {out.shape}")
+    return out
+
+
+def _positive(value: object, name: str, unit: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) or value <= 0:
+        raise SkinrenderError(f"{name} must be a finite number > 0, {unit}, got {value!r}")
+    return float(value)
+
+
+def _temperatures(values: ArrayLike, name: str) -> NDArrayFloat:
+    out = checked_array(values, name, "K").ravel()
+    if out.size == 0 or np.any(out <= 0):
+        raise SkinrenderError(f"{name} must be temperatures > 0 K, got {values!r}")
+    return out
+
+
+def _rates(hits: int, total: int) -> tuple[float, float]:
+    """The share of hits and its binomial standard error sqrt(p (1 − p) / n)."""
+    share = hits / total
+    return share, math.sqrt(share * (1.0 - share) / total)
+
+
+@dataclass(frozen=True)
+class PixelElectrons:
+    """
+    The noise-free pixels of a reflectance set through an imager.
+
+    Attributes
+    ----------
+    electrons
+        Expected electrons (photo plus dark), e⁻, shape ``(P, C, n, 3)`` for
+        P prevailing and C calibration illuminants and n reflectances.
+    gains
+        The Eq. 4 gain of each (p, c) pair, output units per DN above the
+        black level, shape ``(P, C, 1, 3)``.
+    exposure_s
+        Exposure, s, per calibration illuminant, shape ``(C,)``.
+    """
+
+    electrons: NDArrayFloat
+    gains: NDArrayFloat
+    exposure_s: NDArrayFloat
+
+
+def _white_rates(im: Imager, cam: Camera, temperatures: NDArrayFloat, lux: float, grid: WavelengthGrid):
+    """The white's electron rate per channel, e⁻/s (dark current included), and its Eq. 1 raw response."""
+    irradiance = irradiance_planck(temperatures, lux, grid)  # W·m⁻²·nm⁻¹
+    x = cam.sensitivities(grid)
+    rate = electrons_mean(im, x / grid.wavelengths, irradiance / math.pi, 1.0, grid)  # QE ∝ x / λ
+    raw = spds_on(illuminants_array(temperatures)[0], grid) @ x.T * grid.step  # Eq. 1 of the white
+    return rate, raw
+
+
+def pixel_electrons(
+    cam: Camera,
+    reflectance: ArrayLike,
+    prevailing: ArrayLike,
+    calibrations: ArrayLike,
+    imager_: str | Path | Imager,
+    illuminance_lux: float,
+    exposure: float | str = "auto",
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> PixelElectrons:
+    """
+    Expected electrons and white-balance gains of every (prevailing, calibration) pair (steps 1–3 above).
+
+    Parameters
+    ----------
+    cam
+        The camera.
+    reflectance
+        Reflectances on ``grid``, shape ``(n, grid.size)``, fractions.
+    prevailing, calibrations
+        Illuminants, K (Planckian): every pair of the two.
+    imager_
+        An :class:`~skinrender.model.imager.Imager`, a preset name or a TOML path.
+    illuminance_lux
+        The chart's illuminance, lx > 0.
+    exposure
+        Exposure, s > 0, or ``auto``.
+    grid
+        The wavelength grid, nm.
+
+    Returns
+    -------
+    :class:`PixelElectrons`
+
+    Examples
+    --------
+    >>> from skinrender.model.camera import camera
+    >>> pixels = pixel_electrons(camera("gbell:9@450,540,610"), np.ones((1, 301)), [3300.0], [3300.0],
+    ...                          "sony-imx174", 500.0)
+    >>> print(f"{pixels.electrons.max() / 32691:.3f} of the full well in {pixels.exposure_s[0] * 1e3:.2f} ms")
+    0.700 of the full well in 12.12 ms
+    """
+
+    im = imager(imager_)
+    reflectance = _reflectance_array(reflectance, "reflectance", grid)
+    prevailing = _temperatures(prevailing, "prevailing")
+    calibrations = _temperatures(calibrations, "calibrations")
+    lux = _positive(illuminance_lux, "illuminance_lux", "lx")
+    white_p, raw_white_p = _white_rates(im, cam, prevailing, lux, grid)  # (P, 3)
+    white_c, _ = _white_rates(im, cam, calibrations, lux, grid)  # (C, 3)
+    if isinstance(exposure, str) and exposure.strip().lower() == "auto":
+        exposures = np.atleast_1d(auto_exposure(im, white_c, AUTO_EXPOSURE_FRACTION))  # (C,)
+    else:
+        exposures = np.full(calibrations.size, _positive(exposure, "exposure", "s (or 'auto')"))
+    dark = im.dark_current_e_per_s
+    # the Eq. 4 gain from the noise-free whites (DN above black) of each (p, c) pair, exposed for c
+    t = exposures[None, :, None]
+    gains = gain(im.gain_dn_per_e * white_p[:, None, :] * t, im.gain_dn_per_e * white_c[None, :, :] * t)
+    ratio = response_raw(cam, reflectance, prevailing, "none", grid) / raw_white_p[:, None, :]  # Eq. 1, (P, n, 3)
+    photo = ratio * (white_p - dark)[:, None, :]  # e⁻/s
+    electrons = (photo[:, None] + dark) * exposures[None, :, None, None]
+    return PixelElectrons(electrons, gains[:, :, None, :], exposures)
+
+
+def noisy_detection(
+    cam: Camera,
+    skin: ArrayLike,
+    nonskin: ArrayLike,
+    illuminants: ArrayLike,
+    imager_: str | Path | Imager,
+    illuminance_lux: float,
+    exposure: float | str = "auto",
+    samples: int = 16,
+    seed: int | np.random.Generator = 0,
+    calibration: float | None = None,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    locus: SkinLocus | None = None,
+) -> NoisyDetection:
+    """
+    True- and false-positive rates of the skin locus on noisy pixels of an imager.
+
+    Parameters
+    ----------
+    cam
+        The camera (:func:`skinrender.model.camera.camera`): its curves are the spectral channels.
+    skin, nonskin
+        Reflectances on ``grid``, shape ``(n, grid.size)``, fractions.
+    illuminants
+        The illuminant set, K (Planckian).
+    imager_
+        An :class:`~skinrender.model.imager.Imager`, a preset name or a TOML path.
+    illuminance_lux
+        The chart's illuminance, lx > 0, under every illuminant.
+    exposure
+        Exposure, s > 0, or ``auto`` (the white under the calibration light
+        at :data:`AUTO_EXPOSURE_FRACTION` of the full well).
+    samples
+        Noisy pixels per (reflectance, prevailing, calibration), ≥ 1.
+    seed
+        An integer seed in [0, 2³²) or a numpy Generator.
+    calibration
+        One white balancing at this temperature, K, or ``None`` for every
+        calibration of the set (as :func:`~skinrender.evaluation.locus.skin_locus`).
+    grid
+        The wavelength grid, nm.
+    locus
+        The noise-free skin locus if already drawn (convex hull of ``skin``
+        over the same illuminants and calibration); drawn here otherwise.
+
+    Returns
+    -------
+    :class:`NoisyDetection`
+
+    Raises
+    ------
+    SkinrenderError
+        Naming the argument: a non-positive or NaN illuminance or exposure, a
+        bad ``samples`` or ``seed``, reflectances off the grid.
+
+    Examples
+    --------
+    >>> from skinrender.datasets import reflectances
+    >>> from skinrender.model.camera import camera
+    >>> skin, chips = reflectances("skin").on(), reflectances("munsell").on()[::10]
+    >>> result = noisy_detection(camera("gbell:9@450,540,610"), skin, chips, [2500.0, 4000.0, 6500.0],
+    ...                          "sony-imx174", 500.0, samples=4, seed=1)
+    >>> print(f"TPR {result.tpr:.3f} (noise-free {result.tpr_noise_free:.3f}), {len(result.exposure_s)} exposures")
+    TPR 0.9... (noise-free 1.000), 3 exposures
+    """
+
+    im = imager(imager_)
+    skin = _reflectance_array(skin, "skin", grid)
+    nonskin = _reflectance_array(nonskin, "nonskin", grid)
+    prevailing = _temperatures(illuminants, "illuminants")
+    calibrations = prevailing if calibration is None else _temperatures(calibration, "calibration")
+    lux = _positive(illuminance_lux, "illuminance_lux", "lx")
+    if isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or samples < 1:
+        raise SkinrenderError(f"samples must be an integer ≥ 1, got {samples!r}")
+    rng = random_generator(seed, "seed")
+
+    if locus is None:
+        locus = skin_locus(cam, skin, prevailing, calibration, "hull", grid)
+    tpr_free = float(np.mean(locus.contains(locus_points(cam, skin, prevailing, calibration, grid))))
+    fpr_free = false_positive_rate(locus, cam, nonskin, grid)
+
+    def inside(pixels: PixelElectrons) -> tuple[int, int]:
+        hits = 0
+        for _ in range(samples):
+            above_black = np.maximum(simulate_dn(im, pixels.electrons, rng) - im.black_level_dn, 0.0)  # DN
+            balanced = above_black * pixels.gains
+            positive = balanced.sum(axis=-1) > 0  # a black pixel has no chromaticity
+            hits += int(np.count_nonzero(locus.contains(ncc(balanced)[..., :2]) & positive))
+        return hits, samples * int(np.prod(pixels.electrons.shape[:-1]))
+
+    on_skin = pixel_electrons(cam, skin, prevailing, calibrations, im, lux, exposure, grid)
+    tpr, tpr_se = _rates(*inside(on_skin))
+    fpr, fpr_se = _rates(*inside(pixel_electrons(cam, nonskin, prevailing, calibrations, im, lux, exposure, grid)))
+    exposures, gains = on_skin.exposure_s, on_skin.gains
+
+    mean, variance = statistics_dn(im, on_skin.electrons)
+    signal = mean - im.black_level_dn
+    usable = (signal * gains).sum(axis=-1) > 0
+    spread = np.full(3, math.nan)
+    if usable.any():
+        gains_each = np.broadcast_to(gains, signal.shape)
+        covariance = ncc_covariance(signal[usable], variance[usable], gains_each[usable])
+        spread = np.sqrt(np.mean(np.diagonal(covariance, axis1=-2, axis2=-1), axis=0))
+    return NoisyDetection(
+        tpr=tpr, fpr=fpr, tpr_se=tpr_se, fpr_se=fpr_se, samples=int(samples),
+        exposure_s=tuple(float(value) for value in exposures), illuminance_lux=lux, imager=im.name,
+        tpr_noise_free=tpr_free, fpr_noise_free=fpr_free,
+        calibrations_K=tuple(float(value) for value in calibrations),
+        skin_ncc_std=tuple(float(value) for value in spread),
+    )
