@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 import tempfile
 from pathlib import Path
@@ -19,7 +20,7 @@ from pathlib import Path
 from ..errors import SkinrenderError
 
 __all__ = [
-    "Parser", "flag", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
+    "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "render_options", "choices_help",
 ]
@@ -84,6 +85,13 @@ def add_render(parser: argparse.ArgumentParser) -> None:
                         "default: the fastest that works here")
     parser.add_argument("--channels", choices=list(CHANNEL_GROUPINGS), default="auto",
                         help="render passes: " + choices_help(CHANNEL_GROUPINGS))
+    parser.add_argument("--imager", help="record the render with an image sensor: a preset (see 'skinrender imagers') "
+                        "or a TOML file; adds photon shot, dark and read noise, full well, gain and ADC")
+    parser.add_argument("--illuminance", type=float, default=500.0,
+                        help="with --imager: illuminance at the chart, lx (default 500, an office)")
+    parser.add_argument("--exposure", default="auto",
+                        help="with --imager: exposure in s, or auto (the calibration white's brightest channel at "
+                        "0.7 of the full well; default)")
 
 
 def emit(args: argparse.Namespace, document: dict, text: str) -> None:
@@ -223,3 +231,23 @@ def camera_of(args: argparse.Namespace, grid=None, name: str = "--camera"):
     cam = flag(name, camera, getattr(args, name.lstrip("-").replace("-", "_")), extrapolation=extrapolation)
     flag(name, cam.sensitivities, grid or GRID_DEFAULT)
     return cam
+
+
+def imaging_options(args: argparse.Namespace) -> dict | None:
+    """``--imager``, ``--illuminance`` (lx) and ``--exposure`` (s or auto) checked, or ``None`` without ``--imager``."""
+    if args.imager is None:
+        return None
+    from ..model.imager import imager
+
+    sensor = flag("--imager", imager, args.imager)
+    if not (math.isfinite(args.illuminance) and args.illuminance > 0):
+        raise SkinrenderError(f"--illuminance must be a finite number of lux > 0, got {args.illuminance}")
+    exposure = str(args.exposure).strip().lower()
+    if exposure != "auto":
+        try:
+            exposure = float(exposure)
+        except ValueError:
+            raise SkinrenderError(f"--exposure must be auto or seconds > 0, got {args.exposure!r}") from None
+        if not (math.isfinite(exposure) and exposure > 0):
+            raise SkinrenderError(f"--exposure must be auto or a finite number of seconds > 0, got {args.exposure!r}")
+    return {"imager_": sensor, "illuminance_lux": args.illuminance, "exposure": exposure}

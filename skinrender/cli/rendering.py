@@ -7,8 +7,10 @@ from __future__ import annotations
 import argparse
 import sys
 
+import numpy as np
+
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, HELP_ILLUMINANT, add_common, camera_of, add_grid, add_model, add_render, check_output,
+from .common import (HELP_CAMERA, HELP_ILLUMINANT, imaging_options, add_common, camera_of, add_grid, add_model, add_render, check_output,
                      choices_help, emit, flag, grid_of, render_options, table)
 
 
@@ -77,9 +79,31 @@ def render_inputs(args: argparse.Namespace) -> dict:
             "calibration": temperatures["calibration"]}
 
 
+def render_with(args: argparse.Namespace, inputs: dict, options: dict, imaging: dict | None, knee: bool = False):
+    """The render of a command: plain (Eq. 4 on the radiance) or through ``--imager``; returns (rendering, imaged)."""
+    from ..rendering.balance import render
+
+    normalization = getattr(args, "normalization", "white")
+    grid = grid_of(args) if hasattr(args, "grid") else None
+    extra = {} if grid is None else {"grid": grid}
+    if imaging is None:
+        return render(**inputs, normalization=normalization, knee=knee, **extra, **options), None
+    from ..rendering.imaging import render_imaged
+
+    imaged = render_imaged(inputs["scene"], inputs["camera_"], inputs["prevailing"], inputs["calibration"],
+                           **imaging, normalization=normalization, **extra, **options)
+    return imaged.rendering, imaged
+
+
+def imaging_document(imaged) -> dict:
+    """The JSON keys a render through an imager adds: imager, illuminance_lux, exposure_s, sensor_seed."""
+    if imaged is None:
+        return {}
+    return {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux, "exposure_s": imaged.exposure_s}
+
+
 def command_render(args: argparse.Namespace) -> None:
 
-    from ..rendering.balance import render
     from ..rendering.exr import write_exr, write_preview
     from ..rendering.renderer import channel_names
 
@@ -87,8 +111,15 @@ def command_render(args: argparse.Namespace) -> None:
     output = check_output(args.output, "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     inputs = render_inputs(args)
+    imaging = imaging_options(args)
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
-    result = render(**inputs, normalization=args.normalization, knee=args.knee, grid=grid_of(args), **options)
+    result, imaged = render_with(args, inputs, options, imaging, args.knee)
+    if imaged is not None and args.knee:
+        from dataclasses import replace
+
+        from ..model.response import knee
+
+        result = replace(result, image=knee(result.image).astype(np.float32), knee=True)
     spp = result.raw[0].spp
     names = channel_names(result.camera)
     write_exr(output, result.image, names, {"camera": result.camera.name, "prevailing_K": result.prevailing,
@@ -100,7 +131,7 @@ def command_render(args: argparse.Namespace) -> None:
                 "sampler": options["sampler"], "seed": args.seed, "variant": result.variant,
                 "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
-                "normalization": args.normalization, "knee": args.knee}
+                "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged)}
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "
             f"{result.calibration:g} K: {output} (+ {preview}), {spp} spp, {result.variant}, "
             f"{result.seconds:.2f} s")
@@ -112,7 +143,10 @@ def command_validate(args: argparse.Namespace) -> None:
 
     options = render_options(args)
     inputs = render_inputs(args)
+    imaging = imaging_options(args)
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp and validating …", file=sys.stderr)
+    if imaging is not None:
+        return validate_through_imager(args, inputs, options, imaging)
     result = validate(**inputs, normalization=args.normalization, knee=args.knee, grid=grid_of(args), **options)
     r = result.rendering
     document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
@@ -153,16 +187,16 @@ def command_detect(args: argparse.Namespace) -> None:
     from ..evaluation.detection import detect
     from ..datasets import reflectances
     from ..evaluation.locus import skin_locus
-    from ..rendering.balance import render
     from ..rendering.exr import write_png, write_preview
 
     options = render_options(args)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     inputs = render_inputs(args)
+    imaging = imaging_options(args)
     skin = flag("--skin", reflectances, args.skin)
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
-    rendering = render(**inputs, **options)
+    rendering, imaged = render_with(args, inputs, options, imaging)
     # the camera is white-balanced to the calibration light: the locus of that one balancing
     locus = skin_locus(rendering.camera, skin, calibration=rendering.calibration, boundary=args.boundary)
     result = detect(rendering, locus)
@@ -173,9 +207,37 @@ def command_detect(args: argparse.Namespace) -> None:
                 "undefined": result.undefined, "locus_degenerate": locus.degenerate,
                 "mask_png": str(output), "preview_png": str(preview), "per_patch": result.per_patch,
                 "boundary": args.boundary, "spp": rendering.raw[0].spp, "spp_requested": options["spp"],
-                "variant": rendering.variant}
+                "variant": rendering.variant, **imaging_document(imaged)}
     rows = [[p["name"][:30], "skin" if p["is_skin"] else "", f"{p['detected_fraction']:.2f}"] for p in result.per_patch]
     rate = lambda value, key: "undefined (" + result.undefined[key] + ")" if value is None else f"{value:.3f}"  # noqa: E731
     text = (table(rows, ["patch", "", "detected"])
             + f"\nTPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}; mask {output}")
     emit(args, document, text)
+
+
+def validate_through_imager(args: argparse.Namespace, inputs: dict, options: dict, imaging: dict) -> None:
+    """``validate --imager``: every patch's pixel mean (z-test) and variance (χ² test) against the sensor model."""
+    from ..rendering.imaging import validate_imaged
+    from ..rendering.validation import analytic_reference
+
+    rendering, imaged = render_with(args, inputs, options, imaging)
+    grid = grid_of(args)
+    ratio = analytic_reference(rendering.camera, rendering.scene.reflectances(grid), rendering.prevailing,
+                               rendering.prevailing, grid=grid) / 255.0
+    result = validate_imaged(imaged, ratio, grid=grid)
+    patches = result.patches()
+    document = {"scene": rendering.scene.name, "camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
+                "calibration_K": rendering.calibration, "normalization": args.normalization,
+                "spp": rendering.raw[0].spp, "spp_requested": options["spp"], "seed": args.seed,
+                "variant": rendering.variant, "elapsed_s": rendering.seconds, **imaging_document(imaged),
+                "test": "per patch and channel: z-test of the mean, chi-square test of the variance, Sidak-corrected",
+                "alpha_per_test": result.level, "patches": patches, "passed": result.passed}
+    rows = [[p["name"][:28], *(f"{v:.2f}" for v in p["rendered_std"]), *(f"{v:.2f}" for v in p["predicted_std"]),
+             "ok" if p["passed"] else "FAIL"] for p in patches]
+    text = (f"{rendering.scene.name} through {rendering.camera.name} and {imaged.imager.name}, "
+            f"{imaged.illuminance_lux:g} lx, {imaged.exposure_s * 1e3:.3g} ms; std (output units):\n"
+            + table(rows, ["patch", "rendered R", "G", "B", "predicted R", "G", "B", ""])
+            + f"\n{'PASSED' if result.passed else 'FAILED'} (each test at {result.level:.2g}, family-wise 0.01)")
+    emit(args, document, text)
+    if not result.passed:
+        raise SystemExit(1)

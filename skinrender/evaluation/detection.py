@@ -52,7 +52,8 @@ def detect(rendering, locus: SkinLocus) -> Detection:
     """
 
     chart = rendering.scene
-    rg = ncc(rendering.image.astype(np.float64))[..., :2]
+    # a sensor's read noise can leave a dark pixel below its black level: nothing above black is no light
+    rg = ncc(np.maximum(rendering.image.astype(np.float64), 0.0))[..., :2]
     mask = locus.contains(rg)
     per_patch, skin_hits, skin_total, other_hits, other_total = [], 0, 0, 0, 0
     for i, patch in enumerate(chart.patches[:-1]):

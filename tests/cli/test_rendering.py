@@ -40,6 +40,11 @@ def command(request, tmp_path):
     (["--quality", "ultra"], "--quality"),
     (["--channels", "two"], "--channels"),
     (["--variant", "nosuch_spectral"], "variant"),
+    (["--imager", "nosuch"], "--imager"),
+    (["--imager", "sony-imx174", "--illuminance", "-5"], "--illuminance"),
+    (["--imager", "sony-imx174", "--illuminance", "nan"], "--illuminance"),
+    (["--imager", "sony-imx174", "--exposure", "soon"], "--exposure"),
+    (["--imager", "sony-imx174", "--exposure", "0"], "--exposure"),
 ])
 def test_render_commands_refuse(command, extra, names, capsys):
     name, output, folder = command
@@ -106,3 +111,13 @@ def test_detect_on_a_chart_without_non_skin_says_the_rate_is_undefined(tmp_path,
     assert status == 0, err
     assert document["fpr"] is None and "no non-skin" in document["undefined"]["fpr"]
     assert 0.0 <= document["tpr"] <= 1.0
+
+
+def test_validate_through_an_imager_reports_the_noise(capsys):
+    """``validate --imager``: per patch rendered and predicted standard deviations, the sensor's settings."""
+    status, out, err = run(["validate", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "64", "--imager", "sony-imx174",
+                            "--illuminance", "300", "--json"], capsys)
+    document = json.loads(out)
+    assert status == 0, err
+    assert document["imager"] == "sony-imx174" and document["illuminance_lux"] == 300.0 and document["exposure_s"] > 0
+    assert document["passed"] and all(len(p["rendered_std"]) == 3 for p in document["patches"])
