@@ -45,6 +45,7 @@ COMMANDS = {
     "bench": studies.command_bench,
     "imagers": imaging.command_imagers,
     "score": imaging.command_score,
+    "ptc": imaging.command_ptc,
 }
 """Command name → the function that runs it."""
 

@@ -10,9 +10,10 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 
 from ..errors import SkinrenderError
-from .common import HELP_CAMERA, add_common, camera_of, emit, flag, table
+from .common import HELP_CAMERA, add_common, camera_of, check_output, check_seed, emit, flag, table
 
 __all__ = [
     "SAMPLES_DEFAULT",
@@ -32,7 +33,19 @@ SEED_LIMIT = 2**32
 
 
 def add_parsers(commands) -> None:
-    """Add the parsers of imagers, score."""
+    """Add the parsers of imagers, score, ptc."""
+    p = commands.add_parser("ptc", help="EMVA 1288-style photon transfer of the simulated camera, measured from "
+                            "rendered pixels: gain DN/e⁻, read noise e⁻, full well e⁻, linearity, SNR")
+    p.add_argument("--camera", required=True, help=HELP_CAMERA)
+    p.add_argument("--imager", required=True, help="image sensor: a preset (see 'skinrender imagers') or a TOML file")
+    p.add_argument("--temperature", type=float, default=5900.0, help="the light's Planckian temperature, K (default 5900)")
+    p.add_argument("--illuminance", type=float, default=500.0, help="illuminance at the grey chart, lx (default 500)")
+    p.add_argument("--points", type=int, default=24, help="exposures from 0 past saturation (default 24)")
+    p.add_argument("--spp", type=int, default=64, help="samples per pixel of the one render (default 64)")
+    p.add_argument("--seed", type=int, default=0, help="render and sensor seed (default 0)")
+    p.add_argument("--plot", help="write the photon transfer curve to this PNG")
+    add_common(p)
+
     p = commands.add_parser("imagers", help="list the imager presets (pixel µm, full well e⁻, read noise e⁻, "
                             "gain DN/e⁻, ADC bits)")
     add_common(p)
@@ -158,3 +171,34 @@ def command_score(args: argparse.Namespace) -> None:
                  f"  false positives (FPR): {result.fpr:.4f} ± {result.fpr_se:.4f} "
                  f"(noise-free {result.fpr_noise_free:.4f})")
     emit(args, document, text)
+
+
+def command_ptc(args: argparse.Namespace) -> None:
+    from ..model.illuminant import illuminant
+    from ..model.imager import imager
+    from ..studies.figures import figure_ptc
+    from ..studies.ptc import photon_transfer
+
+    check_output(args.plot, "--plot", (".png",))
+    cam = camera_of(args)
+    sensor = flag("--imager", imager, args.imager)
+    for name, value in (("--temperature", args.temperature), ("--illuminance", args.illuminance)):
+        if not (math.isfinite(value) and value > 0):
+            raise SkinrenderError(f"{name} must be a finite number > 0, got {value}")
+    flag("--temperature", illuminant, args.temperature)
+    if not 1 <= args.spp <= 65536:
+        raise SkinrenderError(f"--spp must be an integer in [1, 65536], got {args.spp}")
+    check_seed(args.seed)
+    print(f"rendering the grey chart at {args.spp} spp …", file=sys.stderr)
+    result = flag("--points", photon_transfer, cam, sensor, args.temperature, args.illuminance, args.points,
+                  args.spp, args.seed)
+    if args.plot:
+        result["plot"] = str(figure_ptc(result, args.plot))
+    shown = lambda v: "undefined" if v is None else f"{v:.4g}"  # noqa: E731
+    rows = [[name, *(shown(result[key][k]) for key in ("gain_dn_per_e", "read_noise_e", "full_well_e",
+                                                       "linearity_error"))]
+            for k, name in enumerate("RGB")]
+    rows.append(["stated", f"{sensor.gain_dn_per_e:.4g}", f"{sensor.read_noise_e:.4g}", f"{sensor.full_well_e:.4g}", ""])
+    text = (f"photon transfer of {cam.name} through {sensor.name} ({len(result['points'])} exposures):\n"
+            + table(rows, ["channel", "gain DN/e⁻", "read noise e⁻", "full well e⁻", "linearity %"]))
+    emit(args, result, text)

@@ -10,6 +10,7 @@ computation happens elsewhere and hands arrays here.
 -   :func:`figure_gamuts`: Fig. 6, two Munsell gamuts in RGB.
 -   :func:`figure_cases`: Fig. 7, one-calibration-case volumes and their ratio.
 -   :func:`figure_render_curve`: render error against time (``bench render``).
+-   :func:`figure_ptc`: a photon transfer curve (variance against mean, DN).
 -   :func:`figure_locus`: a skin locus with its training chromaticities and the
     Planckian track.
 
@@ -30,7 +31,7 @@ import numpy as np
 
 from ..hints import NDArrayFloat
 
-__all__ = ["figure_pairs", "figure_gamuts", "figure_cases", "figure_render_curve", "figure_locus"]
+__all__ = ["figure_pairs", "figure_gamuts", "figure_cases", "figure_render_curve", "figure_locus", "figure_ptc"]
 
 DPI = 110
 """Resolution of every figure, dots per inch."""
@@ -134,5 +135,20 @@ def figure_locus(polygon: NDArrayFloat, area: float, boundary: str, training: ND
     axis.plot(*closed.T, "-", color="tab:red", label=f"locus ({boundary}), area {area:.4f}")
     axis.plot(*track.T, "k--", label=track_label)
     axis.set(xlabel="NCC r", ylabel="NCC g", title=title)
+    axis.legend(fontsize=7)
+    return _save(figure, path)
+
+
+def figure_ptc(result: dict, path: str | Path) -> Path:
+    """Photon transfer (``skinrender ptc``): temporal variance, DN², against dark-subtracted mean, DN, per channel."""
+    plt = _pyplot()
+    figure, axis = plt.subplots(figsize=(6, 4.2))
+    means = np.array([p["mean_dn"] for p in result["points"]])
+    variances = np.array([p["variance_dn"] for p in result["points"]])
+    for k, (name, colour) in enumerate(zip("RGB", ("tab:red", "tab:green", "tab:blue"))):
+        axis.plot(means[:, k], variances[:, k], "o-", ms=3, color=colour,
+                  label=f"{name}: K = {result['gain_dn_per_e'][k]:.4g} DN/e⁻")
+    axis.set(xlabel="mean − dark, DN", ylabel="temporal variance, DN²",
+             title=f"Photon transfer: {result['camera']} through {result['imager']}")
     axis.legend(fontsize=7)
     return _save(figure, path)

@@ -1,0 +1,62 @@
+"""
+Tests for :mod:`skinrender.studies.ptc`: the photon transfer measured from rendered pixels recovers the
+imager's stated conversion gain, read noise and full well, as EMVA 1288 would from a real camera.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from skinrender.cli import main
+from skinrender.model.camera import camera
+from skinrender.studies.ptc import photon_transfer
+
+pytest.importorskip("mitsuba")
+
+TOLERANCE_GAIN = 0.05
+"""Relative: each point's temporal variance from 64 × 64 pixel differences is known to √(2/4095) ≈ 2.2 %; the
+slope over ~10 points to ~1 %, so 5 % is ~4 σ."""
+
+SATURATION_BAND = (0.85, 1.0)
+"""EMVA's saturation capacity is the mean at the largest variance: below the full well (partly saturated pixels
+already lose variance) by at most one exposure step (1.3/11 of the fill) here."""
+
+
+@pytest.fixture(scope="module")
+def imx174():
+    return photon_transfer(camera("gbell:9@450,540,610"), "sony-imx174", points=12, spp=16, seed=1)
+
+
+def test_gain_and_read_noise_recovered(imx174):
+    stated = imx174["stated"]
+    np.testing.assert_allclose(imx174["gain_dn_per_e"], stated["gain_dn_per_e"], rtol=TOLERANCE_GAIN)
+    np.testing.assert_allclose(imx174["read_noise_e"], stated["read_noise_e"], rtol=TOLERANCE_GAIN)
+
+
+def test_saturation_capacity_is_near_the_full_well(imx174):
+    ratio = np.array(imx174["full_well_e"]) / imx174["stated"]["full_well_e"]
+    assert np.all((ratio >= SATURATION_BAND[0]) & (ratio <= SATURATION_BAND[1])), ratio
+
+
+def test_the_curve_starts_at_zero_and_is_linear(imx174):
+    first = imx174["points"][0]
+    assert first["exposure_s"] == 0 and np.allclose(first["mean_dn"], 0, atol=0.05)
+    assert max(imx174["linearity_error"]) < 1.0  # percent: the model is linear below the well
+
+
+def test_quantisation_hides_a_small_read_noise():
+    """The 8-bit CCD preset: 20 e⁻ at 0.006 DN/e⁻ is 0.12 DN, under the ADC step: undefined, with the reason."""
+    result = photon_transfer(camera("gbell:9@450,540,610"), "sony-icx418", points=8, spp=4)
+    assert result["read_noise_e"] == [None, None, None] and "quantisation" in result["undefined"]["read_noise_e"]
+
+
+def test_ptc_command_json_and_plot(tmp_path, capsys):
+    status = main(["ptc", "--camera", "gbell:9@450,540,610", "--imager", "sony-imx174", "--points", "8", "--spp",
+                   "4", "--plot", str(tmp_path / "ptc.png"), "--json"])
+    document = json.loads(capsys.readouterr().out)
+    assert status == 0 and (tmp_path / "ptc.png").is_file()
+    assert {"points", "gain_dn_per_e", "read_noise_e", "full_well_e", "linearity_error", "stated"} <= set(document)
+    assert set(document["points"][1]) >= {"exposure_s", "mean_dn", "variance_dn"}
