@@ -13,6 +13,37 @@ from .common import (add_common, add_grid, add_search, check_output, flag,
                      emit, grid_of)
 
 
+def add_noisy(parser) -> None:
+    """The noise-aware criterion's flags: --imager, --illuminance, --exposure, --noise-samples, --noise-seed."""
+    parser.add_argument("--imager", help="judge detection on noisy pixels of this image sensor: a preset (see "
+                        "'skinrender imagers') or a TOML file")
+    parser.add_argument("--illuminance", type=float, default=500.0, help="with --imager: lx at the chart (default 500)")
+    parser.add_argument("--exposure", default="auto", help="with --imager: s, or auto (the calibration white at 0.7 of "
+                        "the full well, at most a 1/30 s video frame; default)")
+    parser.add_argument("--noise-calibration", type=float, default=3300.0,
+                        help="with --imager: the white balance (K, one of the illuminants; default 3300)")
+    parser.add_argument("--noise-samples", type=int, default=4, help="with --imager: noisy frames per pixel (default 4)")
+    parser.add_argument("--noise-seed", type=int, default=0, help="with --imager: the noise seed (default 0)")
+
+
+def noisy_of(args: argparse.Namespace):
+    """The :class:`~skinrender.design.noisy.NoisySetting` of the flags, or ``None`` without ``--imager``."""
+    if args.imager is None:
+        return None
+    from ..design.noisy import noisy_setting
+    from ..model.imager import imager
+
+    sensor = flag("--imager", imager, args.imager)
+    exposure = str(args.exposure).strip().lower()
+    if exposure != "auto":
+        try:
+            exposure = float(exposure)
+        except ValueError:
+            raise SkinrenderError(f"--exposure must be auto or seconds > 0, got {args.exposure!r}") from None
+    return flag("--imager", noisy_setting, sensor, args.illuminance, exposure, args.noise_calibration,
+                args.noise_samples, args.noise_seed)
+
+
 def add_parsers(commands) -> None:
     """Add the parsers of search, design."""
     p = commands.add_parser("search", help="Stage 3: gamut volumes of every sensor triplet (Tables 2–5)")
@@ -31,6 +62,7 @@ def add_parsers(commands) -> None:
 
     p.add_argument("--method", default="fast", choices=list(SEARCH_METHODS),
                    help="fast (hull vertices only, exact; default) or naive (Qhull on every full point set)")
+    add_noisy(p)
     p.add_argument("--max-triplets", type=int, default=1_000_000,
                    help="refuse searches of more triplets than this (default 1 000 000; the 5 nm grid has 35 990, "
                    "measured at ~80 s on 2 cores; the estimate is printed with the refusal)")
@@ -42,6 +74,7 @@ def add_parsers(commands) -> None:
     add_common(p)
 
     p = commands.add_parser("design", help="optimise a gbell camera's peaks off the grid (derivative-free, several starts)")
+    add_noisy(p)
     p.add_argument("--objective", choices=list(OBJECTIVES), default="detection",
                    help="detection: Munsell false-positive rate in the skin locus (default); ratio: skin/Munsell "
                    "all-calibration gamut volume")
@@ -85,7 +118,7 @@ def command_search(args: argparse.Namespace) -> None:
         args.sensor, skin.on(grid), munsell.on(grid), args.positions, temperatures, args.slope, grid=grid,
         method=args.method, workers=args.workers, dask=args.dask,
         progress=None if args.quiet else sys.stderr, label=f"sensor {args.sensor:g}", detection=args.detection,
-        max_triplets=args.max_triplets,
+        max_triplets=args.max_triplets, noisy=noisy_of(args),
     )
     if args.csv is not None:
         result.to_csv(args.csv)
@@ -100,6 +133,9 @@ def command_search(args: argparse.Namespace) -> None:
         "munsell": munsell.name,
         "method": result.method,
         "hull_kernel": result.info["hull_kernel"],
+        **({"noisy": {k: result.info[k] for k in ("imager", "illuminance_lux", "exposure", "calibration_K",
+                                                  "noise_samples", "noise_seed", "tpr_min")}}
+           if result.noisy is not None else {}),
         "workers": result.workers,
         **best,
         "elapsed_s": result.elapsed_s,
@@ -108,7 +144,8 @@ def command_search(args: argparse.Namespace) -> None:
     lines = [f"sensor {args.sensor:g}: {len(result.triplets)} triplets in {result.elapsed_s:.1f} s "
              f"({result.method}, {result.workers} workers); volumes in output units³"]
     for key, label in (("max_skin", "max skin gamut"), ("max_munsell", "max Munsell gamut"),
-                       ("min_ratio", "min skin/Munsell ratio"), ("min_fpr", "min false-positive rate")):
+                       ("min_ratio", "min skin/Munsell ratio"), ("min_fpr", "min false-positive rate"),
+                       ("min_noisy_fpr", "min false-positive rate on noisy pixels (TPR ≥ 0.9)")):
         if key in best:
             lines += [f"{label}:"] + [f"  {_row_text(row)}" for row in best[key]]
     emit(args, document, "\n".join(lines))
@@ -130,11 +167,16 @@ def command_design(args: argparse.Namespace) -> None:
     skin, munsell = flag("--skin", reflectances, args.skin), flag("--munsell", reflectances, args.munsell)
     if not (math.isfinite(args.sensor) and args.sensor > 0):
         raise SkinrenderError(f"--sensor must be a gbell number N > 0 (FWHM N·10 nm), got {args.sensor}")
+    noisy = noisy_of(args)
+    if noisy is not None and args.objective != "detection":
+        raise SkinrenderError("--imager goes with --objective detection (noisy pixels), not ratio")
     result = optimise_camera(args.objective, skin.on(grid), munsell.on(grid), starts, args.sensor * 10.0, args.slope,
-                             args.free_shape, args.evaluations)
+                             args.free_shape, args.evaluations, noisy=noisy)
     document = {"objective": args.objective, "camera": result.camera_spec, "peaks": result.peaks.tolist(),
                 "fwhm_nm": result.fwhm, "slope": result.slope, "value": result.value, "starts": result.starts,
-                "method": "Nelder-Mead (derivative-free)"}
+                "method": "Nelder-Mead (derivative-free)",
+                **({} if noisy is None else {"noisy": {"imager": noisy.imager.name, "illuminance_lux":
+                                                       noisy.illuminance_lux, "exposure": noisy.exposure}})}
     lines = [f"{args.objective}: best {result.camera_spec} = {result.value:.5g}"]
     shown = lambda value: "undefined" if value is None else f"{value:.5g}"  # noqa: E731
     lines += [f"  start {s['start']} ({shown(s['start_value'])}) -> {[round(p, 1) for p in s['peaks']]} "

@@ -33,6 +33,7 @@ from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import sensor_bank
 from .criteria import triplet_false_positive_rates, triplet_volumes_fast
+from .noisy import TPR_MIN, NoisySetting, bank_rates, triplet_noisy_rates
 
 __all__ = ["OBJECTIVES", "objective", "Design", "optimise_camera"]
 
@@ -55,12 +56,16 @@ def objective(
     slope: float = 2.0,
     illuminants: ArrayLike = TEMPERATURES_PAPER,
     grid: WavelengthGrid = GRID_DEFAULT,
+    noisy: NoisySetting | None = None,
 ) -> float:
     """
     The objective of a gbell camera with ``peaks`` (nm, any order), ``fwhm`` (nm) and ``slope``.
 
     Returns ``inf`` for a camera outside the bounds or with a degenerate skin
-    or Munsell gamut (nothing to minimise there).
+    or Munsell gamut (nothing to minimise there). With ``noisy`` (detection
+    only) the criterion is the FPR on noisy pixels while their TPR stays at or
+    above :data:`~skinrender.design.noisy.TPR_MIN`, and ``1 + (TPR_MIN − TPR)``
+    below it (:mod:`skinrender.design.noisy`).
     """
 
     validate_method(kind, OBJECTIVES, "objective")
@@ -71,6 +76,12 @@ def objective(
     if kind == "ratio":
         volumes = [triplet_volumes_fast(bank, [0, 1, 2])[-1] for bank in banks]
         return volumes[0] / volumes[1] if volumes[0] > 0 and volumes[1] > 0 else np.inf
+    if noisy is not None:  # on noisy pixels: the FPR while the TPR holds, else a penalty above any FPR
+        rates = [bank_rates(bank, noisy, fwhm / 10.0, slope, grid) for bank in banks]
+        tpr, fpr = triplet_noisy_rates(*banks, *rates, [0, 1, 2], noisy)
+        if not np.isfinite(fpr):
+            return np.inf
+        return fpr if tpr >= TPR_MIN else 1.0 + (TPR_MIN - tpr)
     rates = triplet_false_positive_rates(banks[0], banks[1], [0, 1, 2])
     return float(rates[0]) if np.isfinite(rates[0]) else np.inf  # the same for every calibration
 
@@ -108,6 +119,7 @@ def optimise_camera(
     max_evaluations: int = 200,
     illuminants: ArrayLike = TEMPERATURES_PAPER,
     grid: WavelengthGrid = GRID_DEFAULT,
+    noisy: NoisySetting | None = None,
 ) -> Design:
     """
     Minimise ``kind`` over the peaks (and the width and slope with ``free_shape``) from each start.
@@ -124,6 +136,10 @@ def optimise_camera(
         The sensor shape (the starting one with ``free_shape``).
     max_evaluations
         Objective evaluations per start.
+    noisy
+        For ``detection``: judge cameras on noisy pixels
+        (:class:`~skinrender.design.noisy.NoisySetting`; the same seed every
+        evaluation, so the objective is deterministic).
 
     Returns
     -------
@@ -132,6 +148,8 @@ def optimise_camera(
     """
 
     validate_method(kind, OBJECTIVES, "objective")
+    if noisy is not None and kind != "detection":
+        raise SkinrenderError("an imager (noisy pixels) goes with the detection objective, not the ratio")
     if not (isinstance(max_evaluations, (int, np.integer)) and max_evaluations >= 1):
         raise SkinrenderError(f"evaluations must be an integer ≥ 1 per start, got {max_evaluations!r}")
     if not (np.isfinite(fwhm) and fwhm > 0):
@@ -155,7 +173,7 @@ def optimise_camera(
 
     def f(x):
         p, w, b = unpack(x)
-        return objective(kind, p, w, skin, munsell, b, illuminants, grid)
+        return objective(kind, p, w, skin, munsell, b, illuminants, grid, noisy)
 
     results = []
     for start in starts:

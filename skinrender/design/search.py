@@ -40,6 +40,7 @@ from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import SensorBank, positions_grid, sensor_bank, triplets
 from .criteria import triplet_false_positive_rates, triplet_volumes_fast, triplet_volumes_naive
+from .noisy import TPR_MIN, NoisySetting, bank_rates, triplet_noisy_rates
 
 __all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "SearchResult", "search", "progress_bar"]
 
@@ -64,29 +65,37 @@ SEARCH_METHODS = {
 # --------------------------------------------------------------------------- #
 
 _WORKER_BANKS: tuple[SensorBank, ...] = ()
+_WORKER_NOISY: tuple | None = None
 
 
-def _init_worker(banks: tuple[SensorBank, ...]) -> None:
-    global _WORKER_BANKS
-    _WORKER_BANKS = banks
+def _init_worker(banks: tuple[SensorBank, ...], noisy: tuple | None = None) -> None:
+    global _WORKER_BANKS, _WORKER_NOISY
+    _WORKER_BANKS, _WORKER_NOISY = banks, noisy
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: no traceback per worker
 
 
 def _volumes_chunk(chunk: np.ndarray, method: str, banks: tuple[SensorBank, ...] | None = None,
-                   detection: bool = False):
+                   detection: bool = False, noisy: tuple | None = None, numbers: np.ndarray | None = None):
     """
     Volumes of a chunk of index triplets for every bank, shape ``(len(banks), T, Q + 1)``,
-    and with ``detection`` the false-positive rates of the skin locus ``(T, Q)`` (else ``None``).
+    with ``detection`` the false-positive rates of the skin locus ``(T, Q)``, and with ``noisy``
+    (``(setting, rates_skin, rates_nonskin)``) the noisy (TPR, FPR) ``(T, 2)`` of triplets ``numbers``.
     """
-    banks = banks if banks is not None else _WORKER_BANKS
+    if banks is None:
+        banks, noisy = _WORKER_BANKS, _WORKER_NOISY
+    noisy_rates = None
+    if noisy is not None:
+        setting, rates_skin, rates_nonskin = noisy
+        noisy_rates = np.array([triplet_noisy_rates(banks[0], banks[1], rates_skin, rates_nonskin, t, setting, int(n))
+                                for t, n in zip(chunk, numbers)])
     out = np.empty((len(banks), len(chunk), banks[0].white.shape[0] + 1))
     for b, bank in enumerate(banks):
         volumes = triplet_volumes_fast if method == "fast" else triplet_volumes_naive
         for t, triplet in enumerate(chunk):
             out[b, t] = volumes(bank, triplet)
     if not detection:
-        return out, None
-    return out, np.array([triplet_false_positive_rates(banks[0], banks[1], t) for t in chunk])
+        return out, None, noisy_rates
+    return out, np.array([triplet_false_positive_rates(banks[0], banks[1], t) for t in chunk]), noisy_rates
 
 
 def _chunks(index: np.ndarray, count: int) -> list[np.ndarray]:
@@ -132,6 +141,9 @@ class SearchResult:
     """With ``detection=True``: false-positive rate of the Munsell set inside the
     skin locus, per triplet and calibration, ``(T, Q)`` (see
     :func:`skinrender.design.criteria.triplet_false_positive_rates`)."""
+    noisy: NDArrayFloat | None = None
+    """With a noisy setting: each triplet's (TPR, FPR) on noisy pixels, ``(T, 2)``
+    (:func:`skinrender.design.noisy.triplet_noisy_rates`)."""
 
     @property
     def ratio(self) -> NDArrayFloat:
@@ -176,7 +188,20 @@ class SearchResult:
             "min_ratio": self._rows(self.ratio, one, "min", tolerance) + self._rows(self.ratio, everything, "min", tolerance),
             **({} if self.fpr is None else {"min_fpr": self._rows(self.fpr_table, one, "min", tolerance)
                                             + self._rows(self.fpr_table, everything, "min", tolerance)}),
+            **({} if self.noisy is None else {"min_noisy_fpr": self._noisy_rows(tolerance)}),
         }
+
+    def _noisy_rows(self, tolerance: float) -> list[dict]:
+        """Triplets of least noisy FPR among those keeping a noisy TPR ≥ ``TPR_MIN``, ties listed."""
+        tpr, fpr = self.noisy[:, 0], self.noisy[:, 1]
+        eligible = np.isfinite(fpr) & (tpr >= TPR_MIN)
+        if not eligible.any():
+            return []
+        best = fpr[eligible].min()
+        close = np.nonzero(eligible & (np.abs(fpr - best) <= tolerance * max(abs(best), 1e-300)))[0]
+        calibration = self.info.get("calibration_K")
+        return [{"triplet": [float(v) for v in self.triplets[t]], "temperature_K": calibration,
+                 "value": float(fpr[t]), "tpr": float(tpr[t])} for t in close]
 
     @property
     def fpr_table(self) -> NDArrayFloat:
@@ -193,6 +218,9 @@ class SearchResult:
         if self.fpr is not None:
             header += [f"fpr_{label}" for label in labels[:-1]] + ["fpr_mean"]
             blocks.append(self.fpr_table)
+        if self.noisy is not None:
+            header += ["noisy_tpr", "noisy_fpr"]
+            blocks.append(self.noisy)
         data = np.hstack(blocks)
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -233,6 +261,7 @@ def search(
     detection: bool = False,
     notice=sys.stderr,
     max_triplets: int = 1_000_000,
+    noisy: NoisySetting | None = None,
 ) -> SearchResult:
     """
     The Stage 3 search: every triplet's per-calibration and all-calibration
@@ -266,6 +295,9 @@ def search(
     detection
         Also compute the detection criterion: the false-positive rate of the
         Munsell set inside the skin locus, per calibration (``result.fpr``).
+    noisy
+        With a :class:`~skinrender.design.noisy.NoisySetting`, also every triplet's (TPR, FPR) on noisy
+        pixels (``result.noisy``; table rows ``min_noisy_fpr``).
     max_triplets
         Refuse a search of more triplets than this (an estimate of its time is
         in the message).
@@ -299,18 +331,24 @@ def search(
     chunks = _chunks(np.arange(len(index)), 1 if workers == 1 and dask is None else 8 * max(workers, 4))
     out = np.empty((2, len(index), banks[0].white.shape[0] + 1))
     fpr = np.empty((len(index), banks[0].white.shape[0])) if detection else None
+    pack = None
+    if noisy is not None:
+        pack = (noisy, bank_rates(banks[0], noisy, sensor, slope, grid), bank_rates(banks[1], noisy, sensor, slope, grid))
+    noisy_rates = np.empty((len(index), 2)) if noisy is not None else None
 
     def store(chunk, result) -> None:
         out[:, chunk] = result[0]
         if detection:
             fpr[chunk] = result[1]
+        if noisy is not None:
+            noisy_rates[chunk] = result[2]
 
     bar = progress_bar(len(index), label, progress)
     if dask is not None:
         client, own = _dask_client(dask)
         try:
             remote_banks = client.scatter(banks, broadcast=True)
-            futures = [client.submit(_volumes_chunk, index[c], method, remote_banks, detection, pure=False)
+            futures = [client.submit(_volumes_chunk, index[c], method, remote_banks, detection, pack, c, pure=False)
                        for c in chunks]
             for chunk, future in zip(chunks, futures):
                 store(chunk, future.result())
@@ -320,12 +358,12 @@ def search(
                 client.close()
     elif workers == 1:
         for chunk in chunks:
-            store(chunk, _volumes_chunk(index[chunk], method, banks, detection))
+            store(chunk, _volumes_chunk(index[chunk], method, banks, detection, pack, chunk))
             bar.update(len(chunk))
     else:
-        pool = ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(banks,))
+        pool = ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(banks, pack))
         try:
-            futures = [pool.submit(_volumes_chunk, index[c], method, None, detection) for c in chunks]
+            futures = [pool.submit(_volumes_chunk, index[c], method, None, detection, None, c) for c in chunks]
             for chunk, future in zip(chunks, futures):
                 store(chunk, future.result())
                 bar.update(len(chunk))
@@ -339,8 +377,12 @@ def search(
     elapsed = time.perf_counter() - start
     return SearchResult(
         float(sensor), float(slope), where, where[index], banks[0].temperatures, out[0], out[1], elapsed,
-        method, 1 if dask is not None else workers, normalization, knee, fpr=fpr,
-        info={"hull_kernel": HULL_KERNEL if method == "fast" else "qhull"},
+        method, 1 if dask is not None else workers, normalization, knee, fpr=fpr, noisy=noisy_rates,
+        info={"hull_kernel": HULL_KERNEL if method == "fast" else "qhull",
+              **({} if noisy is None else {"imager": noisy.imager.name, "illuminance_lux": noisy.illuminance_lux,
+                                           "exposure": noisy.exposure, "calibration_K": noisy.calibration,
+                                           "noise_samples": noisy.samples, "noise_seed": noisy.seed,
+                                           "tpr_min": TPR_MIN})},
     )
 
 

@@ -61,7 +61,7 @@ from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..model.camera import Camera
 from ..model.chromaticity import ncc
-from ..model.exposure import auto_exposure, electrons_mean, irradiance_planck
+from ..model.exposure import AUTO_EXPOSURE_MAX_S, auto_exposure, electrons_mean, irradiance_planck
 from ..model.illuminant import illuminants_array
 from ..model.imager import Imager, checked_array, imager
 from ..model.noise import ncc_covariance, random_generator, simulate_dn, statistics_dn
@@ -227,7 +227,7 @@ def pixel_electrons(
     white_p, raw_white_p = _white_rates(im, cam, prevailing, lux, grid)  # (P, 3)
     white_c, _ = _white_rates(im, cam, calibrations, lux, grid)  # (C, 3)
     if isinstance(exposure, str) and exposure.strip().lower() == "auto":
-        exposures = np.atleast_1d(auto_exposure(im, white_c, AUTO_EXPOSURE_FRACTION))  # (C,)
+        exposures = np.atleast_1d(auto_exposure(im, white_c, AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S))  # (C,)
     else:
         exposures = np.full(calibrations.size, _positive(exposure, "exposure", "s (or 'auto')"))
     dark = im.dark_current_e_per_s

@@ -42,6 +42,7 @@ from .imager import imager as imager_of
 
 __all__ = [
     "CONSTANT_K_M",
+    "AUTO_EXPOSURE_MAX_S",
     "auto_exposure",
     "electrons_mean",
     "illuminance_lux",
@@ -53,6 +54,11 @@ __all__ = [
 CONSTANT_K_M: float = 683.002
 """Maximum luminous efficacy for the CIE 1924 V(λ) table, lm/W (683 lm/W at
 540 THz, referred to V's tabulated peak at 555 nm)."""
+
+
+AUTO_EXPOSURE_MAX_S = 1.0 / 30.0
+"""The longest automatic exposure, s: one frame of a 30 frames/s video camera, as the paper's 3-CCD cameras
+were. Below the light that fills the well in that time, less light means fewer electrons and more noise."""
 
 
 @lru_cache(maxsize=16)
@@ -222,7 +228,8 @@ def electrons_mean(
 
 
 def auto_exposure(
-    imager: str | Path | Imager, white_electrons_per_s: ArrayLike, fraction: float = 0.7
+    imager: str | Path | Imager, white_electrons_per_s: ArrayLike, fraction: float = 0.7,
+    longest_s: float | None = None,
 ) -> float | NDArrayFloat:
     """
     The exposure, s, putting a white's brightest channel at ``fraction`` of the full well.
@@ -237,6 +244,9 @@ def auto_exposure(
         ``exposure_s=1``).
     fraction
         Target share of ``full_well_e``, in (0, 1] (0.7 by default).
+    longest_s
+        The longest exposure allowed, s (``None``: no limit); the command line
+        uses :data:`AUTO_EXPOSURE_MAX_S`, a video frame.
 
     Returns
     -------
@@ -259,4 +269,8 @@ def auto_exposure(
     if np.any(brightest <= 0):
         raise SkinrenderError("white_electrons_per_s: the white gives no electrons in any channel")
     exposure = fraction * im.full_well_e / brightest
+    if longest_s is not None:  # a video camera's auto-exposure stops at its frame time: dim light stays dim
+        if not (np.isfinite(longest_s) and longest_s > 0):
+            raise SkinrenderError(f"longest_s must be a finite number of seconds > 0, got {longest_s!r}")
+        exposure = np.minimum(exposure, longest_s)
     return float(exposure) if exposure.ndim == 0 else exposure

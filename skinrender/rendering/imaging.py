@@ -47,7 +47,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..model.camera import Camera
-from ..model.exposure import auto_exposure, electrons_mean, irradiance_planck
+from ..model.exposure import AUTO_EXPOSURE_MAX_S, auto_exposure, electrons_mean, irradiance_planck
 from ..model.imager import Imager, imager
 from ..model.noise import simulate_dn, statistics_dn
 from ..model.response import gain
@@ -95,7 +95,8 @@ def exposure_for(im: Imager, cam: Camera, calibration: float, lux: float, exposu
             except ValueError:
                 raise SkinrenderError(f"exposure must be 'auto' or seconds > 0, got {exposure!r}") from None
         else:
-            return float(auto_exposure(im, _white_rate(im, cam, calibration, lux, grid), AUTO_EXPOSURE_FRACTION))
+            return float(auto_exposure(im, _white_rate(im, cam, calibration, lux, grid), AUTO_EXPOSURE_FRACTION,
+                                         AUTO_EXPOSURE_MAX_S))
     if not (np.isfinite(exposure) and exposure > 0):
         raise SkinrenderError(f"exposure must be 'auto' or a finite number of seconds > 0, got {exposure!r}")
     return float(exposure)

@@ -17,6 +17,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
+from skinrender.model.exposure import AUTO_EXPOSURE_MAX_S
 import pytest
 
 from skinrender.datasets import reflectances
@@ -90,9 +92,12 @@ class TestPixelElectrons:
     def test02_auto_exposure_puts_the_white_at_the_fraction(self):
         im = imager("sony-icx418")
         white = np.ones((1, CAMERA.sensitivities().shape[1]))
-        pixels = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, im, 200.0)
+        pixels = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, im, 5000.0)  # bright: under a frame time
         diagonal = pixels.electrons[np.arange(3), np.arange(3), 0]  # p = c: the calibration white
+        assert np.all(pixels.exposure_s < AUTO_EXPOSURE_MAX_S)
         np.testing.assert_allclose(diagonal.max(axis=-1), AUTO_EXPOSURE_FRACTION * im.full_well_e, rtol=1e-12)
+        dim = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, im, 5.0)  # dim: the frame time caps it
+        np.testing.assert_array_equal(dim.exposure_s, AUTO_EXPOSURE_MAX_S)
         fixed = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, im, 400.0, exposure=0.01)
         np.testing.assert_array_equal(fixed.exposure_s, 0.01)
         doubled = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, im, 800.0, exposure=0.01)
