@@ -486,6 +486,91 @@ def notebook_05() -> nbformat.NotebookNode:
     return _kernel(new_notebook(cells=cells))
 
 
+def notebook_06() -> nbformat.NotebookNode:
+    cells = [
+        new_markdown_cell(
+            "# 06 · A camera, not only its curves: photons, noise and a design that pays for them\n\n"
+            "## Overview\n"
+            "A camera of three spectral curves sees without noise, so both of the paper's criteria reward sensors "
+            "that crowd together. Here the camera records photons: optics, pixel, exposure, quantum efficiency, "
+            "shot, dark and read noise, full well, gain and ADC (EMVA 1288's model), at a light level in lux.\n\n"
+            "**What you will learn**\n"
+            "- how the simulated camera is measured the way real ones are (photon transfer);\n"
+            "- that noisy renders agree with the analytic sensor model patch by patch;\n"
+            "- why the noise-free best detector (560/570/590 nm) fails on noisy pixels, and what a design that "
+            "pays for noise chooses instead."
+        ),
+        new_code_cell(
+            "import matplotlib\n"
+            "matplotlib.use('Agg')\n"
+            "import matplotlib.pyplot as plt\n"
+            "import numpy as np\n"
+            "import skinrender as sr\n"
+            "from skinrender.model.imager import list_imagers\n"
+            "from skinrender.studies.ptc import photon_transfer\n"
+            "from skinrender.rendering.imaging import render_imaged, validate_imaged\n"
+            "from skinrender.rendering.validation import analytic_reference\n"
+            "from skinrender.design.bank import sensor_bank, positions_grid\n"
+            "from skinrender.design.noisy import noisy_setting, bank_rates, triplet_noisy_rates, TPR_MIN\n"
+            "from skinrender.design.optimise import optimise_camera\n\n"
+            "CAM = sr.camera('gbell:9@450,540,610')\n"
+            "[(row['name'], row['full_well_e'], row['read_noise_e'], row['bits']) for row in list_imagers()]"
+        ),
+        new_markdown_cell("## Step 1: photon transfer of the simulated camera (EMVA 1288)\n"
+                          "Two frames per exposure of a rendered grey chart; variance against mean gives the gain."),
+        new_code_cell(
+            "ptc = photon_transfer(CAM, 'sony-imx174', points=10, spp=8)\n"
+            "means = np.array([p['mean_dn'] for p in ptc['points']]); variances = np.array([p['variance_dn'] for p in ptc['points']])\n"
+            "fig, ax = plt.subplots(figsize=(5, 3.5))\n"
+            "for k, c in enumerate('rgb'): ax.plot(means[:, k], variances[:, k], 'o-', color=c, ms=3)\n"
+            "ax.set(xlabel='mean − dark (DN)', ylabel='temporal variance (DN²)')\n"
+            "{k: ptc[k] for k in ('gain_dn_per_e', 'read_noise_e', 'full_well_e', 'stated')}"
+        ),
+        new_markdown_cell("## Step 2: noisy renders against the analytic sensor model\n"
+                          "The Macbeth chart at 20 lx and 2000 lx (auto exposure, at most a 1/30 s frame)."),
+        new_code_cell(
+            "chart = sr.load_scene('macbeth')\n"
+            "ratio = analytic_reference(CAM, chart.reflectances(sr.GRID_DEFAULT), 2856.0, 2856.0) / 255.0\n"
+            "fig, axes = plt.subplots(1, 2, figsize=(9, 3.2))\n"
+            "for ax, lux in zip(axes, (20.0, 2000.0)):\n"
+            "    imaged = render_imaged(chart, CAM, 2856.0, 2856.0, 'sony-imx174', lux, spp=16, seed=1)\n"
+            "    check = validate_imaged(imaged, ratio)\n"
+            "    ax.imshow(np.clip(imaged.rendering.image / 255.0, 0, 1) ** (1 / 2.2)); ax.axis('off')\n"
+            "    ax.set_title(f'{lux:g} lx, {imaged.exposure_s * 1e3:.1f} ms, model {\"passes\" if check.passed else \"fails\"}')"
+        ),
+        new_markdown_cell("## Step 3: detection against the light level\n"
+                          "The noise-free best triplet (560/570/590 nm) against a spread one (450/540/610 nm)."),
+        new_code_cell(
+            "where = positions_grid('400:700:10')\n"
+            "banks = [sensor_bank(9, sr.reflectances(n).on(sr.GRID_DEFAULT), where) for n in ('skin', 'munsell')]\n"
+            "rows = []\n"
+            "for lux in (20.0, 200.0, 2000.0, 20000.0):\n"
+            "    setting = noisy_setting('sony-imx174', lux, samples=2)\n"
+            "    rates = [bank_rates(b, setting, 9) for b in banks]\n"
+            "    for name, triplet in (('560 570 590', [16, 17, 19]), ('450 540 610', [5, 14, 21])):\n"
+            "        tpr, fpr = triplet_noisy_rates(*banks, *rates, triplet, setting)\n"
+            "        rows.append((lux, name, round(tpr, 3), round(fpr, 3)))\n"
+            "rows"
+        ),
+        new_markdown_cell("## Step 4: a design that pays for noise\n"
+                          "Nelder–Mead on the noisy criterion (TPR kept ≥ 0.9, FPR minimised), a short run."),
+        new_code_cell(
+            "skin, munsell = (sr.reflectances(n).on(sr.GRID_DEFAULT) for n in ('skin', 'munsell'))\n"
+            "noisy = optimise_camera('detection', skin, munsell, [[450, 540, 610]], max_evaluations=8,\n"
+            "                        noisy=noisy_setting('sony-imx174', 500.0, samples=2))\n"
+            "free = optimise_camera('detection', skin, munsell, [[450, 540, 610]], max_evaluations=8)\n"
+            "{'noise-free design': free.peaks.round(1).tolist(), 'noise-aware design': noisy.peaks.round(1).tolist()}"
+        ),
+        new_markdown_cell(
+            "## Reference API\n"
+            "`skinrender.model.imager`, `model.exposure`, `model.noise`, `rendering.imaging`, `studies.ptc`, "
+            "`design.noisy`; commands `imagers`, `ptc`, `score`, and `--imager` on `render`, `validate`, "
+            "`detect`, `search`, `design`. The README's noise section gives the full-size measurements."
+        ),
+    ]
+    return _kernel(new_notebook(cells=cells))
+
+
 def _write(notebook, name: str) -> None:
     """Write with cell ids from the notebook's name and the cell's place, so reruns change nothing."""
     for number, cell in enumerate(notebook.cells):
@@ -500,6 +585,7 @@ def main() -> None:
     _write(notebook_03(), "03_sensor_search")
     _write(notebook_04(), "04_render_validation")
     _write(notebook_05(), "05_skin_detection")
+    _write(notebook_06(), "06_sensor_noise")
 
 
 if __name__ == "__main__":
