@@ -511,7 +511,7 @@ def notebook_06() -> nbformat.NotebookNode:
             "from skinrender.rendering.imaging import render_imaged, validate_imaged\n"
             "from skinrender.rendering.validation import analytic_reference\n"
             "from skinrender.design.bank import sensor_bank, positions_grid\n"
-            "from skinrender.design.noisy import noisy_setting, bank_rates, triplet_noisy_rates, TPR_MIN\n"
+            "from skinrender.design.noise_aware import noisy_setting, bank_rates, triplet_noisy_rates, TPR_MIN\n"
             "from skinrender.design.optimise import optimise_camera\n\n"
             "CAM = sr.camera('gbell:9@450,540,610')\n"
             "[(row['name'], row['full_well_e'], row['read_noise_e'], row['bits']) for row in list_imagers()]"
@@ -564,7 +564,7 @@ def notebook_06() -> nbformat.NotebookNode:
         new_markdown_cell(
             "## Reference API\n"
             "`skinrender.model.imager`, `model.exposure`, `model.noise`, `rendering.imaging`, `studies.ptc`, "
-            "`design.noisy`; commands `imagers`, `ptc`, `score`, and `--imager` on `render`, `validate`, "
+            "`design.noise_aware`; commands `imagers`, `ptc`, `score`, and `--imager` on `render`, `validate`, "
             "`detect`, `search`, `design`. The README's noise section gives the full-size measurements."
         ),
     ]

@@ -23,7 +23,7 @@ import sys
 from collections.abc import Sequence
 
 from ..errors import SkinrenderError
-from . import data, design, evaluation, imaging, model, rendering, studies
+from . import data, design, evaluation, face, imaging, model, rendering, studies
 from .common import Parser
 
 __all__ = ["main", "build_parser", "COMMANDS"]
@@ -46,6 +46,7 @@ COMMANDS = {
     "imagers": imaging.command_imagers,
     "score": imaging.command_score,
     "ptc": imaging.command_ptc,
+    "ladder": face.command_ladder,
 }
 """Command name → the function that runs it."""
 
@@ -58,7 +59,7 @@ def build_parser() -> argparse.ArgumentParser:
         "(wavelengths in nm, temperatures in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹).",
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser)
-    for group in (data, model, design, studies, rendering, evaluation, imaging):
+    for group in (data, model, design, studies, rendering, evaluation, imaging, face):
         group.add_parsers(commands)
     return parser
 

@@ -27,10 +27,10 @@ def add_noisy(parser) -> None:
 
 
 def noisy_of(args: argparse.Namespace):
-    """The :class:`~skinrender.design.noisy.NoisySetting` of the flags, or ``None`` without ``--imager``."""
+    """The :class:`~skinrender.design.noise_aware.NoisySetting` of the flags, or ``None`` without ``--imager``."""
     if args.imager is None:
         return None
-    from ..design.noisy import noisy_setting
+    from ..design.noise_aware import noisy_setting
     from ..model.imager import imager
 
     sensor = flag("--imager", imager, args.imager)

@@ -33,6 +33,9 @@ def add_parsers(commands) -> None:
                            help="also render the chart under every paper illuminant and compare its gamut volumes "
                            "(one calibration case each, and all calibrations) with the analytic ones")
         if name == "render":
+            from .face import add_face_arguments
+
+            add_face_arguments(p)
             p.add_argument("-o", "--output", default="render.exr",
                            help="output EXR (float32, Eq. 4 output units, channels named by the camera); "
                            "a PNG preview is written beside it")
@@ -103,6 +106,12 @@ def imaging_document(imaged) -> dict:
 
 
 def command_render(args: argparse.Namespace) -> None:
+    from .face import command_render_face, is_face_scene
+
+    if is_face_scene(args.scene):  # a face (perspective camera, mesh, lights): its own renderer
+        return command_render_face(args)
+    if args.physics != "direct" or args.skin is not None or args.size is not None:
+        raise SkinrenderError("--physics, --skin and --size go with a face scene (e.g. 'face'), not a chart")
 
     from ..rendering.exr import write_exr, write_preview
     from ..rendering.renderer import channel_names

@@ -33,7 +33,7 @@ from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import sensor_bank
 from .criteria import triplet_false_positive_rates, triplet_volumes_fast
-from .noisy import TPR_MIN, NoisySetting, bank_rates, triplet_noisy_rates
+from .noise_aware import TPR_MIN, NoisySetting, bank_rates, triplet_noisy_rates
 
 __all__ = ["OBJECTIVES", "objective", "Design", "optimise_camera"]
 
@@ -64,8 +64,8 @@ def objective(
     Returns ``inf`` for a camera outside the bounds or with a degenerate skin
     or Munsell gamut (nothing to minimise there). With ``noisy`` (detection
     only) the criterion is the FPR on noisy pixels while their TPR stays at or
-    above :data:`~skinrender.design.noisy.TPR_MIN`, and ``1 + (TPR_MIN − TPR)``
-    below it (:mod:`skinrender.design.noisy`).
+    above :data:`~skinrender.design.noise_aware.TPR_MIN`, and ``1 + (TPR_MIN − TPR)``
+    below it (:mod:`skinrender.design.noise_aware`).
     """
 
     validate_method(kind, OBJECTIVES, "objective")
@@ -138,7 +138,7 @@ def optimise_camera(
         Objective evaluations per start.
     noisy
         For ``detection``: judge cameras on noisy pixels
-        (:class:`~skinrender.design.noisy.NoisySetting`; the same seed every
+        (:class:`~skinrender.design.noise_aware.NoisySetting`; the same seed every
         evaluation, so the objective is deterministic).
 
     Returns

@@ -40,7 +40,7 @@ from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import SensorBank, positions_grid, sensor_bank, triplets
 from .criteria import triplet_false_positive_rates, triplet_volumes_fast, triplet_volumes_naive
-from .noisy import TPR_MIN, NoisySetting, bank_rates, triplet_noisy_rates
+from .noise_aware import TPR_MIN, NoisySetting, bank_rates, triplet_noisy_rates
 
 __all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "SearchResult", "search", "progress_bar"]
 
@@ -143,7 +143,7 @@ class SearchResult:
     :func:`skinrender.design.criteria.triplet_false_positive_rates`)."""
     noisy: NDArrayFloat | None = None
     """With a noisy setting: each triplet's (TPR, FPR) on noisy pixels, ``(T, 2)``
-    (:func:`skinrender.design.noisy.triplet_noisy_rates`)."""
+    (:func:`skinrender.design.noise_aware.triplet_noisy_rates`)."""
 
     @property
     def ratio(self) -> NDArrayFloat:
@@ -296,7 +296,7 @@ def search(
         Also compute the detection criterion: the false-positive rate of the
         Munsell set inside the skin locus, per calibration (``result.fpr``).
     noisy
-        With a :class:`~skinrender.design.noisy.NoisySetting`, also every triplet's (TPR, FPR) on noisy
+        With a :class:`~skinrender.design.noise_aware.NoisySetting`, also every triplet's (TPR, FPR) on noisy
         pixels (``result.noisy``; table rows ``min_noisy_fpr``).
     max_triplets
         Refuse a search of more triplets than this (an estimate of its time is

@@ -1,5 +1,5 @@
 """
-Tests for :mod:`skinrender.design.noisy`: the noise-aware detection criterion rejects crowded triplets that
+Tests for :mod:`skinrender.design.noise_aware`: the noise-aware detection criterion rejects crowded triplets that
 the noise-free criterion prefers, tends to the noise-free value as the light grows, and feeds the search and
 the design.
 """
@@ -15,7 +15,7 @@ from skinrender.cli import main
 from skinrender.datasets import reflectances
 from skinrender.design.bank import positions_grid, sensor_bank
 from skinrender.design.criteria import triplet_false_positive_rates
-from skinrender.design.noisy import TPR_MIN, bank_rates, noisy_setting, triplet_noisy_rates
+from skinrender.design.noise_aware import TPR_MIN, bank_rates, noisy_setting, triplet_noisy_rates
 from skinrender.model.imager import Imager
 from skinrender.spectra import GRID_DEFAULT
 

@@ -1,0 +1,248 @@
+"""
+Face commands: ``ladder`` (the face at each level of physics, with skin
+detection scored at each), and ``render face …`` (:func:`command_render_face`,
+which the ``render`` command hands a face scene to).
+
+Units: temperatures K, times s, images in Eq. 4 output units, NCC and rates
+fractions.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..errors import SkinrenderError
+from .common import (HELP_CAMERA, HELP_ILLUMINANT, SPP_MAX, add_common, camera_of, check_output, check_seed,
+                     choices_help, emit, flag, imaging_options, render_options, table)
+
+__all__ = ["add_parsers", "add_face_arguments", "is_face_scene", "command_ladder", "command_render_face",
+           "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
+
+SIZE_MAX = 2000
+"""Largest image side, pixels (the chart scenes' 4 000 000-pixel cap)."""
+
+LADDER_SPP_DEFAULT = 64
+"""``ladder --spp`` unless given."""
+
+LADDER_SIZE_DEFAULT = 128
+"""``ladder --size`` unless given, pixels."""
+
+HELP_SKIN = ("skin of the face: SET:SAMPLE, SET:#N or skin-model:melanin=0.05,blood=0.02 "
+             "(default: the scene's)")
+
+
+def _physics_help() -> str:
+    from ..rendering.face_dict import PHYSICS
+
+    return "level of physics: " + choices_help(PHYSICS) + "; effects combine with '+'"
+
+
+def add_face_arguments(parser: argparse.ArgumentParser) -> None:
+    """
+    The face options of ``render`` (``--physics``, ``--skin``, ``--size``); the sensor's (``--imager``,
+    ``--illuminance``, ``--exposure``) are the render options' (:func:`~skinrender.cli.common.add_render`).
+    """
+    parser.add_argument("--physics", default="direct",
+                        help=_physics_help() + " (face scenes; --imager adds noise)")
+    parser.add_argument("--skin", help=HELP_SKIN)
+    parser.add_argument("--size", metavar="PX",
+                        help="image side of a face scene, pixels (default: the scene's)")
+
+
+def add_parsers(commands) -> None:
+    """Add the parser of ladder."""
+    from ..studies.ladder import LEVELS_DEFAULT
+
+    p = commands.add_parser("ladder", help="the face rendered at each level of physics (direct, "
+                            "interreflection, sheen, mixed light, sensor noise, all), with the skin's NCC "
+                            "and the skin locus's detection rates at each")
+    p.add_argument("--camera", required=True, help=HELP_CAMERA)
+    p.add_argument("--prevailing", required=True, help="the key light, Planckian: " + HELP_ILLUMINANT)
+    p.add_argument("--calibration", required=True, help="the white balance, Planckian: " + HELP_ILLUMINANT)
+    p.add_argument("--skin", help=HELP_SKIN)
+    p.add_argument("--scene", default="face", help="face scene: a bundled name (face) or a .toml path")
+    p.add_argument("--levels", default=",".join(LEVELS_DEFAULT),
+                   help="comma-separated levels (" + _physics_help() + "); default "
+                   + ",".join(LEVELS_DEFAULT))
+    p.add_argument("--size", metavar="PX", default=str(LADDER_SIZE_DEFAULT),
+                   help=f"image side in pixels (default {LADDER_SIZE_DEFAULT})")
+    p.add_argument("--spp", metavar="N", default=str(LADDER_SPP_DEFAULT),
+                   help=f"samples per pixel (default {LADDER_SPP_DEFAULT})")
+    p.add_argument("--seed", metavar="S", default="0", help="sampler seed, every level the same (default 0)")
+    p.add_argument("--imager",
+                   help="image sensor of the noise level: a preset or a TOML (default sony-icx418)")
+    p.add_argument("--illuminance", metavar="LUX",
+                   help="the key light's illuminance at the face, lx, every light scaled with it (default: "
+                   "the scene's); only the noise level sees it")
+    p.add_argument("--variant",
+                   help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral)")
+    add_common(p)
+
+
+def _integer(text, name: str, low: int, high: int) -> int:
+    try:
+        value = int(str(text).strip())
+    except ValueError:
+        value = None
+    if value is None or not low <= value <= high:
+        raise SkinrenderError(f"{name} must be an integer in [{low}, {high}], got {text!r}")
+    return value
+
+
+def _planckian(args: argparse.Namespace, name: str) -> float:
+    from ..model.illuminant import illuminant
+
+    light = flag(f"--{name}", illuminant, getattr(args, name))
+    if light.temperature is None:
+        raise SkinrenderError(f"--{name}: the face is lit by Planckian lights (kelvin, A or H), got {light}")
+    return float(light.temperature)
+
+
+def _check_light(cam, temperatures: dict) -> None:
+    """Each light gives the camera light on the grid (else a one-line error naming the flag)."""
+    import numpy as np
+
+    from ..model.response import response
+    from ..spectra import GRID_DEFAULT
+
+    for name, t in temperatures.items():
+        flag(f"--{name}", response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
+
+
+def is_face_scene(spec: str) -> bool:
+    """Whether a ``render`` SCENE is a face scene: bundled, or a TOML with ``[camera]`` and ``[mesh]``."""
+    import tomllib
+    from pathlib import Path
+
+    from ..rendering.face_scene import list_face_scenes
+
+    text = str(spec).strip()
+    if text in list_face_scenes():
+        return True
+    path = Path(text)
+    if path.suffix != ".toml" or not path.is_file():
+        return False
+    try:
+        table = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return False
+    return "camera" in table and "mesh" in table
+
+
+def command_ladder(args: argparse.Namespace) -> None:
+    from ..rendering.face_dict import parse_physics
+    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+    from ..rendering.variants import VARIANTS_SPECTRAL
+    from ..studies.ladder import ladder
+
+    cam = camera_of(args)
+    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
+    _check_light(cam, temperatures)
+    size = _integer(args.size, "--size", 1, SIZE_MAX)
+    spp = _integer(args.spp, "--spp", 1, SPP_MAX)
+    seed = check_seed(_integer(args.seed, "--seed", 0, 2**32 - 1))
+    scene = flag("--scene", load_face_scene, args.scene)
+    if args.skin is not None:
+        from ..spectra import GRID_DEFAULT
+
+        skin_reflectance_of(args.skin, GRID_DEFAULT, "--skin")
+    levels = [level.strip() for level in str(args.levels).split(",") if level.strip()]
+    if not levels:
+        raise SkinrenderError("--levels: name at least one level of physics")
+    for level in levels:
+        flag("--levels", parse_physics, level)
+    if args.variant is not None and args.variant not in VARIANTS_SPECTRAL:
+        raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, "
+                              f"got {args.variant!r}")
+    if args.imager is not None:
+        from ..model.imager import imager
+
+        flag("--imager", imager, args.imager)
+    lux = None
+    if args.illuminance is not None:
+        try:
+            lux = float(args.illuminance)
+        except ValueError:
+            lux = float("nan")
+        if not (0 < lux < float("inf")):
+            raise SkinrenderError(f"--illuminance must be a finite number of lux > 0, "
+                                  f"got {args.illuminance!r}")
+    result = ladder(cam, temperatures["prevailing"], temperatures["calibration"], args.skin, levels, spp,
+                    seed, size, scene, args.variant, imager=args.imager, illuminance=lux,
+                    progress=lambda line: print(line, file=sys.stderr))
+    document = result.document()
+
+    def triple(values) -> str:
+        return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
+
+    def rate(value) -> str:
+        return "—" if value is None else f"{value:.3f}"
+
+    rows = [[row["name"], f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]),
+             triple(row["skin_ncc_std"]), rate(row["tpr"]), rate(row["fpr"])] for row in document["levels"]]
+    text = (f"the face ({result.skin}) through {result.camera}, {result.prevailing:g} K balanced to "
+            f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px; Eq. 4's skin NCC "
+            f"{triple(result.skin_ncc_analytic)}:\n"
+            + table(rows, ["level", "s", "spp", "skin NCC r g b", "std r g b", "TPR", "FPR"]))
+    emit(args, document, text)
+
+
+def command_render_face(args: argparse.Namespace) -> None:
+    """
+    ``render SCENE …`` for a face scene: the ``render`` flags (``--camera``,
+    ``--prevailing``, ``--calibration``, the render options, ``-o``) and the
+    face's (:func:`add_face_arguments`; absent ones take their defaults).
+    """
+    from ..model.response import knee as apply_knee
+    from ..rendering.face import render_face, write_face_exr
+    from ..rendering.face_dict import parse_physics
+    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+
+    options = render_options(args)
+    output = check_output(getattr(args, "output", None) or "render.exr", "--output", (".exr",))
+    check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
+    scene = flag("SCENE", load_face_scene, args.scene)
+    cam = camera_of(args)
+    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
+    _check_light(cam, temperatures)
+    if getattr(args, "normalization", "white") != "white":
+        raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
+                              f"got {args.normalization!r}")
+    physics = getattr(args, "physics", None) or "direct"
+    flag("--physics", parse_physics, physics)
+    skin = getattr(args, "skin", None)
+    if skin is not None:
+        from ..spectra import GRID_DEFAULT
+
+        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
+    size = getattr(args, "size", None)
+    size = None if size is None else _integer(size, "--size", 1, SIZE_MAX)
+    imaging = imaging_options(args) if getattr(args, "imager", None) is not None else None
+    imager, exposure, lux = None, "auto", None
+    if imaging is not None:  # a sensor records the face: the noise level, at the stated illuminance
+        imager, exposure, lux = imaging["imager_"], imaging["exposure"], imaging["illuminance_lux"]
+        if "noise" not in parse_physics(physics):
+            physics = "noise" if physics.strip() == "direct" else f"{physics}+noise"
+    print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
+    result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], skin, physics,
+                         options["spp"], options["seed"], size, options["sampler"], options["variant"],
+                         channels=options["channels"], imager=imager, exposure=exposure, illuminance=lux)
+    if getattr(args, "knee", False):
+        import dataclasses
+
+        result = dataclasses.replace(result, image=apply_knee(result.image).astype(result.image.dtype))
+    path, preview = write_face_exr(output, result)
+    document = {"image": str(path), "preview_png": str(preview), "channels": [*result.channels, "label"],
+                "spp": result.spp, "spp_requested": result.spp_requested, "sampler": result.sampler,
+                "seed": result.seed, "variant": result.variant, "elapsed_s": result.seconds,
+                "scene": result.scene.name, "camera": result.camera.name, "prevailing_K": result.prevailing,
+                "calibration_K": result.calibration, "normalization": "white",
+                "knee": bool(getattr(args, "knee", False)),
+                "labels": result.label_names, "physics": result.physics, "skin": result.skin,
+                "size": [result.scene.camera.width, result.scene.camera.height], **result.info}
+    labels = ", ".join(f"{k}={v}" for k, v in result.label_names.items())
+    text = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
+            f"{result.prevailing:g} K white-balanced to {result.calibration:g} K: {path} (+ {preview}, "
+            f"label channel: {labels}), {result.spp} spp, {result.variant}, {result.seconds:.2f} s")
+    emit(args, document, text)

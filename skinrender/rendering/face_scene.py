@@ -1,0 +1,404 @@
+"""
+Face scenes
+===========
+
+A face scene is a TOML file (``scenes/face/*.toml``): a head mesh in skin
+under Planckian lights, a few props of other reflectances beside it, seen by
+a perspective camera. Where a chart scene (:mod:`skinrender.rendering.scene`)
+is built so that the analytic model holds exactly, a face scene is built to
+find where it stops holding: curved, self-shadowing skin, light bounced from
+the props and the face itself, a second light and a sky of other
+temperatures (:data:`skinrender.rendering.face.PHYSICS` chooses which).
+
+-   :class:`FaceCamera`, :class:`Light`, :class:`Prop`, :class:`FaceScene`:
+    a parsed scene (frozen, hashable).
+-   :func:`load_face_scene`: a scene from a bundled name (``face``) or a
+    path; a bad file is refused naming the file and the field.
+-   :func:`list_face_scenes`: the bundled names.
+-   :func:`skin_reflectance_of`: a skin spec on a grid.
+
+Scene file fields
+-----------------
+``name``, ``description``, ``skin`` (a skin spec); ``[camera]``
+``position``, ``target`` (m), ``up`` (default [0, 1, 0]), ``fov``
+(horizontal, degrees), ``width``, ``height`` (pixels); ``[mesh]`` ``file``
+(``head``: :func:`skinrender.datasets.head.mesh_head`; or an ``.obj`` or
+``.ply`` path, relative to the scene file), ``translate`` (m), ``rotate``
+(degrees about x, then y, then z), ``scale``, ``smooth`` (shading normals;
+default false: flat, which conserves energy — shading normals lose ~0.5 % in
+the white furnace, measured); ``[key]`` (required), ``[fill]`` and
+``[environment]`` lights: ``temperature`` (K), ``illuminance`` (lx, at the
+camera target facing a point light; on a surface open to the whole
+environment) and a point light's ``position`` (m); ``[[prop]]``: ``name``,
+``reflectance``, ``shape`` (``rectangle``, the square [−1, 1]² facing +z, or
+``cube``, [−1, 1]³), ``size`` (m: x, y and a cube's z), ``position`` (m, its
+centre), ``rotate`` (degrees about x, y, z).
+
+A skin spec is any reflectance spec of a chart scene (``SET:SAMPLE``,
+``SET:#N``, ``perfect``, ``grey:F``) or the skin model's parameters,
+``skin-model:melanin=0.05,blood=0.02`` (any fields of
+:class:`~skinrender.datasets.skin_model.SkinParameters`, the others at
+their defaults).
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, fields, replace
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import SkinrenderError
+from ..hints import NDArrayFloat
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+from .scene import PIXELS_MAX, ROOT_SCENES, reflectance_of
+
+__all__ = ["ROOT_FACE_SCENES", "MESH_HEAD", "PROP_SHAPES", "FaceCamera", "Light", "Prop", "FaceScene",
+           "skin_reflectance_of", "load_face_scene", "list_face_scenes"]
+
+ROOT_FACE_SCENES = ROOT_SCENES / "face"
+"""Bundled face scene files."""
+
+MESH_HEAD = "head"
+"""The ``[mesh] file`` naming the bundled head scan."""
+
+MESH_SUFFIXES = (".obj", ".ply")
+"""Mesh files Mitsuba loads directly."""
+
+PROP_SHAPES = {
+    "rectangle": "the square [-1, 1]² in the xy plane, facing +z (a card, a board)",
+    "cube": "the cube [-1, 1]³ (a box)",
+}
+"""Prop shapes, name → meaning."""
+
+Vector = tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class FaceCamera:
+    """A perspective camera: ``position`` and ``target`` (m), ``up``, horizontal ``fov`` (degrees), pixels."""
+
+    position: Vector
+    target: Vector
+    up: Vector
+    fov: float
+    width: int
+    height: int
+
+
+@dataclass(frozen=True)
+class Light:
+    """
+    A Planckian light: ``temperature`` (K), ``illuminance`` (lx) and, for a
+    point light, ``position`` (m; ``None`` for the uniform environment).
+    """
+
+    temperature: float
+    illuminance: float
+    position: Vector | None = None
+
+
+@dataclass(frozen=True)
+class Prop:
+    """A prop: its ``name``, ``reflectance``, ``shape``, ``size``, ``position`` (m) and ``rotate``."""
+
+    name: str
+    reflectance: str
+    shape: str
+    size: Vector
+    position: Vector
+    rotate: Vector = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class FaceScene:
+    """
+    A parsed face scene (see the module docstring for the fields).
+
+    ``mesh`` is :data:`MESH_HEAD` or the absolute path of a mesh file.
+    """
+
+    name: str
+    description: str
+    camera: FaceCamera
+    mesh: str
+    mesh_translate: Vector
+    mesh_rotate: Vector
+    mesh_scale: float
+    skin: str
+    key: Light | None
+    fill: Light | None = None
+    environment: Light | None = None
+    props: tuple[Prop, ...] = ()
+    source: str = ""
+    mesh_smooth: bool = False
+
+    def resized(self, width: int, height: int | None = None) -> FaceScene:
+        """The scene at another image size, pixels (the field of view kept)."""
+        return replace(self, camera=replace(self.camera, width=int(width), height=int(height or width)))
+
+
+def skin_reflectance_of(spec: str, grid: WavelengthGrid = GRID_DEFAULT, where: str = "skin") -> NDArrayFloat:
+    """
+    The reflectance of a skin spec on ``grid`` (fractions): a reflectance
+    spec of a chart scene, or ``skin-model:NAME=VALUE,…`` (the skin model's
+    parameters).
+
+    Examples
+    --------
+    >>> skin_reflectance_of("macbeth:light skin").shape
+    (301,)
+    """
+
+    text = str(spec).strip()
+    if not (text.startswith("skin-model:") and "=" in text):
+        return reflectance_of(text, grid, where)
+    from ..datasets.skin_model import SkinParameters, skin_reflectance
+
+    known = {f.name for f in fields(SkinParameters)}
+    values = {}
+    for item in text[len("skin-model:"):].split(","):
+        key, _, value = item.partition("=")
+        key = key.strip()
+        if key not in known:
+            raise SkinrenderError(f"{where}: {text!r}: unknown skin-model parameter {key!r}; known: "
+                                  f"{', '.join(sorted(known))}")
+        try:
+            values[key] = float(value)
+        except ValueError:
+            raise SkinrenderError(f"{where}: {text!r}: {key} must be a number, "
+                                  f"got {value.strip()!r}") from None
+        if not math.isfinite(values[key]) or values[key] < 0:
+            raise SkinrenderError(f"{where}: {text!r}: {key} must be a finite number ≥ 0, "
+                                  f"got {value.strip()!r}")
+    reflectance = skin_reflectance(grid.wavelengths, SkinParameters(**values))
+    if not np.all(np.isfinite(reflectance)):
+        raise SkinrenderError(f"{where}: {text!r} gives no finite reflectance")
+    return reflectance
+
+
+def list_face_scenes() -> list[str]:
+    """Names of the bundled face scenes."""
+    return sorted(p.stem for p in ROOT_FACE_SCENES.glob("*.toml"))
+
+
+def _number(table: dict, key: str, where: str, low: float = -math.inf, high: float = math.inf,
+            default: float | None = None, open_low: bool = False) -> float:
+    if key not in table:
+        if default is None:
+            raise SkinrenderError(f"{where}: missing field {key!r}")
+        return float(default)
+    value = table[key]
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise SkinrenderError(f"{where}: field {key!r} must be a finite number, got {value!r}")
+    if value < low or (open_low and value == low) or value > high:
+        bounds = f"{'(' if open_low else '['}{low:g}, {high:g}]".replace("inf]", "∞)")
+        raise SkinrenderError(f"{where}: field {key!r} must be in {bounds}, got {value!r}")
+    return float(value)
+
+
+def _vector(table: dict, key: str, where: str, default: Vector | None = None,
+            positive: bool = False) -> Vector:
+    if key not in table:
+        if default is None:
+            raise SkinrenderError(f"{where}: missing field {key!r}")
+        return default
+    value = table[key]
+    ok = isinstance(value, list) and len(value) == 3 and all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value)
+    if not ok or (positive and min(value) <= 0):
+        kind = "three finite numbers > 0" if positive else "three finite numbers [x, y, z]"
+        raise SkinrenderError(f"{where}: field {key!r} must be {kind}, got {value!r}")
+    return tuple(float(v) for v in value)
+
+
+def _size(table: dict, shape: str, where: str) -> Vector:
+    count = 2 if shape == "rectangle" else 3
+    value = table.get("size")
+    ok = isinstance(value, list) and len(value) == count and all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0 for v in value)
+    if not ok:
+        raise SkinrenderError(f"{where}: field 'size' of a {shape} must be {count} finite numbers > 0 (m), "
+                              f"got {value!r}")
+    return (*(float(v) for v in value), 0.0)[:3]
+
+
+def _integer(table: dict, key: str, where: str, low: int, high: int) -> int:
+    if key not in table:
+        raise SkinrenderError(f"{where}: missing field {key!r}")
+    value = table[key]
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        raise SkinrenderError(f"{where}: field {key!r} must be an integer in [{low}, {high}], got {value!r}")
+    return value
+
+
+def _string(table: dict, key: str, where: str, default: str | None = None) -> str:
+    if key not in table:
+        if default is None:
+            raise SkinrenderError(f"{where}: missing field {key!r}")
+        return default
+    value = table[key]
+    if not isinstance(value, str) or not value.strip():
+        raise SkinrenderError(f"{where}: field {key!r} must be a non-empty string, got {value!r}")
+    return value.strip()
+
+
+def _table(parent: dict, key: str, where: str, known: set[str], required: bool = True) -> dict | None:
+    if key not in parent:
+        if required:
+            raise SkinrenderError(f"{where}: missing table [{key}]")
+        return None
+    value = parent[key]
+    if not isinstance(value, dict):
+        raise SkinrenderError(f"{where}: field {key!r} must be a table [{key}]")
+    unknown = set(value) - known
+    if unknown:
+        raise SkinrenderError(f"{where}: [{key}]: unknown field(s) {', '.join(sorted(unknown))}; known: "
+                              f"{', '.join(sorted(known))}")
+    return value
+
+
+def _light(table: dict | None, where: str, point: bool) -> Light | None:
+    if table is None:
+        return None
+    return Light(_number(table, "temperature", where, 0.0, 1e12, open_low=True),
+                 _number(table, "illuminance", where, 0.0, 1e9, open_low=True),
+                 _vector(table, "position", where) if point else None)
+
+
+def _camera(table: dict, where: str) -> FaceCamera:
+    camera = FaceCamera(_vector(table, "position", where), _vector(table, "target", where),
+                        _vector(table, "up", where, default=(0.0, 1.0, 0.0)),
+                        _number(table, "fov", where, 0.0, 180.0, open_low=True),
+                        _integer(table, "width", where, 1, 1 << 16),
+                        _integer(table, "height", where, 1, 1 << 16))
+    if camera.fov == 180.0:
+        raise SkinrenderError(f"{where}: field 'fov' must be below 180 degrees, got 180")
+    view = np.subtract(camera.target, camera.position)
+    if np.linalg.norm(view) == 0:
+        raise SkinrenderError(f"{where}: fields 'position' and 'target' coincide: the camera looks nowhere")
+    if np.linalg.norm(np.cross(view, camera.up)) <= 1e-9 * np.linalg.norm(view) * np.linalg.norm(camera.up):
+        raise SkinrenderError(f"{where}: field 'up' {list(camera.up)} is parallel to the view direction "
+                              "(or zero)")
+    if camera.width * camera.height > PIXELS_MAX:
+        raise SkinrenderError(f"{where}: fields 'width' × 'height' = {camera.width * camera.height} "
+                              f"pixels, more than {PIXELS_MAX}")
+    return camera
+
+
+def _mesh(table: dict, where: str, folder: Path) -> str:
+    name = _string(table, "file", where)
+    if name == MESH_HEAD:
+        return MESH_HEAD
+    path = Path(name) if Path(name).is_absolute() else folder / name
+    if path.suffix.lower() not in MESH_SUFFIXES:
+        raise SkinrenderError(f"{where}: field 'file' must be {MESH_HEAD!r} or an .obj or .ply path, "
+                              f"got {name!r}")
+    if not path.is_file():
+        raise SkinrenderError(f"{where}: field 'file': mesh {path} does not exist")
+    return str(path.resolve())
+
+
+_TOP = {"name", "description", "skin", "camera", "mesh", "key", "fill", "environment", "prop"}
+_CAMERA = {"position", "target", "up", "fov", "width", "height"}
+_MESH = {"file", "translate", "rotate", "scale", "smooth"}
+_POINT = {"position", "temperature", "illuminance"}
+_PROP = {"name", "reflectance", "shape", "size", "position", "rotate"}
+
+
+def _read(spec: str) -> tuple[Path, dict]:
+    text = str(spec).strip()
+    if not text:
+        raise SkinrenderError(f"expected a face scene name ({', '.join(list_face_scenes())}) or a .toml "
+                              "path, got an empty one")
+    path = Path(text)
+    if path.is_dir():
+        raise SkinrenderError(f"face scene {text} is a folder, expected a .toml file or a bundled name")
+    if not (path.suffix == ".toml" or path.exists()):
+        path = ROOT_FACE_SCENES / f"{text}.toml"
+        if not path.exists():
+            raise SkinrenderError(f"unknown face scene {text!r}; bundled: {', '.join(list_face_scenes())}, "
+                                  "or a .toml path")
+    elif not path.exists():
+        raise SkinrenderError(f"face scene file {text} does not exist")
+    try:
+        return path, tomllib.loads(path.read_text(encoding="utf-8"))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
+        raise SkinrenderError(f"{path}: not valid TOML: {' '.join(str(error).split())}") from None
+    except OSError as error:
+        raise SkinrenderError(f"{path}: cannot be read ({error.strerror})") from None
+
+
+def load_face_scene(spec: str | Path | FaceScene) -> FaceScene:
+    """
+    A face scene from a bundled name (``face``) or a TOML path.
+
+    Raises
+    ------
+    SkinrenderError
+        Unknown name, unreadable TOML, or a missing, unknown or bad field
+        (the file and the field named), a mesh file that does not exist, a
+        reflectance that does not resolve.
+
+    Examples
+    --------
+    >>> scene = load_face_scene("face")
+    >>> scene.mesh, scene.key.temperature, len(scene.props)
+    ('head', 2856.0, 4)
+    """
+
+    if isinstance(spec, FaceScene):
+        return spec
+    path, table = _read(str(spec))
+    where = str(path)
+    unknown = set(table) - _TOP
+    if unknown:
+        raise SkinrenderError(f"{where}: unknown field(s) {', '.join(sorted(unknown))}; known: "
+                              f"{', '.join(sorted(_TOP))}")
+    camera = _camera(_table(table, "camera", where, _CAMERA), f"{where}: [camera]")
+    mesh_table = _table(table, "mesh", where, _MESH)
+    at = f"{where}: [mesh]"
+    mesh = (_mesh(mesh_table, at, path.parent), _vector(mesh_table, "translate", at, (0.0, 0.0, 0.0)),
+            _vector(mesh_table, "rotate", at, (0.0, 0.0, 0.0)),
+            _number(mesh_table, "scale", at, 0.0, 1e6, default=1.0, open_low=True))
+    lights = [_light(_table(table, name, where, _POINT if name != "environment" else _POINT - {"position"},
+                            required=name == "key"), f"{where}: [{name}]", name != "environment")
+              for name in ("key", "fill", "environment")]
+    skin = _string(table, "skin", where)
+    skin_reflectance_of(skin, GRID_DEFAULT, f"{where}: field 'skin'")
+    entries = table.get("prop", [])
+    if not isinstance(entries, list):
+        raise SkinrenderError(f"{where}: field 'prop' must be [[prop]] tables")
+    props = []
+    for number, entry in enumerate(entries, start=1):
+        at = f"{where}: prop {number}"
+        if not isinstance(entry, dict):
+            raise SkinrenderError(f"{at}: must be a table")
+        extra = set(entry) - _PROP
+        if extra:
+            raise SkinrenderError(f"{at}: unknown field(s) {', '.join(sorted(extra))}; "
+                                  f"known: {', '.join(sorted(_PROP))}")
+        reflectance = _string(entry, "reflectance", at)
+        reflectance_of(reflectance, GRID_DEFAULT, f"{at}: field 'reflectance'")
+        shape = _string(entry, "shape", at, default="rectangle")
+        if shape not in PROP_SHAPES:
+            raise SkinrenderError(f"{at}: field 'shape' must be one of {', '.join(PROP_SHAPES)}, "
+                                  f"got {shape!r}")
+        size = _size(entry, shape, at)
+        name = _string(entry, "name", at, default=reflectance.split(":", 1)[-1])
+        props.append(Prop(name, reflectance, shape, size, _vector(entry, "position", at),
+                          _vector(entry, "rotate", at, (0.0, 0.0, 0.0))))
+    names = [p.name for p in props]
+    duplicated = sorted({n for n in names if names.count(n) > 1} | ({"skin", "background"} & set(names)))
+    if duplicated:
+        names = ", ".join(repr(n) for n in duplicated)
+        raise SkinrenderError(f"{where}: prop names must be unique and not 'skin' or 'background' (they "
+                              f"name labels), got {names} more than once or reserved")
+    smooth = mesh_table.get("smooth", False)
+    if not isinstance(smooth, bool):
+        raise SkinrenderError(f"{where}: [mesh]: field 'smooth' must be true or false, got {smooth!r}")
+    return FaceScene(_string(table, "name", where, default=path.stem),
+                     _string(table, "description", where, ""), camera, *mesh, skin, *lights, tuple(props),
+                     where, smooth)

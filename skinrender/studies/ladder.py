@@ -1,0 +1,188 @@
+"""
+The physics ladder
+==================
+
+The face rendered at each level of physics
+(:data:`skinrender.rendering.face.PHYSICS`), and what each level does to skin
+detection: the skin pixels' NCC against Eq. 4's, and the true- and
+false-positive rates of the camera's analytic skin locus on the rendered
+pixels.
+
+-   :func:`ladder`, :class:`Ladder`: the study.
+-   :data:`LEVELS_DEFAULT`: ``direct``, each effect alone, then all together.
+
+Scoring: a pixel is scored when its brightest channel reaches
+:data:`SCORED_MIN_OUTPUT` (too dark a pixel has no chromaticity worth the
+name: the paper's Table 1 keeps 10–245); ``tpr`` is the share of scored skin
+pixels (label 1) whose NCC (r, g) lies in the locus
+(:func:`skinrender.evaluation.locus.skin_locus` of the ``skin`` set, one white
+balancing at the calibration light), ``fpr`` that of the scored prop pixels;
+the background is left out. Each is ``None`` when no pixel of its kind is
+scored.
+
+Units: temperatures K, times s, NCC and rates fractions.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import SkinrenderError
+from ..evaluation.locus import skin_locus
+from ..model.camera import camera
+from ..model.chromaticity import ncc
+from ..model.illuminant import illuminant
+from ..rendering.face import render_face
+from ..rendering.face_dict import parse_physics
+from ..rendering.face_labels import LABEL_SKIN
+from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+from ..rendering.validation import analytic_reference
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+
+__all__ = ["LEVELS_DEFAULT", "SCORED_MIN_OUTPUT", "Ladder", "ladder"]
+
+LEVELS_DEFAULT = ("direct", "interreflection", "sheen", "mixed", "noise", "interreflection+sheen+mixed+noise")
+"""The levels of :func:`ladder`: the analytic model's world, each effect alone, then all of them."""
+
+SCORED_MIN_OUTPUT = 10.0
+"""A pixel is scored when its brightest channel reaches this (output units; the paper's lower bound)."""
+
+
+@dataclass(frozen=True)
+class Ladder:
+    """
+    The ladder's result.
+
+    Attributes
+    ----------
+    levels
+        One dict per level: ``name``, ``seconds``, ``spp``,
+        ``skin_ncc_mean`` and ``skin_ncc_std`` (``[r, g, b]`` over the scored
+        skin pixels), ``tpr``, ``fpr``, ``skin_pixels`` and ``prop_pixels``
+        (scored), ``variant``, and ``imager``/``exposure_s`` with ``noise``.
+    skin_ncc_analytic
+        Eq. 4's NCC of the skin (prevailing = the key light, white balanced to
+        the calibration), ``[r, g, b]``.
+    """
+
+    camera: str
+    scene: str
+    skin: str
+    prevailing: float
+    calibration: float
+    size: tuple[int, int]
+    skin_ncc_analytic: list
+    locus_area: float
+    levels: list = field(default_factory=list)
+
+    def document(self) -> dict:
+        """The JSON document (``levels`` and the settings)."""
+        return {"camera": self.camera, "scene": self.scene, "skin": self.skin,
+                "prevailing_K": self.prevailing, "calibration_K": self.calibration, "size": list(self.size),
+                "skin_ncc_analytic": self.skin_ncc_analytic, "locus_area": self.locus_area,
+                "levels": self.levels}
+
+
+def _temperature(spec, name: str) -> float:
+    item = illuminant(spec)
+    if item.temperature is None:
+        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}")
+    return float(item.temperature)
+
+
+def _rate(hits: np.ndarray) -> float | None:
+    return float(hits.mean()) if hits.size else None
+
+
+def ladder(
+    camera_,
+    prevailing,
+    calibration,
+    skin: str | None = None,
+    levels: Sequence[str] = LEVELS_DEFAULT,
+    spp: int = 64,
+    seed: int = 0,
+    size: int | None = 128,
+    scene="face",
+    variant: str | None = None,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    imager: str | None = None,
+    illuminance: float | None = None,
+    progress: Callable[[str], None] | None = None,
+) -> Ladder:
+    """
+    Render the face at each level of physics and score skin detection there.
+
+    Parameters
+    ----------
+    camera_
+        Camera or spec.
+    prevailing, calibration
+        The key light's temperature and the white balance's (kelvin, ``A``, ``H``).
+    skin
+        The skin spec (``SET:SAMPLE``, ``SET:#N``, ``skin-model:…``); ``None``: the scene's.
+    levels
+        Physics levels (:data:`skinrender.rendering.face.PHYSICS`, effects joined by ``+``).
+    spp, seed, variant, grid
+        As :func:`skinrender.rendering.face.render_face`; every level uses the same seed.
+    size
+        Image side, pixels (``None``: the scene's).
+    scene
+        A face scene name or path.
+    imager, illuminance
+        The image sensor of ``noise`` (default :data:`skinrender.rendering.face.IMAGER_DEFAULT`) and the
+        key light's illuminance, lx (``None``: the scene's; only ``noise`` sees it).
+    progress
+        Called with a line before each level (e.g. to print it on stderr).
+
+    Returns
+    -------
+    :class:`Ladder`
+    """
+
+    cam = camera(camera_)
+    p, c = _temperature(prevailing, "prevailing"), _temperature(calibration, "calibration")
+    face = load_face_scene(scene)
+    skin = face.skin if skin is None else str(skin).strip()
+    rho = skin_reflectance_of(skin, grid, "skin")
+    levels = list(levels)
+    if not levels:
+        raise SkinrenderError("levels: name at least one level of physics")
+    for level in levels:
+        parse_physics(level)
+    locus = skin_locus(cam, "skin", calibration=c, grid=grid)
+    analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
+    rows, shape = [], None
+    for level in levels:
+        if progress is not None:
+            progress(f"rendering the face: {level} …")
+        start = time.perf_counter()
+        result = render_face(cam, face, p, c, skin, level, spp, seed, size, variant=variant, grid=grid,
+                             imager=imager, illuminance=illuminance)
+        image = result.image.astype(np.float64)
+        scored = image.max(axis=-1) >= SCORED_MIN_OUTPUT
+        chromaticity = ncc(image)
+        inside = locus.contains(chromaticity[..., :2])
+        skin_pixels = scored & (result.labels == LABEL_SKIN)
+        prop_pixels = scored & (result.labels > LABEL_SKIN)
+        values = chromaticity[skin_pixels]
+        row = {
+            "name": result.physics if level != "direct" else "direct",
+            "seconds": time.perf_counter() - start,
+            "spp": result.spp,
+            "skin_ncc_mean": values.mean(axis=0).tolist() if values.size else None,
+            "skin_ncc_std": values.std(axis=0).tolist() if values.size else None,
+            "tpr": _rate(inside[skin_pixels]),
+            "fpr": _rate(inside[prop_pixels]),
+            "skin_pixels": int(skin_pixels.sum()),
+            "prop_pixels": int(prop_pixels.sum()),
+            "variant": result.variant,
+        }
+        row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
+        rows.append(row)
+        shape = (result.scene.camera.width, result.scene.camera.height)
+    return Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), rows)

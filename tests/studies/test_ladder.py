@@ -1,0 +1,43 @@
+"""Tests for :mod:`skinrender.studies.ladder`: the face at two levels of physics, tiny."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from skinrender.errors import SkinrenderError
+from skinrender.studies.ladder import ladder
+
+pytest.importorskip("mitsuba")
+
+CAMERA = "gbell:9@450,540,610"
+
+
+class TestLadder:
+    def test_two_levels(self):
+        result = ladder(CAMERA, "A", 5900, levels=("direct", "mixed"), spp=4, size=24)
+        document = json.loads(json.dumps(result.document(), allow_nan=False))
+        assert [row["name"] for row in document["levels"]] == ["direct", "mixed"]
+        assert document["size"] == [24, 24] and document["prevailing_K"] == 2856
+        for row in document["levels"]:
+            assert set(row) >= {"name", "seconds", "spp", "skin_ncc_mean", "skin_ncc_std", "tpr", "fpr"}
+            assert row["spp"] == 4 and row["seconds"] > 0
+            assert row["skin_pixels"] > 0 and row["prop_pixels"] > 0
+            assert abs(sum(row["skin_ncc_mean"]) - 1) < 1e-9 and 0 <= row["tpr"] <= 1 and 0 <= row["fpr"] <= 1
+        direct, mixed = document["levels"]
+        # direct light keeps the skin's NCC at Eq. 4's; the bluer window and sky pull it off
+        analytic = np.array(document["skin_ncc_analytic"])
+        assert np.abs(np.array(direct["skin_ncc_mean"]) - analytic).max() < 3 * max(direct["skin_ncc_std"])
+        assert mixed["skin_ncc_mean"][2] > direct["skin_ncc_mean"][2] + max(direct["skin_ncc_std"])
+
+    @pytest.mark.parametrize("kwargs, match", [
+        ({"levels": ()}, "levels"), ({"levels": ("glossy",)}, "physics"), ({"prevailing": "x"}, "illuminant"),
+        ({"skin": "skin:nobody"}, "skin"),
+    ])
+    def test_refusals(self, kwargs, match):
+        arguments = {"camera_": CAMERA, "prevailing": 2856, "calibration": 5900, "size": 8, "spp": 1,
+                     **kwargs}
+        with pytest.raises(SkinrenderError, match=match):
+            ladder(**arguments)
