@@ -8,19 +8,34 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, add_common, add_search,
+from .common import (HELP_CAMERA, add_common, add_grid, add_search,
                      emit, table)
 
 
 def add_parsers(commands) -> None:
     """Add the parsers of reproduce, table1, bench."""
-    p = commands.add_parser("reproduce", help="the paper's Figs. 3–7 (PNG) and Tables 2–5 (Markdown, CSV)")
-    p.add_argument("-o", "--output", required=True, help="output folder")
+    p = commands.add_parser("reproduce", help="the paper's Figs. 3–7 (PNG) and Tables 2–5 (Markdown, CSV), with "
+                            "their matches with the paper; --sweep: the tables under each choice of the paper's unknowns")
+    p.add_argument("-o", "--output", required=True,
+                   help="output folder: new, empty or an earlier reproduce folder (replaced only when the run completes)")
     p.add_argument("--sensors", default="1,3,5,7,9,11,13,15", help="sensor numbers (default 1,3,…,15)")
     p.add_argument("--positions", default="400:700:10", help="peak positions START:END:STEP in nm (default 400:700:10)")
     p.add_argument("--camera", default="Nikon 5100 (NPL)",
                    help="Stage 2 camera for Figs. 3–7 (the paper's Sony is not public); " + HELP_CAMERA)
-    p.add_argument("--slope", type=float, default=2.0, help="gbell slope b (default 2)")
+    p.add_argument("--slope", type=float, default=2.0, help="gbell slope b, not given by the paper (default 2)")
+    add_grid(p)
+    p.add_argument("--illuminants", default="paper",
+                   help="illuminant set: 'paper' (its ten, default), 'auto' (Stage 1 for --stage1-camera) or "
+                        "comma-separated kelvin")
+    p.add_argument("--stage1-camera", help="camera of --illuminants auto (default: --camera); " + HELP_CAMERA)
+    p.add_argument("--no-figures", action="store_true", help="the tables only (no Stage 2 figures)")
+    p.add_argument("--sweep", action="store_true",
+                   help="tables only, under each value of one unknown at a time (slope 1–6; grids 400:700:1/5, "
+                        "380:780:1/5; skin sets; Munsell sets; Stage 1 illuminants of every camera), then the best "
+                        "values of the most telling unknowns combined; writes sweep.csv and sweep.md")
+    p.add_argument("--sweep-positions", help="peak positions of the sweep (default: --positions; 400:700:20 for a "
+                   "quick look)")
+    p.add_argument("--sweep-combine", type=int, default=3, help="how many unknowns the sweep combines (default 3)")
     add_search(p)
     add_common(p)
 
@@ -31,31 +46,45 @@ def add_parsers(commands) -> None:
     add_common(p)
 
     p = commands.add_parser("bench", help="speed and accuracy figures")
-    p.add_argument("what", choices=["analytic", "search", "render"], help="which benchmark")
+    p.add_argument("what", choices=["analytic", "search", "sweep", "render"], help="which benchmark")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant)")
     p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG")
     p.add_argument("--repeat", type=int, default=3, help="analytic: timed repetitions, best kept (default 3)")
     p.add_argument("--sensor", type=float, default=9, help="search: sensor number (default 9)")
     p.add_argument("--sample", type=int, default=20, help="search: triplets timed per method (default 20)")
-    p.add_argument("--workers", type=int, help="search: processes (default: every core)")
+    p.add_argument("--workers", type=int, help="search, sweep: processes (default: every core)")
+    p.add_argument("--positions", default="400:700:20",
+                   help="sweep: peak positions START:END:STEP nm of the timed sweep (default 400:700:20)")
     add_common(p)
 
 
 def command_reproduce(args: argparse.Namespace) -> None:
-    from ..studies.reproduce import reproduce
+    progress = None if args.quiet else sys.stderr
+    if args.stage1_camera is not None and args.illuminants.strip().lower() != "auto":
+        raise SkinrenderError(f"--stage1-camera is the camera of --illuminants auto; got --illuminants {args.illuminants!r}")
+    if args.sweep:
+        from ..studies.sweep import reproduce_sweep
+        from ..studies.unknowns import Setting
 
-    try:
-        sensors = [float(v) for v in args.sensors.split(",")]
-    except ValueError:
-        raise SkinrenderError(f"--sensors must be comma-separated numbers, got {args.sensors!r}") from None
+        base = Setting(args.slope, args.grid, args.skin, args.munsell, args.illuminants,
+                       args.stage1_camera or args.camera, args.extrapolation)
+        result = reproduce_sweep(args.output, args.sensors, args.sweep_positions or args.positions, base,
+                                 combine=args.sweep_combine, workers=args.workers, dask=args.dask, progress=progress)
+        rows = [[r["setting"], r["unknown"], f"{r['exact']}/{r['total']}", str(r["within_step"]), f"{r['seconds']:.1f}"]
+                for r in result["sweep"]]
+        text = (table(rows, ["setting", "changed", "exact", "within 10 nm", "s"])
+                + f"\nsweep: {len(rows)} settings in {result['elapsed_s']:.1f} s; wrote "
+                + ", ".join(result["artifacts"]) + "".join(f"\nnote: {n}" for n in result["notes"]))
+        emit(args, result, text)
+        return
+    from ..studies.reproduce import reproduce, summary_text
+
     result = reproduce(
-        args.output, sensors, args.positions, args.camera, args.skin, args.munsell, args.slope,
-        workers=args.workers, dask=args.dask, progress=None if args.quiet else sys.stderr,
+        args.output, args.sensors, args.positions, args.camera, args.skin, args.munsell, args.slope, args.grid,
+        workers=args.workers, dask=args.dask, progress=progress, illuminants=args.illuminants,
+        stage1_camera=args.stage1_camera, extrapolation=args.extrapolation, figures=not args.no_figures,
     )
-    searches = ", ".join(f"sensor {k}: {v:.1f} s" for k, v in result["search_s"].items())
-    text = "\n".join(["wrote:"] + [f"  {p}" for p in result["artifacts"]]
-                     + [f"searches: {sum(result['search_s'].values()):.1f} s ({searches})"])
-    emit(args, result, text)
+    emit(args, result, summary_text(result))
 
 
 def command_table1(args: argparse.Namespace) -> None:
@@ -70,7 +99,7 @@ def command_table1(args: argparse.Namespace) -> None:
 
 
 def command_bench(args: argparse.Namespace) -> None:
-    from ..studies.bench import bench_analytic, bench_search
+    from ..studies.bench import bench_analytic, bench_search, bench_sweep
 
     if args.what == "render":
         from ..studies.bench import bench_render
@@ -82,6 +111,8 @@ def command_bench(args: argparse.Namespace) -> None:
             result["plot"] = str(figure_render_curve(result, args.plot))
     elif args.what == "search":
         result = bench_search(args.sensor, args.sample, workers=args.workers)
+    elif args.what == "sweep":
+        result = bench_sweep(args.positions, workers=args.workers)
     else:
         result = bench_analytic(repeat=args.repeat)
     text = "\n".join(f"{key}: {value}" for key, value in result.items())

@@ -24,9 +24,18 @@ from ..model.camera import camera
 from ..model.response import response
 from ..constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
 from ..datasets import reflectances
+from ..design.bank import SENSORS_PAPER
+from ..errors import SkinrenderError
 from ..spectra import GRID_DEFAULT, planck
 
-__all__ = ["machine", "bench_analytic", "bench_search", "bench_render"]
+__all__ = ["machine", "bench_analytic", "bench_search", "bench_sweep", "bench_render"]
+
+
+def _at_least_one(value, flag: str) -> int:
+    """An integer ≥ 1, or a one-line :class:`SkinrenderError` naming ``flag``."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise SkinrenderError(f"{flag} must be an integer ≥ 1, got {value!r}")
+    return int(value)
 
 
 def machine() -> dict:
@@ -41,7 +50,7 @@ def machine() -> dict:
 
 def _best_time(function, repeat: int) -> float:
     best = np.inf
-    for _ in range(max(1, repeat)):
+    for _ in range(repeat):
         start = time.perf_counter()
         function()
         best = min(best, time.perf_counter() - start)
@@ -71,6 +80,7 @@ def bench_analytic(camera_spec: str = "Nikon 5100 (NPL)", repeat: int = 3) -> di
     from colour.characterisation import RGB_CameraSensitivities, training_data_sds_to_RGB
     from colour.characterisation.aces_it import white_balance_multipliers
 
+    repeat = _at_least_one(repeat, "--repeat")
     grid = GRID_DEFAULT
     cam = camera(camera_spec)
     munsell = reflectances("munsell")
@@ -128,6 +138,8 @@ def bench_search(
     steps: tuple[float, ...] = (20.0, 10.0, 5.0),
     full_steps: tuple[float, ...] = (20.0, 10.0, 5.0),
     workers: int | None = None,
+    sweep_positions: str | None = "400:700:30",
+    sweep_slopes: tuple[float, ...] = (1.0, 3.0),
 ) -> dict:
     """
     Time the Stage 3 search: straightforward vs fast method, and the full search.
@@ -142,7 +154,18 @@ def bench_search(
     -   ``growth``: per grid step, the triplet count and the time — measured in
         full for ``full_steps``, estimated from ``sample`` triplets timed on
         one core (divided by the worker count) for the others, and marked so.
+    -   ``sweep_s_per_setting``: seconds per setting of a small ``reproduce
+        --sweep`` (all eight sensors at ``sweep_positions``; the default and
+        ``sweep_slopes``, each setting computing every volume anew), and
+        ``sweep_s_per_setting_10nm_estimate``, scaled to the 4495 triplets of
+        the paper's grid by the triplet count. ``sweep_positions=None`` skips it.
+
+    ``sample`` and ``workers`` are checked (integers ≥ 1) before anything is timed.
     """
+
+    sample = _at_least_one(sample, "--sample")
+    if workers is not None:
+        workers = _at_least_one(workers, "--workers")
 
     from ..design.bank import positions_grid, sensor_bank, triplets
     from ..design.criteria import triplet_volumes_fast, triplet_volumes_naive
@@ -190,6 +213,11 @@ def bench_search(
             per = (time.perf_counter() - start) / sample
             growth.append({"step_nm": step, "triplets": count, "seconds": per * count / cores,
                            "measured": f"estimated from {sample} triplets on one core / {cores} workers"})
+    sweep_s = sweep_estimate = None
+    if sweep_positions is not None:
+        timed = bench_sweep(sweep_positions, workers=workers, candidates={"slope": list(sweep_slopes)})
+        sweep_s = timed["s_per_setting"]
+        sweep_estimate = timed["s_per_setting_10nm_estimate"]
     return {
         "machine": machine(),
         "sensor": sensor,
@@ -203,6 +231,49 @@ def bench_search(
         "workers": cores,
         "hull_kernel": HULL_KERNEL,
         "growth": growth,
+        "sweep_positions": sweep_positions,
+        "sweep_s_per_setting": sweep_s,
+        "sweep_s_per_setting_10nm_estimate": sweep_estimate,
+    }
+
+
+def bench_sweep(
+    positions: str = "400:700:20",
+    sensors=SENSORS_PAPER,
+    workers: int | None = None,
+    candidates: dict | None = None,
+) -> dict:
+    """
+    Time ``reproduce --sweep`` (tables only) one unknown at a time, no combinations.
+
+    Returns
+    -------
+    dict
+        ``machine``, ``positions``, ``triplets`` (per sensor), ``settings``
+        (``[{setting, seconds}]``), ``s_per_setting`` (mean),
+        ``s_per_setting_10nm_estimate`` (the mean scaled by the triplet count
+        to the paper's 4495), ``elapsed_s``, ``volumes_computed`` (banks
+        computed: settings that share volumes compute fewer).
+    """
+
+    from ..design.bank import positions_grid, triplets
+    from .sweep import sweep
+
+    if workers is not None:
+        workers = _at_least_one(workers, "--workers")
+    count = len(triplets(positions_grid(positions).size))
+    result = sweep(sensors, positions, combine=0, workers=workers, candidates=candidates)
+    seconds = [row["seconds"] for row in result["sweep"]]
+    mean = float(np.mean(seconds))
+    return {
+        "machine": machine(),
+        "positions": positions,
+        "triplets": count,
+        "settings": [{"setting": row["setting"], "seconds": row["seconds"]} for row in result["sweep"]],
+        "s_per_setting": mean,
+        "s_per_setting_10nm_estimate": mean * len(triplets(31)) / count,
+        "elapsed_s": result["elapsed_s"],
+        "volumes_computed": result["volumes_computed"],
     }
 
 

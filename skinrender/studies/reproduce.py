@@ -2,15 +2,15 @@
 Reproducing the paper's Stage 2 and Stage 3
 ===========================================
 
--   :func:`stage2_pairs`: Munsell gamut volume of every (prevailing,
-    calibration) pair under one normalisation (the data of Figs. 3–5).
--   :func:`stage2_observation`: whether the largest volume per calibration
-    falls on the calibration illuminant.
--   :func:`stage2_cases`: skin and Munsell one-calibration-case volumes and
-    their ratio per calibration (Fig. 7).
--   :func:`stage2_gamut_panels`: the data of Fig. 6.
 -   :func:`reproduce`: every table (Markdown and CSV) and figure (PNG) in a
-    folder.
+    folder, under a stated choice of the paper's unknowns (gbell slope,
+    integration grid, skin and Munsell sets, illuminants), with how many table
+    cells match the paper's, the paper's Stage 1 figures per camera and its
+    Stage 2 observations per camera.
+-   :func:`summary_text`: the result as lines of text.
+-   The Stage 2 functions of :mod:`~skinrender.studies.normalisation`
+    (:func:`stage2_pairs`, :func:`stage2_observation`, :func:`stage2_cases`,
+    :func:`stage2_gamut_panels`) are importable from here too.
 
 References
 ----------
@@ -19,24 +19,24 @@ References
 
 from __future__ import annotations
 
+import json
 import sys
+import tempfile
+import threading
+import time
 from pathlib import Path
 
-import numpy as np
-
-from scipy.spatial import ConvexHull
-
-from ..constants import TEMPERATURES_PAPER
-from ..datasets import reflectances
 from ..design.bank import SENSORS_PAPER
-from ..design.search import search
-from ..evaluation.gamut import gamut, gamut_calibration, gamut_hull
-from ..hints import ArrayLike, NDArrayFloat
-from ..model.camera import camera
-from ..model.response import response
-from ..spectra import GRID_DEFAULT, WavelengthGrid
-from .figures import figure_cases, figure_gamuts, figure_pairs
-from .tables import table_rows, write_tables
+from ..hints import ArrayLike
+from ..spectra import WavelengthGrid
+from .folders import MANIFEST, check_output, output_folder
+from .normalisation import (STAGE2_CAMERA, STAGE2_NORMALISATIONS, stage2_cases, stage2_gamut_panels,
+                            stage2_observation, stage2_pairs, stage2_write)
+from .observations import paper_cameras, stage1_text, stage2_by_camera
+from .tables import write_tables
+from .unknowns import (Setting, check_camera, check_positions, check_sensors, resolve_setting,
+                       setting_tables)
+from .volumes import VolumeCache, check_workers
 
 __all__ = [
     "STAGE2_CAMERA",
@@ -46,172 +46,165 @@ __all__ = [
     "stage2_cases",
     "stage2_gamut_panels",
     "reproduce",
+    "summary_text",
 ]
-
-STAGE2_CAMERA = "Nikon 5100 (NPL)"
-"""Camera of Stage 2 (the paper's Sony is not public; any bundled camera or CSV can stand in)."""
-
-STAGE2_NORMALISATIONS = (("560nm", True), ("euclidean", True), ("white", False))
-"""Figs. 3, 4, 5: 560nm and euclidean with the knee (the paper's choice), white without."""
-
-def stage2_pairs(
-    camera_spec: str = STAGE2_CAMERA,
-    reflectance: str = "munsell",
-    normalization: str = "white",
-    knee: bool = False,
-    illuminants: ArrayLike = TEMPERATURES_PAPER,
-    grid: WavelengthGrid = GRID_DEFAULT,
-) -> NDArrayFloat:
-    """
-    Gamut volume of one reflectance set for every (prevailing, calibration) pair.
-
-    Returns
-    -------
-    :class:`numpy.ndarray`
-        ``volumes[p, q]``, output units³, shape ``(P, Q)``.
-    """
-
-    t = np.asarray(illuminants, dtype=np.float64)
-    points = response(camera(camera_spec), reflectances(reflectance).on(grid), t[:, None], t[None, :],
-                      normalization, knee, grid)
-    return np.array([[gamut(points[p, q]).volume for q in range(t.size)] for p in range(t.size)])
-
-
-def stage2_observation(volumes: NDArrayFloat) -> dict:
-    """
-    Where the largest volume of each calibration falls (the paper's Stage 2 claim).
-
-    Returns
-    -------
-    dict
-        ``argmax_prevailing`` (index per calibration), ``on_calibration``
-        (count of calibrations whose largest volume is at p = q), ``total``.
-    """
-
-    argmax = np.argmax(volumes, axis=0)
-    on = int(np.sum(argmax == np.arange(volumes.shape[1])))
-    return {"argmax_prevailing": argmax.tolist(), "on_calibration": on, "total": int(volumes.shape[1])}
-
-
-def stage2_cases(
-    camera_spec: str = STAGE2_CAMERA,
-    skin: str = "skin",
-    munsell: str = "munsell",
-    illuminants: ArrayLike = TEMPERATURES_PAPER,
-    grid: WavelengthGrid = GRID_DEFAULT,
-) -> dict:
-    """Skin and Munsell one-calibration-case volumes per calibration (white) and their ratio (Fig. 7)."""
-    t = np.asarray(illuminants, dtype=np.float64)
-    cam = camera(camera_spec)
-    out = {}
-    for name, spec in (("skin", skin), ("munsell", munsell)):
-        values = reflectances(spec).on(grid)
-        out[name] = np.array([gamut_calibration(cam, values, q, t, "white", False, grid).volume for q in t])
-    out["ratio"] = out["skin"] / out["munsell"]
-    out["temperatures"] = t
-    return out
-
-
-def stage2_gamut_panels(
-    camera_spec: str = STAGE2_CAMERA,
-    reflectance: str = "munsell",
-    illuminants: ArrayLike = TEMPERATURES_PAPER,
-    grid: WavelengthGrid = GRID_DEFAULT,
-) -> list[dict]:
-    """
-    Fig. 6's data: Munsell responses (560nm normalisation with the knee) at
-    p = c (the fifth illuminant) and at the first illuminant balanced to the
-    fifth, each with its hull facets and volume (output units³).
-    """
-    t = np.asarray(illuminants, dtype=np.float64)
-    o = reflectances(reflectance).on(grid)
-    panels = []
-    for p, q in ((t[4], t[4]), (t[0], t[4])):
-        rgb = response(camera_spec, o, p, q, "560nm", True, grid)
-        result, _ = gamut_hull(rgb)
-        panels.append({"rgb": rgb, "simplices": None if result.degenerate else ConvexHull(rgb).simplices,
-                       "volume": result.volume, "label": f"prevailing {p:g} K, calibration {q:g} K"})
-    return panels
 
 
 def reproduce(
     directory: str | Path,
-    sensors: ArrayLike = SENSORS_PAPER,
+    sensors: ArrayLike | str = SENSORS_PAPER,
     positions: str | ArrayLike = "400:700:10",
     camera_spec: str = STAGE2_CAMERA,
     skin: str = "skin",
     munsell: str = "munsell",
     slope: float = 2.0,
-    grid: WavelengthGrid = GRID_DEFAULT,
+    grid: WavelengthGrid | str = "400:700:1",
     workers: int | None = None,
     dask=None,
     progress=sys.stderr,
+    illuminants: str = "paper",
+    stage1_camera: str | None = None,
+    extrapolation: str = "refuse",
+    observations: bool = True,
+    shared: str | Path | None = None,
+    figures: bool = True,
 ) -> dict:
     """
     Write the paper's Figs. 3–7 (PNG) and Tables 2–5 (Markdown, CSV) to ``directory``.
 
+    Every argument and the folder are checked before anything is written; the
+    results go to a temporary folder beside ``directory`` that is moved into
+    place at the end (an interrupted run leaves no folder that looks
+    complete). The Stage 2 figures are drawn in a thread while the worker
+    processes compute the triplet volumes.
+
     Parameters
     ----------
     directory
-        Output folder (created).
+        Output folder: new, empty, or an earlier ``reproduce`` folder (replaced).
     sensors
-        Sensor numbers of Tables 2–5 (1 = impulse).
+        Sensor numbers of Tables 2–5 (1 = impulse), a sequence or ``"1,3,5"``.
     positions
         Peak grid, nm (the paper's ``400:700:10``; a coarser one for a quick look).
     camera_spec
         The Stage 2 camera (Figs. 3–7).
     skin, munsell
-        Reflectance sets.
+        Reflectance sets (names or CSV paths).
+    slope
+        gbell slope *b* (the paper does not give it).
+    grid
+        Integration grid, ``START:END:STEP`` nm.
+    workers, dask
+        Processes (``None`` = every core) or a Dask scheduler.
     progress
         Stream for progress bars (``None`` for silence).
+    illuminants
+        ``paper``, ``auto`` (Stage 1 for ``stage1_camera``) or kelvin, comma-separated.
+    stage1_camera
+        The camera of ``auto`` (default: ``camera_spec``).
+    extrapolation
+        For reflectance sets that do not cover ``grid``: ``refuse``, ``zero``, ``constant``.
+    observations
+        Also recompute the paper's Stage 1 figures and Stage 2 observations
+        for every bundled camera and the DXC-930 (``stage1_text``,
+        ``stage2_by_camera``).
+    shared
+        The reference data folder (default ``../shared/data`` beside the checkout).
+    figures
+        Draw Figs. 3–7 (``False``: the tables only, ``stage2`` empty).
 
     Returns
     -------
     dict
-        ``artifacts`` (paths), ``stage2`` (per-normalisation observations),
-        ``tables`` (rows per sensor), ``search_s`` (seconds per sensor).
+        ``artifacts`` (paths), ``setting`` (the unknowns), ``illuminants_K``,
+        ``stage2`` (per-normalisation observations), ``tables`` (rows per
+        sensor), ``matches`` (``exact``, ``within_step``, ``total``),
+        ``matches_by_table``, ``matches_temperature`` (Tables 2–3 cells sharing
+        a calibration temperature, not part of ``matches``), ``search_s``
+        (seconds per sensor), ``elapsed_s`` and, with ``observations``,
+        ``stage1_text`` and ``stage2_by_camera``.
     """
 
-    directory = Path(directory)
-    (directory / "search").mkdir(parents=True, exist_ok=True)
-    temperatures = np.asarray(TEMPERATURES_PAPER, dtype=np.float64)
-    artifacts: list[Path] = []
-    stage2 = {}
-    for number, (normalization, knee) in zip((3, 4, 5), STAGE2_NORMALISATIONS):
-        volumes = stage2_pairs(camera_spec, munsell, normalization, knee, temperatures, grid)
-        stage2[normalization] = stage2_observation(volumes)
-        path = directory / f"fig{number}_{normalization}.png"
-        figure_pairs(volumes, temperatures,
-                      f"Fig. {number}: Munsell gamut per pair, {normalization}{' with knee' if knee else ''} "
-                      f"({camera_spec})", path)
-        artifacts.append(path)
-        np.savetxt(directory / f"fig{number}_{normalization}.csv", volumes, delimiter=",",
-                   header="rows: prevailing, columns: calibration (paper illuminants 1-10); output units^3")
-        artifacts.append(directory / f"fig{number}_{normalization}.csv")
-    path = directory / "fig6_gamuts.png"
-    figure_gamuts(stage2_gamut_panels(camera_spec, munsell, temperatures, grid),
-                  f"Fig. 6: Munsell gamuts, 560nm normalisation with knee ({camera_spec})", path)
-    artifacts.append(path)
-    cases = stage2_cases(camera_spec, skin, munsell, temperatures, grid)
-    path = directory / "fig7_cases.png"
-    figure_cases(cases, path)
-    artifacts.append(path)
+    start = time.perf_counter()
+    target = check_output(directory)
+    setting = Setting(slope, str(grid).replace(" nm", ""), str(skin), str(munsell), str(illuminants),
+                      camera_spec if stage1_camera is None else stage1_camera, extrapolation)
+    resolved = resolve_setting(setting)
+    chosen = check_sensors(sensors)
+    where = check_positions(positions, resolved.grid)
+    check_camera(camera_spec, resolved.grid, "--camera")
+    workers = check_workers(workers)
+    if dask is not None:
+        from ..extras import require
 
-    skin_values, munsell_values = reflectances(skin).on(grid), reflectances(munsell).on(grid)
-    rows: dict[float, dict] = {}
-    timings: dict[str, float] = {}
-    for sensor in sensors:
-        result = search(sensor, skin_values, munsell_values, positions, temperatures, slope, grid=grid,
-                        workers=workers, dask=dask, progress=progress, label=f"sensor {sensor:>2g}")
-        rows[float(sensor)] = table_rows(result)
-        timings[f"{sensor:g}"] = result.elapsed_s
-        path = directory / "search" / f"sensor_{sensor:g}.csv"
-        result.to_csv(path)
-        artifacts.append(path)
-    artifacts += write_tables(rows, directory)
-    return {
-        "artifacts": [str(p) for p in artifacts],
-        "stage2": stage2,
-        "tables": {f"{k:g}": v for k, v in rows.items()},
-        "search_s": timings,
-    }
+        require("dask", "--dask")
+
+    with output_folder(target) as folder:
+        (folder / "search").mkdir()
+        side: dict = {}
+
+        def stage2_and_observations() -> None:
+            try:
+                side["stage2"], side["artifacts"] = stage2_write(folder, camera_spec, setting.skin, setting.munsell,
+                                                                 resolved.temperatures, resolved.grid) \
+                    if figures else ({}, [])
+                if observations:
+                    with tempfile.TemporaryDirectory() as scratch:
+                        cameras = paper_cameras(scratch, shared)
+                        side["stage1_text"] = stage1_text(cameras)
+                        side["stage2_by_camera"] = stage2_by_camera(cameras, setting.munsell)
+            except BaseException as error:  # re-raised in the main thread
+                side["error"] = error
+
+        thread = threading.Thread(target=stage2_and_observations, name="skinrender-stage2", daemon=True)
+        try:
+            computed = setting_tables(resolved, chosen, where, VolumeCache(), workers, dask, progress, progress,
+                                      on_start=thread.start)
+        finally:
+            if thread.is_alive():  # also on an interrupt: let it finish writing before the folder goes
+                thread.join()
+        if "error" in side:
+            raise side["error"]
+        artifacts = list(side["artifacts"])
+        for sensor, result in computed["results"].items():
+            path = folder / "search" / f"sensor_{sensor:g}.csv"
+            result.to_csv(path)
+            artifacts.append(path)
+        artifacts += write_tables(computed["tables"], folder)
+        matches = computed["matches"]
+        document = {
+            "artifacts": [str(target / Path(p).relative_to(folder)) for p in artifacts] + [str(target / MANIFEST)],
+            "setting": setting.unknowns(),
+            "illuminants_K": resolved.temperatures.tolist(),
+            "stage2": side["stage2"],
+            "tables": {f"{k:g}": v for k, v in computed["tables"].items()},
+            "matches": {key: matches[key] for key in ("exact", "within_step", "total")},
+            "matches_by_table": matches["by_table"],
+            "matches_temperature": matches["temperatures"],
+            "search_s": computed["search_s"],
+            **({"stage1_text": side["stage1_text"], "stage2_by_camera": side["stage2_by_camera"]}
+               if observations else {}),
+        }
+        document["elapsed_s"] = time.perf_counter() - start
+        (folder / MANIFEST).write_text(json.dumps(document, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+    return document
+
+
+def summary_text(result: dict) -> str:
+    """The lines ``skinrender reproduce`` prints: files, matches, search times, Stage 2 per camera."""
+    matches = result["matches"]
+    lines = ["wrote:"] + [f"  {p}" for p in result["artifacts"]]
+    lines.append(f"matches with the paper's Tables 2–5: {matches['exact']} of {matches['total']} cells exactly, "
+                 f"{matches['within_step']} within 10 nm per peak")
+    lines += [f"  {key}: {v['exact']} exact, {v['within_step']} within 10 nm of {v['total']}"
+              for key, v in result["matches_by_table"].items()]
+    temperature = result["matches_temperature"]
+    lines.append(f"  Tables 2–3 cells sharing a calibration temperature with the paper's: "
+                 f"{temperature['shared']} of {temperature['total']} (not part of the counts above)")
+    searches = ", ".join(f"sensor {k}: {v:.1f} s" for k, v in result["search_s"].items())
+    lines.append(f"searches: {sum(result['search_s'].values()):.1f} s ({searches}); total {result['elapsed_s']:.1f} s")
+    for row in result.get("stage2_by_camera", []):
+        lines.append(f"Stage 2 as the paper says, {row['camera']}: {row['as_paper']} of {row['total']} calibrations "
+                     f"(largest gamut on the calibration: " + ", ".join(
+                         f"{n} {row[n]['on_calibration']}/{row[n]['total']}" for n, _ in STAGE2_NORMALISATIONS) + ")")
+    return "\n".join(lines)

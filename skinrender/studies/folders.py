@@ -1,0 +1,101 @@
+"""
+Output folders that are complete or absent
+==========================================
+
+``reproduce`` checks its output folder before it computes anything, writes
+into a hidden temporary folder beside it and moves that into place at the
+end: an interrupted or refused run leaves nothing that looks complete.
+
+-   :data:`MANIFEST`: the file that marks a finished ``reproduce`` folder.
+-   :func:`check_output`: refuse an unusable ``-o`` with one line naming it.
+-   :func:`output_folder`: a context manager yielding the temporary folder,
+    moved into place on success and removed on any failure (an interrupt
+    included).
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from contextlib import contextmanager
+from pathlib import Path
+
+from ..errors import SkinrenderError
+
+__all__ = ["MANIFEST", "check_output", "output_folder"]
+
+MANIFEST = "reproduce.json"
+"""Written last into every ``reproduce`` folder: an existing folder holding it may be replaced."""
+
+
+def check_output(directory, flag: str = "-o") -> Path:
+    """
+    The output folder, refused (:class:`SkinrenderError` naming ``flag``) when
+    it is empty text, an existing file, a non-empty folder that an earlier
+    ``reproduce`` did not write (it would be replaced), or under a file.
+    Whether its place is writable is tried by :func:`output_folder`.
+    """
+    if directory is None or not str(directory).strip():
+        raise SkinrenderError(f"{flag} must name an output folder, got {'' if directory is None else directory!r}")
+    target = Path(str(directory)).expanduser().absolute()
+    if target.exists() and not target.is_dir():
+        raise SkinrenderError(f"{flag} {directory}: an existing file, not a folder")
+    if target.is_dir() and any(target.iterdir()) and not (target / MANIFEST).is_file():
+        raise SkinrenderError(f"{flag} {directory}: a folder that holds other files (no {MANIFEST} of an earlier "
+                              "reproduce); name a new or empty folder")
+    for ancestor in target.parents:
+        if ancestor.exists():
+            if not ancestor.is_dir():
+                raise SkinrenderError(f"{flag} {directory}: {ancestor} is a file, not a folder")
+            break
+    return target
+
+
+@contextmanager
+def output_folder(target: Path, flag: str = "-o"):
+    """
+    Yield a new temporary folder beside ``target`` (``.NAME.partial-XXXX``);
+    on success it replaces ``target``, on any exception it is removed, as are
+    the parent folders this call created.
+    """
+    created = []
+    for ancestor in reversed(target.parents):
+        if not ancestor.exists():
+            created.append(ancestor)
+    try:
+        for folder in created:
+            folder.mkdir()
+        temporary = Path(tempfile.mkdtemp(prefix=f".{target.name}.partial-", dir=target.parent))
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(temporary, 0o777 & ~mask)  # mkdtemp's 0700 would outlive the move
+    except OSError as error:
+        _remove_created(created)
+        raise SkinrenderError(f"{flag} {target}: cannot write there ({error.strerror or error})") from None
+    try:
+        yield temporary
+        _move_into_place(temporary, target)
+    except BaseException:
+        shutil.rmtree(temporary, ignore_errors=True)
+        _remove_created(created)
+        raise
+
+
+def _remove_created(created: list[Path]) -> None:
+    for folder in reversed(created):
+        try:
+            folder.rmdir()
+        except OSError:
+            break
+
+
+def _move_into_place(temporary: Path, target: Path) -> None:
+    """``temporary`` becomes ``target``; a previous ``target`` (empty or an earlier run's) is removed."""
+    if not target.exists():
+        os.rename(temporary, target)
+        return
+    old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
+    os.rename(target, old / target.name)
+    os.rename(temporary, target)
+    shutil.rmtree(old, ignore_errors=True)

@@ -1,0 +1,80 @@
+"""Tests for :mod:`skinrender.studies.folders`: an output folder is complete or absent."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from skinrender.errors import SkinrenderError
+from skinrender.studies.folders import MANIFEST, check_output, output_folder
+
+
+class TestCheckOutput:
+    @pytest.mark.parametrize("bad", ["", "  ", None])
+    def test_empty_is_refused(self, bad):
+        with pytest.raises(SkinrenderError, match="^-o must name"):
+            check_output(bad)
+
+    def test_existing_file(self, tmp_path):
+        path = tmp_path / "file"
+        path.write_text("x")
+        with pytest.raises(SkinrenderError, match="^-o .*an existing file"):
+            check_output(path)
+
+    def test_under_a_file(self, tmp_path):
+        (tmp_path / "file").write_text("x")
+        with pytest.raises(SkinrenderError, match="is a file"):
+            check_output(tmp_path / "file" / "out")
+
+    def test_foreign_folder(self, tmp_path):
+        (tmp_path / "notes.txt").write_text("mine")
+        with pytest.raises(SkinrenderError, match="holds other files"):
+            check_output(tmp_path)
+
+    def test_new_empty_or_earlier_run(self, tmp_path):
+        assert check_output(tmp_path / "new") == tmp_path / "new"
+        assert check_output(tmp_path) == tmp_path
+        (tmp_path / MANIFEST).write_text("{}")
+        (tmp_path / "tables.md").write_text("old")
+        assert check_output(tmp_path) == tmp_path
+
+
+class TestOutputFolder:
+    def test_moved_into_place(self, tmp_path):
+        target = tmp_path / "a" / "b"
+        with output_folder(target) as folder:
+            assert folder.parent == target.parent and folder.name.startswith(".b.partial-")
+            assert not target.exists()
+            (folder / "x.txt").write_text("done")
+        assert (target / "x.txt").read_text() == "done"
+        assert sorted(os.listdir(tmp_path / "a")) == ["b"]
+
+    def test_replaces_an_earlier_run(self, tmp_path):
+        target = tmp_path / "out"
+        target.mkdir()
+        (target / MANIFEST).write_text("{}")
+        (target / "old.csv").write_text("old")
+        with output_folder(target) as folder:
+            (folder / "new.csv").write_text("new")
+        assert sorted(os.listdir(target)) == ["new.csv"]
+        assert os.listdir(tmp_path) == ["out"]
+
+    def test_failure_leaves_nothing(self, tmp_path):
+        target = tmp_path / "a" / "b"
+        with pytest.raises(KeyboardInterrupt):
+            with output_folder(target) as folder:
+                (folder / "half.csv").write_text("half")
+                raise KeyboardInterrupt
+        assert os.listdir(tmp_path) == []
+
+    def test_unwritable_place(self, tmp_path):
+        if os.geteuid() == 0:  # root writes anywhere but into /proc
+            target = "/proc/skinrender-not-here/out"
+        else:
+            locked = tmp_path / "locked"
+            locked.mkdir(mode=0o555)
+            target = locked / "out"
+        with pytest.raises(SkinrenderError, match="^-o .*cannot write there"):
+            with output_folder(check_output(target)):
+                pass
