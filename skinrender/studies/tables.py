@@ -183,6 +183,8 @@ def table1(
             difference = np.abs(rendered - ncc(model)).ravel()
             rows.append({"model": label, "case": case, "mean": float(difference.mean()),
                          "std": float(difference.std(ddof=1))})
-    return {"camera": cam.name, "patches": [chart.patches[i].name for i in keep], "rows": rows, "spp": spp}
+    used = next(iter(renders.values())).raw[0].spp  # multijitter rounds the count up
+    return {"camera": cam.name, "patches": [chart.patches[i].name for i in keep], "rows": rows, "spp": used,
+            "spp_requested": spp}
 
 
