@@ -246,3 +246,60 @@ def command_render_face(args: argparse.Namespace) -> None:
             f"{result.prevailing:g} K white-balanced to {result.calibration:g} K: {path} (+ {preview}, "
             f"label channel: {labels}), {result.spp} spp, {result.variant}, {result.seconds:.2f} s")
     emit(args, document, text)
+
+
+def command_detect_face(args: argparse.Namespace) -> None:
+    """
+    ``detect SCENE …`` for a face scene: render it (``--physics`` from the scene's default, ``direct``), classify
+    every pixel by the camera's analytic skin locus for the calibration's white balance (trained on ``--skin``'s
+    set), and score against the label channel: TPR over skin pixels, FPR over the props' pixels.
+    """
+    import numpy as np
+
+    from ..datasets import reflectances
+    from ..evaluation.locus import skin_locus
+    from ..model.chromaticity import ncc
+    from ..rendering.exr import write_png, write_preview
+    from ..rendering.face import render_face
+    from ..rendering.face_scene import load_face_scene
+    from ..studies.ladder import SCORED_MIN_OUTPUT
+
+    options = render_options(args)
+    output = check_output(args.output, "--output", (".png",))
+    check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
+    scene = flag("SCENE", load_face_scene, args.scene)
+    cam = camera_of(args)
+    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
+    _check_light(cam, temperatures)
+    skin = flag("--skin", reflectances, args.skin)
+    imaging = imaging_options(args)
+    physics = "noise" if imaging is not None else "direct"
+    print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
+    result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], None, physics,
+                         options["spp"], options["seed"], None, options["sampler"], options["variant"],
+                         channels=options["channels"],
+                         **({} if imaging is None else {"imager": imaging["imager_"], "exposure": imaging["exposure"],
+                                                       "illuminance": imaging["illuminance_lux"]}))
+    locus = skin_locus(cam, skin, calibration=temperatures["calibration"], boundary=args.boundary)
+    mask = locus.contains(ncc(np.maximum(result.image.astype(np.float64), 0.0))[..., :2])
+    scored = result.image.max(axis=-1) >= SCORED_MIN_OUTPUT  # as the ladder: too dark has no chromaticity
+    skin_pixels, prop_pixels = scored & (result.labels == 1), scored & (result.labels >= 2)
+    tpr = float(mask[skin_pixels].mean()) if skin_pixels.any() else None
+    fpr = float(mask[prop_pixels].mean()) if prop_pixels.any() else None
+    undefined = {**({} if tpr is not None else {"tpr": "no skin pixel in view"}),
+                 **({} if fpr is not None else {"fpr": "no prop pixel in view"})}
+    write_png(output, mask.astype(float))
+    preview = write_preview(output.with_name(output.stem + "_preview.png"), result.image)
+    per_label = [{"name": name, "id": ident, "is_skin": ident == 1,
+                  "detected_fraction": float(mask[scored & (result.labels == ident)].mean())
+                  if (scored & (result.labels == ident)).any() else None}
+                 for name, ident in result.label_names.items() if ident > 0]
+    document = {"scene": scene.name, "camera": cam.name, "prevailing_K": temperatures["prevailing"],
+                "calibration_K": temperatures["calibration"], "tpr": tpr, "fpr": fpr, "undefined": undefined,
+                "locus_degenerate": locus.degenerate, "mask_png": str(output), "preview_png": str(preview),
+                "per_patch": per_label, "labels": result.label_names, "physics": result.physics,
+                "scored_min_output": SCORED_MIN_OUTPUT, "boundary": args.boundary, "spp": result.spp, "spp_requested": options["spp"],
+                "variant": result.variant}
+    shown = lambda value: "undefined" if value is None else f"{value:.3f}"  # noqa: E731
+    rows = [[row["name"][:30], "skin" if row["is_skin"] else "", shown(row["detected_fraction"])] for row in per_label]
+    emit(args, document, table(rows, ["region", "", "detected"]) + f"\nTPR {shown(tpr)}, FPR {shown(fpr)}; mask {output}")

@@ -192,6 +192,10 @@ def command_validate(args: argparse.Namespace) -> None:
 
 
 def command_detect(args: argparse.Namespace) -> None:
+    from .face import command_detect_face, is_face_scene
+
+    if is_face_scene(args.scene):  # the label channel is the ground truth
+        return command_detect_face(args)
 
     from ..evaluation.detection import detect
     from ..datasets import reflectances

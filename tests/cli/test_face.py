@@ -106,3 +106,17 @@ class TestRenderFace:
         chart = tmp_path / "chart.toml"
         chart.write_text('columns = 1\n[[patch]]\nreflectance = "perfect"\n')
         assert not face.is_face_scene(str(chart)) and not face.is_face_scene(str(tmp_path / "none.toml"))
+
+
+def test_detect_on_the_face_scores_against_the_labels(tmp_path, capsys):
+    """``detect face``: TPR over lit skin pixels, FPR over the props, from the label channel."""
+    import json
+
+    from skinrender.cli import main
+
+    status = main(["detect", "face", "--camera", "gbell:9@450,540,610", "--prevailing", "2856", "--calibration",
+                   "5900", "--spp", "4", "-o", str(tmp_path / "mask.png"), "--json"])
+    document = json.loads(capsys.readouterr().out)
+    assert status == 0 and (tmp_path / "mask.png").is_file()
+    assert 0.5 < document["tpr"] <= 1.0 and 0.0 <= document["fpr"] < 0.5
+    assert document["labels"]["skin"] == 1 and len(document["per_patch"]) == len(document["labels"]) - 1
