@@ -9,7 +9,7 @@ import math
 import sys
 
 from ..errors import SkinrenderError
-from .common import (add_common, add_grid, add_search, check_output, flag,
+from .common import (add_common, add_grid, add_search, check_output, flag, imaging_options,
                      emit, grid_of)
 
 
@@ -28,20 +28,13 @@ def add_noisy(parser) -> None:
 
 def noisy_of(args: argparse.Namespace):
     """The :class:`~skinrender.design.noise_aware.NoisySetting` of the flags, or ``None`` without ``--imager``."""
-    if args.imager is None:
+    imaging = imaging_options(args)  # --imager, --illuminance and --exposure, checked as for renders
+    if imaging is None:
         return None
     from ..design.noise_aware import noisy_setting
-    from ..model.imager import imager
 
-    sensor = flag("--imager", imager, args.imager)
-    exposure = str(args.exposure).strip().lower()
-    if exposure != "auto":
-        try:
-            exposure = float(exposure)
-        except ValueError:
-            raise SkinrenderError(f"--exposure must be auto or seconds > 0, got {args.exposure!r}") from None
-    return flag("--imager", noisy_setting, sensor, args.illuminance, exposure, args.noise_calibration,
-                args.noise_samples, args.noise_seed)
+    return flag("--imager", noisy_setting, imaging["imager_"], imaging["illuminance_lux"], imaging["exposure"],
+                args.noise_calibration, args.noise_samples, args.noise_seed)
 
 
 def add_parsers(commands) -> None:
