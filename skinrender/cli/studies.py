@@ -35,7 +35,10 @@ def add_parsers(commands) -> None:
                         "values of the most telling unknowns combined; writes sweep.csv and sweep.md")
     p.add_argument("--sweep-positions", help="peak positions of the sweep (default: --positions; 400:700:20 for a "
                    "quick look)")
-    p.add_argument("--sweep-combine", type=int, default=3, help="how many unknowns the sweep combines (default 3)")
+    p.add_argument("--sweep-combine", type=int, default=3,
+                   help="how many unknowns the sweep combines, the most telling first (default 3)")
+    p.add_argument("--sweep-values", type=int, default=1,
+                   help="how many best values of each combined unknown are combined, beside the default (default 1)")
     add_search(p)
     add_common(p)
 
@@ -69,7 +72,8 @@ def command_reproduce(args: argparse.Namespace) -> None:
         base = Setting(args.slope, args.grid, args.skin, args.munsell, args.illuminants,
                        args.stage1_camera or args.camera, args.extrapolation)
         result = reproduce_sweep(args.output, args.sensors, args.sweep_positions or args.positions, base,
-                                 combine=args.sweep_combine, workers=args.workers, dask=args.dask, progress=progress)
+                                 combine=args.sweep_combine, values_per_unknown=args.sweep_values,
+                                 workers=args.workers, dask=args.dask, progress=progress)
         rows = [[r["setting"], r["unknown"], f"{r['exact']}/{r['total']}", str(r["within_step"]), f"{r['seconds']:.1f}"]
                 for r in result["sweep"]]
         text = (table(rows, ["setting", "changed", "exact", "within 10 nm", "s"])

@@ -30,6 +30,7 @@ import time
 from pathlib import Path
 
 from ..design.bank import SENSORS_PAPER
+from ..errors import SkinrenderError
 from ..hints import ArrayLike
 from .folders import MANIFEST, check_output, output_folder
 from .observations import paper_cameras, shared_file
@@ -105,7 +106,7 @@ def sweep(
     positions: str | ArrayLike = "400:700:10",
     base: Setting = SETTING_DEFAULT,
     combine: int = 3,
-    values_per_unknown: int = 2,
+    values_per_unknown: int = 1,
     workers: int | None = None,
     dask=None,
     progress=None,
@@ -126,7 +127,10 @@ def sweep(
         How many unknowns to combine (the most telling: the largest gain in
         exact, then within-step matches, over ``base``); 0 for none.
     values_per_unknown
-        The best values of each combined unknown that are combined.
+        How many of the best values of each combined unknown are combined;
+        each combined unknown also keeps its ``base`` value, so that the
+        pairs and the triple of the best values are tried (with 1 and three
+        unknowns: four settings).
     candidates
         Unknown → values to try instead of :func:`sweep_candidates` (tests).
 
@@ -143,6 +147,7 @@ def sweep(
     start = time.perf_counter()
     chosen = check_sensors(sensors)
     workers = check_workers(workers)
+    _check_combine(combine, values_per_unknown)
     cache = VolumeCache()
     rows: list[dict] = []
     done: dict[Setting, dict] = {}
@@ -174,9 +179,9 @@ def sweep(
             for value in candidates.get(unknown, []):
                 run(with_unknown(base, unknown, value), unknown)
         ranked = _rank(rows, default)
-        combined = [u for u in ranked if any(r["unknown"] == u for r in rows)][:max(0, int(combine))]
+        combined = [u for u in ranked if any(r["unknown"] == u for r in rows)][:combine]
         if len(combined) >= 2:
-            best = {u: _best_values(done, u, values_per_unknown) for u in combined}
+            best = {u: [_value(base, u)] + _best_values(done, u, base, values_per_unknown) for u in combined}
             for values in itertools.product(*(best[u] for u in combined)):
                 setting = base
                 for unknown, value in zip(combined, values):
@@ -186,6 +191,12 @@ def sweep(
                     run(setting, "+".join(changed))
     return {"sweep": rows, "combined": combined, "notes": notes, "positions": str(positions),
             "sensors": chosen, "volumes_computed": cache.computed, "elapsed_s": time.perf_counter() - start}
+
+
+def _check_combine(combine, values_per_unknown) -> None:
+    for flag, value, low in (("--sweep-combine", combine, 0), ("--sweep-values", values_per_unknown, 1)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < low:
+            raise SkinrenderError(f"{flag} must be an integer ≥ {low}, got {value!r}")
 
 
 def _rank(rows: list[dict], default: dict) -> list[str]:
@@ -198,13 +209,13 @@ def _rank(rows: list[dict], default: dict) -> list[str]:
     return sorted(UNKNOWNS, key=key, reverse=True)
 
 
-def _best_values(done: dict[Setting, dict], unknown: str, count: int) -> list:
-    """The ``count`` values of ``unknown`` with the most matches (the default's value among them if it ranks)."""
-    mine = [(row, setting) for setting, row in done.items() if row["unknown"] in (unknown, "default")]
+def _best_values(done: dict[Setting, dict], unknown: str, base: Setting, count: int) -> list:
+    """The ``count`` values of ``unknown`` other than ``base``'s with the most matches (ties: the order tried)."""
+    mine = [(row, setting) for setting, row in done.items() if row["unknown"] == unknown]
     out = []
-    for _, setting in sorted(mine, key=lambda item: _score(item[0]), reverse=True):  # stable: default first on ties
+    for _, setting in sorted(mine, key=lambda item: _score(item[0]), reverse=True):
         value = _value(setting, unknown)
-        if value not in out:
+        if value not in out and value != _value(base, unknown):
             out.append(value)
     return out[:max(1, count)]
 
@@ -257,6 +268,7 @@ def reproduce_sweep(directory: str | Path, sensors: ArrayLike | str = SENSORS_PA
     check_sensors(sensors)
     check_positions(positions, resolve_setting(base).grid)
     check_workers(options.get("workers"))
+    _check_combine(options.get("combine", 3), options.get("values_per_unknown", 1))
     with output_folder(target) as folder:
         result = sweep(sensors, positions, base, **options)
         artifacts = write_sweep(result, folder)

@@ -6,11 +6,12 @@ import numpy as np
 import pytest
 
 import skinrender as sr
-from skinrender.design.bank import positions_grid, sensor_bank
+from skinrender.design.bank import positions_grid, sensor_bank, triplets
 from skinrender.design.search import search
 from skinrender.errors import SkinrenderError
 from skinrender.spectra import GRID_DEFAULT
-from skinrender.studies.volumes import VolumeCache, bank_key, check_workers, compute_volumes, search_result
+from skinrender.studies.volumes import (VolumeCache, bank_key, check_workers, chunk_gains, compute_volumes,
+                                        search_result)
 
 POSITIONS = "400:700:50"  # 7 positions, 35 triplets
 
@@ -46,6 +47,16 @@ class TestComputeVolumes:
         result = search_result(9, 2.0, positions_grid(POSITIONS), reference.temperatures, volumes[(9, "skin")],
                                volumes[(9, "munsell")], 0.0, 1)
         assert result.table() == reference.table()
+
+
+class TestChunkGains:
+    @pytest.mark.parametrize("sensor", [1, 9])
+    def test_equal_to_the_banks_gains_to_the_bit(self, sets, sensor):
+        bank = banks_of(sets, (sensor,))[(sensor, "munsell")]
+        index = triplets(bank.positions.size)
+        gains = chunk_gains(bank, index)
+        for row, triplet in enumerate(index):
+            np.testing.assert_array_equal(gains[row], bank.gains(triplet))
 
 
 class TestVolumeCache:
