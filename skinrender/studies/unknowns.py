@@ -239,8 +239,8 @@ def setting_tables(
                                          resolved.grid)
             pair.append(key)
         keys[float(sensor)] = pair
-    finished = cache.ensure(banks, workers=workers, dask=dask, progress=progress, label=s.label(), notice=notice,
-                            on_start=on_start)
+    finished = cache.ensure(banks, workers=workers, dask=dask, progress=progress, label=f"tables, {s.label()}",
+                            notice=notice, on_start=on_start)
     results, tables, timings, previous = {}, {}, {}, 0.0
     for sensor, (skin_key, munsell_key) in keys.items():
         done = max([finished.get(skin_key, 0.0), finished.get(munsell_key, 0.0)])
