@@ -32,10 +32,10 @@ def add_parsers(commands) -> None:
             p.add_argument("--gamut", action="store_true",
                            help="also render the chart under every paper illuminant and compare its gamut volumes "
                            "(one calibration case each, and all calibrations) with the analytic ones")
-        if name == "render":
-            from .face import add_face_arguments
+        from .face import add_face_arguments
 
-            add_face_arguments(p)
+        add_face_arguments(p)
+        if name == "render":
             p.add_argument("-o", "--output", default="render.exr",
                            help="output EXR (float32, Eq. 4 output units, channels named by the camera); "
                            "a PNG preview is written beside it")
@@ -149,7 +149,14 @@ def command_render(args: argparse.Namespace) -> None:
 
 def command_validate(args: argparse.Namespace) -> None:
     from ..rendering.validation import SIGMAS, validate
+    from .face import is_face_scene
 
+    if is_face_scene(args.scene):  # the face: the analytic limits that hold at its level of physics
+        from .face_validation import command_validate_face
+
+        return command_validate_face(args)
+    if args.physics != "direct" or args.skin is not None or args.size is not None:
+        raise SkinrenderError("--physics, --skin and --size go with a face scene (e.g. 'face'), not a chart")
     options = render_options(args)
     inputs = render_inputs(args)
     imaging = imaging_options(args)
