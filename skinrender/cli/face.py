@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, HELP_ILLUMINANT, SPP_MAX, add_common, camera_of, check_output, check_seed,
                      choices_help, emit, flag, imaging_options, render_options, table)
 
-__all__ = ["add_parsers", "add_face_arguments", "is_face_scene", "command_ladder", "command_render_face",
+__all__ = ["add_parsers", "add_face_arguments", "check_figure", "is_face_scene", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
 
 SIZE_MAX = 2000
@@ -77,6 +78,9 @@ def add_parsers(commands) -> None:
                    "the scene's); only the noise level sees it")
     p.add_argument("--variant",
                    help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral)")
+    p.add_argument("--plot", metavar="PNG",
+                   help="write the ladder's figure to this PNG: per level the render, the label mask, the "
+                   "detected mask and the skin pixels' NCC over the analytic skin locus")
     add_common(p)
 
 
@@ -110,6 +114,17 @@ def _check_light(cam, temperatures: dict) -> None:
         flag(f"--{name}", response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
 
 
+def check_figure(args: argparse.Namespace, *taken) -> Path | None:
+    """
+    ``--figure`` checked before any work (:func:`~skinrender.cli.common.check_output`, a ``.png``), and refused
+    when it is one of the command's other outputs ``taken``; ``None`` when the flag is not given.
+    """
+    figure = check_output(getattr(args, "figure", None), "--figure", (".png",))
+    if figure is not None and any(figure.resolve() == Path(other).resolve() for other in taken):
+        raise SkinrenderError(f"--figure: {figure} is also another output of the command; name another PNG")
+    return figure
+
+
 def is_face_scene(spec: str) -> bool:
     """Whether a ``render`` SCENE is a face scene: bundled, or a TOML with ``[camera]`` and ``[mesh]``."""
     import tomllib
@@ -136,6 +151,7 @@ def command_ladder(args: argparse.Namespace) -> None:
     from ..rendering.variants import VARIANTS_SPECTRAL
     from ..studies.ladder import ladder
 
+    plot = check_output(getattr(args, "plot", None), "--plot", (".png",))
     cam = camera_of(args)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
     _check_light(cam, temperatures)
@@ -172,6 +188,8 @@ def command_ladder(args: argparse.Namespace) -> None:
                     seed, size, scene, args.variant, imager=args.imager, illuminance=lux,
                     progress=lambda line: print(line, file=sys.stderr))
     document = result.document()
+    if plot is not None:
+        document["plot"] = str(result.figure(plot))
 
     def triple(values) -> str:
         return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
@@ -184,7 +202,8 @@ def command_ladder(args: argparse.Namespace) -> None:
     text = (f"the face ({result.skin}) through {result.camera}, {result.prevailing:g} K balanced to "
             f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px; Eq. 4's skin NCC "
             f"{triple(result.skin_ncc_analytic)}:\n"
-            + table(rows, ["level", "s", "spp", "skin NCC r g b", "std r g b", "TPR", "FPR"]))
+            + table(rows, ["level", "s", "spp", "skin NCC r g b", "std r g b", "TPR", "FPR"])
+            + (f"\nfigure: {plot}" if plot is not None else ""))
     emit(args, document, text)
 
 
@@ -202,6 +221,7 @@ def command_render_face(args: argparse.Namespace) -> None:
     options = render_options(args)
     output = check_output(getattr(args, "output", None) or "render.exr", "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
+    figure = check_figure(args, output.with_suffix(".png"))
     scene = flag("SCENE", load_face_scene, args.scene)
     cam = camera_of(args)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
@@ -241,6 +261,12 @@ def command_render_face(args: argparse.Namespace) -> None:
                 "knee": bool(getattr(args, "knee", False)),
                 "labels": result.label_names, "physics": result.physics, "skin": result.skin,
                 "size": [result.scene.camera.width, result.scene.camera.height], **result.info}
+    if figure is not None:
+        from ..studies.figures import figure_face
+
+        title = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
+                 f"{result.prevailing:g} K balanced to {result.calibration:g} K\n{result.spp} spp; the labels outlined")
+        document["figure"] = str(figure_face(result.image, result.labels, result.label_names, title, figure))
     labels = ", ".join(f"{k}={v}" for k, v in result.label_names.items())
     text = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
             f"{result.prevailing:g} K white-balanced to {result.calibration:g} K: {path} (+ {preview}, "
@@ -267,6 +293,7 @@ def command_detect_face(args: argparse.Namespace) -> None:
     options = render_options(args)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
+    figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
     scene = flag("SCENE", load_face_scene, args.scene)
     cam = camera_of(args)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
@@ -301,5 +328,15 @@ def command_detect_face(args: argparse.Namespace) -> None:
                 "scored_min_output": SCORED_MIN_OUTPUT, "boundary": args.boundary, "spp": result.spp, "spp_requested": options["spp"],
                 "variant": result.variant}
     shown = lambda value: "undefined" if value is None else f"{value:.3f}"  # noqa: E731
+    if figure is not None:
+        from ..studies.figures import figure_face
+
+        title = (f"{scene.name} through {cam.name}, {result.prevailing:g} K balanced to {result.calibration:g} K "
+                 f"({result.physics}, {result.spp} spp): TPR {shown(tpr)}, FPR {shown(fpr)}\n"
+                 f"detected: inside the analytic skin locus, scored pixels (brightest channel ≥ "
+                 f"{SCORED_MIN_OUTPUT:g})")
+        document["figure"] = str(figure_face(result.image, result.labels, result.label_names, title, figure,
+                                             mask & scored))
     rows = [[row["name"][:30], "skin" if row["is_skin"] else "", shown(row["detected_fraction"])] for row in per_label]
-    emit(args, document, table(rows, ["region", "", "detected"]) + f"\nTPR {shown(tpr)}, FPR {shown(fpr)}; mask {output}")
+    emit(args, document, table(rows, ["region", "", "detected"]) + f"\nTPR {shown(tpr)}, FPR {shown(fpr)}; mask {output}"
+         + (f"; figure {figure}" if figure is not None else ""))

@@ -12,6 +12,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, HELP_ILLUMINANT, imaging_options, add_common, camera_of, add_grid, add_model, add_render, check_output,
                      choices_help, emit, flag, grid_of, render_options, table)
+from .face import check_figure
 
 
 def add_parsers(commands) -> None:
@@ -39,6 +40,9 @@ def add_parsers(commands) -> None:
             p.add_argument("-o", "--output", default="render.exr",
                            help="output EXR (float32, Eq. 4 output units, channels named by the camera); "
                            "a PNG preview is written beside it")
+            p.add_argument("--figure", metavar="PNG",
+                           help="also write a labelled figure: a chart upscaled with each patch's name on it "
+                           "(skin patches outlined), a face with its labels outlined")
         add_common(p)
 
     p = commands.add_parser("detect", help="skin detection on a rendered chart with the camera's skin locus")
@@ -49,6 +53,10 @@ def add_parsers(commands) -> None:
     p.add_argument("--boundary", choices=list(BOUNDARIES), default="hull", help="locus boundary: " + choices_help(BOUNDARIES))
     p.add_argument("--skin", default="skin", help="skin set the locus is trained on (default skin)")
     p.add_argument("-o", "--output", default="detect.png", help="mask PNG (a preview PNG is written beside it)")
+    p.add_argument("--figure", metavar="PNG",
+                   help="also write a labelled figure: a chart with its patch names over the render and over "
+                   "the detection mask with each patch's detected fraction; a face with the detected skin over it "
+                   "and its labels outlined, TPR and FPR in the title")
     add_render(p)
     add_common(p)
 
@@ -119,6 +127,7 @@ def command_render(args: argparse.Namespace) -> None:
     options = render_options(args)
     output = check_output(args.output, "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
+    figure = check_figure(args, output.with_suffix(".png"))
     inputs = render_inputs(args)
     imaging = imaging_options(args)
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
@@ -141,9 +150,11 @@ def command_render(args: argparse.Namespace) -> None:
                 "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
                 "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged)}
+    if figure is not None:
+        document["figure"] = str(chart_figure(result, figure))
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "
             f"{result.calibration:g} K: {output} (+ {preview}), {spp} spp, {result.variant}, "
-            f"{result.seconds:.2f} s")
+            f"{result.seconds:.2f} s" + (f"; figure {figure}" if figure is not None else ""))
     emit(args, document, text)
 
 
@@ -212,6 +223,7 @@ def command_detect(args: argparse.Namespace) -> None:
     options = render_options(args)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
+    figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
     inputs = render_inputs(args)
     imaging = imaging_options(args)
     skin = flag("--skin", reflectances, args.skin)
@@ -230,9 +242,32 @@ def command_detect(args: argparse.Namespace) -> None:
                 "variant": rendering.variant, **imaging_document(imaged)}
     rows = [[p["name"][:30], "skin" if p["is_skin"] else "", f"{p['detected_fraction']:.2f}"] for p in result.per_patch]
     rate = lambda value, key: "undefined (" + result.undefined[key] + ")" if value is None else f"{value:.3f}"  # noqa: E731
+    if figure is not None:
+        document["figure"] = str(chart_figure(rendering, figure, result,
+                                              f"TPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}"))
     text = (table(rows, ["patch", "", "detected"])
-            + f"\nTPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}; mask {output}")
+            + f"\nTPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}; mask {output}"
+            + (f"; figure {figure}" if figure is not None else ""))
     emit(args, document, text)
+
+
+def chart_figure(rendering, path, detection=None, rates: str = ""):
+    """
+    The labelled figure of a chart render (:func:`~skinrender.studies.figures.figure_chart`): its patch names
+    and boxes from the scene, and with a ``detection`` its mask and each patch's detected fraction.
+    """
+    from ..studies.figures import figure_chart
+
+    chart = rendering.scene
+    boxes = [chart.patch_box(i) for i in range(len(chart.patches))]
+    names = [patch.name for patch in chart.patches]
+    skin = [patch.skin for patch in chart.patches]
+    title = (f"{chart.name} through {rendering.camera.name}, {rendering.prevailing:g} K white-balanced to "
+             f"{rendering.calibration:g} K, {rendering.raw[0].spp} spp")
+    if detection is None:
+        return figure_chart(rendering.image, boxes, names, skin, title, path)
+    fractions = [p["detected_fraction"] for p in detection.per_patch] + [None]  # the white reference: not scored
+    return figure_chart(rendering.image, boxes, names, skin, f"{title}: {rates}", path, detection.mask, fractions)
 
 
 def validate_through_imager(args: argparse.Namespace, inputs: dict, options: dict, imaging: dict) -> None:

@@ -13,6 +13,12 @@ computation happens elsewhere and hands arrays here.
 -   :func:`figure_ptc`: a photon transfer curve (variance against mean, DN).
 -   :func:`figure_locus`: a skin locus with its training chromaticities and the
     Planckian track.
+-   :func:`figure_chart`: a chart render with its patch names (and the
+    detection mask with each patch's detected fraction).
+-   :func:`figure_face`: a face render with its labels outlined (and the
+    detected skin over it).
+-   :func:`figure_ladder`: the physics ladder, one row per level.
+-   :func:`display_srgb`: how renders are shown (camera RGB as sRGB).
 
 Every function writes a PNG (Agg backend, no display needed) and returns its
 path. Units are those of the data: volumes in output units³, chromaticities
@@ -31,7 +37,8 @@ import numpy as np
 
 from ..hints import NDArrayFloat
 
-__all__ = ["figure_pairs", "figure_gamuts", "figure_cases", "figure_render_curve", "figure_locus", "figure_ptc"]
+__all__ = ["figure_pairs", "figure_gamuts", "figure_cases", "figure_render_curve", "figure_locus", "figure_ptc",
+           "figure_chart", "figure_face", "figure_ladder", "display_srgb"]
 
 DPI = 110
 """Resolution of every figure, dots per inch."""
@@ -47,10 +54,15 @@ def _pyplot():
     return plt
 
 
-def _save(figure, path: str | Path) -> Path:
+def _save(figure, path: str | Path, legend: dict | None = None) -> Path:
+    """Lay out, write and close a figure; ``legend``: a figure legend's keywords, put below the panels."""
     path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
     figure.tight_layout()
-    figure.savefig(path, dpi=DPI)
+    if legend is not None:
+        figure.legend(**{"loc": "upper center", "bbox_to_anchor": (0.5, 0.0), "fontsize": 8, "frameon": False,
+                         **legend})
+    figure.savefig(path, dpi=DPI, **({} if legend is None else {"bbox_inches": "tight"}))
     _pyplot().close(figure)
     return path
 
@@ -152,3 +164,173 @@ def figure_ptc(result: dict, path: str | Path) -> Path:
              title=f"Photon transfer: {result['camera']} through {result['imager']}")
     axis.legend(fontsize=7)
     return _save(figure, path)
+
+
+def display_srgb(image: NDArrayFloat, scale: float = 255.0) -> NDArrayFloat:
+    """
+    A display of white-balanced camera RGB: ``image / scale`` clipped to [0, 1], then the sRGB transfer curve.
+
+    The camera's channels are shown as if they were sRGB's (no colour matrix): "sRGB-ish", for looking at, not
+    for colour measurement. ``image`` in output units (Eq. 4, white = ``scale``), shape ``(..., 3)``.
+
+    Examples
+    --------
+    >>> display_srgb(np.array([[0.0, 255.0, 1000.0]])).round(3).tolist()
+    [[0.0, 1.0, 1.0]]
+    """
+    linear = np.clip(np.nan_to_num(np.asarray(image, dtype=np.float64) / scale), 0.0, 1.0)
+    return np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
+
+
+def _wrap(name: str, width: int = 13) -> str:
+    """A patch name broken into lines of about ``width`` characters, at spaces."""
+    import textwrap
+
+    return "\n".join(textwrap.wrap(name.replace(" -- ", " – ").replace(" - ", " – "), width)) or name
+
+
+def figure_chart(image: NDArrayFloat, boxes: list, names: list, skin: list, title: str, path: str | Path,
+                 mask: NDArrayFloat | None = None, fractions: list | None = None) -> Path:
+    """
+    A chart render a person can read: each patch's name written on it (skin patches outlined), and with ``mask``
+    a second panel of the detection mask (white: inside the skin locus) with each patch's detected fraction.
+
+    ``image``: ``(h, w, 3)`` output units (shown by :func:`display_srgb`, upscaled nearest); ``boxes``: pixel
+    ``(x0, y0, x1, y1)`` per patch (end exclusive); ``names``, ``skin`` (bools) and ``fractions`` (0–1 or
+    None) per patch.
+    """
+    plt = _pyplot()
+    from matplotlib.patches import Rectangle
+
+    shown = display_srgb(image)
+    height, width = shown.shape[:2]
+    columns = max(1, round(width / max(b[2] - b[0] + 1 for b in boxes)))
+    panels = [("render (camera RGB shown as sRGB" + ("; dashed orange: the skin patches)" if any(skin) else ")"),
+               shown)]
+    if mask is not None:
+        panels.append(("detected: inside the skin locus (white)", np.repeat(np.asarray(mask, float)[..., None], 3, -1)))
+    inch = 1.45 * columns / width  # inches per pixel: a patch column is about 1.45 in wide
+    figure, axes = plt.subplots(len(panels), 1, figsize=(inch * width + 0.4, len(panels) * inch * height + 0.9),
+                                squeeze=False)
+    for k, (axis, (label, picture)) in enumerate(zip(axes[:, 0], panels)):
+        axis.imshow(picture, interpolation="nearest", extent=(0, width, height, 0))
+        axis.set_title(f"{title}\n{label}" if k == 0 else label, fontsize=10)
+        axis.axis("off")
+        for i, (x0, y0, x1, y1) in enumerate(boxes):
+            cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+            text = _wrap(names[i])
+            if picture is not shown and fractions is not None and fractions[i] is not None:
+                text += f"\n{100 * fractions[i]:.0f} % detected"
+            axis.text(cx, cy, text, ha="center", va="center", fontsize=8.5, color="black", linespacing=1.1,
+                      bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.85})
+            if skin[i]:
+                axis.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, ec="tab:orange", lw=2, ls="--"))
+    return _save(figure, path)
+
+
+_LABEL_COLOURS = ("tab:blue", "tab:purple", "tab:cyan", "tab:olive", "tab:pink", "tab:brown", "tab:gray")
+"""Outline colours of the props' labels (skin is outlined in white)."""
+
+
+def figure_face(image: NDArrayFloat, labels: NDArrayFloat, label_names: dict, title: str, path: str | Path,
+                mask: NDArrayFloat | None = None) -> Path:
+    """
+    A face render with its ground-truth labels outlined (skin white, each prop its colour) and, with ``mask``,
+    the detected pixels over it: green where the label is skin (true positives), red on props (false
+    positives), yellow on the background.
+
+    ``image``: ``(h, w, 3)`` output units (:func:`display_srgb`); ``labels``: ``(h, w)`` ints (0 background,
+    1 skin, 2… props, named by ``label_names`` ``{name: id}``); ``mask``: ``(h, w)`` bools.
+    """
+    plt = _pyplot()
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    shown = display_srgb(image)
+    labels = np.asarray(labels)
+    panels = [("render (camera RGB shown as sRGB)", shown, False)]
+    if mask is not None:
+        panels.append(("detected skin over the render", 0.55 * shown + 0.2, True))
+    figure, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 5.8), squeeze=False)
+    handles = {}
+    for axis, (label, picture, overlay) in zip(axes[0], panels):
+        axis.imshow(picture, interpolation="nearest")
+        if overlay:
+            tint = np.zeros((*labels.shape, 4))
+            for ident, colour in ((1, (0.1, 0.9, 0.1)), (0, (1.0, 0.9, 0.0))):
+                tint[np.asarray(mask) & (labels == ident)] = (*colour, 0.75)
+            tint[np.asarray(mask) & (labels >= 2)] = (0.95, 0.1, 0.1, 0.85)
+            axis.imshow(tint, interpolation="nearest")
+        for k, (name, ident) in enumerate((n, i) for n, i in label_names.items() if i > 0):
+            colour = "white" if ident == 1 else _LABEL_COLOURS[k % len(_LABEL_COLOURS)]
+            if (labels == ident).any():
+                axis.contour(labels == ident, levels=[0.5], colors=[colour], linewidths=1.2)
+                handles[name] = Line2D([], [], color=colour, lw=2, label=f"label: {name}")
+        axis.set_title(label, fontsize=10)
+        axis.set_xticks([])
+        axis.set_yticks([])
+    handles = list(handles.values())
+    if mask is not None:
+        handles += [Patch(color=(0.1, 0.9, 0.1), label="detected on skin"), Patch(color=(0.95, 0.1, 0.1),
+                    label="detected on a prop"), Patch(color=(1.0, 0.9, 0.0), label="detected on background")]
+    figure.suptitle(title, fontsize=11)
+    legend = {"handles": handles, "ncol": 3 if mask is not None else 2, "frameon": True, "facecolor": "0.7"}
+    return _save(figure, path, legend if handles else None)  # a grey ground: the skin's outline is white
+
+
+def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFloat, title: str,
+                  path: str | Path, label_names: dict | None = None) -> Path:
+    """
+    The physics ladder: one row per level with the render, its label mask, the detected mask and the skin
+    pixels' NCC (r, g) over the analytic skin locus.
+
+    ``levels``: ``{"name", "image" (h, w, 3) output units, "labels" (h, w) ints, "detected" (h, w) bools
+    (scored pixels inside the locus), "skin_rg" (N, 2) and "prop_rg" (M, 2) NCC of the scored skin and prop
+    pixels, "tpr", "fpr" (fractions or None), "seconds", "spp"}``; ``polygon``: the locus, closed or not,
+    ``(K, 2)``; ``analytic``: Eq. 4's skin NCC ``(r, g, …)``; ``label_names``: ``{name: id}`` for the labels'
+    legend.
+    """
+    plt = _pyplot()
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    closed = np.vstack([polygon, polygon[:1]])
+    points = np.vstack([analytic[None, :2], *[np.asarray(v[key]).reshape(-1, 2) for v in levels
+                                             for key in ("skin_rg", "prop_rg")]])
+    low = np.minimum(closed.min(axis=0), np.percentile(points, 0.5, axis=0))
+    high = np.maximum(closed.max(axis=0), np.percentile(points, 99.5, axis=0))
+    pad = 0.05 * (high - low).max() + 0.005
+    colours = ["black", "tab:orange", *_LABEL_COLOURS]
+    names = {0: "background", **{i: n for n, i in (label_names or {}).items() if i > 0}}
+    labels_max = max(int(np.asarray(v["labels"]).max()) for v in levels)
+    cmap = ListedColormap([colours[i % len(colours)] for i in range(max(labels_max, *names) + 1)])
+    figure, axes = plt.subplots(len(levels), 4, figsize=(12, 3.0 * len(levels) + 0.6), squeeze=False)
+    shown = lambda v: "—" if v is None else f"{v:.3f}"  # noqa: E731
+    for row, level in zip(axes, levels):
+        labels = np.asarray(level["labels"])
+        row[0].imshow(display_srgb(level["image"]), interpolation="nearest")
+        row[0].set_ylabel(level["name"].replace("+", "+\n"), fontsize=10)
+        row[0].set_title(f"render, {level['spp']} spp, {level['seconds']:.1f} s", fontsize=9)
+        row[1].imshow(labels, cmap=cmap, vmin=-0.5, vmax=cmap.N - 0.5, interpolation="nearest")
+        row[1].set_title("labels (the ground truth)", fontsize=9)
+        row[2].imshow(np.asarray(level["detected"]), cmap="gray", vmin=0, vmax=1, interpolation="nearest")
+        row[2].set_title(f"detected: TPR {shown(level['tpr'])}, FPR {shown(level['fpr'])}", fontsize=9)
+        for axis in row[:3]:
+            axis.set_xticks([])
+            axis.set_yticks([])
+        row[3].plot(*np.asarray(level["prop_rg"]).reshape(-1, 2).T, ".", ms=1.5, color="tab:blue", alpha=0.4,
+                    label="prop pixels")
+        row[3].plot(*np.asarray(level["skin_rg"]).reshape(-1, 2).T, ".", ms=1.5, color="tab:orange", alpha=0.5,
+                    label="skin pixels")
+        row[3].plot(*closed.T, "-", color="tab:red", lw=1.2, label="analytic skin locus")
+        row[3].plot(analytic[0], analytic[1], "k+", ms=10, mew=2, label="Eq. 4's skin")
+        row[3].set(xlim=(low[0] - pad, high[0] + pad), ylim=(low[1] - pad, high[1] + pad))
+        row[3].set_xlabel("NCC r", fontsize=8)
+        row[3].set_ylabel("NCC g", fontsize=8)
+        row[3].tick_params(labelsize=7)
+    legend = axes[0, 3].legend(fontsize=7, loc="lower left", framealpha=0.8)
+    for handle in legend.legend_handles[:2]:
+        handle.set_markersize(6)
+    handles = [Patch(color=cmap(i), label=names.get(i, f"label {i}")) for i in range(cmap.N)]
+    figure.suptitle(title, fontsize=11)
+    return _save(figure, path, {"handles": handles, "ncol": min(len(handles), 6), "title": "labels"})

@@ -8,7 +8,8 @@ detection: the skin pixels' NCC against Eq. 4's, and the true- and
 false-positive rates of the camera's analytic skin locus on the rendered
 pixels.
 
--   :func:`ladder`, :class:`Ladder`: the study.
+-   :func:`ladder`, :class:`Ladder`: the study; :meth:`Ladder.figure` draws it
+    (renders, label masks, detected masks, NCC over the locus).
 -   :data:`LEVELS_DEFAULT`: ``direct``, each effect alone, then all together.
 
 Scoring: a pixel is scored when its brightest channel reaches
@@ -28,6 +29,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -67,6 +69,15 @@ class Ladder:
     skin_ncc_analytic
         Eq. 4's NCC of the skin (prevailing = the key light, white balanced to
         the calibration), ``[r, g, b]``.
+    frames
+        One dict of arrays per level (not in :meth:`document`): ``image``
+        ``(h, w, 3)`` output units, ``labels`` ``(h, w)`` ints, ``scored``
+        and ``detected`` ``(h, w)`` bools (detected: scored and inside the
+        locus), ``ncc`` ``(h, w, 3)``.
+    locus_polygon
+        The analytic skin locus, ``(K, 2)`` NCC (r, g).
+    label_names
+        ``{name: label}`` of the face scene.
     """
 
     camera: str
@@ -78,6 +89,9 @@ class Ladder:
     skin_ncc_analytic: list
     locus_area: float
     levels: list = field(default_factory=list)
+    frames: list = field(default_factory=list, repr=False, compare=False)
+    locus_polygon: np.ndarray | None = field(default=None, repr=False, compare=False)
+    label_names: dict = field(default_factory=dict)
 
     def document(self) -> dict:
         """The JSON document (``levels`` and the settings)."""
@@ -85,6 +99,32 @@ class Ladder:
                 "prevailing_K": self.prevailing, "calibration_K": self.calibration, "size": list(self.size),
                 "skin_ncc_analytic": self.skin_ncc_analytic, "locus_area": self.locus_area,
                 "levels": self.levels}
+
+    def figure(self, path) -> Path:
+        """
+        Draw the ladder to a PNG (:func:`skinrender.studies.figures.figure_ladder`): per level the render,
+        the label mask, the detected mask and the scored skin and prop pixels' NCC (r, g) over the locus.
+
+        Returns
+        -------
+        Path
+            ``path``.
+        """
+        from .figures import figure_ladder
+
+        rows = []
+        for row, frame in zip(self.levels, self.frames):
+            labels, scored = frame["labels"], frame["scored"]
+            rows.append({**{k: row[k] for k in ("name", "tpr", "fpr", "seconds", "spp")},
+                         "image": frame["image"], "labels": labels, "detected": frame["detected"],
+                         "skin_rg": frame["ncc"][scored & (labels == LABEL_SKIN), :2],
+                         "prop_rg": frame["ncc"][scored & (labels > LABEL_SKIN), :2]})
+        title = (f"The face ({self.skin}) through {self.camera}, {self.prevailing:g} K balanced to "
+                 f"{self.calibration:g} K, {self.size[0]}×{self.size[1]} px\n(renders: the balanced camera RGB shown as "
+                 "sRGB; TPR, FPR and NCC over scored pixels, brightest channel ≥ "
+                 f"{SCORED_MIN_OUTPUT:g})")
+        return figure_ladder(rows, self.locus_polygon, np.asarray(self.skin_ncc_analytic), title, path,
+                             self.label_names)
 
 
 def _temperature(spec, name: str) -> float:
@@ -156,7 +196,7 @@ def ladder(
         parse_physics(level)
     locus = skin_locus(cam, "skin", calibration=c, grid=grid)
     analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
-    rows, shape = [], None
+    rows, frames, shape = [], [], None
     for level in levels:
         if progress is not None:
             progress(f"rendering the face: {level} …")
@@ -184,5 +224,8 @@ def ladder(
         }
         row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
         rows.append(row)
+        frames.append({"image": result.image, "labels": result.labels, "scored": scored,
+                       "detected": scored & inside, "ncc": chromaticity})
         shape = (result.scene.camera.width, result.scene.camera.height)
-    return Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), rows)
+    return Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), rows, frames,
+                  np.asarray(locus.polygon), dict(result.label_names))

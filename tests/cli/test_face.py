@@ -32,6 +32,7 @@ def parser() -> Parser:
     add_model(p)
     add_grid(p)
     p.add_argument("-o", "--output", default="render.exr")
+    p.add_argument("--figure")
     face.add_face_arguments(p)
     add_common(p)
     return top
@@ -48,7 +49,25 @@ class TestLadder:
         document = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--size", "16",
                         "--spp", "1", "--levels", "direct", "--json"], capsys)
         assert [row["name"] for row in document["levels"]] == ["direct"]
-        assert document["calibration_K"] == 2300
+        assert document["calibration_K"] == 2300 and "plot" not in document
+
+    def test_plot_writes_the_figure(self, tmp_path, capsys):
+        plot = tmp_path / "sub" / "ladder.png"
+        document = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--size", "16",
+                        "--spp", "1", "--levels", "direct,mixed", "--plot", plot, "--json"], capsys)
+        assert document["plot"] == str(plot) and plot.read_bytes()[:4] == b"\x89PNG"
+        assert len(document["levels"]) == 2 and "frames" not in document
+
+    @pytest.mark.parametrize("plot", ["ladder.svg", "folder", "", "a_file/ladder.png"])
+    def test_plot_is_checked_before_rendering(self, plot, tmp_path, capsys, monkeypatch):
+        monkeypatch.chdir(tmp_path)
+        (tmp_path / "folder").mkdir()
+        (tmp_path / "a_file").write_text("a file")
+        before = sorted(tmp_path.rglob("*"))
+        with pytest.raises(SkinrenderError) as error:
+            run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--plot", plot], capsys)
+        assert "--plot" in str(error.value) and "\n" not in str(error.value)
+        assert capsys.readouterr().out == "" and sorted(tmp_path.rglob("*")) == before
 
     @pytest.mark.parametrize("extra, name", [
         (["--size", "0"], "--size"), (["--spp", "x"], "--spp"), (["--seed", "-1"], "--seed"),
@@ -76,7 +95,14 @@ class TestRenderFace:
         assert set(document) >= keys
         assert document["labels"]["skin"] == 1 and document["physics"] == "sheen"
         assert document["skin"] == "macbeth:light skin" and output.exists()
-        assert document["channels"][-1] == "label"
+        assert document["channels"][-1] == "label" and "figure" not in document
+
+    def test_figure_outlines_the_labels(self, tmp_path, capsys):
+        figure = tmp_path / "labelled.png"
+        document = run(["render", "face", "--camera", CAM, "--prevailing", "A", "--calibration", "5900",
+                        "--spp", "1", "--size", "12", "-o", tmp_path / "face.exr", "--figure", figure, "--json"],
+                       capsys)
+        assert document["figure"] == str(figure) and figure.read_bytes()[:4] == b"\x89PNG"
 
     def test_an_imager_adds_noise_at_its_illuminance(self, tmp_path, capsys):
         document = run(["render", "face", "--camera", CAM, "--prevailing", "A", "--calibration", "A",
@@ -92,6 +118,8 @@ class TestRenderFace:
         (["--imager", "nope"], "--imager"),
         (["--imager", "sony-icx418", "--illuminance", "-1"], "--illuminance"),
         (["-o", "face.png"], "--output"), (["--prevailing", "x"], "--prevailing"),
+        (["--figure", "f.jpg"], "--figure"), (["--figure", "render.png"], "--figure"),
+        (["--figure", "."], "--figure"),
     ])
     def test_refusals_name_the_flag(self, extra, name, tmp_path, capsys, monkeypatch):
         monkeypatch.chdir(tmp_path)
@@ -120,3 +148,24 @@ def test_detect_on_the_face_scores_against_the_labels(tmp_path, capsys):
     assert status == 0 and (tmp_path / "mask.png").is_file()
     assert 0.5 < document["tpr"] <= 1.0 and 0.0 <= document["fpr"] < 0.5
     assert document["labels"]["skin"] == 1 and len(document["per_patch"]) == len(document["labels"]) - 1
+
+
+def test_detect_face_figure_shows_the_mask_over_the_face(tmp_path, capsys):
+    """``detect face --figure``: the face with the detected skin over it, written beside the mask."""
+    from skinrender.cli import main
+
+    figure = tmp_path / "overlay.png"
+    status = main(["detect", "face", "--camera", CAM, "--prevailing", "2856", "--calibration", "5900", "--spp", "1",
+                   "-o", str(tmp_path / "mask.png"), "--figure", str(figure), "--json"])
+    document = json.loads(capsys.readouterr().out)
+    assert status == 0 and document["figure"] == str(figure) and figure.read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.parametrize("figure", ["overlay.svg", "mask.png", "mask_preview.png", "folder"])
+def test_detect_face_checks_the_figure_before_rendering(figure, tmp_path, capsys, monkeypatch):
+    from .refusal import assert_refused
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "folder").mkdir()
+    assert_refused(["detect", "face", "--camera", CAM, "--prevailing", "2856", "--calibration", "5900",
+                    "-o", "mask.png", "--figure", figure], "--figure", capsys, output=tmp_path)

@@ -121,3 +121,45 @@ def test_validate_through_an_imager_reports_the_noise(capsys):
     assert status == 0, err
     assert document["imager"] == "sony-imx174" and document["illuminance_lux"] == 300.0 and document["exposure_s"] > 0
     assert document["passed"] and all(len(p["rendered_std"]) == 3 for p in document["patches"])
+
+
+def test_render_figure_labels_the_chart(tmp_path, capsys):
+    """``render --figure``: the chart upscaled with its patch names, far larger than the 130 × 82 preview."""
+    from PIL import Image
+
+    figure = tmp_path / "labelled.png"
+    status, out, err = run(["render", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "4", "-o", tmp_path / "r.exr",
+                            "--figure", figure, "--json"], capsys)
+    document = json.loads(out)
+    assert status == 0, err
+    assert document["figure"] == str(figure)
+    preview, labelled = Image.open(document["preview_png"]).size, Image.open(figure).size
+    assert labelled[0] >= 5 * preview[0] and labelled[1] >= 5 * preview[1]
+
+
+def test_detect_figure_adds_the_mask_panel(tmp_path, capsys):
+    from PIL import Image
+
+    status, out, err = run(["detect", "face_chart", "--camera", CAM, *LIGHTS, "--spp", "4", "-o", tmp_path / "m.png",
+                            "--figure", tmp_path / "d.png", "--json"], capsys)
+    document = json.loads(out)
+    assert status == 0, err
+    width, height = Image.open(document["figure"]).size
+    assert height > width  # two chart panels, one above the other
+
+
+@pytest.mark.parametrize("command, figure", [
+    ("render", "f.svg"), ("render", "r.png"), ("render", "folder"), ("detect", "m.png"), ("detect", "m_preview.png"),
+    ("detect", "f.pdf"), ("detect", ""),
+])
+def test_figure_is_checked_before_rendering(command, figure, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "folder").mkdir()
+    output = "r.exr" if command == "render" else "m.png"
+    assert_refused([command, "face_chart", "--camera", CAM, *LIGHTS, "-o", output, "--figure", figure], "--figure",
+                   capsys, output=tmp_path)
+
+
+def test_validate_takes_no_figure(capsys):
+    status, out, err = run(["validate", "macbeth", "--camera", CAM, *LIGHTS, "--figure", "f.png"], capsys)
+    assert status == 2 and out == "" and "--figure" in err

@@ -32,6 +32,21 @@ class TestLadder:
         assert np.abs(np.array(direct["skin_ncc_mean"]) - analytic).max() < 3 * max(direct["skin_ncc_std"])
         assert mixed["skin_ncc_mean"][2] > direct["skin_ncc_mean"][2] + max(direct["skin_ncc_std"])
 
+    def test_frames_carry_the_masks_and_draw(self, tmp_path):
+        """The arrays behind the figure: per level the image and masks, the counts those of the JSON rows."""
+        result = ladder(CAMERA, "A", 5900, levels=("direct", "sheen"), spp=4, size=20)
+        assert "frames" not in result.document() and len(result.frames) == 2
+        for row, frame in zip(result.levels, result.frames):
+            labels, scored, detected = frame["labels"], frame["scored"], frame["detected"]
+            assert frame["image"].shape == (20, 20, 3) and labels.shape == scored.shape == detected.shape == (20, 20)
+            assert int((scored & (labels == 1)).sum()) == row["skin_pixels"]
+            assert int((scored & (labels > 1)).sum()) == row["prop_pixels"]
+            assert not (detected & ~scored).any()  # only scored pixels are detected
+            assert detected[scored & (labels == 1)].mean() == pytest.approx(row["tpr"])
+        assert result.locus_polygon.shape[1] == 2 and result.label_names["skin"] == 1
+        path = result.figure(tmp_path / "ladder.png")
+        assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
     @pytest.mark.parametrize("kwargs, match", [
         ({"levels": ()}, "levels"), ({"levels": ("glossy",)}, "physics"), ({"prevailing": "x"}, "illuminant"),
         ({"skin": "skin:nobody"}, "skin"),
