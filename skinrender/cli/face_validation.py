@@ -1,16 +1,109 @@
 """
-``skinrender validate`` on a face scene (being built: issue 13).
+``skinrender validate`` on a face scene: the face rendered at ``--physics``'s
+level in replicates and checked against the analytic limits that hold there
+(:mod:`skinrender.rendering.face_validation`): ``shading_cancels`` at
+``direct``, ``dichromatic_plane`` at ``sheen`` (both through the sensor too,
+with ``noise`` or ``--imager``), the white furnace and the closed sphere at
+every level, and ``eq4_shift`` (how far skin moves from Eq. 4: information,
+never a failure). Exit status 1 when a check that applies fails, 2 on bad
+input.
+
+Units: temperatures K, times s, NCC fractions.
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 
 from ..errors import SkinrenderError
 
-__all__ = ["command_validate_face"]
+__all__ = ["command_validate_face", "limits_of"]
+
+
+def limits_of(text: str | None) -> tuple[str, ...]:
+    """
+    The scene-free limits to run from ``--limits`` (``furnace,sphere``, ``none``); ``None``: all of them.
+
+    Examples
+    --------
+    >>> limits_of("sphere"), limits_of("none"), limits_of(None)
+    (('sphere',), (), ('furnace', 'sphere'))
+    """
+    from ..rendering.face_validation import LIMITS_SCENE_FREE
+
+    if text is None:
+        return tuple(LIMITS_SCENE_FREE)
+    names = [name.strip() for name in str(text).split(",") if name.strip()]
+    if names == ["none"]:
+        return ()
+    unknown = [name for name in names if name not in LIMITS_SCENE_FREE]
+    if unknown or not names:
+        raise SkinrenderError(f"--limits must be 'none' or a comma-separated list of {', '.join(LIMITS_SCENE_FREE)}, "
+                              f"got {text!r}")
+    return tuple(dict.fromkeys(names))
+
+
+def _number(value) -> str:
+    return "—" if value is None else f"{value:.3g}"
 
 
 def command_validate_face(args: argparse.Namespace) -> None:
-    """Validate a face render against the analytic limits of its level of physics."""
-    raise SkinrenderError(f"validate {args.scene}: validating a face scene is not built yet (issue 13)")
+    """
+    ``validate SCENE …`` for a face scene: the ``validate`` flags (``--camera``, ``--prevailing``,
+    ``--calibration``, the render options) and the face's (``--physics``, ``--skin``, ``--size``);
+    every flag is checked before anything renders.
+    """
+    from ..rendering.face_dict import parse_physics
+    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face_validation import validate_face
+    from ..spectra import GRID_DEFAULT
+    from .common import camera_of, emit, flag, imaging_options, render_options, table
+    from .face import SIZE_MAX, _check_light, _integer, _planckian
+
+    options = render_options(args)
+    scene = flag("SCENE", load_face_scene, args.scene)
+    cam = camera_of(args)
+    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
+    _check_light(cam, temperatures)
+    if getattr(args, "normalization", "white") != "white":
+        raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, got {args.normalization!r}")
+    if getattr(args, "knee", False):
+        raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee")
+    if getattr(args, "gamut", False):
+        raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene")
+    if str(getattr(args, "grid", "400:700:1")).strip() != "400:700:1":
+        raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}")
+    physics = getattr(args, "physics", None) or "direct"
+    flag("--physics", parse_physics, physics)
+    skin = getattr(args, "skin", None)
+    if skin is not None:
+        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
+    size = getattr(args, "size", None)
+    size = None if size is None else _integer(size, "--size", 1, SIZE_MAX)
+    limits = flag("--limits", limits_of, getattr(args, "limits", None))
+    imaging = imaging_options(args) if getattr(args, "imager", None) is not None else None
+    imager, exposure, lux = None, "auto", None
+    if imaging is not None:  # a sensor records the face: the noise level, at the stated illuminance
+        imager, exposure, lux = imaging["imager_"], imaging["exposure"], imaging["illuminance_lux"]
+        if "noise" not in parse_physics(physics):
+            physics = "noise" if physics.strip() == "direct" else f"{physics}+noise"
+    result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
+                  skin, physics, options["spp"], options["seed"], size, options["sampler"], options["variant"],
+                  options["channels"], imager, exposure, lux, limits=limits,
+                  progress=lambda line: print(line, file=sys.stderr))
+    document = result.document()
+    rows = [[c.name, "yes" if c.applies else "info",
+             {True: "ok", False: "FAIL", None: "—"}[c.passed], _number(c.statistic), _number(c.tolerance),
+             c.pixels] for c in result.checks]
+    r = result.rendering
+    verdict = {True: "PASSED", False: "FAILED", None: "no limit applies at this level"}[result.passed]
+    text = (f"{r.scene.name} ({r.skin}, {r.physics}) through {r.camera.name}, {r.prevailing:g} K balanced to "
+            f"{r.calibration:g} K, {r.scene.camera.width}×{r.scene.camera.height} px, {result.replicates} "
+            f"replicates, {result.spp} spp in all, {r.variant}, {result.seconds:.1f} s\n"
+            + table(rows, ["check", "applies", "", "statistic", "tolerance", "pixels"])
+            + "".join(f"\n{c.name}: {c.reason}" for c in result.checks)
+            + f"\n{verdict} (each check's false-alarm rate 0.01, Šidák over its pixels)")
+    emit(args, document, text)
+    if result.passed is False:
+        raise SystemExit(1)

@@ -2,10 +2,12 @@
 Tests for :mod:`skinrender.rendering.face`: where the analytic model holds on a face, exactly.
 
 Four analytic limits, each rendered small (48 × 48 or less, a few spp) and replicated with
-independent seeds: every per-pixel statistic is compared with its analytic value against its own
+independent seeds, checked by :mod:`skinrender.rendering.face_limits` (the statistics ``skinrender
+validate`` runs too): every per-pixel statistic is compared with its analytic value against its own
 measured noise (the jackknife over the replicates, Student's t with K − 1 degrees of freedom), the
 critical value Šidák-corrected for the number of pixels and channels tested, so that a correct
-renderer fails a test with probability :data:`ALPHA` at most.
+renderer fails a test with probability :data:`~skinrender.rendering.face_limits.ALPHA` at most. The
+controls that must fail are in ``tests/rendering/test_face_limits.py``.
 """
 
 from __future__ import annotations
@@ -14,48 +16,26 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from scipy import stats
 
 from skinrender.errors import SkinrenderError
 from skinrender.model.camera import camera
 from skinrender.model.chromaticity import ncc
 from skinrender.rendering.exr import read_exr
 from skinrender.rendering.face import render_face, white_references, write_face_exr
-from skinrender.rendering.face_dict import channel_groups, channel_integral, film_dict, light_irradiance
-from skinrender.rendering.face_labels import LABEL_SKIN, interior
-from skinrender.rendering.face_scene import Light, load_face_scene, skin_reflectance_of
-from skinrender.rendering.validation import FLOAT32_FLOOR, analytic_reference
-from skinrender.spectra import GRID_DEFAULT, planck
+from skinrender.rendering.face_dict import channel_integral, light_irradiance
+from skinrender.rendering.face_limits import (REPLICATES, check_dichromatic, check_furnace, check_shading,
+                                              check_sphere, furnace_radiance, sphere_channels)
+from skinrender.rendering.face_scene import load_face_scene, skin_reflectance_of
+from skinrender.rendering.face_validation import dichromatic_colours
+from skinrender.rendering.validation import analytic_reference
+from skinrender.spectra import GRID_DEFAULT
 
 pytest.importorskip("mitsuba")
 
 CAMERA = "gbell:9@450,540,610"
 SIZE = 48
 """Image side, pixels: ~350 interior skin pixels."""
-REPLICATES = 12
-"""Independent renders (seeds) per test: the jackknife's t has 11 degrees of freedom."""
-ALPHA = 0.01
-"""Family-wise false-alarm rate of each test (Šidák-corrected over its pixels and channels)."""
 SKIN = "skin:089 skin -- caucasian (light)"
-LINEAR = 0.05
-"""Pixels whose channels' relative standard error is below this are 'lit': a ratio's (NCC's) jackknife
-error is then first order, its neglected bias ~LINEAR² of the value, far below the error itself."""
-
-
-def critical_t(tests: int, replicates: int = REPLICATES, alpha: float = ALPHA) -> float:
-    """Two-sided Student-t critical value of ``tests`` independent tests at family-wise ``alpha`` (Šidák)."""
-    each = -np.expm1(np.log1p(-alpha) / tests)
-    return float(stats.t.isf(each / 2, replicates - 1))
-
-
-def jackknife(samples: np.ndarray, statistic) -> tuple[np.ndarray, np.ndarray]:
-    """``statistic`` of the replicate mean and its jackknife standard error; replicates on axis 0."""
-    k = samples.shape[0]
-    total = samples.sum(axis=0)
-    value = statistic(total / k)
-    leave_out = np.array([statistic((total - s) / (k - 1)) for s in samples])
-    error = np.sqrt((k - 1) / k * np.sum((leave_out - leave_out.mean(axis=0)) ** 2, axis=0))
-    return value, error
 
 
 def replicates(seed0: int = 0, **kwargs) -> tuple[list, np.ndarray]:
@@ -64,8 +44,8 @@ def replicates(seed0: int = 0, **kwargs) -> tuple[list, np.ndarray]:
     return renders, np.array([r.image for r in renders], dtype=np.float64)
 
 
-def rg(rgb: np.ndarray) -> np.ndarray:
-    return ncc(rgb)[..., :2]
+def eq4_ncc(skin: str, prevailing: float, calibration: float) -> np.ndarray:
+    return ncc(analytic_reference(CAMERA, skin_reflectance_of(skin)[None], prevailing, calibration))[0]
 
 
 class TestShadingCancels:
@@ -73,28 +53,13 @@ class TestShadingCancels:
         """
         Direct light from one Planckian: a skin pixel's radiance is ``ρ(λ) E(λ) G`` with ``G`` the
         shading (cosine, distance, shadowing, the pixel's coverage) independent of λ, so its channels
-        are ``G ∫ ρ E x_k`` and its NCC is Eq. 4's, whatever ``G``.
+        are ``G ∫ ρ E x_k`` and its NCC is Eq. 4's, whatever ``G`` (per pixel and pooled).
         """
         renders, images = replicates(size=SIZE, spp=16, skin=SKIN, prevailing=2856, calibration=5900)
-        labels = renders[0].labels
-        mean = images.mean(axis=0)
-        error = images.std(axis=0, ddof=1) / np.sqrt(REPLICATES)
-        lit = interior(labels, LABEL_SKIN) & np.all(error < LINEAR * mean, axis=-1)
-        assert lit.sum() > 100, lit.sum()
-        shading = mean[lit].sum(axis=-1)
-        assert shading.max() > 3 * shading.min(), "the tested pixels' shading varies more than threefold"
-        rho = skin_reflectance_of(SKIN)
-        expected = rg(analytic_reference(CAMERA, rho[None], 2856, 5900))[0]
-        value, se = jackknife(images[:, lit], rg)
-        tests = value.size + 2
-        deviation = np.abs(value - expected)
-        tolerance = critical_t(tests) * np.hypot(se, FLOAT32_FLOOR * value)
-        assert np.all(deviation <= tolerance), (deviation / tolerance).max()
-        # pooled over the pixels: a bias too small for any one pixel, in one direction, shows here
-        pooled, pooled_se = jackknife(images[:, lit], lambda m: rg(m).mean(axis=0))
-        deviation = np.abs(pooled - expected)
-        assert np.all(deviation <= critical_t(tests) * np.hypot(pooled_se, FLOAT32_FLOOR)), \
-            deviation / pooled_se
+        check = check_shading(images, renders[0].labels, eq4_ncc(SKIN, 2856, 5900))
+        assert check.pixels > 100, check
+        assert check.details["shading_range"] > 3, "the tested pixels' shading varies more than threefold"
+        assert check.passed, check
 
 
 class TestWhiteFurnace:
@@ -105,59 +70,17 @@ class TestWhiteFurnace:
         with ``ρ = 1`` and ``L_i = L`` from every direction), so with every bounce every pixel, the
         concavities included, reads ``∫ L x_k dλ``.
         """
-        sky = Light(temperature=5000.0, illuminance=500.0)
-        scene = replace(load_face_scene("face"), props=(), key=None, fill=None, environment=sky)
-        renders = [render_face(CAMERA, scene, skin="perfect", physics="interreflection", size=32, spp=16,
-                               seed=k) for k in range(REPLICATES)]
-        radiance = np.array([r.radiance for r in renders])
-        lam, irradiance = light_irradiance(sky, GRID_DEFAULT)
-        expected = channel_integral(camera(CAMERA), GRID_DEFAULT, lam, irradiance / np.pi)
-        head = renders[0].labels == LABEL_SKIN
-        assert head.sum() > 100
-        mean = radiance.mean(axis=0)
-        error = radiance.std(axis=0, ddof=1) / np.sqrt(REPLICATES)
-        tests = mean.size + 3
-        deviation = np.abs(mean - expected)
-        tolerance = critical_t(tests) * np.hypot(error, FLOAT32_FLOOR * expected)
-        assert np.all(deviation <= tolerance), (deviation / tolerance).max()
-        pooled = radiance[:, head].mean(axis=1)  # the head's mean, per replicate
-        error = pooled.std(axis=0, ddof=1) / np.sqrt(REPLICATES)
-        deviation = np.abs(pooled.mean(axis=0) - expected)
-        tolerance = critical_t(tests) * np.hypot(error, FLOAT32_FLOOR * expected)
-        assert np.all(deviation <= tolerance), deviation / error
+        radiance, labels, expected = furnace_radiance(CAMERA, "face", range(REPLICATES), size=32, spp=16)
+        assert (labels == 1).sum() > 100
+        check = check_furnace(radiance, labels, expected)
+        assert check.passed, check
         # balanced to the sky's own temperature, a white reads 255 everywhere
-        assert np.allclose(renders[0].gain * expected, 255.0)
-
-
-def sphere_emission() -> tuple[np.ndarray, np.ndarray]:
-    """Wavelengths (nm) and the relative emission of the sphere: a 3000 K Planckian, peak 1."""
-    lam = light_irradiance(Light(3000.0, 1.0), GRID_DEFAULT)[0]
-    return lam, planck(lam, 3000.0) / planck(lam, 3000.0).max()
-
-
-def sphere_channels(rho: np.ndarray, depth: int, seeds, spp: int = 16, size: int = 16) -> np.ndarray:
-    """Mean channels of a closed emitting Lambertian sphere rendered from its centre, one row per seed."""
-    from skinrender.rendering.renderer import _spectrum
-    from skinrender.rendering.variants import choose_variant, mitsuba
-
-    mi = mitsuba(choose_variant())
-    cam = camera(CAMERA)
-    lam, emission = sphere_emission()
-    out = np.zeros((len(seeds), 3))
-    for group in channel_groups(cam, GRID_DEFAULT):
-        scene = mi.load_dict({
-            "type": "scene", "integrator": {"type": "path", "max_depth": depth},
-            "sensor": {"type": "perspective", "fov": 60,
-                       "sampler": {"type": "independent", "sample_count": spp},
-                       "film": film_dict(cam, GRID_DEFAULT, group, size, size)},
-            "sphere": {"type": "sphere", "radius": 1.0, "flip_normals": True,
-                       "emitter": {"type": "area", "radiance": _spectrum(lam, emission)},
-                       "bsdf": {"type": "diffuse", "reflectance": _spectrum(GRID_DEFAULT.wavelengths, rho)}},
-        })
-        for row, seed in enumerate(seeds):
-            image = np.array(mi.render(scene, seed=seed), dtype=np.float64)
-            out[row, list(group)] = image.reshape(-1, len(group)).mean(axis=0)
-    return out
+        sky = replace(load_face_scene("face"), props=(), key=None, fill=None,
+                      environment=replace(load_face_scene("face").environment, temperature=5000.0))
+        result = render_face(CAMERA, sky, skin="perfect", size=8, spp=1)
+        lam, irradiance = light_irradiance(sky.environment, GRID_DEFAULT)
+        white = channel_integral(camera(CAMERA), GRID_DEFAULT, lam, irradiance / np.pi)
+        assert np.allclose(result.gain * white, 255.0)
 
 
 class TestClosedSphere:
@@ -171,21 +94,11 @@ class TestClosedSphere:
         chromaticity moves further from the light's.
         """
         rho = skin_reflectance_of(SKIN)
-        cam = camera(CAMERA)
-        results = {}
-        for depth, truncated in ((-1, None), (2, 2)):
-            samples = sphere_channels(rho, depth, range(REPLICATES))
-            lam, emission = sphere_emission()
-            rho_fine = np.interp(lam, GRID_DEFAULT.wavelengths, rho)
-            radiance = emission / (1 - rho_fine) if truncated is None else emission * (1 + rho_fine)
-            expected = rg(channel_integral(cam, GRID_DEFAULT, lam, radiance))
-            value, se = jackknife(samples, rg)
-            tolerance = critical_t(2 * 2) * np.hypot(se, FLOAT32_FLOOR)
-            assert np.all(np.abs(value - expected) <= tolerance), (np.abs(value - expected) / tolerance).max()
-            light = rg(channel_integral(cam, GRID_DEFAULT, lam, emission))
-            results[depth] = jackknife(samples, lambda m: np.linalg.norm(rg(m) - light, axis=-1))
-        (full, se_full), (one, se_one) = results[-1], results[2]
-        assert full - one > critical_t(1) * np.hypot(se_full, se_one), (full, one)
+        every, one = (sphere_channels(CAMERA, rho, depth) for depth in (-1, 2))
+        check = check_sphere(CAMERA, rho, every, one)
+        assert check.passed, check
+        far, near = check.details["distance_from_light"]
+        assert far > near
 
 
 class TestDichromatic:
@@ -198,34 +111,10 @@ class TestDichromatic:
         """
         renders, images = replicates(size=SIZE, spp=16, skin=SKIN, physics="sheen", prevailing=2856,
                                      calibration=2856)
-        labels = renders[0].labels
-        cam = camera(CAMERA)
-        scene = renders[0].scene
-        lam, irradiance = light_irradiance(scene.key, GRID_DEFAULT)
-        rho = np.interp(lam, GRID_DEFAULT.wavelengths, skin_reflectance_of(SKIN))
-        body = renders[0].gain * channel_integral(cam, GRID_DEFAULT, lam, rho * irradiance)
-        light = renders[0].gain * channel_integral(cam, GRID_DEFAULT, lam, irradiance)
-        normal = np.cross(body, light)
-        normal /= np.linalg.norm(normal)
-        skin = interior(labels, LABEL_SKIN)
-        pixels = images[:, skin]
-        distance = pixels @ normal
-        mean = distance.mean(axis=0)
-        error = distance.std(axis=0, ddof=1) / np.sqrt(REPLICATES)
-        scale = np.linalg.norm(pixels.mean(axis=0), axis=-1)
-        tests = mean.size + 1
-        tolerance = critical_t(tests) * np.hypot(error, FLOAT32_FLOOR * scale)
-        assert np.all(np.abs(mean) <= tolerance), (np.abs(mean) / tolerance).max()
-        pooled = distance.mean(axis=1)  # over the pixels, per replicate
-        error = pooled.std(ddof=1) / np.sqrt(REPLICATES)
-        assert abs(pooled.mean()) <= critical_t(tests) * np.hypot(error, FLOAT32_FLOOR * scale.mean())
+        check = check_dichromatic(images, renders[0].labels, *dichromatic_colours(renders[0], renders[0].scene.key))
+        assert check.passed, check
         # and the highlights are there: some pixels carry the light's colour well beyond their noise
-        basis = np.linalg.pinv(np.stack([body, light], axis=1))  # (2, 3): channels -> (m_b, m_s)
-        specular = pixels @ basis[1]
-        spread = specular.std(axis=0, ddof=1) / np.sqrt(REPLICATES)
-        lit = spread > 0  # shadowed pixels are exactly black
-        significance = specular.mean(axis=0)[lit] / spread[lit]
-        assert significance.max() > critical_t(tests)
+        assert check.details["highlights"], check
 
 
 class TestLabels:

@@ -1,0 +1,264 @@
+"""
+Validating face renders
+=======================
+
+A face rendered at a level of physics, checked against the analytic limits
+that hold at that level (:mod:`skinrender.rendering.face_limits`), and told
+how far its skin moves from Eq. 4 where none holds.
+
+-   :func:`validate_face`, :class:`FaceValidation`: the checks of one face scene.
+-   :func:`dichromatic_colours`: the body and light colours of a render's skin.
+-   :data:`LIMITS_SCENE_FREE`: the limits that hold whatever the level.
+
+What holds where
+----------------
+======================  ====================================================
+level (effects)         checks
+======================  ====================================================
+``direct``              ``shading_cancels``
+``sheen``               ``dichromatic_plane``
+``noise`` (+ the above) the same, on the frames' mean, dark signal removed,
+                        clipped pixels left out, quantisation bounded
+``interreflection``,    none: ``eq4_shift`` only (information)
+``mixed``
+every level             ``white_furnace`` (the scene's mesh, its camera),
+                        ``closed_sphere`` (the skin's reflectance), and
+                        ``eq4_shift``
+======================  ====================================================
+
+The requested ``spp`` is split over :data:`~skinrender.rendering.face_limits.REPLICATES`
+renders with seeds ``seed, seed + 1, …`` (mod 2³²), each at ``⌈spp / K⌉``; their
+spread is each statistic's noise. Through an image sensor (``noise``) each
+replicate is a frame of its own (the sensor's stream is seeded from the
+render's seed), so the spread holds the sensor's noise too; the sensor is
+linear in the mean except for its dark signal (subtracted: dark current ×
+exposure), the clipping at 0 and at saturation (pixels with a clipped
+replicate are left out) and the rounding to codes (its mean error is bounded
+by :func:`~skinrender.rendering.face_limits.rounding_bias` at each pixel's
+modelled σ and may be used up by a deviation).
+
+Units: temperatures K, times s, images in Eq. 4 output units.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..constants import CONSTANT_OUTPUT_SCALE
+from ..errors import SkinrenderError
+from ..hints import NDArrayFloat
+from ..model.chromaticity import ncc
+from ..model.response import gain
+from ..spectra import GRID_DEFAULT
+from .face import IMAGER_DEFAULT, FaceRendering, render_face
+from .face_dict import active_lights, channel_integral, light_irradiance, parse_physics
+from .face_limits import (REPLICATES, LimitCheck, check_dichromatic, check_furnace, check_shading, check_sphere,
+                          eq4_shift, furnace_radiance, rounding_bias, sphere_channels)
+from .face_scene import Light, skin_reflectance_of
+from .validation import analytic_reference
+
+__all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "FaceValidation",
+           "dichromatic_colours", "validate_face"]
+
+LIMITS_SCENE_FREE = {
+    "furnace": "white furnace: the scene's mesh, reflectance 1, every bounce, in a uniform sky",
+    "sphere": "closed Lambertian sphere of the skin's reflectance seen from inside, every bounce and one",
+}
+"""The limits that hold whatever the level, name → meaning; run small beside the level's own."""
+
+FURNACE_SIZE = 32
+"""Image side of the white furnace, pixels (~300 head pixels in the bundled scene)."""
+
+FURNACE_SPP = 16
+"""Samples per pixel of each white-furnace replicate."""
+
+SPHERE_SIZE = 16
+"""Image side of the closed sphere, pixels (their mean is tested)."""
+
+SPHERE_SPP = 16
+"""Samples per pixel of each closed-sphere replicate."""
+
+
+@dataclass(frozen=True)
+class FaceValidation:
+    """
+    A face render checked against its level's analytic limits.
+
+    Attributes
+    ----------
+    rendering
+        The first replicate (scene, camera, physics, labels, lights).
+    checks
+        :class:`~skinrender.rendering.face_limits.LimitCheck` rows.
+    spp, spp_requested
+        Samples per pixel of all replicates together, and as asked.
+    replicates, seed
+        How many renders, the first's seed.
+    seconds
+        Wall time of everything, s.
+    """
+
+    rendering: FaceRendering
+    checks: list
+    spp: int
+    spp_requested: int
+    replicates: int
+    seed: int
+    seconds: float
+    info: dict = field(default_factory=dict)
+
+    @property
+    def passed(self) -> bool | None:
+        """False when a check that applies fails; True when some passed and none failed; None when none ran."""
+        ran = [c.passed for c in self.checks if c.applies and c.passed is not None]
+        return None if not ran else all(ran)
+
+    def document(self) -> dict:
+        """The JSON document of ``skinrender validate face``."""
+        r = self.rendering
+        return {"scene": r.scene.name, "camera": r.camera.name, "physics": r.physics, "skin": r.skin,
+                "prevailing_K": r.prevailing, "calibration_K": r.calibration, "spp": self.spp,
+                "spp_requested": self.spp_requested, "replicates": self.replicates, "seed": self.seed,
+                "sampler": r.sampler, "variant": r.variant, "elapsed_s": self.seconds,
+                "size": [r.scene.camera.width, r.scene.camera.height], "labels": r.label_names, **self.info,
+                "checks": [c.document() for c in self.checks], "passed": self.passed}
+
+
+def dichromatic_colours(rendering: FaceRendering, light: Light) -> tuple[NDArrayFloat, NDArrayFloat]:
+    """
+    The body colour ``∫ ρ E x_k`` of the rendering's skin and the colour ``∫ E x_k`` of ``light``,
+    balanced with the rendering's Eq. 4 gain (of its noise-free whites), output units, ``(3,)`` each.
+    """
+    lam, irradiance = light_irradiance(light, GRID_DEFAULT)
+    rho = np.interp(lam, GRID_DEFAULT.wavelengths, skin_reflectance_of(rendering.skin, GRID_DEFAULT, "skin"))
+    g = gain(rendering.white_prevailing, rendering.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
+    cam = rendering.camera
+    return (g * channel_integral(cam, GRID_DEFAULT, lam, rho * irradiance),
+            g * channel_integral(cam, GRID_DEFAULT, lam, irradiance))
+
+
+def _sensor_terms(first: FaceRendering, images: NDArrayFloat, spec) -> tuple[NDArrayFloat, ...]:
+    """Images less the dark signal, the pixels no replicate clipped, and the rounding's bound (output units)."""
+    from ..model.imager import imager as imager_of
+
+    im = imager_of(spec or IMAGER_DEFAULT)
+    g = np.asarray(first.gain, dtype=np.float64)  # output units per DN
+    k = im.gain_dn_per_e
+    dark = k * im.dark_current_e_per_s * first.info["exposure_s"]  # DN
+    signal = images / g  # DN above the black level
+    saturation = min(float(im.max_dn), k * im.full_well_e + im.black_level_dn) - im.black_level_dn
+    usable = np.all((signal > 0) & (signal < saturation - 0.5), axis=(0, -1))
+    electrons = np.maximum(signal.mean(axis=0) / k, 0.0)
+    sigma = k * np.sqrt(electrons + im.read_noise_e**2)
+    return images - g * dark, usable, g * rounding_bias(sigma)
+
+
+def _why_not(effects: tuple[str, ...]) -> str:
+    if "interreflection" in effects:
+        return ("light reaches the skin from other surfaces (props, the face itself) and is no longer the "
+                "light's spectrum: no analytic limit at this level")
+    if "mixed" in effects:
+        return ("lights of different temperatures mix by each pixel's geometry: no analytic limit at this "
+                "level")
+    if "sheen" in effects:
+        return "the coat adds the light's colour at highlights: the dichromatic plane is the test"
+    return "the shading check is the test at this level"
+
+
+def validate_face(
+    camera_,
+    scene="face",
+    prevailing=None,
+    calibration=None,
+    skin: str | None = None,
+    physics: str = "direct",
+    spp: int = 256,
+    seed: int = 0,
+    size=None,
+    sampler: str = "multijitter",
+    variant: str | None = None,
+    channels: str = "auto",
+    imager=None,
+    exposure="auto",
+    illuminance: float | None = None,
+    replicates: int = REPLICATES,
+    limits=tuple(LIMITS_SCENE_FREE),
+    progress: Callable[[str], None] | None = None,
+) -> FaceValidation:
+    """
+    Render a face scene ``replicates`` times and check the analytic limits of its level.
+
+    Parameters
+    ----------
+    camera_, scene, prevailing, calibration, skin, physics, sampler, variant, channels, imager, exposure, illuminance
+        As :func:`skinrender.rendering.face.render_face` (temperatures K,
+        illuminance lx, exposure s or ``auto``).
+    spp
+        Samples per pixel in all, split over the replicates (each ``⌈spp / replicates⌉``).
+    seed
+        The first replicate's seed; the others follow.
+    size
+        Image side, pixels; ``None``: the scene's.
+    replicates
+        Renders, ≥ 3 (the jackknife's t has ``replicates − 1`` degrees of freedom).
+    limits
+        Which of :data:`LIMITS_SCENE_FREE` to run beside the level's own.
+    progress
+        Called with a line of text before each stage.
+
+    Returns
+    -------
+    :class:`FaceValidation`
+    """
+
+    start = time.perf_counter()
+    say = progress or (lambda line: None)
+    effects = parse_physics(physics)
+    if isinstance(replicates, bool) or not isinstance(replicates, (int, np.integer)) or replicates < 3:
+        raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}")
+    unknown = [name for name in limits if name not in LIMITS_SCENE_FREE]
+    if unknown:
+        raise SkinrenderError(f"limits: unknown {', '.join(map(repr, unknown))}; known: "
+                              + ", ".join(LIMITS_SCENE_FREE))
+    if isinstance(spp, bool) or not isinstance(spp, (int, np.integer)) or spp < 1:
+        raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
+    each = max(1, math.ceil(int(spp) / replicates))
+    seeds = [(int(seed) + k) % 2**32 for k in range(replicates)]
+    say(f"rendering the face ({'+'.join(effects) or 'direct'}) {replicates} times at {each} spp …")
+    renders = [render_face(camera_, scene, prevailing, calibration, skin, physics, each, s, size, sampler, variant,
+                           channels=channels, imager=imager, exposure=exposure, illuminance=illuminance)
+               for s in seeds]
+    first = renders[0]
+    cam, labels = first.camera, first.labels
+    images = np.array([r.image for r in renders], dtype=np.float64)
+    rho = skin_reflectance_of(first.skin, GRID_DEFAULT, "skin")
+    expected = ncc(analytic_reference(cam, rho[None], first.prevailing, first.calibration))[0]
+    usable = bias = None
+    if "noise" in effects:
+        images, usable, bias = _sensor_terms(first, images, imager)
+    one_light = not {"interreflection", "mixed"} & set(effects)
+    checks: list[LimitCheck] = []
+    if one_light and "sheen" not in effects:
+        checks.append(check_shading(images, labels, expected, usable, bias))
+    elif one_light:
+        (light,) = active_lights(first.scene, effects).values()
+        checks.append(check_dichromatic(images, labels, *dichromatic_colours(first, light), usable, bias))
+    checks.append(eq4_shift(images, labels, expected, _why_not(effects), usable))
+    if "furnace" in limits:
+        say(f"white furnace ({FURNACE_SIZE}² px, {replicates} × {FURNACE_SPP} spp) …")
+        checks.append(check_furnace(*furnace_radiance(cam, first.scene, seeds, FURNACE_SIZE, FURNACE_SPP,
+                                                      variant=variant)))
+    if "sphere" in limits:
+        say(f"closed sphere ({SPHERE_SIZE}² px, {replicates} × {SPHERE_SPP} spp, two depths) …")
+        every = sphere_channels(cam, rho, -1, seeds, SPHERE_SPP, SPHERE_SIZE, variant)
+        one = sphere_channels(cam, rho, 2, seeds, SPHERE_SPP, SPHERE_SIZE, variant)
+        checks.append(check_sphere(cam, rho, every, one))
+    info = {key: value for key, value in first.info.items() if key != "lights"}
+    info["lights"] = first.info.get("lights", {})
+    return FaceValidation(first, checks, int(sum(r.spp for r in renders)), int(spp), int(replicates), int(seed),
+                          time.perf_counter() - start, info)

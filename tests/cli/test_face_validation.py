@@ -1,0 +1,98 @@
+"""
+``skinrender validate`` on a face scene (:mod:`skinrender.cli.face_validation`): one JSON document with a
+row per check, exit 1 when a check that applies fails, and bad input refused (exit 2, one line naming the
+flag) before anything renders.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+import pytest
+
+from skinrender.cli.face_validation import command_validate_face, limits_of
+from skinrender.errors import SkinrenderError
+from skinrender.rendering.face_limits import LimitCheck
+
+from .refusal import assert_refused, run
+
+pytest.importorskip("mitsuba")
+
+CAM = "gbell:9@450,540,610"
+BASE = ["validate", "face", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--size", "32",
+        "--spp", "48"]
+KEYS = {"scene", "camera", "physics", "skin", "prevailing_K", "calibration_K", "spp", "spp_requested", "seed",
+        "variant", "elapsed_s", "checks", "passed"}
+ROW = {"name", "applies", "passed", "statistic", "tolerance", "pixels", "reason"}
+
+
+def test_direct_document(capsys):
+    status, out, err = run([*BASE, "--seed", "3", "--json"], capsys)
+    assert status in (0, None), err[-500:]
+    document = json.loads(out)
+    assert set(document) >= KEYS
+    assert document["physics"] == "direct" and document["seed"] == 3 and document["spp_requested"] == 48
+    assert document["spp"] >= 48 and document["checks"][0]["passed"] is True and document["replicates"] == 12
+    names = [row["name"] for row in document["checks"]]
+    assert names == ["shading_cancels", "eq4_shift", "white_furnace", "closed_sphere"]
+    assert all(set(row) >= ROW for row in document["checks"])
+    info = document["checks"][1]
+    assert info["applies"] is False and info["passed"] is None and info["reason"]
+    assert document["passed"] is True
+
+
+def test_interreflection_is_information_and_the_sensor_is_named(capsys):
+    """No limit holds at interreflection: its row is information; with --imager the level gains noise."""
+    args = argparse.Namespace(scene="face", camera=CAM, prevailing="A", calibration="A", quality="standard", spp=24,
+                              sampler=None, seed=0, variant=None, channels="auto", imager="sony-icx418",
+                              illuminance=300.0, exposure="auto", normalization="white", knee=False,
+                              grid="400:700:1", extrapolation="refuse", gamut=False, physics="interreflection",
+                              skin=None, size="16", limits="none", json=True)
+    command_validate_face(args)
+    document = json.loads(capsys.readouterr().out)
+    assert document["physics"] == "interreflection+noise" and document["imager"] == "sony-icx418"
+    assert document["illuminance_lux"] == 300.0
+    assert [row["name"] for row in document["checks"]] == ["eq4_shift"]
+    assert document["passed"] is None
+
+
+def test_a_failing_check_exits_1_with_its_document(capsys, monkeypatch):
+    import skinrender.cli.face_validation as cli
+    import skinrender.rendering.face_validation as module
+
+    failed = LimitCheck("shading_cancels", True, False, 9.0, 7.0, 100, "forced")
+    monkeypatch.setattr(module, "check_shading", lambda *a, **k: failed)
+    monkeypatch.setattr(cli, "limits_of", lambda text: ())  # the scene-free limits: not needed here
+    status, out, _ = run([*BASE, "--size", "12", "--spp", "12", "--json"], capsys)
+    assert status == 1
+    document = json.loads(out)
+    assert document["passed"] is False and document["checks"][0]["passed"] is False
+
+
+def test_limits_are_parsed():
+    assert limits_of("furnace, sphere,furnace") == ("furnace", "sphere")
+    with pytest.raises(SkinrenderError, match="--limits"):
+        limits_of("moon")
+
+
+@pytest.mark.parametrize("extra, names", [
+    (["--physics", "glossy"], "--physics"),
+    (["--skin", "skin:nobody"], "--skin"),
+    (["--size", "0"], "--size"),
+    (["--size", "x"], "--size"),
+    (["--knee"], "--knee"),
+    (["--gamut"], "--gamut"),
+    (["--normalization", "none"], "--normalization"),
+    (["--grid", "400:700:5"], "--grid"),
+    (["--prevailing", "nonsense"], "--prevailing"),
+    (["--calibration", "20"], "--calibration"),
+    (["--camera", "Sony 755"], "--camera"),
+    (["--imager", "nope"], "--imager"),
+    (["--imager", "sony-icx418", "--illuminance", "-3"], "--illuminance"),
+    (["--spp", "0"], "--spp"),
+    (["--seed", "-1"], "--seed"),
+    (["--variant", "llvm_ad_rgb"], "--variant"),
+])
+def test_bad_input_is_refused(extra, names, capsys):
+    assert_refused([*BASE, *extra], names, capsys)

@@ -1,0 +1,80 @@
+"""
+Tests for :mod:`skinrender.rendering.face_validation`: which limits are checked at which level, the spp
+split over replicates, the sensor's terms, and refusals. (The limits themselves and their failing
+controls: ``test_face.py`` and ``test_face_limits.py``.)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from skinrender.errors import SkinrenderError
+from skinrender.rendering.face_limits import rounding_bias
+from skinrender.rendering.face_validation import LIMITS_SCENE_FREE, _sensor_terms, validate_face
+
+pytest.importorskip("mitsuba")
+
+CAM = "gbell:9@450,540,610"
+
+
+def names(result) -> list[str]:
+    return [c.name for c in result.checks]
+
+
+@pytest.mark.parametrize("physics, expected", [
+    ("direct", ["shading_cancels", "eq4_shift"]),
+    ("sheen", ["dichromatic_plane", "eq4_shift"]),
+    ("noise", ["shading_cancels", "eq4_shift"]),
+    ("sheen+noise", ["dichromatic_plane", "eq4_shift"]),
+    ("mixed", ["eq4_shift"]),
+])
+def test_the_checks_of_each_level(physics, expected):
+    result = validate_face(CAM, physics=physics, size=32, spp=48, limits=(), prevailing=2856, calibration=2856)
+    assert names(result) == expected
+    assert result.spp == 48 and result.spp_requested == 48 and result.replicates == 12
+    first = result.checks[0]
+    if first.applies:
+        assert first.passed is True, first
+    else:
+        assert result.passed is None and first.passed is None
+    document = result.document()
+    assert document["physics"] == physics and document["checks"][0]["name"] == expected[0]
+
+
+def test_spp_is_split_over_the_replicates_and_seeds_follow():
+    result = validate_face(CAM, size=12, spp=25, seed=2**32 - 3, replicates=4, limits=(), sampler="independent")
+    assert result.spp == 4 * 7 and result.spp_requested == 25 and result.seed == 2**32 - 3
+
+
+def test_sensor_terms_remove_the_dark_signal_and_clipped_pixels():
+    from skinrender.model.imager import imager
+    from skinrender.rendering.face import render_face
+
+    first = render_face(CAM, size=8, spp=1, physics="noise")
+    im = imager("sony-icx418")
+    g = np.asarray(first.gain)
+    signal = np.full((3, 2, 2, 3), 50.0)
+    signal[1, 0, 0, 2] = 0.0  # clipped at the black level in one replicate
+    signal[2, 1, 1, 0] = im.max_dn - im.black_level_dn  # saturated
+    images, usable, bias = _sensor_terms(first, signal * g, "sony-icx418")
+    dark = im.gain_dn_per_e * im.dark_current_e_per_s * first.info["exposure_s"]
+    assert np.allclose(images[0, 0, 1], g * (50.0 - dark))
+    assert usable.tolist() == [[False, True], [True, False]]
+    sigma = im.gain_dn_per_e * np.sqrt(50.0 / im.gain_dn_per_e + im.read_noise_e**2)
+    assert np.allclose(bias[0, 1], g * rounding_bias(sigma))
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"replicates": 2}, "replicates"),
+    ({"limits": ("moon",)}, "limits"),
+    ({"spp": 0}, "spp"),
+    ({"physics": "glossy"}, "physics"),
+])
+def test_refusals(kwargs, match):
+    with pytest.raises(SkinrenderError, match=match):
+        validate_face(CAM, **{"size": 8, "spp": 12, **kwargs})
+
+
+def test_scene_free_limits_are_named():
+    assert set(LIMITS_SCENE_FREE) == {"furnace", "sphere"}
