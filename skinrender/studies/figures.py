@@ -204,12 +204,13 @@ def figure_chart(image: NDArrayFloat, boxes: list, names: list, skin: list, titl
 
     shown = display_srgb(image)
     height, width = shown.shape[:2]
-    columns = max(1, round(width / max(b[2] - b[0] + 1 for b in boxes)))
+    columns = len({box[0] for box in boxes})
     panels = [("render (camera RGB shown as sRGB" + ("; dashed orange: the skin patches)" if any(skin) else ")"),
                shown)]
     if mask is not None:
         panels.append(("detected: inside the skin locus (white)", np.repeat(np.asarray(mask, float)[..., None], 3, -1)))
-    inch = 1.45 * columns / width  # inches per pixel: a patch column is about 1.45 in wide
+    # inches per pixel: a patch column about 1.45 in wide (names at 8.5 pt fit), the figure at most 30 in a side
+    inch = min(1.45 * columns / width, 30.0 / width, 30.0 / (len(panels) * height))
     figure, axes = plt.subplots(len(panels), 1, figsize=(inch * width + 0.4, len(panels) * inch * height + 0.9),
                                 squeeze=False)
     for k, (axis, (label, picture)) in enumerate(zip(axes[:, 0], panels)):

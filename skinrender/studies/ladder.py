@@ -35,6 +35,7 @@ import numpy as np
 
 from ..errors import SkinrenderError
 from ..evaluation.locus import skin_locus
+from ..hints import NDArrayFloat
 from ..model.camera import camera
 from ..model.chromaticity import ncc
 from ..model.illuminant import illuminant
@@ -90,7 +91,7 @@ class Ladder:
     locus_area: float
     levels: list = field(default_factory=list)
     frames: list = field(default_factory=list, repr=False, compare=False)
-    locus_polygon: np.ndarray | None = field(default=None, repr=False, compare=False)
+    locus_polygon: NDArrayFloat | None = field(default=None, repr=False, compare=False)
     label_names: dict = field(default_factory=dict)
 
     def document(self) -> dict:
