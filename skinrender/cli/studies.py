@@ -12,6 +12,14 @@ from .common import (HELP_CAMERA, add_common, add_grid, add_search,
                      emit, table)
 
 
+def _g(value) -> str:
+    return "—" if value is None else f"{value:.2g}"
+
+
+def size_text(size) -> str:
+    return f"{size[0]}×{size[1]} px"
+
+
 def add_parsers(commands) -> None:
     """Add the parsers of reproduce, table1, bench."""
     p = commands.add_parser("reproduce", help="the paper's Figs. 3–7 (PNG) and Tables 2–5 (Markdown, CSV), with "
@@ -58,6 +66,15 @@ def add_parsers(commands) -> None:
     p.add_argument("--workers", type=int, help="search, sweep: processes (default: every core)")
     p.add_argument("--positions", default="400:700:20",
                    help="sweep: peak positions START:END:STEP nm of the timed sweep (default 400:700:20)")
+    p.add_argument("--scene", help="render: a face scene (face or a .toml with [camera] and [mesh]) to time the "
+                   "face at each level of physics instead of the charts")
+    p.add_argument("--size", metavar="PX", help="render --scene: image side, pixels (default 256; --quick 64)")
+    p.add_argument("--levels", help="render --scene: comma-separated levels of physics (default "
+                   "direct,interreflection,sheen,mixed,noise)")
+    p.add_argument("--spp-list", metavar="N,N,…",
+                   help="render --scene: samples per pixel of the curve (default 4,16,64,256; --quick 4,16,64)")
+    p.add_argument("--reference-spp", metavar="N",
+                   help="render --scene: spp of each level's reference render (default 4 × the largest of --spp-list)")
     add_common(p)
 
 
@@ -102,9 +119,89 @@ def command_table1(args: argparse.Namespace) -> None:
     emit(args, result, text)
 
 
+FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
+"""``bench`` flags that go with ``render --scene``."""
+
+
+def _integers(text: str, name: str, high: int, many: bool = True) -> list[int]:
+    """Comma-separated integers in [1, ``high``] (one unless ``many``), or a one-line error naming ``name``."""
+    values = []
+    parts = str(text).split(",")
+    for part in parts:
+        try:
+            value = int(part.strip())
+        except ValueError:
+            value = 0
+        if not 1 <= value <= high or (len(parts) > 1 and not many):
+            what = "comma-separated integers" if many else "an integer"
+            raise SkinrenderError(f"{name} must be {what} in [1, {high}], got {text!r}")
+        values.append(value)
+    return values
+
+
+def face_bench_options(args: argparse.Namespace) -> dict | None:
+    """
+    The face bench's options from ``bench render --scene …`` (checked, one-line errors naming the flag), or
+    ``None`` for the chart bench; the face flags without ``--scene`` are refused.
+    """
+    given = [name for name in FACE_BENCH_FLAGS if getattr(args, name, None) is not None]
+    if args.scene is None:
+        if given:
+            raise SkinrenderError(f"--{given[0].replace('_', '-')} goes with 'bench render --scene SCENE' (a face)")
+        return None
+    if args.what != "render":
+        raise SkinrenderError(f"--scene goes with 'bench render', not 'bench {args.what}'")
+    from ..rendering.face_dict import active_lights, parse_physics
+    from ..rendering.face_scene import load_face_scene
+    from ..rendering.renderer import SAMPLES_MAX
+    from ..studies.bench_face import LEVELS_BENCH, SIZE_BENCH, SPPS_BENCH
+    from .common import SPP_MAX, flag
+    from .face import SIZE_MAX, is_face_scene
+
+    if not is_face_scene(args.scene):
+        raise SkinrenderError(f"--scene: the render bench times a face scene (face or a .toml with [camera] and "
+                              f"[mesh]); the charts' bench runs without --scene, got {args.scene!r}")
+    if args.plot:
+        raise SkinrenderError("--plot draws the charts' curve; the face bench (--scene) prints its table only")
+    scene = flag("--scene", load_face_scene, args.scene)
+    size = (_integers(args.size, "--size", SIZE_MAX, many=False)[0] if args.size is not None
+            else 64 if args.quick else SIZE_BENCH)
+    spps = (_integers(args.spp_list, "--spp-list", SPP_MAX) if args.spp_list is not None
+            else [s for s in SPPS_BENCH if not args.quick or s <= 64])
+    reference = (_integers(args.reference_spp, "--reference-spp", SPP_MAX, many=False)[0]
+                 if args.reference_spp is not None else 4 * max(spps))
+    for name, spp in (("--reference-spp", reference), ("--spp-list", max(spps))):
+        if spp * size * size > SAMPLES_MAX:
+            raise SkinrenderError(f"{name}: {spp} spp × {size}² pixels is more than {SAMPLES_MAX} samples a pass")
+    levels = [level.strip() for level in (args.levels or ",".join(LEVELS_BENCH)).split(",") if level.strip()]
+    if not levels:
+        raise SkinrenderError("--levels: name at least one level of physics")
+    for level in levels:
+        flag("--levels", active_lights, scene, flag("--levels", parse_physics, level))
+    return {"scene": scene, "size": size, "spps": spps, "reference_spp": reference, "levels": levels}
+
+
 def command_bench(args: argparse.Namespace) -> None:
     from ..studies.bench import bench_analytic, bench_search, bench_sweep
 
+    face = face_bench_options(args)
+    if face is not None:
+        from ..studies.bench_face import bench_face
+
+        result = bench_face(levels=face["levels"], spps=face["spps"], size=face["size"],
+                            reference_spp=face["reference_spp"], scene=face["scene"],
+                            progress=lambda line: print(line, file=sys.stderr))
+        rows = [[r["level"], r["spp"], f"{r['seconds']:.3f}", _g(r["skin_ncc_error"]), _g(r["skin_ncc_rms"])]
+                for r in result["curve"]]
+        presets = [[level, *(str(p[name]) for name in ("draft", "standard", "reference")), _g(p.get("floor")),
+                    str(p.get("spp_at_floor"))] for level, p in result["presets"].items()]
+        text = (f"the face ({result['scene']}) through {result['camera']}, {size_text(result['size'])}, reference "
+                f"{result['reference_spp']} spp per level, {result['elapsed_s']:.0f} s in all:\n"
+                + table(rows, ["level", "spp", "s", "mean NCC error", "RMS NCC error"])
+                + "\npresets (spp reaching RMS " + ", ".join(f"{k} {v:g}" for k, v in result["thresholds"].items())
+                + "):\n" + table(presets, ["level", "draft", "standard", "reference", "floor", "spp at floor"]))
+        emit(args, result, text)
+        return
     if args.what == "render":
         from ..studies.bench import bench_render
 
