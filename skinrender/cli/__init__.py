@@ -11,7 +11,8 @@ never a traceback.
 One module per command group: :mod:`~skinrender.cli.data`,
 :mod:`~skinrender.cli.model`, :mod:`~skinrender.cli.evaluation`,
 :mod:`~skinrender.cli.design`, :mod:`~skinrender.cli.rendering`,
-:mod:`~skinrender.cli.studies`; :mod:`~skinrender.cli.common` holds what
+:mod:`~skinrender.cli.studies`, :mod:`~skinrender.cli.face`,
+:mod:`~skinrender.cli.face_sweep`; :mod:`~skinrender.cli.common` holds what
 they share.
 """
 
@@ -23,7 +24,7 @@ import sys
 from collections.abc import Sequence
 
 from ..errors import SkinrenderError
-from . import data, design, evaluation, face, imaging, model, rendering, studies
+from . import data, design, evaluation, face, face_sweep, imaging, model, rendering, studies
 from .common import Parser
 
 __all__ = ["main", "build_parser", "COMMANDS"]
@@ -47,6 +48,7 @@ COMMANDS = {
     "score": imaging.command_score,
     "ptc": imaging.command_ptc,
     "ladder": face.command_ladder,
+    "face-sweep": face_sweep.command_face_sweep,
 }
 """Command name → the function that runs it."""
 
@@ -59,7 +61,7 @@ def build_parser() -> argparse.ArgumentParser:
         "(wavelengths in nm, temperatures in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹).",
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser)
-    for group in (data, model, design, studies, rendering, evaluation, imaging, face):
+    for group in (data, model, design, studies, rendering, evaluation, imaging, face, face_sweep):
         group.add_parsers(commands)
     return parser
 

@@ -1,0 +1,201 @@
+"""
+The face sweep: ``face-sweep`` renders the face for every camera × light
+pair × skin × level of physics, on every core or a Dask cluster, and scores
+skin detection on each render as ``ladder`` does
+(:mod:`skinrender.studies.face_sweep`).
+
+``--camera`` and ``--skin`` repeat (camera and skin specs hold commas);
+``--lights`` takes comma-separated ``PREVAILING/CALIBRATION`` pairs and
+``--levels`` comma-separated levels.
+
+Units: temperatures K, times s, image sides pixels, NCC and rates fractions.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..errors import SkinrenderError
+from .common import HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, table
+from .face import HELP_SKIN, SIZE_MAX
+
+__all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
+
+LIGHTS_DEFAULT = "2300/5900,2856/5900,5900/5900,10000/5900"
+"""``--lights`` unless given: horizon sunlight to blue sky, balanced to daylight (as the face loci)."""
+
+SIZE_DEFAULT = 64
+"""``--size`` unless given, pixels."""
+
+SPP_DEFAULT = 32
+"""``--spp`` unless given."""
+
+
+def add_parsers(commands) -> None:
+    """Add the parser of face-sweep."""
+    from ..studies.face_locus import SKIN_TONES
+    from ..studies.face_sweep import RENDERS_MAX, SWEEP_SAMPLES_MAX
+    from ..studies.ladder import LEVELS_DEFAULT
+
+    p = commands.add_parser("face-sweep", help="the face rendered for every camera × light pair × skin × level of "
+                            "physics, on every core or a Dask cluster, with the skin's NCC and the skin locus's "
+                            "detection rates for each")
+    p.add_argument("--camera", action="append", required=True,
+                   help="a camera (repeat the flag for several); " + HELP_CAMERA)
+    p.add_argument("--lights", action="append", metavar="P/C[,P/C…]",
+                   help="comma-separated PREVAILING/CALIBRATION pairs of Planckian lights (kelvin, A or H), e.g. "
+                   f"2856/5900,2300/5900; the flag may repeat (default {LIGHTS_DEFAULT})")
+    p.add_argument("--skin", action="append",
+                   help="a skin (repeat the flag for several): " + HELP_SKIN.split(" (default")[0]
+                   + "; default: light to very dark, " + " ".join(SKIN_TONES))
+    p.add_argument("--levels", default=",".join(LEVELS_DEFAULT),
+                   help="comma-separated levels of physics (direct, interreflection, sheen, mixed, noise; "
+                   "effects combine with '+'); default " + ",".join(LEVELS_DEFAULT))
+    p.add_argument("--scene", default="face", help="face scene: a bundled name (face) or a .toml path")
+    p.add_argument("--size", metavar="PX", default=str(SIZE_DEFAULT),
+                   help=f"image side in pixels (default {SIZE_DEFAULT})")
+    p.add_argument("--spp", metavar="N", default=str(SPP_DEFAULT), help=f"samples per pixel (default {SPP_DEFAULT})")
+    p.add_argument("--seed", metavar="S", default="0", help="sampler seed, every render the same (default 0)")
+    p.add_argument("--imager", help="image sensor of the noise level: a preset or a TOML (default sony-icx418)")
+    p.add_argument("--illuminance", metavar="LUX",
+                   help="the key light's illuminance at the face, lx (default: the scene's); only noise sees it")
+    p.add_argument("--variant", help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, "
+                   "scalar_spectral); default: the fastest that works here, the same in every worker")
+    p.add_argument("--workers", metavar="N", help="processes (default: every core); 1 renders in this process")
+    p.add_argument("--dask", metavar="ADDRESS", help="run on a Dask cluster (scheduler address, tcp://host:8786)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
+    p.add_argument("--csv", help="write every combination's row to this CSV file (whole or not at all)")
+    p.add_argument("--max-renders", metavar="N", default=str(RENDERS_MAX),
+                   help=f"refuse sweeps of more renders than this (default {RENDERS_MAX})")
+    p.add_argument("--max-samples", metavar="N", default=f"{SWEEP_SAMPLES_MAX:g}",
+                   help=f"refuse sweeps of more samples (renders × pixels × spp) than this (default "
+                   f"{SWEEP_SAMPLES_MAX:g})")
+    add_common(p)
+
+
+def _integer(text, name: str, low: int, high: int) -> int:
+    try:
+        value = int(str(text).strip())
+    except ValueError:
+        value = None
+    if value is None or not low <= value <= high:
+        raise SkinrenderError(f"{name} must be an integer in [{low}, {high}], got {text!r}")
+    return value
+
+
+def _planckian(spec: str, name: str) -> float:
+    from ..model.illuminant import illuminant
+
+    light = flag(name, illuminant, spec)
+    if light.temperature is None:
+        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}")
+    return float(light.temperature)
+
+
+def _lights(values: list[str]) -> list[tuple[float, float]]:
+    """The (prevailing, calibration) pairs of every ``--lights``, K."""
+    pairs = []
+    for value in values:
+        for item in str(value).split(","):
+            if not item.strip():
+                continue
+            parts = item.split("/")
+            if len(parts) != 2 or not all(part.strip() for part in parts):
+                raise SkinrenderError(f"--lights: expected PREVAILING/CALIBRATION pairs such as 2856/5900, got "
+                                      f"{item.strip()!r}")
+            pairs.append((_planckian(parts[0].strip(), "--lights"), _planckian(parts[1].strip(), "--lights")))
+    if not pairs:
+        raise SkinrenderError("--lights: name at least one PREVAILING/CALIBRATION pair")
+    return pairs
+
+
+def _checked(args: argparse.Namespace) -> dict:
+    """Every flag checked, before any render: the arguments of :func:`~skinrender.studies.face_sweep.face_sweep`."""
+    import numpy as np
+
+    from ..model.camera import camera
+    from ..model.response import response
+    from ..rendering.face_dict import parse_physics
+    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+    from ..rendering.variants import VARIANTS_SPECTRAL
+    from ..spectra import GRID_DEFAULT
+    from ..studies.face_locus import SKIN_TONES
+    from ..studies.face_sweep import WORKERS_MAX
+
+    check_output(args.csv, "--csv", (".csv",))
+    cams = []
+    for spec in args.camera:
+        cam = flag("--camera", camera, spec)
+        flag("--camera", cam.sensitivities, GRID_DEFAULT)
+        cams.append(cam)
+    pairs = _lights(args.lights or [LIGHTS_DEFAULT])
+    for cam in cams:
+        for t in sorted({t for pair in pairs for t in pair}):
+            flag("--lights", response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
+    skins = [s.strip() for s in (args.skin or SKIN_TONES)]
+    for skin in skins:
+        if not skin:
+            raise SkinrenderError("--skin: expected a skin spec, got an empty one")
+        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
+    levels = [level.strip() for level in str(args.levels).split(",") if level.strip()]
+    if not levels:
+        raise SkinrenderError("--levels: name at least one level of physics")
+    for level in levels:
+        flag("--levels", parse_physics, level)
+    flag("--scene", load_face_scene, args.scene)
+    if args.variant is not None and args.variant not in VARIANTS_SPECTRAL:
+        raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, got {args.variant!r}")
+    if args.imager is not None:
+        from ..model.imager import imager
+
+        flag("--imager", imager, args.imager)
+    lux = None
+    if args.illuminance is not None:
+        try:
+            lux = float(args.illuminance)
+        except ValueError:
+            lux = float("nan")
+        if not (0 < lux < float("inf")):
+            raise SkinrenderError(f"--illuminance must be a finite number of lux > 0, got {args.illuminance!r}")
+    try:
+        max_samples = float(args.max_samples)
+    except ValueError:
+        max_samples = float("nan")
+    if not (0 < max_samples < float("inf")):
+        raise SkinrenderError(f"--max-samples must be a finite number > 0, got {args.max_samples!r}")
+    if args.dask is not None and not str(args.dask).strip():
+        raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one")
+    return {
+        "cameras": cams, "lights": pairs, "skins": skins, "levels": levels, "scene": args.scene,
+        "size": _integer(args.size, "--size", 1, SIZE_MAX), "spp": _integer(args.spp, "--spp", 1, SPP_MAX),
+        "seed": _integer(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": args.imager,
+        "illuminance": lux,
+        "workers": None if args.workers is None else _integer(args.workers, "--workers", 1, WORKERS_MAX),
+        "dask": args.dask, "max_renders": _integer(args.max_renders, "--max-renders", 1, 10**9),
+        "max_samples": max_samples,
+    }
+
+
+def command_face_sweep(args: argparse.Namespace) -> None:
+    from ..studies.face_sweep import face_sweep
+
+    result = face_sweep(**_checked(args), progress=None if args.quiet else sys.stderr)
+    if args.csv is not None:
+        result.to_csv(args.csv)
+    document = {**result.document(), "csv": args.csv}
+
+    def triple(values) -> str:
+        return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
+
+    def rate(value) -> str:
+        return "—" if value is None else f"{value:.3f}"
+
+    rows = [[row["camera"], f"{row['prevailing_K']:g}/{row['calibration_K']:g}", row["skin"], row["level"],
+             f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]), rate(row["tpr"]), rate(row["fpr"])]
+            for row in document["combinations"]]
+    text = (table(rows, ["camera", "P/C K", "skin", "level", "s", "spp", "skin NCC r g b", "TPR", "FPR"])
+            + f"\n{len(rows)} renders of {result.size}×{result.size} px at {result.spp} spp in "
+            f"{result.elapsed_s:.1f} s ({'Dask' if result.dask else f'{result.workers} workers'}, {result.variant})"
+            + (f"; wrote {args.csv}" if args.csv else ""))
+    emit(args, document, text)

@@ -1,0 +1,446 @@
+"""
+Face sweeps
+===========
+
+The face (:func:`skinrender.rendering.face.render_face`) rendered for every
+combination of cameras × (prevailing, calibration) light pairs × skins ×
+levels of physics, each scored as the ladder scores a level
+(:mod:`skinrender.studies.ladder`): the scored skin pixels' NCC mean and
+spread, the share of them inside the camera's analytic skin locus (TPR) and
+that of the scored prop pixels (FPR). The renders run on every core (a
+process pool) or a Dask cluster, as the Stage 3 search does
+(:mod:`skinrender.design.search`).
+
+-   :func:`face_sweep`, :class:`FaceSweep`: the sweep, its JSON document and CSV.
+-   :func:`score_rendering`: one face render scored (the ladder's scoring).
+-   :func:`sweep_tasks`: the combinations, in the order of the result.
+
+Determinism: every render uses the same seed, the Mitsuba variant chosen
+once in the calling process, and :data:`RENDER_THREADS` drjit thread (the
+LLVM backend's sums over a pixel's samples depend on how the work is split
+between threads: measured, 2 threads against 1 move the skin NCC by ~1e-10),
+so the numbers (all but ``seconds``) are the same with one worker, several or
+a Dask cluster (tested). A sweep is parallel over renders: one process per
+core. Worker processes are started fresh (``spawn``: drjit's threads do not
+survive a ``fork``; a script that calls :func:`face_sweep` with several
+workers needs the ``if __name__ == "__main__":`` guard), each sets the
+variant and sends anything written on its stdout to stderr, so that
+``--json`` keeps stdout to itself. On Dask, run workers of one thread each
+(``dask worker --nworkers N --nthreads 1``): a render sets its process's
+drjit thread count to :data:`RENDER_THREADS`.
+
+Units: temperatures K, times s, image sides pixels, NCC and rates fractions.
+"""
+
+from __future__ import annotations
+
+import csv
+import itertools
+import multiprocessing
+import os
+import signal
+import sys
+import time
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..design.search import DASK_TIMEOUT_S, WORKERS_MAX
+from ..errors import SkinrenderError
+from ..evaluation.locus import skin_locus
+from ..extras import require
+from ..model.camera import camera
+from ..model.chromaticity import ncc
+from ..model.illuminant import illuminant
+from ..rendering.face import render_face
+from ..rendering.face_dict import parse_physics
+from ..rendering.face_labels import LABEL_SKIN
+from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+from ..rendering.renderer import SAMPLES_MAX
+from ..rendering.scene import PIXELS_MAX
+from ..rendering.validation import analytic_reference
+from ..rendering.variants import choose_variant, libllvm_path, mitsuba
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+from .ladder import SCORED_MIN_OUTPUT
+
+__all__ = ["RENDER_THREADS", "RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
+           "FaceSweep", "face_sweep", "score_rendering", "sweep_tasks", "estimate_seconds"]
+
+RENDER_THREADS = 1
+"""drjit threads per render, in every worker and in this process (restored after a one-worker sweep): the same
+split of the work everywhere gives the same numbers."""
+
+RENDERS_MAX = 5000
+"""Most renders a sweep may ask for unless ``max_renders`` is raised (about 3 h on 2 cores at tiny sizes)."""
+
+SWEEP_SAMPLES_MAX = 10**11
+"""Most samples (renders × pixels × spp) a sweep may ask for unless ``max_samples`` is raised (about a day on 2
+cores at :data:`SAMPLES_PER_S`)."""
+
+SECONDS_PER_RENDER = 2.5
+"""Measured fixed cost of one face render on 2 cores (scene loading, kernels, labels), s: the estimates' base."""
+
+SAMPLES_PER_S = 1.6e6
+"""Measured samples per second of the face on 2 cores (200 × 200 pixels, 64 spp, depth 4 with a coating in
+1.6 s, issue 13), the estimates' rate."""
+
+CSV_COLUMNS = ("camera", "prevailing_K", "calibration_K", "skin", "level", "seconds", "spp",
+               "skin_ncc_mean_r", "skin_ncc_mean_g", "skin_ncc_mean_b", "skin_ncc_std_r", "skin_ncc_std_g",
+               "skin_ncc_std_b", "tpr", "fpr", "skin_pixels", "prop_pixels",
+               "skin_ncc_analytic_r", "skin_ncc_analytic_g", "skin_ncc_analytic_b")
+"""Columns of :meth:`FaceSweep.to_csv`; an empty cell where a value is ``None``."""
+
+
+def _temperature(spec, name: str) -> float:
+    item = illuminant(spec)
+    if item.temperature is None:
+        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}")
+    return float(item.temperature)
+
+
+def _rate(hits: np.ndarray) -> float | None:
+    return float(hits.mean()) if hits.size else None
+
+
+def score_rendering(result, locus) -> dict:
+    """
+    Score one face render as the ladder scores a level.
+
+    A pixel is scored when its brightest channel reaches
+    :data:`~skinrender.studies.ladder.SCORED_MIN_OUTPUT`; ``tpr`` is the share of scored skin pixels whose NCC
+    (r, g) lies in ``locus``, ``fpr`` that of the scored prop pixels (the background is left out).
+
+    Parameters
+    ----------
+    result
+        A :class:`~skinrender.rendering.face.FaceRendering`.
+    locus
+        A :class:`~skinrender.evaluation.locus.SkinLocus` (its ``contains``).
+
+    Returns
+    -------
+    dict
+        ``skin_ncc_mean``, ``skin_ncc_std`` (``[r, g, b]`` or ``None`` without a scored skin pixel), ``tpr``,
+        ``fpr`` (fractions or ``None``), ``skin_pixels``, ``prop_pixels`` (scored counts).
+    """
+    image = result.image.astype(np.float64)
+    scored = image.max(axis=-1) >= SCORED_MIN_OUTPUT
+    chromaticity = ncc(image)
+    inside = locus.contains(chromaticity[..., :2])
+    skin_pixels = scored & (result.labels == LABEL_SKIN)
+    prop_pixels = scored & (result.labels > LABEL_SKIN)
+    values = chromaticity[skin_pixels]
+    return {
+        "skin_ncc_mean": values.mean(axis=0).tolist() if values.size else None,
+        "skin_ncc_std": values.std(axis=0).tolist() if values.size else None,
+        "tpr": _rate(inside[skin_pixels]),
+        "fpr": _rate(inside[prop_pixels]),
+        "skin_pixels": int(skin_pixels.sum()),
+        "prop_pixels": int(prop_pixels.sum()),
+    }
+
+
+@dataclass(frozen=True)
+class _Settings:
+    """What every render of a sweep shares (sent to each worker once per task; small)."""
+
+    scene: object
+    size: int
+    spp: int
+    seed: int
+    variant: str
+    grid: WavelengthGrid
+    imager: str | None
+    illuminance: float | None
+
+
+def _render_task(task: tuple, settings: _Settings) -> dict:
+    """One combination ``(camera, prevailing K, calibration K, skin, level)`` rendered and scored."""
+    cam, p, c, skin, level = task
+    start = time.perf_counter()
+    _set_threads(RENDER_THREADS)  # no change in a pool worker or a one-worker sweep; a Dask worker's is set here
+    result = render_face(cam, settings.scene, p, c, skin, level, settings.spp, settings.seed, settings.size,
+                         variant=settings.variant, grid=settings.grid, imager=settings.imager,
+                         illuminance=settings.illuminance)
+    locus = skin_locus(cam, "skin", calibration=c, grid=settings.grid)
+    rho = skin_reflectance_of(skin, settings.grid, "skin")
+    analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=settings.grid))[0]
+    row = {"camera": cam.name, "prevailing_K": p, "calibration_K": c, "skin": skin,
+           "level": result.physics, "seconds": 0.0, "spp": result.spp, **score_rendering(result, locus),
+           "skin_ncc_analytic": analytic.tolist(), "variant": result.variant}
+    row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
+    row["seconds"] = time.perf_counter() - start
+    return row
+
+
+def _set_threads(count: int) -> int:
+    """Set drjit's thread count (the LLVM backend's pool); returns the count before."""
+    libllvm_path()  # before drjit is first imported (a fresh Dask worker)
+    import drjit
+
+    before = drjit.thread_count()
+    if before != count:
+        drjit.set_thread_count(count)
+    return before
+
+
+def _init_worker(variant: str) -> None:
+    """A pool worker: Ctrl-C is the parent's, stdout is stderr, the variant is set, :data:`RENDER_THREADS`."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    sys.stdout.flush()
+    os.dup2(2, 1)  # a worker shares the parent's stdout, the JSON's: nothing of Mitsuba's may land there
+    sys.stdout = sys.stderr
+    mitsuba(choose_variant(variant))
+    _set_threads(RENDER_THREADS)
+
+
+def sweep_tasks(cameras, lights, skins, levels) -> list[tuple]:
+    """
+    Every combination, cameras outermost, then light pairs, skins, levels.
+
+    Examples
+    --------
+    >>> [t[1:] for t in sweep_tasks(["cam"], [(2856.0, 5900.0)], ["a", "b"], ["direct"])]
+    [(2856.0, 5900.0, 'a', 'direct'), (2856.0, 5900.0, 'b', 'direct')]
+    """
+    return [(cam, p, c, skin, level) for cam, (p, c), skin, level in itertools.product(cameras, lights, skins, levels)]
+
+
+def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2) -> float:
+    """
+    Wall time of ``renders`` face renders of ``pixels`` pixels at ``spp`` on ``cores`` cores, s (from
+    :data:`SECONDS_PER_RENDER` and :data:`SAMPLES_PER_S`, both measured on 2 cores).
+
+    Examples
+    --------
+    >>> estimate_seconds(10, 100 * 100, 16)
+    26.0
+    """
+    return renders * (SECONDS_PER_RENDER + pixels * spp / SAMPLES_PER_S) * 2.0 / max(1, cores)
+
+
+@dataclass(frozen=True)
+class FaceSweep:
+    """
+    The sweep's result.
+
+    Attributes
+    ----------
+    combinations
+        One dict per combination, in :func:`sweep_tasks` order: ``camera``, ``prevailing_K``,
+        ``calibration_K``, ``skin``, ``level``, ``seconds``, ``spp``, ``skin_ncc_mean``, ``skin_ncc_std``
+        (``[r, g, b]``), ``tpr``, ``fpr``, ``skin_pixels``, ``prop_pixels``, ``skin_ncc_analytic`` (Eq. 4's
+        NCC of the skin, ``[r, g, b]``), ``variant``, and ``imager``/``exposure_s`` with ``noise``.
+    elapsed_s
+        Wall time of the renders, s.
+    """
+
+    scene: object
+    size: int
+    spp: int
+    seed: int
+    variant: str
+    workers: int
+    elapsed_s: float
+    combinations: list = field(default_factory=list)
+    dask: str | None = None
+
+    def document(self) -> dict:
+        """The JSON document (``combinations`` and the settings)."""
+        return {"scene": self.scene, "size": self.size, "spp": self.spp, "seed": self.seed,
+                "variant": self.variant, "workers": self.workers, "dask": self.dask, "elapsed_s": self.elapsed_s,
+                "renders": len(self.combinations), "combinations": self.combinations}
+
+    def to_csv(self, path) -> Path:
+        """Every combination as a CSV row (:data:`CSV_COLUMNS`), written whole or not at all."""
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        partial = path.with_name(path.name + ".partial")
+        try:
+            with open(partial, "w", encoding="utf-8", newline="") as handle:
+                writer = csv.writer(handle, lineterminator="\n")
+                writer.writerow(CSV_COLUMNS)
+                for row in self.combinations:
+                    triples = [v for key in ("skin_ncc_mean", "skin_ncc_std")
+                               for v in (row[key] if row[key] is not None else [None] * 3)]
+                    cells = [row["camera"], row["prevailing_K"], row["calibration_K"], row["skin"], row["level"],
+                             row["seconds"], row["spp"], *triples, row["tpr"], row["fpr"], row["skin_pixels"],
+                             row["prop_pixels"], *row["skin_ncc_analytic"]]
+                    writer.writerow(["" if v is None else f"{v:.17g}" if isinstance(v, float) else v
+                                     for v in cells])
+            os.replace(partial, path)
+        finally:
+            partial.unlink(missing_ok=True)
+        return path
+
+
+def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples: float, cores: int) -> None:
+    pixels = size * size
+    if pixels > PIXELS_MAX:
+        raise SkinrenderError(f"size {size} pixels gives {pixels} pixels per image, more than {PIXELS_MAX}")
+    if spp * pixels > SAMPLES_MAX:
+        raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
+                              f"most {SAMPLES_MAX // pixels} spp at this size")
+    hours = estimate_seconds(renders, pixels, spp, cores) / 3600
+    if renders > max_renders:
+        raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} (about {hours:.3g} h on "
+                              f"{cores} cores); raise the limit (--max-renders) or sweep fewer combinations")
+    if renders * pixels * spp > max_samples:
+        raise SkinrenderError(f"{renders} renders × {pixels} pixels × {spp} spp = {renders * pixels * spp:.3g} "
+                              f"samples is more than max_samples = {max_samples:.3g} (about {hours:.3g} h on "
+                              f"{cores} cores); raise the limit (--max-samples) or lower the size or spp")
+
+
+def face_sweep(
+    cameras,
+    lights,
+    skins,
+    levels,
+    size: int = 64,
+    spp: int = 32,
+    seed: int = 0,
+    scene="face",
+    variant: str | None = None,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    imager: str | None = None,
+    illuminance: float | None = None,
+    workers: int | None = None,
+    dask=None,
+    progress=None,
+    max_renders: int = RENDERS_MAX,
+    max_samples: float = SWEEP_SAMPLES_MAX,
+) -> FaceSweep:
+    """
+    Render and score the face for every camera × light pair × skin × level.
+
+    Parameters
+    ----------
+    cameras
+        Cameras or specs.
+    lights
+        (prevailing, calibration) pairs: kelvin, ``A`` or ``H`` (Planckian lights).
+    skins
+        Skin specs (``SET:SAMPLE``, ``SET:#N``, ``skin-model:melanin=…``).
+    levels
+        Physics levels (:data:`skinrender.rendering.face.PHYSICS`, effects joined by ``+``).
+    size
+        Image side, pixels.
+    spp, seed, variant, grid
+        As :func:`skinrender.rendering.face.render_face`; every render uses ``seed``; the variant is chosen
+        once here (``None``: the fastest that works) and used by every worker.
+    scene
+        A face scene name or path.
+    imager, illuminance
+        The ``noise`` level's image sensor and the key light's illuminance, lx (as :func:`ladder`).
+    workers
+        Processes; ``None``: every core. 1 renders in this process.
+    dask
+        A Dask scheduler address (``tcp://host:8786``) or a ``distributed.Client``: the renders run there.
+    progress
+        A stream (``sys.stderr``) for a progress bar (shown on a terminal only), or ``None``.
+    max_renders, max_samples
+        Refuse a sweep of more renders, or more samples (renders × pixels × spp), than these; the message
+        carries an estimate of the time.
+
+    Returns
+    -------
+    :class:`FaceSweep`
+    """
+    cams = [camera(c) for c in cameras]
+    pairs = [(_temperature(p, "prevailing"), _temperature(c, "calibration")) for p, c in lights]
+    skins = [str(s).strip() for s in skins]
+    levels = [str(level).strip() for level in levels]
+    for name, values in (("cameras", cams), ("lights", pairs), ("skins", skins), ("levels", levels)):
+        if not values:
+            raise SkinrenderError(f"{name}: name at least one")
+    for skin in skins:
+        skin_reflectance_of(skin, grid, "skin")
+    for level in levels:
+        parse_physics(level)
+    for name, value, low in (("size", size, 1), ("spp", spp, 1), ("seed", seed, 0)):  # size in pixels
+        if not (isinstance(value, (int, np.integer)) and not isinstance(value, bool) and low <= value < 2**32):
+            raise SkinrenderError(f"{name} must be an integer in [{low}, 2^32), got {value!r}")
+    workers = (os.cpu_count() or 1) if workers is None else workers
+    if not (isinstance(workers, (int, np.integer)) and not isinstance(workers, bool) and 1 <= workers <= WORKERS_MAX):
+        raise SkinrenderError(f"workers must be an integer in [1, {WORKERS_MAX}] processes, got {workers!r}")
+    tasks = sweep_tasks(cams, pairs, skins, levels)
+    _check_size(len(tasks), int(size), int(spp), max_renders, max_samples, os.cpu_count() or 1)
+    face = load_face_scene(scene)
+    settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance)
+    rows: list = [None] * len(tasks)
+    bar = _progress_bar(len(tasks), progress)
+    start = time.perf_counter()
+    try:
+        if dask is not None:
+            _run_dask(dask, tasks, settings, rows, bar)
+        elif workers == 1:
+            before = _set_threads(RENDER_THREADS)
+            try:
+                for i, task in enumerate(tasks):
+                    rows[i] = _render_task(task, settings)
+                    bar.update(1)
+            finally:
+                _set_threads(before)
+        else:
+            _run_pool(workers, tasks, settings, rows, bar)
+    finally:
+        bar.close()
+    return FaceSweep(face.name, int(size), int(spp), int(seed), settings.variant,
+                     1 if dask is not None else int(workers), time.perf_counter() - start, rows,
+                     None if dask is None else dask if isinstance(dask, str) else
+                     str(getattr(getattr(dask, "scheduler", None), "address", "a Dask client")))
+
+
+def _progress_bar(total: int, stream):
+    """A tqdm bar of renders on ``stream``; off when ``stream`` is ``None`` (``--quiet``) or not a terminal."""
+    from tqdm import tqdm
+
+    enabled = stream is not None and getattr(stream, "isatty", lambda: False)()
+    return tqdm(total=total, desc="face sweep", file=stream, disable=not enabled, unit="render", leave=True)
+
+
+def _run_pool(workers: int, tasks: list, settings: _Settings, rows: list, bar) -> None:
+    pool = ProcessPoolExecutor(min(workers, len(tasks)), mp_context=multiprocessing.get_context("spawn"),
+                               initializer=_init_worker, initargs=(settings.variant,))
+    try:
+        futures = {pool.submit(_render_task, task, settings): i for i, task in enumerate(tasks)}
+        pending = set(futures)
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for future in done:
+                rows[futures[future]] = future.result()
+                bar.update(1)
+    except BaseException:  # Ctrl-C or an error: stop the workers now and drop the queued renders
+        for process in list((getattr(pool, "_processes", None) or {}).values()):
+            process.terminate()
+        # waiting is short once the workers are gone, and it frees the queues' named semaphores: a `spawn` pool's
+        # resource tracker would otherwise warn of them on stderr when the command line exits at once (130)
+        pool.shutdown(wait=True, cancel_futures=True)
+        raise
+    pool.shutdown()
+
+
+def _run_dask(dask, tasks: list, settings: _Settings, rows: list, bar) -> None:
+    require("dask", "--dask")
+    from distributed import Client, as_completed
+
+    own = not isinstance(dask, Client)
+    if own:
+        try:
+            client = Client(dask, timeout=DASK_TIMEOUT_S)
+        except (OSError, ValueError, TypeError, TimeoutError) as error:
+            raise SkinrenderError(f"--dask: cannot reach a Dask scheduler at {dask!r} within {DASK_TIMEOUT_S:g} s "
+                                  f"({type(error).__name__}: {' '.join(str(error).split())[:120]})") from None
+    else:
+        client = dask
+    try:
+        futures = [client.submit(_render_task, task, settings, pure=False) for task in tasks]
+        index = {future.key: i for i, future in enumerate(futures)}
+        for future in as_completed(futures):
+            rows[index[future.key]] = future.result()
+            bar.update(1)
+    finally:
+        if own:
+            client.close()

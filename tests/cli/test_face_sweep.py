@@ -1,0 +1,119 @@
+"""
+Tests for :mod:`skinrender.cli.face_sweep`: ``face-sweep`` prints one JSON document (also with worker
+processes, whose Mitsuba must not write on stdout), writes its CSV whole, refuses bad input with one line naming
+the flag before any render, and stops at once on Ctrl-C.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from .refusal import assert_refused, run
+
+pytest.importorskip("mitsuba")
+
+CAM = "gbell:9@450,540,610"
+TINY = ["--size", "16", "--spp", "2", "--levels", "direct", "--skin", "skin-model:melanin=0.02"]
+SWEEP = ["face-sweep", "--camera", CAM, "--lights", "2856/5900", *TINY]
+
+
+def test_json_and_csv_in_this_process(tmp_path, capsys):
+    target = tmp_path / "out" / "sweep.csv"
+    status, out, err = run([*SWEEP, "--lights", "H/5900", "--camera", "Nikon 5100 (NPL)", "--workers", "1",
+                            "--csv", target, "--json"], capsys)
+    assert status == 0, err
+    document = json.loads(out)
+    rows = document["combinations"]
+    assert document["renders"] == 4 and document["csv"] == str(target) and document["workers"] == 1
+    assert [(r["camera"], r["prevailing_K"]) for r in rows] == [(CAM, 2856), (CAM, 2300), ("Nikon 5100 (NPL)", 2856),
+                                                               ("Nikon 5100 (NPL)", 2300)]
+    assert all(r["calibration_K"] == 5900 and r["level"] == "direct" and r["spp"] >= 2 for r in rows)
+    with open(target, encoding="utf-8", newline="") as handle:
+        lines = list(csv.reader(handle))
+    assert [line[0] for line in lines[1:]] == [r["camera"] for r in rows]
+
+
+def test_text_table(capsys):
+    status, out, err = run([*SWEEP, "--workers", "1"], capsys)
+    assert status == 0, err
+    assert "skin-model:melanin=0.02" in out and "2856/5900" in out and "1 renders of 16×16 px" in out
+
+
+def command(argv: list[str]) -> list[str]:
+    """The command line of a child Python process running ``skinrender argv``."""
+    return [sys.executable, "-c", f"import sys; from skinrender.cli import main; sys.exit(main({argv!r}))"]
+
+
+def test_workers_keep_stdout_to_the_json():
+    """Two worker processes: stdout holds exactly the one JSON document (Mitsuba's log goes to stderr)."""
+    done = subprocess.run(command([*SWEEP, "--skin", "skin-model:melanin=0.4", "--spp", "3", "--workers", "2",
+                                   "--json"]), check=False, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr[-800:]
+    document = json.loads(done.stdout)
+    assert document["workers"] == 2 and [r["skin"] for r in document["combinations"]] == [
+        "skin-model:melanin=0.02", "skin-model:melanin=0.4"]
+
+
+@pytest.mark.parametrize("extra, names", [
+    (["--lights", "2856"], "--lights"),
+    (["--lights", "2856/x"], "--lights"),
+    (["--lights", "2856/5900/1"], "--lights"),
+    (["--lights", "2856/nosuch.csv"], "--lights"),
+    (["--camera", "gbell:9@450"], "--camera"),
+    (["--skin", "skin:nobody"], "--skin"),
+    (["--skin", " "], "--skin"),
+    (["--levels", "glossy"], "--levels"),
+    (["--levels", ","], "--levels"),
+    (["--size", "0"], "--size"),
+    (["--size", "x"], "--size"),
+    (["--spp", "0"], "--spp"),
+    (["--seed", "-1"], "--seed"),
+    (["--workers", "0"], "--workers"),
+    (["--variant", "rgb"], "--variant"),
+    (["--illuminance", "-1"], "--illuminance"),
+    (["--imager", "nosuch"], "--imager"),
+    (["--scene", "nosuch"], "--scene"),
+    (["--max-renders", "0"], "--max-renders"),
+    (["--lights", "2300/5900", "--max-renders", "1"], "--max-renders"),
+    (["--max-samples", "100"], "--max-samples"),
+    (["--max-samples", "nan"], "--max-samples"),
+    (["--dask", " "], "--dask"),
+])
+def test_refusals(extra, names, capsys):
+    assert_refused([*SWEEP, *extra], names, capsys)
+
+
+def test_csv_refused_before_any_render(tmp_path, capsys):
+    (tmp_path / "folder.csv").mkdir()
+    assert_refused([*SWEEP, "--csv", tmp_path / "folder.csv"], "--csv", capsys, tmp_path)
+    assert_refused([*SWEEP, "--csv", tmp_path / "sweep.txt"], "--csv", capsys, tmp_path)
+    assert_refused([*SWEEP, "--csv", tmp_path / "sweep.csv", "--skin", "skin:nobody"], "--skin", capsys, tmp_path)
+
+
+def test_unreachable_dask(capsys):
+    assert_refused([*SWEEP, "--dask", "tcp://127.0.0.1:9"], "--dask", capsys)
+
+
+@pytest.mark.skipif(not hasattr(signal, "SIGINT") or os.name != "posix", reason="POSIX")
+def test_ctrl_c_stops_a_sweep_with_one_line(tmp_path):
+    """Ctrl-C during a parallel sweep: exit 130, one line, nothing on stdout, no CSV."""
+    target = tmp_path / "sweep.csv"
+    argv = ["face-sweep", "--camera", CAM, "--lights", "2300/5900,2856/5900,5900/5900,10000/5900", "--size", "32",
+            "--spp", "8", "--workers", "2", "--csv", str(target), "--json"]
+    child = subprocess.Popen(command(argv), stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    time.sleep(8)  # the workers started and rendering (the 96 renders take minutes)
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=60)  # the pipes close only when every worker is gone
+    assert child.returncode == 130, err.decode()[-800:]
+    assert err.decode().strip().splitlines()[-1] == "skinrender face-sweep: interrupted"
+    assert "Traceback" not in err.decode() and out == b""
+    assert list(tmp_path.iterdir()) == []
