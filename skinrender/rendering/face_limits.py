@@ -12,8 +12,9 @@ values tested, so that a correct renderer fails a check with probability
 :data:`ALPHA` at most.
 
 -   :func:`check_shading` (``direct``), :func:`check_dichromatic` (``sheen``) [Shafer1985],
-    :func:`check_furnace` (with :func:`furnace_radiance`), :func:`check_sphere` (with
-    :func:`sphere_channels`); :func:`eq4_shift`: how far skin moves from Eq. 4 (information).
+    :func:`check_furnace`, :func:`check_sphere` (their scenes:
+    :mod:`skinrender.rendering.face_limit_scenes`); :func:`eq4_shift`: how far skin moves from
+    Eq. 4 (information).
 -   :func:`critical_t`, :func:`jackknife`, :func:`rounding_bias`; :class:`LimitCheck`, a result.
 
 A check's ``statistic`` is the largest ``|deviation| / standard error`` (a
@@ -36,22 +37,22 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..hints import NDArrayFloat
 from ..model.camera import Camera, camera
 from ..model.chromaticity import ncc
-from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
-from .face_dict import channel_groups, channel_integral, film_dict, light_irradiance
+from ..spectra import GRID_DEFAULT
+from .face_dict import channel_integral
 from .face_labels import LABEL_SKIN, interior
-from .face_scene import FaceScene, Light, load_face_scene
+from .face_limit_scenes import sphere_emission
 from .validation import FLOAT32_FLOOR
 
-__all__ = ["ALPHA", "REPLICATES", "LINEAR", "PIXELS_MIN", "FURNACE_SKY", "LimitCheck", "critical_t", "jackknife",
-           "rg", "rounding_bias", "lit_skin", "check_shading", "eq4_shift", "check_dichromatic", "furnace_radiance",
-           "check_furnace", "sphere_emission", "sphere_channels", "check_sphere"]
+__all__ = ["ALPHA", "REPLICATES", "LINEAR", "PIXELS_MIN", "LimitCheck", "critical_t", "jackknife", "rg",
+           "rounding_bias", "lit_skin", "check_shading", "eq4_shift", "check_dichromatic", "check_furnace",
+           "check_sphere"]
 
 ALPHA = 0.01
 """Family-wise false-alarm rate of each check (Šidák-corrected over its pixels and channels)."""
@@ -66,8 +67,6 @@ error is then first order, its neglected bias ~LINEAR² of the value, far below 
 PIXELS_MIN = 10
 """Fewer tested pixels than this and a check is not run (``passed`` None): too small an image or too few spp."""
 
-FURNACE_SKY = Light(temperature=5000.0, illuminance=500.0)
-"""The white furnace's uniform environment: a 5000 K Planckian, 500 lx on a surface open to it."""
 
 
 @dataclass(frozen=True)
@@ -178,12 +177,25 @@ def _ratio(deviation: NDArrayFloat, error: NDArrayFloat) -> NDArrayFloat:
     return out
 
 
-def _ncc_bound(mean: NDArrayFloat, bias: NDArrayFloat) -> NDArrayFloat:
-    """First-order bound of the (r, g) error of channels ``mean`` off by at most ``bias`` each."""
-    total = mean.sum(axis=-1, keepdims=True)
-    share = mean / total
-    eye = np.eye(3)[:2]  # ∂(c_i / S)/∂c_k = (δ_ik − c_i / S) / S
-    return np.einsum("...ik,...k->...i", np.abs(eye - share[..., :2, None]), bias) / total
+def _jacobian(mean: NDArrayFloat) -> NDArrayFloat:
+    """``∂(r, g)/∂c_k = (δ_ik − c_i / S) / S`` of channels ``mean``, shape ``(..., 2, 3)``."""
+    total = mean.sum(axis=-1, keepdims=True)[..., None]
+    return (np.eye(3)[:2] - (mean / total[..., 0])[..., :2, None]) / total
+
+
+def _sensor(bias, floor, mean: NDArrayFloat, weights=None) -> tuple:
+    """
+    A sensor's bound of the mean error and floor of the standard error, carried from the channels to
+    (r, g) (``weights`` None) or to a projection on ``weights``; zeros without a sensor.
+    """
+    if bias is None:
+        return np.zeros(1), np.zeros(1)
+    floor = np.zeros_like(bias) if floor is None else floor
+    if weights is None:
+        jacobian = _jacobian(mean)
+        return (np.einsum("...ik,...k->...i", np.abs(jacobian), bias),
+                np.sqrt(np.einsum("...ik,...k->...i", jacobian**2, floor)))
+    return bias @ np.abs(weights), np.sqrt(floor @ weights**2)
 
 
 def lit_skin(images: NDArrayFloat, labels: NDArrayFloat, usable: NDArrayFloat | None = None) -> NDArrayFloat:
@@ -198,7 +210,8 @@ def lit_skin(images: NDArrayFloat, labels: NDArrayFloat, usable: NDArrayFloat | 
 
 
 def check_shading(images: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayFloat,
-                  usable: NDArrayFloat | None = None, bias: NDArrayFloat | None = None) -> LimitCheck:
+                  usable: NDArrayFloat | None = None, bias: NDArrayFloat | None = None,
+                  floor: NDArrayFloat | None = None) -> LimitCheck:
     """
     Shading cancels in NCC: every lit skin pixel's (r, g) equals Eq. 4's.
 
@@ -219,9 +232,12 @@ def check_shading(images: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayF
         Eq. 4's NCC of the skin, ``[r, g, b]`` (or ``[r, g]``).
     usable
         Pixels a sensor left linear (unclipped); ``None``: all.
-    bias
-        ``(height, width, 3)`` bound of each channel's mean error from the
-        sensor's quantisation, output units; ``None``: none.
+    bias, floor
+        ``(height, width, 3)``: the bound of each channel's mean error from
+        the sensor's quantisation, output units, and the variance of each
+        channel's replicate mean by the sensor's model (shot, read and
+        quantisation noise), output units², below which the standard error
+        is not taken (twelve frames may read one code); ``None``: no sensor.
     """
     images = np.asarray(images, dtype=np.float64)
     expected = np.asarray(expected, dtype=np.float64)[:2]
@@ -233,11 +249,14 @@ def check_shading(images: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayF
                           "render larger or with more spp")
     value, se = jackknife(images[:, lit], rg)
     tests = value.size + 2
-    systematic = 0.0 if bias is None else _ncc_bound(images.mean(axis=0)[lit], bias[lit])
+    systematic, least = _sensor(None if bias is None else bias[lit], None if floor is None else floor[lit],
+                                images.mean(axis=0)[lit])
+    se = np.maximum(se, least)
     t_pixel = _ratio(np.maximum(np.abs(value - expected) - systematic, 0.0), np.hypot(se, FLOAT32_FLOOR * value))
     pooled, pooled_se = jackknife(images[:, lit], lambda m: rg(m).mean(axis=0))
-    pooled_bias = 0.0 if bias is None else np.mean(systematic, axis=0)
-    t_pooled = _ratio(np.maximum(np.abs(pooled - expected) - pooled_bias, 0.0), np.hypot(pooled_se, FLOAT32_FLOOR))
+    pooled_se = np.maximum(pooled_se, np.sqrt(np.sum(np.square(least), axis=0)) / pixels)
+    t_pooled = _ratio(np.maximum(np.abs(pooled - expected) - np.mean(systematic, axis=0), 0.0),
+                      np.hypot(pooled_se, FLOAT32_FLOOR))
     statistic = float(max(t_pixel.max(), t_pooled.max()))
     tolerance = critical_t(tests, images.shape[0])
     shading = images.mean(axis=0)[lit].sum(axis=-1)
@@ -280,7 +299,8 @@ def eq4_shift(images: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayFloat
 
 
 def check_dichromatic(images: NDArrayFloat, labels: NDArrayFloat, body: NDArrayFloat, light: NDArrayFloat,
-                      usable: NDArrayFloat | None = None, bias: NDArrayFloat | None = None) -> LimitCheck:
+                      usable: NDArrayFloat | None = None, bias: NDArrayFloat | None = None,
+                      floor: NDArrayFloat | None = None) -> LimitCheck:
     """
     The dichromatic model [Shafer1985]: each skin pixel lies in the plane of the body and the light colour.
 
@@ -289,7 +309,8 @@ def check_dichromatic(images: NDArrayFloat, labels: NDArrayFloat, body: NDArrayF
     Fresnel term (one refractive index), so each pixel's channels are a
     non-negative mix of the body colour ``∫ ρ E x_k`` and the light's colour
     ``∫ E x_k``: at zero distance from their plane. ``body`` and ``light`` are
-    those colours balanced as the images are (their scale is free). Tested per
+    those colours balanced as the images are (their scale is free); ``usable``,
+    ``bias`` and ``floor`` as :func:`check_shading`'s. Tested per
     interior skin pixel and pooled; ``specular_t`` (the largest significance of a
     pixel's light-colour component) shows that highlights were there to test.
     """
@@ -307,11 +328,13 @@ def check_dichromatic(images: NDArrayFloat, labels: NDArrayFloat, body: NDArrayF
     mean = distance.mean(axis=0)
     error = distance.std(axis=0, ddof=1) / np.sqrt(k)
     scale = np.linalg.norm(values.mean(axis=0), axis=-1)
-    systematic = 0.0 if bias is None else bias[skin] @ np.abs(normal)
+    systematic, least = _sensor(None if bias is None else bias[skin], None if floor is None else floor[skin],
+                                None, normal)
+    error = np.maximum(error, least)
     tests = mean.size + 1
     t_pixel = _ratio(np.maximum(np.abs(mean) - systematic, 0.0), np.hypot(error, FLOAT32_FLOOR * scale))
     pooled = distance.mean(axis=1)  # over the pixels, per replicate
-    pooled_error = pooled.std(ddof=1) / np.sqrt(k)
+    pooled_error = max(pooled.std(ddof=1) / np.sqrt(k), float(np.sqrt(np.sum(np.square(least)))) / pixels)
     t_pooled = float(_ratio(max(abs(pooled.mean()) - np.mean(systematic), 0.0),
                             np.hypot(pooled_error, FLOAT32_FLOOR * scale.mean())))
     basis = np.linalg.pinv(np.stack([body, light], axis=1))  # (2, 3): channels -> (m_b, m_s)
@@ -326,29 +349,6 @@ def check_dichromatic(images: NDArrayFloat, labels: NDArrayFloat, body: NDArrayF
                       "colour, and their mean (one light, a coat of one refractive index)",
                       {"worst_pixel_t": float(t_pixel.max()), "pooled_t": float(t_pooled),
                        "specular_t": specular_t, "highlights": specular_t > tolerance})
-
-
-def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=range(REPLICATES), size: int = 32,
-                     spp: int = 16, physics: str = "interreflection", variant: str | None = None,
-                     sky: Light = FURNACE_SKY) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat]:
-    """
-    The white furnace rendered: the scene's mesh alone, reflectance 1, inside a uniform sky.
-
-    Returns
-    -------
-    tuple
-        ``(radiance, labels, expected)``: the replicates' radiance ``(K, size,
-        size, 3)`` and the label image (specfilm units), and ``∫ (E / π) x_k dλ``,
-        the sky's radiance through the camera, ``(3,)``.
-    """
-    from .face import render_face
-
-    furnace = replace(load_face_scene(scene), props=(), key=None, fill=None, environment=sky)
-    renders = [render_face(cam, furnace, skin="perfect", physics=physics, size=size, spp=spp, seed=int(s),
-                           variant=variant) for s in seeds]
-    lam, irradiance = light_irradiance(sky, GRID_DEFAULT)
-    expected = channel_integral(camera(cam), GRID_DEFAULT, lam, irradiance / np.pi)
-    return np.array([r.radiance for r in renders]), renders[0].labels, expected
 
 
 def check_furnace(radiance: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayFloat) -> LimitCheck:
@@ -377,42 +377,6 @@ def check_furnace(radiance: NDArrayFloat, labels: NDArrayFloat, expected: NDArra
                       f"sky against the sky's radiance; the head covers {int(head.sum())} pixels",
                       {"worst_pixel_t": float(t_pixel.max()), "pooled_t": float(t_pooled.max()),
                        "head_rel_error": (pooled.mean(axis=0) / expected - 1).tolist()})
-
-
-def sphere_emission(grid: WavelengthGrid = GRID_DEFAULT) -> tuple[NDArrayFloat, NDArrayFloat]:
-    """Wavelengths (nm) and the relative emission of the sphere: a 3000 K Planckian, peak 1."""
-    lam = light_irradiance(Light(3000.0, 1.0), grid)[0]
-    return lam, planck(lam, 3000.0) / planck(lam, 3000.0).max()
-
-
-def sphere_channels(cam: Camera | str, rho: NDArrayFloat, depth: int, seeds=range(REPLICATES), spp: int = 16,
-                    size: int = 16, variant: str | None = None) -> NDArrayFloat:
-    """
-    Mean channels of a closed emitting Lambertian sphere of reflectance ``rho`` (on the default grid),
-    rendered from its centre to path depth ``depth`` (−1: every bounce); one row per seed, specfilm units.
-    """
-    from .renderer import _spectrum
-    from .variants import choose_variant, mitsuba
-
-    mi = mitsuba(choose_variant(variant))
-    cam = camera(cam)
-    lam, emission = sphere_emission()
-    seeds = list(seeds)
-    out = np.zeros((len(seeds), 3))
-    for group in channel_groups(cam, GRID_DEFAULT):
-        scene = mi.load_dict({
-            "type": "scene", "integrator": {"type": "path", "max_depth": int(depth)},
-            "sensor": {"type": "perspective", "fov": 60,
-                       "sampler": {"type": "independent", "sample_count": int(spp)},
-                       "film": film_dict(cam, GRID_DEFAULT, group, size, size)},
-            "sphere": {"type": "sphere", "radius": 1.0, "flip_normals": True,
-                       "emitter": {"type": "area", "radiance": _spectrum(lam, emission)},
-                       "bsdf": {"type": "diffuse", "reflectance": _spectrum(GRID_DEFAULT.wavelengths, rho)}},
-        })
-        for row, seed in enumerate(seeds):
-            image = np.array(mi.render(scene, seed=int(seed)), dtype=np.float64)
-            out[row, list(group)] = image.reshape(-1, len(group)).mean(axis=0)
-    return out
 
 
 def check_sphere(cam: Camera | str, rho: NDArrayFloat, every: NDArrayFloat, one: NDArrayFloat) -> LimitCheck:

@@ -33,9 +33,14 @@ replicate is a frame of its own (the sensor's stream is seeded from the
 render's seed), so the spread holds the sensor's noise too; the sensor is
 linear in the mean except for its dark signal (subtracted: dark current ×
 exposure), the clipping at 0 and at saturation (pixels with a clipped
-replicate are left out) and the rounding to codes (its mean error is bounded
-by :func:`~skinrender.rendering.face_limits.rounding_bias` at each pixel's
-modelled σ and may be used up by a deviation).
+replicate are left out) and the rounding to codes (pixels whose modelled
+noise is below :data:`DITHER_SIGMA_DN` are left out; elsewhere the mean
+error is bounded by :func:`~skinrender.rendering.face_limits.rounding_bias`
+at each pixel's modelled σ and may be used up by a deviation, and the
+standard error is taken no smaller than the EMVA 1288 model's,
+``√((σ² + 1/12 DN²) / K)``, since twelve frames may read one code). A dim scene
+through a coarse sensor may so leave too few pixels to test: the check then
+reports ``passed`` None with the count.
 
 Units: temperatures K, times s, images in Eq. 4 output units.
 """
@@ -45,7 +50,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -57,12 +62,14 @@ from ..model.response import gain
 from ..spectra import GRID_DEFAULT
 from .face import IMAGER_DEFAULT, FaceRendering, render_face
 from .face_dict import active_lights, channel_integral, light_irradiance, parse_physics
+from .face_labels import LABEL_SKIN
+from .face_limit_scenes import furnace_radiance, sphere_channels
 from .face_limits import (REPLICATES, LimitCheck, check_dichromatic, check_furnace, check_shading, check_sphere,
-                          eq4_shift, furnace_radiance, rounding_bias, sphere_channels)
+                          eq4_shift, rounding_bias)
 from .face_scene import Light, skin_reflectance_of
 from .validation import analytic_reference
 
-__all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "FaceValidation",
+__all__ = ["LIMITS_SCENE_FREE", "DITHER_SIGMA_DN", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "FaceValidation",
            "dichromatic_colours", "validate_face"]
 
 LIMITS_SCENE_FREE = {
@@ -82,6 +89,13 @@ SPHERE_SIZE = 16
 
 SPHERE_SPP = 16
 """Samples per pixel of each closed-sphere replicate."""
+
+
+DITHER_SIGMA_DN = 0.25
+"""Through a sensor, a pixel is tested only where its modelled noise (shot and read, DN) is at least this in
+every channel: the noise then dithers the rounding to codes (its mean error below 0.003 DN,
+:func:`~skinrender.rendering.face_limits.rounding_bias`) and the replicates differ, so their spread measures
+the noise; below it, twelve frames may read one code and hide a rounding error of up to half a code."""
 
 
 @dataclass(frozen=True)
@@ -152,10 +166,15 @@ def _sensor_terms(first: FaceRendering, images: NDArrayFloat, spec) -> tuple[NDA
     dark = k * im.dark_current_e_per_s * first.info["exposure_s"]  # DN
     signal = images / g  # DN above the black level
     saturation = min(float(im.max_dn), k * im.full_well_e + im.black_level_dn) - im.black_level_dn
-    usable = np.all((signal > 0) & (signal < saturation - 0.5), axis=(0, -1))
     electrons = np.maximum(signal.mean(axis=0) / k, 0.0)
     sigma = k * np.sqrt(electrons + im.read_noise_e**2)
-    return images - g * dark, usable, g * rounding_bias(sigma)
+    unclipped = np.all((signal > 0) & (signal < saturation - 0.5), axis=(0, -1))
+    dithered = np.all(sigma >= DITHER_SIGMA_DN, axis=-1)
+    skin = first.labels == LABEL_SKIN
+    excluded = {"skin_pixels_clipped": int((skin & ~unclipped).sum()),
+                "skin_pixels_undithered": int((skin & unclipped & ~dithered).sum())}
+    floor = g**2 * (sigma**2 + 1.0 / 12.0) / images.shape[0]  # EMVA 1288: shot, read and quantisation
+    return images - g * dark, unclipped & dithered, g * rounding_bias(sigma), floor, excluded
 
 
 def _why_not(effects: tuple[str, ...]) -> str:
@@ -238,16 +257,25 @@ def validate_face(
     images = np.array([r.image for r in renders], dtype=np.float64)
     rho = skin_reflectance_of(first.skin, GRID_DEFAULT, "skin")
     expected = ncc(analytic_reference(cam, rho[None], first.prevailing, first.calibration))[0]
-    usable = bias = None
+    usable = bias = floor = None
+    excluded: dict = {}
     if "noise" in effects:
-        images, usable, bias = _sensor_terms(first, images, imager)
+        images, usable, bias, floor, excluded = _sensor_terms(first, images, imager)
     one_light = not {"interreflection", "mixed"} & set(effects)
     checks: list[LimitCheck] = []
     if one_light and "sheen" not in effects:
-        checks.append(check_shading(images, labels, expected, usable, bias))
+        checks.append(check_shading(images, labels, expected, usable, bias, floor))
     elif one_light:
         (light,) = active_lights(first.scene, effects).values()
-        checks.append(check_dichromatic(images, labels, *dichromatic_colours(first, light), usable, bias))
+        checks.append(check_dichromatic(images, labels, *dichromatic_colours(first, light), usable, bias, floor))
+    if excluded:  # through the sensor: say which pixels it left out, and why a check may have none
+        row = checks[0] if checks else None
+        if row is not None and row.passed is None:
+            checks[0] = replace(row, reason=f"{row.reason}; the sensor left out {excluded['skin_pixels_clipped']} "
+                                f"skin pixels clipped at 0 or saturation and {excluded['skin_pixels_undithered']} "
+                                f"whose noise is below {DITHER_SIGMA_DN:g} DN in some channel (its codes too "
+                                "coarse for it: more light, or a sensor of finer codes)")
+        checks = [replace(c, details={**c.details, **excluded}) for c in checks]
     checks.append(eq4_shift(images, labels, expected, _why_not(effects), usable))
     if "furnace" in limits:
         say(f"white furnace ({FURNACE_SIZE}² px, {replicates} × {FURNACE_SPP} spp) …")

@@ -23,8 +23,14 @@ from skinrender.model.chromaticity import ncc
 from skinrender.rendering.exr import read_exr
 from skinrender.rendering.face import render_face, white_references, write_face_exr
 from skinrender.rendering.face_dict import channel_integral, light_irradiance
-from skinrender.rendering.face_limits import (REPLICATES, check_dichromatic, check_furnace, check_shading,
-                                              check_sphere, furnace_radiance, sphere_channels)
+from skinrender.rendering.face_limit_scenes import furnace_radiance, sphere_channels
+from skinrender.rendering.face_limits import (
+    REPLICATES,
+    check_dichromatic,
+    check_furnace,
+    check_shading,
+    check_sphere,
+)
 from skinrender.rendering.face_scene import load_face_scene, skin_reflectance_of
 from skinrender.rendering.face_validation import dichromatic_colours
 from skinrender.rendering.validation import analytic_reference

@@ -12,9 +12,21 @@ from scipy import stats
 
 from skinrender.model.chromaticity import ncc
 from skinrender.rendering.face_labels import LABEL_SKIN
-from skinrender.rendering.face_limits import (ALPHA, LINEAR, PIXELS_MIN, LimitCheck, check_dichromatic,
-                                              check_furnace, check_shading, check_sphere, critical_t, eq4_shift,
-                                              furnace_radiance, jackknife, rounding_bias, sphere_channels)
+from skinrender.rendering.face_limit_scenes import furnace_radiance, sphere_channels
+from skinrender.rendering.face_limits import (
+    ALPHA,
+    LINEAR,
+    PIXELS_MIN,
+    LimitCheck,
+    check_dichromatic,
+    check_furnace,
+    check_shading,
+    check_sphere,
+    critical_t,
+    eq4_shift,
+    jackknife,
+    rounding_bias,
+)
 
 CAMERA = "gbell:9@450,540,610"
 SKIN = "skin:089 skin -- caucasian (light)"
@@ -90,6 +102,14 @@ class TestCheckShading:
         assert check_shading(shifted, labels, ncc(COLOUR)).passed is False
         bias = np.full(labels.shape + (3,), 0.02)
         assert check_shading(shifted, labels, ncc(COLOUR), bias=bias).passed
+
+    def test_identical_frames_take_the_sensors_standard_error(self, rng):
+        """Twelve frames that read one code have no spread; the sensor's model gives their error."""
+        images, labels = synthetic(rng, k=1, noise=0.0)
+        images = np.repeat(np.rint(images), 12, axis=0)  # each pixel one code, up to half a code off
+        assert check_shading(images, labels, ncc(COLOUR)).passed is False
+        floor = np.full(labels.shape + (3,), (0.5**2 + 1 / 12) / 12)  # σ = 0.5 DN a frame and the codes
+        assert check_shading(images, labels, ncc(COLOUR), bias=np.zeros_like(floor), floor=floor).passed
 
     def test_too_few_lit_pixels_is_not_a_failure(self, rng):
         images, labels = synthetic(rng, noise=5 * LINEAR)  # relative SE 5 LINEAR / √12 > LINEAR

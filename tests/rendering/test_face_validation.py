@@ -30,7 +30,7 @@ def names(result) -> list[str]:
     ("mixed", ["eq4_shift"]),
 ])
 def test_the_checks_of_each_level(physics, expected):
-    result = validate_face(CAM, physics=physics, size=32, spp=48, limits=(), prevailing=2856, calibration=2856)
+    result = validate_face(CAM, physics=physics, size=48, spp=48, limits=(), prevailing=2856, calibration=2856)
     assert names(result) == expected
     assert result.spp == 48 and result.spp_requested == 48 and result.replicates == 12
     first = result.checks[0]
@@ -51,18 +51,35 @@ def test_sensor_terms_remove_the_dark_signal_and_clipped_pixels():
     from skinrender.model.imager import imager
     from skinrender.rendering.face import render_face
 
-    first = render_face(CAM, size=8, spp=1, physics="noise")
+    first = render_face(CAM, size=2, spp=1, physics="noise")
     im = imager("sony-icx418")
     g = np.asarray(first.gain)
     signal = np.full((3, 2, 2, 3), 50.0)
     signal[1, 0, 0, 2] = 0.0  # clipped at the black level in one replicate
     signal[2, 1, 1, 0] = im.max_dn - im.black_level_dn  # saturated
-    images, usable, bias = _sensor_terms(first, signal * g, "sony-icx418")
+    images, usable, bias, floor, excluded = _sensor_terms(first, signal * g, "sony-icx418")
     dark = im.gain_dn_per_e * im.dark_current_e_per_s * first.info["exposure_s"]
     assert np.allclose(images[0, 0, 1], g * (50.0 - dark))
     assert usable.tolist() == [[False, True], [True, False]]
     sigma = im.gain_dn_per_e * np.sqrt(50.0 / im.gain_dn_per_e + im.read_noise_e**2)
     assert np.allclose(bias[0, 1], g * rounding_bias(sigma))
+    assert np.allclose(floor[0, 1], g**2 * (sigma**2 + 1 / 12) / 3)  # EMVA: shot, read, quantisation; 3 frames
+    assert set(excluded) == {"skin_pixels_clipped", "skin_pixels_undithered"}
+    dim = _sensor_terms(first, np.full((3, 2, 2, 3), 2.0) * g, "sony-icx418")[1]  # σ ≈ 0.2 DN: codes undithered
+    assert not dim.any()
+
+
+def test_through_the_sensor_the_shading_check_runs_and_its_control_fails(monkeypatch):
+    """The 8-bit sensor's dithered pixels pass; the same frames against an Eq. 4 off by 1 % in R fail."""
+    import skinrender.rendering.face_validation as module
+
+    kwargs = {"physics": "noise", "size": 64, "spp": 96, "limits": (), "prevailing": 2856, "calibration": 5900}
+    check = validate_face(CAM, **kwargs).checks[0]
+    assert check.name == "shading_cancels" and check.pixels > 100 and check.passed is True, check
+    assert check.details["skin_pixels_undithered"] > 0
+    reference = module.analytic_reference
+    monkeypatch.setattr(module, "analytic_reference", lambda *a, **k: reference(*a, **k) * [1.01, 1.0, 1.0])
+    assert validate_face(CAM, **kwargs).checks[0].passed is False
 
 
 @pytest.mark.parametrize("kwargs, match", [
