@@ -73,18 +73,20 @@ RENDER_THREADS = 1
 split of the work everywhere gives the same numbers."""
 
 RENDERS_MAX = 5000
-"""Most renders a sweep may ask for unless ``max_renders`` is raised (about 3 h on 2 cores at tiny sizes)."""
+"""Most renders a sweep may ask for unless ``max_renders`` is raised (a guard against a slip of the flags)."""
 
 SWEEP_SAMPLES_MAX = 10**11
-"""Most samples (renders × pixels × spp) a sweep may ask for unless ``max_samples`` is raised (about a day on 2
+"""Most samples (renders × pixels × spp) a sweep may ask for unless ``max_samples`` is raised (about 15 h on 2
 cores at :data:`SAMPLES_PER_S`)."""
 
-SECONDS_PER_RENDER = 2.5
-"""Measured fixed cost of one face render on 2 cores (scene loading, kernels, labels), s: the estimates' base."""
+SECONDS_PER_RENDER = 0.15
+"""Fixed cost of one face render on one core (scene, cached kernels, labels, scoring), s: the estimates' base;
+fitted with :data:`SAMPLES_PER_S` to two measured sweeps of 54 renders (direct, sheen, all effects) with one
+worker, 15 s at 64 px and 32 spp, 73 s at 128 px and 64 spp (2-core AMD EPYC VM, llvm_ad_spectral)."""
 
-SAMPLES_PER_S = 1.6e6
-"""Measured samples per second of the face on 2 cores (200 × 200 pixels, 64 spp, depth 4 with a coating in
-1.6 s, issue 13), the estimates' rate."""
+SAMPLES_PER_S = 9e5
+"""Samples per second of the face on one core (one drjit thread), the estimates' rate (see
+:data:`SECONDS_PER_RENDER`)."""
 
 CSV_COLUMNS = ("camera", "prevailing_K", "calibration_K", "skin", "level", "seconds", "spp",
                "skin_ncc_mean_r", "skin_ncc_mean_g", "skin_ncc_mean_b", "skin_ncc_std_r", "skin_ncc_std_g",
@@ -211,14 +213,14 @@ def sweep_tasks(cameras, lights, skins, levels) -> list[tuple]:
 def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2) -> float:
     """
     Wall time of ``renders`` face renders of ``pixels`` pixels at ``spp`` on ``cores`` cores, s (from
-    :data:`SECONDS_PER_RENDER` and :data:`SAMPLES_PER_S`, both measured on 2 cores).
+    :data:`SECONDS_PER_RENDER` and :data:`SAMPLES_PER_S`, per core; a worker's start, a few seconds, aside).
 
     Examples
     --------
-    >>> estimate_seconds(10, 100 * 100, 16)
-    26.0
+    >>> round(estimate_seconds(54, 128 * 128, 64, cores=1))  # measured: 73 s
+    71
     """
-    return renders * (SECONDS_PER_RENDER + pixels * spp / SAMPLES_PER_S) * 2.0 / max(1, cores)
+    return renders * (SECONDS_PER_RENDER + pixels * spp / SAMPLES_PER_S) / max(1, cores)
 
 
 @dataclass(frozen=True)
@@ -283,14 +285,15 @@ def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples
     if spp * pixels > SAMPLES_MAX:
         raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
                               f"most {SAMPLES_MAX // pixels} spp at this size")
-    hours = estimate_seconds(renders, pixels, spp, cores) / 3600
+    seconds, on = estimate_seconds(renders, pixels, spp, cores), f"on {cores} core{'s' * (cores > 1)}"
+    about = f"about {seconds / 3600:.3g} h {on}" if seconds >= 3600 else f"about {seconds / 60:.2g} min {on}"
     if renders > max_renders:
-        raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} (about {hours:.3g} h on "
-                              f"{cores} cores); raise the limit (--max-renders) or sweep fewer combinations")
+        raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} ({about}); raise "
+                              "the limit (--max-renders) or sweep fewer combinations")
     if renders * pixels * spp > max_samples:
         raise SkinrenderError(f"{renders} renders × {pixels} pixels × {spp} spp = {renders * pixels * spp:.3g} "
-                              f"samples is more than max_samples = {max_samples:.3g} (about {hours:.3g} h on "
-                              f"{cores} cores); raise the limit (--max-samples) or lower the size or spp")
+                              f"samples is more than max_samples = {max_samples:.3g} ({about}); raise "
+                              "the limit (--max-samples) or lower the size or spp")
 
 
 def face_sweep(
@@ -366,7 +369,8 @@ def face_sweep(
     if not (isinstance(workers, (int, np.integer)) and not isinstance(workers, bool) and 1 <= workers <= WORKERS_MAX):
         raise SkinrenderError(f"workers must be an integer in [1, {WORKERS_MAX}] processes, got {workers!r}")
     tasks = sweep_tasks(cams, pairs, skins, levels)
-    _check_size(len(tasks), int(size), int(spp), max_renders, max_samples, os.cpu_count() or 1)
+    _check_size(len(tasks), int(size), int(spp), max_renders, max_samples,
+                min(workers, os.cpu_count() or 1) if dask is None else os.cpu_count() or 1)
     face = load_face_scene(scene)
     settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance)
     rows: list = [None] * len(tasks)
