@@ -24,7 +24,7 @@ jackknife's combined in quadrature with the float32 floor
 (:data:`~skinrender.rendering.validation.FLOAT32_FLOOR` of the value); through
 an image sensor a pixel's deviation may also use up the bound of the
 quantisation's mean error (:func:`rounding_bias`), which is subtracted from it
-first.
+first, and its standard error is taken no smaller than the sensor model's.
 
 Units: images in Eq. 4 output units; radiance in the specfilm's units;
 temperatures K; NCC fractions.
