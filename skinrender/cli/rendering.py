@@ -19,8 +19,10 @@ def add_parsers(commands) -> None:
     """Add the parsers of render, validate, detect."""
     from ..evaluation.locus import BOUNDARIES
 
-    for name, text in (("render", "spectral render of a chart scene with Mitsuba 3 (float32 EXR + PNG preview)"),
-                       ("validate", "render a chart and check every patch against Eq. 4 within its noise")):
+    for name, text in (("render", "spectral render of a chart or face scene with Mitsuba 3 (float32 EXR + PNG "
+                                  "preview)"),
+                       ("validate", "render a chart and check every patch against Eq. 4 within its noise; a face: "
+                                    "the analytic limits that hold at its level of physics")):
         p = commands.add_parser(name, help=text)
         p.add_argument("scene", help="scene: macbeth, skin_patches, face_chart or a .toml path (see scenes/)")
         p.add_argument("--camera", required=True, help=HELP_CAMERA)
@@ -33,6 +35,9 @@ def add_parsers(commands) -> None:
             p.add_argument("--gamut", action="store_true",
                            help="also render the chart under every paper illuminant and compare its gamut volumes "
                            "(one calibration case each, and all calibrations) with the analytic ones")
+            p.add_argument("--limits", metavar="LIST",
+                           help="face scenes: the scene-free limits run beside the level's own: furnace, sphere "
+                           "(comma-separated) or none (default: both)")
         from .face import add_face_arguments
 
         add_face_arguments(p)
@@ -120,7 +125,6 @@ def command_render(args: argparse.Namespace) -> None:
         return command_render_face(args)
     if args.physics != "direct" or args.skin is not None or args.size is not None:
         raise SkinrenderError("--physics, --skin and --size go with a face scene (e.g. 'face'), not a chart")
-
     from ..rendering.exr import write_exr, write_preview
     from ..rendering.renderer import channel_names
 
@@ -168,6 +172,8 @@ def command_validate(args: argparse.Namespace) -> None:
         return command_validate_face(args)
     if args.physics != "direct" or args.skin is not None or args.size is not None:
         raise SkinrenderError("--physics, --skin and --size go with a face scene (e.g. 'face'), not a chart")
+    if args.limits is not None:
+        raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart")
     options = render_options(args)
     inputs = render_inputs(args)
     imaging = imaging_options(args)

@@ -96,3 +96,15 @@ def test_limits_are_parsed():
 ])
 def test_bad_input_is_refused(extra, names, capsys):
     assert_refused([*BASE, *extra], names, capsys)
+
+
+@pytest.mark.parametrize("argv, names", [
+    ([*BASE, "--limits", "moon"], "--limits"),
+    (["validate", "macbeth", "--camera", CAM, "--prevailing", "A", "--calibration", "A", "--limits", "none"],
+     "--limits"),
+    (["validate", "macbeth", "--camera", CAM, "--prevailing", "A", "--calibration", "A", "--physics", "sheen"],
+     "--physics"),
+])
+def test_limits_flag_is_checked_and_face_only(argv, names, capsys):
+    """``--limits`` names the scene-free limits of a face; a chart refuses it (and the other face options)."""
+    assert_refused(argv, names, capsys)
