@@ -21,6 +21,8 @@ References
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 from scipy.spatial import QhullError
 
@@ -31,7 +33,9 @@ from ..model.chromaticity import ncc
 from ..model.response import response
 from ..rendering.face import render_face
 from ..rendering.face_scene import skin_reflectance_of
+from ..rendering.variants import choose_variant
 from ..spectra import GRID_DEFAULT
+from .face_pool import run_renders
 from .ladder import SCORED_MIN_OUTPUT
 
 __all__ = ["SKIN_TONES", "face_locus", "convex_intersection_area"]
@@ -80,16 +84,28 @@ def _crossing(p, q, a, b) -> tuple[float, float]:
     return p[0] + t * d1[0], p[1] + t * d1[1]
 
 
+def _lit_skin(task: tuple, camera_: Camera, physics: str, spp: int, seed: int, size: int,
+              variant: str) -> tuple[NDArrayFloat, float]:
+    """The NCC (r, g) of one face's lit skin pixels, ``task = (skin, prevailing K, calibration K)``, and its s."""
+    skin, p, c = task
+    face = render_face(camera_, "face", p, c, skin, physics, spp, seed, size, variant=variant)
+    lit = (face.labels == 1) & (face.image.max(axis=-1) >= SCORED_MIN_OUTPUT)
+    return ncc(np.maximum(face.image[lit].astype(np.float64), 0.0))[:, :2], face.seconds
+
+
 def face_locus(camera_: Camera, pairs: ArrayLike = ((2300.0, 5900.0), (2856.0, 5900.0), (5900.0, 5900.0),
                                                      (10000.0, 5900.0)),
                skins: tuple[str, ...] = SKIN_TONES, physics: str = "direct", size: int = 64, spp: int = 16,
-               seed: int = 0) -> dict:
+               seed: int = 0, workers: int = 1, dask=None, progress=None) -> dict:
     """
     The skin locus of rendered faces beside the analytic one of the same skins and illuminant pairs.
 
     ``pairs``: (prevailing, calibration) in K. Each face is rendered at ``size`` pixels; its lit skin pixels
     (brightest channel ≥ the ladder's :data:`~skinrender.studies.ladder.SCORED_MIN_OUTPUT`) give NCC (r, g).
-    The analytic points are Eq. 4 of the same skin reflectances under the same pairs.
+    The analytic points are Eq. 4 of the same skin reflectances under the same pairs. The faces render in this
+    process (``workers = 1``), in ``workers`` processes or on a Dask cluster (``dask``: an address or a
+    ``distributed.Client``), with the same numbers (:func:`skinrender.studies.face_pool.run_renders`);
+    ``progress``: a stream for a progress bar, or ``None``.
 
     Returns
     -------
@@ -99,15 +115,13 @@ def face_locus(camera_: Camera, pairs: ArrayLike = ((2300.0, 5900.0), (2856.0, 5
         ``pixels`` (scored skin pixels), ``seconds``.
     """
     pairs = np.asarray(pairs, dtype=np.float64).reshape(-1, 2)
-    rendered, analytic, seconds = [], [], 0.0
-    for skin in skins:
-        reflectance = skin_reflectance_of(skin, GRID_DEFAULT)[None, :]
-        for p, c in pairs:
-            face = render_face(camera_, "face", p, c, skin, physics, spp, seed, size)
-            seconds += face.seconds
-            lit = (face.labels == 1) & (face.image.max(axis=-1) >= SCORED_MIN_OUTPUT)
-            rendered.append(ncc(np.maximum(face.image[lit].astype(np.float64), 0.0))[:, :2])
-            analytic.append(ncc(response(camera_, reflectance, p, c))[:, :2])
+    tasks = [(skin, float(p), float(c)) for skin in skins for p, c in pairs]
+    analytic = [ncc(response(camera_, skin_reflectance_of(skin, GRID_DEFAULT)[None, :], p, c))[:, :2]
+                for skin, p, c in tasks]
+    variant = choose_variant(None)
+    done = run_renders(partial(_lit_skin, camera_=camera_, physics=physics, spp=spp, seed=seed, size=size,
+                               variant=variant), tasks, variant, workers, dask, progress, "face locus")
+    rendered, seconds = [points for points, _ in done], sum(s for _, s in done)
     cloud, model = np.concatenate(rendered), np.concatenate(analytic)
     mine, theirs = hull_locus(cloud, pairs[:, 0], None), hull_locus(model, pairs[:, 0], None)
     if mine is None or theirs is None:

@@ -16,18 +16,11 @@ process pool) or a Dask cluster, as the Stage 3 search does
 -   :func:`sweep_tasks`: the combinations, in the order of the result.
 
 Determinism: every render uses the same seed, the Mitsuba variant chosen
-once in the calling process, and :data:`RENDER_THREADS` drjit thread (the
-LLVM backend's sums over a pixel's samples depend on how the work is split
-between threads: measured, 2 threads against 1 move the skin NCC by ~1e-10),
-so the numbers (all but ``seconds``) are the same with one worker, several or
-a Dask cluster (tested). A sweep is parallel over renders: one process per
-core. Worker processes are started fresh (``spawn``: drjit's threads do not
-survive a ``fork``; a script that calls :func:`face_sweep` with several
-workers needs the ``if __name__ == "__main__":`` guard), each sets the
-variant and sends anything written on its stdout to stderr, so that
-``--json`` keeps stdout to itself. On Dask, run workers of one thread each
-(``dask worker --nworkers N --nthreads 1``): a render sets its process's
-drjit thread count to :data:`RENDER_THREADS`.
+once in the calling process and one drjit thread
+(:mod:`~skinrender.studies.face_pool`, which runs the renders), so the
+numbers (all but ``seconds``) are the same with one worker, several or a
+Dask cluster (tested). A script that asks for several workers needs the
+``if __name__ == "__main__":`` guard (workers are spawned).
 
 Units: temperatures K, times s, image sides pixels, NCC and rates fractions.
 """
@@ -36,21 +29,17 @@ from __future__ import annotations
 
 import csv
 import itertools
-import multiprocessing
 import os
-import signal
-import sys
 import time
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 
-from ..design.search import DASK_TIMEOUT_S, WORKERS_MAX
+from ..design.search import WORKERS_MAX
 from ..errors import SkinrenderError
 from ..evaluation.locus import skin_locus
-from ..extras import require
 from ..model.camera import camera
 from ..model.chromaticity import ncc
 from ..model.illuminant import illuminant
@@ -61,16 +50,13 @@ from ..rendering.face_scene import load_face_scene, skin_reflectance_of
 from ..rendering.renderer import SAMPLES_MAX
 from ..rendering.scene import PIXELS_MAX
 from ..rendering.validation import analytic_reference
-from ..rendering.variants import choose_variant, libllvm_path, mitsuba
+from ..rendering.variants import choose_variant
 from ..spectra import GRID_DEFAULT, WavelengthGrid
+from .face_pool import dask_name, run_renders
 from .ladder import SCORED_MIN_OUTPUT
 
-__all__ = ["RENDER_THREADS", "RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
+__all__ = ["RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
            "FaceSweep", "face_sweep", "score_rendering", "sweep_tasks", "estimate_seconds"]
-
-RENDER_THREADS = 1
-"""drjit threads per render, in every worker and in this process (restored after a one-worker sweep): the same
-split of the work everywhere gives the same numbers."""
 
 RENDERS_MAX = 5000
 """Most renders a sweep may ask for unless ``max_renders`` is raised (a guard against a slip of the flags)."""
@@ -162,7 +148,6 @@ def _render_task(task: tuple, settings: _Settings) -> dict:
     """One combination ``(camera, prevailing K, calibration K, skin, level)`` rendered and scored."""
     cam, p, c, skin, level = task
     start = time.perf_counter()
-    _set_threads(RENDER_THREADS)  # no change in a pool worker or a one-worker sweep; a Dask worker's is set here
     result = render_face(cam, settings.scene, p, c, skin, level, settings.spp, settings.seed, settings.size,
                          variant=settings.variant, grid=settings.grid, imager=settings.imager,
                          illuminance=settings.illuminance)
@@ -175,27 +160,6 @@ def _render_task(task: tuple, settings: _Settings) -> dict:
     row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
     row["seconds"] = time.perf_counter() - start
     return row
-
-
-def _set_threads(count: int) -> int:
-    """Set drjit's thread count (the LLVM backend's pool); returns the count before."""
-    libllvm_path()  # before drjit is first imported (a fresh Dask worker)
-    import drjit
-
-    before = drjit.thread_count()
-    if before != count:
-        drjit.set_thread_count(count)
-    return before
-
-
-def _init_worker(variant: str) -> None:
-    """A pool worker: Ctrl-C is the parent's, stdout is stderr, the variant is set, :data:`RENDER_THREADS`."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    sys.stdout.flush()
-    os.dup2(2, 1)  # a worker shares the parent's stdout, the JSON's: nothing of Mitsuba's may land there
-    sys.stdout = sys.stderr
-    mitsuba(choose_variant(variant))
-    _set_threads(RENDER_THREADS)
 
 
 def sweep_tasks(cameras, lights, skins, levels) -> list[tuple]:
@@ -373,78 +337,8 @@ def face_sweep(
                 min(workers, os.cpu_count() or 1) if dask is None else os.cpu_count() or 1)
     face = load_face_scene(scene)
     settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance)
-    rows: list = [None] * len(tasks)
-    bar = _progress_bar(len(tasks), progress)
     start = time.perf_counter()
-    try:
-        if dask is not None:
-            _run_dask(dask, tasks, settings, rows, bar)
-        elif workers == 1:
-            before = _set_threads(RENDER_THREADS)
-            try:
-                for i, task in enumerate(tasks):
-                    rows[i] = _render_task(task, settings)
-                    bar.update(1)
-            finally:
-                _set_threads(before)
-        else:
-            _run_pool(workers, tasks, settings, rows, bar)
-    finally:
-        bar.close()
+    rows = run_renders(partial(_render_task, settings=settings), tasks, settings.variant, int(workers), dask,
+                       progress, "face sweep")
     return FaceSweep(face.name, int(size), int(spp), int(seed), settings.variant,
-                     1 if dask is not None else int(workers), time.perf_counter() - start, rows,
-                     None if dask is None else dask if isinstance(dask, str) else
-                     str(getattr(getattr(dask, "scheduler", None), "address", "a Dask client")))
-
-
-def _progress_bar(total: int, stream):
-    """A tqdm bar of renders on ``stream``; off when ``stream`` is ``None`` (``--quiet``) or not a terminal."""
-    from tqdm import tqdm
-
-    enabled = stream is not None and getattr(stream, "isatty", lambda: False)()
-    return tqdm(total=total, desc="face sweep", file=stream, disable=not enabled, unit="render", leave=True)
-
-
-def _run_pool(workers: int, tasks: list, settings: _Settings, rows: list, bar) -> None:
-    pool = ProcessPoolExecutor(min(workers, len(tasks)), mp_context=multiprocessing.get_context("spawn"),
-                               initializer=_init_worker, initargs=(settings.variant,))
-    try:
-        futures = {pool.submit(_render_task, task, settings): i for i, task in enumerate(tasks)}
-        pending = set(futures)
-        while pending:
-            done, pending = wait(pending, return_when=FIRST_COMPLETED)
-            for future in done:
-                rows[futures[future]] = future.result()
-                bar.update(1)
-    except BaseException:  # Ctrl-C or an error: stop the workers now and drop the queued renders
-        for process in list((getattr(pool, "_processes", None) or {}).values()):
-            process.terminate()
-        # waiting is short once the workers are gone, and it frees the queues' named semaphores: a `spawn` pool's
-        # resource tracker would otherwise warn of them on stderr when the command line exits at once (130)
-        pool.shutdown(wait=True, cancel_futures=True)
-        raise
-    pool.shutdown()
-
-
-def _run_dask(dask, tasks: list, settings: _Settings, rows: list, bar) -> None:
-    require("dask", "--dask")
-    from distributed import Client, as_completed
-
-    own = not isinstance(dask, Client)
-    if own:
-        try:
-            client = Client(dask, timeout=DASK_TIMEOUT_S)
-        except (OSError, ValueError, TypeError, TimeoutError) as error:
-            raise SkinrenderError(f"--dask: cannot reach a Dask scheduler at {dask!r} within {DASK_TIMEOUT_S:g} s "
-                                  f"({type(error).__name__}: {' '.join(str(error).split())[:120]})") from None
-    else:
-        client = dask
-    try:
-        futures = [client.submit(_render_task, task, settings, pure=False) for task in tasks]
-        index = {future.key: i for i, future in enumerate(futures)}
-        for future in as_completed(futures):
-            rows[index[future.key]] = future.result()
-            bar.update(1)
-    finally:
-        if own:
-            client.close()
+                     1 if dask is not None else int(workers), time.perf_counter() - start, rows, dask_name(dask))

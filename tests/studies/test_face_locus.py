@@ -31,3 +31,13 @@ def test_direct_faces_overlap_the_analytic_locus():
                         skins=("skin-model:melanin=0.02", "skin-model:melanin=0.2"), size=32, spp=64)
     assert result["analytic_covered"] > 0.9 and result["rendered_area"] >= 0.9 * result["analytic_area"]
     assert np.all(np.abs(result["centre_shift"]) < 5e-3)
+
+
+def test_workers_give_the_same_locus():
+    """The faces rendered in two worker processes give the locus rendered in this process, to the last bit."""
+    arguments = {"camera_": camera("gbell:9@450,540,610"), "pairs": ((2856.0, 5900.0), (2300.0, 5900.0)),
+                 "skins": ("skin-model:melanin=0.02", "skin-model:melanin=0.4"), "size": 48, "spp": 32, "seed": 1}
+    one, two = face_locus(**arguments, workers=1), face_locus(**arguments, workers=2)
+    for result in (one, two):
+        del result["seconds"]
+    assert one == two and one["pixels"] > 0

@@ -149,24 +149,3 @@ def test_refusals_before_any_render(kwargs, match):
     with pytest.raises(SkinrenderError, match=match):
         face_sweep(**arguments)
 
-
-def test_a_worker_writes_nothing_on_stdout():
-    """A pool worker's writes on its stdout (file descriptor 1, where Mitsuba's native log would go, and print)
-    reach stderr, never the parent's stdout, which holds ``--json``'s one document."""
-    import subprocess
-    import sys
-
-    script = ("import multiprocessing, os\n"
-              "from concurrent.futures import ProcessPoolExecutor\n"
-              "from skinrender.rendering.variants import choose_variant\n"
-              "from skinrender.studies.face_sweep import _init_worker\n"
-              "pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context('spawn'),\n"
-              "                           initializer=_init_worker, initargs=(choose_variant(None),))\n"
-              "pool.submit(os.write, 1, b'written on descriptor 1\\n').result()\n"
-              "pool.submit(print, 'printed by a worker').result()\n"
-              "pool.shutdown()\n"
-              "print('the parent')\n")
-    done = subprocess.run([sys.executable, "-c", script], check=False, capture_output=True, text=True, timeout=300)
-    assert done.returncode == 0, done.stderr[-800:]
-    assert done.stdout == "the parent\n"
-    assert "written on descriptor 1" in done.stderr and "printed by a worker" in done.stderr
