@@ -195,7 +195,7 @@ def command_face_sweep(args: argparse.Namespace) -> None:
              f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]), rate(row["tpr"]), rate(row["fpr"])]
             for row in document["combinations"]]
     text = (table(rows, ["camera", "P/C K", "skin", "level", "s", "spp", "skin NCC r g b", "TPR", "FPR"])
-            + f"\n{len(rows)} renders of {result.size}×{result.size} px at {result.spp} spp in "
-            f"{result.elapsed_s:.1f} s ({'Dask' if result.dask else f'{result.workers} workers'}, {result.variant})"
+            + f"\n{len(rows)} render{'s' * (len(rows) != 1)} of {result.size}×{result.size} px at {result.spp} spp in "
+            f"{result.elapsed_s:.1f} s ({'Dask' if result.dask else f'{result.workers} worker' + 's' * (result.workers > 1)}, {result.variant})"
             + (f"; wrote {args.csv}" if args.csv else ""))
     emit(args, document, text)

@@ -44,7 +44,7 @@ def test_json_and_csv_in_this_process(tmp_path, capsys):
 def test_text_table(capsys):
     status, out, err = run([*SWEEP, "--workers", "1"], capsys)
     assert status == 0, err
-    assert "skin-model:melanin=0.02" in out and "2856/5900" in out and "1 renders of 16×16 px" in out
+    assert "skin-model:melanin=0.02" in out and "2856/5900" in out and "1 render of 16×16 px at 2 spp" in out and "(1 worker, " in out
 
 
 def command(argv: list[str]) -> list[str]:
