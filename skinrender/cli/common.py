@@ -161,6 +161,22 @@ def flag(name: str, function, *args, **kwargs):
         raise SkinrenderError(text if text.startswith(name) else f"{name}: {text}") from None
 
 
+def integer_in(text, name: str, low: int, high: int) -> int:
+    """
+    ``text`` as an integer in ``[low, high]``, else a one-line error naming the flag ``name``.
+
+    >>> integer_in(" 12 ", "--size", 1, 2000)
+    12
+    """
+    try:
+        value = int(str(text).strip())
+    except ValueError:
+        value = None
+    if value is None or not low <= value <= high:
+        raise SkinrenderError(f"{name} must be an integer in [{low}, {high}], got {text!r}")
+    return value
+
+
 def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = (), folder: bool = False) -> Path | None:
     """
     Check an output path before any work is done (nothing is created).

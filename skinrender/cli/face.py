@@ -15,9 +15,9 @@ from pathlib import Path
 
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, HELP_ILLUMINANT, SPP_MAX, add_common, camera_of, check_output, check_seed,
-                     choices_help, emit, flag, imaging_options, render_options, table)
+                     choices_help, emit, flag, imaging_options, integer_in, render_options, table)
 
-__all__ = ["add_parsers", "add_face_arguments", "check_figure", "is_face_scene", "command_ladder", "command_render_face",
+__all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
 
 SIZE_MAX = 2000
@@ -84,16 +84,6 @@ def add_parsers(commands) -> None:
     add_common(p)
 
 
-def _integer(text, name: str, low: int, high: int) -> int:
-    try:
-        value = int(str(text).strip())
-    except ValueError:
-        value = None
-    if value is None or not low <= value <= high:
-        raise SkinrenderError(f"{name} must be an integer in [{low}, {high}], got {text!r}")
-    return value
-
-
 def _planckian(args: argparse.Namespace, name: str) -> float:
     from ..model.illuminant import illuminant
 
@@ -123,6 +113,39 @@ def check_figure(args: argparse.Namespace, *taken) -> Path | None:
     if figure is not None and any(figure.resolve() == Path(other).resolve() for other in taken):
         raise SkinrenderError(f"--figure: {figure} is also another output of the command; name another PNG")
     return figure
+
+
+def face_inputs(args: argparse.Namespace) -> tuple:
+    """
+    The inputs of a face render from the flags of ``render``/``validate``, each checked with a one-line error
+    naming its flag: ``(scene, camera, temperatures {prevailing, calibration} K, physics, skin, size px or None,
+    imager, exposure, illuminance lx)``; with ``--imager`` the level gains ``noise``.
+    """
+    from ..rendering.face_dict import parse_physics
+    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+    from ..spectra import GRID_DEFAULT
+
+    scene = flag("SCENE", load_face_scene, args.scene)
+    cam = camera_of(args)
+    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
+    _check_light(cam, temperatures)
+    if getattr(args, "normalization", "white") != "white":
+        raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
+                              f"got {args.normalization!r}")
+    physics = getattr(args, "physics", None) or "direct"
+    flag("--physics", parse_physics, physics)
+    skin = getattr(args, "skin", None)
+    if skin is not None:
+        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
+    size = getattr(args, "size", None)
+    size = None if size is None else integer_in(size, "--size", 1, SIZE_MAX)
+    imaging = imaging_options(args) if getattr(args, "imager", None) is not None else None
+    imager, exposure, lux = None, "auto", None
+    if imaging is not None:  # a sensor records the face: the noise level, at the stated illuminance
+        imager, exposure, lux = imaging["imager_"], imaging["exposure"], imaging["illuminance_lux"]
+        if "noise" not in parse_physics(physics):
+            physics = "noise" if physics.strip() == "direct" else f"{physics}+noise"
+    return scene, cam, temperatures, physics, skin, size, imager, exposure, lux
 
 
 def is_face_scene(spec: str) -> bool:
@@ -155,9 +178,9 @@ def command_ladder(args: argparse.Namespace) -> None:
     cam = camera_of(args)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
     _check_light(cam, temperatures)
-    size = _integer(args.size, "--size", 1, SIZE_MAX)
-    spp = _integer(args.spp, "--spp", 1, SPP_MAX)
-    seed = check_seed(_integer(args.seed, "--seed", 0, 2**32 - 1))
+    size = integer_in(args.size, "--size", 1, SIZE_MAX)
+    spp = integer_in(args.spp, "--spp", 1, SPP_MAX)
+    seed = check_seed(integer_in(args.seed, "--seed", 0, 2**32 - 1))
     scene = flag("--scene", load_face_scene, args.scene)
     if args.skin is not None:
         from ..spectra import GRID_DEFAULT
@@ -215,35 +238,12 @@ def command_render_face(args: argparse.Namespace) -> None:
     """
     from ..model.response import knee as apply_knee
     from ..rendering.face import render_face, write_face_exr
-    from ..rendering.face_dict import parse_physics
-    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
 
     options = render_options(args)
     output = check_output(getattr(args, "output", None) or "render.exr", "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
-    scene = flag("SCENE", load_face_scene, args.scene)
-    cam = camera_of(args)
-    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
-    _check_light(cam, temperatures)
-    if getattr(args, "normalization", "white") != "white":
-        raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
-                              f"got {args.normalization!r}")
-    physics = getattr(args, "physics", None) or "direct"
-    flag("--physics", parse_physics, physics)
-    skin = getattr(args, "skin", None)
-    if skin is not None:
-        from ..spectra import GRID_DEFAULT
-
-        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
-    size = getattr(args, "size", None)
-    size = None if size is None else _integer(size, "--size", 1, SIZE_MAX)
-    imaging = imaging_options(args) if getattr(args, "imager", None) is not None else None
-    imager, exposure, lux = None, "auto", None
-    if imaging is not None:  # a sensor records the face: the noise level, at the stated illuminance
-        imager, exposure, lux = imaging["imager_"], imaging["exposure"], imaging["illuminance_lux"]
-        if "noise" not in parse_physics(physics):
-            physics = "noise" if physics.strip() == "direct" else f"{physics}+noise"
+    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
     print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
     result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], skin, physics,
                          options["spp"], options["seed"], size, options["sampler"], options["variant"],

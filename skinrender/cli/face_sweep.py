@@ -17,7 +17,7 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
-from .common import HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, table
+from .common import HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in, table
 from .face import HELP_SKIN, SIZE_MAX
 
 __all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
@@ -72,16 +72,6 @@ def add_parsers(commands) -> None:
                    help=f"refuse sweeps of more samples (renders × pixels × spp) than this (default "
                    f"{SWEEP_SAMPLES_MAX:g})")
     add_common(p)
-
-
-def _integer(text, name: str, low: int, high: int) -> int:
-    try:
-        value = int(str(text).strip())
-    except ValueError:
-        value = None
-    if value is None or not low <= value <= high:
-        raise SkinrenderError(f"{name} must be an integer in [{low}, {high}], got {text!r}")
-    return value
 
 
 def _planckian(spec: str, name: str) -> float:
@@ -168,11 +158,11 @@ def _checked(args: argparse.Namespace) -> dict:
         raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one")
     return {
         "cameras": cams, "lights": pairs, "skins": skins, "levels": levels, "scene": args.scene,
-        "size": _integer(args.size, "--size", 1, SIZE_MAX), "spp": _integer(args.spp, "--spp", 1, SPP_MAX),
-        "seed": _integer(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": args.imager,
+        "size": integer_in(args.size, "--size", 1, SIZE_MAX), "spp": integer_in(args.spp, "--spp", 1, SPP_MAX),
+        "seed": integer_in(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": args.imager,
         "illuminance": lux,
-        "workers": None if args.workers is None else _integer(args.workers, "--workers", 1, WORKERS_MAX),
-        "dask": args.dask, "max_renders": _integer(args.max_renders, "--max-renders", 1, 10**9),
+        "workers": None if args.workers is None else integer_in(args.workers, "--workers", 1, WORKERS_MAX),
+        "dask": args.dask, "max_renders": integer_in(args.max_renders, "--max-renders", 1, 10**9),
         "max_samples": max_samples,
     }
 

@@ -54,40 +54,19 @@ def command_validate_face(args: argparse.Namespace) -> None:
     ``--calibration``, the render options) and the face's (``--physics``, ``--skin``, ``--size``);
     every flag is checked before anything renders.
     """
-    from ..rendering.face_dict import parse_physics
-    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
     from ..rendering.face_validation import validate_face
-    from ..spectra import GRID_DEFAULT
-    from .common import camera_of, emit, flag, imaging_options, render_options, table
-    from .face import SIZE_MAX, _check_light, _integer, _planckian
+    from .common import emit, flag, render_options, table
+    from .face import face_inputs
 
     options = render_options(args)
-    scene = flag("SCENE", load_face_scene, args.scene)
-    cam = camera_of(args)
-    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
-    _check_light(cam, temperatures)
-    if getattr(args, "normalization", "white") != "white":
-        raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, got {args.normalization!r}")
     if getattr(args, "knee", False):
         raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee")
     if getattr(args, "gamut", False):
         raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene")
     if str(getattr(args, "grid", "400:700:1")).strip() != "400:700:1":
         raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}")
-    physics = getattr(args, "physics", None) or "direct"
-    flag("--physics", parse_physics, physics)
-    skin = getattr(args, "skin", None)
-    if skin is not None:
-        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
-    size = getattr(args, "size", None)
-    size = None if size is None else _integer(size, "--size", 1, SIZE_MAX)
+    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
-    imaging = imaging_options(args) if getattr(args, "imager", None) is not None else None
-    imager, exposure, lux = None, "auto", None
-    if imaging is not None:  # a sensor records the face: the noise level, at the stated illuminance
-        imager, exposure, lux = imaging["imager_"], imaging["exposure"], imaging["illuminance_lux"]
-        if "noise" not in parse_physics(physics):
-            physics = "noise" if physics.strip() == "direct" else f"{physics}+noise"
     result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
                   skin, physics, options["spp"], options["seed"], size, options["sampler"], options["variant"],
                   options["channels"], imager, exposure, lux, limits=limits,

@@ -45,7 +45,6 @@ from ..model.chromaticity import ncc
 from ..model.illuminant import illuminant
 from ..rendering.face import render_face
 from ..rendering.face_dict import parse_physics
-from ..rendering.face_labels import LABEL_SKIN
 from ..rendering.face_scene import load_face_scene, skin_reflectance_of
 from ..rendering.renderer import SAMPLES_MAX
 from ..rendering.scene import PIXELS_MAX
@@ -53,10 +52,10 @@ from ..rendering.validation import analytic_reference
 from ..rendering.variants import choose_variant
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .face_pool import dask_name, run_renders
-from .ladder import SCORED_MIN_OUTPUT
+from .ladder import score_rendering
 
 __all__ = ["RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
-           "FaceSweep", "face_sweep", "score_rendering", "sweep_tasks", "estimate_seconds"]
+           "FaceSweep", "face_sweep", "sweep_tasks", "estimate_seconds"]
 
 RENDERS_MAX = 5000
 """Most renders a sweep may ask for unless ``max_renders`` is raised (a guard against a slip of the flags)."""
@@ -86,48 +85,6 @@ def _temperature(spec, name: str) -> float:
     if item.temperature is None:
         raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}")
     return float(item.temperature)
-
-
-def _rate(hits: np.ndarray) -> float | None:
-    return float(hits.mean()) if hits.size else None
-
-
-def score_rendering(result, locus) -> dict:
-    """
-    Score one face render as the ladder scores a level.
-
-    A pixel is scored when its brightest channel reaches
-    :data:`~skinrender.studies.ladder.SCORED_MIN_OUTPUT`; ``tpr`` is the share of scored skin pixels whose NCC
-    (r, g) lies in ``locus``, ``fpr`` that of the scored prop pixels (the background is left out).
-
-    Parameters
-    ----------
-    result
-        A :class:`~skinrender.rendering.face.FaceRendering`.
-    locus
-        A :class:`~skinrender.evaluation.locus.SkinLocus` (its ``contains``).
-
-    Returns
-    -------
-    dict
-        ``skin_ncc_mean``, ``skin_ncc_std`` (``[r, g, b]`` or ``None`` without a scored skin pixel), ``tpr``,
-        ``fpr`` (fractions or ``None``), ``skin_pixels``, ``prop_pixels`` (scored counts).
-    """
-    image = result.image.astype(np.float64)
-    scored = image.max(axis=-1) >= SCORED_MIN_OUTPUT
-    chromaticity = ncc(image)
-    inside = locus.contains(chromaticity[..., :2])
-    skin_pixels = scored & (result.labels == LABEL_SKIN)
-    prop_pixels = scored & (result.labels > LABEL_SKIN)
-    values = chromaticity[skin_pixels]
-    return {
-        "skin_ncc_mean": values.mean(axis=0).tolist() if values.size else None,
-        "skin_ncc_std": values.std(axis=0).tolist() if values.size else None,
-        "tpr": _rate(inside[skin_pixels]),
-        "fpr": _rate(inside[prop_pixels]),
-        "skin_pixels": int(skin_pixels.sum()),
-        "prop_pixels": int(prop_pixels.sum()),
-    }
 
 
 @dataclass(frozen=True)

@@ -46,7 +46,7 @@ from ..rendering.face_scene import load_face_scene, skin_reflectance_of
 from ..rendering.validation import analytic_reference
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["LEVELS_DEFAULT", "SCORED_MIN_OUTPUT", "Ladder", "ladder"]
+__all__ = ["LEVELS_DEFAULT", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "score_rendering"]
 
 LEVELS_DEFAULT = ("direct", "interreflection", "sheen", "mixed", "noise", "interreflection+sheen+mixed+noise")
 """The levels of :func:`ladder`: the analytic model's world, each effect alone, then all of them."""
@@ -139,6 +139,52 @@ def _rate(hits: np.ndarray) -> float | None:
     return float(hits.mean()) if hits.size else None
 
 
+def _scored(result, locus) -> tuple[dict, dict]:
+    """:func:`score_rendering`'s scores, and the frame the figure draws (image, labels, scored, detected, ncc)."""
+    image = result.image.astype(np.float64)
+    scored = image.max(axis=-1) >= SCORED_MIN_OUTPUT
+    chromaticity = ncc(image)
+    inside = locus.contains(chromaticity[..., :2])
+    skin_pixels = scored & (result.labels == LABEL_SKIN)
+    prop_pixels = scored & (result.labels > LABEL_SKIN)
+    values = chromaticity[skin_pixels]
+    scores = {
+        "skin_ncc_mean": values.mean(axis=0).tolist() if values.size else None,
+        "skin_ncc_std": values.std(axis=0).tolist() if values.size else None,
+        "tpr": _rate(inside[skin_pixels]),
+        "fpr": _rate(inside[prop_pixels]),
+        "skin_pixels": int(skin_pixels.sum()),
+        "prop_pixels": int(prop_pixels.sum()),
+    }
+    frame = {"image": result.image, "labels": result.labels, "scored": scored, "detected": scored & inside,
+             "ncc": chromaticity}
+    return scores, frame
+
+
+def score_rendering(result, locus) -> dict:
+    """
+    Score one face render as the ladder scores a level.
+
+    A pixel is scored when its brightest channel reaches :data:`SCORED_MIN_OUTPUT`; ``tpr`` is the share of
+    scored skin pixels whose NCC (r, g) lies in ``locus``, ``fpr`` that of the scored prop pixels (the
+    background is left out).
+
+    Parameters
+    ----------
+    result
+        A :class:`~skinrender.rendering.face.FaceRendering`.
+    locus
+        A :class:`~skinrender.evaluation.locus.SkinLocus` (its ``contains``).
+
+    Returns
+    -------
+    dict
+        ``skin_ncc_mean``, ``skin_ncc_std`` (``[r, g, b]`` or ``None`` without a scored skin pixel), ``tpr``,
+        ``fpr`` (fractions or ``None``), ``skin_pixels``, ``prop_pixels`` (scored counts).
+    """
+    return _scored(result, locus)[0]
+
+
 def ladder(
     camera_,
     prevailing,
@@ -204,29 +250,12 @@ def ladder(
         start = time.perf_counter()
         result = render_face(cam, face, p, c, skin, level, spp, seed, size, variant=variant, grid=grid,
                              imager=imager, illuminance=illuminance)
-        image = result.image.astype(np.float64)
-        scored = image.max(axis=-1) >= SCORED_MIN_OUTPUT
-        chromaticity = ncc(image)
-        inside = locus.contains(chromaticity[..., :2])
-        skin_pixels = scored & (result.labels == LABEL_SKIN)
-        prop_pixels = scored & (result.labels > LABEL_SKIN)
-        values = chromaticity[skin_pixels]
-        row = {
-            "name": result.physics if level != "direct" else "direct",
-            "seconds": time.perf_counter() - start,
-            "spp": result.spp,
-            "skin_ncc_mean": values.mean(axis=0).tolist() if values.size else None,
-            "skin_ncc_std": values.std(axis=0).tolist() if values.size else None,
-            "tpr": _rate(inside[skin_pixels]),
-            "fpr": _rate(inside[prop_pixels]),
-            "skin_pixels": int(skin_pixels.sum()),
-            "prop_pixels": int(prop_pixels.sum()),
-            "variant": result.variant,
-        }
+        scores, frame = _scored(result, locus)
+        row = {"name": result.physics if level != "direct" else "direct", "seconds": time.perf_counter() - start,
+               "spp": result.spp, **scores, "variant": result.variant}
         row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
         rows.append(row)
-        frames.append({"image": result.image, "labels": result.labels, "scored": scored,
-                       "detected": scored & inside, "ncc": chromaticity})
+        frames.append(frame)
         shape = (result.scene.camera.width, result.scene.camera.height)
     return Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), rows, frames,
                   np.asarray(locus.polygon), dict(result.label_names))

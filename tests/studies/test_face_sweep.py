@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.studies.face_sweep import (CSV_COLUMNS, FaceSweep, estimate_seconds, face_sweep, score_rendering,
-                                           sweep_tasks)
+from skinrender.studies.face_sweep import CSV_COLUMNS, FaceSweep, estimate_seconds, face_sweep, sweep_tasks
+from skinrender.studies.ladder import score_rendering
 
 pytest.importorskip("mitsuba")
 
