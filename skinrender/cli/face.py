@@ -287,26 +287,19 @@ def command_detect_face(args: argparse.Namespace) -> None:
     from ..model.chromaticity import ncc
     from ..rendering.exr import write_png, write_preview
     from ..rendering.face import render_face
-    from ..rendering.face_scene import load_face_scene
     from ..studies.ladder import SCORED_MIN_OUTPUT
 
     options = render_options(args)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
-    scene = flag("SCENE", load_face_scene, args.scene)
-    cam = camera_of(args)
-    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
-    _check_light(cam, temperatures)
-    skin = flag("--skin", reflectances, args.skin)
-    imaging = imaging_options(args)
-    physics = "noise" if imaging is not None else "direct"
+    scene, cam, temperatures, physics, face_skin, size, imager, exposure, lux = face_inputs(args)
+    locus_skin = getattr(args, "locus_skin", None) or "skin"
+    skin = flag("--locus-skin", reflectances, locus_skin)
     print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
-    result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], None, physics,
-                         options["spp"], options["seed"], None, options["sampler"], options["variant"],
-                         channels=options["channels"],
-                         **({} if imaging is None else {"imager": imaging["imager_"], "exposure": imaging["exposure"],
-                                                       "illuminance": imaging["illuminance_lux"]}))
+    result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], face_skin, physics,
+                         options["spp"], options["seed"], size, options["sampler"], options["variant"],
+                         channels=options["channels"], imager=imager, exposure=exposure, illuminance=lux)
     locus = skin_locus(cam, skin, calibration=temperatures["calibration"], boundary=args.boundary)
     mask = locus.contains(ncc(np.maximum(result.image.astype(np.float64), 0.0))[..., :2])
     scored = result.image.max(axis=-1) >= SCORED_MIN_OUTPUT  # as the ladder: too dark has no chromaticity
@@ -325,6 +318,7 @@ def command_detect_face(args: argparse.Namespace) -> None:
                 "calibration_K": temperatures["calibration"], "tpr": tpr, "fpr": fpr, "undefined": undefined,
                 "locus_degenerate": locus.degenerate, "mask_png": str(output), "preview_png": str(preview),
                 "per_patch": per_label, "labels": result.label_names, "physics": result.physics,
+                "skin": result.skin, "locus_skin": locus_skin,
                 "scored_min_output": SCORED_MIN_OUTPUT, "boundary": args.boundary, "spp": result.spp, "spp_requested": options["spp"],
                 "variant": result.variant}
     shown = lambda value: "undefined" if value is None else f"{value:.3f}"  # noqa: E731

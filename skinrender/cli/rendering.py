@@ -56,7 +56,13 @@ def add_parsers(commands) -> None:
     p.add_argument("--prevailing", required=True, help="prevailing illuminant, Planckian: " + HELP_ILLUMINANT)
     p.add_argument("--calibration", required=True, help="calibration illuminant: " + HELP_ILLUMINANT)
     p.add_argument("--boundary", choices=list(BOUNDARIES), default="hull", help="locus boundary: " + choices_help(BOUNDARIES))
-    p.add_argument("--skin", default="skin", help="skin set the locus is trained on (default skin)")
+    p.add_argument("--locus-skin", metavar="SET",
+                   help="skin reflectance set the locus is trained on, a name or CSV path (default skin)")
+    p.add_argument("--skin", help="face scenes: the face's skin (SPEC as for render); on a chart, the locus's "
+                   "training set (deprecated there: use --locus-skin)")
+    p.add_argument("--physics", default="direct", help="face scenes: the level of physics, as for render "
+                   "(--imager adds noise)")
+    p.add_argument("--size", metavar="PX", help="face scenes: image side, pixels (default: the scene's)")
     p.add_argument("-o", "--output", default="detect.png", help="mask PNG (a preview PNG is written beside it)")
     p.add_argument("--figure", metavar="PNG",
                    help="also write a labelled figure: a chart with its patch names over the render and over "
@@ -215,6 +221,21 @@ def command_validate(args: argparse.Namespace) -> None:
         raise SystemExit(1)
 
 
+def locus_skin_of(args: argparse.Namespace, chart: bool) -> str:
+    """
+    The skin set ``detect`` trains the locus on: ``--locus-skin`` (default ``skin``); on a chart ``--skin`` is
+    its deprecated alias (a notice on stderr), on a face ``--skin`` is the face's own skin.
+    """
+    locus_skin = getattr(args, "locus_skin", None)
+    if chart and args.skin is not None:
+        if locus_skin is not None:
+            raise SkinrenderError("--skin: on a chart it is the deprecated name of --locus-skin; give one of them")
+        print("skinrender detect: notice: --skin on a chart names the locus's training set; it is deprecated, "
+              "use --locus-skin (on a face --skin is the face's skin)", file=sys.stderr)
+        return args.skin
+    return "skin" if locus_skin is None else locus_skin
+
+
 def command_detect(args: argparse.Namespace) -> None:
     from .face import command_detect_face, is_face_scene
 
@@ -226,13 +247,16 @@ def command_detect(args: argparse.Namespace) -> None:
     from ..evaluation.locus import skin_locus
     from ..rendering.exr import write_png, write_preview
 
+    if args.physics != "direct" or args.size is not None:
+        raise SkinrenderError("--physics and --size go with a face scene (e.g. 'face'), not a chart")
+    locus_skin = locus_skin_of(args, chart=True)
     options = render_options(args)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
     inputs = render_inputs(args)
     imaging = imaging_options(args)
-    skin = flag("--skin", reflectances, args.skin)
+    skin = flag("--locus-skin" if args.skin is None else "--skin", reflectances, locus_skin)
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
     rendering, imaged = render_with(args, inputs, options, imaging)
     # the camera is white-balanced to the calibration light: the locus of that one balancing

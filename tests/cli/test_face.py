@@ -169,3 +169,36 @@ def test_detect_face_checks_the_figure_before_rendering(figure, tmp_path, capsys
     (tmp_path / "folder").mkdir()
     assert_refused(["detect", "face", "--camera", CAM, "--prevailing", "2856", "--calibration", "5900",
                     "-o", "mask.png", "--figure", figure], "--figure", capsys, output=tmp_path)
+
+
+def test_detect_face_takes_the_level_the_skin_and_the_locus_set(tmp_path, capsys):
+    """``detect face --physics --skin --size``: the face's skin and level as ``render``'s; ``--locus-skin`` the locus."""
+    from skinrender.cli import main
+
+    status = main(["detect", "face", "--camera", CAM, "--prevailing", "2856", "--calibration", "5900", "--spp", "4",
+                   "--physics", "sheen", "--skin", "skin-model:melanin=0.2", "--size", "24", "--locus-skin", "skin",
+                   "-o", str(tmp_path / "mask.png"), "--json"])
+    document = json.loads(capsys.readouterr().out)
+    assert status == 0 and document["physics"] == "sheen" and document["skin"] == "skin-model:melanin=0.2"
+    assert document["locus_skin"] == "skin"
+    from PIL import Image
+
+    assert Image.open(tmp_path / "mask.png").size == (24, 24)
+
+
+def test_detect_chart_skin_is_the_deprecated_locus_set(tmp_path, capsys):
+    """On a chart ``--skin`` still names the locus's training set, with a notice; both names at once are refused."""
+    from skinrender.cli import main
+
+    from .refusal import assert_refused
+
+    status = main(["detect", "skin_patches", "--camera", CAM, "--prevailing", "2856", "--calibration", "5900",
+                   "--spp", "1", "--skin", "skin", "-o", str(tmp_path / "m.png"), "--json"])
+    captured = capsys.readouterr()
+    assert status == 0 and json.loads(captured.out)["tpr"] is not None
+    assert "deprecated" in captured.err and "--locus-skin" in captured.err
+    assert_refused(["detect", "skin_patches", "--camera", CAM, "--prevailing", "2856", "--calibration", "5900",
+                    "--skin", "skin", "--locus-skin", "skin", "-o", str(tmp_path / "n.png")], "--skin", capsys,
+                   output=tmp_path / "n.png")
+    assert_refused(["detect", "skin_patches", "--camera", CAM, "--prevailing", "2856", "--calibration", "5900",
+                    "--physics", "sheen", "-o", str(tmp_path / "n.png")], "--physics", capsys)
