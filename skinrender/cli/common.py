@@ -87,11 +87,12 @@ def add_render(parser: argparse.ArgumentParser) -> None:
                         help="render passes: " + choices_help(CHANNEL_GROUPINGS))
     parser.add_argument("--imager", help="record the render with an image sensor: a preset (see 'skinrender imagers') "
                         "or a TOML file; adds photon shot, dark and read noise, full well, gain and ADC")
-    parser.add_argument("--illuminance", type=float, default=500.0,
-                        help="with --imager: illuminance at the chart, lx (default 500, an office)")
-    parser.add_argument("--exposure", default="auto",
-                        help="with --imager: exposure in s, or auto (the calibration white's brightest channel at "
-                        "0.7 of the full well; default)")
+    parser.add_argument("--illuminance", type=float, default=None,
+                        help=f"with --imager (or a face's noise level): illuminance at the chart, lx (default "
+                        f"{ILLUMINANCE_DEFAULT:g}, an office; a face: the scene's)")
+    parser.add_argument("--exposure", default=None,
+                        help="with --imager (or a face's noise level): exposure in s, or auto (the calibration "
+                        "white's brightest channel at 0.7 of the full well; default)")
 
 
 def emit(args: argparse.Namespace, document: dict, text: str) -> None:
@@ -137,6 +138,10 @@ def render_options(args: argparse.Namespace) -> dict:
 
     if args.variant is not None and args.variant not in VARIANTS_SPECTRAL:
         raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, got {args.variant!r}")
+    if args.variant is not None:  # runs here? (before anything is printed or rendered)
+        from ..rendering.variants import choose_variant
+
+        flag("--variant", choose_variant, args.variant)
     return {"spp": spp, "sampler": args.sampler or preset["sampler"], "seed": check_seed(args.seed),
             "variant": args.variant, "channels": args.channels}
 
@@ -249,16 +254,23 @@ def camera_of(args: argparse.Namespace, grid=None, name: str = "--camera"):
     return cam
 
 
-def imaging_options(args: argparse.Namespace) -> dict | None:
-    """``--imager``, ``--illuminance`` (lx) and ``--exposure`` (s or auto) checked, or ``None`` without ``--imager``."""
-    if args.imager is None:
-        return None
-    from ..model.imager import imager
+ILLUMINANCE_DEFAULT = 500.0
+"""``--illuminance`` of a chart through ``--imager`` unless given, lx (an office)."""
 
-    sensor = flag("--imager", imager, args.imager)
-    if not (math.isfinite(args.illuminance) and args.illuminance > 0):
+
+def sensor_settings(args: argparse.Namespace, default_lux: float | None = ILLUMINANCE_DEFAULT) -> tuple:
+    """
+    ``--illuminance`` (lx; ``default_lux`` when not given) and ``--exposure`` (s or ``"auto"``) checked:
+    ``(lux, exposure)``.
+
+    >>> import argparse
+    >>> sensor_settings(argparse.Namespace(illuminance=None, exposure="0.01"))
+    (500.0, 0.01)
+    """
+    lux = default_lux if args.illuminance is None else args.illuminance
+    if lux is not None and not (math.isfinite(lux) and lux > 0):
         raise SkinrenderError(f"--illuminance must be a finite number of lux > 0, got {args.illuminance}")
-    exposure = str(args.exposure).strip().lower()
+    exposure = "auto" if args.exposure is None else str(args.exposure).strip().lower()
     if exposure != "auto":
         try:
             exposure = float(exposure)
@@ -266,4 +278,24 @@ def imaging_options(args: argparse.Namespace) -> dict | None:
             raise SkinrenderError(f"--exposure must be auto or seconds > 0, got {args.exposure!r}") from None
         if not (math.isfinite(exposure) and exposure > 0):
             raise SkinrenderError(f"--exposure must be auto or a finite number of seconds > 0, got {args.exposure!r}")
-    return {"imager_": sensor, "illuminance_lux": args.illuminance, "exposure": exposure}
+    return lux, exposure
+
+
+def refuse_sensor_settings(args: argparse.Namespace, instead: str = "--imager") -> None:
+    """``--illuminance`` and ``--exposure`` set the image sensor: refused (one line) where there is none."""
+    for name in ("illuminance", "exposure"):
+        if getattr(args, name, None) is not None:
+            raise SkinrenderError(f"--{name} sets the image sensor's exposure: it goes with {instead}")
+
+
+def imaging_options(args: argparse.Namespace) -> dict | None:
+    """``--imager``, ``--illuminance`` (lx) and ``--exposure`` (s or auto) checked, or ``None`` without ``--imager``
+    (when ``--illuminance`` or ``--exposure`` is given without it, a one-line refusal)."""
+    if args.imager is None:
+        refuse_sensor_settings(args)
+        return None
+    from ..model.imager import imager
+
+    sensor = flag("--imager", imager, args.imager)
+    lux, exposure = sensor_settings(args)
+    return {"imager_": sensor, "illuminance_lux": lux, "exposure": exposure}

@@ -17,8 +17,9 @@ def add_noisy(parser) -> None:
     """The noise-aware criterion's flags: --imager, --illuminance, --exposure, --noise-samples, --noise-seed."""
     parser.add_argument("--imager", help="judge detection on noisy pixels of this image sensor: a preset (see "
                         "'skinrender imagers') or a TOML file")
-    parser.add_argument("--illuminance", type=float, default=500.0, help="with --imager: lx at the chart (default 500)")
-    parser.add_argument("--exposure", default="auto", help="with --imager: s, or auto (the calibration white at 0.7 of "
+    parser.add_argument("--illuminance", type=float, default=None,
+                        help="with --imager: lx at the chart (default 500)")
+    parser.add_argument("--exposure", default=None, help="with --imager: s, or auto (the calibration white at 0.7 of "
                         "the full well, at most a 1/30 s video frame; default)")
     parser.add_argument("--noise-calibration", type=float, default=3300.0,
                         help="with --imager: the white balance (K, one of the illuminants; default 3300)")

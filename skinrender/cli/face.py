@@ -14,8 +14,9 @@ import sys
 from pathlib import Path
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, HELP_ILLUMINANT, SPP_MAX, add_common, camera_of, check_output, check_seed,
-                     choices_help, emit, flag, imaging_options, integer_in, render_options, table)
+from .common import (HELP_CAMERA, HELP_ILLUMINANT, SEED_MAX, SPP_MAX, add_common, camera_of, check_output, check_seed,
+                     choices_help, emit, flag, integer_in, refuse_sensor_settings, render_options, sensor_settings,
+                     table)
 
 __all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
@@ -132,19 +133,29 @@ def face_inputs(args: argparse.Namespace) -> tuple:
     if getattr(args, "normalization", "white") != "white":
         raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
                               f"got {args.normalization!r}")
-    physics = getattr(args, "physics", None) or "direct"
+    if str(getattr(args, "grid", "400:700:1")).strip() != "400:700:1":
+        raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}")
+    physics = getattr(args, "physics", None)
+    physics = "direct" if physics is None else physics
+    if not str(physics).strip():
+        raise SkinrenderError("--physics: name a level (direct, interreflection, sheen, mixed, noise; '+' "
+                              "combines them), got ''")
     flag("--physics", parse_physics, physics)
     skin = getattr(args, "skin", None)
     if skin is not None:
         skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
     size = getattr(args, "size", None)
     size = None if size is None else integer_in(size, "--size", 1, SIZE_MAX)
-    imaging = imaging_options(args) if getattr(args, "imager", None) is not None else None
-    imager, exposure, lux = None, "auto", None
-    if imaging is not None:  # a sensor records the face: the noise level, at the stated illuminance
-        imager, exposure, lux = imaging["imager_"], imaging["exposure"], imaging["illuminance_lux"]
+    imager = None
+    if getattr(args, "imager", None) is not None:  # a sensor records the face: the noise level
+        from ..model.imager import imager as load_imager
+
+        imager = flag("--imager", load_imager, args.imager)
         if "noise" not in parse_physics(physics):
             physics = "noise" if physics.strip() == "direct" else f"{physics}+noise"
+    if imager is None and "noise" not in parse_physics(physics):
+        refuse_sensor_settings(args, "--imager or a noise level (--physics noise)")
+    lux, exposure = sensor_settings(args, default_lux=None)  # None: the scene's illuminance
     return scene, cam, temperatures, physics, skin, size, imager, exposure, lux
 
 
@@ -180,17 +191,18 @@ def command_ladder(args: argparse.Namespace) -> None:
     _check_light(cam, temperatures)
     size = integer_in(args.size, "--size", 1, SIZE_MAX)
     spp = integer_in(args.spp, "--spp", 1, SPP_MAX)
-    seed = check_seed(integer_in(args.seed, "--seed", 0, 2**32 - 1))
+    seed = check_seed(integer_in(args.seed, "--seed", 0, SEED_MAX))
     scene = flag("--scene", load_face_scene, args.scene)
     if args.skin is not None:
         from ..spectra import GRID_DEFAULT
 
         skin_reflectance_of(args.skin, GRID_DEFAULT, "--skin")
-    levels = [level.strip() for level in str(args.levels).split(",") if level.strip()]
-    if not levels:
-        raise SkinrenderError("--levels: name at least one level of physics")
-    for level in levels:
-        flag("--levels", parse_physics, level)
+    levels = [level.strip() for level in str(args.levels).split(",")]
+    if not any(levels) or not all(levels):
+        raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {args.levels!r}")
+    effects = [flag("--levels", parse_physics, level) for level in levels]
+    if len(set(effects)) < len(effects):
+        raise SkinrenderError(f"--levels: a level is named twice in {args.levels!r}; name each once")
     if args.variant is not None and args.variant not in VARIANTS_SPECTRAL:
         raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, "
                               f"got {args.variant!r}")
@@ -240,7 +252,7 @@ def command_render_face(args: argparse.Namespace) -> None:
     from ..rendering.face import render_face, write_face_exr
 
     options = render_options(args)
-    output = check_output(getattr(args, "output", None) or "render.exr", "--output", (".exr",))
+    output = check_output(getattr(args, "output", "render.exr"), "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
     scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
@@ -306,14 +318,19 @@ def command_detect_face(args: argparse.Namespace) -> None:
     skin_pixels, prop_pixels = scored & (result.labels == 1), scored & (result.labels >= 2)
     tpr = float(mask[skin_pixels].mean()) if skin_pixels.any() else None
     fpr = float(mask[prop_pixels].mean()) if prop_pixels.any() else None
-    undefined = {**({} if tpr is not None else {"tpr": "no skin pixel in view"}),
-                 **({} if fpr is not None else {"fpr": "no prop pixel in view"})}
+    lit = f"in view with its brightest channel ≥ {SCORED_MIN_OUTPUT:g}"
+    undefined = {**({} if tpr is not None else {"tpr": f"no scored skin pixel ({lit})"}),
+                 **({} if fpr is not None else {"fpr": f"no scored prop pixel ({lit})"})}
     write_png(output, mask.astype(float))
     preview = write_preview(output.with_name(output.stem + "_preview.png"), result.image)
-    per_label = [{"name": name, "id": ident, "is_skin": ident == 1,
-                  "detected_fraction": float(mask[scored & (result.labels == ident)].mean())
-                  if (scored & (result.labels == ident)).any() else None}
-                 for name, ident in result.label_names.items() if ident > 0]
+    per_label = []
+    for name, ident in result.label_names.items():
+        seen = scored & (result.labels == ident)
+        if ident > 0:
+            per_label.append({"name": name, "id": ident, "is_skin": ident == 1,
+                              "detected_fraction": float(mask[seen].mean()) if seen.any() else None,
+                              **({} if seen.any() else {"undefined": f"no scored pixel of {name} (in view with "
+                                                                      f"its brightest channel ≥ {SCORED_MIN_OUTPUT:g})"})})
     document = {"scene": scene.name, "camera": cam.name, "prevailing_K": temperatures["prevailing"],
                 "calibration_K": temperatures["calibration"], "tpr": tpr, "fpr": fpr, "undefined": undefined,
                 "locus_degenerate": locus.degenerate, "mask_png": str(output), "preview_png": str(preview),

@@ -18,7 +18,7 @@ import sys
 
 from ..errors import SkinrenderError
 
-__all__ = ["command_validate_face", "limits_of"]
+__all__ = ["command_validate_face", "check_samples", "limits_of"]
 
 
 def limits_of(text: str | None) -> tuple[str, ...]:
@@ -48,6 +48,26 @@ def _number(value) -> str:
     return "—" if value is None else f"{value:.3g}"
 
 
+def check_samples(spp: int, pixels: int) -> None:
+    """
+    Refuse (one line naming ``--spp``) a validation whose replicates together take more samples than one
+    render may (:data:`~skinrender.rendering.renderer.SAMPLES_MAX`), with the most spp at this size.
+
+    >>> check_samples(48, 256 * 256)
+    """
+    from ..rendering.face_limits import REPLICATES
+    from ..rendering.renderer import SAMPLES_MAX
+
+    each = -(-int(spp) // REPLICATES)
+    total = each * REPLICATES * int(pixels)
+    if total > SAMPLES_MAX:
+        most = REPLICATES * (SAMPLES_MAX // (REPLICATES * int(pixels)))
+        raise SkinrenderError(f"--spp: {REPLICATES} replicates × {each} spp × {pixels} pixels is {total:.3g} "
+                              f"samples, more than one render may take ({SAMPLES_MAX}, ~40 min on one core at the "
+                              f"~9e5 samples/s of face_sweep.SAMPLES_PER_S); at most {most} spp at this size" if most else
+                              f"--size: {pixels} pixels is too many for {REPLICATES} replicates; use a smaller --size")
+
+
 def command_validate_face(args: argparse.Namespace) -> None:
     """
     ``validate SCENE …`` for a face scene: the ``validate`` flags (``--camera``, ``--prevailing``,
@@ -63,9 +83,8 @@ def command_validate_face(args: argparse.Namespace) -> None:
         raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee")
     if getattr(args, "gamut", False):
         raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene")
-    if str(getattr(args, "grid", "400:700:1")).strip() != "400:700:1":
-        raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}")
     scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
+    check_samples(options["spp"], scene.camera.width * scene.camera.height if size is None else size * size)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
                   skin, physics, options["spp"], options["seed"], size, options["sampler"], options["variant"],
@@ -76,7 +95,12 @@ def command_validate_face(args: argparse.Namespace) -> None:
              {True: "ok", False: "FAIL", None: "—"}[c.passed], _number(c.statistic), _number(c.tolerance),
              c.pixels] for c in result.checks]
     r = result.rendering
+    undecided = [c for c in result.checks if c.applies and c.passed is None]
     verdict = {True: "PASSED", False: "FAILED", None: "no limit applies at this level"}[result.passed]
+    if result.passed is None and undecided:  # a limit applies but could not be decided (e.g. too few pixels)
+        verdict = "UNDECIDED: " + "; ".join(f"{c.name}: {c.reason}" for c in undecided)
+    if result.passed is None:
+        document["undefined"] = {"passed": verdict if undecided else "no analytic limit holds at this level"}
     text = (f"{r.scene.name} ({r.skin}, {r.physics}) through {r.camera.name}, {r.prevailing:g} K balanced to "
             f"{r.calibration:g} K, {r.scene.camera.width}×{r.scene.camera.height} px, {result.replicates} "
             f"replicates, {result.spp} spp in all, {r.variant}, {result.seconds:.1f} s\n"

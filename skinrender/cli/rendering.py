@@ -24,7 +24,8 @@ def add_parsers(commands) -> None:
                        ("validate", "render a chart and check every patch against Eq. 4 within its noise; a face: "
                                     "the analytic limits that hold at its level of physics")):
         p = commands.add_parser(name, help=text)
-        p.add_argument("scene", help="scene: macbeth, skin_patches, face_chart or a .toml path (see scenes/)")
+        p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path "
+                       "(see scenes/)")
         p.add_argument("--camera", required=True, help=HELP_CAMERA)
         p.add_argument("--prevailing", required=True, help="prevailing (emitter) illuminant, Planckian: " + HELP_ILLUMINANT)
         p.add_argument("--calibration", required=True, help="calibration (white balance) illuminant: " + HELP_ILLUMINANT)
@@ -50,8 +51,8 @@ def add_parsers(commands) -> None:
                            "(skin patches outlined), a face with its labels outlined")
         add_common(p)
 
-    p = commands.add_parser("detect", help="skin detection on a rendered chart with the camera's skin locus")
-    p.add_argument("scene", help="scene: macbeth, skin_patches, face_chart or a .toml path")
+    p = commands.add_parser("detect", help="skin detection on a rendered chart or face with the camera's skin locus")
+    p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--prevailing", required=True, help="prevailing illuminant, Planckian: " + HELP_ILLUMINANT)
     p.add_argument("--calibration", required=True, help="calibration illuminant: " + HELP_ILLUMINANT)
@@ -70,6 +71,21 @@ def add_parsers(commands) -> None:
                    "and its labels outlined, TPR and FPR in the title")
     add_render(p)
     add_common(p)
+
+
+def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
+    """
+    A chart command's scene loaded first (its own error for an unknown or broken scene), then the face-only
+    flags refused: ``--physics``, ``--size`` and (but for ``detect``) ``--skin``.
+    """
+    from ..rendering.scene import load_scene
+
+    flag("SCENE", load_scene, args.scene)
+    given = [name for name, on in (("--physics", args.physics != "direct"), ("--skin", skin and args.skin is not None),
+                                   ("--size", args.size is not None)) if on]
+    if given:
+        raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
+                              "(e.g. 'face'), not a chart")
 
 
 def render_inputs(args: argparse.Namespace) -> dict:
@@ -129,8 +145,7 @@ def command_render(args: argparse.Namespace) -> None:
 
     if is_face_scene(args.scene):  # a face (perspective camera, mesh, lights): its own renderer
         return command_render_face(args)
-    if args.physics != "direct" or args.skin is not None or args.size is not None:
-        raise SkinrenderError("--physics, --skin and --size go with a face scene (e.g. 'face'), not a chart")
+    chart_only(args)
     from ..rendering.exr import write_exr, write_preview
     from ..rendering.renderer import channel_names
 
@@ -176,8 +191,7 @@ def command_validate(args: argparse.Namespace) -> None:
         from .face_validation import command_validate_face
 
         return command_validate_face(args)
-    if args.physics != "direct" or args.skin is not None or args.size is not None:
-        raise SkinrenderError("--physics, --skin and --size go with a face scene (e.g. 'face'), not a chart")
+    chart_only(args)
     if args.limits is not None:
         raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart")
     options = render_options(args)
@@ -247,8 +261,7 @@ def command_detect(args: argparse.Namespace) -> None:
     from ..evaluation.locus import skin_locus
     from ..rendering.exr import write_png, write_preview
 
-    if args.physics != "direct" or args.size is not None:
-        raise SkinrenderError("--physics and --size go with a face scene (e.g. 'face'), not a chart")
+    chart_only(args, skin=False)
     locus_skin = locus_skin_of(args, chart=True)
     options = render_options(args)
     output = check_output(args.output, "--output", (".png",))

@@ -104,6 +104,9 @@ def parse_physics(spec: str) -> tuple[str, ...]:
         validate_method(part, PHYSICS, f"physics ({text!r})")
     if "direct" in parts and len(parts) > 1:
         raise SkinrenderError(f"physics: 'direct' is the base and combines with nothing, got {text!r}")
+    twice = sorted({part for part in parts if parts.count(part) > 1})
+    if twice:
+        raise SkinrenderError(f"physics: {', '.join(twice)} named twice in {text!r}; name each effect once")
     return tuple(name for name in EFFECTS if name in parts)
 
 

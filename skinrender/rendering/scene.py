@@ -196,7 +196,9 @@ def load_scene(spec: str | Path | ChartScene) -> ChartScene:
     if not (path.suffix == ".toml" or path.exists()):
         path = ROOT_SCENES / f"{text}.toml"
         if not path.exists():
-            raise SkinrenderError(f"unknown scene {text!r}; bundled scenes: {', '.join(list_scenes())}, or a .toml path")
+            faces = sorted(p.stem for p in (ROOT_SCENES / "face").glob("*.toml"))
+            raise SkinrenderError(f"unknown scene {text!r}; bundled scenes: {', '.join(list_scenes())} (charts), "
+                                  f"{', '.join(faces)} (faces), or a .toml path")
     elif not path.exists():
         raise SkinrenderError(f"scene file {text} does not exist")
     try:

@@ -202,3 +202,55 @@ def test_detect_chart_skin_is_the_deprecated_locus_set(tmp_path, capsys):
                    output=tmp_path / "n.png")
     assert_refused(["detect", "skin_patches", "--camera", CAM, "--prevailing", "2856", "--calibration", "5900",
                     "--physics", "sheen", "-o", str(tmp_path / "n.png")], "--physics", capsys)
+
+
+FACE = ["--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--spp", "4", "--size", "16"]
+
+
+@pytest.mark.parametrize("argv, names", [
+    (["render", "face", *FACE, "--physics", ""], "--physics"),
+    (["render", "face", *FACE, "--physics", "sheen+sheen"], "--physics"),
+    (["render", "face", *FACE, "-o", ""], "--output"),
+    (["render", "face", *FACE, "--grid", "400:700:5"], "--grid"),
+    (["render", "face", *FACE, "--illuminance", "300"], "--illuminance"),
+    (["render", "face", *FACE, "--exposure", "0.01"], "--exposure"),
+    (["detect", "face", *FACE, "--illuminance", "300"], "--illuminance"),
+    (["validate", "face", *FACE, "--physics", ""], "--physics"),
+    (["validate", "face", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--size", "2000",
+      "--spp", "4096"], "--spp"),
+    (["render", "nosuchscene", *FACE], ("SCENE", "face")),
+    (["render", "macbeth", *FACE], ("--size", "not a chart")),
+    (["detect", "face", *FACE, "--bogus"], ("skinrender detect", "--bogus")),
+    (["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--levels", "direct,direct"],
+     "--levels"),
+    (["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--levels", "direct,,"], "--levels"),
+    (["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--seed", "4294967295"],
+     ("--seed", "4294967294")),
+])
+def test_face_flags_are_checked_before_rendering(argv, names, capsys, tmp_path, monkeypatch):
+    """Empty, repeated or out-of-place face flags, sensor settings without a sensor, too many samples: one line."""
+    from .refusal import assert_refused
+
+    monkeypatch.chdir(tmp_path)
+    assert_refused(argv, names, capsys, output=tmp_path)
+
+
+def test_a_noise_level_takes_the_stated_illuminance(tmp_path, capsys):
+    """``--physics noise --illuminance LUX`` without ``--imager``: the default sensor at that illuminance."""
+    from skinrender.cli import main
+
+    status = main(["render", "face", *FACE, "--physics", "noise", "--illuminance", "300",
+                   "-o", str(tmp_path / "n.exr"), "--json"])
+    document = json.loads(capsys.readouterr().out)
+    assert status == 0 and document["illuminance_lux"] == 300.0 and document["imager"]
+
+
+def test_detect_face_gives_reasons_for_what_it_cannot_score(tmp_path, capsys):
+    """A face too dark to score: rates null, each with its reason (the image sensor at 0.01 lx)."""
+    from skinrender.cli import main
+
+    status = main(["detect", "face", *FACE, "--imager", "sony-icx418", "--illuminance", "0.01",
+                   "-o", str(tmp_path / "m.png"), "--json"])
+    document = json.loads(capsys.readouterr().out)
+    assert status == 0 and document["tpr"] is None and "scored skin pixel" in document["undefined"]["tpr"]
+    assert all(row["detected_fraction"] is not None or row["undefined"] for row in document["per_patch"])

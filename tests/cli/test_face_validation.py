@@ -108,3 +108,13 @@ def test_bad_input_is_refused(extra, names, capsys):
 def test_limits_flag_is_checked_and_face_only(argv, names, capsys):
     """``--limits`` names the scene-free limits of a face; a chart refuses it (and the other face options)."""
     assert_refused(argv, names, capsys)
+
+
+def test_an_undecided_limit_is_not_reported_as_no_limit(capsys):
+    """A limit that applies but has too few pixels to decide: ``passed`` null with the reason, text UNDECIDED."""
+    status, out, err = run(["validate", "face", "--camera", CAM, "--prevailing", "A", "--calibration", "5900",
+                            "--size", "4", "--spp", "12", "--limits", "none", "--json"], capsys)
+    document = json.loads(out)
+    assert status in (0, None) and document["passed"] is None
+    assert document["checks"][0]["applies"] and document["checks"][0]["passed"] is None
+    assert document["undefined"]["passed"].startswith("UNDECIDED: shading_cancels")

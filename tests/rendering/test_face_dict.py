@@ -66,3 +66,11 @@ class TestActiveLights:
         assert list(active_lights(sky, ())) == ["environment"]
         with pytest.raises(SkinrenderError, match="mixed"):
             active_lights(replace(scene, fill=None, environment=None), ("mixed",))
+
+
+def test_an_effect_named_twice_is_refused():
+    from skinrender.errors import SkinrenderError
+    from skinrender.rendering.face_dict import parse_physics
+
+    with pytest.raises(SkinrenderError, match="named twice"):
+        parse_physics("sheen+interreflection+sheen")
