@@ -16,6 +16,15 @@ def _g(value) -> str:
     return "—" if value is None else f"{value:.2g}"
 
 
+def _spp(value) -> str:
+    return "—" if value is None else str(value)
+
+
+def _or_default(args: argparse.Namespace, dest: str):
+    value = getattr(args, dest, None)
+    return BENCH_DEFAULTS[dest] if value is None else value
+
+
 def size_text(size) -> str:
     return f"{size[0]}×{size[1]} px"
 
@@ -60,11 +69,11 @@ def add_parsers(commands) -> None:
     p.add_argument("what", choices=["analytic", "search", "sweep", "render"], help="which benchmark")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant)")
     p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG")
-    p.add_argument("--repeat", type=int, default=3, help="analytic: timed repetitions, best kept (default 3)")
-    p.add_argument("--sensor", type=float, default=9, help="search: sensor number (default 9)")
-    p.add_argument("--sample", type=int, default=20, help="search: triplets timed per method (default 20)")
+    p.add_argument("--repeat", type=int, help="analytic: timed repetitions, best kept (default 3)")
+    p.add_argument("--sensor", type=float, help="search: sensor number (default 9)")
+    p.add_argument("--sample", type=int, help="search: triplets timed per method (default 20)")
     p.add_argument("--workers", type=int, help="search, sweep: processes (default: every core)")
-    p.add_argument("--positions", default="400:700:20",
+    p.add_argument("--positions",
                    help="sweep: peak positions START:END:STEP nm of the timed sweep (default 400:700:20)")
     p.add_argument("--scene", help="render: a face scene (face or a .toml with [camera] and [mesh]) to time the "
                    "face at each level of physics instead of the charts")
@@ -122,6 +131,31 @@ def command_table1(args: argparse.Namespace) -> None:
 FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
 """``bench`` flags that go with ``render --scene``."""
 
+BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
+               "positions": ("sweep",), "quick": ("render",), "plot": ("render",), "scene": ("render",)}
+"""``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
+:data:`FACE_BENCH_FLAGS`."""
+
+BENCH_DEFAULTS = {"repeat": 3, "sensor": 9.0, "sample": 20, "positions": "400:700:20"}
+"""Defaults of the benchmarks' own flags (left ``None`` by the parser so that a given flag is seen)."""
+
+
+def refuse_foreign_flags(args: argparse.Namespace) -> None:
+    """
+    Refuse (one line naming it) the first ``bench`` flag given that the benchmark ``args.what`` does not take
+    (``--plot`` with ``--scene``: refused by :func:`face_bench_options`).
+    """
+    face = getattr(args, "scene", None) is not None and args.what == "render"
+    for dest, benches in BENCH_FLAGS.items():
+        value = getattr(args, dest, None)
+        if value is None or value is False or dest == "scene":
+            continue
+        name = "--" + dest.replace("_", "-")
+        if args.what not in benches:
+            goes = " or ".join(f"'bench {b}'" for b in benches)
+            raise SkinrenderError(f"{name} goes with {goes}, not 'bench {args.what}"
+                                  + (" --scene'" if face else "'"))
+
 
 def _integers(text: str, name: str, high: int, many: bool = True) -> list[int]:
     """Comma-separated integers in [1, ``high``] (one unless ``many``), or a one-line error naming ``name``."""
@@ -145,12 +179,13 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     ``None`` for the chart bench; the face flags without ``--scene`` are refused.
     """
     given = [name for name in FACE_BENCH_FLAGS if getattr(args, name, None) is not None]
+    if args.scene is not None and args.what != "render":
+        raise SkinrenderError(f"--scene goes with 'bench render', not 'bench {args.what}'")
+    refuse_foreign_flags(args)
     if args.scene is None:
         if given:
             raise SkinrenderError(f"--{given[0].replace('_', '-')} goes with 'bench render --scene SCENE' (a face)")
         return None
-    if args.what != "render":
-        raise SkinrenderError(f"--scene goes with 'bench render', not 'bench {args.what}'")
     from ..rendering.face_dict import active_lights, parse_physics
     from ..rendering.face_scene import load_face_scene
     from ..rendering.renderer import SAMPLES_MAX
@@ -168,12 +203,18 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
             else 64 if args.quick else SIZE_BENCH)
     spps = (_integers(args.spp_list, "--spp-list", SPP_MAX) if args.spp_list is not None
             else [s for s in SPPS_BENCH if not args.quick or s <= 64])
+    if len(set(spps)) < len(spps):
+        raise SkinrenderError(f"--spp-list: each spp once, got {args.spp_list!r}")
     reference = (_integers(args.reference_spp, "--reference-spp", SPP_MAX, many=False)[0]
                  if args.reference_spp is not None else 4 * max(spps))
+    if reference <= max(spps):
+        raise SkinrenderError(f"--reference-spp must be more than the largest of --spp-list ({max(spps)}: the "
+                              f"reference must converge further than the curve), got {reference}")
     for name, spp in (("--reference-spp", reference), ("--spp-list", max(spps))):
         if spp * size * size > SAMPLES_MAX:
             raise SkinrenderError(f"{name}: {spp} spp × {size}² pixels is more than {SAMPLES_MAX} samples a pass")
-    levels = [level.strip() for level in (args.levels or ",".join(LEVELS_BENCH)).split(",") if level.strip()]
+    levels = [level.strip() for level in (args.levels if args.levels is not None else ",".join(LEVELS_BENCH))
+              .split(",") if level.strip()]
     if not levels:
         raise SkinrenderError("--levels: name at least one level of physics")
     for level in levels:
@@ -193,13 +234,16 @@ def command_bench(args: argparse.Namespace) -> None:
                             progress=lambda line: print(line, file=sys.stderr))
         rows = [[r["level"], r["spp"], f"{r['seconds']:.3f}", _g(r["skin_ncc_error"]), _g(r["skin_ncc_rms"])]
                 for r in result["curve"]]
-        presets = [[level, *(str(p[name]) for name in ("draft", "standard", "reference")), _g(p.get("floor")),
-                    str(p.get("spp_at_floor"))] for level, p in result["presets"].items()]
+        presets = [[level, *(_spp(p.get(name)) for name in ("draft", "standard", "reference")), _g(p.get("floor")),
+                    _spp(p.get("spp_at_floor"))] for level, p in result["presets"].items()]
+        undefined = [f"\nnote: {level} {key}: {reason}" for level, p in result["presets"].items()
+                     for key, reason in p.get("undefined", {}).items()]
         text = (f"the face ({result['scene']}) through {result['camera']}, {size_text(result['size'])}, reference "
                 f"{result['reference_spp']} spp per level, {result['elapsed_s']:.0f} s in all:\n"
                 + table(rows, ["level", "spp", "s", "mean NCC error", "RMS NCC error"])
                 + "\npresets (spp reaching RMS " + ", ".join(f"{k} {v:g}" for k, v in result["thresholds"].items())
-                + "):\n" + table(presets, ["level", "draft", "standard", "reference", "floor", "spp at floor"]))
+                + "):\n" + table(presets, ["level", "draft", "standard", "reference", "floor", "spp at floor"])
+                + "".join(undefined))
         emit(args, result, text)
         return
     if args.what == "render":
@@ -211,10 +255,10 @@ def command_bench(args: argparse.Namespace) -> None:
 
             result["plot"] = str(figure_render_curve(result, args.plot))
     elif args.what == "search":
-        result = bench_search(args.sensor, args.sample, workers=args.workers)
+        result = bench_search(_or_default(args, "sensor"), _or_default(args, "sample"), workers=args.workers)
     elif args.what == "sweep":
-        result = bench_sweep(args.positions, workers=args.workers)
+        result = bench_sweep(_or_default(args, "positions"), workers=args.workers)
     else:
-        result = bench_analytic(repeat=args.repeat)
+        result = bench_analytic(repeat=_or_default(args, "repeat"))
     text = "\n".join(f"{key}: {value}" for key, value in result.items())
     emit(args, result, text)

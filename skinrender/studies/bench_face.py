@@ -88,7 +88,7 @@ def fit_error(spps: Sequence[int], errors: Sequence[float], reference_spp: int) 
     if x.size == 1:
         return float(y[0] / x[0]), 0.0
     a, b = np.linalg.lstsq(np.stack([x * w, w], axis=1), y * w, rcond=None)[0]
-    if b < 0:  # no floor: the Monte Carlo term alone
+    if b <= 1e-9 * y.min():  # no floor (one below 1e-9 of the smallest e² is rounding): the Monte Carlo term alone
         return float(np.sum(x * w * w * y) / np.sum((x * w) ** 2)), 0.0
     if a < 0:  # no decrease: a floor alone
         return 0.0, float(np.sum(w * w * y) / np.sum(w * w))
@@ -124,19 +124,27 @@ def presets_of(spps: Sequence[int], errors: Sequence[float], reference_spp: int)
     -------
     dict
         ``draft``, ``standard``, ``reference`` (spp or ``None``), ``extrapolated``
-        (names), ``a``, ``b``, ``floor`` (``√(b / 2)``) and ``spp_at_floor``.
+        (names), ``a``, ``b``, ``floor`` (``√(b / 2)``), ``spp_at_floor`` and
+        ``undefined`` (``{key: reason}`` for each ``None``).
     """
     upper = max(2, math.ceil(len(spps) / 2)) if len(spps) > 1 else 1
     a, b = fit_error(spps[-upper:], errors[-upper:], reference_spp)
     own = np.asarray(errors, dtype=np.float64) ** 2 - a / reference_spp - b / 2
+    floor = math.sqrt(b / 2)
     out: dict = {"extrapolated": []}
+    undefined = {}
     for name, threshold in PRESET_THRESHOLDS.items():
         reached = [spp for spp, e2 in zip(spps, own) if e2 <= threshold**2]
         out[name] = reached[0] if reached else spp_for(threshold, a, b / 2)
         if not reached and out[name] is not None:
             out["extrapolated"].append(name)
+        if out[name] is None:
+            undefined[name] = (f"the error's floor {floor:.2g} (what more spp does not lower, e.g. the sensor's "
+                               f"noise) is above the threshold {threshold:g}")
     at_floor = None if b <= 0 else 1 << max(0, math.ceil(math.log2(max(8 * a / b, 1.0))))
-    return {**out, "a": a, "b": b, "floor": math.sqrt(b / 2), "spp_at_floor": at_floor}
+    if at_floor is None:
+        undefined["spp_at_floor"] = "no floor in the fit: the error keeps falling with spp over the curve"
+    return {**out, "a": a, "b": b, "floor": floor, "spp_at_floor": at_floor, "undefined": undefined}
 
 
 def _scored_skin(rendering) -> np.ndarray:
@@ -183,9 +191,9 @@ def bench_face(
     dict
         ``machine``, ``camera``, ``scene``, ``size``, ``reference_spp``,
         ``curve`` (``[{level, spp, seconds, skin_ncc_error, skin_ncc_rms,
-        pixels, variant}]``), ``presets`` (``{level: {draft, standard,
-        reference, a, b, floor, spp_at_floor, reference_seconds}}``, spp or
-        ``None``),
+        pixels, variant, undefined}]``), ``presets`` (``{level: {draft, standard,
+        reference, a, b, floor, spp_at_floor, reference_seconds, undefined}}``,
+        spp or ``None``; ``undefined``: ``{key: reason}`` for each ``None``),
         ``thresholds``, ``elapsed_s`` (everything, s).
     """
 
@@ -199,7 +207,12 @@ def bench_face(
     if not spps:
         raise SkinrenderError("--spp-list: name at least one spp")
     size = _at_least_one(size, "--size")
+    if len(set(spps)) < len(spps):
+        raise SkinrenderError(f"--spp-list: each spp once, got {list(spps)}")
     reference_spp = _at_least_one(reference_spp or 4 * max(spps), "--reference-spp")
+    if reference_spp <= max(spps):
+        raise SkinrenderError(f"--reference-spp must be more than the largest of --spp-list ({max(spps)}), got "
+                              f"{reference_spp}")
     levels = list(levels)
     if not levels:
         raise SkinrenderError("--levels: name at least one level of physics")
@@ -211,6 +224,9 @@ def bench_face(
     cam = camera(camera_spec)
     face = load_face_scene(scene)
     curve, presets = [], {}
+    from .ladder import SCORED_MIN_OUTPUT
+
+    none_scored = f"no scored skin pixel in the reference (brightest channel ≥ {SCORED_MIN_OUTPUT:g})"
     for level in levels:
         say(f"{level}: reference at {reference_spp} spp …")
         ref = render_face(cam, face, prevailing, calibration, physics=level, spp=reference_spp, seed=seed + 2,
@@ -230,11 +246,15 @@ def bench_face(
             row = {"level": level, "spp": timed.spp, "seconds": timed.seconds,
                    "skin_ncc_error": float(np.hypot(*difference.mean(axis=0))) if scored.any() else None,
                    "skin_ncc_rms": float(np.sqrt(np.mean(np.sum(difference**2, axis=-1)))) if scored.any()
-                   else None, "pixels": int(scored.sum()), "variant": timed.variant}
+                   else None, "pixels": int(scored.sum()), "variant": timed.variant,
+                   "undefined": {} if scored.any() else {key: none_scored for key in ("skin_ncc_error",
+                                                                                       "skin_ncc_rms")}}
             curve.append(row)
             rms.append(row["skin_ncc_rms"])
         if None in rms:
-            presets[level] = {name: None for name in PRESET_THRESHOLDS}
+            presets[level] = {**{name: None for name in PRESET_THRESHOLDS}, "floor": None, "spp_at_floor": None,
+                              "undefined": {key: none_scored for key in (*PRESET_THRESHOLDS, "floor",
+                                                                          "spp_at_floor")}}
             continue
         presets[level] = {**presets_of(sorted(spps), rms, reference_spp), "reference_seconds": ref.seconds}
     return {"machine": machine(), "camera": cam.name, "scene": face.name, "size": [size, size],

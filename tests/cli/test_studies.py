@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 
 from .refusal import assert_refused, run
@@ -37,6 +38,53 @@ def test_face_bench_document(capsys):
     (["render", "--scene", "face", "--levels", "direct,glossy"], "--levels"),
     (["render", "--scene", "face", "--levels", ","], "--levels"),
     (["render", "--scene", "face", "--plot", "curve.png"], "--plot"),
+    # an empty --levels is refused, not read as the default levels
+    (["render", "--scene", "face", "--quick", "--levels", ""], "--levels"),
+    # the flags of the other benchmarks are refused with --scene
+    (["render", "--scene", "face", "--repeat", "3"], "--repeat"),
+    (["render", "--scene", "face", "--sensor", "9"], "--sensor"),
+    (["render", "--scene", "face", "--workers", "2"], "--workers"),
+    (["render", "--scene", "face", "--positions", "400:700:20"], "--positions"),
+    (["render", "--scene", "face", "--sample", "5"], "--sample"),
+    # … and each benchmark's flags by the others
+    (["analytic", "--sensor", "9"], "--sensor"),
+    (["search", "--repeat", "2"], "--repeat"),
+    (["sweep", "--quick"], "--quick"),
+    (["analytic", "--plot", "curve.png"], "--plot"),
+    # the reference converges further than the curve; each spp once
+    (["render", "--scene", "face", "--quick", "--size", "16", "--levels", "direct", "--spp-list", "4,16",
+      "--reference-spp", "8"], "--reference-spp"),
+    (["render", "--scene", "face", "--size", "16", "--spp-list", "4,16", "--reference-spp", "16"],
+     "--reference-spp"),
+    (["render", "--scene", "face", "--size", "16", "--spp-list", "4,4"], "--spp-list"),
 ])
 def test_face_bench_refusals(argv, names, capsys):
     assert_refused(["bench", *argv], names, capsys)
+
+
+def test_face_bench_text_shows_no_none_and_the_json_gives_reasons(monkeypatch, capsys):
+    """A preset the floor makes unreachable prints "—" (never ``None``), its reason in a note and the JSON."""
+    pytest.importorskip("mitsuba")
+    import skinrender.studies.bench_face as bench_face_module
+    from skinrender.studies.bench_face import PRESET_THRESHOLDS, presets_of
+
+    spps, reference = [4, 16], 64
+    noise = presets_of(spps, [0.03, 0.025], reference)  # a floor above the draft threshold
+    curve = [4, 16, 64, 256]
+    direct = presets_of(curve, list(0.1 * (1 / np.array(curve) + 1 / 4096) ** 0.5), 4096)  # no floor
+    assert noise["draft"] is None and direct["spp_at_floor"] is None
+    result = {"scene": "face", "camera": "gbell", "size": [16, 16], "reference_spp": reference, "elapsed_s": 1.0,
+              "thresholds": dict(PRESET_THRESHOLDS), "presets": {"noise": noise, "direct": direct},
+              "curve": [{"level": "noise", "spp": 4, "seconds": 0.1, "skin_ncc_error": None, "skin_ncc_rms": None}]}
+    monkeypatch.setattr(bench_face_module, "bench_face", lambda **kwargs: result)
+    argv = ["bench", "render", "--scene", "face", "--size", "16", "--spp-list", "4,16", "--reference-spp", "64",
+            "--levels", "direct,noise"]
+    status, out, err = run(argv, capsys)
+    assert status in (0, None), err[-500:]
+    assert "None" not in out and "—" in out
+    assert "noise draft: the error's floor" in out and "above the threshold 0.01" in out
+    status, out, err = run([*argv, "--json"], capsys)
+    document = json.loads(out)
+    for presets in document["presets"].values():
+        for key in ("draft", "standard", "reference", "spp_at_floor"):
+            assert (presets[key] is None) == (key in presets["undefined"]), (key, presets)

@@ -43,6 +43,13 @@ class TestPresetsOf:
         assert presets["draft"] == 256 and presets["extrapolated"] == ["standard", "reference"]
         assert presets["standard"] == 2048 and presets["reference"] == 16384  # a = 0.01: a / spp ≤ threshold²
         assert presets["b"] == 0.0 and presets["spp_at_floor"] is None
+        assert set(presets["undefined"]) == {"spp_at_floor"} and "no floor" in presets["undefined"]["spp_at_floor"]
+
+    def test_an_exact_monte_carlo_curve_has_no_floor(self):
+        """A floor of rounding size is none (not an spp_at_floor of 2⁶⁰)."""
+        spps = [4, 16, 64, 256]
+        presets = presets_of(spps, list(0.1 * np.sqrt(1 / np.array(spps) + 1 / 4096)), 4096)
+        assert presets["b"] == 0.0 and presets["spp_at_floor"] is None
 
     def test_a_floor_above_the_thresholds_gives_none(self):
         spps, reference = [4, 16, 64], 256
@@ -50,6 +57,9 @@ class TestPresetsOf:
         presets = presets_of(spps, list(errors), reference)
         assert presets["draft"] is None and np.isclose(presets["floor"], 0.012, rtol=1e-3)
         assert presets["spp_at_floor"] >= 8 * 0.01 / (2 * 0.012**2)
+        # each None comes with its reason: the floor above the threshold
+        assert set(presets["undefined"]) == {name for name in PRESET_THRESHOLDS if presets[name] is None}
+        assert "floor 0.012" in presets["undefined"]["draft"] and "threshold 0.01" in presets["undefined"]["draft"]
 
 
 def test_bench_face_document():
@@ -71,6 +81,9 @@ def test_bench_face_document():
     ({"reference_spp": -1}, "--reference-spp"),
     ({"levels": ("glossy",)}, "--levels"),
     ({"levels": ()}, "--levels"),
+    ({"spps": (4, 4)}, "--spp-list"),
+    ({"spps": (4, 16), "reference_spp": 8}, "--reference-spp"),
+    ({"spps": (4, 16), "reference_spp": 16}, "--reference-spp"),
 ])
 def test_bad_arguments_are_refused_before_rendering(kwargs, flag):
     with pytest.raises(SkinrenderError, match=f"^{flag}"):
