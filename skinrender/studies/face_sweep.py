@@ -155,7 +155,8 @@ class FaceSweep:
         One dict per combination, in :func:`sweep_tasks` order: ``camera``, ``prevailing_K``,
         ``calibration_K``, ``skin``, ``level``, ``seconds``, ``spp``, ``skin_ncc_mean``, ``skin_ncc_std``
         (``[r, g, b]``), ``tpr``, ``fpr``, ``skin_pixels``, ``prop_pixels``, ``skin_ncc_analytic`` (Eq. 4's
-        NCC of the skin, ``[r, g, b]``), ``variant``, and ``imager``/``exposure_s`` with ``noise``.
+        NCC of the skin, ``[r, g, b]``), ``undefined`` (``{key: reason}`` for each ``None``, as the ladder's;
+        in the JSON, not the CSV), ``variant``, and ``imager``/``exposure_s`` with ``noise``.
     elapsed_s
         Wall time of the renders, s.
     """

@@ -19,7 +19,7 @@ pixels (label 1) whose NCC (r, g) lies in the locus
 (:func:`skinrender.evaluation.locus.skin_locus` of the ``skin`` set, one white
 balancing at the calibration light), ``fpr`` that of the scored prop pixels;
 the background is left out. Each is ``None`` when no pixel of its kind is
-scored.
+scored, with its reason in the level's ``undefined`` (``{key: reason}``).
 
 Units: temperatures K, times s, NCC and rates fractions.
 """
@@ -66,7 +66,8 @@ class Ladder:
         One dict per level: ``name``, ``seconds``, ``spp``,
         ``skin_ncc_mean`` and ``skin_ncc_std`` (``[r, g, b]`` over the scored
         skin pixels), ``tpr``, ``fpr``, ``skin_pixels`` and ``prop_pixels``
-        (scored), ``variant``, and ``imager``/``exposure_s`` with ``noise``.
+        (scored), ``undefined`` (``{key: reason}`` for each ``None``),
+        ``variant``, and ``imager``/``exposure_s`` with ``noise``.
     skin_ncc_analytic
         Eq. 4's NCC of the skin (prevailing = the key light, white balanced to
         the calibration), ``[r, g, b]``.
@@ -148,6 +149,12 @@ def _scored(result, locus) -> tuple[dict, dict]:
     skin_pixels = scored & (result.labels == LABEL_SKIN)
     prop_pixels = scored & (result.labels > LABEL_SKIN)
     values = chromaticity[skin_pixels]
+    undefined = {}
+    if not skin_pixels.any():
+        reason = f"no scored skin pixel (brightest channel ≥ {SCORED_MIN_OUTPUT:g})"
+        undefined.update({key: reason for key in ("skin_ncc_mean", "skin_ncc_std", "tpr")})
+    if not prop_pixels.any():
+        undefined["fpr"] = f"no scored prop pixel (brightest channel ≥ {SCORED_MIN_OUTPUT:g})"
     scores = {
         "skin_ncc_mean": values.mean(axis=0).tolist() if values.size else None,
         "skin_ncc_std": values.std(axis=0).tolist() if values.size else None,
@@ -155,6 +162,7 @@ def _scored(result, locus) -> tuple[dict, dict]:
         "fpr": _rate(inside[prop_pixels]),
         "skin_pixels": int(skin_pixels.sum()),
         "prop_pixels": int(prop_pixels.sum()),
+        "undefined": undefined,
     }
     frame = {"image": result.image, "labels": result.labels, "scored": scored, "detected": scored & inside,
              "ncc": chromaticity}
@@ -180,7 +188,8 @@ def score_rendering(result, locus) -> dict:
     -------
     dict
         ``skin_ncc_mean``, ``skin_ncc_std`` (``[r, g, b]`` or ``None`` without a scored skin pixel), ``tpr``,
-        ``fpr`` (fractions or ``None``), ``skin_pixels``, ``prop_pixels`` (scored counts).
+        ``fpr`` (fractions or ``None``), ``skin_pixels``, ``prop_pixels`` (scored counts), ``undefined``
+        (``{key: reason}`` for each ``None``, e.g. ``{"tpr": "no scored skin pixel (brightest channel ≥ 10)"}``).
     """
     return _scored(result, locus)[0]
 

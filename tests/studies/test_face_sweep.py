@@ -52,7 +52,8 @@ class TestFaceSweep:
         assert document["renders"] == 4 and document["workers"] == 1 and document["size"] == 16
         for row in rows:
             assert set(row) >= {"camera", "prevailing_K", "calibration_K", "skin", "level", "seconds", "spp",
-                                "skin_ncc_mean", "skin_ncc_std", "tpr", "fpr"}
+                                "skin_ncc_mean", "skin_ncc_std", "tpr", "fpr", "undefined"}
+            assert row["undefined"] == {}  # the ladder's reasons for a None score: none here
             assert row["camera"] == CAMERA and row["prevailing_K"] == 2856 and row["calibration_K"] == 5900
             assert row["spp"] == 4 and row["seconds"] > 0 and row["skin_pixels"] > 0
             assert abs(sum(row["skin_ncc_mean"]) - 1) < 1e-9 and 0 <= row["tpr"] <= 1 and 0 <= row["fpr"] <= 1

@@ -47,6 +47,15 @@ class TestLadder:
         path = result.figure(tmp_path / "ladder.png")
         assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
+    def test_a_none_comes_with_its_reason(self):
+        """At 2 px no skin pixel is scored: each None score has its reason in the level's ``undefined``."""
+        result = ladder(CAMERA, "A", 5900, levels=("direct",), spp=1, size=2)
+        for row in json.loads(json.dumps(result.document(), allow_nan=False))["levels"]:
+            nones = {key for key in ("skin_ncc_mean", "skin_ncc_std", "tpr", "fpr") if row[key] is None}
+            assert nones and set(row["undefined"]) == nones
+            if "tpr" in nones:
+                assert row["undefined"]["tpr"] == "no scored skin pixel (brightest channel ≥ 10)"
+
     @pytest.mark.parametrize("kwargs, match", [
         ({"levels": ()}, "levels"), ({"levels": ("glossy",)}, "physics"), ({"prevailing": "x"}, "illuminant"),
         ({"skin": "skin:nobody"}, "skin"),
@@ -56,3 +65,19 @@ class TestLadder:
                      **kwargs}
         with pytest.raises(SkinrenderError, match=match):
             ladder(**arguments)
+
+
+def test_score_rendering_gives_a_reason_for_each_none():
+    """The scoring the sweep shares: a dark render scores no pixel, and says why for each None."""
+    from types import SimpleNamespace
+
+    from skinrender.studies.ladder import score_rendering
+
+    labels = np.array([[0, 1], [1, 2]])
+    locus = SimpleNamespace(contains=lambda rg: np.ones(rg.shape[:-1], bool))
+    dark = score_rendering(SimpleNamespace(image=np.full((2, 2, 3), 5.0), labels=labels), locus)
+    assert dark["tpr"] is None and dark["fpr"] is None and dark["skin_ncc_mean"] is None
+    assert set(dark["undefined"]) == {"skin_ncc_mean", "skin_ncc_std", "tpr", "fpr"}
+    assert "no scored prop pixel" in dark["undefined"]["fpr"]
+    lit = score_rendering(SimpleNamespace(image=np.full((2, 2, 3), 50.0), labels=labels), locus)
+    assert lit["tpr"] == 1.0 and lit["undefined"] == {}
