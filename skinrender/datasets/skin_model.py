@@ -43,6 +43,7 @@ References
 from __future__ import annotations
 
 import importlib.util
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -55,7 +56,7 @@ from ..extras import require
 from ..hints import ArrayLike, NDArrayFloat
 from .registry import REGISTRY_REFLECTANCES, SpectralSet, register
 
-__all__ = ["SkinParameters", "PARAMETER_BOUNDS", "MELANIN_FRACTIONS", "skin_reflectance", "fit_skin",
+__all__ = ["SkinParameters", "PARAMETER_BOUNDS", "PARAMETER_RANGES", "check_parameters", "MELANIN_FRACTIONS", "skin_reflectance", "fit_skin",
            "haemoglobin_extinction", "sds_skin_model"]
 
 BLOOD_G_PER_L = 150.0
@@ -76,6 +77,36 @@ class SkinParameters:
 
 PARAMETER_BOUNDS = ((0.0, 0.6), (0.0, 0.2), (0.0, 1.0), (10.0, 150.0), (0.0, 0.1))
 """Bounds of the fit, in :class:`SkinParameters` order."""
+
+PARAMETER_RANGES = {"melanin": (0.0, 1.0, False), "blood": (0.0, 1.0, False), "oxygenation": (0.0, 1.0, False),
+                    "scattering": (0.0, 1e4, True), "surface": (0.0, 1.0, False)}
+"""Physical range of each :class:`SkinParameters` field, ``(low, high, low excluded)``: the volume fractions
+(melanin, blood), the oxygen saturation and the surface reflectance are fractions in [0, 1]; the reduced
+scattering ``a`` (cm⁻¹) is > 0 (skin: 10–150, Jacques 2013; up to 10⁴ cm⁻¹ accepted)."""
+
+
+def check_parameters(parameters: SkinParameters) -> None:
+    """
+    Refuse parameters outside their physical range (:data:`PARAMETER_RANGES`), one line naming the first.
+
+    Examples
+    --------
+    >>> check_parameters(SkinParameters(melanin=5))
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: melanin must be in [0, 1] (a volume fraction), got 5
+    """
+    what = {"melanin": "a volume fraction", "blood": "a volume fraction", "oxygenation": "a saturation",
+            "scattering": "cm⁻¹", "surface": "a reflectance"}
+    for name, (low, high, open_low) in PARAMETER_RANGES.items():
+        value = getattr(parameters, name)
+        try:
+            value = float(value)
+        except (TypeError, ValueError):
+            raise SkinrenderError(f"{name} must be a number, got {value!r}") from None
+        if not (math.isfinite(value) and (value > low if open_low else value >= low) and value <= high):
+            interval = f"({low:g}, {high:g}]" if open_low else f"[{low:g}, {high:g}]"
+            raise SkinrenderError(f"{name} must be in {interval} ({what[name]}), got {value:g}")
 
 
 @lru_cache(maxsize=1)
@@ -116,8 +147,12 @@ def _layer(k: NDArrayFloat, s: NDArrayFloat, thickness: float | None) -> tuple[N
 def skin_reflectance(wavelength: ArrayLike, parameters: SkinParameters = SkinParameters()) -> NDArrayFloat:
     """
     Diffuse reflectance of the two-layer skin model at ``wavelength`` (nm), fractions in [0, 1].
+
+    ``parameters`` outside their physical range (:data:`PARAMETER_RANGES`) are refused
+    (:class:`~skinrender.errors.SkinrenderError` naming the first).
     """
 
+    check_parameters(parameters)
     lam = np.asarray(wavelength, dtype=np.float64)
     p = parameters
     base = 0.244 + 85.3 * np.exp(-(lam - 154.0) / 66.2)

