@@ -189,6 +189,30 @@ def _wrap(name: str, width: int = 13) -> str:
     return "\n".join(textwrap.wrap(name.replace(" -- ", " – ").replace(" - ", " – "), width)) or name
 
 
+TITLE_PT = 10
+"""Font size of a chart figure's title, points."""
+
+TITLE_LINE_IN = 1.25 * TITLE_PT / 72
+"""Height of one title line, inches."""
+
+
+def _wrap_to(text: str, inches: float, points: float) -> str:
+    """
+    ``text`` (its own lines kept) wrapped at spaces to lines that fit ``inches`` at ``points`` (a DejaVu Sans
+    character about 0.6 em wide at most on average, a margin of 0.3 in kept).
+
+    Examples
+    --------
+    >>> _wrap_to("one two three four", 1.0, 10).splitlines()
+    ['one two', 'three', 'four']
+    """
+    import textwrap
+
+    characters = max(8, int((inches - 0.3) * 72 / (0.6 * points)))
+    return "\n".join(wrapped for line in text.split("\n")
+                     for wrapped in (textwrap.wrap(line, characters, break_on_hyphens=False) or [""]))
+
+
 def figure_chart(image: NDArrayFloat, boxes: list, names: list, skin: list, title: str, path: str | Path,
                  mask: NDArrayFloat | None = None, fractions: list | None = None) -> Path:
     """
@@ -211,11 +235,14 @@ def figure_chart(image: NDArrayFloat, boxes: list, names: list, skin: list, titl
         panels.append(("detected: inside the skin locus (white)", np.repeat(np.asarray(mask, float)[..., None], 3, -1)))
     # inches per pixel: a patch column about 1.45 in wide (names at 8.5 pt fit), the figure at most 30 in a side
     inch = min(1.45 * columns / width, 30.0 / width, 30.0 / (len(panels) * height))
-    figure, axes = plt.subplots(len(panels), 1, figsize=(inch * width + 0.4, len(panels) * inch * height + 0.9),
+    # the title wrapped to the figure's width (a narrow chart clipped a long title at both edges)
+    heading = _wrap_to(f"{title}\n{panels[0][0]}", inch * width + 0.4, TITLE_PT)
+    figure, axes = plt.subplots(len(panels), 1, figsize=(inch * width + 0.4, len(panels) * inch * height + 0.9
+                                                         + TITLE_LINE_IN * (heading.count("\n") - 1)),
                                 squeeze=False)
     for k, (axis, (label, picture)) in enumerate(zip(axes[:, 0], panels)):
         axis.imshow(picture, interpolation="nearest", extent=(0, width, height, 0))
-        axis.set_title(f"{title}\n{label}" if k == 0 else label, fontsize=10)
+        axis.set_title(heading if k == 0 else label, fontsize=TITLE_PT)
         axis.axis("off")
         for i, (x0, y0, x1, y1) in enumerate(boxes):
             cx, cy = (x0 + x1) / 2, (y0 + y1) / 2

@@ -77,6 +77,19 @@ class TestFigureChart:
         assert two[0] == one[0] and two[1] > 1.6 * one[1]
 
 
+    def test_a_long_title_on_a_narrow_chart_is_wrapped_not_clipped(self, tmp_path):
+        """The title wraps to the figure's width: the PNG's left and right edges stay blank (white)."""
+        image, boxes, names, skin = chart(columns=2, rows=1)
+        title = ("macbeth through gbell:9@450,540,610, 2856 K white-balanced to 5900 K, 4 spp: TPR undefined "
+                 "(the chart has no skin patch), FPR 0.160")
+        path = figure_chart(image, boxes, names, skin, title, tmp_path / "narrow.png",
+                            mask=image[..., 0] > 100, fractions=[0.5] * len(boxes))
+        matplotlib_image = pytest.importorskip("matplotlib.image")
+        pixels = matplotlib_image.imread(path)[..., :3]
+        edges = np.concatenate([pixels[:, :3], pixels[:, -3:]], axis=1)
+        assert edges.min() > 0.95, "the title runs off the figure's edge"
+
+
 class TestFigureFace:
     def test_render_and_overlay(self, tmp_path):
         image, labels = face()
