@@ -254,3 +254,10 @@ def test_detect_face_gives_reasons_for_what_it_cannot_score(tmp_path, capsys):
     document = json.loads(capsys.readouterr().out)
     assert status == 0 and document["tpr"] is None and "scored skin pixel" in document["undefined"]["tpr"]
     assert all(row["detected_fraction"] is not None or row["undefined"] for row in document["per_patch"])
+
+
+def test_a_skin_model_out_of_range_is_refused(capsys):
+    """``--skin skin-model:melanin=5``: a volume fraction above 1, refused in one line, no numpy warning."""
+    from .refusal import assert_refused
+
+    assert_refused(["render", "face", *FACE, "--skin", "skin-model:melanin=5"], ("--skin", "melanin"), capsys)
