@@ -134,16 +134,8 @@ def render_options(args: argparse.Namespace) -> dict:
     spp = args.spp if args.spp is not None else preset["spp"]
     if not 1 <= spp <= SPP_MAX:
         raise SkinrenderError(f"--spp must be an integer in [1, {SPP_MAX}], got {spp}")
-    from ..rendering.variants import VARIANTS_SPECTRAL
-
-    if args.variant is not None and args.variant not in VARIANTS_SPECTRAL:
-        raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, got {args.variant!r}")
-    if args.variant is not None:  # runs here? (before anything is printed or rendered)
-        from ..rendering.variants import choose_variant
-
-        flag("--variant", choose_variant, args.variant)
     return {"spp": spp, "sampler": args.sampler or preset["sampler"], "seed": check_seed(args.seed),
-            "variant": args.variant, "channels": args.channels}
+            "variant": variant_of(args.variant), "channels": args.channels}
 
 
 SPP_MAX = 1 << 20
@@ -166,20 +158,50 @@ def flag(name: str, function, *args, **kwargs):
         raise SkinrenderError(text if text.startswith(name) else f"{name}: {text}") from None
 
 
-def integer_in(text, name: str, low: int, high: int) -> int:
+def integer_in(text, name: str, low: int, high: int | None = None) -> int:
     """
-    ``text`` as an integer in ``[low, high]``, else a one-line error naming the flag ``name``.
+    ``text`` as an integer in ``[low, high]`` (``high`` ``None``: no upper bound), else a one-line error naming
+    the flag ``name``.
 
-    >>> integer_in(" 12 ", "--size", 1, 2000)
-    12
+    >>> integer_in(" 12 ", "--size", 1, 2000), integer_in("7", "--samples", 1)
+    (12, 7)
     """
     try:
         value = int(str(text).strip())
     except ValueError:
         value = None
-    if value is None or not low <= value <= high:
-        raise SkinrenderError(f"{name} must be an integer in [{low}, {high}], got {text!r}")
+    if value is None or value < low or (high is not None and value > high):
+        bounds = f"≥ {low}" if high is None else f"in [{low}, {high}]"
+        raise SkinrenderError(f"{name} must be an integer {bounds}, got {text!r}")
     return value
+
+
+def positive_number(text, name: str, unit: str) -> float:
+    """
+    ``text`` as a finite number > 0, else a one-line error naming the flag ``name`` (``unit``: what it counts).
+
+    >>> positive_number("300", "--illuminance", "lx")
+    300.0
+    """
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        value = math.nan
+    if not math.isfinite(value) or value <= 0:
+        raise SkinrenderError(f"{name} must be a finite number > 0 ({unit}), got {text!r}")
+    return value
+
+
+def variant_of(name: str | None) -> str | None:
+    """``--variant``: ``None``, or a spectral Mitsuba variant that runs here (checked before anything renders)."""
+    if name is None:
+        return None
+    from ..rendering.variants import VARIANTS_SPECTRAL, choose_variant
+
+    if name not in VARIANTS_SPECTRAL:
+        raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, got {name!r}")
+    flag("--variant", choose_variant, name)
+    return name
 
 
 def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = (), folder: bool = False) -> Path | None:

@@ -15,10 +15,10 @@ from pathlib import Path
 
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, HELP_ILLUMINANT, SEED_MAX, SPP_MAX, add_common, camera_of, check_output, check_seed,
-                     choices_help, emit, flag, integer_in, refuse_sensor_settings, render_options, sensor_settings,
-                     table)
+                     choices_help, emit, flag, integer_in, positive_number, refuse_sensor_settings, render_options,
+                     sensor_settings, table, variant_of)
 
-__all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "command_ladder", "command_render_face",
+__all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "levels_of", "noise_sensor", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
 
 SIZE_MAX = 2000
@@ -159,6 +159,31 @@ def face_inputs(args: argparse.Namespace) -> tuple:
     return scene, cam, temperatures, physics, skin, size, imager, exposure, lux
 
 
+def levels_of(text: str) -> list[str]:
+    """
+    ``--levels``: comma-separated levels of physics, none empty and none twice (``a+b`` and ``b+a`` are one
+    level), each checked; a one-line error naming the flag otherwise.
+    """
+    from ..rendering.face_dict import parse_physics
+
+    levels = [level.strip() for level in str(text).split(",")]
+    if not any(levels) or not all(levels):
+        raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {text!r}")
+    effects = [flag("--levels", parse_physics, level) for level in levels]
+    if len(set(effects)) < len(effects):
+        raise SkinrenderError(f"--levels: a level is named twice in {text!r}; name each once")
+    return levels
+
+
+def noise_sensor(args: argparse.Namespace) -> float | None:
+    """The noise level's ``--imager`` checked and its ``--illuminance`` in lx (``None``: the scene's)."""
+    if args.imager is not None:
+        from ..model.imager import imager
+
+        flag("--imager", imager, args.imager)
+    return None if args.illuminance is None else positive_number(args.illuminance, "--illuminance", "lx")
+
+
 def is_face_scene(spec: str) -> bool:
     """Whether a ``render`` SCENE is a face scene: bundled, or a TOML with ``[camera]`` and ``[mesh]``."""
     import tomllib
@@ -180,9 +205,7 @@ def is_face_scene(spec: str) -> bool:
 
 
 def command_ladder(args: argparse.Namespace) -> None:
-    from ..rendering.face_dict import parse_physics
     from ..rendering.face_scene import load_face_scene, skin_reflectance_of
-    from ..rendering.variants import VARIANTS_SPECTRAL
     from ..studies.ladder import ladder
 
     plot = check_output(getattr(args, "plot", None), "--plot", (".png",))
@@ -197,28 +220,9 @@ def command_ladder(args: argparse.Namespace) -> None:
         from ..spectra import GRID_DEFAULT
 
         skin_reflectance_of(args.skin, GRID_DEFAULT, "--skin")
-    levels = [level.strip() for level in str(args.levels).split(",")]
-    if not any(levels) or not all(levels):
-        raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {args.levels!r}")
-    effects = [flag("--levels", parse_physics, level) for level in levels]
-    if len(set(effects)) < len(effects):
-        raise SkinrenderError(f"--levels: a level is named twice in {args.levels!r}; name each once")
-    if args.variant is not None and args.variant not in VARIANTS_SPECTRAL:
-        raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, "
-                              f"got {args.variant!r}")
-    if args.imager is not None:
-        from ..model.imager import imager
-
-        flag("--imager", imager, args.imager)
-    lux = None
-    if args.illuminance is not None:
-        try:
-            lux = float(args.illuminance)
-        except ValueError:
-            lux = float("nan")
-        if not (0 < lux < float("inf")):
-            raise SkinrenderError(f"--illuminance must be a finite number of lux > 0, "
-                                  f"got {args.illuminance!r}")
+    levels = levels_of(args.levels)
+    variant_of(args.variant)
+    lux = noise_sensor(args)
     result = ladder(cam, temperatures["prevailing"], temperatures["calibration"], args.skin, levels, spp,
                     seed, size, scene, args.variant, imager=args.imager, illuminance=lux,
                     progress=lambda line: print(line, file=sys.stderr))

@@ -17,8 +17,9 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
-from .common import HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in, table
-from .face import HELP_SKIN, SIZE_MAX
+from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
+                     positive_number, table, variant_of)
+from .face import HELP_SKIN, SIZE_MAX, levels_of, noise_sensor
 
 __all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
 
@@ -106,9 +107,7 @@ def _checked(args: argparse.Namespace) -> dict:
 
     from ..model.camera import camera
     from ..model.response import response
-    from ..rendering.face_dict import parse_physics
     from ..rendering.face_scene import load_face_scene, skin_reflectance_of
-    from ..rendering.variants import VARIANTS_SPECTRAL
     from ..spectra import GRID_DEFAULT
     from ..studies.face_locus import SKIN_TONES
     from ..studies.face_sweep import WORKERS_MAX
@@ -128,32 +127,11 @@ def _checked(args: argparse.Namespace) -> dict:
         if not skin:
             raise SkinrenderError("--skin: expected a skin spec, got an empty one")
         skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
-    levels = [level.strip() for level in str(args.levels).split(",") if level.strip()]
-    if not levels:
-        raise SkinrenderError("--levels: name at least one level of physics")
-    for level in levels:
-        flag("--levels", parse_physics, level)
+    levels = levels_of(args.levels)
     flag("--scene", load_face_scene, args.scene)
-    if args.variant is not None and args.variant not in VARIANTS_SPECTRAL:
-        raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, got {args.variant!r}")
-    if args.imager is not None:
-        from ..model.imager import imager
-
-        flag("--imager", imager, args.imager)
-    lux = None
-    if args.illuminance is not None:
-        try:
-            lux = float(args.illuminance)
-        except ValueError:
-            lux = float("nan")
-        if not (0 < lux < float("inf")):
-            raise SkinrenderError(f"--illuminance must be a finite number of lux > 0, got {args.illuminance!r}")
-    try:
-        max_samples = float(args.max_samples)
-    except ValueError:
-        max_samples = float("nan")
-    if not (0 < max_samples < float("inf")):
-        raise SkinrenderError(f"--max-samples must be a finite number > 0, got {args.max_samples!r}")
+    variant_of(args.variant)
+    lux = noise_sensor(args)
+    max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
     if args.dask is not None and not str(args.dask).strip():
         raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one")
     return {

@@ -13,7 +13,8 @@ import math
 import sys
 
 from ..errors import SkinrenderError
-from .common import HELP_CAMERA, add_common, camera_of, check_output, check_seed, emit, flag, table
+from .common import (HELP_CAMERA, add_common, camera_of, check_output, check_seed, emit, flag, integer_in,
+                     positive_number, table)
 
 __all__ = [
     "SAMPLES_DEFAULT",
@@ -21,8 +22,6 @@ __all__ = [
     "add_parsers",
     "command_imagers",
     "command_score",
-    "integer_in",
-    "positive_number",
 ]
 
 SAMPLES_DEFAULT = 16
@@ -79,29 +78,6 @@ def command_imagers(args: argparse.Namespace) -> None:
     emit(args, {"imagers": imagers}, text)
 
 
-def positive_number(text: str, name: str, unit: str) -> float:
-    """``text`` as a finite number > 0, else a one-line :class:`SkinrenderError` naming the flag ``name``."""
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not math.isfinite(value) or value <= 0:
-        raise SkinrenderError(f"{name} must be a finite number > 0 ({unit}), got {text!r}")
-    return value
-
-
-def integer_in(text: str, name: str, low: int, high: int | None = None) -> int:
-    """``text`` as an integer in [low, high), else a one-line :class:`SkinrenderError` naming the flag ``name``."""
-    try:
-        value = int(text.strip())
-    except ValueError:
-        value = None
-    if value is None or value < low or (high is not None and value >= high):
-        bounds = f"≥ {low}" if high is None else f"in [{low}, {high})"
-        raise SkinrenderError(f"{name} must be an integer {bounds}, got {text!r}")
-    return value
-
-
 def _noise_options(args: argparse.Namespace) -> dict | None:
     """The checked imager flags, or ``None`` without ``--imager``; nothing heavy is done here."""
     given = [name for name in ("illuminance", "exposure", "samples", "seed") if getattr(args, name) is not None]
@@ -123,7 +99,7 @@ def _noise_options(args: argparse.Namespace) -> dict | None:
         "illuminance_lux": positive_number(args.illuminance, "--illuminance", "lx"),
         "exposure": exposure,
         "samples": SAMPLES_DEFAULT if args.samples is None else integer_in(args.samples, "--samples", 1),
-        "seed": 0 if args.seed is None else integer_in(args.seed, "--seed", 0, SEED_LIMIT),
+        "seed": 0 if args.seed is None else integer_in(args.seed, "--seed", 0, SEED_LIMIT - 1),
     }
 
 

@@ -72,6 +72,8 @@ def test_workers_keep_stdout_to_the_json():
     (["--skin", " "], "--skin"),
     (["--levels", "glossy"], "--levels"),
     (["--levels", ","], "--levels"),
+    (["--levels", "direct,,sheen"], "--levels"),
+    (["--levels", "sheen+mixed,mixed+sheen"], "--levels"),
     (["--size", "0"], "--size"),
     (["--size", "x"], "--size"),
     (["--spp", "0"], "--spp"),
