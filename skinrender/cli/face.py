@@ -18,7 +18,7 @@ from .common import (HELP_CAMERA, HELP_ILLUMINANT, SEED_MAX, SPP_MAX, add_common
                      choices_help, emit, flag, integer_in, positive_number, refuse_sensor_settings, render_options,
                      sensor_settings, table, variant_of)
 
-__all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "levels_of", "noise_sensor", "command_ladder", "command_render_face",
+__all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
 
 SIZE_MAX = 2000
@@ -85,13 +85,15 @@ def add_parsers(commands) -> None:
     add_common(p)
 
 
-def _planckian(args: argparse.Namespace, name: str) -> float:
-    from ..model.illuminant import illuminant
+def planckian_flag(spec: str, name: str) -> float:
+    """The temperature, K, of the Planckian light ``spec`` given to flag ``name``; a one-line error otherwise."""
+    from ..rendering.face import planckian_temperature
 
-    light = flag(f"--{name}", illuminant, getattr(args, name))
-    if light.temperature is None:
-        raise SkinrenderError(f"--{name}: the face is lit by Planckian lights (kelvin, A or H), got {light}")
-    return float(light.temperature)
+    return flag(name, planckian_temperature, spec, name)
+
+
+def _planckian(args: argparse.Namespace, name: str) -> float:
+    return planckian_flag(getattr(args, name), f"--{name}")
 
 
 def _check_light(cam, temperatures: dict) -> None:

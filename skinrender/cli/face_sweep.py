@@ -19,7 +19,7 @@ import sys
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
                      positive_number, table, variant_of)
-from .face import HELP_SKIN, SIZE_MAX, levels_of, noise_sensor
+from .face import HELP_SKIN, SIZE_MAX, levels_of, noise_sensor, planckian_flag
 
 __all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
 
@@ -75,15 +75,6 @@ def add_parsers(commands) -> None:
     add_common(p)
 
 
-def _planckian(spec: str, name: str) -> float:
-    from ..model.illuminant import illuminant
-
-    light = flag(name, illuminant, spec)
-    if light.temperature is None:
-        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}")
-    return float(light.temperature)
-
-
 def _lights(values: list[str]) -> list[tuple[float, float]]:
     """The (prevailing, calibration) pairs of every ``--lights``, K."""
     pairs = []
@@ -95,7 +86,7 @@ def _lights(values: list[str]) -> list[tuple[float, float]]:
             if len(parts) != 2 or not all(part.strip() for part in parts):
                 raise SkinrenderError(f"--lights: expected PREVAILING/CALIBRATION pairs such as 2856/5900, got "
                                       f"{item.strip()!r}")
-            pairs.append((_planckian(parts[0].strip(), "--lights"), _planckian(parts[1].strip(), "--lights")))
+            pairs.append((planckian_flag(parts[0].strip(), "--lights"), planckian_flag(parts[1].strip(), "--lights")))
     if not pairs:
         raise SkinrenderError("--lights: name at least one PREVAILING/CALIBRATION pair")
     return pairs

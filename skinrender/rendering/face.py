@@ -72,7 +72,7 @@ from .face_scene import FaceScene, load_face_scene, skin_reflectance_of
 from .renderer import SAMPLERS, SAMPLES_MAX, channel_names
 from .variants import choose_variant, mitsuba
 
-__all__ = ["PHYSICS", "IMAGER_DEFAULT", "FaceRendering", "white_references",
+__all__ = ["PHYSICS", "IMAGER_DEFAULT", "FaceRendering", "planckian_temperature", "white_references",
            "render_face", "write_face_exr"]
 
 IMAGER_DEFAULT = "sony-icx418"
@@ -142,11 +142,17 @@ class FaceRendering:
         return channel_names(self.camera)
 
 
-def _planckian(spec, name: str) -> float:
+def planckian_temperature(spec, name: str) -> float:
+    """
+    The temperature, K, of a Planckian light spec (kelvin, ``A`` or ``H``); a one-line error naming ``name``
+    for any other light (a face's lights are Planckian).
+
+    >>> planckian_temperature("A", "prevailing")
+    2856.0
+    """
     item = illuminant(spec)
     if item.temperature is None:
-        raise SkinrenderError(f"{name}: rendering needs a Planckian illuminant (kelvin, A or H), "
-                              f"got {spec!r}")
+        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}")
     return float(item.temperature)
 
 
@@ -308,10 +314,10 @@ def render_face(
         face = replace(face, **{k: replace(getattr(face, k), illuminance=getattr(face, k).illuminance * ratio)
                                 for k in ("key", "fill", "environment") if getattr(face, k) is not None})
     if prevailing is not None and getattr(face, name) is not None:
-        light = replace(getattr(face, name), temperature=_planckian(prevailing, "prevailing"))
+        light = replace(getattr(face, name), temperature=planckian_temperature(prevailing, "prevailing"))
         face = replace(face, **{name: light})
     p = getattr(face, name).temperature if getattr(face, name) is not None else None
-    c = p if calibration is None else _planckian(calibration, "calibration")
+    c = p if calibration is None else planckian_temperature(calibration, "calibration")
     lights = active_lights(face, effects)
     white_p, white_c = white_references(face, cam, c, grid)
     scale = max(float(np.max(light_irradiance(light, grid)[1])) for light in lights.values())

@@ -42,8 +42,7 @@ from ..errors import SkinrenderError
 from ..evaluation.locus import skin_locus
 from ..model.camera import camera
 from ..model.chromaticity import ncc
-from ..model.illuminant import illuminant
-from ..rendering.face import render_face
+from ..rendering.face import planckian_temperature, render_face
 from ..rendering.face_dict import parse_physics
 from ..rendering.face_scene import load_face_scene, skin_reflectance_of
 from ..rendering.renderer import SAMPLES_MAX
@@ -78,13 +77,6 @@ CSV_COLUMNS = ("camera", "prevailing_K", "calibration_K", "skin", "level", "seco
                "skin_ncc_std_b", "tpr", "fpr", "skin_pixels", "prop_pixels",
                "skin_ncc_analytic_r", "skin_ncc_analytic_g", "skin_ncc_analytic_b")
 """Columns of :meth:`FaceSweep.to_csv`; an empty cell where a value is ``None``."""
-
-
-def _temperature(spec, name: str) -> float:
-    item = illuminant(spec)
-    if item.temperature is None:
-        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}")
-    return float(item.temperature)
 
 
 @dataclass(frozen=True)
@@ -274,7 +266,7 @@ def face_sweep(
     :class:`FaceSweep`
     """
     cams = [camera(c) for c in cameras]
-    pairs = [(_temperature(p, "prevailing"), _temperature(c, "calibration")) for p, c in lights]
+    pairs = [(planckian_temperature(p, "prevailing"), planckian_temperature(c, "calibration")) for p, c in lights]
     skins = [str(s).strip() for s in skins]
     levels = [str(level).strip() for level in levels]
     for name, values in (("cameras", cams), ("lights", pairs), ("skins", skins), ("levels", levels)):

@@ -38,8 +38,7 @@ from ..evaluation.locus import skin_locus
 from ..hints import NDArrayFloat
 from ..model.camera import camera
 from ..model.chromaticity import ncc
-from ..model.illuminant import illuminant
-from ..rendering.face import render_face
+from ..rendering.face import planckian_temperature, render_face
 from ..rendering.face_dict import parse_physics
 from ..rendering.face_labels import LABEL_SKIN
 from ..rendering.face_scene import load_face_scene, skin_reflectance_of
@@ -127,13 +126,6 @@ class Ladder:
                  f"{SCORED_MIN_OUTPUT:g})")
         return figure_ladder(rows, self.locus_polygon, np.asarray(self.skin_ncc_analytic), title, path,
                              self.label_names)
-
-
-def _temperature(spec, name: str) -> float:
-    item = illuminant(spec)
-    if item.temperature is None:
-        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}")
-    return float(item.temperature)
 
 
 def _rate(hits: np.ndarray) -> float | None:
@@ -241,7 +233,7 @@ def ladder(
     """
 
     cam = camera(camera_)
-    p, c = _temperature(prevailing, "prevailing"), _temperature(calibration, "calibration")
+    p, c = planckian_temperature(prevailing, "prevailing"), planckian_temperature(calibration, "calibration")
     face = load_face_scene(scene)
     skin = face.skin if skin is None else str(skin).strip()
     rho = skin_reflectance_of(skin, grid, "skin")
