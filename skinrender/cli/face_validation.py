@@ -57,15 +57,18 @@ def check_samples(spp: int, pixels: int) -> None:
     """
     from ..rendering.face_limits import REPLICATES
     from ..rendering.renderer import SAMPLES_MAX
+    from ..studies.face_sweep import SAMPLES_PER_S
 
     each = -(-int(spp) // REPLICATES)
     total = each * REPLICATES * int(pixels)
     if total > SAMPLES_MAX:
         most = REPLICATES * (SAMPLES_MAX // (REPLICATES * int(pixels)))
+        if not most:
+            raise SkinrenderError(f"--size: {pixels} pixels is too many for {REPLICATES} replicates; use a smaller "
+                                  "--size")
         raise SkinrenderError(f"--spp: {REPLICATES} replicates × {each} spp × {pixels} pixels is {total:.3g} "
-                              f"samples, more than one render may take ({SAMPLES_MAX}, ~40 min on one core at the "
-                              f"~9e5 samples/s of face_sweep.SAMPLES_PER_S); at most {most} spp at this size" if most else
-                              f"--size: {pixels} pixels is too many for {REPLICATES} replicates; use a smaller --size")
+                              f"samples, more than one render may take ({SAMPLES_MAX}, ~{SAMPLES_MAX / SAMPLES_PER_S / 60:.0f} "
+                              f"min on one core at {SAMPLES_PER_S:.1e} samples/s); at most {most} spp at this size")
 
 
 def command_validate_face(args: argparse.Namespace) -> None:
