@@ -36,8 +36,16 @@ __all__ = [
 
 
 def looks_like_path(spec: str) -> bool:
-    """Whether a spec names a file rather than a registry entry."""
-    return str(spec).lower().endswith(".csv") or Path(str(spec)).is_file()
+    """
+    Whether a spec names a file rather than a registry entry: a ``.csv`` path, or an existing file whose name
+    is no registered set or camera (a file named ``macbeth`` in the working folder does not hide the set).
+    """
+    text = str(spec)
+    if text.lower().endswith(".csv"):
+        return True
+    if not Path(text).is_file():
+        return False
+    return lookup(REGISTRY_REFLECTANCES, text) is None and lookup(REGISTRY_CAMERAS, text) is None
 
 
 def reflectances(spec: str | SpectralSet, extrapolation: str = "refuse") -> SpectralSet:

@@ -44,7 +44,6 @@ their defaults).
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
@@ -53,7 +52,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
-from .scene import PIXELS_MAX, ROOT_SCENES, reflectance_of
+from .scene import PIXELS_MAX, ROOT_SCENES, read_scene_toml, reflectance_of
 
 __all__ = ["ROOT_FACE_SCENES", "MESH_HEAD", "PROP_SHAPES", "FaceCamera", "Light", "Prop", "FaceScene",
            "skin_reflectance_of", "load_face_scene", "list_face_scenes"]
@@ -315,26 +314,7 @@ _PROP = {"name", "reflectance", "shape", "size", "position", "rotate"}
 
 
 def _read(spec: str) -> tuple[Path, dict]:
-    text = str(spec).strip()
-    if not text:
-        raise SkinrenderError(f"expected a face scene name ({', '.join(list_face_scenes())}) or a .toml "
-                              "path, got an empty one")
-    path = Path(text)
-    if path.is_dir():
-        raise SkinrenderError(f"face scene {text} is a folder, expected a .toml file or a bundled name")
-    if not (path.suffix == ".toml" or path.exists()):
-        path = ROOT_FACE_SCENES / f"{text}.toml"
-        if not path.exists():
-            raise SkinrenderError(f"unknown face scene {text!r}; bundled: {', '.join(list_face_scenes())}, "
-                                  "or a .toml path")
-    elif not path.exists():
-        raise SkinrenderError(f"face scene file {text} does not exist")
-    try:
-        return path, tomllib.loads(path.read_text(encoding="utf-8"))
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
-        raise SkinrenderError(f"{path}: not valid TOML: {' '.join(str(error).split())}") from None
-    except OSError as error:
-        raise SkinrenderError(f"{path}: cannot be read ({error.strerror})") from None
+    return read_scene_toml(spec, ROOT_FACE_SCENES, "face scene", f"bundled: {', '.join(list_face_scenes())}")
 
 
 def load_face_scene(spec: str | Path | FaceScene) -> FaceScene:

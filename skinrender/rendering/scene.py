@@ -40,7 +40,7 @@ from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_scene", "list_scenes", "reflectance_of"]
+__all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_scene", "list_scenes", "read_scene_toml", "reflectance_of"]
 
 ROOT_SCENES = Path(__file__).resolve().parent / "scenes"
 """Bundled scene files (installed with the package; ``scenes/`` in the repository links here)."""
@@ -144,6 +144,33 @@ def reflectance_of(spec: str, grid: WavelengthGrid, where: str = "reflectance") 
     return dataset.on(grid)[index]
 
 
+def read_scene_toml(spec, root: Path, kind: str, bundled: str) -> tuple[Path, dict]:
+    """
+    The path and TOML table of a scene spec: a bundled name (``root/NAME.toml``; a bare name means the bundled
+    scene even where a file or folder of that name stands in the working folder) or a path to a ``.toml``
+    file. ``kind`` names the scene in errors (``scene``, ``face scene``); ``bundled`` lists the names.
+    """
+    text = str(spec).strip()
+    if not text:
+        raise SkinrenderError(f"expected a {kind} name ({bundled}) or a .toml path, got an empty one")
+    path = Path(text)
+    named = root / f"{text}.toml"
+    if path.suffix != ".toml" and len(path.parts) == 1 and named.is_file():
+        path = named
+    elif path.is_dir():
+        raise SkinrenderError(f"{kind} {text} is a folder, expected a .toml file or a bundled name")
+    elif not (path.suffix == ".toml" or path.exists()):
+        raise SkinrenderError(f"unknown {kind} {text!r}; {bundled}, or a .toml path")
+    elif not path.exists():
+        raise SkinrenderError(f"{kind} file {text} does not exist")
+    try:
+        return path, tomllib.loads(path.read_text(encoding="utf-8"))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
+        raise SkinrenderError(f"{path}: not valid TOML: {' '.join(str(error).split())}") from None
+    except OSError as error:
+        raise SkinrenderError(f"{path}: cannot be read ({error.strerror})") from None
+
+
 def list_scenes() -> list[str]:
     """Names of the bundled scenes."""
     return sorted(p.stem for p in ROOT_SCENES.glob("*.toml"))
@@ -187,26 +214,9 @@ def load_scene(spec: str | Path | ChartScene) -> ChartScene:
 
     if isinstance(spec, ChartScene):
         return spec
-    text = str(spec).strip()
-    if not text:
-        raise SkinrenderError(f"expected a scene name ({', '.join(list_scenes())}) or a .toml path, got an empty one")
-    path = Path(text)
-    if path.is_dir():
-        raise SkinrenderError(f"scene {text} is a folder, expected a .toml file or a bundled name")
-    if not (path.suffix == ".toml" or path.exists()):
-        path = ROOT_SCENES / f"{text}.toml"
-        if not path.exists():
-            faces = sorted(p.stem for p in (ROOT_SCENES / "face").glob("*.toml"))
-            raise SkinrenderError(f"unknown scene {text!r}; bundled scenes: {', '.join(list_scenes())} (charts), "
-                                  f"{', '.join(faces)} (faces), or a .toml path")
-    elif not path.exists():
-        raise SkinrenderError(f"scene file {text} does not exist")
-    try:
-        table = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
-        raise SkinrenderError(f"{path}: not valid TOML: {' '.join(str(error).split())}") from None
-    except OSError as error:
-        raise SkinrenderError(f"{path}: cannot be read ({error.strerror})") from None
+    faces = sorted(p.stem for p in (ROOT_SCENES / "face").glob("*.toml"))
+    path, table = read_scene_toml(spec, ROOT_SCENES, "scene", f"bundled scenes: {', '.join(list_scenes())} "
+                                  f"(charts), {', '.join(faces)} (faces)")
     where = str(path)
     unknown = set(table) - _KNOWN_FIELDS
     if unknown:

@@ -84,3 +84,14 @@ class TestBundledFiles:
         for name in ("vrhel_surfaces.csv", "nickerson_munsell.csv", "camera_kodak_dcs200.csv"):
             assert (tmp_path / name).read_bytes() == (ROOT_RESOURCES / name).read_bytes()
 
+
+
+def test_a_set_name_wins_over_a_file_of_that_name_here(tmp_path, monkeypatch):
+    """``macbeth`` is the bundled set even where the working folder holds a file named ``macbeth``."""
+    from skinrender.datasets import looks_like_path, reflectances
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "macbeth").write_text("not a CSV")
+    (tmp_path / "mine").write_text("wavelength,a\n400,0.5\n700,0.5\n")
+    assert reflectances("macbeth").count == 24
+    assert not looks_like_path("macbeth") and looks_like_path("mine") and looks_like_path("other.csv")

@@ -116,6 +116,14 @@ class TestRefusals:
         with pytest.raises(SkinrenderError, match=match):
             load_face_scene(spec)
 
+    def test_a_bundled_name_wins_over_a_folder_of_that_name_here(self, tmp_path, monkeypatch):
+        """``face`` is the bundled scene even where the working folder holds a folder or file named ``face``."""
+        monkeypatch.chdir(tmp_path)
+        (tmp_path / "face").mkdir()
+        assert load_face_scene("face").name == "face"
+        with pytest.raises(SkinrenderError, match="folder"):
+            load_face_scene(str(tmp_path / "face"))
+
     def test_a_folder_and_bad_toml(self, tmp_path):
         with pytest.raises(SkinrenderError, match="folder"):
             load_face_scene(tmp_path)

@@ -88,3 +88,12 @@ def test_not_toml(tmp_path):
     path.write_text("columns = = 2")
     with pytest.raises(SkinrenderError, match="not valid TOML"):
         load_scene(str(path))
+
+
+def test_a_bundled_name_wins_over_a_file_of_that_name_here(tmp_path, monkeypatch):
+    """``macbeth`` is the bundled chart even where the working folder holds a file named ``macbeth``."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "macbeth").write_text("not a scene")
+    assert load_scene("macbeth").name == "macbeth"
+    with pytest.raises(SkinrenderError, match="unknown scene"):
+        load_scene("nowhere")
