@@ -49,7 +49,6 @@ from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from ..errors import SkinrenderError
 from ..extras import require
@@ -183,6 +182,8 @@ def fit_skin(wavelength: ArrayLike, reflectance: ArrayLike, start: SkinParameter
     target = np.asarray(reflectance, dtype=np.float64)
     if lam.shape != target.shape or not np.all(np.isfinite(target)):
         raise SkinrenderError("fit_skin needs finite reflectances on the given wavelengths")
+    from scipy.optimize import least_squares  # here: importing scipy.optimize costs every command ~0.6 s
+
     low, high = zip(*PARAMETER_BOUNDS)
 
     def residual(x):

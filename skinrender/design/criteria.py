@@ -45,7 +45,8 @@ from ..model.response import knee as apply_knee
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import SensorBank, positions_grid, sensor_bank, triplets
 
-__all__ = ["SMALL_SET", "triplet_volumes_naive", "triplet_volumes_fast", "triplet_false_positive_rates",
+__all__ = ["SMALL_SET", "triplet_volumes_naive", "triplet_volumes_fast", "triplet_gains", "triplet_volumes_many",
+           "triplet_false_positive_rates",
            "search_false_positive_rates"]
 
 def triplet_volumes_naive(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
@@ -68,11 +69,12 @@ def triplet_volumes_naive(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
     return np.array(volumes)
 
 
-SMALL_SET = 100
+SMALL_SET = 20
 """Reflectance sets up to this size skip the per-illuminant vertex reduction:
-for them ten more hulls save nothing (30 skin spectra, sensor 9, compiled
-kernel, three alternating runs over 60 triplets: 0.63–0.70 ms per triplet
-either way); the 1269 Munsell chips need it."""
+for them ten more hulls save nothing (sensor 9, compiled kernel, four
+alternating runs over 450 triplets: the first 20 skin spectra 0.38–0.44 ms per
+triplet without, 0.37–0.42 ms with). From about 30 it pays: the 30 skin spectra
+0.59–0.66 ms without, 0.49–0.59 ms with; the 1269 Munsell chips need it."""
 
 def triplet_volumes_fast(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
     """
@@ -123,6 +125,42 @@ def triplet_volumes_fast(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
         case_vertices.append(points if vertices is None else points[vertices])
     volumes[count_q] = hull_volume_vertices(np.concatenate(case_vertices))[0]
     return volumes
+
+
+def triplet_gains(bank: SensorBank, index: NDArrayFloat) -> NDArrayFloat:
+    """
+    :meth:`SensorBank.gains` (white normalisation) of many index triplets at
+    once, shape ``(T, P, Q, 3)``: the same operations in the same order,
+    element by element, so the same numbers to the bit (tested).
+    """
+    white = np.moveaxis(bank.white[:, index[:, ::-1]], 1, 0)  # (T, P, 3), channels R, G, B
+    white_p, white_c = white[:, :, None, :], white[:, None, :, :]
+    factor = 3.0 / np.sum(white_p / white_c, axis=-1)  # WP, Eq. 8 (model.response.white_coefficient_from_whites)
+    return np.ascontiguousarray(bank.scale * factor[..., None] / white_c)
+
+
+def triplet_volumes_many(bank: SensorBank, index: NDArrayFloat) -> NDArrayFloat:
+    """
+    :func:`triplet_volumes_fast` of many index triplets ``(T, 3)``, shape
+    ``(T, Q + 1)``, the same numbers to the bit: with the compiled kernel and
+    the white normalisation without the knee (Stage 3's), one call for all
+    (``_hull3d.chunk_volumes``: the gains in one step, the clouds gathered in
+    C, which took ~50 µs per triplet in numpy), :func:`triplet_volumes_fast`
+    for the triplets it declines; otherwise triplet by triplet.
+    """
+    index = np.asarray(index)
+    kernel = compiled_kernel()
+    if kernel is None or bank.knee or bank.factor is not None:
+        return np.array([triplet_volumes_fast(bank, t) for t in index]).reshape(len(index), -1)
+    signal = np.ascontiguousarray(bank.signal.transpose(1, 0, 2))  # (J, P, N): the responses by position
+    gains = triplet_gains(bank, index)
+    channels = np.ascontiguousarray(index[:, ::-1], dtype=np.int64)  # R is the longest peak
+    volumes, declined = kernel.chunk_volumes(signal, channels, gains, signal.shape[2] > SMALL_SET, bank.diagonal,
+                                             FLAT_SUSPECT)
+    out = np.frombuffer(volumes, dtype=np.float64).reshape(len(index), gains.shape[2] + 1).copy()
+    for row in np.flatnonzero(np.frombuffer(declined, dtype=np.uint8)):
+        out[row] = triplet_volumes_fast(bank, index[row])
+    return out
 
 
 def triplet_false_positive_rates(bank_skin, bank_nonskin, triplet: ArrayLike) -> NDArrayFloat:

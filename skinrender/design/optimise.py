@@ -24,7 +24,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize
 
 from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError
@@ -174,6 +173,8 @@ def optimise_camera(
     def f(x):
         p, w, b = unpack(x)
         return objective(kind, p, w, skin, munsell, b, illuminants, grid, noisy)
+
+    from scipy.optimize import minimize  # here: importing scipy.optimize costs every command ~0.6 s
 
     results = []
     for start in starts:

@@ -1,12 +1,12 @@
 /*
  * 3-D convex hull volume and vertices: Quickhull (Barber, Dobkin & Huhdanpaa
- * 1996) for the Stage 3 search of skinrender.search.
+ * 1996) for the Stage 3 search of skinrender.design.search.
  *
  * Why: the search builds 42 hulls per sensor triplet (ten prevailing clouds,
  * ten calibration cases and one all-calibration union, for two reflectance
  * sets). scipy.spatial.ConvexHull (Qhull) takes 0.7-1.0 ms for one 1269-chip
  * Munsell cloud on the project's 2-core machines, 0.07 ms of it fixed cost
- * even for 8 points; this kernel takes 0.12-0.16 ms (tests/test_hull3d.py
+ * even for 8 points; this kernel takes 0.12-0.16 ms (tests/evaluation/test_hull.py
  * checks it against Qhull; `skinrender bench search` times the search).
  *
  * Scope: only the general case. The kernel answers None, and the caller falls
@@ -14,11 +14,14 @@
  * the cloud is flat or nearly so (volume not above `flat_fraction` of the cube
  * on its bounding box's longest side), when the initial simplex is thin, or when a numerical
  * inconsistency appears (a visible region whose horizon is not one cycle, a
- * new facet of no area). Each axis is first centred and scaled to [-1, 1];
- * there, points within EPS_RELATIVE of a facet's plane count as inside, so a
- * point dropped changes the volume by at most ~1e-12 of it.
+ * new facet of no area or facing inwards: clouds with many coplanar points,
+ * such as the impulse sensor's diagonal copies of one cloud, can fold the
+ * surface; tests/evaluation/test_hull.py keeps one). Each axis is first
+ * centred and scaled to [-1, 1]; there, points within EPS_RELATIVE of a
+ * facet's plane count as inside, so a point dropped changes the volume by at
+ * most ~1e-12 of it.
  *
- * Interface (module skinrender._hull3d):
+ * Interface (module skinrender.evaluation._hull3d):
  *   hull(points, flat_fraction) -> (volume, vertices) or None
  *     points: C-contiguous float64 buffer of shape (n, 3)
  *     volume: float, in the points' units cubed
@@ -26,6 +29,9 @@
  *   triplet_volumes(clouds, gains, reduce, shared, flat_fraction) -> bytes or None
  *     the whole per-triplet pipeline of search.triplet_volumes_fast in one call,
  *     one workspace reused by all 21 hulls
+ *   chunk_volumes(signal, channels, gains, reduce, shared, flat_fraction) -> (bytes, bytes)
+ *     the same for many triplets, their clouds gathered here (one call per
+ *     chunk of the search: the gathering in numpy took ~50 us per triplet)
  *
  * SPDX-License-Identifier: BSD-3-Clause
  */
@@ -40,19 +46,20 @@
 
 #define EPS_RELATIVE 1e-12
 #define MAX_DEPTH 20000 /* recursion limit of the horizon search; deeper falls back */
+#define FAT_SIMPLEX 0.05 /* an initial simplex from the axis extremes is kept when this fat ([-1, 1] box units) */
 
 typedef struct {
-    int v[3];     /* vertices, counter-clockwise seen from outside */
-    int nb[3];    /* neighbour across edge v[i] -> v[(i + 1) % 3] */
-    int nbe[3];   /* that edge's index in the neighbour */
     double n[3];  /* unit outward normal */
     double d;     /* plane: n . x = d */
+    double far_dist;
+    int v[3];     /* vertices, counter-clockwise seen from outside */
+    int nb[3];    /* neighbour across edge v[i] -> v[(i + 1) % 3] */
     int outside;  /* head of the outside-point list, -1 when empty */
     int far;      /* farthest outside point */
-    double far_dist;
-    int alive;
     int stamp;    /* iteration of the last visit */
-    int visible;
+    signed char nbe[3];   /* that edge's index in the neighbour */
+    char alive;
+    char visible;
 } Face;
 
 typedef struct {
@@ -70,6 +77,7 @@ typedef struct {
     int iter;     /* never reset: stamps stay valid when the workspace is reused */
     int failed;
     int xcap, nextcap, vstampcap; /* capacities (doubles, ints, ints) */
+    double inner[3]; /* a point strictly inside every hull of the steps: the initial simplex's centroid */
 } Hull;
 
 static int grow(void **array, int *cap, int need, size_t size) {
@@ -199,13 +207,16 @@ static int add_point(Hull *h, int fi) {
         const Face *f = &h->f[h->hf[k]]; /* read before new_face may move the faces */
         int a = f->v[h->he[k]], b = f->v[(h->he[k] + 1) % 3], out = f->nb[h->he[k]], oute = f->nbe[h->he[k]];
         int g = new_face(h, a, b, eye);
-        if (g < 0) return -1;
+        if (g < 0 || !(distance(&h->f[g], h->inner) < 0.0)) return -1; /* no area, or facing inwards */
         link_faces(h, g, 0, out, oute);
     }
     for (int k = 0; k < h->nh; k++) link_faces(h, base + k, 1, base + (k + 1) % h->nh, 2);
-    /* Hand the visible faces' outside points to the new faces: to the first
-     * one they are above, as in Barber et al.'s pseudo-code (looking for the
-     * farthest face costs more evaluations than it saves steps: measured). */
+    /* Hand the visible faces' outside points to the new faces: each to a new
+     * face it is above, as in Barber et al.'s pseudo-code, trying first the
+     * face the previous point went to (the points of one outside set lie close
+     * together; looking for the farthest face costs more evaluations than it
+     * saves steps: measured). */
+    int last = base;
     for (int k = 0; k < h->nvis; k++) {
         Face *f = &h->f[h->vis[k]];
         f->alive = 0;
@@ -215,17 +226,16 @@ static int add_point(Hull *h, int fi) {
             int following = h->next[p];
             if (p != eye) {
                 const double *x = h->x + 3 * p;
-                int best = -1;
-                double best_dist = h->eps;
-                for (int g = base; g < h->nf; g++) {
+                int g = last;
+                do {
                     double dist = distance(&h->f[g], x);
-                    if (dist > best_dist) {
-                        best = g;
-                        best_dist = dist;
+                    if (dist > h->eps) {
+                        add_outside(h, g, p, dist);
+                        last = g;
                         break;
                     }
-                }
-                if (best >= 0) add_outside(h, best, p, best_dist);
+                    if (++g == h->nf) g = base;
+                } while (g != last);
             }
             p = following;
         }
@@ -240,63 +250,96 @@ static double det3(const double *a, const double *b, const double *c, const doub
     return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
 }
 
-/* 0 and the volume on success; -1 when the caller must fall back to Qhull. */
-static int quickhull(Hull *h, double flat_fraction, double *volume, char *is_vertex) {
-    int n = h->n;
-    double *x = h->x;
-    if (n < 4) return -1;
-    double lo[3], hi[3];
-    int arg_lo[3] = {0, 0, 0}, arg_hi[3] = {0, 0, 0};
-    for (int k = 0; k < 3; k++) lo[k] = hi[k] = x[k];
+/* The bounding box of the n points, each axis then centred and scaled to
+ * [-1, 1] into the workspace: a diagonal scaling keeps the hull's vertices and
+ * multiplies its volume by the scales' product (*unit), and makes one tolerance
+ * fit every channel whatever its units. -1 for a non-finite coordinate or an
+ * axis of no extent. */
+static int load_points(Hull *h, const double *points, int n, double *lo, double *hi, int *arg_lo, int *arg_hi,
+                       double *unit) {
+    double sum = 0.0; /* not finite if any coordinate is not (or the cloud is absurdly large) */
+    for (int k = 0; k < 3; k++) lo[k] = hi[k] = points[k], arg_lo[k] = arg_hi[k] = 0;
     for (int i = 0; i < n; i++)
         for (int k = 0; k < 3; k++) {
-            double value = x[3 * i + k];
-            if (!isfinite(value)) return -1;
+            double value = points[3 * i + k];
+            sum += value;
             if (value < lo[k]) lo[k] = value, arg_lo[k] = i;
             if (value > hi[k]) hi[k] = value, arg_hi[k] = i;
         }
-    /* Centre each axis and scale it to [-1, 1]: a diagonal scaling keeps the
-     * hull's vertices and multiplies its volume by the scales' product, and
-     * makes one tolerance fit every channel whatever its units. */
+    if (!isfinite(sum)) return -1;
+    double centre[3], inverse[3];
+    *unit = 1.0;
+    for (int k = 0; k < 3; k++) {
+        double half = 0.5 * (hi[k] - lo[k]);
+        if (!(half > 0.0) || !isfinite(half)) return -1;
+        centre[k] = 0.5 * (lo[k] + hi[k]);
+        inverse[k] = 1.0 / half;
+        *unit *= half;
+    }
+    double *x = h->x;
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) x[3 * i + k] = (points[3 * i + k] - centre[k]) * inverse[k];
+    return 0;
+}
+
+/* 0 and the volume on success; -1 when the caller must fall back to Qhull. */
+static int quickhull(Hull *h, const double *points, double flat_fraction, double *volume, char *is_vertex) {
+    int n = h->n;
+    double *x = h->x;
+    if (n < 4) return -1;
+    double lo[3], hi[3], unit;
+    int arg_lo[3], arg_hi[3];
+    if (load_points(h, points, n, lo, hi, arg_lo, arg_hi, &unit)) return -1;
     double side = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
     double box = side * side * side; /* the cube on the bounding box's longest side */
-    double unit = 1.0;
-    for (int k = 0; k < 3; k++) {
-        double centre = 0.5 * (lo[k] + hi[k]), half = 0.5 * (hi[k] - lo[k]);
-        if (!(half > 0.0) || !isfinite(half)) return -1;
-        for (int i = 0; i < n; i++) x[3 * i + k] = (x[3 * i + k] - centre) / half;
-        unit *= half;
-    }
     h->eps = EPS_RELATIVE;
 
     /* Initial simplex: the widest axis extremes, the farthest point from their
-     * line, the farthest from their plane. */
+     * line, the farthest from their plane; looked for among the six axis
+     * extremes first, and among all points when those make a thin simplex. */
     int i0 = 0, i1 = 0;
     double widest = -1.0;
     for (int k = 0; k < 3; k++)
         if (hi[k] - lo[k] > widest) widest = hi[k] - lo[k], i0 = arg_lo[k], i1 = arg_hi[k];
+    int extremes[6] = {arg_lo[0], arg_lo[1], arg_lo[2], arg_hi[0], arg_hi[1], arg_hi[2]};
     const double *p0 = x + 3 * i0, *p1 = x + 3 * i1;
     double dir[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-    int i2 = -1;
-    double best = 0.0;
-    for (int i = 0; i < n; i++) {
-        const double *p = x + 3 * i;
-        double u[3] = {p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]};
-        double c[3] = {u[1] * dir[2] - u[2] * dir[1], u[2] * dir[0] - u[0] * dir[2], u[0] * dir[1] - u[1] * dir[0]};
-        double value = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-        if (value > best) best = value, i2 = i;
-    }
     double length = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-    if (i2 < 0 || !(sqrt(best) > 1e3 * h->eps * length)) return -1;
-    int base = new_face(h, i0, i1, i2);
-    if (base < 0) return -1;
-    int i3 = -1;
-    best = 0.0;
-    for (int i = 0; i < n; i++) {
-        double value = fabs(distance(&h->f[base], x + 3 * i));
-        if (value > best) best = value, i3 = i;
+    int i2 = -1, i3 = -1, base = -1;
+    for (int pass = 0; pass < 2 && i3 < 0; pass++) {
+        int count = pass ? n : 6;
+        double fat = pass ? 1e3 * h->eps : FAT_SIMPLEX; /* pass 1: decline only a truly thin cloud */
+        double best = 0.0;
+        i2 = -1;
+        for (int j = 0; j < count; j++) {
+            int i = pass ? j : extremes[j];
+            const double *p = x + 3 * i;
+            double u[3] = {p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]};
+            double c[3] = {u[1] * dir[2] - u[2] * dir[1], u[2] * dir[0] - u[0] * dir[2], u[0] * dir[1] - u[1] * dir[0]};
+            double value = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+            if (value > best) best = value, i2 = i;
+        }
+        if (i2 < 0 || !(sqrt(best) > fat * length)) {
+            if (pass) return -1;
+            continue;
+        }
+        h->nf = 0;
+        base = new_face(h, i0, i1, i2);
+        if (base < 0) {
+            if (pass) return -1;
+            continue;
+        }
+        best = 0.0;
+        for (int j = 0; j < count; j++) {
+            int i = pass ? j : extremes[j];
+            double value = fabs(distance(&h->f[base], x + 3 * i));
+            if (value > best) best = value, i3 = i;
+        }
+        if (i3 < 0 || !(best > fat)) {
+            if (pass) return -1;
+            i3 = -1;
+        }
     }
-    if (i3 < 0 || !(best > 1e3 * h->eps)) return -1;
     h->nf = 0;
     int tri[4][3] = {{i0, i1, i2}, {i0, i1, i3}, {i1, i2, i3}, {i2, i0, i3}};
     int other[4] = {i3, i2, i0, i1};
@@ -321,14 +364,18 @@ static int quickhull(Hull *h, double flat_fraction, double *volume, char *is_ver
                     }
     double centre[3];
     for (int k = 0; k < 3; k++) centre[k] = (x[3 * i0 + k] + x[3 * i1 + k] + x[3 * i2 + k] + x[3 * i3 + k]) / 4.0;
+    memcpy(h->inner, centre, sizeof(centre));
 
     for (int i = 0; i < n; i++) {
         if (i == i0 || i == i1 || i == i2 || i == i3) continue;
         int where = -1;
         double far = h->eps;
-        for (int t = 0; t < 4; t++) {
+        for (int t = 0; t < 4; t++) { /* the first face it is above, as add_point does */
             double dist = distance(&h->f[t], x + 3 * i);
-            if (dist > far) far = dist, where = t;
+            if (dist > far) {
+                far = dist, where = t;
+                break;
+            }
         }
         if (where >= 0) add_outside(h, where, i, far);
     }
@@ -361,11 +408,10 @@ static int hull_points(Hull *h, const double *points, int n, double flat_fractio
         grow((void **)&h->vstamp, &h->vstampcap, n ? n : 1, sizeof(int)))
         return -2;
     if (h->vstampcap > stamped) memset(h->vstamp + stamped, 0, sizeof(int) * (size_t)(h->vstampcap - stamped));
-    memcpy(h->x, points, sizeof(double) * 3 * (size_t)n);
     h->n = n;
     h->nf = 0;
     h->failed = 0;
-    return quickhull(h, flat_fraction, volume, is_vertex);
+    return quickhull(h, points, flat_fraction, volume, is_vertex);
 }
 
 static void release(Hull *h) {
@@ -548,6 +594,110 @@ static PyObject *triplet_volumes(PyObject *self, PyObject *args) {
     return result;
 }
 
+/* A C-contiguous array of `ndim` dimensions of float64 (integer: int64); 0, or -1 with ValueError set. */
+static int get_array(PyObject *object, int ndim, int integer, const char *name, const char *shape, Py_buffer *view) {
+    if (PyObject_GetBuffer(object, view, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT | PyBUF_ND)) {
+        PyErr_Clear();
+        view->obj = NULL;
+    } else if (view->ndim == ndim && view->itemsize == 8 && view->format &&
+               (integer ? (!strcmp(view->format, "l") || !strcmp(view->format, "q")) : !strcmp(view->format, "d")) &&
+               view->len / 8 < 2000000000) {
+        return 0;
+    } else {
+        PyBuffer_Release(view);
+    }
+    PyErr_Format(PyExc_ValueError, "%s must be a C-contiguous %s array of shape %s", name, integer ? "int64" : "float64",
+                 shape);
+    return -1;
+}
+
+/* triplet() for T triplets gathered here from the single-sensor responses
+ * (signal[j, p, i]: position j, illuminant p, reflectance i); declined[t] = 1
+ * where a hull was declined (that row of volumes is left NaN). */
+static int chunk(const double *signal, int P, int N, const long long *channels, int T, const double *gains,
+                 int Q, int reduce, int shared, double flat, double *volumes, char *declined) {
+    double *clouds = malloc(sizeof(double) * 3 * (size_t)P * (size_t)(N ? N : 1));
+    if (!clouds) return -2;
+    Hull h;
+    memset(&h, 0, sizeof(h));
+    int status = 0;
+    for (int t = 0; t < T && status != -2; t++) {
+        const long long *c = channels + 3 * (size_t)t;
+        for (int p = 0; p < P; p++)
+            for (int k = 0; k < 3; k++) {
+                const double *from = signal + ((size_t)c[k] * P + p) * N;
+                double *to = clouds + (size_t)p * N * 3 + k;
+                for (int i = 0; i < N; i++) to[3 * i] = from[i];
+            }
+        double *row = volumes + (size_t)t * (Q + 1);
+        status = triplet(&h, clouds, gains + (size_t)t * P * Q * 3, P, N, Q, reduce, shared, flat, row);
+        declined[t] = status != 0;
+        if (status) {
+            for (int q = 0; q <= Q; q++) row[q] = NAN;
+        }
+    }
+    release(&h);
+    free(clouds);
+    return status == -2 ? -2 : 0;
+}
+
+static PyObject *build_chunk(void *data) {
+    Py_buffer *parts = data; /* volumes, declined */
+    return Py_BuildValue("(y#y#)", (const char *)parts[0].buf, parts[0].len, (const char *)parts[1].buf, parts[1].len);
+}
+
+static PyObject *chunk_volumes(PyObject *self, PyObject *args) {
+    PyObject *signal_object, *channels_object, *gains_object;
+    int reduce, shared;
+    double flat_fraction;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "OOOppd", &signal_object, &channels_object, &gains_object, &reduce, &shared,
+                          &flat_fraction))
+        return NULL;
+    Py_buffer signal, channels, gains;
+    if (get_array(signal_object, 3, 0, "signal", "(J, P, n)", &signal)) return NULL;
+    if (get_array(channels_object, 2, 1, "channels", "(T, 3)", &channels)) {
+        PyBuffer_Release(&signal);
+        return NULL;
+    }
+    if (get_array(gains_object, 4, 0, "gains", "(T, P, Q, 3)", &gains)) {
+        PyBuffer_Release(&signal);
+        PyBuffer_Release(&channels);
+        return NULL;
+    }
+    int J = (int)signal.shape[0], P = (int)signal.shape[1], N = (int)signal.shape[2];
+    int T = (int)channels.shape[0], Q = (int)gains.shape[2];
+    const char *problem = NULL;
+    if (channels.shape[1] != 3 || gains.shape[0] != T || gains.shape[1] != P || gains.shape[3] != 3 || P < 1 || Q < 1)
+        problem = "gains must have shape (T, P, Q, 3) for signal (J, P, n) and channels (T, 3)";
+    const long long *c = channels.buf;
+    for (Py_ssize_t k = 0; !problem && k < 3 * (Py_ssize_t)T; k++)
+        if (c[k] < 0 || c[k] >= J) problem = "channels must be positions in [0, J)";
+    double *volumes = problem ? NULL : malloc(sizeof(double) * (size_t)(T ? T : 1) * (size_t)(Q + 1));
+    char *declined = problem ? NULL : malloc((size_t)(T ? T : 1));
+    int status = -2;
+    if (volumes && declined) {
+        Py_BEGIN_ALLOW_THREADS status = chunk(signal.buf, P, N, c, T, gains.buf, Q, reduce, shared, flat_fraction,
+                                              volumes, declined);
+        Py_END_ALLOW_THREADS
+    }
+    PyBuffer_Release(&signal);
+    PyBuffer_Release(&channels);
+    PyBuffer_Release(&gains);
+    PyObject *result;
+    if (problem) {
+        PyErr_SetString(PyExc_ValueError, problem);
+        result = NULL;
+    } else {
+        Py_buffer parts[2] = {{.buf = volumes, .len = (Py_ssize_t)sizeof(double) * T * (Q + 1)},
+                              {.buf = declined, .len = T}};
+        result = status == -2 ? PyErr_NoMemory() : build_chunk(parts);
+    }
+    free(volumes);
+    free(declined);
+    return result;
+}
+
 static PyMethodDef methods[] = {
     {"hull", hull, METH_VARARGS,
      "hull(points, flat_fraction) -> (volume, vertices) or None\n\n"
@@ -565,6 +715,13 @@ static PyMethodDef methods[] = {
      "cloud scaled by its gains for q, the last volume the hull of the cases'\n"
      "vertices. None when any hull is declined (see hull): the caller redoes the\n"
      "triplet with Qhull where needed."},
+    {"chunk_volumes", chunk_volumes, METH_VARARGS,
+     "chunk_volumes(signal, channels, gains, reduce, shared, flat_fraction) -> (bytes, bytes)\n\n"
+     "triplet_volumes for T triplets at once, their clouds gathered from signal (J, P, n),\n"
+     "the single-sensor responses per position; channels (T, 3) int64 are each triplet's\n"
+     "positions for R, G, B, gains (T, P, Q, 3) their Eq. 4 gains. Returns the volumes\n"
+     "(T x (Q + 1) float64 bytes, NaN where declined) and one declined flag per triplet\n"
+     "(bytes): the caller redoes those with Qhull where needed."},
     {NULL, NULL, 0, NULL}};
 
 static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_hull3d",

@@ -85,14 +85,18 @@ def hull_volume_vertices(cloud: NDArrayFloat) -> tuple[float, np.ndarray | None]
         answer = _hull3d.hull(np.ascontiguousarray(cloud, dtype=np.float64), FLAT_SUSPECT)
         if answer is not None:
             return answer[0], np.frombuffer(answer[1], dtype=np.int32)
+    centred = cloud - cloud.mean(axis=0)
+    scale = np.max(np.abs(centred), axis=0)  # each axis to [-1, 1], as gamut() does: flatness is scale-free
+    if not np.all(scale > 0):
+        return 0.0, None
+    unit = centred / scale
     try:
-        hull = ConvexHull(cloud, qhull_options=QHULL_OPTIONS)
+        hull = ConvexHull(unit, qhull_options=QHULL_OPTIONS)
     except QhullError:
         return 0.0, None
-    volume = float(hull.volume)
-    if not volume > FLAT_SUSPECT * float(np.max(hull.max_bound - hull.min_bound)) ** 3 and is_flat(cloud):
+    if not hull.volume > FLAT_SUSPECT * float(np.max(hull.max_bound - hull.min_bound)) ** 3 and is_flat(unit):
         return 0.0, None
-    return volume, hull.vertices
+    return float(hull.volume * np.prod(scale)), hull.vertices
 
 _NOTICED: list[bool] = []
 

@@ -72,7 +72,8 @@ def reproduce(
     """
     Write the paper's Figs. 3–7 (PNG) and Tables 2–5 (Markdown, CSV) to ``directory``.
 
-    Every argument and the folder are checked before anything is written; the
+    Every argument and the folder are checked before anything is written (the
+    Stage 2 camera while the searches start: a bad one stops them); the
     results go to a temporary folder beside ``directory`` that is moved into
     place at the end (an interrupted run leaves no folder that looks
     complete). The Stage 2 figures are drawn in a thread while the worker
@@ -132,7 +133,6 @@ def reproduce(
     resolved = resolve_setting(setting)
     chosen = check_sensors(sensors)
     where = check_positions(positions, resolved.grid)
-    check_camera(camera_spec, resolved.grid, "--camera")
     workers = check_workers(workers)
     if dask is not None:
         from ..extras import require
@@ -157,9 +157,16 @@ def reproduce(
                 side["error"] = error
 
         thread = threading.Thread(target=stage2_and_observations, name="skinrender-stage2", daemon=True)
+
+        def on_start() -> None:
+            # The Stage 2 camera is checked once the searches run: loading a colour-science camera
+            # imports colour (~2 s on one core, the other idle until then). A bad one stops them.
+            check_camera(camera_spec, resolved.grid, "--camera")
+            thread.start()
+
         try:
             computed = setting_tables(resolved, chosen, where, VolumeCache(), workers, dask, progress, progress,
-                                      on_start=thread.start)
+                                      on_start=on_start)
         finally:
             if thread.is_alive():  # also on an interrupt: let it finish writing before the folder goes
                 thread.join()

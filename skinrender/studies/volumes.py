@@ -25,17 +25,18 @@ computes every triplet.
 from __future__ import annotations
 
 import os
+import signal
 import time
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
 from ..design.bank import SensorBank, triplets
-from ..design.criteria import SMALL_SET, triplet_volumes_fast
-from ..design.search import SearchResult, progress_bar
+from ..design.criteria import triplet_gains, triplet_volumes_many
+from ..design.search import SearchResult, progress_bar, stop_pool
 from ..errors import SkinrenderError
 from ..extras import require
-from ..evaluation.hull import FLAT_SUSPECT, HULL_KERNEL, compiled_kernel, notice_kernel
+from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import NDArrayFloat
 
 __all__ = ["bank_key", "VolumeCache", "compute_volumes", "chunk_gains", "search_result", "check_workers"]
@@ -46,49 +47,16 @@ _BANKS: tuple[SensorBank, ...] = ()
 def _init(banks: tuple[SensorBank, ...]) -> None:
     global _BANKS
     _BANKS = banks
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: no traceback per worker
 
 
 def _chunk(bank: int, index: np.ndarray, banks: tuple[SensorBank, ...] | None = None) -> NDArrayFloat:
     """Volumes ``(len(index), Q + 1)`` of the triplets ``index`` of bank number ``bank``."""
-    chosen = (banks if banks is not None else _BANKS)[bank]
-    kernel = compiled_kernel()
-    if kernel is None or chosen.knee or chosen.factor is not None:
-        return np.array([triplet_volumes_fast(chosen, t) for t in index]).reshape(len(index), -1)
-    return _chunk_kernel(kernel, chosen, np.asarray(index))
+    return triplet_volumes_many((banks if banks is not None else _BANKS)[bank], np.asarray(index))
 
 
-def chunk_gains(bank: SensorBank, index: np.ndarray) -> NDArrayFloat:
-    """
-    :meth:`SensorBank.gains` (white normalisation) of many index triplets at
-    once, shape ``(T, P, Q, 3)``: the same operations in the same order,
-    element by element, so the same numbers to the bit (tested).
-    """
-    white = np.moveaxis(bank.white[:, index[:, ::-1]], 1, 0)  # (T, P, 3), channels R, G, B
-    white_p, white_c = white[:, :, None, :], white[:, None, :, :]
-    factor = 3.0 / np.sum(white_p / white_c, axis=-1)  # WP, Eq. 8 (model.response.white_coefficient_from_whites)
-    return np.ascontiguousarray(bank.scale * factor[..., None] / white_c)
-
-
-def _chunk_kernel(kernel, bank: SensorBank, index: np.ndarray) -> NDArrayFloat:
-    """
-    :func:`~skinrender.design.criteria.triplet_volumes_fast` for a chunk, its
-    Python share done once per chunk: the single-sensor responses regrouped
-    by position, the gains of every triplet in one step, then the same
-    compiled call per triplet (``triplet_volumes_fast`` itself where the
-    kernel declines one). About a fifth of the search's time was that share.
-    """
-    by_position = np.ascontiguousarray(bank.signal.transpose(1, 0, 2))  # (J, P, N)
-    gains = chunk_gains(bank, index)
-    count_p, count_n = by_position.shape[1:]
-    reduce = count_n > SMALL_SET
-    out = np.empty((len(index), gains.shape[2] + 1))
-    clouds = np.empty((count_p, count_n, 3))
-    for row, triplet in enumerate(index):
-        for channel, position in enumerate(triplet[::-1]):  # R is the longest peak
-            clouds[..., channel] = by_position[position]
-        answer = kernel.triplet_volumes(clouds, gains[row], reduce, bank.diagonal, FLAT_SUSPECT)
-        out[row] = np.frombuffer(answer, dtype=np.float64) if answer is not None else triplet_volumes_fast(bank, triplet)
-    return out
+chunk_gains = triplet_gains
+"""The gains of many triplets at once: :func:`skinrender.design.criteria.triplet_gains` (its earlier name)."""
 
 
 def _dask_chunk(bank: SensorBank, index: np.ndarray) -> NDArrayFloat:
@@ -151,7 +119,9 @@ def compute_volumes(
         Stream for the one-line notice when the compiled hull kernel is missing.
     on_start
         Called once the work is under way (after the worker processes were
-        forked): other work of the caller, in a thread, may start then.
+        forked): other work of the caller may run then (in this thread,
+        or start in another); an exception it raises stops the workers and
+        is raised here.
 
     Returns
     -------
@@ -205,12 +175,17 @@ def compute_volumes(
         for job in jobs:
             store(job, _chunk(job[0], index[job[1]], items))
     else:
-        with ProcessPoolExecutor(workers, initializer=_init, initargs=(items,)) as pool:
+        pool = ProcessPoolExecutor(workers, initializer=_init, initargs=(items,))
+        try:
             futures = [pool.submit(_chunk, b, index[part]) for b, part in jobs]
             if on_start is not None:
                 on_start()  # the workers are forked at the first submit: a thread may start now
             for job, future in zip(jobs, futures):
                 store(job, future.result())
+        except BaseException:  # Ctrl-C, or an error of on_start's: stop the workers now
+            stop_pool(pool)
+            raise
+        pool.shutdown()
     bar.close()
     return out, finished
 

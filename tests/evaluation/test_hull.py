@@ -1,4 +1,4 @@
-"""Tests for :mod:`skinrender._hull3d`, the compiled Quickhull of the Stage 3 search, against Qhull."""
+"""Tests for :mod:`skinrender.evaluation._hull3d`, the compiled Quickhull of the Stage 3 search, against Qhull."""
 
 from __future__ import annotations
 
@@ -12,9 +12,9 @@ import skinrender.evaluation.hull as hull_module
 import skinrender.design.criteria as criteria_module
 from skinrender.evaluation.hull import FLAT_SUSPECT, HULL_KERNEL
 
-_hull3d = pytest.importorskip(
-    "skinrender._hull3d",
-    reason="skinrender was installed without a C compiler; see test_the_kernel_was_built",
+_hull3d = hull_module.compiled_kernel()
+needs_kernel = pytest.mark.skipif(
+    _hull3d is None, reason="skinrender was installed without a C compiler; see test_the_kernel_was_built"
 )
 
 KERNEL_VS_QHULL = 1e-12
@@ -45,9 +45,10 @@ def clouds(rng):
 
 def test_the_kernel_was_built():
     """The fast search needs the compiled kernel; pip builds it when a C compiler is present."""
-    assert HULL_KERNEL == "quickhull", "skinrender._hull3d is missing: reinstall with a C compiler (gcc) present"
+    assert HULL_KERNEL == "quickhull", "skinrender.evaluation._hull3d is missing: reinstall with a C compiler (gcc) present"
 
 
+@needs_kernel
 class TestHull:
     def test_unit_cube_with_interior_points(self, rng):
         corners = np.array(np.meshgrid([0, 1], [0, 1], [0, 1])).reshape(3, -1).T.astype(float)
@@ -94,15 +95,21 @@ class TestHull:
         assert kernel(points) is None
 
     def test_very_thin_clouds_go_to_qhull_and_get_the_same_answer(self, rng):
-        """Volume below FLAT_SUSPECT·L³ (here 1e-9·L³): the kernel declines, the search's hull
-        routine asks Qhull, and an axis-aligned cloud flat by is_flat has volume 0 as in gamut()."""
+        """Volume below FLAT_SUSPECT·L³ (here 1e-9·L³): the kernel declines and the search's hull
+        routine asks Qhull, which answers as gamut() does: each axis scaled to [-1, 1] first, so a
+        cloud thin along one axis keeps its volume and only a flat one (coplanar) has volume 0."""
         thin = rng.random((300, 3)) * [1.0, 1e-3, 1e3]
         assert kernel(thin) is None
         volume, vertices = hull_module.hull_volume_vertices(thin)
         assert volume == pytest.approx(ConvexHull(thin).volume, rel=1e-12)
-        flat = rng.random((300, 3)) * [1.0, 1e-12, 1.0]
-        assert hull_module.hull_volume_vertices(flat) == (0.0, None)
-        assert criteria_module.gamut(flat).volume == 0.0
+        assert set(vertices) == set(ConvexHull(thin).vertices)
+        axis_thin = rng.random((300, 3)) * [1.0, 1e-12, 1.0]
+        volume, vertices = hull_module.hull_volume_vertices(axis_thin)
+        assert volume > 0 and volume == pytest.approx(criteria_module.gamut(axis_thin).volume, rel=1e-9)
+        coplanar = rng.random((300, 3))
+        coplanar[:, 2] = 0.3 * coplanar[:, 0] - 2.0 * coplanar[:, 1] + 0.7
+        assert hull_module.hull_volume_vertices(coplanar) == (0.0, None)
+        assert criteria_module.gamut(coplanar).volume == 0.0
 
     @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
     def test_non_finite_points_are_declined(self, rng, bad):
@@ -120,6 +127,7 @@ class TestHull:
             _hull3d.hull(points, FLAT_SUSPECT)
 
 
+@needs_kernel
 class TestSearchWithoutTheKernel:
     def test_qhull_everywhere_gives_the_same_volumes(self, monkeypatch, rng):
         """With no compiled kernel (installed without a C compiler) every hull goes to Qhull."""
@@ -146,6 +154,7 @@ class TestSearchWithoutTheKernel:
         assert stream.getvalue().count("notice") == 1 and "_hull3d" in stream.getvalue()
 
 
+@needs_kernel
 class TestTripletVolumes:
     """``_hull3d.triplet_volumes``, the whole triplet in one call, against the hull-by-hull Python route."""
 
@@ -180,3 +189,58 @@ class TestTripletVolumes:
             _hull3d.triplet_volumes(rng.random((3, 50, 3)), np.ones((2, 3, 3)), True, False, FLAT_SUSPECT)
         with pytest.raises(ValueError, match="clouds must be a C-contiguous float64 array"):
             _hull3d.triplet_volumes(rng.random((50, 3)), np.ones((1, 3, 3)), True, False, FLAT_SUSPECT)
+
+    def test_a_coplanar_cloud_that_folded_the_hull_is_declined_and_answered_right(self):
+        """Impulse, skin, peaks 420 530 590 nm: the all-calibration cloud (diagonal copies of 30
+        spectra, many points coplanar) once made the kernel build a facet facing inwards and lose
+        8e-7 of the volume. Such a facet now declines the hull, and Qhull answers."""
+        from skinrender import reflectances
+        from skinrender.spectra import GRID_DEFAULT
+
+        positions = bank_module.positions_grid()
+        bank = bank_module.sensor_bank(1, reflectances("skin").on(GRID_DEFAULT), positions)
+        triplet = np.searchsorted(positions, [420, 530, 590])
+        clouds, gains = bank.clouds(triplet), bank.gains(triplet)
+        everything = np.vstack([clouds[p] * gains[p, q] for p in range(len(clouds)) for q in range(gains.shape[1])])
+        centred = everything - everything.mean(axis=0)
+        scale = np.max(np.abs(centred), axis=0)
+        expected = ConvexHull(centred / scale).volume * np.prod(scale)
+        assert criteria_module.triplet_volumes_fast(bank, triplet)[-1] == pytest.approx(expected, rel=1e-12)
+        assert criteria_module.triplet_volumes_naive(bank, triplet)[-1] == pytest.approx(expected, rel=1e-12)
+
+    @pytest.mark.parametrize("sensor", [1, 9])
+    def test_a_chunk_in_one_call_equals_triplet_by_triplet(self, sensor):
+        """``chunk_volumes`` gathers the clouds itself: the same numbers, to the bit, as one call per triplet."""
+        from skinrender import reflectances
+        from skinrender.spectra import GRID_DEFAULT
+        from skinrender.studies.volumes import chunk_gains
+
+        bank = bank_module.sensor_bank(sensor, reflectances("munsell").on(GRID_DEFAULT), [410, 470, 530, 600, 690])
+        chosen = bank_module.triplets(5)
+        signal = np.ascontiguousarray(bank.signal.transpose(1, 0, 2))
+        volumes, declined = _hull3d.chunk_volumes(signal, np.ascontiguousarray(chosen[:, ::-1], dtype=np.int64),
+                                                  chunk_gains(bank, chosen), True, bank.diagonal, FLAT_SUSPECT)
+        assert declined == bytes(len(chosen))
+        expected = [np.frombuffer(_hull3d.triplet_volumes(bank.clouds(t), np.ascontiguousarray(bank.gains(t)), True,
+                                                          bank.diagonal, FLAT_SUSPECT), dtype=np.float64)
+                    for t in chosen]
+        np.testing.assert_array_equal(np.frombuffer(volumes, dtype=np.float64).reshape(len(chosen), -1), expected)
+
+    def test_a_declined_triplet_of_a_chunk_is_flagged_and_nan(self, rng):
+        signal = rng.random((5, 1, 40))  # J = 5 positions, P = 1 illuminant, 40 reflectances
+        signal[0, 0] = signal[1, 0] = np.linspace(0.1, 1.0, 40)  # positions 0 and 1: one grey ramp
+        channels = np.array([[0, 1, 1], [2, 3, 4]], dtype=np.int64)  # the first cloud is collinear
+        volumes, declined = _hull3d.chunk_volumes(signal, channels, np.ones((2, 1, 1, 3)), False, False, FLAT_SUSPECT)
+        rows = np.frombuffer(volumes, dtype=np.float64).reshape(2, 2)
+        assert declined == b"\x01\x00" and np.isnan(rows[0]).all() and (rows[1] > 0).all()
+
+    def test_a_chunk_with_wrong_arrays_is_refused(self, rng):
+        signal, gains = rng.random((4, 2, 30)), np.ones((1, 2, 3, 3))
+        with pytest.raises(ValueError, match=r"channels must be positions in \[0, J\)"):
+            _hull3d.chunk_volumes(signal, np.array([[0, 1, 4]]), gains, True, False, FLAT_SUSPECT)
+        with pytest.raises(ValueError, match=r"gains must have shape \(T, P, Q, 3\)"):
+            _hull3d.chunk_volumes(signal, np.array([[0, 1, 2]]), np.ones((1, 3, 3, 3)), True, False, FLAT_SUSPECT)
+        with pytest.raises(ValueError, match="channels must be a C-contiguous int64 array"):
+            _hull3d.chunk_volumes(signal, np.array([[0.0, 1.0, 2.0]]), gains, True, False, FLAT_SUSPECT)
+        with pytest.raises(ValueError, match="signal must be a C-contiguous float64 array"):
+            _hull3d.chunk_volumes(signal[..., ::2], np.array([[0, 1, 2]]), gains, True, False, FLAT_SUSPECT)

@@ -67,6 +67,15 @@ class TestRefusals:
             reproduce(tmp_path / "out", **{"sensors": [9], "positions": "400:700:100", **options})
         assert os.listdir(tmp_path) == []
 
+    def test_a_bad_stage2_camera_stops_the_searches_it_overlaps(self, tmp_path):
+        """The Stage 2 camera is checked once the workers run (loading it imports colour): a bad one
+        stops them at once, with the refusal every other argument gets and nothing left behind."""
+        import multiprocessing
+
+        with pytest.raises(SkinrenderError, match="^--camera"):
+            reproduce(tmp_path / "out", sensors=[9, 11], positions="400:700:10", camera_spec="Sony 755", workers=2)
+        assert multiprocessing.active_children() == [] and os.listdir(tmp_path) == []
+
     def test_output_refusals_on_the_command_line(self, tmp_path, capsys):
         (tmp_path / "file").write_text("x")
         for target in ("", str(tmp_path / "file"), "/proc/skinrender-no/out"):
