@@ -209,6 +209,21 @@ def lit_skin(images: NDArrayFloat, labels: NDArrayFloat, usable: NDArrayFloat | 
     return lit if usable is None else lit & usable
 
 
+def _skin_ncc(images: NDArrayFloat, labels: NDArrayFloat, usable: NDArrayFloat | None) -> tuple:
+    """
+    The lit skin pixels (:func:`lit_skin`) and their count, and, when there are at least
+    :data:`PIXELS_MIN`, their NCC (r, g) per pixel and pooled over them with jackknife standard errors
+    (``(value, se, pooled, pooled_se)``, else ``None``): what :func:`check_shading` and
+    :func:`eq4_shift` compare with Eq. 4.
+    """
+    lit = lit_skin(images, labels, usable)
+    pixels = int(lit.sum())
+    if pixels < PIXELS_MIN:
+        return lit, pixels, None
+    samples = images[:, lit]
+    return lit, pixels, (*jackknife(samples, rg), *jackknife(samples, lambda m: rg(m).mean(axis=0)))
+
+
 def check_shading(images: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayFloat,
                   usable: NDArrayFloat | None = None, bias: NDArrayFloat | None = None,
                   floor: NDArrayFloat | None = None) -> LimitCheck:
@@ -241,19 +256,17 @@ def check_shading(images: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayF
     """
     images = np.asarray(images, dtype=np.float64)
     expected = np.asarray(expected, dtype=np.float64)[:2]
-    lit = lit_skin(images, labels, usable)
-    pixels = int(lit.sum())
-    if pixels < PIXELS_MIN:
+    lit, pixels, measured = _skin_ncc(images, labels, usable)
+    if measured is None:
         return LimitCheck("shading_cancels", True, None, None, None, pixels,
                           f"only {pixels} lit skin pixels (channels' relative standard error < {LINEAR:g}): "
                           "render larger or with more spp")
-    value, se = jackknife(images[:, lit], rg)
+    value, se, pooled, pooled_se = measured
     tests = value.size + 2
     systematic, least = _sensor(None if bias is None else bias[lit], None if floor is None else floor[lit],
                                 images.mean(axis=0)[lit])
     se = np.maximum(se, least)
     t_pixel = _ratio(np.maximum(np.abs(value - expected) - systematic, 0.0), np.hypot(se, FLOAT32_FLOOR * value))
-    pooled, pooled_se = jackknife(images[:, lit], lambda m: rg(m).mean(axis=0))
     pooled_se = np.maximum(pooled_se, np.sqrt(np.sum(np.square(least), axis=0)) / pixels)
     t_pooled = _ratio(np.maximum(np.abs(pooled - expected) - np.mean(systematic, axis=0), 0.0),
                       np.hypot(pooled_se, FLOAT32_FLOOR))
@@ -281,15 +294,13 @@ def eq4_shift(images: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayFloat
     """
     images = np.asarray(images, dtype=np.float64)
     expected = np.asarray(expected, dtype=np.float64)[:2]
-    lit = lit_skin(images, labels, usable)
-    pixels = int(lit.sum())
-    if pixels < PIXELS_MIN:
+    _, pixels, measured = _skin_ncc(images, labels, usable)
+    if measured is None:
         return LimitCheck("eq4_shift", False, None, None, None, pixels,
                           f"{why}; only {pixels} lit skin pixels, no shift measured")
-    value, se = jackknife(images[:, lit], rg)
+    value, se, pooled, pooled_se = measured
     tolerance = critical_t(value.size + 2, images.shape[0])
     outside = np.any(_ratio(np.abs(value - expected), np.hypot(se, FLOAT32_FLOOR * value)) > tolerance, axis=-1)
-    pooled, pooled_se = jackknife(images[:, lit], lambda m: rg(m).mean(axis=0))
     shift = pooled - expected
     return LimitCheck("eq4_shift", False, None, float(np.hypot(*shift)),
                       float(tolerance * np.hypot(*pooled_se)), pixels,
