@@ -8,6 +8,8 @@ degenerate clouds, and the paper's two gamut cases.
 
 -   :class:`Gamut`, :func:`gamut`: volume, point count and a ``degenerate`` flag.
 -   :func:`gamut_volume`: the volume alone, 0.0 for a degenerate cloud.
+-   :func:`to_unit_box`, :func:`is_flat`: the scale-free frame and flatness
+    test that :mod:`~skinrender.evaluation.hull` shares.
 -   :func:`gamut_calibration`: one calibration case (the union over the
     prevailing illuminants for one calibration illuminant).
 -   :func:`gamut_all_calibrations`: the union over every (prevailing,
@@ -44,6 +46,7 @@ __all__ = [
     "gamut_volume",
     "gamut_hull",
     "is_flat",
+    "to_unit_box",
     "gamut_calibration",
     "gamut_all_calibrations",
 ]
@@ -116,11 +119,10 @@ def gamut_hull(points: ArrayLike) -> tuple[Gamut, np.ndarray]:
         return Gamut(0.0, count, True), every
     if np.max(np.abs(cloud)) > COORDINATE_MAX:
         raise SkinrenderError(f"gamut points beyond ±{COORDINATE_MAX:g}: their volume would overflow float64")
-    centred = cloud - cloud.mean(axis=0)
-    scale = np.max(np.abs(centred), axis=0)  # each axis to [-1, 1]: flatness and Qhull alike are scale-free
-    if np.any(scale == 0):
+    boxed = to_unit_box(cloud)
+    if boxed is None:
         return Gamut(0.0, count, True), every
-    unit = centred / scale
+    unit, scale = boxed
     if is_flat(unit):
         return Gamut(0.0, count, True), every
     try:
@@ -128,6 +130,25 @@ def gamut_hull(points: ArrayLike) -> tuple[Gamut, np.ndarray]:
     except QhullError:
         return Gamut(0.0, count, True), every
     return Gamut(float(hull.volume * np.prod(scale)), count, False), hull.vertices
+
+
+def to_unit_box(cloud: NDArrayFloat) -> tuple[NDArrayFloat, NDArrayFloat] | None:
+    """
+    ``cloud`` ``(n, 3)`` centred and each axis scaled to [-1, 1], and the scales (output units): flatness and
+    Qhull alike are then scale-free, and the hull's volume is the unit one times the scales' product.
+    ``None`` where an axis has no extent (or is not finite).
+
+    Examples
+    --------
+    >>> unit, scale = to_unit_box(np.array([[0.0, 0.0, 0.0], [2.0, 4.0, 8.0]]))
+    >>> unit[1].tolist(), scale.tolist()
+    ([1.0, 1.0, 1.0], [1.0, 2.0, 4.0])
+    """
+    centred = cloud - cloud.mean(axis=0)
+    scale = np.max(np.abs(centred), axis=0)
+    if not np.all(scale > 0):
+        return None
+    return centred / scale, scale
 
 
 def is_flat(points: NDArrayFloat) -> bool:

@@ -26,7 +26,7 @@ import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
 from ..hints import NDArrayFloat
-from .gamut import is_flat
+from .gamut import is_flat, to_unit_box
 
 try:
     from . import _hull3d
@@ -85,11 +85,10 @@ def hull_volume_vertices(cloud: NDArrayFloat) -> tuple[float, np.ndarray | None]
         answer = _hull3d.hull(np.ascontiguousarray(cloud, dtype=np.float64), FLAT_SUSPECT)
         if answer is not None:
             return answer[0], np.frombuffer(answer[1], dtype=np.int32)
-    centred = cloud - cloud.mean(axis=0)
-    scale = np.max(np.abs(centred), axis=0)  # each axis to [-1, 1], as gamut() does: flatness is scale-free
-    if not np.all(scale > 0):
+    boxed = to_unit_box(cloud)  # as gamut() does: flatness is scale-free
+    if boxed is None:
         return 0.0, None
-    unit = centred / scale
+    unit, scale = boxed
     try:
         hull = ConvexHull(unit, qhull_options=QHULL_OPTIONS)
     except QhullError:
