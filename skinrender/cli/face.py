@@ -298,14 +298,11 @@ def command_detect_face(args: argparse.Namespace) -> None:
     every pixel by the camera's analytic skin locus for the calibration's white balance (trained on ``--skin``'s
     set), and score against the label channel: TPR over skin pixels, FPR over the props' pixels.
     """
-    import numpy as np
-
     from ..datasets import reflectances
     from ..evaluation.locus import skin_locus
-    from ..model.chromaticity import ncc
     from ..rendering.exr import write_png, write_preview
     from ..rendering.face import render_face
-    from ..studies.ladder import SCORED_MIN_OUTPUT
+    from ..studies.ladder import SCORED_MIN_OUTPUT, score_frame
 
     options = render_options(args)
     output = check_output(args.output, "--output", (".png",))
@@ -319,14 +316,10 @@ def command_detect_face(args: argparse.Namespace) -> None:
                          options["spp"], options["seed"], size, options["sampler"], options["variant"],
                          channels=options["channels"], imager=imager, exposure=exposure, illuminance=lux)
     locus = skin_locus(cam, skin, calibration=temperatures["calibration"], boundary=args.boundary)
-    mask = locus.contains(ncc(np.maximum(result.image.astype(np.float64), 0.0))[..., :2])
-    scored = result.image.max(axis=-1) >= SCORED_MIN_OUTPUT  # as the ladder: too dark has no chromaticity
-    skin_pixels, prop_pixels = scored & (result.labels == 1), scored & (result.labels >= 2)
-    tpr = float(mask[skin_pixels].mean()) if skin_pixels.any() else None
-    fpr = float(mask[prop_pixels].mean()) if prop_pixels.any() else None
-    lit = f"in view with its brightest channel ≥ {SCORED_MIN_OUTPUT:g}"
-    undefined = {**({} if tpr is not None else {"tpr": f"no scored skin pixel ({lit})"}),
-                 **({} if fpr is not None else {"fpr": f"no scored prop pixel ({lit})"})}
+    scores, frame = score_frame(result, locus, clip_negative=True)  # scored as the ladder: too dark has no chromaticity
+    mask, scored = frame["inside"], frame["scored"]
+    tpr, fpr = scores["tpr"], scores["fpr"]
+    undefined = {key: reason for key, reason in scores["undefined"].items() if key in ("tpr", "fpr")}
     write_png(output, mask.astype(float))
     preview = write_preview(output.with_name(output.stem + "_preview.png"), result.image)
     per_label = []

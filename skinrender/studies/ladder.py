@@ -45,7 +45,7 @@ from ..rendering.face_scene import load_face_scene, skin_reflectance_of
 from ..rendering.validation import analytic_reference
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["LEVELS_DEFAULT", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "score_rendering"]
+__all__ = ["LEVELS_DEFAULT", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "score_rendering", "score_frame"]
 
 LEVELS_DEFAULT = ("direct", "interreflection", "sheen", "mixed", "noise", "interreflection+sheen+mixed+noise")
 """The levels of :func:`ladder`: the analytic model's world, each effect alone, then all of them."""
@@ -132,11 +132,17 @@ def _rate(hits: np.ndarray) -> float | None:
     return float(hits.mean()) if hits.size else None
 
 
-def _scored(result, locus) -> tuple[dict, dict]:
-    """:func:`score_rendering`'s scores, and the frame the figure draws (image, labels, scored, detected, ncc)."""
+def score_frame(result, locus, clip_negative: bool = False) -> tuple[dict, dict]:
+    """
+    :func:`score_rendering`'s scores, and the frame the figures draw: ``image``, ``labels``, ``scored``,
+    ``inside`` (every pixel's NCC in the locus), ``detected`` (scored and inside) and ``ncc``.
+
+    ``clip_negative``: the NCC of the image with negative channels (noise around a dark level) set to 0,
+    as ``skinrender detect`` classifies a face; the ladder keeps them.
+    """
     image = result.image.astype(np.float64)
     scored = image.max(axis=-1) >= SCORED_MIN_OUTPUT
-    chromaticity = ncc(image)
+    chromaticity = ncc(np.maximum(image, 0.0) if clip_negative else image)
     inside = locus.contains(chromaticity[..., :2])
     skin_pixels = scored & (result.labels == LABEL_SKIN)
     prop_pixels = scored & (result.labels > LABEL_SKIN)
@@ -156,8 +162,8 @@ def _scored(result, locus) -> tuple[dict, dict]:
         "prop_pixels": int(prop_pixels.sum()),
         "undefined": undefined,
     }
-    frame = {"image": result.image, "labels": result.labels, "scored": scored, "detected": scored & inside,
-             "ncc": chromaticity}
+    frame = {"image": result.image, "labels": result.labels, "scored": scored, "inside": inside,
+             "detected": scored & inside, "ncc": chromaticity}
     return scores, frame
 
 
@@ -183,7 +189,7 @@ def score_rendering(result, locus) -> dict:
         ``fpr`` (fractions or ``None``), ``skin_pixels``, ``prop_pixels`` (scored counts), ``undefined``
         (``{key: reason}`` for each ``None``, e.g. ``{"tpr": "no scored skin pixel (brightest channel ≥ 10)"}``).
     """
-    return _scored(result, locus)[0]
+    return score_frame(result, locus)[0]
 
 
 def ladder(
@@ -251,7 +257,7 @@ def ladder(
         start = time.perf_counter()
         result = render_face(cam, face, p, c, skin, level, spp, seed, size, variant=variant, grid=grid,
                              imager=imager, illuminance=illuminance)
-        scores, frame = _scored(result, locus)
+        scores, frame = score_frame(result, locus)
         row = {"name": result.physics if level != "direct" else "direct", "seconds": time.perf_counter() - start,
                "spp": result.spp, **scores, "variant": result.variant}
         row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
