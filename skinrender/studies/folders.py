@@ -7,7 +7,9 @@ into a hidden temporary folder beside it and moves that into place at the
 end: an interrupted or refused run leaves nothing that looks complete.
 
 -   :data:`MANIFEST`: the file that marks a finished ``reproduce`` folder.
--   :func:`check_output`: refuse an unusable ``-o`` with one line naming it.
+-   :func:`check_output`: refuse an unusable ``-o`` with one line naming it
+    (an earlier folder that also holds files it did not write included:
+    :func:`foreign_files`).
 -   :func:`output_folder`: a context manager yielding the temporary folder,
     moved into place on success and removed on any failure (an interrupt
     included).
@@ -15,6 +17,7 @@ end: an interrupted or refused run leaves nothing that looks complete.
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import tempfile
@@ -23,7 +26,7 @@ from pathlib import Path
 
 from ..errors import SkinrenderError
 
-__all__ = ["MANIFEST", "check_output", "output_folder"]
+__all__ = ["MANIFEST", "check_output", "foreign_files", "output_folder"]
 
 MANIFEST = "reproduce.json"
 """Written last into every ``reproduce`` folder: an existing folder holding it may be replaced."""
@@ -44,12 +47,34 @@ def check_output(directory, flag: str = "-o") -> Path:
     if target.is_dir() and any(target.iterdir()) and not (target / MANIFEST).is_file():
         raise SkinrenderError(f"{flag} {directory}: a folder that holds other files (no {MANIFEST} of an earlier "
                               "reproduce); name a new or empty folder")
+    if (target / MANIFEST).is_file():
+        foreign = foreign_files(target)
+        if foreign:
+            shown = ", ".join(foreign[:3]) + (f" and {len(foreign) - 3} more" if len(foreign) > 3 else "")
+            raise SkinrenderError(f"{flag} {directory}: an earlier reproduce folder that also holds files it did not "
+                                  f"write ({shown}); they would be deleted with it: move them or name another folder")
     for ancestor in target.parents:
         if ancestor.exists():
             if not ancestor.is_dir():
                 raise SkinrenderError(f"{flag} {directory}: {ancestor} is a file, not a folder")
             break
     return target
+
+
+def foreign_files(folder: Path) -> list[str]:
+    """
+    Files under an earlier ``reproduce`` folder (relative paths, sorted) that its :data:`MANIFEST` does not list
+    among its ``artifacts``: replacing the folder would delete them. Every file is foreign when the manifest
+    cannot be read.
+    """
+    try:
+        artifacts = [Path(p) for p in json.loads((folder / MANIFEST).read_text(encoding="utf-8"))["artifacts"]]
+        written = next(p.parent for p in artifacts if p.name == MANIFEST)  # the folder as it was named then
+        listed = {p.relative_to(written).as_posix() for p in artifacts}
+    except (OSError, ValueError, KeyError, TypeError, StopIteration):
+        listed = set()
+    present = sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if not p.is_dir())
+    return [name for name in present if name not in listed and name != MANIFEST]
 
 
 @contextmanager

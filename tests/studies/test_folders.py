@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
+import json
 import os
 
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.studies.folders import MANIFEST, check_output, output_folder
+from skinrender.studies.folders import MANIFEST, check_output, foreign_files, output_folder
 
 
 class TestCheckOutput:
@@ -35,9 +36,34 @@ class TestCheckOutput:
     def test_new_empty_or_earlier_run(self, tmp_path):
         assert check_output(tmp_path / "new") == tmp_path / "new"
         assert check_output(tmp_path) == tmp_path
-        (tmp_path / MANIFEST).write_text("{}")
-        (tmp_path / "tables.md").write_text("old")
+        earlier_run(tmp_path, ["tables.md", "search/sensor_9.csv"])
         assert check_output(tmp_path) == tmp_path
+
+    def test_an_earlier_run_moved_elsewhere_is_still_one(self, tmp_path):
+        earlier_run(tmp_path / "then", ["tables.md"])
+        os.rename(tmp_path / "then", tmp_path / "now")
+        assert check_output(tmp_path / "now") == tmp_path / "now"
+
+    @pytest.mark.parametrize("manifest", ["listed", "{}", "not json"])
+    def test_files_an_earlier_run_did_not_write_are_not_deleted(self, tmp_path, manifest):
+        earlier_run(tmp_path, ["tables.md"])
+        if manifest != "listed":
+            (tmp_path / MANIFEST).write_text(manifest)
+        (tmp_path / "search").mkdir()
+        (tmp_path / "search" / "my_notes.txt").write_text("mine")
+        with pytest.raises(SkinrenderError, match=r"^-o .*did not write \(.*my_notes\.txt"):
+            check_output(tmp_path)
+        assert "search/my_notes.txt" in foreign_files(tmp_path)
+        assert (tmp_path / "search" / "my_notes.txt").read_text() == "mine"
+
+
+def earlier_run(folder, names: list[str]) -> None:
+    """A folder as ``reproduce`` leaves it: the files ``names`` and a manifest listing them (absolute paths)."""
+    for name in names:
+        (folder / name).parent.mkdir(parents=True, exist_ok=True)
+        (folder / name).write_text("old")
+    artifacts = [str(folder / name) for name in names] + [str(folder / MANIFEST)]
+    (folder / MANIFEST).write_text(json.dumps({"artifacts": artifacts}))
 
 
 class TestOutputFolder:
