@@ -53,7 +53,8 @@ from ..model.response import gain
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import SensorBank
 
-__all__ = ["TPR_MIN", "AUTO_EXPOSURE_FRACTION", "NoisySetting", "noisy_setting", "bank_rates", "triplet_noisy_rates"]
+__all__ = ["TPR_MIN", "AUTO_EXPOSURE_FRACTION", "NoisySetting", "noisy_setting", "bank_rates", "calibration_index",
+           "triplet_noisy_rates"]
 
 TPR_MIN = 0.9
 """A triplet is ranked by its noisy FPR only while at least this share of noisy skin pixels stays in the
@@ -119,6 +120,21 @@ def _frames(setting: NoisySetting, bank: SensorBank, rates: NDArrayFloat, index:
     return np.maximum(frames - im.black_level_dn, 0.0)
 
 
+def calibration_index(temperatures: ArrayLike, calibration: float) -> int:
+    """
+    The index of the calibration light ``calibration`` (K) among ``temperatures`` (K); one of them exactly,
+    else a one-line error (no nearest one is taken in its place).
+
+    >>> calibration_index([2000.0, 3300.0, 6500.0], 3300)
+    1
+    """
+    where = np.flatnonzero(np.asarray(temperatures, dtype=np.float64) == float(calibration))
+    if where.size == 0:
+        listed = ", ".join(f"{t:g}" for t in np.asarray(temperatures, dtype=np.float64))
+        raise SkinrenderError(f"noise calibration must be one of the illuminants ({listed} K), got {calibration!r}")
+    return int(where[0])
+
+
 def triplet_noisy_rates(skin: SensorBank, nonskin: SensorBank, rates_skin: NDArrayFloat,
                         rates_nonskin: NDArrayFloat, triplet: ArrayLike, setting: NoisySetting,
                         stream: int = 0) -> tuple[float, float]:
@@ -128,7 +144,7 @@ def triplet_noisy_rates(skin: SensorBank, nonskin: SensorBank, rates_skin: NDArr
     reproducible.
     """
     index = np.asarray(triplet)[::-1]  # R is the longest peak
-    q = int(np.argmin(np.abs(skin.temperatures - setting.calibration)))
+    q = calibration_index(skin.temperatures, setting.calibration)
     im = setting.imager
     white_c = rates_skin[q, index]
     exposure = (float(auto_exposure(im, white_c + im.dark_current_e_per_s, AUTO_EXPOSURE_FRACTION,

@@ -40,9 +40,10 @@ from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import SensorBank, positions_grid, sensor_bank, triplets
 from .criteria import triplet_false_positive_rates, triplet_volumes_many, triplet_volumes_naive
-from .noise_aware import TPR_MIN, NoisySetting, bank_rates, triplet_noisy_rates
+from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, triplet_noisy_rates
 
-__all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "SearchResult", "search", "progress_bar", "stop_pool"]
+__all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "WORKERS_MAX", "SearchResult", "search", "progress_bar", "stop_pool",
+           "dask_client"]
 
 DASK_TIMEOUT_S = 10.0
 """Seconds to wait for a Dask scheduler before giving up."""
@@ -345,6 +346,7 @@ def search(
     fpr = np.empty((len(index), banks[0].white.shape[0])) if detection else None
     pack = None
     if noisy is not None:
+        calibration_index(banks[0].temperatures, noisy.calibration)
         pack = (noisy, bank_rates(banks[0], noisy, sensor, slope, grid), bank_rates(banks[1], noisy, sensor, slope, grid))
     noisy_rates = np.empty((len(index), 2)) if noisy is not None else None
 
@@ -357,7 +359,7 @@ def search(
 
     bar = progress_bar(len(index), label, progress)
     if dask is not None:
-        client, own = _dask_client(dask)
+        client, own = dask_client(dask)
         try:
             remote_banks = client.scatter(banks, broadcast=True)
             futures = [client.submit(_volumes_chunk, index[c], method, remote_banks, detection, pack, c, pure=False)
@@ -396,7 +398,12 @@ def search(
     )
 
 
-def _dask_client(dask):
+def dask_client(dask):
+    """
+    A ``distributed.Client`` for a scheduler address (owned: the caller closes it) or the client given, as
+    ``(client, owned)``; an address that cannot be reached within ``DASK_TIMEOUT_S`` is a one-line error naming
+    ``--dask``.
+    """
     require("dask", "--dask")
     from distributed import Client
 

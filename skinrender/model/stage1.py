@@ -238,8 +238,17 @@ def illuminant_set(spec: str | ArrayLike | None = None, camera_: Camera | str | 
             raise SkinrenderError(
                 f"illuminants must be 'paper', 'auto' or comma-separated kelvin (e.g. 2000,3300,A), got {spec!r}"
             )
-        return np.array([item.temperature for item in items])
+        return _distinct(np.array([item.temperature for item in items]))
     values = np.asarray(spec, dtype=np.float64).ravel()
     if values.size == 0 or not np.all(np.isfinite(values) & (values > 0)):
         raise SkinrenderError(f"illuminant temperatures must be kelvin > 0, got {values.tolist()}")
-    return values
+    return _distinct(values)
+
+
+def _distinct(temperatures: NDArrayFloat) -> NDArrayFloat:
+    """``temperatures`` (K), refused when one repeats (each would be a prevailing light and a calibration twice)."""
+    values, counts = np.unique(temperatures, return_counts=True)
+    if np.any(counts > 1):
+        repeated = ", ".join(f"{v:g} K" for v in values[counts > 1])
+        raise SkinrenderError(f"illuminants must be distinct temperatures, got {repeated} more than once")
+    return temperatures

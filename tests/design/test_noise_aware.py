@@ -15,7 +15,8 @@ from skinrender.cli import main
 from skinrender.datasets import reflectances
 from skinrender.design.bank import positions_grid, sensor_bank
 from skinrender.design.criteria import triplet_false_positive_rates
-from skinrender.design.noise_aware import TPR_MIN, bank_rates, noisy_setting, triplet_noisy_rates
+from skinrender.design.noise_aware import TPR_MIN, bank_rates, calibration_index, noisy_setting, triplet_noisy_rates
+from skinrender.errors import SkinrenderError
 from skinrender.model.imager import Imager
 from skinrender.spectra import GRID_DEFAULT
 
@@ -50,6 +51,16 @@ def test_tends_to_the_noise_free_value_as_light_grows(banks):
     gaps = [abs(rates_of(banks, noisy_setting(deep, lux, 0.01, samples=2), SPREAD)[1] - free)
             for lux in (1.0, 1e3, 1e7)]
     assert gaps[2] < gaps[0] and gaps[2] < 2e-3
+
+
+@pytest.mark.parametrize("calibration", [3000.0, 3299.0, 12345.0])
+def test_a_calibration_off_the_illuminants_is_refused_not_rounded(banks, calibration):
+    with pytest.raises(SkinrenderError, match="one of the illuminants"):
+        calibration_index(banks[0].temperatures, calibration)
+    setting = noisy_setting("sony-imx174", 500.0, calibration=calibration)
+    rates = [bank_rates(bank, setting, 9) for bank in banks]
+    with pytest.raises(SkinrenderError, match="one of the illuminants"):
+        triplet_noisy_rates(*banks, *rates, [0, 1, 2], setting)
 
 
 def test_same_seed_same_value(banks):

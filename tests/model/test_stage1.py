@@ -89,6 +89,12 @@ class TestIlluminantSet:
         with pytest.raises(SkinrenderError):
             illuminant_set(spec)
 
+    @pytest.mark.parametrize("spec", ["3000,3300,3000", "A,2856", [2000.0, 2000.0]])
+    def test_a_repeated_temperature_is_refused(self, spec):
+        # each light is a prevailing light and a calibration: twice would double every search row
+        with pytest.raises(SkinrenderError, match="distinct"):
+            illuminant_set(spec)
+
     def test_auto_needs_camera(self):
         with pytest.raises(SkinrenderError, match="needs a camera"):
             illuminant_set("auto")
