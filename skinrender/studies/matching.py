@@ -36,7 +36,7 @@ from ..constants import TEMPERATURES_PAPER
 from .tables import PAPER_TABLES, TABLES
 
 __all__ = ["STEP_MATCH_NM", "TABLES_WITH_TEMPERATURE", "cell_triplets", "cell_temperatures", "cell_match",
-           "count_matches"]
+           "count_matches", "unmatched_sensors"]
 
 STEP_MATCH_NM = 10.0
 """A peak within this distance (nm) of the paper's counts as "within one step": the paper's position grid."""
@@ -160,3 +160,16 @@ def count_matches(rows: dict, paper: dict = PAPER_TABLES, step: float = STEP_MAT
                 shared += int(match["temperature"])
     total = {name: sum(c[name] for c in by_table.values()) for name in ("exact", "within_step", "total")}
     return {**total, "by_table": by_table, "temperatures": {"shared": shared, "total": counted}}
+
+
+def unmatched_sensors(sensors, paper: dict = PAPER_TABLES) -> list[str]:
+    """
+    A note for each sensor the paper's Tables 2–5 have no row for: its cells count in no match (``total``
+    leaves them out), which a reader of ``0/0`` would otherwise have to guess.
+
+    >>> unmatched_sensors([9, 17])
+    ["sensor 17: the paper's Tables 2–5 have no row for it, so its cells are in no match count"]
+    """
+    listed = {float(s) for cells in paper.values() for s in cells}
+    return [f"sensor {float(s):g}: the paper's Tables 2–5 have no row for it, so its cells are in no match count"
+            for s in sensors if float(s) not in listed]

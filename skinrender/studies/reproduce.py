@@ -30,6 +30,7 @@ from ..design.bank import SENSORS_PAPER
 from ..hints import ArrayLike
 from ..spectra import WavelengthGrid
 from .folders import MANIFEST, check_output, output_folder
+from .matching import unmatched_sensors
 from .normalisation import (STAGE2_CAMERA, STAGE2_NORMALISATIONS, stage2_cases, stage2_gamut_panels,
                             stage2_observation, stage2_pairs, stage2_write)
 from .observations import paper_cameras, stage1_text, stage2_by_camera
@@ -122,7 +123,8 @@ def reproduce(
         sensor), ``matches`` (``exact``, ``within_step``, ``total``),
         ``matches_by_table``, ``matches_temperature`` (Tables 2–3 cells sharing
         a calibration temperature, not part of ``matches``), ``search_s``
-        (seconds per sensor), ``elapsed_s`` and, with ``observations``,
+        (seconds per sensor), ``notes`` (sensors the paper has no row for),
+        ``elapsed_s`` and, with ``observations``,
         ``stage1_text`` and ``stage2_by_camera``.
     """
 
@@ -189,6 +191,7 @@ def reproduce(
             "matches_by_table": matches["by_table"],
             "matches_temperature": matches["temperatures"],
             "search_s": computed["search_s"],
+            "notes": unmatched_sensors(chosen),
             **({"stage1_text": side["stage1_text"], "stage2_by_camera": side["stage2_by_camera"]}
                if observations else {}),
         }
@@ -214,4 +217,5 @@ def summary_text(result: dict) -> str:
         lines.append(f"Stage 2 as the paper says, {row['camera']}: {row['as_paper']} of {row['total']} calibrations "
                      f"(largest gamut on the calibration: " + ", ".join(
                          f"{n} {row[n]['on_calibration']}/{row[n]['total']}" for n, _ in STAGE2_NORMALISATIONS) + ")")
+    lines += [f"note: {note}" for note in result.get("notes", [])]
     return "\n".join(lines)

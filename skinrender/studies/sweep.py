@@ -33,6 +33,7 @@ from ..design.bank import SENSORS_PAPER
 from ..errors import SkinrenderError
 from ..hints import ArrayLike
 from .folders import MANIFEST, check_output, output_folder
+from .matching import unmatched_sensors
 from .observations import paper_cameras, shared_file
 from .tables import TABLES
 from .unknowns import (SETTING_DEFAULT, Setting, check_positions, check_sensors, resolve_setting, setting_tables,
@@ -156,6 +157,7 @@ def sweep(
             candidates, notes, names = sweep_candidates(scratch, shared)
         else:
             notes, names = [], {}
+        notes = unmatched_sensors(chosen) + notes
 
         def run(setting: Setting, unknown: str) -> dict:
             if setting in done:
@@ -257,16 +259,19 @@ def write_sweep(result: dict, directory: str | Path) -> list[Path]:
 
 
 def reproduce_sweep(directory: str | Path, sensors: ArrayLike | str = SENSORS_PAPER,
-                    positions: str | ArrayLike = "400:700:10", base: Setting = SETTING_DEFAULT, **options) -> dict:
+                    positions: str | ArrayLike = "400:700:10", base: Setting = SETTING_DEFAULT,
+                    positions_flag: str = "--positions", **options) -> dict:
     """
     :func:`sweep` into ``directory`` (``sweep.csv``, ``sweep.md`` and the JSON
     as ``reproduce.json``), every argument and the folder checked first, the
-    folder moved into place only when complete. ``options`` go to :func:`sweep`.
+    folder moved into place only when complete. ``positions_flag`` names the
+    positions in errors (``--sweep-positions`` where the CLI took them from
+    there). ``options`` go to :func:`sweep`.
     """
     start = time.perf_counter()
     target = check_output(directory)
     check_sensors(sensors)
-    check_positions(positions, resolve_setting(base).grid)
+    check_positions(positions, resolve_setting(base).grid, positions_flag)
     check_workers(options.get("workers"))
     _check_combine(options.get("combine", 3), options.get("values_per_unknown", 1))
     with output_folder(target) as folder:

@@ -185,11 +185,11 @@ def check_sensors(sensors: str | ArrayLike) -> list[float]:
     return items
 
 
-def check_positions(positions: str | ArrayLike, grid: WavelengthGrid) -> NDArrayFloat:
-    """Sensor peaks (nm) from ``START:END:STEP``, at least three, inside ``grid``."""
-    where = _flagged("--positions", positions_grid, positions)
+def check_positions(positions: str | ArrayLike, grid: WavelengthGrid, flag: str = "--positions") -> NDArrayFloat:
+    """Sensor peaks (nm) from ``START:END:STEP``, at least three, inside ``grid``; errors name ``flag``."""
+    where = _flagged(flag, positions_grid, positions)
     if where.min() < grid.start or where.max() > grid.end:
-        raise SkinrenderError(f"--positions {where.min():g}–{where.max():g} nm leave the integration grid {grid} "
+        raise SkinrenderError(f"{flag} {where.min():g}–{where.max():g} nm leave the integration grid {grid} "
                               "(--grid)")
     return where
 

@@ -33,9 +33,8 @@ import numpy as np
 
 from ..design.bank import SensorBank, triplets
 from ..design.criteria import triplet_gains, triplet_volumes_many
-from ..design.search import SearchResult, progress_bar, stop_pool
+from ..design.search import WORKERS_MAX, SearchResult, dask_client, progress_bar, stop_pool
 from ..errors import SkinrenderError
-from ..extras import require
 from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import NDArrayFloat
 
@@ -63,20 +62,19 @@ def _dask_chunk(bank: SensorBank, index: np.ndarray) -> NDArrayFloat:
     return _chunk(0, index, (bank,))
 
 
-def _client(dask):
-    """A ``distributed.Client`` for an address (owned: closed after use) or the client given."""
-    require("dask", "--dask")
-    from distributed import Client
-
-    return (dask, False) if isinstance(dask, Client) else (Client(dask), True)
-
-
 def check_workers(workers: int | None, flag: str = "--workers") -> int:
-    """The worker count: ``None`` means every core; anything but an integer ≥ 1 is refused."""
+    """
+    The worker count: ``None`` means every core; anything but an integer in
+    ``[1, WORKERS_MAX]`` is refused (as :func:`skinrender.design.search.search` does).
+    """
     if workers is None:
         return os.cpu_count() or 1
-    if isinstance(workers, bool) or int(workers) != workers or workers < 1:
-        raise SkinrenderError(f"{flag} must be an integer ≥ 1 (processes), got {workers!r}")
+    try:
+        whole = not isinstance(workers, bool) and int(workers) == workers
+    except (TypeError, ValueError, OverflowError):
+        whole = False
+    if not whole or not 1 <= workers <= WORKERS_MAX:
+        raise SkinrenderError(f"{flag} must be an integer in [1, {WORKERS_MAX}] (processes), got {workers!r}")
     return int(workers)
 
 
@@ -158,7 +156,7 @@ def compute_volumes(
         bar.update(len(job[1]))
 
     if dask is not None:
-        client, own = _client(dask)
+        client, own = dask_client(dask)
         try:
             remote = client.scatter(list(items), broadcast=True)
             futures = [client.submit(_dask_chunk, remote[b], index[part], pure=False) for b, part in jobs]

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from skinrender.studies.matching import STEP_MATCH_NM, cell_match, cell_temperatures, cell_triplets, count_matches
+from skinrender.studies.matching import (STEP_MATCH_NM, cell_match, cell_temperatures, cell_triplets, count_matches,
+                                         unmatched_sensors)
 from skinrender.studies.tables import PAPER_TABLES
 
 # Our Tables 2–5 at the default setting and full size (`skinrender reproduce -o DIR`, measured): the
@@ -106,3 +107,9 @@ class TestCountMatches:
         counts = count_matches(rows)
         assert (counts["exact"], counts["within_step"], counts["total"]) == (11, 20, 48)
         assert [counts["by_table"][k]["exact"] for k in KEYS] == [3, 2, 0, 3, 2, 1]
+
+
+def test_sensors_without_a_row_in_the_paper_are_noted():
+    assert unmatched_sensors([1, 3, 5, 7, 9, 11, 13, 15]) == []
+    notes = unmatched_sensors([9, 17, 4.5])
+    assert [note.split(":")[0] for note in notes] == ["sensor 17", "sensor 4.5"]

@@ -46,6 +46,9 @@ class TestReproduce:
         assert {"560nm", "euclidean", "white", "as_paper", "total"} <= set(result["stage2_by_camera"][0])
         assert [row["camera"] for row in result["stage1_text"]["cameras"]] == cameras
         assert "of 12 cells exactly" in summary_text(result)
+        assert result["notes"] == []  # the paper has rows for sensors 1 and 9
+        unlisted = dict(result, notes=["sensor 17: the paper's Tables 2–5 have no row for it"])
+        assert summary_text(unlisted).endswith("note: sensor 17: the paper's Tables 2–5 have no row for it")
 
     def test_rerun_replaces_an_earlier_run(self, tmp_path):
         out = tmp_path / "out"

@@ -10,6 +10,7 @@ from skinrender.design.bank import positions_grid, sensor_bank, triplets
 from skinrender.design.search import search
 from skinrender.errors import SkinrenderError
 from skinrender.spectra import GRID_DEFAULT
+from skinrender.design.search import WORKERS_MAX
 from skinrender.studies.volumes import (VolumeCache, bank_key, check_workers, chunk_gains, compute_volumes,
                                         search_result)
 
@@ -80,7 +81,10 @@ class TestCheckWorkers:
     def test_default_is_every_core(self):
         assert check_workers(None) >= 1
 
-    @pytest.mark.parametrize("bad", [0, -1, 1.5, True])
+    def test_the_bounds_are_search_s(self):
+        assert check_workers(1) == 1 and check_workers(WORKERS_MAX) == WORKERS_MAX
+
+    @pytest.mark.parametrize("bad", [0, -1, 1.5, True, 1000, "2", float("nan")])
     def test_refused(self, bad):
         with pytest.raises(SkinrenderError, match="--workers"):
             check_workers(bad)
