@@ -9,7 +9,7 @@ import math
 import sys
 
 from ..errors import SkinrenderError
-from .common import (add_common, add_grid, add_search, check_output, flag, imaging_options,
+from .common import (add_common, add_grid, add_search, check_output, flag, imaging_options, integer_in,
                      emit, grid_of)
 
 
@@ -34,6 +34,8 @@ def noisy_of(args: argparse.Namespace):
         return None
     from ..design.noise_aware import noisy_setting
 
+    integer_in(args.noise_samples, "--noise-samples", 1, 1000)
+    integer_in(args.noise_seed, "--noise-seed", 0, 2**32 - 1)
     return flag("--imager", noisy_setting, imaging["imager_"], imaging["illuminance_lux"], imaging["exposure"],
                 args.noise_calibration, args.noise_samples, args.noise_seed)
 
@@ -43,7 +45,8 @@ def add_parsers(commands) -> None:
     p = commands.add_parser("search", help="Stage 3: gamut volumes of every sensor triplet (Tables 2–5)")
     p.add_argument("--sensor", required=True, type=float,
                    help="the paper's sensor: 1 (impulse) or N = 3, 5, … (gbell, FWHM N·10 nm)")
-    p.add_argument("--slope", type=float, default=2.0, help="gbell slope b (default 2; the paper does not give it)")
+    p.add_argument("--slope", type=float, default=None,
+                   help="gbell slope b (default 2; the paper does not give it; the impulse has none)")
     p.add_argument("--positions", default="400:700:10",
                    help="peak positions START:END:STEP in nm (default 400:700:10: 31 positions, 4495 triplets)")
     add_search(p)
@@ -98,28 +101,47 @@ def command_search(args: argparse.Namespace) -> None:
     check_output(args.csv, "--csv", (".csv",))
     if not (math.isfinite(args.tie_tolerance) and args.tie_tolerance >= 0):
         raise SkinrenderError(f"--tie-tolerance must be a finite relative difference ≥ 0, got {args.tie_tolerance}")
+    max_triplets = integer_in(args.max_triplets, "--max-triplets", 1)
     grid = grid_of(args)
     skin = flag("--skin", reflectances, args.skin, extrapolation=args.extrapolation)
     munsell = flag("--munsell", reflectances, args.munsell, extrapolation=args.extrapolation)
+    rule = None if args.extrapolation == "refuse" else args.extrapolation  # named sets take it too, as in reproduce
+    skin_values = flag("--skin", skin.on, grid, rule)
+    munsell_values = flag("--munsell", munsell.on, grid, rule)
+    if isinstance(args.illuminants, str) and args.illuminants.strip().lower() == "auto":
+        raise SkinrenderError("--illuminants: 'auto' (Stage 1 for a camera) is for reproduce and stage1; "
+                              "search takes 'paper' or comma-separated kelvin")
     temperatures = flag("--illuminants", illuminant_set, args.illuminants)
     positions = flag("--positions", positions_grid, args.positions)
     if not (math.isfinite(args.sensor) and args.sensor > 0):
         raise SkinrenderError(f"--sensor must be 1 (impulse) or a gbell number N > 1 (FWHM N·10 nm), got {args.sensor}")
-    flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, args.slope)
-    flag("--illuminants", sensor_bank, args.sensor, skin.on(grid)[:1], positions[:3], temperatures, args.slope,
+    slope = 2.0 if args.slope is None else args.slope
+    if not (math.isfinite(slope) and slope > 0):
+        raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope}")
+    if args.workers is not None:
+        from ..design.search import WORKERS_MAX
+
+        integer_in(args.workers, "--workers", 1, WORKERS_MAX)
+    flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, slope)
+    flag("--illuminants", sensor_bank, args.sensor, skin_values[:1], positions[:3], temperatures, slope,
          grid=grid)
+    noisy = noisy_of(args)
+    if noisy is not None:
+        from ..design.noise_aware import calibration_index
+
+        flag("--noise-calibration", calibration_index, temperatures, args.noise_calibration)
     result = search(
-        args.sensor, skin.on(grid), munsell.on(grid), args.positions, temperatures, args.slope, grid=grid,
+        args.sensor, skin_values, munsell_values, args.positions, temperatures, slope, grid=grid,
         method=args.method, workers=args.workers, dask=args.dask,
         progress=None if args.quiet else sys.stderr, label=f"sensor {args.sensor:g}", detection=args.detection,
-        max_triplets=args.max_triplets, noisy=noisy_of(args),
+        max_triplets=max_triplets, noisy=noisy,
     )
     if args.csv is not None:
         result.to_csv(args.csv)
     best = result.table(args.tie_tolerance)
     document = {
         "sensor": args.sensor,
-        "slope": args.slope,
+        "slope": slope,
         "positions": result.positions.tolist(),
         "triplets": int(len(result.triplets)),
         "illuminants_K": result.temperatures.tolist(),
@@ -134,6 +156,7 @@ def command_search(args: argparse.Namespace) -> None:
         **best,
         "elapsed_s": result.elapsed_s,
         "csv": args.csv,
+        "notes": search_notes(result, best, None if args.sensor != 1 else args.slope),
     }
     lines = [f"sensor {args.sensor:g}: {len(result.triplets)} triplets in {result.elapsed_s:.1f} s "
              f"({result.method}, {result.workers} workers); volumes in output units³"]
@@ -142,7 +165,31 @@ def command_search(args: argparse.Namespace) -> None:
                        ("min_noisy_fpr", "min false-positive rate on noisy pixels (TPR ≥ 0.9)")):
         if key in best:
             lines += [f"{label}:"] + [f"  {_row_text(row)}" for row in best[key]]
+    lines += [f"note: {note}" for note in document["notes"]]
     emit(args, document, "\n".join(lines))
+
+
+def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
+    """
+    What a search's tables do not show by themselves: a ``--slope`` given for the impulse (which has none), gamuts
+    that are all degenerate (zero volume), and a noisy criterion that no triplet meets.
+    """
+    import numpy as np
+
+    notes = []
+    if impulse_slope is not None:
+        notes.append(f"--slope {impulse_slope:g} does not apply: the impulse sensor (--sensor 1) has no slope")
+    for name in ("skin", "munsell"):
+        volumes = getattr(result, name)
+        for columns, cases in ((slice(0, -1), "one-calibration"), (slice(-1, None), "all-calibration")):
+            if volumes.size and not np.any(volumes[:, columns] > 0):
+                label = {"skin": "skin", "munsell": "Munsell"}[name]
+                notes.append(f"every {cases} {label} gamut has zero volume (degenerate: a --grid too coarse for "
+                             "the sensors, or channels that coincide); the tables list every triplet as tied")
+    if result.noisy is not None and not best.get("min_noisy_fpr"):
+        notes.append(f"no triplet keeps a noisy TPR ≥ {result.info['tpr_min']:g}: the skin leaves its locus on "
+                     "noisy pixels (too little light, or pixels clipped at the full well by a long --exposure)")
+    return notes
 
 
 def command_design(args: argparse.Namespace) -> None:
@@ -164,6 +211,11 @@ def command_design(args: argparse.Namespace) -> None:
     noisy = noisy_of(args)
     if noisy is not None and args.objective != "detection":
         raise SkinrenderError("--imager goes with --objective detection (noisy pixels), not ratio")
+    if noisy is not None:
+        from ..constants import TEMPERATURES_PAPER
+        from ..design.noise_aware import calibration_index
+
+        flag("--noise-calibration", calibration_index, TEMPERATURES_PAPER, args.noise_calibration)
     result = optimise_camera(args.objective, skin.on(grid), munsell.on(grid), starts, args.sensor * 10.0, args.slope,
                              args.free_shape, args.evaluations, noisy=noisy)
     document = {"objective": args.objective, "camera": result.camera_spec, "peaks": result.peaks.tolist(),

@@ -5,9 +5,11 @@ Commands of the analytic model: ``illuminants`` (Stage 1), ``response`` (Eq. 4),
 from __future__ import annotations
 
 import argparse
+import math
 
 from ..errors import SkinrenderError
-from .common import HELP_CAMERA, camera_of, check_lights, HELP_ILLUMINANT, add_common, add_grid, add_model, emit, flag, grid_of, table
+from .common import (HELP_CAMERA, camera_of, check_lights, HELP_ILLUMINANT, add_common, add_grid, add_model, emit, flag,
+                     grid_of, integer_in, table)
 
 
 def add_parsers(commands) -> None:
@@ -52,8 +54,16 @@ def add_parsers(commands) -> None:
 
 
 def command_illuminants(args: argparse.Namespace) -> None:
-    from ..model.stage1 import illuminant_selection
+    import numpy as np
 
+    from ..model.chromaticity import measure
+    from ..model.stage1 import illuminant_selection, temperature_range
+
+    integer_in(args.count, "--count", 2)  # each flag checked on its own, so that its error names it
+    if not (math.isfinite(args.step) and args.step > 0):
+        raise SkinrenderError(f"--step must be a finite number of kelvin > 0, got {args.step}")
+    flag("--range", temperature_range, args.range[0], args.range[1], args.step)
+    flag("--pair", measure, np.full((1, 3), 1.0 / 3.0), args.pair)
     cam = camera_of(args, grid_of(args))
     selection = illuminant_selection(
         cam, args.count, args.range[0], args.range[1], args.step, grid_of(args), args.pair

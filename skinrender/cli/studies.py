@@ -8,7 +8,7 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, add_common, add_grid, add_search,
+from .common import (HELP_CAMERA, add_common, add_grid, add_search, check_output, flag, integer_in,
                      emit, table)
 
 
@@ -29,6 +29,10 @@ def size_text(size) -> str:
     return f"{size[0]}×{size[1]} px"
 
 
+POSITIONS_DEFAULT = "400:700:10"
+"""``reproduce --positions`` when not given (the paper's 31 peaks)."""
+
+
 def add_parsers(commands) -> None:
     """Add the parsers of reproduce, table1, bench."""
     p = commands.add_parser("reproduce", help="the paper's Figs. 3–7 (PNG) and Tables 2–5 (Markdown, CSV), with "
@@ -36,7 +40,7 @@ def add_parsers(commands) -> None:
     p.add_argument("-o", "--output", required=True,
                    help="output folder: new, empty or an earlier reproduce folder (replaced only when the run completes)")
     p.add_argument("--sensors", default="1,3,5,7,9,11,13,15", help="sensor numbers (default 1,3,…,15)")
-    p.add_argument("--positions", default="400:700:10", help="peak positions START:END:STEP in nm (default 400:700:10)")
+    p.add_argument("--positions", help=f"peak positions START:END:STEP in nm (default {POSITIONS_DEFAULT})")
     p.add_argument("--camera", default="Nikon 5100 (NPL)",
                    help="Stage 2 camera for Figs. 3–7 (the paper's Sony is not public); " + HELP_CAMERA)
     p.add_argument("--slope", type=float, default=2.0, help="gbell slope b, not given by the paper (default 2)")
@@ -87,17 +91,36 @@ def add_parsers(commands) -> None:
     add_common(p)
 
 
+SWEEP_FLAGS = {"sweep_positions": None, "sweep_combine": 3, "sweep_values": 1}
+"""``reproduce`` flags of ``--sweep`` only, with their defaults (a flag is given when its value differs)."""
+
+
+def check_sweep_flags(args: argparse.Namespace) -> None:
+    """
+    ``--sweep-*`` without ``--sweep``, and ``--positions`` beside ``--sweep-positions`` (the sweep would use
+    one of the two), refused with one line naming the flag rather than silently ignored.
+    """
+    given = [dest for dest, default in SWEEP_FLAGS.items() if getattr(args, dest) != default]
+    if not args.sweep and given:
+        raise SkinrenderError(f"--{given[0].replace('_', '-')} goes with --sweep")
+    if args.sweep and args.sweep_positions is not None and args.positions is not None:
+        raise SkinrenderError("--positions: the sweep takes its peaks from --sweep-positions; give one of the two")
+
+
 def command_reproduce(args: argparse.Namespace) -> None:
     progress = None if args.quiet else sys.stderr
     if args.stage1_camera is not None and args.illuminants.strip().lower() != "auto":
         raise SkinrenderError(f"--stage1-camera is the camera of --illuminants auto; got --illuminants {args.illuminants!r}")
+    check_sweep_flags(args)
     if args.sweep:
         from ..studies.sweep import reproduce_sweep
         from ..studies.unknowns import Setting
 
         base = Setting(args.slope, args.grid, args.skin, args.munsell, args.illuminants,
                        args.stage1_camera or args.camera, args.extrapolation)
-        result = reproduce_sweep(args.output, args.sensors, args.sweep_positions or args.positions, base,
+        positions, named = ((args.sweep_positions, "--sweep-positions") if args.sweep_positions is not None
+                            else (args.positions or POSITIONS_DEFAULT, "--positions"))
+        result = reproduce_sweep(args.output, args.sensors, positions, base, positions_flag=named,
                                  combine=args.sweep_combine, values_per_unknown=args.sweep_values,
                                  workers=args.workers, dask=args.dask, progress=progress)
         rows = [[r["setting"], r["unknown"], f"{r['exact']}/{r['total']}", str(r["within_step"]), f"{r['seconds']:.1f}"]
@@ -110,7 +133,8 @@ def command_reproduce(args: argparse.Namespace) -> None:
     from ..studies.reproduce import reproduce, summary_text
 
     result = reproduce(
-        args.output, args.sensors, args.positions, args.camera, args.skin, args.munsell, args.slope, args.grid,
+        args.output, args.sensors, args.positions or POSITIONS_DEFAULT, args.camera, args.skin, args.munsell,
+        args.slope, args.grid,
         workers=args.workers, dask=args.dask, progress=progress, illuminants=args.illuminants,
         stage1_camera=args.stage1_camera, extrapolation=args.extrapolation, figures=not args.no_figures,
     )
@@ -246,9 +270,18 @@ def command_bench(args: argparse.Namespace) -> None:
                 + "".join(undefined))
         emit(args, result, text)
         return
+    if args.workers is not None:  # before any timing starts
+        from ..design.search import WORKERS_MAX
+
+        integer_in(args.workers, "--workers", 1, WORKERS_MAX)
+    if args.what == "sweep":
+        from ..design.bank import positions_grid
+
+        flag("--positions", positions_grid, _or_default(args, "positions"))
     if args.what == "render":
         from ..studies.bench import bench_render
 
+        check_output(args.plot, "--plot", (".png",))  # before the ~30 s of timing
         result = bench_render(quick=args.quick)
         if args.plot:
             from ..studies.figures import figure_render_curve

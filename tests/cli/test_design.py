@@ -26,13 +26,22 @@ DESIGN = ["design", "--evaluations", "3"]
     (["--positions", "400:700:1", "--max-triplets", "1000"], ("max_triplets", "--max-triplets")),
     (["--tie-tolerance", "-1"], "--tie-tolerance"),
     (["--tie-tolerance", "nan"], "--tie-tolerance"),
-    (["--workers", "0"], "workers"),
-    (["--workers", "1000"], "workers"),
+    (["--workers", "0"], "--workers"),
+    (["--workers", "1000"], "--workers"),
+    (["--max-triplets", "0"], "--max-triplets"),
+    (["--max-triplets", "-5"], "--max-triplets"),
     (["--sensor", "0"], "sensor"),
     (["--sensor", "-3"], "sensor"),
     (["--sensor", "nan"], "sensor"),
-    (["--slope", "0"], "slope"),
+    (["--slope", "0"], "--slope"),
+    (["--slope", "nan"], "--slope"),
     (["--illuminants", "20,3300"], ("--illuminants", "20K", "no light")),
+    (["--illuminants", "auto"], ("--illuminants", "auto")),
+    (["--illuminants", "3000,3300,3000"], ("--illuminants", "distinct", "3000 K")),
+    (["--imager", "sony-imx174", "--noise-samples", "0"], "--noise-samples"),
+    (["--imager", "sony-imx174", "--noise-seed", "-1"], "--noise-seed"),
+    (["--imager", "sony-imx174", "--noise-calibration", "3000"], ("--noise-calibration", "3300")),
+    (["--grid", "380:780:5"], ("--skin", "extrapolation")),
     (["--illuminants", "2000,,x"], "--illuminants"),
     (["--sensor", "1", "--positions", "400.5:650.5:50"], ("--positions", "400.5")),
     (["--skin", "skn"], ("--skin", "skn")),
@@ -64,6 +73,30 @@ def test_search_checks_the_csv_path_before_searching(target, bad_files, tmp_path
     assert_refused(SEARCH + ["--positions", "400:700:50", "--csv", path], "--csv", capsys, output=tmp_path)
 
 
+def test_search_extrapolates_named_sets_when_told(capsys):
+    # the skin set is measured over 390–730 nm: a 380–780 nm grid needs --extrapolation, which named sets take too
+    status, out, err = run(SEARCH + ["--positions", "400:700:100", "--grid", "380:780:5", "--extrapolation", "constant",
+                                     "--json"], capsys)
+    assert status == 0, err
+    assert json.loads(out)["triplets"] == 4
+
+
+@pytest.mark.parametrize("extra, expected", [
+    ([], []),
+    (["--sensor", "1", "--slope", "3"], ["--slope 3 does not apply"]),
+    # two wavelength samples: every one-calibration cloud is flat
+    (["--grid", "400:700:300"], ["every one-calibration skin gamut has zero volume",
+                                 "every one-calibration Munsell gamut has zero volume"]),
+    (["--imager", "sony-imx174", "--exposure", "10"], ["no triplet keeps a noisy TPR ≥ 0.9"]),
+])
+def test_search_notes_what_its_tables_do_not_show(extra, expected, capsys):
+    argv = [a for a in SEARCH if a != "9" and a != "--sensor"] + (["--sensor", "9"] if "--sensor" not in extra else [])
+    status, out, err = run(argv + ["--positions", "400:700:100", *extra, "--json"], capsys)
+    assert status == 0, err
+    notes = json.loads(out)["notes"]
+    assert len(notes) == len(expected) and all(n.startswith(e) for n, e in zip(notes, expected)), notes
+
+
 def test_search_writes_its_csv_where_told(tmp_path, capsys):
     status, out, _ = run(SEARCH + ["--positions", "400:700:100", "--csv", tmp_path / "new" / "s.csv", "--json"], capsys)
     assert status == 0 and json.loads(out)["triplets"] == 4 and (tmp_path / "new" / "s.csv").is_file()
@@ -83,6 +116,8 @@ def test_search_writes_its_csv_where_told(tmp_path, capsys):
     (["--starts", ""], "--starts"),
     (["--objective", "beauty"], "--objective"),
     (["--munsell", "nosuch"], "--munsell"),
+    (["--imager", "sony-imx174", "--noise-calibration", "3000"], "--noise-calibration"),
+    (["--imager", "sony-imx174", "--noise-samples", "1001"], "--noise-samples"),
 ])
 def test_design_refuses(extra, names, capsys):
     assert_refused(DESIGN + extra, names, capsys)

@@ -43,6 +43,10 @@ GAMUT = ["gamut", "--camera", CAM, "--reflectances", "macbeth"]
     (ILLUMINANTS + ["--grid", "400:700:7"], "--grid"),
     (ILLUMINANTS + ["--grid", "a:b:c"], "--grid"),
     (ILLUMINANTS + ["--count", "x"], "--count"),
+    (ILLUMINANTS + ["--count", "0"], "--count"),
+    (ILLUMINANTS + ["--step", "0"], "--step"),
+    (ILLUMINANTS + ["--range", "10000", "2000"], ("--range", "above its start")),
+    (ILLUMINANTS + ["--pair", "xx"], ("--pair", "two of r, g, b")),
     (ILLUMINANTS + ["--extrapolation", "nearest"], "--extrapolation"),
 ])
 def test_illuminants_refuses(argv, names, capsys):

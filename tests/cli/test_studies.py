@@ -1,6 +1,6 @@
 """
-``skinrender bench render --scene`` (:mod:`skinrender.cli.studies`): the face bench's document, and its flags
-refused (exit 2, one line naming the flag) before anything renders.
+``skinrender bench`` and ``reproduce`` (:mod:`skinrender.cli.studies`): the face bench's document, and the
+flags of the benchmarks and of ``reproduce`` refused (exit 2, one line naming the flag) before any work.
 """
 
 from __future__ import annotations
@@ -88,3 +88,39 @@ def test_face_bench_text_shows_no_none_and_the_json_gives_reasons(monkeypatch, c
     for presets in document["presets"].values():
         for key in ("draft", "standard", "reference", "spp_at_floor"):
             assert (presets[key] is None) == (key in presets["undefined"]), (key, presets)
+
+
+@pytest.mark.parametrize("argv, names", [
+    # checked before any timing starts
+    (["render", "--plot", "curve.txt"], ("--plot", ".png")),
+    (["render", "--quick", "--plot", "{file}/curve.png"], ("--plot", "is a file")),
+    (["render", "--plot", "{folder}"], ("--plot", "is a folder")),
+    (["search", "--workers", "100"], "--workers"),
+    (["search", "--workers", "0"], "--workers"),
+    (["sweep", "--workers", "100"], "--workers"),
+    (["sweep", "--positions", "700:400:10"], "--positions"),
+])
+def test_chart_bench_refusals(argv, names, tmp_path, capsys):
+    (tmp_path / "file").write_text("x")
+    argv = [a.format(file=tmp_path / "file", folder=tmp_path) for a in argv]
+    assert_refused(["bench", *argv], names, capsys)
+
+
+@pytest.mark.parametrize("argv, names", [
+    (["--sweep-combine", "2"], ("--sweep-combine", "--sweep")),
+    (["--sweep-values", "2"], ("--sweep-values", "--sweep")),
+    (["--sweep-positions", "400:700:100"], ("--sweep-positions", "--sweep")),
+    # the sweep takes one of the two position flags, and its errors name the one given
+    (["--sweep", "--positions", "400:700:50", "--sweep-positions", "400:700:100"], ("--positions", "--sweep-positions")),
+    (["--sweep", "--sweep-positions", "700:400:10"], "--sweep-positions"),
+    (["--sweep", "--sweep-positions", "300:700:100"], ("--sweep-positions", "--grid")),
+    (["--workers", "1000"], "--workers"),
+    (["--sweep", "--workers", "1000"], "--workers"),
+    (["--illuminants", "3000,3300,3000"], ("--illuminants", "distinct")),
+    (["--dask", "nonsense"], "--dask"),
+])
+def test_reproduce_refusals(argv, names, tmp_path, capsys):
+    output = tmp_path / "out"
+    small = [] if "--sweep-positions" in argv else ["--positions", "400:700:100", "--no-figures"]
+    assert_refused(["reproduce", "-o", output, "--sensors", "3", "--quiet", *small, *argv], names, capsys)
+    assert not output.exists()
