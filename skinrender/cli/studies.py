@@ -71,7 +71,8 @@ def add_parsers(commands) -> None:
 
     p = commands.add_parser("bench", help="speed and accuracy figures")
     p.add_argument("what", choices=["analytic", "search", "sweep", "render"], help="which benchmark")
-    p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant)")
+    p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant); search: "
+                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep (~15 s)")
     p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG")
     p.add_argument("--repeat", type=int, help="analytic: timed repetitions, best kept (default 3)")
     p.add_argument("--sensor", type=float, help="search: sensor number (default 9)")
@@ -156,7 +157,7 @@ FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
 """``bench`` flags that go with ``render --scene``."""
 
 BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
-               "positions": ("sweep",), "quick": ("render",), "plot": ("render",), "scene": ("render",)}
+               "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render",), "scene": ("render",)}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
 :data:`FACE_BENCH_FLAGS`."""
 
@@ -288,7 +289,8 @@ def command_bench(args: argparse.Namespace) -> None:
 
             result["plot"] = str(figure_render_curve(result, args.plot))
     elif args.what == "search":
-        result = bench_search(_or_default(args, "sensor"), _or_default(args, "sample"), workers=args.workers)
+        quick = {"full_steps": (20.0,), "sweep_positions": None} if args.quick else {}
+        result = bench_search(_or_default(args, "sensor"), _or_default(args, "sample"), workers=args.workers, **quick)
     elif args.what == "sweep":
         result = bench_sweep(_or_default(args, "positions"), workers=args.workers)
     else:
