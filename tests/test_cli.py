@@ -124,6 +124,17 @@ def test_entry_point_subprocess():
     assert bad.returncode == 2 and bad.stdout == "" and "unknown camera" in bad.stderr
 
 
+@pytest.mark.skipif(not __import__("os").path.exists("/dev/full"), reason="needs Linux's /dev/full (always full)")
+@pytest.mark.parametrize("json_flag", [[], ["--json"]])
+def test_a_full_standard_output_is_one_line_not_an_internal_error(json_flag):
+    with open("/dev/full", "w") as full:
+        done = subprocess.run([sys.executable, "-m", "skinrender", "cameras", *json_flag], stdout=full,
+                              stderr=subprocess.PIPE, text=True)
+    lines = done.stderr.splitlines()
+    assert done.returncode == 1 and len(lines) == 1, done.stderr
+    assert "No space left on device" in lines[0] and "internal error" not in lines[0]
+
+
 class TestGamutCommand:
     def test_volume(self, capsys):
         document = run_json(capsys, "gamut", "--camera", "gbell:9@450,540,610", "--reflectances", "skin",

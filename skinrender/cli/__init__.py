@@ -75,6 +75,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         commands.choices[args.command].error(f"unrecognized arguments: {' '.join(extra)}")
     try:
         COMMANDS[args.command](args)
+        sys.stdout.flush()  # here, so that a failing standard output is reported below, not at exit
     except SkinrenderError as error:
         print(f"skinrender {args.command}: error: {' '.join(str(error).split())}", file=sys.stderr)
         return 2
@@ -84,6 +85,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         os._exit(130)
     except BrokenPipeError:
         return 0
+    except OSError as error:  # the machine's, not the input's: a full disk or a full standard output
+        where = f" ({error.filename})" if error.filename else ""
+        print(f"skinrender {args.command}: error: {error.strerror or error}{where}", file=sys.stderr)
+        return 1
     except MemoryError:
         print(f"skinrender {args.command}: error: out of memory: ask for less (a coarser grid, fewer positions)",
               file=sys.stderr)
