@@ -48,3 +48,13 @@ def test_command_line_refusal(capsys):
     assert main(["bench", "analytic", "--repeat", "0"]) == 2
     err = capsys.readouterr().err
     assert "--repeat" in err and err.count("\n") == 1
+
+
+def test_bench_render_elapsed_is_the_whole_run_not_the_curve_sum():
+    pytest.importorskip("mitsuba")
+    from skinrender.rendering.variants import choose_variant
+    from skinrender.studies.bench import bench_render
+
+    result = bench_render(variants=(choose_variant(),), spps=(4,), samplers=("multijitter",), all_pairs=False)
+    assert result["curve_s"] == pytest.approx(sum(row["seconds"] for row in result["curve"]))
+    assert result["elapsed_s"] > result["curve_s"]  # the warm-up render alone is outside the curve's timings
