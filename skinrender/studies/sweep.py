@@ -196,9 +196,12 @@ def sweep(
 
 
 def _check_combine(combine, values_per_unknown) -> None:
-    for flag, value, low in (("--sweep-combine", combine, 0), ("--sweep-values", values_per_unknown, 1)):
-        if isinstance(value, bool) or not isinstance(value, int) or value < low:
-            raise SkinrenderError(f"{flag} must be an integer ≥ {low}, got {value!r}")
+    """``--sweep-combine`` in [0, the number of unknowns] (more would be cut silently), ``--sweep-values`` ≥ 1."""
+    for flag, value, low, high in (("--sweep-combine", combine, 0, len(UNKNOWNS)),
+                                   ("--sweep-values", values_per_unknown, 1, None)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < low or (high is not None and value > high):
+            bounds = f"≥ {low}" if high is None else f"in [{low}, {high}] (the unknowns: {', '.join(UNKNOWNS)})"
+            raise SkinrenderError(f"{flag} must be an integer {bounds}, got {value!r}")
 
 
 def _rank(rows: list[dict], default: dict) -> list[str]:

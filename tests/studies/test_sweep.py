@@ -55,6 +55,8 @@ class TestReproduceSweep:
 
     @pytest.mark.parametrize(("argument", "value", "flag"), [
         ("sensors", "1,x", "--sensors"), ("positions", "400:900:10", "--positions"), ("workers", 0, "--workers"),
+        ("workers", 1000, "--workers"), ("combine", 6, "--sweep-combine"), ("combine", -1, "--sweep-combine"),
+        ("values_per_unknown", 0, "--sweep-values"),
     ])
     def test_refusals_leave_no_folder(self, tmp_path, argument, value, flag):
         options = {"sensors": [9], "positions": "400:700:100", "workers": 1, argument: value}
