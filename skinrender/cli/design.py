@@ -44,7 +44,8 @@ def add_parsers(commands) -> None:
     """Add the parsers of search, design."""
     p = commands.add_parser("search", help="Stage 3: gamut volumes of every sensor triplet (Tables 2–5)")
     p.add_argument("--sensor", required=True, type=float,
-                   help="the paper's sensor: 1 (impulse) or N = 3, 5, … (gbell, FWHM N·10 nm)")
+                   help="the paper's sensor: 1 (impulse) or a gbell N > 1 of FWHM N·10 nm (the paper's 3, 5, …, "
+                   "15; any N > 1 is taken)")
     p.add_argument("--slope", type=float, default=None,
                    help="gbell slope b (default 2; the paper does not give it; the impulse has none)")
     p.add_argument("--positions", default="400:700:10",
