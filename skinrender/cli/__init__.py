@@ -19,6 +19,7 @@ they share.
 from __future__ import annotations
 
 import argparse
+import errno
 import os
 import sys
 from collections.abc import Sequence
@@ -85,8 +86,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         os._exit(130)
     except BrokenPipeError:
         return 0
-    except OSError as error:  # the machine's, not the input's: a full disk or a full standard output
-        where = f" ({error.filename})" if error.filename else ""
+    except OSError as error:
+        if error.errno not in MACHINE_ERRNOS:
+            return _internal_error(args.command, error)
+        where = f" ({error.filename})" if error.filename else ""  # the machine's, not the input's: one line
         print(f"skinrender {args.command}: error: {error.strerror or error}{where}", file=sys.stderr)
         return 1
     except MemoryError:
@@ -94,10 +97,19 @@ def main(argv: Sequence[str] | None = None) -> int:
               file=sys.stderr)
         return 2
     except Exception as error:  # the last resort: one line, never a traceback (a bug to report)
-        print(f"skinrender {args.command}: internal error: {type(error).__name__}: "
-              f"{' '.join(str(error).split())[:300]} (please report this)", file=sys.stderr)
-        return 1
+        return _internal_error(args.command, error)
     return 0
+
+
+MACHINE_ERRNOS = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EIO, errno.EROFS})
+"""Errors of the machine rather than of the input or of skinrender (a full disk or standard output, a failing
+device, a read-only file system): said in one line; any other ``OSError`` is an internal error to report."""
+
+
+def _internal_error(command: str, error: BaseException) -> int:
+    print(f"skinrender {command}: internal error: {type(error).__name__}: "
+          f"{' '.join(str(error).split())[:300]} (please report this)", file=sys.stderr)
+    return 1
 
 
 if __name__ == "__main__":

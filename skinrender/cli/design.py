@@ -21,31 +21,53 @@ def add_noisy(parser) -> None:
                         help="with --imager: lx at the chart (default 500)")
     parser.add_argument("--exposure", default=None, help="with --imager: s, or auto (the calibration white at 0.7 of "
                         "the full well, at most a 1/30 s video frame; default)")
-    parser.add_argument("--noise-calibration", type=float, default=3300.0,
+    parser.add_argument("--noise-calibration", type=float, default=None,
                         help="with --imager: the white balance (K, one of the illuminants; default 3300)")
-    parser.add_argument("--noise-samples", type=int, default=4, help="with --imager: noisy frames per pixel (default 4)")
-    parser.add_argument("--noise-seed", type=int, default=0, help="with --imager: the noise seed (default 0)")
+    parser.add_argument("--noise-samples", type=int, default=None,
+                        help="with --imager: noisy frames per pixel (default 4)")
+    parser.add_argument("--noise-seed", type=int, default=None, help="with --imager: the noise seed (default 0)")
 
 
-def noisy_of(args: argparse.Namespace):
-    """The :class:`~skinrender.design.noise_aware.NoisySetting` of the flags, or ``None`` without ``--imager``."""
+NOISE_FLAGS = ("noise_calibration", "noise_samples", "noise_seed")
+
+
+def noisy_of(args: argparse.Namespace, temperatures=None):
+    """
+    The :class:`~skinrender.design.noise_aware.NoisySetting` of the flags, or ``None`` without ``--imager``
+    (then a ``--noise-*`` flag given is refused, not ignored). The calibration must be one of ``temperatures``
+    (K; default the paper's); without ``--noise-calibration`` it is 3300 K where that is one of them.
+    """
+    from ..constants import TEMPERATURES_PAPER
+    from ..design.noise_aware import (NOISE_CALIBRATION_K, NOISE_SAMPLES_MAX, NOISE_SEED_MAX, calibration_index,
+                                      noisy_setting)
+
     imaging = imaging_options(args)  # --imager, --illuminance and --exposure, checked as for renders
     if imaging is None:
+        given = [name for name in NOISE_FLAGS if getattr(args, name, None) is not None]
+        if given:
+            raise SkinrenderError(f"--{given[0].replace('_', '-')} goes with --imager (the noisy criterion)")
         return None
-    from ..design.noise_aware import noisy_setting
-
-    integer_in(args.noise_samples, "--noise-samples", 1, 1000)
-    integer_in(args.noise_seed, "--noise-seed", 0, 2**32 - 1)
+    samples = 4 if args.noise_samples is None else integer_in(args.noise_samples, "--noise-samples", 1,
+                                                              NOISE_SAMPLES_MAX)
+    seed = 0 if args.noise_seed is None else integer_in(args.noise_seed, "--noise-seed", 0, NOISE_SEED_MAX)
+    temperatures = TEMPERATURES_PAPER if temperatures is None else temperatures
+    calibration = args.noise_calibration
+    if calibration is None:
+        calibration = NOISE_CALIBRATION_K
+        if NOISE_CALIBRATION_K not in list(temperatures):
+            raise SkinrenderError(f"--noise-calibration: the default {NOISE_CALIBRATION_K:g} K is not one of the "
+                                  "illuminants; give one of them")
+    flag("--noise-calibration", calibration_index, temperatures, calibration)
     return flag("--imager", noisy_setting, imaging["imager_"], imaging["illuminance_lux"], imaging["exposure"],
-                args.noise_calibration, args.noise_samples, args.noise_seed)
+                calibration, samples, seed)
 
 
 def add_parsers(commands) -> None:
     """Add the parsers of search, design."""
     p = commands.add_parser("search", help="Stage 3: gamut volumes of every sensor triplet (Tables 2–5)")
     p.add_argument("--sensor", required=True, type=float,
-                   help="the paper's sensor: 1 (impulse) or a gbell N > 1 of FWHM N·10 nm (the paper's 3, 5, …, "
-                   "15; any N > 1 is taken)")
+                   help="the paper's sensor: 1 (impulse), or else a gbell of FWHM N·10 nm, N > 0 (the paper's 3, "
+                   "5, …, 15)")
     p.add_argument("--slope", type=float, default=None,
                    help="gbell slope b (default 2; the paper does not give it; the impulse has none)")
     p.add_argument("--positions", default="400:700:10",
@@ -115,7 +137,8 @@ def command_search(args: argparse.Namespace) -> None:
     temperatures = flag("--illuminants", illuminant_set, args.illuminants)
     positions = flag("--positions", positions_grid, args.positions)
     if not (math.isfinite(args.sensor) and args.sensor > 0):
-        raise SkinrenderError(f"--sensor must be 1 (impulse) or a gbell number N > 1 (FWHM N·10 nm), got {args.sensor}")
+        raise SkinrenderError(f"--sensor must be 1 (impulse) or else a gbell number N > 0 (FWHM N·10 nm), "
+                              f"got {args.sensor}")
     slope = 2.0 if args.slope is None else args.slope
     if not (math.isfinite(slope) and slope > 0):
         raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope}")
@@ -126,11 +149,7 @@ def command_search(args: argparse.Namespace) -> None:
     flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, slope)
     flag("--illuminants", sensor_bank, args.sensor, skin_values[:1], positions[:3], temperatures, slope,
          grid=grid)
-    noisy = noisy_of(args)
-    if noisy is not None:
-        from ..design.noise_aware import calibration_index
-
-        flag("--noise-calibration", calibration_index, temperatures, args.noise_calibration)
+    noisy = noisy_of(args, temperatures)
     result = search(
         args.sensor, skin_values, munsell_values, args.positions, temperatures, slope, grid=grid,
         method=args.method, workers=args.workers, dask=args.dask,
@@ -212,11 +231,6 @@ def command_design(args: argparse.Namespace) -> None:
     noisy = noisy_of(args)
     if noisy is not None and args.objective != "detection":
         raise SkinrenderError("--imager goes with --objective detection (noisy pixels), not ratio")
-    if noisy is not None:
-        from ..constants import TEMPERATURES_PAPER
-        from ..design.noise_aware import calibration_index
-
-        flag("--noise-calibration", calibration_index, TEMPERATURES_PAPER, args.noise_calibration)
     result = optimise_camera(args.objective, skin.on(grid), munsell.on(grid), starts, args.sensor * 10.0, args.slope,
                              args.free_shape, args.evaluations, noisy=noisy)
     document = {"objective": args.objective, "camera": result.camera_spec, "peaks": result.peaks.tolist(),

@@ -56,9 +56,9 @@ def add_parsers(commands) -> None:
                         "values of the most telling unknowns combined; writes sweep.csv and sweep.md")
     p.add_argument("--sweep-positions", help="peak positions of the sweep (default: --positions; 400:700:20 for a "
                    "quick look)")
-    p.add_argument("--sweep-combine", type=int, default=3,
+    p.add_argument("--sweep-combine", type=int, default=None,
                    help="how many unknowns the sweep combines, the most telling first (default 3)")
-    p.add_argument("--sweep-values", type=int, default=1,
+    p.add_argument("--sweep-values", type=int, default=None,
                    help="how many best values of each combined unknown are combined, beside the default (default 1)")
     add_search(p)
     add_common(p)
@@ -72,7 +72,7 @@ def add_parsers(commands) -> None:
     p = commands.add_parser("bench", help="speed and accuracy figures")
     p.add_argument("what", choices=["analytic", "search", "sweep", "render"], help="which benchmark")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant); search: "
-                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep (~15 s)")
+                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep (~8 s)")
     p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG")
     p.add_argument("--repeat", type=int, help="analytic: timed repetitions, best kept (default 3)")
     p.add_argument("--sensor", type=float, help="search: sensor number (default 9)")
@@ -93,7 +93,7 @@ def add_parsers(commands) -> None:
 
 
 SWEEP_FLAGS = {"sweep_positions": None, "sweep_combine": 3, "sweep_values": 1}
-"""``reproduce`` flags of ``--sweep`` only, with their defaults (a flag is given when its value differs)."""
+"""``reproduce`` flags of ``--sweep`` only (``None`` when not given), with their defaults."""
 
 
 def check_sweep_flags(args: argparse.Namespace) -> None:
@@ -101,7 +101,7 @@ def check_sweep_flags(args: argparse.Namespace) -> None:
     ``--sweep-*`` without ``--sweep``, and ``--positions`` beside ``--sweep-positions`` (the sweep would use
     one of the two), refused with one line naming the flag rather than silently ignored.
     """
-    given = [dest for dest, default in SWEEP_FLAGS.items() if getattr(args, dest) != default]
+    given = [dest for dest in SWEEP_FLAGS if getattr(args, dest) is not None]
     if not args.sweep and given:
         raise SkinrenderError(f"--{given[0].replace('_', '-')} goes with --sweep")
     if args.sweep and args.sweep_positions is not None and args.positions is not None:
@@ -120,9 +120,12 @@ def command_reproduce(args: argparse.Namespace) -> None:
         base = Setting(args.slope, args.grid, args.skin, args.munsell, args.illuminants,
                        args.stage1_camera or args.camera, args.extrapolation)
         positions, named = ((args.sweep_positions, "--sweep-positions") if args.sweep_positions is not None
-                            else (args.positions or POSITIONS_DEFAULT, "--positions"))
+                            else (POSITIONS_DEFAULT if args.positions is None else args.positions, "--positions"))
         result = reproduce_sweep(args.output, args.sensors, positions, base, positions_flag=named,
-                                 combine=args.sweep_combine, values_per_unknown=args.sweep_values,
+                                 combine=SWEEP_FLAGS["sweep_combine"] if args.sweep_combine is None
+                                 else args.sweep_combine,
+                                 values_per_unknown=SWEEP_FLAGS["sweep_values"] if args.sweep_values is None
+                                 else args.sweep_values,
                                  workers=args.workers, dask=args.dask, progress=progress)
         rows = [[r["setting"], r["unknown"], f"{r['exact']}/{r['total']}", str(r["within_step"]), f"{r['seconds']:.1f}"]
                 for r in result["sweep"]]
@@ -134,8 +137,8 @@ def command_reproduce(args: argparse.Namespace) -> None:
     from ..studies.reproduce import reproduce, summary_text
 
     result = reproduce(
-        args.output, args.sensors, args.positions or POSITIONS_DEFAULT, args.camera, args.skin, args.munsell,
-        args.slope, args.grid,
+        args.output, args.sensors, POSITIONS_DEFAULT if args.positions is None else args.positions, args.camera,
+        args.skin, args.munsell, args.slope, args.grid,
         workers=args.workers, dask=args.dask, progress=progress, illuminants=args.illuminants,
         stage1_camera=args.stage1_camera, extrapolation=args.extrapolation, figures=not args.no_figures,
     )

@@ -53,8 +53,17 @@ from ..model.response import gain
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import SensorBank
 
-__all__ = ["TPR_MIN", "AUTO_EXPOSURE_FRACTION", "NoisySetting", "noisy_setting", "bank_rates", "calibration_index",
+__all__ = ["TPR_MIN", "NOISE_SAMPLES_MAX", "NOISE_SEED_MAX", "NOISE_CALIBRATION_K", "AUTO_EXPOSURE_FRACTION", "NoisySetting", "noisy_setting", "bank_rates", "calibration_index",
            "triplet_noisy_rates"]
+
+NOISE_SAMPLES_MAX = 1000
+"""Most noisy frames per pixel (``--noise-samples``)."""
+
+NOISE_SEED_MAX = 2**32 - 1
+"""Largest noise seed (``--noise-seed``): numpy's seeds are 32-bit here."""
+
+NOISE_CALIBRATION_K = 3300.0
+"""The white balance of the noisy criterion when none is given (K), when it is one of the illuminants."""
 
 TPR_MIN = 0.9
 """A triplet is ranked by its noisy FPR only while at least this share of noisy skin pixels stays in the
@@ -85,9 +94,9 @@ def noisy_setting(imager_: Imager | str, illuminance_lux: float, exposure: float
     if not (isinstance(exposure, str) and exposure == "auto"):
         if not (isinstance(exposure, (int, float)) and np.isfinite(exposure) and exposure > 0):
             raise SkinrenderError(f"exposure must be 'auto' or a finite number of seconds > 0, got {exposure!r}")
-    if not (isinstance(samples, (int, np.integer)) and 1 <= samples <= 1000):
-        raise SkinrenderError(f"noise samples must be an integer in [1, 1000], got {samples!r}")
-    if not (isinstance(seed, (int, np.integer)) and 0 <= seed < 2**32):
+    if not (isinstance(samples, (int, np.integer)) and 1 <= samples <= NOISE_SAMPLES_MAX):
+        raise SkinrenderError(f"noise samples must be an integer in [1, {NOISE_SAMPLES_MAX}], got {samples!r}")
+    if not (isinstance(seed, (int, np.integer)) and 0 <= seed <= NOISE_SEED_MAX):
         raise SkinrenderError(f"seed must be an integer in [0, 2^32), got {seed!r}")
     return NoisySetting(imager(imager_), float(illuminance_lux), exposure, float(calibration), int(samples), int(seed))
 

@@ -32,7 +32,7 @@ from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import sensor_bank
 from .criteria import triplet_false_positive_rates, triplet_volumes_fast
-from .noise_aware import TPR_MIN, NoisySetting, bank_rates, triplet_noisy_rates
+from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, triplet_noisy_rates
 
 __all__ = ["OBJECTIVES", "objective", "Design", "optimise_camera"]
 
@@ -149,6 +149,8 @@ def optimise_camera(
     validate_method(kind, OBJECTIVES, "objective")
     if noisy is not None and kind != "detection":
         raise SkinrenderError("an imager (noisy pixels) goes with the detection objective, not the ratio")
+    if noisy is not None:
+        calibration_index(np.asarray(illuminants, dtype=np.float64), noisy.calibration)
     if not (isinstance(max_evaluations, (int, np.integer)) and max_evaluations >= 1):
         raise SkinrenderError(f"evaluations must be an integer ≥ 1 per start, got {max_evaluations!r}")
     if not (np.isfinite(fwhm) and fwhm > 0):

@@ -63,9 +63,9 @@ def check_output(directory, flag: str = "-o") -> Path:
 
 def foreign_files(folder: Path) -> list[str]:
     """
-    Files under an earlier ``reproduce`` folder (relative paths, sorted) that its :data:`MANIFEST` does not list
-    among its ``artifacts``: replacing the folder would delete them. Every file is foreign when the manifest
-    cannot be read.
+    What under an earlier ``reproduce`` folder its :data:`MANIFEST` does not list among its ``artifacts``
+    (relative paths, sorted; folders end in ``/``): files, links (never followed) and folders that hold no
+    listed file. Replacing the folder would delete them. Everything is foreign when the manifest cannot be read.
     """
     try:
         artifacts = [Path(p) for p in json.loads((folder / MANIFEST).read_text(encoding="utf-8"))["artifacts"]]
@@ -73,8 +73,18 @@ def foreign_files(folder: Path) -> list[str]:
         listed = {p.relative_to(written).as_posix() for p in artifacts}
     except (OSError, ValueError, KeyError, TypeError, StopIteration):
         listed = set()
-    present = sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if not p.is_dir())
-    return [name for name in present if name not in listed and name != MANIFEST]
+    foreign = []
+    for root, folders, files in os.walk(folder):  # links to folders are listed among folders, not entered
+        here = Path(root).relative_to(folder)
+        for name in files + [f for f in folders if (Path(root) / f).is_symlink()]:
+            relative = (here / name).as_posix()
+            if relative not in listed and relative != MANIFEST:
+                foreign.append(relative)
+        for name in folders:
+            relative = (here / name).as_posix()
+            if not (Path(root) / name).is_symlink() and not any(item.startswith(relative + "/") for item in listed):
+                foreign.append(relative + "/")
+    return sorted(foreign)
 
 
 @contextmanager
@@ -116,11 +126,18 @@ def _remove_created(created: list[Path]) -> None:
 
 
 def _move_into_place(temporary: Path, target: Path) -> None:
-    """``temporary`` becomes ``target``; a previous ``target`` (empty or an earlier run's) is removed."""
+    """
+    ``temporary`` becomes ``target``; a previous ``target`` (empty or an earlier run's) is removed — unless
+    files it did not hold at the start were put there during the run (:func:`foreign_files`): then it is kept
+    beside, as ``NAME.previous-XXXX``, rather than deleted with them.
+    """
     if not target.exists():
         os.rename(temporary, target)
         return
-    old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
+    keep = (target / MANIFEST).is_file() and bool(foreign_files(target))
+    old = Path(tempfile.mkdtemp(prefix=f"{target.name}.previous-" if keep else f".{target.name}.old-",
+                                dir=target.parent))
     os.rename(target, old / target.name)
     os.rename(temporary, target)
-    shutil.rmtree(old, ignore_errors=True)
+    if not keep:
+        shutil.rmtree(old, ignore_errors=True)

@@ -29,7 +29,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from ..design.bank import SENSORS_PAPER
+from ..design.bank import SENSORS_PAPER, positions_grid
 from ..errors import SkinrenderError
 from ..hints import ArrayLike
 from .folders import MANIFEST, check_output, output_folder
@@ -149,6 +149,7 @@ def sweep(
     chosen = check_sensors(sensors)
     workers = check_workers(workers)
     _check_combine(combine, values_per_unknown)
+    check_positions(positions, resolve_setting(base).grid)  # the default's grid; candidates' grids may skip
     cache = VolumeCache()
     rows: list[dict] = []
     done: dict[Setting, dict] = {}
@@ -159,11 +160,18 @@ def sweep(
             notes, names = [], {}
         notes = unmatched_sensors(chosen) + notes
 
-        def run(setting: Setting, unknown: str) -> dict:
-            if setting in done:
-                return done[setting]
+        skipped: set[Setting] = set()
+
+        def run(setting: Setting, unknown: str) -> dict | None:
+            if setting in done or setting in skipped:
+                return done.get(setting)
             resolved = resolve_setting(setting)
-            where = check_positions(positions, resolved.grid)
+            where = positions_grid(positions)  # checked against the base setting's grid before the sweep
+            if where.min() < resolved.grid.start or where.max() > resolved.grid.end:  # a candidate grid, not given
+                notes.append(f"{setting.label(base, names)}: skipped, its integration grid {resolved.grid} does not "
+                             f"hold the peaks {where.min():g}–{where.max():g} nm")
+                skipped.add(setting)
+                return None
             began = time.perf_counter()
             out = setting_tables(resolved, chosen, where, cache, workers, dask, progress, progress)
             values = {k: names.get(v, v) if isinstance(v, str) else v for k, v in setting.unknowns().items()}

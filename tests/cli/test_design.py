@@ -41,6 +41,11 @@ DESIGN = ["design", "--evaluations", "3"]
     (["--imager", "sony-imx174", "--noise-samples", "0"], "--noise-samples"),
     (["--imager", "sony-imx174", "--noise-seed", "-1"], "--noise-seed"),
     (["--imager", "sony-imx174", "--noise-calibration", "3000"], ("--noise-calibration", "3300")),
+    # the default calibration, 3300 K, is not among these: the flag is asked for, not the nearest light taken
+    (["--imager", "sony-imx174", "--illuminants", "2000,6500"], ("--noise-calibration", "default 3300")),
+    # the noise flags without --imager would be ignored
+    (["--noise-seed", "3"], ("--noise-seed", "--imager")),
+    (["--noise-calibration", "3300"], ("--noise-calibration", "--imager")),
     (["--grid", "380:780:5"], ("--skin", "extrapolation")),
     (["--illuminants", "2000,,x"], "--illuminants"),
     (["--sensor", "1", "--positions", "400.5:650.5:50"], ("--positions", "400.5")),

@@ -130,7 +130,7 @@ def test_quick_search_bench_times_the_20nm_search_and_estimates_the_rest(capsys)
     status, out, err = run(["bench", "search", "--quick", "--sample", "2", "--workers", "1", "--json"], capsys)
     assert status in (0, None), err[-500:]
     document = json.loads(out)
-    assert [g["measured"] for g in document["growth"]][0] == "full"
+    assert document["growth"][0]["measured"] == "full"
     assert all(g["measured"].startswith("estimated from 2 triplets") for g in document["growth"][1:])
     assert document["full_search_s"] is None and document["sweep_s_per_setting"] is None
     assert np.isfinite(document["fast_ms_per_triplet"]) and document["max_rel_difference"] < 1e-9

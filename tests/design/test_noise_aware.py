@@ -15,7 +15,13 @@ from skinrender.cli import main
 from skinrender.datasets import reflectances
 from skinrender.design.bank import positions_grid, sensor_bank
 from skinrender.design.criteria import triplet_false_positive_rates
-from skinrender.design.noise_aware import TPR_MIN, bank_rates, calibration_index, noisy_setting, triplet_noisy_rates
+from skinrender.design.noise_aware import (
+    TPR_MIN,
+    bank_rates,
+    calibration_index,
+    noisy_setting,
+    triplet_noisy_rates,
+)
 from skinrender.errors import SkinrenderError
 from skinrender.model.imager import Imager
 from skinrender.spectra import GRID_DEFAULT

@@ -56,6 +56,13 @@ class TestCheckOutput:
         assert "search/my_notes.txt" in foreign_files(tmp_path)
         assert (tmp_path / "search" / "my_notes.txt").read_text() == "mine"
 
+    def test_links_and_folders_it_did_not_write_are_foreign_too(self, tmp_path):
+        earlier_run(tmp_path / "out", ["tables.md", "search/sensor_9.csv"])
+        (tmp_path / "mine").mkdir()
+        (tmp_path / "out" / "empty").mkdir()
+        (tmp_path / "out" / "link").symlink_to(tmp_path / "mine")
+        assert foreign_files(tmp_path / "out") == ["empty/", "link"]
+
 
 def earlier_run(folder, names: list[str]) -> None:
     """A folder as ``reproduce`` leaves it: the files ``names`` and a manifest listing them (absolute paths)."""
@@ -79,12 +86,22 @@ class TestOutputFolder:
     def test_replaces_an_earlier_run(self, tmp_path):
         target = tmp_path / "out"
         target.mkdir()
-        (target / MANIFEST).write_text("{}")
-        (target / "old.csv").write_text("old")
+        earlier_run(target, ["old.csv", "search/old.csv"])
         with output_folder(target) as folder:
             (folder / "new.csv").write_text("new")
         assert sorted(os.listdir(target)) == ["new.csv"]
         assert os.listdir(tmp_path) == ["out"]
+
+    def test_files_put_into_the_old_folder_during_the_run_are_kept(self, tmp_path):
+        target = tmp_path / "out"
+        target.mkdir()
+        earlier_run(target, ["old.csv"])
+        with output_folder(check_output(target)) as folder:
+            (target / "notes.txt").write_text("written while it ran")
+            (folder / "new.csv").write_text("new")
+        assert sorted(os.listdir(target)) == ["new.csv"]
+        kept = [name for name in os.listdir(tmp_path) if name.startswith("out.previous-")]
+        assert len(kept) == 1 and (tmp_path / kept[0] / "out" / "notes.txt").read_text() == "written while it ran"
 
     def test_failure_leaves_nothing(self, tmp_path):
         target = tmp_path / "a" / "b"

@@ -9,7 +9,9 @@ import pytest
 
 from skinrender.cli import main
 from skinrender.errors import SkinrenderError
+from skinrender.studies.folders import foreign_files
 from skinrender.studies.reproduce import reproduce, summary_text
+from skinrender.studies.sweep import reproduce_sweep
 
 
 @pytest.fixture(scope="module")
@@ -56,6 +58,16 @@ class TestReproduce:
             result = reproduce(out, [1], "400:700:100", workers=1, progress=None, observations=False, figures=False)
         assert os.listdir(tmp_path) == ["out"]
         assert result["stage2"] == {} and not any(name.endswith(".png") for name in os.listdir(out))
+
+    def test_a_sweep_folder_and_a_reproduce_folder_replace_each_other(self, tmp_path):
+        # the manifests the two write are read back by the check that protects a user's own files
+        out = tmp_path / "out"
+        reproduce_sweep(out, [9], "400:700:100", candidates={}, combine=0, workers=1)
+        assert foreign_files(out) == []
+        reproduce(out, [9], "400:700:100", workers=1, progress=None, observations=False, figures=False)
+        assert foreign_files(out) == [] and "tables.md" in os.listdir(out)
+        reproduce_sweep(out, [9], "400:700:100", candidates={}, combine=0, workers=1)
+        assert sorted(os.listdir(out)) == ["reproduce.json", "sweep.csv", "sweep.md"]
 
 
 class TestRefusals:

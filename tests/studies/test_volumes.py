@@ -7,12 +7,17 @@ import pytest
 
 import skinrender as sr
 from skinrender.design.bank import positions_grid, sensor_bank, triplets
-from skinrender.design.search import search
+from skinrender.design.search import WORKERS_MAX, search
 from skinrender.errors import SkinrenderError
 from skinrender.spectra import GRID_DEFAULT
-from skinrender.design.search import WORKERS_MAX
-from skinrender.studies.volumes import (VolumeCache, bank_key, check_workers, chunk_gains, compute_volumes,
-                                        search_result)
+from skinrender.studies.volumes import (
+    VolumeCache,
+    bank_key,
+    check_workers,
+    chunk_gains,
+    compute_volumes,
+    search_result,
+)
 
 POSITIONS = "400:700:50"  # 7 positions, 35 triplets
 
