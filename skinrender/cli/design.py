@@ -208,7 +208,8 @@ def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
                              "the sensors, or channels that coincide); the tables list every triplet as tied")
     if result.noisy is not None and not best.get("min_noisy_fpr"):
         notes.append(f"no triplet keeps a noisy TPR ≥ {result.info['tpr_min']:g}: the skin leaves its locus on "
-                     "noisy pixels (too little light, or pixels clipped at the full well by a long --exposure)")
+                     "noisy pixels (for instance too little light, or pixels clipped at the full well by a long "
+                     "--exposure)")
     return notes
 
 
