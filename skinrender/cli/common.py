@@ -96,10 +96,13 @@ def add_render(parser: argparse.ArgumentParser) -> None:
 
 
 def emit(args: argparse.Namespace, document: dict, text: str) -> None:
-    """Print ``document`` as one JSON document (``--json``) or ``text``."""
+    """
+    Print ``document`` as one JSON document (``--json``) or ``text``. The document is made whole before a
+    byte is written: one that cannot be (a NaN or infinity left in it) prints nothing, never half of it.
+    """
     if args.json:
-        json.dump(document, sys.stdout, indent=2, allow_nan=False)
-        sys.stdout.write("\n")
+        whole = json.dumps(document, indent=2, allow_nan=False)
+        sys.stdout.write(whole + "\n")
     else:
         sys.stdout.write(text.rstrip("\n") + "\n")
 

@@ -13,7 +13,7 @@ import math
 import sys
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, add_common, camera_of, check_output, check_seed, emit, flag, integer_in,
+from .common import (HELP_CAMERA, add_common, camera_of, check_lights, check_output, check_seed, emit, flag, integer_in,
                      positive_number, table)
 
 __all__ = [
@@ -153,7 +153,7 @@ def command_ptc(args: argparse.Namespace) -> None:
     from ..model.illuminant import illuminant
     from ..model.imager import imager
     from ..studies.figures import figure_ptc
-    from ..studies.ptc import photon_transfer
+    from ..studies.ptc import DimLightError, photon_transfer
 
     check_output(args.plot, "--plot", (".png",))
     cam = camera_of(args)
@@ -162,12 +162,18 @@ def command_ptc(args: argparse.Namespace) -> None:
         if not (math.isfinite(value) and value > 0):
             raise SkinrenderError(f"{name} must be a finite number > 0, got {value}")
     flag("--temperature", illuminant, args.temperature)
+    check_lights(args, cam, [args.temperature], None, "--temperature")  # a light the camera sees at all
     if not 1 <= args.spp <= 65536:
         raise SkinrenderError(f"--spp must be an integer in [1, 65536], got {args.spp}")
     check_seed(args.seed)
     print(f"rendering the grey chart at {args.spp} spp …", file=sys.stderr)
-    result = flag("--points", photon_transfer, cam, sensor, args.temperature, args.illuminance, args.points,
-                  args.spp, args.seed)
+    try:
+        result = photon_transfer(cam, sensor, args.temperature, args.illuminance, args.points, args.spp, args.seed)
+    except DimLightError:  # names --illuminance itself
+        raise
+    except SkinrenderError as error:
+        text = " ".join(str(error).split())
+        raise SkinrenderError(text if text.startswith("--points") else f"--points: {text}") from None
     if args.plot:
         result["plot"] = str(figure_ptc(result, args.plot))
     shown = lambda v: "undefined" if v is None else f"{v:.4g}"  # noqa: E731

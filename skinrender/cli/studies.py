@@ -146,9 +146,14 @@ def command_reproduce(args: argparse.Namespace) -> None:
 
 
 def command_table1(args: argparse.Namespace) -> None:
+    from ..model.camera import camera
     from ..studies.tables import table1
+    from .common import SPP_MAX, check_seed
 
-    result = table1(args.camera, spp=args.spp, seed=args.seed)
+    integer_in(args.spp, "--spp", 1, SPP_MAX)  # each flag checked on its own, so that its error names it
+    check_seed(args.seed)
+    flag("--camera", camera, args.camera)
+    result = flag("--camera", table1, args.camera, spp=args.spp, seed=args.seed)
     rows = [[r["model"], r["case"], f"{r['mean']:.5f}", f"{r['std']:.5f}"] for r in result["rows"]]
     text = (f"Table 1 for {result['camera']} ({len(result['patches'])} Macbeth patches with 90 % of values in "
             f"10–245; render at {result['spp']} spp as the real camera):\n"

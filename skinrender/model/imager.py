@@ -155,6 +155,8 @@ def _read_imager_toml(path: Path) -> Imager:
         raise SkinrenderError(f"imager file {path}: cannot be read ({error.strerror})") from None
     except tomllib.TOMLDecodeError as error:
         raise SkinrenderError(f"imager file {path}: not valid TOML ({error})") from None
+    except UnicodeDecodeError:
+        raise SkinrenderError(f"imager file {path}: not a UTF-8 text file (TOML is text)") from None
     names = [field.name for field in fields(Imager)]
     for key in data:
         if key not in names:

@@ -60,6 +60,15 @@ LINEAR_RANGE = 0.7
 """Points whose mean is below this share of the saturated mean fit the gain."""
 
 
+DARK_SHARE_MAX = 10.0
+"""The brightest channel's photo-electron rate must exceed the dark current this many times: dimmer, the dark
+current fills the well first (a curve of dark frames, not of light)."""
+
+
+class DimLightError(SkinrenderError):
+    """The light is too dim for a photon transfer curve (its message names ``--illuminance``)."""
+
+
 def _frames(im: Imager, electrons: np.ndarray, seed: int, index: int) -> tuple[np.ndarray, np.ndarray]:
     generator = np.random.default_rng([seed, index])
     return simulate_dn(im, electrons, generator), simulate_dn(im, electrons, generator)
@@ -90,7 +99,13 @@ def photon_transfer(
         raise SkinrenderError(f"points must be an integer in [4, 1000] exposures, got {points!r}")
     raw = render_raw(GREY_CHART, camera_, temperature, spp, seed, grid=grid, **render_options)
     rate = raw.radiance * electrons_per_radiance(im, camera_, temperature, illuminance_lux, grid)  # e⁻/s per pixel
-    fill = im.full_well_e / float(rate.mean(axis=(0, 1)).max())
+    brightest = float(rate.mean(axis=(0, 1)).max())  # e⁻/s
+    if not brightest > DARK_SHARE_MAX * im.dark_current_e_per_s:
+        raise DimLightError(f"--illuminance: {illuminance_lux:g} lx at {temperature:g} K gives the brightest channel "
+                            f"{brightest:.3g} e⁻/s, not above {DARK_SHARE_MAX:g}× the dark current "
+                            f"({im.dark_current_e_per_s:g} e⁻/s): the dark current would fill the well before the "
+                            "light does, and no transfer curve can be measured; raise the illuminance")
+    fill = im.full_well_e / brightest
     exposures = np.linspace(0.0, 1.3 * fill, points)
     rows, dark_noise = [], []
     for index, t in enumerate(exposures):

@@ -126,6 +126,15 @@ def test_reproduce_refusals(argv, names, tmp_path, capsys):
     assert not output.exists()
 
 
+@pytest.mark.parametrize("argv, names", [
+    (["--spp", "0"], "--spp"),
+    (["--seed", "4294967295"], ("--seed", "4294967294")),
+    (["--camera", "nope"], "--camera"),
+])
+def test_table1_refusals_name_the_flag(argv, names, capsys):
+    assert_refused(["table1", *argv], names, capsys)
+
+
 def test_quick_search_bench_times_the_20nm_search_and_estimates_the_rest(capsys):
     status, out, err = run(["bench", "search", "--quick", "--sample", "2", "--workers", "1", "--json"], capsys)
     assert status in (0, None), err[-500:]

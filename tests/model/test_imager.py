@@ -106,6 +106,12 @@ class TestBadInput:
             imager(path)
         assert "bad_imager.toml" in str(caught.value) and field in str(caught.value)
 
+    def test02b_a_binary_file_is_refused_as_not_text(self, tmp_path: Path):
+        path = tmp_path / "binary.toml"
+        path.write_bytes(b"\x00\xff\xfe" * 8)
+        with pytest.raises(SkinrenderError, match="binary.toml: not a UTF-8 text file"):
+            imager(path)
+
     def test03_good_toml_and_unknown_presets(self, tmp_path: Path):
         path = tmp_path / "mine.toml"
         path.write_text(GOOD_TOML, encoding="utf-8")

@@ -60,3 +60,20 @@ def test_ptc_command_json_and_plot(tmp_path, capsys):
     assert status == 0 and (tmp_path / "ptc.png").is_file()
     assert {"points", "gain_dn_per_e", "read_noise_e", "full_well_e", "linearity_error", "stated"} <= set(document)
     assert set(document["points"][1]) >= {"exposure_s", "mean_dn", "variance_dn"}
+
+
+@pytest.mark.parametrize(("lux", "kelvin"), [(1e-3, 5900.0), (1e-9, 5900.0)])
+def test_light_the_dark_current_outruns_is_refused_naming_the_illuminance(lux, kelvin, capsys):
+    # dimmer than 10x the dark current, the series would be dark frames: refused before any number is made
+    status = main(["ptc", "--camera", "gbell:9@450,540,610", "--imager", "sony-imx174", "--spp", "1",
+                   "--illuminance", str(lux), "--temperature", str(kelvin), "--json"])
+    out, err = capsys.readouterr()
+    lines = [line for line in err.splitlines() if line.strip() and not line.startswith("rendering")]
+    assert status == 2 and out == "" and len(lines) == 1, err
+    assert "--illuminance" in lines[0] and "dark current" in lines[0]
+
+
+def test_a_light_the_camera_does_not_see_is_refused_naming_the_temperature(capsys):
+    status = main(["ptc", "--camera", "gbell:9@450,540,610", "--imager", "sony-imx174", "--temperature", "10", "--json"])
+    out, err = capsys.readouterr()
+    assert status == 2 and out == "" and err.strip().splitlines()[-1].startswith("skinrender ptc: error: --temperature")
