@@ -153,12 +153,15 @@ class Parser(argparse.ArgumentParser):
 
 
 def flag(name: str, function, *args, **kwargs):
-    """``function(*args, **kwargs)``, its :class:`SkinrenderError` prefixed with the flag ``name`` it came from."""
+    """
+    ``function(*args, **kwargs)``, its :class:`SkinrenderError` prefixed with the flag ``name`` it came from,
+    unless the message already starts with a flag (``--…``: the library named the one at fault itself).
+    """
     try:
         return function(*args, **kwargs)
     except SkinrenderError as error:
         text = str(error)
-        raise SkinrenderError(text if text.startswith(name) else f"{name}: {text}") from None
+        raise SkinrenderError(text if text.startswith("--") else f"{name}: {text}") from None
 
 
 def integer_in(text, name: str, low: int, high: int | None = None) -> int:

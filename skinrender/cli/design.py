@@ -143,9 +143,9 @@ def command_search(args: argparse.Namespace) -> None:
     if not (math.isfinite(slope) and slope > 0):
         raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope}")
     if args.workers is not None:
-        from ..design.search import WORKERS_MAX
+        from ..studies.volumes import check_workers
 
-        integer_in(args.workers, "--workers", 1, WORKERS_MAX)
+        check_workers(args.workers)
     flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, slope)
     flag("--illuminants", sensor_bank, args.sensor, skin_values[:1], positions[:3], temperatures, slope,
          grid=grid)
@@ -199,11 +199,10 @@ def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
     notes = []
     if impulse_slope is not None:
         notes.append(f"--slope {impulse_slope:g} does not apply: the impulse sensor (--sensor 1) has no slope")
-    for name in ("skin", "munsell"):
+    for name, label in (("skin", "skin"), ("munsell", "Munsell")):
         volumes = getattr(result, name)
         for columns, cases in ((slice(0, -1), "one-calibration"), (slice(-1, None), "all-calibration")):
             if volumes.size and not np.any(volumes[:, columns] > 0):
-                label = {"skin": "skin", "munsell": "Munsell"}[name]
                 notes.append(f"every {cases} {label} gamut has zero volume (degenerate: a --grid too coarse for "
                              "the sensors, or channels that coincide); the tables list every triplet as tied")
     if result.noisy is not None and not best.get("min_noisy_fpr"):

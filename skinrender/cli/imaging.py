@@ -153,7 +153,7 @@ def command_ptc(args: argparse.Namespace) -> None:
     from ..model.illuminant import illuminant
     from ..model.imager import imager
     from ..studies.figures import figure_ptc
-    from ..studies.ptc import DimLightError, photon_transfer
+    from ..studies.ptc import photon_transfer
 
     check_output(args.plot, "--plot", (".png",))
     cam = camera_of(args)
@@ -167,13 +167,8 @@ def command_ptc(args: argparse.Namespace) -> None:
         raise SkinrenderError(f"--spp must be an integer in [1, 65536], got {args.spp}")
     check_seed(args.seed)
     print(f"rendering the grey chart at {args.spp} spp …", file=sys.stderr)
-    try:
-        result = photon_transfer(cam, sensor, args.temperature, args.illuminance, args.points, args.spp, args.seed)
-    except DimLightError:  # names --illuminance itself
-        raise
-    except SkinrenderError as error:
-        text = " ".join(str(error).split())
-        raise SkinrenderError(text if text.startswith("--points") else f"--points: {text}") from None
+    result = flag("--points", photon_transfer, cam, sensor, args.temperature, args.illuminance, args.points,
+                  args.spp, args.seed)
     if args.plot:
         result["plot"] = str(figure_ptc(result, args.plot))
     shown = lambda v: "undefined" if v is None else f"{v:.4g}"  # noqa: E731

@@ -20,9 +20,10 @@ def _spp(value) -> str:
     return "—" if value is None else str(value)
 
 
-def _or_default(args: argparse.Namespace, dest: str):
+def _or_default(args: argparse.Namespace, dest: str, defaults: dict | None = None):
+    """The flag ``dest`` where given, else its default (from ``defaults``, by default :data:`BENCH_DEFAULTS`)."""
     value = getattr(args, dest, None)
-    return BENCH_DEFAULTS[dest] if value is None else value
+    return (BENCH_DEFAULTS if defaults is None else defaults)[dest] if value is None else value
 
 
 def size_text(size) -> str:
@@ -122,10 +123,8 @@ def command_reproduce(args: argparse.Namespace) -> None:
         positions, named = ((args.sweep_positions, "--sweep-positions") if args.sweep_positions is not None
                             else (POSITIONS_DEFAULT if args.positions is None else args.positions, "--positions"))
         result = reproduce_sweep(args.output, args.sensors, positions, base, positions_flag=named,
-                                 combine=SWEEP_FLAGS["sweep_combine"] if args.sweep_combine is None
-                                 else args.sweep_combine,
-                                 values_per_unknown=SWEEP_FLAGS["sweep_values"] if args.sweep_values is None
-                                 else args.sweep_values,
+                                 combine=_or_default(args, "sweep_combine", SWEEP_FLAGS),
+                                 values_per_unknown=_or_default(args, "sweep_values", SWEEP_FLAGS),
                                  workers=args.workers, dask=args.dask, progress=progress)
         rows = [[r["setting"], r["unknown"], f"{r['exact']}/{r['total']}", str(r["within_step"]), f"{r['seconds']:.1f}"]
                 for r in result["sweep"]]
@@ -280,9 +279,9 @@ def command_bench(args: argparse.Namespace) -> None:
         emit(args, result, text)
         return
     if args.workers is not None:  # before any timing starts
-        from ..design.search import WORKERS_MAX
+        from ..studies.volumes import check_workers
 
-        integer_in(args.workers, "--workers", 1, WORKERS_MAX)
+        check_workers(args.workers)
     if args.what == "sweep":
         from ..design.bank import positions_grid
 

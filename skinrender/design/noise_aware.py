@@ -53,8 +53,8 @@ from ..model.response import gain
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import SensorBank
 
-__all__ = ["TPR_MIN", "NOISE_SAMPLES_MAX", "NOISE_SEED_MAX", "NOISE_CALIBRATION_K", "AUTO_EXPOSURE_FRACTION", "NoisySetting", "noisy_setting", "bank_rates", "calibration_index",
-           "triplet_noisy_rates"]
+__all__ = ["TPR_MIN", "NOISE_SAMPLES_MAX", "NOISE_SEED_MAX", "NOISE_CALIBRATION_K", "AUTO_EXPOSURE_FRACTION",
+           "NoisySetting", "noisy_setting", "bank_rates", "calibration_index", "triplet_noisy_rates"]
 
 NOISE_SAMPLES_MAX = 1000
 """Most noisy frames per pixel (``--noise-samples``)."""

@@ -65,10 +65,6 @@ DARK_SHARE_MAX = 10.0
 current fills the well first (a curve of dark frames, not of light)."""
 
 
-class DimLightError(SkinrenderError):
-    """The light is too dim for a photon transfer curve (its message names ``--illuminance``)."""
-
-
 def _frames(im: Imager, electrons: np.ndarray, seed: int, index: int) -> tuple[np.ndarray, np.ndarray]:
     generator = np.random.default_rng([seed, index])
     return simulate_dn(im, electrons, generator), simulate_dn(im, electrons, generator)
@@ -101,10 +97,11 @@ def photon_transfer(
     rate = raw.radiance * electrons_per_radiance(im, camera_, temperature, illuminance_lux, grid)  # e⁻/s per pixel
     brightest = float(rate.mean(axis=(0, 1)).max())  # e⁻/s
     if not brightest > DARK_SHARE_MAX * im.dark_current_e_per_s:
-        raise DimLightError(f"--illuminance: {illuminance_lux:g} lx at {temperature:g} K gives the brightest channel "
-                            f"{brightest:.3g} e⁻/s, not above {DARK_SHARE_MAX:g}× the dark current "
-                            f"({im.dark_current_e_per_s:g} e⁻/s): the dark current would fill the well before the "
-                            "light does, and no transfer curve can be measured; raise the illuminance")
+        raise SkinrenderError(
+            f"--illuminance: {illuminance_lux:g} lx at {temperature:g} K gives the brightest channel {brightest:.3g} "
+            f"e⁻/s, not above {DARK_SHARE_MAX:g}× the dark current ({im.dark_current_e_per_s:g} e⁻/s): the dark "
+            "current would fill the well before the light does, and no transfer curve can be measured; raise the "
+            "illuminance")
     fill = im.full_well_e / brightest
     exposures = np.linspace(0.0, 1.3 * fill, points)
     rows, dark_noise = [], []

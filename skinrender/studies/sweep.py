@@ -29,7 +29,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from ..design.bank import SENSORS_PAPER, positions_grid
+from ..design.bank import SENSORS_PAPER
 from ..errors import SkinrenderError
 from ..hints import ArrayLike
 from .folders import MANIFEST, check_output, output_folder
@@ -149,7 +149,7 @@ def sweep(
     chosen = check_sensors(sensors)
     workers = check_workers(workers)
     _check_combine(combine, values_per_unknown)
-    check_positions(positions, resolve_setting(base).grid)  # the default's grid; candidates' grids may skip
+    where = check_positions(positions, resolve_setting(base).grid)  # the default's grid; a candidate's may skip
     cache = VolumeCache()
     rows: list[dict] = []
     done: dict[Setting, dict] = {}
@@ -166,7 +166,6 @@ def sweep(
             if setting in done or setting in skipped:
                 return done.get(setting)
             resolved = resolve_setting(setting)
-            where = positions_grid(positions)  # checked against the base setting's grid before the sweep
             if where.min() < resolved.grid.start or where.max() > resolved.grid.end:  # a candidate grid, not given
                 notes.append(f"{setting.label(base, names)}: skipped, its integration grid {resolved.grid} does not "
                              f"hold the peaks {where.min():g}–{where.max():g} nm")
