@@ -17,7 +17,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from ..errors import SkinrenderError
+from ..errors import SkinrenderError, naming
 
 __all__ = [
     "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
@@ -152,16 +152,8 @@ class Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
 
 
-def flag(name: str, function, *args, **kwargs):
-    """
-    ``function(*args, **kwargs)``, its :class:`SkinrenderError` prefixed with the flag ``name`` it came from,
-    unless the message already starts with a flag (``--…``: the library named the one at fault itself).
-    """
-    try:
-        return function(*args, **kwargs)
-    except SkinrenderError as error:
-        text = str(error)
-        raise SkinrenderError(text if text.startswith("--") else f"{name}: {text}") from None
+flag = naming
+"""``function(*args, **kwargs)`` with its error naming the flag: :func:`skinrender.errors.naming`."""
 
 
 def integer_in(text, name: str, low: int, high: int | None = None) -> int:

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..datasets import looks_like_path, reflectances
 from ..design.bank import positions_grid, sensor_bank
-from ..errors import SkinrenderError
+from ..errors import SkinrenderError, naming
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from ..model.camera import Camera, camera
@@ -126,13 +126,7 @@ class ResolvedSetting:
     munsell: NDArrayFloat
 
 
-def _flagged(flag: str, function, *args):
-    """``function(*args)``, its :class:`SkinrenderError` reworded to start with ``flag``."""
-    try:
-        return function(*args)
-    except SkinrenderError as error:
-        text = str(error)
-        raise SkinrenderError(text if text.startswith(flag) else f"{flag}: {text}") from None
+_flagged = naming  # skinrender.errors.naming, as the command line's flag()
 
 
 def resolve_setting(setting: Setting) -> ResolvedSetting:
@@ -235,8 +229,9 @@ def setting_tables(
         for spec, values in ((s.skin, resolved.skin), (s.munsell, resolved.munsell)):
             key = bank_key(sensor, spec, positions, resolved.temperatures, s.slope, resolved.grid, s.extrapolation)
             if key not in cache and key not in banks:
-                banks[key] = sensor_bank(sensor, values, positions, resolved.temperatures, s.slope, "white", False,
-                                         resolved.grid)
+                # the positions and slope are checked: what is left to refuse is a light the sensors do not see
+                banks[key] = _flagged("--illuminants", sensor_bank, sensor, values, positions, resolved.temperatures,
+                                      s.slope, "white", False, resolved.grid)
             pair.append(key)
         keys[float(sensor)] = pair
     finished = cache.ensure(banks, workers=workers, dask=dask, progress=progress, label=f"tables, {s.label()}",

@@ -117,6 +117,7 @@ def test_chart_bench_refusals(argv, names, tmp_path, capsys):
     (["--workers", "1000"], "--workers"),
     (["--sweep", "--workers", "1000"], "--workers"),
     (["--illuminants", "3000,3300,3000"], ("--illuminants", "distinct")),
+    (["--illuminants", "20,3300"], ("--illuminants", "no light")),
     (["--dask", "nonsense"], "--dask"),
 ])
 def test_reproduce_refusals(argv, names, tmp_path, capsys):
