@@ -25,10 +25,33 @@ def add_parsers(commands) -> None:
     p.add_argument("--boundary", choices=list(BOUNDARIES), default="hull",
                    help="convex hull (default) or two quadratics (Soriano et al. 2003)")
     p.add_argument("--skin", default="skin", help="skin reflectance set (default skin)")
+    p.add_argument("--munsell", default="munsell",
+                   help="the Munsell set, name or CSV path: the 'munsell' item of --nonskin (default munsell)")
     p.add_argument("--nonskin", default="munsell,vrhel-nonskin,macbeth",
-                   help="comma-separated non-skin sets for false-positive rates (default munsell,vrhel-nonskin,macbeth)")
+                   help="comma-separated non-skin sets for false-positive rates, each counted once; the item "
+                        "'munsell' is the --munsell set (default munsell,vrhel-nonskin,macbeth)")
     p.add_argument("--plot", help="write the locus, the training chromaticities and the Planckian track to this PNG")
     add_common(p)
+
+
+def nonskin_names(spec: str, munsell: str = "munsell") -> list[str]:
+    """
+    The non-skin sets of ``--nonskin`` in order, the item ``munsell`` standing for the ``--munsell`` set.
+
+    >>> nonskin_names("munsell,macbeth", "munsell-nickerson")
+    ['munsell-nickerson', 'macbeth']
+    """
+    items = [name.strip() for name in spec.split(",")]
+    if not spec.strip() or any(not name for name in items):
+        raise SkinrenderError(f"--nonskin: expected comma-separated reflectance sets without empty items, got {spec!r}")
+    names = [munsell if name == "munsell" else name for name in items]
+    repeated = sorted({name for name in names if names.count(name) > 1})
+    if repeated:
+        raise SkinrenderError(f"--nonskin: each set once, got {', '.join(repeated)} more than once"
+                              + (" (the item 'munsell' is the --munsell set)" if munsell in repeated else ""))
+    if munsell != "munsell" and munsell not in names:
+        raise SkinrenderError(f"--munsell {munsell} is not used: --nonskin {spec!r} has no item 'munsell'")
+    return names
 
 
 def command_locus(args: argparse.Namespace) -> None:
@@ -52,13 +75,13 @@ def command_locus(args: argparse.Namespace) -> None:
             raise SkinrenderError("--calibration must be Planckian (kelvin, A or H)")
     skin = flag("--skin", reflectances, args.skin)
     locus = skin_locus(cam, skin, temperatures, calibration, args.boundary)
-    names = [name.strip() for name in args.nonskin.split(",") if name.strip()]
-    if not names:
-        raise SkinrenderError(f"--nonskin: expected comma-separated reflectance sets, got {args.nonskin!r}")
-    sets = {name: flag("--nonskin", reflectances, name) for name in names}
+    names = nonskin_names(args.nonskin, args.munsell)
+    sets = {name: flag("--munsell" if name == args.munsell and name != "munsell" else "--nonskin", reflectances, name)
+            for name in names}
     rates = {name: false_positive_rate(locus, cam, values) for name, values in sets.items()}
     document = {"camera": cam.name, "boundary": args.boundary, "polygon": locus.polygon.tolist(), "area": locus.area, "degenerate": locus.degenerate,
                 "illuminants_K": temperatures.tolist(), "calibration_K": calibration, "skin": skin.name,
+                "munsell": args.munsell,
                 "false_positive_rate": rates}
     if args.plot:
         # the Planckian track: a white object under 2000–10000 K, balanced to the calibration (or 5900 K)

@@ -20,6 +20,11 @@ LOCUS = ["locus", "--camera", "gbell:9@450,540,610"]
     (["--skin", "nosuch"], "--skin"),
     (["--nonskin", ","], "--nonskin"),
     (["--nonskin", "munsell,nosuch"], ("--nonskin", "nosuch")),
+    (["--nonskin", "munsell,,macbeth"], ("--nonskin", "empty")),
+    (["--nonskin", "macbeth,macbeth"], ("--nonskin", "macbeth")),
+    (["--munsell", "nosuch"], ("--munsell", "nosuch")),
+    (["--munsell", "munsell-nickerson", "--nonskin", "macbeth"], ("--munsell", "not used")),
+    (["--munsell", "macbeth"], ("--nonskin", "macbeth", "--munsell")),
 ])
 def test_locus_refuses(extra, names, capsys):
     assert_refused(LOCUS + extra, names, capsys)
@@ -40,3 +45,18 @@ def test_coincident_sensors_give_a_degenerate_locus(boundary, capsys):
     assert status == 0, err
     assert document["area"] == 0.0 and "coincident" in document["degenerate"]
     assert set(document["false_positive_rate"].values()) == {0.0}
+
+
+def test_locus_takes_the_munsell_set(capsys):
+    """``--munsell`` (CONTRACT.md: commands with skin and Munsell sets take both) replaces the 'munsell' item."""
+    argv = LOCUS + ["--nonskin", "munsell,macbeth", "--json"]
+    status, out, err = run(argv, capsys)
+    default = json.loads(out)
+    status_n, out_n, err_n = run(argv + ["--munsell", "munsell-nickerson"], capsys)
+    nickerson = json.loads(out_n)
+    assert status == status_n == 0, err + err_n
+    assert default["munsell"] == "munsell" and nickerson["munsell"] == "munsell-nickerson"
+    assert list(nickerson["false_positive_rate"]) == ["munsell-nickerson", "macbeth"]
+    assert nickerson["false_positive_rate"]["macbeth"] == default["false_positive_rate"]["macbeth"]
+    assert nickerson["polygon"] == default["polygon"]  # the locus is the skin set's alone
+    assert nickerson["false_positive_rate"]["munsell-nickerson"] != default["false_positive_rate"]["munsell"]
