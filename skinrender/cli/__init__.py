@@ -26,7 +26,7 @@ from collections.abc import Sequence
 
 from ..errors import SkinrenderError
 from . import data, design, evaluation, face, face_sweep, imaging, model, rendering, studies
-from .common import Parser
+from .common import Parser, coverage_hint
 
 __all__ = ["main", "build_parser", "COMMANDS"]
 
@@ -78,7 +78,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         COMMANDS[args.command](args)
         sys.stdout.flush()  # here, so that a failing standard output is reported below, not at exit
     except SkinrenderError as error:
-        print(f"skinrender {args.command}: error: {' '.join(str(error).split())}", file=sys.stderr)
+        print(f"skinrender {args.command}: error: {' '.join(coverage_hint(str(error), args).split())}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print(f"skinrender {args.command}: interrupted", file=sys.stderr, flush=True)

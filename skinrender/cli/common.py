@@ -22,7 +22,7 @@ from ..errors import SkinrenderError, naming
 __all__ = [
     "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
-    "add_render", "emit", "table", "range_text", "grid_of", "render_options", "choices_help",
+    "add_render", "emit", "table", "range_text", "grid_of", "render_options", "choices_help", "coverage_hint",
 ]
 
 HELP_CAMERA = (
@@ -272,6 +272,27 @@ def camera_of(args: argparse.Namespace, grid=None, name: str = "--camera"):
     cam = flag(name, camera, getattr(args, name.lstrip("-").replace("-", "_")), extrapolation=extrapolation)
     flag(name, cam.sensitivities, grid or GRID_DEFAULT)
     return cam
+
+
+def coverage_hint(message: str, args: argparse.Namespace) -> str:
+    """
+    A refusal of spectra that do not cover the grid, its advice kept to the flags the command has
+    (``--grid``, ``--extrapolation``); any other message as it is.
+
+    >>> import argparse
+    >>> coverage_hint("x.csv: measured over 420–680 nm, which does not cover the grid 400–700 nm; choose a grid "
+    ...               "inside the data or state an extrapolation ('zero' or 'constant')", argparse.Namespace())
+    'x.csv: measured over 420–680 nm, which does not cover the grid 400–700 nm; this command integrates over that grid: give spectra that cover it'
+    """
+    advice = "; choose a grid inside the data or state an extrapolation ('zero' or 'constant')"
+    if not message.endswith(advice):
+        return message
+    grid, extrapolation = hasattr(args, "grid"), hasattr(args, "extrapolation")
+    if grid and extrapolation:
+        return message[: -len(advice)] + "; choose a --grid inside the data or an --extrapolation ('zero' or 'constant')"
+    if grid:
+        return message[: -len(advice)] + "; choose a --grid inside the data"
+    return message[: -len(advice)] + "; this command integrates over that grid: give spectra that cover it"
 
 
 ILLUMINANCE_DEFAULT = 500.0

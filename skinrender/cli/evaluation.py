@@ -74,10 +74,14 @@ def command_locus(args: argparse.Namespace) -> None:
         if calibration is None:
             raise SkinrenderError("--calibration must be Planckian (kelvin, A or H)")
     skin = flag("--skin", reflectances, args.skin)
+    flag("--skin", skin.on)  # its coverage of the grid, checked here to name the flag
     locus = skin_locus(cam, skin, temperatures, calibration, args.boundary)
     names = nonskin_names(args.nonskin, args.munsell)
-    sets = {name: flag("--munsell" if name == args.munsell and name != "munsell" else "--nonskin", reflectances, name)
-            for name in names}
+    sets = {}
+    for name in names:
+        which = "--munsell" if name == args.munsell and name != "munsell" else "--nonskin"
+        sets[name] = flag(which, reflectances, name)
+        flag(which, sets[name].on)
     rates = {name: false_positive_rate(locus, cam, values) for name, values in sets.items()}
     document = {"camera": cam.name, "boundary": args.boundary, "polygon": locus.polygon.tolist(), "area": locus.area, "degenerate": locus.degenerate,
                 "illuminants_K": temperatures.tolist(), "calibration_K": calibration, "skin": skin.name,

@@ -25,9 +25,20 @@ LOCUS = ["locus", "--camera", "gbell:9@450,540,610"]
     (["--munsell", "nosuch"], ("--munsell", "nosuch")),
     (["--munsell", "munsell-nickerson", "--nonskin", "macbeth"], ("--munsell", "not used")),
     (["--munsell", "macbeth"], ("--nonskin", "macbeth", "--munsell")),
+    (["--skin", "SHORT_CSV"], ("--skin", "does not cover", "give spectra that cover it")),
+    (["--munsell", "SHORT_CSV"], ("--munsell", "does not cover")),
+    (["--camera", "SHORT_CAMERA"], ("--camera", "does not cover", "give spectra that cover it")),
 ])
-def test_locus_refuses(extra, names, capsys):
-    assert_refused(LOCUS + extra, names, capsys)
+def test_locus_refuses(extra, names, capsys, tmp_path):
+    """``SHORT_*``: CSVs over 420–680 nm (locus has no --grid or --extrapolation: the advice says so)."""
+    wavelengths = range(420, 681, 5)
+    short = {"SHORT_CSV": "\n".join(f"{w},0.5,0.3" for w in wavelengths),
+             "SHORT_CAMERA": "\n".join(f"{w},0.2,0.5,0.9" for w in wavelengths)}
+    for name, text in short.items():
+        (tmp_path / f"{name}.csv").write_text(text)
+    extra = [str(tmp_path / f"{a}.csv") if a in short else a for a in extra]
+    line = assert_refused(LOCUS + extra, names, capsys)
+    assert "--grid" not in line and "--extrapolation" not in line
 
 
 @pytest.mark.parametrize("target", ["folder", "suffix", "parent_file", "empty"])
