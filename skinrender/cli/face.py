@@ -177,13 +177,24 @@ def levels_of(text: str) -> list[str]:
     return levels
 
 
-def noise_sensor(args: argparse.Namespace) -> float | None:
-    """The noise level's ``--imager`` checked and its ``--illuminance`` in lx (``None``: the scene's)."""
+def noise_sensor(args: argparse.Namespace, levels: list[str]) -> float | None:
+    """
+    The noise level's ``--imager`` checked and its ``--illuminance`` in lx (``None``: the scene's); either is
+    refused where no level of ``levels`` has noise (nothing would see it).
+    """
+    from ..rendering.face_dict import parse_physics
+
     if args.imager is not None:
         from ..model.imager import imager
 
         flag("--imager", imager, args.imager)
-    return None if args.illuminance is None else positive_number(args.illuminance, "--illuminance", "lx")
+    lux = None if args.illuminance is None else positive_number(args.illuminance, "--illuminance", "lx")
+    if not any("noise" in parse_physics(level) for level in levels):
+        for name in ("imager", "illuminance"):
+            if getattr(args, name) is not None:
+                raise SkinrenderError(f"--{name} is the noise level's: add a level with noise to --levels "
+                                      f"(e.g. noise or interreflection+noise), got {','.join(levels)!r}")
+    return lux
 
 
 def is_face_scene(spec: str) -> bool:
@@ -224,7 +235,7 @@ def command_ladder(args: argparse.Namespace) -> None:
         skin_reflectance_of(args.skin, GRID_DEFAULT, "--skin")
     levels = levels_of(args.levels)
     variant_of(args.variant)
-    lux = noise_sensor(args)
+    lux = noise_sensor(args, levels)
     result = ladder(cam, temperatures["prevailing"], temperatures["calibration"], args.skin, levels, spp,
                     seed, size, scene, args.variant, imager=args.imager, illuminance=lux,
                     progress=lambda line: print(line, file=sys.stderr))

@@ -81,7 +81,8 @@ def _lights(values: list[str]) -> list[tuple[float, float]]:
     for value in values:
         for item in str(value).split(","):
             if not item.strip():
-                continue
+                raise SkinrenderError(f"--lights: comma-separated PREVAILING/CALIBRATION pairs, none empty, got "
+                                      f"{value!r}")
             parts = item.split("/")
             if len(parts) != 2 or not all(part.strip() for part in parts):
                 raise SkinrenderError(f"--lights: expected PREVAILING/CALIBRATION pairs such as 2856/5900, got "
@@ -89,7 +90,15 @@ def _lights(values: list[str]) -> list[tuple[float, float]]:
             pairs.append((planckian_flag(parts[0].strip(), "--lights"), planckian_flag(parts[1].strip(), "--lights")))
     if not pairs:
         raise SkinrenderError("--lights: name at least one PREVAILING/CALIBRATION pair")
+    _once("--lights", [f"{p:g}/{c:g} K" for p, c in pairs])
     return pairs
+
+
+def _once(name: str, items: list[str]) -> None:
+    """Refuse a sweep that names one camera, light pair or skin twice (it would render it twice), naming ``name``."""
+    twice = sorted({item for item in items if items.count(item) > 1})
+    if twice:
+        raise SkinrenderError(f"{name}: each once, got {', '.join(twice)} more than once")
 
 
 def _checked(args: argparse.Namespace) -> dict:
@@ -109,6 +118,7 @@ def _checked(args: argparse.Namespace) -> dict:
         cam = flag("--camera", camera, spec)
         flag("--camera", cam.sensitivities, GRID_DEFAULT)
         cams.append(cam)
+    _once("--camera", [cam.name for cam in cams])
     pairs = _lights(args.lights or [LIGHTS_DEFAULT])
     for cam in cams:
         for t in sorted({t for pair in pairs for t in pair}):
@@ -118,10 +128,11 @@ def _checked(args: argparse.Namespace) -> dict:
         if not skin:
             raise SkinrenderError("--skin: expected a skin spec, got an empty one")
         skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
+    _once("--skin", skins)
     levels = levels_of(args.levels)
     flag("--scene", load_face_scene, args.scene)
     variant_of(args.variant)
-    lux = noise_sensor(args)
+    lux = noise_sensor(args, levels)
     max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
     if args.dask is not None and not str(args.dask).strip():
         raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one")

@@ -76,6 +76,8 @@ class TestLadder:
         (["--calibration", "20"], "--calibration"), (["--scene", "nowhere"], "--scene"),
         (["--imager", "nope"], "--imager"), (["--camera", "Sony 755"], "--camera"),
         (["--variant", "llvm_ad_rgb"], "--variant"),
+        (["--levels", "direct,sheen", "--imager", "sony-icx418"], "--imager"),  # no noise level would see them
+        (["--levels", "direct", "--illuminance", "300"], "--illuminance"),
     ])
     def test_refusals_name_the_flag(self, extra, name, capsys):
         argv = ["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", *extra]

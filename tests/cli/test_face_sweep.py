@@ -88,6 +88,13 @@ def test_workers_keep_stdout_to_the_json():
     (["--max-samples", "100"], "--max-samples"),
     (["--max-samples", "nan"], "--max-samples"),
     (["--dask", " "], "--dask"),
+    (["--imager", "sony-icx418"], ("--imager", "--levels", "noise")),
+    (["--illuminance", "200"], ("--illuminance", "--levels")),
+    (["--lights", "2856/5900,"], "--lights"),
+    (["--lights", "2856/5900,2856/5900"], ("--lights", "2856/5900 K")),
+    (["--lights", "2856/5900,A/5900"], ("--lights", "2856/5900 K")),
+    (["--camera", CAM], ("--camera", "more than once")),
+    (["--skin", "skin-model:melanin=0.02"], ("--skin", "more than once")),
 ])
 def test_refusals(extra, names, capsys):
     assert_refused([*SWEEP, *extra], names, capsys)
