@@ -218,7 +218,7 @@ def command_design(args: argparse.Namespace) -> None:
     from ..spectra import GRID_DEFAULT
 
     try:
-        starts = [[float(v) for v in part.split(",")] for part in args.starts.split(";") if part.strip()]
+        starts = [[float(v) for v in part.split(",")] for part in args.starts.split(";")]
     except ValueError:
         starts = []
     if not starts or any(len(s) != 3 for s in starts):

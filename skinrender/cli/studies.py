@@ -223,7 +223,7 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     from ..rendering.renderer import SAMPLES_MAX
     from ..studies.bench_face import LEVELS_BENCH, SIZE_BENCH, SPPS_BENCH
     from .common import SPP_MAX, flag
-    from .face import SIZE_MAX, is_face_scene
+    from .face import SIZE_MAX, is_face_scene, levels_of
 
     if not is_face_scene(args.scene):
         raise SkinrenderError(f"--scene: the render bench times a face scene (face or a .toml with [camera] and "
@@ -245,10 +245,7 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     for name, spp in (("--reference-spp", reference), ("--spp-list", max(spps))):
         if spp * size * size > SAMPLES_MAX:
             raise SkinrenderError(f"{name}: {spp} spp × {size}² pixels is more than {SAMPLES_MAX} samples a pass")
-    levels = [level.strip() for level in (args.levels if args.levels is not None else ",".join(LEVELS_BENCH))
-              .split(",") if level.strip()]
-    if not levels:
-        raise SkinrenderError("--levels: name at least one level of physics")
+    levels = levels_of(args.levels if args.levels is not None else ",".join(LEVELS_BENCH))
     for level in levels:
         flag("--levels", active_lights, scene, flag("--levels", parse_physics, level))
     return {"scene": scene, "size": size, "spps": spps, "reference_spp": reference, "levels": levels}

@@ -233,8 +233,12 @@ def illuminant_set(spec: str | ArrayLike | None = None, camera_: Camera | str | 
                 raise SkinrenderError("--illuminants auto needs a camera (--camera)")
             return select_illuminants(camera_)
 
-        items = [illuminant(part) for part in text.split(",") if part.strip()]
-        if not items or any(item.temperature is None for item in items):
+        parts = text.split(",")
+        if not all(part.strip() for part in parts):
+            raise SkinrenderError(f"illuminants must be comma-separated kelvin (e.g. 2000,3300,A), none empty, "
+                                  f"got {spec!r}")
+        items = [illuminant(part) for part in parts]
+        if any(item.temperature is None for item in items):
             raise SkinrenderError(
                 f"illuminants must be 'paper', 'auto' or comma-separated kelvin (e.g. 2000,3300,A), got {spec!r}"
             )

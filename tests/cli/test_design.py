@@ -119,6 +119,8 @@ def test_search_writes_its_csv_where_told(tmp_path, capsys):
     (["--starts", "nan,540,610"], "starts"),
     (["--starts", "450,540"], "--starts"),
     (["--starts", ""], "--starts"),
+    (["--starts", "450,540,610;"], "--starts"),  # an empty start is refused, not dropped
+    (["--starts", "450,540,610;;420,550,680"], "--starts"),
     (["--objective", "beauty"], "--objective"),
     (["--munsell", "nosuch"], "--munsell"),
     (["--imager", "sony-imx174", "--noise-calibration", "3000"], "--noise-calibration"),

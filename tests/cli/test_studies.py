@@ -37,6 +37,8 @@ def test_face_bench_document(capsys):
     (["render", "--scene", "face", "--size", "2000", "--reference-spp", "1000"], "--reference-spp"),
     (["render", "--scene", "face", "--levels", "direct,glossy"], "--levels"),
     (["render", "--scene", "face", "--levels", ","], "--levels"),
+    (["render", "--scene", "face", "--levels", "direct,,sheen"], "--levels"),
+    (["render", "--scene", "face", "--levels", "direct,direct"], "--levels"),
     (["render", "--scene", "face", "--plot", "curve.png"], "--plot"),
     # an empty --levels is refused, not read as the default levels
     (["render", "--scene", "face", "--quick", "--levels", ""], "--levels"),

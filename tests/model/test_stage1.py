@@ -84,7 +84,7 @@ class TestIlluminantSet:
     def test_auto(self):
         np.testing.assert_array_equal(illuminant_set("auto", "Kodak DCS-200"), select_illuminants("Kodak DCS-200"))
 
-    @pytest.mark.parametrize("spec", ["warm,cold", "0,100"])
+    @pytest.mark.parametrize("spec", ["warm,cold", "0,100", "3000,,3300", "3000,3300,", ","])
     def test_bad(self, spec):
         with pytest.raises(SkinrenderError):
             illuminant_set(spec)
