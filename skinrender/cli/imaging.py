@@ -103,6 +103,11 @@ def _noise_options(args: argparse.Namespace) -> dict | None:
     }
 
 
+def _rate_text(rate: float | None, error: float | None) -> str:
+    """A rate ± its standard error, or ``undefined``."""
+    return "undefined" if rate is None else f"{rate:.4f} ± {error:.4f}"
+
+
 def command_score(args: argparse.Namespace) -> None:
     from ..datasets import reflectances
     from ..evaluation.gamut import gamut_all_calibrations
@@ -137,15 +142,20 @@ def command_score(args: argparse.Namespace) -> None:
             "tpr": result.tpr, "fpr": result.fpr, "tpr_se": result.tpr_se, "fpr_se": result.fpr_se,
             "tpr_noise_free": result.tpr_noise_free, "fpr_noise_free": result.fpr_noise_free,
             "skin_ncc_std": [None if math.isnan(v) else v for v in result.skin_ncc_std],
+            "undefined": result.undefined, "black_share": {"skin": result.black_share[0],
+                                                            "nonskin": result.black_share[1]},
+            "clipping": result.clipping, "notes": list(result.notes),
         }
         exposures = (f"{min(result.exposure_s) * 1e3:.4g}–{max(result.exposure_s) * 1e3:.4g} ms"
                      if noise["exposure"] == "auto" else f"{result.exposure_s[0] * 1e3:.4g} ms")
         text += (f"\nthrough {result.imager} at {result.illuminance_lux:g} lx, exposure {exposures} "
                  f"({result.samples} noisy pixels per sample and pair, seed {noise['seed']}):\n"
-                 f"  skin detected (TPR): {result.tpr:.4f} ± {result.tpr_se:.4f} "
+                 f"  skin detected (TPR): {_rate_text(result.tpr, result.tpr_se)} "
                  f"(noise-free {result.tpr_noise_free:.4f})\n"
-                 f"  false positives (FPR): {result.fpr:.4f} ± {result.fpr_se:.4f} "
-                 f"(noise-free {result.fpr_noise_free:.4f})")
+                 f"  false positives (FPR): {_rate_text(result.fpr, result.fpr_se)} "
+                 f"(noise-free {result.fpr_noise_free:.4f})"
+                 + "".join(f"\n  note: {note}" for note in result.notes)
+                 + "".join(f"\n  {key} undefined: {why}" for key, why in result.undefined.items()))
     emit(args, document, text)
 
 

@@ -52,7 +52,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -61,15 +61,17 @@ from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..model.camera import Camera
 from ..model.chromaticity import ncc
-from ..model.exposure import AUTO_EXPOSURE_MAX_S, auto_exposure, electrons_mean, irradiance_planck
+from ..model.exposure import AUTO_EXPOSURE_MAX_S, auto_exposure, auto_exposure_note, electrons_mean, irradiance_planck
 from ..model.illuminant import illuminants_array
 from ..model.imager import Imager, checked_array, imager
-from ..model.noise import ncc_covariance, random_generator, simulate_dn, statistics_dn
+from ..model.noise import (clipping_counts, clipping_note, ncc_covariance, random_generator, simulate_dn_clipped,
+                           statistics_dn)
 from ..model.response import gain, response_raw, spds_on
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .locus import SkinLocus, false_positive_rate, locus_points, skin_locus
 
-__all__ = ["AUTO_EXPOSURE_FRACTION", "NoisyDetection", "PixelElectrons", "noisy_detection", "pixel_electrons"]
+__all__ = ["AUTO_EXPOSURE_FRACTION", "NCC_LINEAR_MAX", "NoisyDetection", "PixelElectrons", "noisy_detection",
+           "pixel_electrons"]
 
 AUTO_EXPOSURE_FRACTION = 0.7
 """``auto`` exposure: the white's brightest channel under the calibration light at this share of the full well."""
@@ -102,7 +104,19 @@ class NoisyDetection:
         The calibration illuminants, K.
     skin_ncc_std
         Root mean square over the skin pixels of the NCC (r, g, b) standard
-        deviations by the delta method (:func:`~skinrender.model.noise.ncc_covariance`), unitless.
+        deviations by the delta method (:func:`~skinrender.model.noise.ncc_covariance`), unitless,
+        over the pixels where that first-order propagation holds (:data:`NCC_LINEAR_MAX`); NaN where none does.
+    undefined
+        Why a value is ``None`` or NaN (``tpr``/``fpr``: every noisy pixel black, no chromaticity;
+        ``skin_ncc_std``: no skin pixel bright enough for the delta method).
+    black_share
+        Shares of the noisy skin and non-skin pixels with no chromaticity (every channel at or below the black
+        level): counted as not detected.
+    clipping
+        :func:`~skinrender.model.noise.clipping_counts` of the noisy skin and non-skin pixels (``skin``,
+        ``nonskin``): clipped at the full well or the ADC range.
+    notes
+        What was capped or clipped: the ``auto`` exposure stopped by its longest exposure, clipped pixels.
     """
 
     tpr: float
@@ -117,6 +131,10 @@ class NoisyDetection:
     fpr_noise_free: float
     calibrations_K: tuple[float, ...]
     skin_ncc_std: tuple[float, float, float]
+    undefined: dict = field(default_factory=dict)
+    black_share: tuple[float, float] = (0.0, 0.0)
+    clipping: dict = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
 
 
 def _reflectance_array(values: ArrayLike, name: str, grid: WavelengthGrid) -> NDArrayFloat:
@@ -160,11 +178,14 @@ class PixelElectrons:
         black level, shape ``(P, C, 1, 3)``.
     exposure_s
         Exposure, s, per calibration illuminant, shape ``(C,)``.
+    notes
+        A note where the ``auto`` exposure's longest exposure kept a white from its target (else empty).
     """
 
     electrons: NDArrayFloat
     gains: NDArrayFloat
     exposure_s: NDArrayFloat
+    notes: tuple[str, ...] = ()
 
 
 def _white_rates(im: Imager, cam: Camera, temperatures: NDArrayFloat, lux: float, grid: WavelengthGrid):
@@ -226,8 +247,11 @@ def pixel_electrons(
     lux = _positive(illuminance_lux, "illuminance_lux", "lx")
     white_p, raw_white_p = _white_rates(im, cam, prevailing, lux, grid)  # (P, 3)
     white_c, _ = _white_rates(im, cam, calibrations, lux, grid)  # (C, 3)
+    notes: tuple[str, ...] = ()
     if isinstance(exposure, str) and exposure.strip().lower() == "auto":
         exposures = np.atleast_1d(auto_exposure(im, white_c, AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S))  # (C,)
+        capped = auto_exposure_note(im, white_c, AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S)
+        notes = (capped,) if capped else ()
     else:
         exposures = np.full(calibrations.size, _positive(exposure, "exposure", "s (or 'auto')"))
     dark = im.dark_current_e_per_s
@@ -237,7 +261,46 @@ def pixel_electrons(
     ratio = response_raw(cam, reflectance, prevailing, "none", grid) / raw_white_p[:, None, :]  # Eq. 1, (P, n, 3)
     photo = ratio * (white_p - dark)[:, None, :]  # e⁻/s
     electrons = (photo[:, None] + dark) * exposures[None, :, None, None]
-    return PixelElectrons(electrons, gains[:, :, None, :], exposures)
+    return PixelElectrons(electrons, gains[:, :, None, :], exposures, notes)
+
+
+NCC_LINEAR_MAX = 0.1
+"""The delta method's NCC spread holds where the white-balanced channel sum's relative noise σ_S / S is at most
+this: the neglected terms are of order (σ_S / S)², 1 %. Darker pixels (a black frame: S ≈ 0) are left out."""
+
+
+@dataclass(frozen=True)
+class _Draws:
+    """The noisy pixels of one reflectance set: in the locus, black (no chromaticity), drawn; clipping counts."""
+
+    hits: int
+    black: int
+    total: int
+    clipping: dict
+
+
+def _defined_rates(draws: _Draws, name: str, undefined: dict) -> tuple[float | None, float | None]:
+    """The share of hits and its standard error, or ``None`` (reason in ``undefined``) where every pixel is black."""
+    if draws.black == draws.total:
+        undefined[name] = (f"every one of the {draws.total} noisy pixels is black (no channel above the black level): "
+                           "no chromaticity to classify; raise the illuminance or the exposure")
+        return None, None
+    return _rates(draws.hits, draws.total)
+
+
+def _skin_ncc_spread(im: Imager, pixels: PixelElectrons, undefined: dict) -> NDArrayFloat:
+    """RMS NCC (r, g, b) std of the skin pixels by the delta method where it holds (:data:`NCC_LINEAR_MAX`)."""
+    mean, variance = statistics_dn(im, pixels.electrons)
+    signal = mean - im.black_level_dn
+    gains = np.broadcast_to(pixels.gains, signal.shape)
+    total = (signal * gains).sum(axis=-1)
+    usable = (total > 0) & (np.sqrt((variance * gains**2).sum(axis=-1)) <= NCC_LINEAR_MAX * total)
+    if not usable.any():
+        undefined["skin_ncc_std"] = (f"no skin pixel's white-balanced channel sum is {1 / NCC_LINEAR_MAX:g}× its "
+                                     "noise: the first-order (delta-method) NCC spread does not hold")
+        return np.full(3, math.nan)
+    covariance = ncc_covariance(signal[usable], variance[usable], gains[usable])
+    return np.sqrt(np.mean(np.diagonal(covariance, axis1=-2, axis2=-1), axis=0))
 
 
 def noisy_detection(
@@ -321,32 +384,35 @@ def noisy_detection(
     tpr_free = float(np.mean(locus.contains(locus_points(cam, skin, prevailing, calibration, grid))))
     fpr_free = false_positive_rate(locus, cam, nonskin, grid)
 
-    def inside(pixels: PixelElectrons) -> tuple[int, int]:
-        hits = 0
+    def inside(pixels: PixelElectrons) -> _Draws:
+        hits = black = 0
+        full = clipped = np.zeros(pixels.electrons.shape, int)  # draws clipped, per pixel and channel
         for _ in range(samples):
-            above_black = np.maximum(simulate_dn(im, pixels.electrons, rng) - im.black_level_dn, 0.0)  # DN
-            balanced = above_black * pixels.gains
+            dn, well_full, adc_clipped = simulate_dn_clipped(im, pixels.electrons, rng)
+            full, clipped = full + well_full, clipped + adc_clipped
+            balanced = np.maximum(dn - im.black_level_dn, 0.0) * pixels.gains  # DN above black × gain
             positive = balanced.sum(axis=-1) > 0  # a black pixel has no chromaticity
+            black += int(np.count_nonzero(~positive))
             hits += int(np.count_nonzero(locus.contains(ncc(balanced)[..., :2]) & positive))
-        return hits, samples * int(np.prod(pixels.electrons.shape[:-1]))
+        total = samples * int(np.prod(pixels.electrons.shape[:-1]))
+        return _Draws(hits, black, total, clipping_counts(full, clipped, total))  # every draw counted
 
     on_skin = pixel_electrons(cam, skin, prevailing, calibrations, im, lux, exposure, grid)
-    tpr, tpr_se = _rates(*inside(on_skin))
-    fpr, fpr_se = _rates(*inside(pixel_electrons(cam, nonskin, prevailing, calibrations, im, lux, exposure, grid)))
-    exposures, gains = on_skin.exposure_s, on_skin.gains
-
-    mean, variance = statistics_dn(im, on_skin.electrons)
-    signal = mean - im.black_level_dn
-    usable = (signal * gains).sum(axis=-1) > 0
-    spread = np.full(3, math.nan)
-    if usable.any():
-        gains_each = np.broadcast_to(gains, signal.shape)
-        covariance = ncc_covariance(signal[usable], variance[usable], gains_each[usable])
-        spread = np.sqrt(np.mean(np.diagonal(covariance, axis1=-2, axis2=-1), axis=0))
+    skin_draws = inside(on_skin)
+    nonskin_draws = inside(pixel_electrons(cam, nonskin, prevailing, calibrations, im, lux, exposure, grid))
+    undefined: dict = {}
+    (tpr, tpr_se), (fpr, fpr_se) = (_defined_rates(draws, name, undefined)
+                                    for draws, name in ((skin_draws, "tpr"), (nonskin_draws, "fpr")))
+    exposures = on_skin.exposure_s
+    spread = _skin_ncc_spread(im, on_skin, undefined)
+    clipped = ((name, clipping_note(draws.clipping)) for name, draws in (("skin", skin_draws), ("nonskin", nonskin_draws)))
+    notes = on_skin.notes + tuple(f"{name} pixels {note}" for name, note in clipped if note)
     return NoisyDetection(
         tpr=tpr, fpr=fpr, tpr_se=tpr_se, fpr_se=fpr_se, samples=int(samples),
         exposure_s=tuple(float(value) for value in exposures), illuminance_lux=lux, imager=im.name,
         tpr_noise_free=tpr_free, fpr_noise_free=fpr_free,
         calibrations_K=tuple(float(value) for value in calibrations),
-        skin_ncc_std=tuple(float(value) for value in spread),
+        skin_ncc_std=tuple(float(value) for value in spread), undefined=undefined,
+        black_share=(skin_draws.black / skin_draws.total, nonskin_draws.black / nonskin_draws.total),
+        clipping={"skin": skin_draws.clipping, "nonskin": nonskin_draws.clipping}, notes=notes,
     )

@@ -11,7 +11,9 @@ expected photo- and dark electrons of a pixel, and the automatic exposure.
 -   :func:`illuminance_lux`, :func:`irradiance_planck`,
     :func:`radiance_lambertian`: photometry.
 -   :func:`electrons_mean`, :func:`auto_exposure`: expected electrons and the
-    exposure that puts a white at a fraction of the full well.
+    exposure that puts a white at a fraction of the full well;
+    :func:`auto_exposure_note`: what to say when the longest exposure stops it
+    short of that fraction.
 
 Units: wavelength nm, radiance W·m⁻²·sr⁻¹·nm⁻¹, irradiance W·m⁻²·nm⁻¹,
 illuminance lx, time s, charge e⁻.
@@ -44,6 +46,7 @@ __all__ = [
     "CONSTANT_K_M",
     "AUTO_EXPOSURE_MAX_S",
     "auto_exposure",
+    "auto_exposure_note",
     "electrons_mean",
     "illuminance_lux",
     "irradiance_planck",
@@ -274,3 +277,43 @@ def auto_exposure(
             raise SkinrenderError(f"longest_s must be a finite number of seconds > 0, got {longest_s!r}")
         exposure = np.minimum(exposure, longest_s)
     return float(exposure) if exposure.ndim == 0 else exposure
+
+
+def auto_exposure_note(
+    imager: str | Path | Imager, white_electrons_per_s: ArrayLike, fraction: float, longest_s: float,
+) -> str | None:
+    """
+    A note where :func:`auto_exposure`'s longest exposure binds, ``None`` where the white reaches its target.
+
+    Parameters
+    ----------
+    imager
+        An :class:`Imager`, a preset name or a TOML path.
+    white_electrons_per_s
+        The white's electron rate per channel, e⁻/s, ``(..., 3)`` (one white per row, e.g. per calibration).
+    fraction, longest_s
+        The target share of the full well and the longest exposure, s, given to :func:`auto_exposure`.
+
+    Returns
+    -------
+    str or None
+        The cap (ms), the target share and the share of the full well the brightest channel reaches (the
+        lowest over the rows), and how many of the rows were capped.
+
+    Examples
+    --------
+    >>> print(auto_exposure_note("sony-imx174", [1e5, 3e5, 2e5], 0.7, 1 / 30))  # 0.7 of the well in 76 ms
+    auto exposure capped at the longest exposure, 33.3 ms: the white's brightest channel reaches 0.306 of the full well, not the 0.7 target (1 of 1 whites)
+    >>> auto_exposure_note("sony-imx174", [1e6, 3e6, 2e6], 0.7, 1 / 30) is None  # 7.6 ms: not capped
+    True
+    """
+    im = imager_of(imager)
+    exposure = np.atleast_1d(auto_exposure(im, white_electrons_per_s, fraction, longest_s))
+    brightest = np.atleast_2d(checked_array(white_electrons_per_s, "white_electrons_per_s", "e⁻/s")).max(axis=-1)
+    reached = brightest.reshape(exposure.shape) * exposure / im.full_well_e
+    capped = reached < fraction * (1 - 1e-9)
+    if not capped.any():
+        return None
+    return (f"auto exposure capped at the longest exposure, {longest_s * 1e3:.3g} ms: the white's brightest channel "
+            f"reaches {reached.min():.3g} of the full well, not the {fraction:g} target "
+            f"({int(capped.sum())} of {capped.size} whites)")

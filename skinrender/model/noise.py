@@ -9,7 +9,12 @@ frames, and the noise carried to white-balanced NCC chromaticities.
 
 -   :func:`statistics_dn`, :func:`signal_dn`: the analytic mean (DN) and
     variance (DN²) of a pixel.
--   :func:`simulate_dn`, :func:`random_generator`: one noisy frame, seeded.
+-   :func:`code_probabilities`: the probability of each output code, DN,
+    where the noise is narrow (a few codes: the lattice the tests need).
+-   :func:`simulate_dn`, :func:`random_generator`: one noisy frame, seeded;
+    :func:`simulate_dn_clipped`: the same frame and which pixels the full
+    well or the ADC range clipped; :func:`clipping_counts`,
+    :func:`clipping_note`: how much, per channel.
 -   :func:`ncc_covariance`: first-order propagation to NCC (Eq. 2).
 
 The chain, as in a real sensor: Poisson photo- and dark electrons, the charge
@@ -45,7 +50,8 @@ from ..hints import ArrayLike, NDArrayFloat
 from .imager import Imager, checked_array, is_integer
 from .imager import imager as imager_of
 
-__all__ = ["ncc_covariance", "random_generator", "signal_dn", "simulate_dn", "statistics_dn"]
+__all__ = ["clipping_counts", "clipping_note", "code_probabilities", "ncc_covariance", "random_generator", "signal_dn", "simulate_dn", "simulate_dn_clipped",
+           "statistics_dn"]
 
 _WINDOW_SIGMA = 8.0  # exact sums over codes reach ±8 σ: the normal tail beyond is < 1e-15
 _SWITCH_DN = 4.0  # σ ≥ 4 DN: closed form, whose Euler–Maclaurin remainder is < 1e-5 DN
@@ -69,15 +75,20 @@ def _moments_closed(m: NDArrayFloat, s: NDArrayFloat, low: float, high: float) -
     return np.where(m > high, beyond, m + s * mz) + c1, np.maximum(variance, 0.0)
 
 
-def _moments_exact(m: NDArrayFloat, s: NDArrayFloat, low: float, high: float) -> tuple[NDArrayFloat, ...]:
-    """Mean and variance of clip(round(N(m, s²)), low, high), summed code by code."""
+def _exceed_normal(m: NDArrayFloat, s: NDArrayFloat, low: float, high: float) -> tuple[NDArrayFloat, ...]:
+    """The window's first code, DN, its steps and P(DN > code) of clip(round(N(m, s²)), low, high), per row."""
     start = np.clip(np.floor(m - _WINDOW_SIGMA * s), low, high)
     steps = np.arange(math.ceil(2 * _WINDOW_SIGMA * s.max(initial=0.0)) + 2, dtype=np.float64)
     code = start[:, None] + steps
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         z = (m[:, None] - code - 0.5) / s[:, None]
     z = np.where(s[:, None] > 0, z, np.where(m[:, None] > code + 0.5, np.inf, -np.inf))
-    exceed = np.where(code < high, ndtr(z), 0.0)  # P(DN > code); E[d] = Σ P(d > j), E[d²] = Σ (2j+1) P(d > j)
+    return start, steps, np.where(code < high, ndtr(z), 0.0)
+
+
+def _moments_exact(m: NDArrayFloat, s: NDArrayFloat, low: float, high: float) -> tuple[NDArrayFloat, ...]:
+    """Mean and variance of clip(round(N(m, s²)), low, high), summed code by code."""
+    start, steps, exceed = _exceed_normal(m, s, low, high)  # E[d] = Σ P(d > j), E[d²] = Σ (2j+1) P(d > j)
     shift = exceed.sum(axis=1)
     return start + shift, np.maximum(((2 * steps + 1) * exceed).sum(axis=1) - shift**2, 0.0)
 
@@ -188,13 +199,8 @@ def statistics_dn(imager: str | Path | Imager, electrons_mean: ArrayLike) -> tup
     im = imager_of(imager)
     mu = np.minimum(checked_array(electrons_mean, "electrons_mean", "e⁻"), _POISSON_CAP)
     flat = mu.ravel()
-    gain, black, well, read = im.gain_dn_per_e, im.black_level_dn, im.full_well_e, im.read_noise_e
-    shot = np.sqrt(flat)
-    empty_well, full_well = well - flat > _WINDOW_SIGMA * shot, flat - well > _WINDOW_SIGMA * shot
-    m = np.where(empty_well, gain * flat, gain * well) + black
-    s = np.where(empty_well, gain * np.sqrt(flat + read**2), gain * read)
+    m, s, normal = _normal_parameters(im, flat)
     mean, variance = np.empty_like(flat), np.empty_like(flat)
-    normal = empty_well | full_well
     mean[normal], variance[normal] = _moments_normal(m[normal], s[normal], 0.0, float(im.max_dn))
     filling = ~normal
     mean[filling], variance[filling] = _moments_filling(flat[filling], im)
@@ -211,6 +217,60 @@ def signal_dn(imager: str | Path | Imager, electrons_mean: ArrayLike) -> NDArray
     16.000 DN
     """
     return statistics_dn(imager, electrons_mean)[0]
+
+
+def _normal_parameters(im: Imager, flat: NDArrayFloat) -> tuple[NDArrayFloat, ...]:
+    """Per pixel: the normal Y's mean m, DN, and std s, DN, and whether the well never or always fills."""
+    gain, black, well, read = im.gain_dn_per_e, im.black_level_dn, im.full_well_e, im.read_noise_e
+    shot = np.sqrt(flat)
+    empty_well, full_well = well - flat > _WINDOW_SIGMA * shot, flat - well > _WINDOW_SIGMA * shot
+    m = np.where(empty_well, gain * flat, gain * well) + black
+    s = np.where(empty_well, gain * np.sqrt(flat + read**2), gain * read)
+    return m, s, empty_well | full_well
+
+
+def code_probabilities(imager: str | Path | Imager, electrons_mean: ArrayLike) -> tuple[NDArrayFloat, ...]:
+    """
+    The probability of every output code, DN, of pixels whose noise spans a few codes.
+
+    Parameters
+    ----------
+    imager
+        An :class:`~skinrender.model.imager.Imager`, a preset name or a TOML path.
+    electrons_mean
+        Expected electrons, photo plus dark, e⁻ ≥ 0, shape ``(n,)``.
+
+    Returns
+    -------
+    tuple of :class:`numpy.ndarray`
+        ``(first, pmf)``: the first code of each pixel's window, DN, ``(n,)``,
+        and P(DN = first + j), ``(n, w)``, each row summing to 1 (to < 1e-14).
+        Rows are NaN where this model gives no code by code law: the noise
+        σ ≥ 4 DN (closed-form moments) or a well that fills in some frames.
+
+    Notes
+    -----
+    The law :func:`statistics_dn` sums (the normal Y rounded and clipped to
+    the ADC range): P(DN = j) = P(DN > j − 1) − P(DN > j). With sub-DN noise a
+    pixel takes one to three codes, and tests on patch statistics need this
+    lattice, not a normal law.
+
+    Examples
+    --------
+    >>> first, pmf = code_probabilities("sony-icx418", [1000.0])  # 8 + 6 DN, σ = 0.22 DN
+    >>> print(int(first[0] + pmf[0].argmax()), f"{pmf[0].max():.4f}")
+    14 0.9741
+    """
+    im = imager_of(imager)
+    flat = np.minimum(checked_array(electrons_mean, "electrons_mean", "e⁻"), _POISSON_CAP).ravel()
+    m, s, normal = _normal_parameters(im, flat)
+    narrow = normal & (s < _SWITCH_DN)
+    first = np.full(flat.shape, np.nan)
+    start, _, exceed = _exceed_normal(m[narrow], s[narrow], 0.0, float(im.max_dn))
+    pmf = np.full((flat.size, exceed.shape[1]), np.nan)
+    first[narrow] = start
+    pmf[narrow] = -np.diff(np.concatenate([np.ones((exceed.shape[0], 1)), exceed], axis=1), axis=1)
+    return first, np.maximum(pmf, 0.0, where=~np.isnan(pmf), out=pmf)
 
 
 def random_generator(rng_or_seed: np.random.Generator | int, name: str = "rng_or_seed") -> np.random.Generator:
@@ -269,12 +329,67 @@ def simulate_dn(
     16.00 DN, 0.88 DN
     """
 
+    return simulate_dn_clipped(imager, electrons_mean, rng_or_seed)[0]
+
+
+def simulate_dn_clipped(
+    imager: str | Path | Imager, electrons_mean: ArrayLike, rng_or_seed: np.random.Generator | int
+) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat]:
+    """
+    :func:`simulate_dn`'s frame (the same draws) and where it was clipped.
+
+    Returns
+    -------
+    tuple of :class:`numpy.ndarray`
+        ``(dn, well_full, adc_clipped)``: the frame, DN, and two boolean
+        arrays of its shape: the charge reached the full well (and was
+        clipped to it), the code fell outside [0, 2^bits − 1] DN (and was
+        clipped to the range).
+
+    Examples
+    --------
+    >>> dn, full, clipped = simulate_dn_clipped("sony-icx418", [1e3, 5e4, 5e5], 7)  # well 40 000 e⁻
+    >>> full.tolist(), clipped.tolist()
+    ([False, True, True], [False, False, False])
+    """
     im = imager_of(imager)
     mu = checked_array(electrons_mean, "electrons_mean", "e⁻")
     rng = random_generator(rng_or_seed)
-    charge = np.minimum(rng.poisson(np.minimum(mu, _POISSON_CAP)), im.full_well_e)  # the well: [0, μ_sat] e⁻
+    drawn = rng.poisson(np.minimum(mu, _POISSON_CAP))
+    charge = np.minimum(drawn, im.full_well_e)  # the well: [0, μ_sat] e⁻
     volts = im.gain_dn_per_e * (charge + rng.normal(0.0, im.read_noise_e, mu.shape)) + im.black_level_dn
-    return np.clip(np.rint(volts), 0.0, float(im.max_dn))
+    codes = np.rint(volts)
+    return np.clip(codes, 0.0, float(im.max_dn)), drawn >= im.full_well_e, (codes < 0) | (codes > im.max_dn)
+
+
+def clipping_counts(well_full: ArrayLike, adc_clipped: ArrayLike, pixels: int | None = None) -> dict:
+    """
+    How much of a frame ``(..., 3)`` the full well and the ADC range clipped, per channel R, G, B.
+
+    ``well_full``, ``adc_clipped``: :func:`simulate_dn_clipped`'s masks, or counts of clipped draws per pixel;
+    ``pixels``: the pixels (draws) per channel, default the frame's. Returns ``pixels``, ``well_full`` and
+    ``adc_clipped`` (counts per channel) and their ``*_share`` (fractions of ``pixels``).
+
+    Examples
+    --------
+    >>> counts = clipping_counts(np.array([[[1, 0, 0]], [[1, 1, 0]]]), np.zeros((2, 1, 3)))
+    >>> counts["well_full"], counts["well_full_share"], counts["adc_clipped"]
+    ([2, 1, 0], [1.0, 0.5, 0.0], [0, 0, 0])
+    """
+    full = np.asarray(well_full, dtype=np.int64).reshape(-1, 3).sum(axis=0)
+    clipped = np.asarray(adc_clipped, dtype=np.int64).reshape(-1, 3).sum(axis=0)
+    pixels = int(np.prod(np.shape(well_full)[:-1])) if pixels is None else int(pixels)
+    return {"pixels": pixels, "well_full": full.tolist(), "well_full_share": (full / max(pixels, 1)).tolist(),
+            "adc_clipped": clipped.tolist(), "adc_clipped_share": (clipped / max(pixels, 1)).tolist()}
+
+
+def clipping_note(counts: dict) -> str | None:
+    """One line where :func:`clipping_counts` found clipped pixels, ``None`` where none were."""
+    if not (any(counts["well_full"]) or any(counts["adc_clipped"])):
+        return None
+    shares = lambda key: "/".join(f"{100 * v:.3g}" for v in counts[key + "_share"])  # noqa: E731
+    return (f"clipped: {shares('well_full')} % of the pixels (R/G/B) at the full well, {shares('adc_clipped')} % "
+            "at the ADC range: their values are not the light's")
 
 
 def ncc_covariance(mean: ArrayLike, cov_or_var: ArrayLike, gains: ArrayLike) -> NDArrayFloat:

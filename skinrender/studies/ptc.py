@@ -21,7 +21,12 @@ difference of two frames of the same exposure, which cancels every
 fixed pattern — here the render's own Monte Carlo noise, identical in both
 frames. The gain is the slope of variance against mean over the points below
 70 % of saturation (the linear range; quantisation, 1/12 DN², is removed
-first), the read noise the dark frames' temporal noise divided by the gain,
+first). The dark frames' temporal variance grows with the exposure,
+σ_y.dark² = K² (σ_r² + μ_I t) + 1/12 DN², by the dark current's shot noise: the
+read noise is the intercept at t = 0 of a line fitted to it over the series,
+less quantisation, divided by the gain, and the dark current μ_I (e⁻/s) the
+slope of the dark mean against the exposure divided by the gain (EMVA 1288's
+dark current measurement);
 the saturation capacity the mean at the largest variance divided by the gain,
 and the linearity error the largest deviation of the mean from a line through
 the origin fitted between 5 % and 95 % of saturation, in percent of the fitted
@@ -70,6 +75,20 @@ def _frames(im: Imager, electrons: np.ndarray, seed: int, index: int) -> tuple[n
     return simulate_dn(im, electrons, generator), simulate_dn(im, electrons, generator)
 
 
+def _dark_fit(exposures: np.ndarray, variances: np.ndarray, means: np.ndarray,
+              gains: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """
+    The dark frames over the series: the temporal variance's intercept at t = 0, DN², and the dark current, e⁻/s.
+
+    σ_y.dark²(t) = σ_0² + K² μ_I t and μ_y.dark(t) = μ_y.dark(0) + K μ_I t, per channel: straight lines in the
+    exposure t (s); the intercept σ_0² = K² σ_r² + 1/12 DN² holds the read noise alone, the slope of the mean over
+    K the dark current μ_I. ``variances``, ``means``: ``(points, 3)``, DN² and DN; ``gains``: K, DN/e⁻, ``(3,)``.
+    """
+    variance_line = np.polyfit(exposures, variances, 1)  # (2, 3): slope, intercept
+    mean_slope = np.polyfit(exposures, means, 1)[0]
+    return variance_line[1], mean_slope / gains
+
+
 def photon_transfer(
     camera_: Camera,
     imager_: Imager | str,
@@ -85,9 +104,12 @@ def photon_transfer(
     Measure the photon transfer of ``camera_`` recorded by ``imager_`` under a Planckian light (K, lx).
 
     ``points`` exposures are spaced evenly from 0 to 1.3 × the exposure that fills the brightest channel's
-    well (so the series passes saturation). Returns ``points`` (``[{exposure_s, mean_dn, variance_dn, snr}]``,
-    dark-subtracted, per channel R, G, B), ``gain_dn_per_e``, ``read_noise_e``, ``full_well_e``,
-    ``linearity_error`` (percent), each per channel, and ``stated`` (the imager's own figures).
+    well (so the series passes saturation). Returns ``points`` (``[{exposure_s, mean_dn, variance_dn, snr,
+    dark_variance_dn}]``, dark-subtracted, per channel R, G, B; ``dark_variance_dn`` the dark frames' temporal
+    variance at that exposure, DN², read noise plus the dark current's shot noise plus quantisation),
+    ``gain_dn_per_e``, ``read_noise_e`` (the dark variance's intercept at t = 0: no dark current),
+    ``dark_current_e_per_s`` (measured from the dark means), ``full_well_e``, ``linearity_error`` (percent), each
+    per channel, and ``stated`` (the imager's own figures).
     """
 
     im = imager(imager_)
@@ -104,7 +126,7 @@ def photon_transfer(
             "illuminance")
     fill = im.full_well_e / brightest
     exposures = np.linspace(0.0, 1.3 * fill, points)
-    rows, dark_noise = [], []
+    rows, dark_noise, dark_means = [], [], []
     for index, t in enumerate(exposures):
         dark = _frames(im, np.full(rate.shape, im.dark_current_e_per_s * t), seed, 2 * index)
         light = _frames(im, (rate + im.dark_current_e_per_s) * t, seed, 2 * index + 1)
@@ -113,7 +135,9 @@ def photon_transfer(
         variance = 0.5 * (light[0] - light[1]).var(axis=(0, 1), ddof=1) - 0.5 * (dark[0] - dark[1]).var(
             axis=(0, 1), ddof=1)
         dark_noise.append(0.5 * (dark[0] - dark[1]).var(axis=(0, 1), ddof=1))
+        dark_means.append(dark_mean)
         rows.append({"exposure_s": float(t), "mean_dn": mean.tolist(), "variance_dn": variance.tolist(),
+                     "dark_variance_dn": dark_noise[-1].tolist(),
                      "snr": np.divide(mean, np.sqrt(variance + dark_noise[-1]), out=np.zeros(3),
                                       where=variance + dark_noise[-1] > 0).tolist()})
     means = np.array([r["mean_dn"] for r in rows])  # (points, 3)
@@ -132,17 +156,24 @@ def photon_transfer(
         line = np.sum(means[band, k] * exposures[band]) / np.sum(exposures[band] ** 2)
         linearity.append(float(np.max(np.abs(means[band, k] - line * exposures[band]) / (line * exposures[band]))
                                * 100.0))
-    dark_std = np.sqrt(np.mean(dark_noise, axis=0))
-    read_noise = np.sqrt(np.maximum(dark_std**2 - 1.0 / 12.0, 0.0)) / np.array(gain_k)  # quantisation removed
+    dark_intercept, dark_current = _dark_fit(exposures, np.array(dark_noise), np.array(dark_means), np.array(gain_k))
+    dark_std = np.sqrt(np.maximum(dark_intercept, 0.0))  # DN: the temporal dark noise at t = 0
+    read_noise = np.sqrt(np.maximum(dark_intercept - 1.0 / 12.0, 0.0)) / np.array(gain_k)  # quantisation removed
     measurable = dark_std >= DARK_NOISE_MIN_DN
     return {
         "camera": camera_.name, "imager": im.name, "temperature_K": float(temperature),
         "illuminance_lux": float(illuminance_lux), "spp": raw.spp, "seed": int(seed), "points": rows,
         "gain_dn_per_e": gain_k,
         "read_noise_e": [float(v) if ok else None for v, ok in zip(read_noise, measurable)],
-        "undefined": ({} if measurable.all() else {"read_noise_e": f"the dark noise ({dark_std.min():.2g} DN) is "
-                      f"below {DARK_NOISE_MIN_DN} DN: quantisation hides the read noise (EMVA 1288)"}),
+        "undefined": ({} if measurable.all() else {
+            "read_noise_e": f"the dark noise ({dark_std.min():.2g} DN) is below {DARK_NOISE_MIN_DN} DN: quantisation "
+                            "hides the read noise (EMVA 1288)",
+            "dark_current_e_per_s": f"the dark noise ({dark_std.min():.2g} DN) is below {DARK_NOISE_MIN_DN} DN: "
+                                    "the dark frames' codes do not follow their mean (no dither), so their slope "
+                                    "is not the dark current"}),
+        "dark_current_e_per_s": [float(v) if ok else None for v, ok in zip(dark_current, measurable)],
         "full_well_e": full_well,
         "linearity_error": linearity,
-        "stated": {"gain_dn_per_e": im.gain_dn_per_e, "read_noise_e": im.read_noise_e, "full_well_e": im.full_well_e},
+        "stated": {"gain_dn_per_e": im.gain_dn_per_e, "read_noise_e": im.read_noise_e, "full_well_e": im.full_well_e,
+                   "dark_current_e_per_s": im.dark_current_e_per_s},
     }

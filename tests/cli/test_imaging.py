@@ -92,3 +92,20 @@ class TestScore:
                        ("--imager", "sony-imx174"), capsys)
         assert_refused(["score", "--camera", CAMERA, "--illuminance", "500"], ("--illuminance", "--imager"), capsys)
         assert_refused(["score", "--camera", CAMERA, "--seed", "1"], ("--seed", "--imager"), capsys)
+
+
+def test_score_black_frame_json_gives_null_with_reasons(capsys):
+    document = run_json(capsys, "score", "--camera", CAMERA, *FAST, "--imager", "sony-icx418", "--illuminance",
+                        "0.001", "--exposure", "1e-6", "--samples", "2")
+    noisy = document["noisy"]
+    assert noisy["tpr"] is None and noisy["skin_ncc_std"] == [None, None, None]
+    assert {"tpr", "skin_ncc_std"} <= set(noisy["undefined"]) and noisy["black_share"]["skin"] == 1.0
+
+
+def test_score_json_notes_the_capped_exposure_and_clipping(capsys):
+    auto = run_json(capsys, "score", "--camera", CAMERA, *FAST, "--imager", "sony-icx418", "--illuminance", "500",
+                    "--samples", "2")["noisy"]
+    assert any("capped" in note for note in auto["notes"])
+    long = run_json(capsys, "score", "--camera", CAMERA, *FAST, "--imager", "sony-icx418", "--illuminance", "500",
+                    "--exposure", "1", "--samples", "2")["noisy"]
+    assert max(long["clipping"]["skin"]["well_full"]) > 0 and any("full well" in note for note in long["notes"])

@@ -188,3 +188,36 @@ class TestNoisyDetection:
                      "imager_": "sony-imx174", "illuminance_lux": 500.0, "samples": 1} | change
         with pytest.raises(SkinrenderError, match=name):
             noisy_detection(**arguments)
+
+
+def test_black_frames_give_undefined_rates_and_spread_with_reasons():
+    """1 mlx for 1 µs: no electron reaches any pixel; nothing has a chromaticity."""
+    skin, chips = reflectances("skin").on(), reflectances("munsell").on()[::40]
+    result = noisy_detection(CAMERA, skin, chips, ILLUMINANTS, "sony-icx418", 1e-3, exposure=1e-6, samples=2)
+    assert result.tpr is None and result.tpr_se is None and "black" in result.undefined["tpr"]
+    assert result.black_share[0] == 1.0
+    assert all(math.isnan(v) for v in result.skin_ncc_std) and "delta" in result.undefined["skin_ncc_std"]
+
+
+def test_skin_ncc_std_stays_a_chromaticity_spread_in_dim_light():
+    """Dim but not black: every std reported lies in [0, 1] (an NCC coordinate does), never the blow-up of S ≈ 0."""
+    skin, chips = reflectances("skin").on(), reflectances("munsell").on()[::40]
+    result = noisy_detection(CAMERA, skin, chips, ILLUMINANTS, "sony-imx174", 5.0, exposure=1e-4, samples=2)
+    spread = np.array(result.skin_ncc_std)
+    assert np.all(np.isnan(spread) | ((spread >= 0) & (spread <= 1))), spread
+
+
+def test_long_exposure_reports_the_clipped_pixels():
+    skin, chips = reflectances("skin").on(), reflectances("munsell").on()[::40]
+    result = noisy_detection(CAMERA, skin, chips, ILLUMINANTS, "sony-icx418", 500.0, exposure=1.0, samples=2)
+    full = np.array(result.clipping["skin"]["well_full_share"])
+    assert np.all(full > 0.3) and any(note.startswith("skin pixels clipped") for note in result.notes)
+    assert result.clipping["skin"]["pixels"] == 2 * len(skin) * len(ILLUMINANTS) ** 2
+
+
+def test_capped_auto_exposure_is_noted():
+    electrons = pixel_electrons(CAMERA, np.ones((1, 301)), [3300.0], [3300.0], "sony-icx418", 500.0)
+    assert electrons.exposure_s[0] == AUTO_EXPOSURE_MAX_S and "not the 0.7 target" in electrons.notes[0]
+    reached = electrons.electrons.max() / imager("sony-icx418").full_well_e
+    assert f"{reached:.3g} of the full well" in electrons.notes[0]
+    assert pixel_electrons(CAMERA, np.ones((1, 301)), [3300.0], [3300.0], "sony-imx174", 500.0).notes == ()

@@ -136,3 +136,14 @@ class TestBadInput:
         for call, name in cases:
             with pytest.raises(SkinrenderError, match=name):
                 call()
+
+
+def test_auto_exposure_note_says_where_the_cap_binds():
+    from skinrender.model.exposure import auto_exposure_note
+
+    im = make_imager()
+    rate = np.array([[1e3, 2e3, 5e2], [1e8, 2e8, 5e7]])  # e⁻/s: a dim white (capped) and a bright one
+    note = auto_exposure_note(im, rate, 0.7, 0.01)
+    reached = 2e3 * 0.01 / im.full_well_e
+    assert note is not None and f"{reached:.3g} of the full well" in note and "1 of 2" in note and "0.7" in note
+    assert auto_exposure_note(im, rate[1:], 0.7, 0.01) is None

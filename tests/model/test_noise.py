@@ -12,6 +12,7 @@ failure is reproducible.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -288,3 +289,37 @@ class TestBadInput:
         for call, name in cases:
             with pytest.raises(SkinrenderError, match=name):
                 call()
+
+
+def test_simulate_dn_clipped_is_simulate_dn_with_its_clipping():
+    from skinrender.model.noise import clipping_counts, simulate_dn_clipped
+
+    im = imager("sony-icx418")  # well 40 000 e⁻ → 248 DN, under the 8-bit maximum 255
+    electrons = np.array([[1e3, 5e4, 1e6]] * 1000)
+    dn, full, clipped = simulate_dn_clipped(im, electrons, 5)
+    assert np.array_equal(dn, simulate_dn(im, electrons, 5))
+    assert full[:, 1:].all() and not full[:, 0].any() and not clipped.any()
+    counts = clipping_counts(full, clipped)
+    assert counts["well_full"] == [0, 1000, 1000] and counts["well_full_share"] == [0.0, 1.0, 1.0]
+    high = dataclasses.replace(im, black_level_dn=250.0)  # the well now lies past the ADC range
+    assert simulate_dn_clipped(high, electrons, 5)[2][:, 1:].all()
+
+
+@pytest.mark.parametrize("electrons", [0.0, 37.0, 1e3, 2e4])
+def test_code_probabilities_carry_statistics_dn_moments(electrons):
+    from skinrender.model.noise import code_probabilities
+
+    im = imager("sony-icx418")
+    first, pmf = code_probabilities(im, [electrons])
+    codes = first[0] + np.arange(pmf.shape[1])
+    mean, variance = statistics_dn(im, electrons)
+    assert pmf.sum() == pytest.approx(1.0, abs=1e-12)
+    assert np.sum(pmf[0] * codes) == pytest.approx(mean, abs=1e-9)
+    assert np.sum(pmf[0] * (codes - mean) ** 2) == pytest.approx(variance, abs=1e-9)
+
+
+def test_code_probabilities_none_where_noise_is_wide():
+    from skinrender.model.noise import code_probabilities
+
+    first, pmf = code_probabilities("sony-imx174", [1e4])  # σ ≈ 12 DN: the closed form, no code law
+    assert np.isnan(first[0]) and np.isnan(pmf).all()

@@ -77,3 +77,30 @@ def test_a_light_the_camera_does_not_see_is_refused_naming_the_temperature(capsy
     status = main(["ptc", "--camera", "gbell:9@450,540,610", "--imager", "sony-imx174", "--temperature", "10", "--json"])
     out, err = capsys.readouterr()
     assert status == 2 and out == "" and err.strip().splitlines()[-1].startswith("skinrender ptc: error: --temperature")
+
+
+@pytest.fixture(scope="module")
+def imx174_dim():
+    """1 lx: the series runs to ~29 s, where the dark current (10 e⁻/s) adds ~290 e⁻² of shot noise to 6.83² e⁻²."""
+    return photon_transfer(camera("gbell:9@450,540,610"), "sony-imx174", illuminance_lux=1.0, points=12, spp=4,
+                           seed=2)
+
+
+def test_read_noise_leaves_out_the_dark_currents_shot_noise(imx174_dim):
+    stated, gain = imx174_dim["stated"], np.array(imx174_dim["gain_dn_per_e"])
+    last = imx174_dim["points"][-1]
+    dark_e2 = (np.array(last["dark_variance_dn"]) - 1 / 12) / gain**2  # e⁻²: read noise² + dark electrons
+    assert np.all(dark_e2 > 2 * stated["read_noise_e"] ** 2), dark_e2  # the dark noise grew with the exposure …
+    np.testing.assert_allclose(imx174_dim["read_noise_e"], stated["read_noise_e"], rtol=TOLERANCE_GAIN)  # … not it
+
+
+def test_dark_current_measured_from_the_dark_frames(imx174_dim):
+    """The dark mean's slope over 12 exposures (each mean to ~0.01 DN of 4096 pixel pairs) over the gain."""
+    np.testing.assert_allclose(imx174_dim["dark_current_e_per_s"], imx174_dim["stated"]["dark_current_e_per_s"],
+                               rtol=TOLERANCE_GAIN)
+
+
+def test_quantised_dark_frames_give_no_dark_current():
+    result = photon_transfer(camera("gbell:9@450,540,610"), "sony-icx418", points=8, spp=4)
+    assert result["dark_current_e_per_s"] == [None, None, None]
+    assert "dither" in result["undefined"]["dark_current_e_per_s"]
