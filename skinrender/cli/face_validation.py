@@ -5,8 +5,11 @@ level in replicates and checked against the analytic limits that hold there
 ``direct``, ``dichromatic_plane`` at ``sheen`` (both through the sensor too,
 with ``noise`` or ``--imager``), the white furnace and the closed sphere at
 every level, and ``eq4_shift`` (how far skin moves from Eq. 4: information,
-never a failure). Exit status 1 when a check that applies fails, 2 on bad
-input.
+never a failure). ``passed`` is true only when every check that applies
+passed; a check that applies but could not be decided (e.g. no lit skin pixel
+at a tiny ``--size``) makes it null, with the reason under ``undefined``
+(exit status 0, as other undefined results). Exit status 1 when a check that
+applies fails, 2 on bad input.
 
 Units: temperatures K, times s, NCC fractions.
 """

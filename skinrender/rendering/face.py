@@ -68,7 +68,7 @@ from .exr import write_exr, write_preview
 from .face_dict import (PHYSICS, active_lights, channel_groups, channel_integral, face_document,
                         light_irradiance, parse_physics)
 from .face_labels import label_names, render_labels, shape_labels
-from .face_scene import FaceScene, load_face_scene, skin_reflectance_of
+from .face_scene import MESH_HEAD, FaceScene, load_face_scene, skin_reflectance_of
 from .renderer import SAMPLERS, SAMPLES_MAX, channel_names
 from .variants import choose_variant, mitsuba
 
@@ -189,7 +189,14 @@ def _loaded(scene, cam, grid, effects, skin, group, spp, sampler, variant, light
             _LOADED.pop(next(iter(_LOADED)))
         mi = mitsuba(variant)
         document = face_document(mi, scene, cam, grid, effects, skin, group, spp, 0, sampler, lights, scale)
-        _LOADED[key] = mi.load_dict(document)
+        try:
+            _LOADED[key] = mi.load_dict(document)
+        except RuntimeError as error:  # the checks of load_face_scene passed, yet Mitsuba refused the user's mesh
+            if scene.mesh == MESH_HEAD or Path(scene.mesh).name not in str(error):
+                raise
+            reason = " ".join(str(error).split())[-300:]
+            raise SkinrenderError(f"{scene.source}: [mesh]: field 'file': Mitsuba could not load {scene.mesh}: "
+                                  f"{reason}") from None
     return _LOADED[key]
 
 

@@ -52,7 +52,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
-from .scene import PIXELS_MAX, ROOT_SCENES, read_scene_toml, reflectance_of
+from .scene import PIXELS_MAX, ROOT_SCENES, check_mesh_file, read_scene_toml, reflectance_of
 
 __all__ = ["ROOT_FACE_SCENES", "MESH_HEAD", "PROP_SHAPES", "FaceCamera", "Light", "Prop", "FaceScene",
            "skin_reflectance_of", "load_face_scene", "list_face_scenes"]
@@ -164,6 +164,8 @@ def skin_reflectance_of(spec: str, grid: WavelengthGrid = GRID_DEFAULT, where: s
         if key not in known:
             raise SkinrenderError(f"{where}: {text!r}: unknown skin-model parameter {key!r}; known: "
                                   f"{', '.join(sorted(known))}")
+        if key in values:
+            raise SkinrenderError(f"{where}: {text!r}: {key} is given twice; give each parameter once")
         try:
             values[key] = float(value)
         except ValueError:
@@ -299,10 +301,10 @@ def _mesh(table: dict, where: str, folder: Path) -> str:
         return MESH_HEAD
     path = Path(name) if Path(name).is_absolute() else folder / name
     if path.suffix.lower() not in MESH_SUFFIXES:
-        raise SkinrenderError(f"{where}: field 'file' must be {MESH_HEAD!r} or an .obj or .ply path, "
-                              f"got {name!r}")
+        raise SkinrenderError(f"{where}: field 'file' must be {MESH_HEAD!r} or an .obj or .ply path, got {name!r}")
     if not path.is_file():
         raise SkinrenderError(f"{where}: field 'file': mesh {path} does not exist")
+    check_mesh_file(path, f"{where}: field 'file': mesh {path}")
     return str(path.resolve())
 
 

@@ -128,9 +128,14 @@ class FaceValidation:
 
     @property
     def passed(self) -> bool | None:
-        """False when a check that applies fails; True when some passed and none failed; None when none ran."""
-        ran = [c.passed for c in self.checks if c.applies and c.passed is not None]
-        return None if not ran else all(ran)
+        """
+        False when a check that applies fails; else None when one that applies is undecided (its ``reason``
+        says why) or none applies; True only when every check that applies passed.
+        """
+        verdicts = [c.passed for c in self.checks if c.applies]
+        if False in verdicts:
+            return False
+        return None if not verdicts or None in verdicts else True
 
     def document(self) -> dict:
         """The JSON document of ``skinrender validate face``."""

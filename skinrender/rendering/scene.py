@@ -12,6 +12,7 @@ interreflection (a flat chart has none), no polarisation, no depth of field.
 -   :func:`load_scene`: a scene from a name in ``scenes/`` or a path; a bad
     file gets an error naming the file and the field.
 -   :func:`list_scenes`: the bundled scene names.
+-   :func:`check_mesh_file`: a face scene's ``.obj``/``.ply`` mesh checked before any render.
 
 Scene file fields
 -----------------
@@ -29,6 +30,7 @@ a sample name), ``SET:#N`` (the N-th sample, from 0), ``perfect`` (ρ = 1) or
 
 from __future__ import annotations
 
+import math
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -40,7 +42,8 @@ from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_scene", "list_scenes", "read_scene_toml", "reflectance_of"]
+__all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_scene", "list_scenes", "read_scene_toml", "reflectance_of",
+           "check_mesh_file"]
 
 ROOT_SCENES = Path(__file__).resolve().parent / "scenes"
 """Bundled scene files (installed with the package; ``scenes/`` in the repository links here)."""
@@ -198,6 +201,97 @@ _KNOWN_FIELDS = {"name", "description", "columns", "patch_px", "gap_px", "border
 
 PIXELS_MAX = 4_000_000
 """Most pixels a chart may have (2000 × 2000)."""
+
+
+_OBJ = "expected a Wavefront OBJ: text, 'v x y z' vertex and 'f i j k' face lines, indices from 1"
+_PLY_BYTES = dict(zip("char uchar int8 uint8 short ushort int16 uint16 double float64 int uint int32 uint32 float "
+                      "float32".split(), [1] * 4 + [2] * 4 + [8] * 2 + [4] * 6))
+
+
+def _obj_line(words: list[str], counts: dict, top: dict) -> bool:
+    """Whether a vertex (``v``, ``vt``, ``vn``) or face (``f``: ≥ 3 corners ``v[/vt][/vn]``) line is well formed."""
+    try:
+        if words[0] != "f":
+            counts[words[0]] += 1
+            return len(words) >= (3 if words[0] == "vt" else 4) and all(math.isfinite(float(w)) for w in words[1:])
+        corners = [[int(i) if i or kind == "v" else None for kind, i in zip(top, w.split("/"))] for w in words[1:]]
+    except ValueError:
+        return False
+    counts["f"] += 1
+    given = {kind: [c[k] for c in corners if len(c) > k and c[k] is not None] for k, kind in enumerate(top)}
+    top.update({kind: max([top[kind], *indices]) for kind, indices in given.items()})
+    return len(corners) >= 3 and min(sum(given.values(), [])) >= 1
+
+
+def _check_obj(path: Path, where: str) -> None:
+    """Refuse an OBJ Mitsuba cannot render: empty, binary, a bad line or index, no face."""
+    data = path.read_bytes()
+    if not data.strip() or b"\0" in data:
+        raise SkinrenderError(f"{where} is {'binary' if data.strip() else 'empty'}; {_OBJ}")
+    counts, top = {"v": 0, "vt": 0, "vn": 0, "f": 0}, {"v": 0, "vt": 0, "vn": 0}
+    for number, line in enumerate(data.decode("utf-8", "replace").splitlines(), start=1):
+        words = line.split("#", 1)[0].split()
+        if words and words[0] in counts and not _obj_line(words, counts, top):
+            raise SkinrenderError(f"{where}, line {number}: bad {words[0]!r} line {line.strip()[:40]!r}; {_OBJ}")
+    beyond = [f"{kind} {top[kind]} of {counts[kind]}" for kind in top if top[kind] > counts[kind]]
+    if beyond or not counts["f"]:
+        raise SkinrenderError(f"{where} " + (f"has faces indexing {', '.join(beyond)}" if beyond else
+                                             f"has {counts['v']} vertices but no face ('f' line)") + f"; {_OBJ}")
+
+
+def _check_ply(path: Path, where: str) -> None:
+    """Refuse a PLY Mitsuba cannot render: a bad header, no vertex or face element, a body shorter than it says."""
+    data = path.read_bytes()
+    end = data.find(b"end_header", 0, 1 << 16)
+    lines = [line.split() for line in data[:max(end, 0)].decode("ascii", "replace").splitlines()]
+    kind = lines[1][1] if len(lines) > 1 and len(lines[1]) == 3 and lines[1][0] == "format" else ""
+    if not data.startswith(b"ply") or end < 0 or kind not in ("ascii", "binary_little_endian", "binary_big_endian"):
+        raise SkinrenderError(f"{where} has no valid PLY header; expected 'ply', 'format ascii|binary_little_endian|"
+                              "binary_big_endian 1.0', 'element vertex N', 'element face M', … 'end_header'")
+    elements: dict = {}  # name -> [count, least bytes per row]
+    for words in lines[2:]:
+        if words[:1] == ["element"] and len(words) == 3 and words[2].isdigit():
+            last = elements.setdefault(words[1], [int(words[2]), 0])
+        elif words[:1] == ["property"] and elements and words[-2] in _PLY_BYTES:
+            last[1] += _PLY_BYTES[words[-2]] * (3 if words[1] == "list" else 1) + _PLY_BYTES.get(words[2], 0)
+    (vertices, _), (faces, _) = elements.get("vertex", [0, 0]), elements.get("face", [0, 0])
+    if vertices < 3 or not faces:
+        raise SkinrenderError(f"{where} has {vertices} vertices and {faces} faces in its header ('element vertex N', "
+                              "'element face M'); expected a mesh of ≥ 3 vertices and ≥ 1 face")
+    body, unit = data[end + len("end_header\n"):], "lines" if kind == "ascii" else "bytes"
+    least = vertices + faces if kind == "ascii" else sum(n * size for n, size in elements.values())
+    if (have := len(body.splitlines()) if kind == "ascii" else len(body)) < least:
+        raise SkinrenderError(f"{where} is cut short: its header promises {vertices} vertices and {faces} faces "
+                              f"({least} {unit} at least), it holds {have}")
+
+
+def check_mesh_file(path: str | Path, where: str = "mesh") -> None:
+    """
+    Refuse a mesh file Mitsuba's ``obj`` or ``ply`` plugin could not render, before any render.
+
+    An OBJ must be text with well-formed ``v`` (three coordinates), ``vt``, ``vn`` and ``f`` lines (≥ 3
+    corners ``v[/vt][/vn]``, indices from 1 within the file's elements: Mitsuba takes no negative index) and
+    at least one face; a PLY a valid header (``ply``, ``format ascii|binary_*_endian 1.0``, ≥ 3 vertices,
+    ≥ 1 face) and a body as long as the header promises (index values inside a binary body are not read).
+
+    Raises
+    ------
+    SkinrenderError
+        One line starting with ``where``: what is wrong (empty, binary, the bad line, no face, a bad or
+        short PLY) and what was expected.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.NamedTemporaryFile("w", suffix=".obj", delete=False) as file:
+    ...     _ = file.write("v 0 0 0\\nv 1 0 0\\nv 0 1 0\\n")
+    >>> check_mesh_file(file.name, "--mesh")
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: --mesh has 3 vertices but no face ('f' line); expected a Wavefront OBJ: text, 'v x y z' vertex and 'f i j k' face lines, indices from 1
+    """
+    path = Path(path)
+    (_check_ply if path.suffix.lower() == ".ply" else _check_obj)(path, where)
 
 
 def load_scene(spec: str | Path | ChartScene) -> ChartScene:

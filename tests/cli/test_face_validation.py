@@ -118,3 +118,19 @@ def test_an_undecided_limit_is_not_reported_as_no_limit(capsys):
     assert status in (0, None) and document["passed"] is None
     assert document["checks"][0]["applies"] and document["checks"][0]["passed"] is None
     assert document["undefined"]["passed"].startswith("UNDECIDED: shading_cancels")
+
+
+def test_an_undecided_main_check_is_not_passed_by_the_scene_free_limits(capsys):
+    """Seen by a user: at 2 px ``shading_cancels`` had no lit skin pixel, yet the sphere's pass made the verdict
+    true. Now null with the undecided check's reason, exit 0 as other undefined results, text UNDECIDED."""
+    argv = ["validate", "face", "--camera", CAM, "--prevailing", "3300", "--calibration", "3300", "--size", "2",
+            "--spp", "3", "--limits", "sphere"]
+    status, out, err = run([*argv, "--json"], capsys)
+    document = json.loads(out)
+    assert status in (0, None), err[-500:]
+    assert [row["passed"] for row in document["checks"] if row["name"] in ("shading_cancels", "closed_sphere")] == [
+        None, True]
+    assert document["passed"] is None
+    assert document["undefined"]["passed"].startswith("UNDECIDED: shading_cancels: only 0 lit skin pixels")
+    status, out, err = run(argv, capsys)
+    assert status in (0, None) and "UNDECIDED: shading_cancels" in out and "PASSED" not in out

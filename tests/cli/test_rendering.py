@@ -123,6 +123,20 @@ def test_validate_through_an_imager_reports_the_noise(capsys):
     assert document["passed"] and all(len(p["rendered_std"]) == 3 for p in document["patches"])
 
 
+def test_render_through_an_imager_says_what_it_clipped_and_capped(tmp_path, capsys):
+    """A 10 s exposure fills every well: ``clipping`` counts the pixels and a note says so; a dim auto
+    exposure stopped at a video frame is noted (JSON ``notes`` and the text's ``note:`` lines)."""
+    status, out, err = run(["render", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "4", "-o", tmp_path / "r.exr",
+                            "--imager", "sony-imx174", "--illuminance", "500", "--exposure", "10", "--json"], capsys)
+    document = json.loads(out)
+    assert status == 0, err
+    assert document["clipping"] and any("clipped" in note for note in document["notes"])
+    status, out, err = run(["render", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "4", "-o", tmp_path / "d.exr",
+                            "--imager", "sony-imx174", "--illuminance", "0.5"], capsys)
+    assert status == 0, err
+    assert "note: auto exposure capped" in out
+
+
 def test_render_figure_labels_the_chart(tmp_path, capsys):
     """``render --figure``: the chart upscaled with its patch names, far larger than the 130 × 82 preview."""
     from PIL import Image
@@ -163,3 +177,89 @@ def test_figure_is_checked_before_rendering(command, figure, tmp_path, capsys, m
 def test_validate_takes_no_figure(capsys):
     status, out, err = run(["validate", "macbeth", "--camera", CAM, *LIGHTS, "--figure", "f.png"], capsys)
     assert status == 2 and out == "" and "--figure" in err
+
+
+def test_detect_on_a_black_chart_has_null_rates_with_the_reason(tmp_path, capsys):
+    """Seen by a user: a black chart reported fpr 0.0; nothing there has a colour, so both rates are null."""
+    scene = tmp_path / "black.toml"
+    scene.write_text("columns = 2\n[[patch]]\nname = 'black skin'\nreflectance = 'grey:0'\nskin = true\n"
+                     "[[patch]]\nname = 'black'\nreflectance = 'grey:0'\n")
+    status, out, err = run(["detect", scene, "--camera", CAM, *LIGHTS, "--spp", "4", "-o", tmp_path / "m.png",
+                            "--json"], capsys)
+    document = json.loads(out)
+    assert status == 0, err
+    assert document["tpr"] is None and document["fpr"] is None
+    assert "no scored non-skin pixel" in document["undefined"]["fpr"] and "no scored skin" in document["undefined"]["tpr"]
+    assert document["scored_min_output"] > 0
+    assert [row["detected_fraction"] for row in document["per_patch"]] == [None, None]
+    assert all(row["scored_pixels"] == 0 < row["pixels"] for row in document["per_patch"])
+
+
+def test_a_grid_outside_the_charts_data_is_refused_before_rendering(tmp_path, capsys):
+    """The chart's reflectances are checked on --grid with the other inputs (it failed after 'rendering …')."""
+    line = assert_refused(["render", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "2", "--grid", "300:900:1",
+                           "-o", tmp_path / "r.exr"], "--grid", capsys, tmp_path)
+    assert "380–780 nm" in line and "--extrapolation" not in line  # the chart's data: no extrapolation flag applies
+
+
+@pytest.mark.parametrize("name, content", [
+    ("empty.obj", b""), ("binary.obj", bytes(range(256)) * 8), ("nofaces.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\n"),
+    ("badheader.ply", b"ply\nformat nonsense 1.0\nelement vertex 3\nend_header\n"),
+])
+def test_a_bad_mesh_is_refused_before_rendering(name, content, tmp_path, capsys):
+    """Each kind gave Mitsuba's 'internal error' after the render had started; now one line, exit 2."""
+    from skinrender.rendering.face_scene import ROOT_FACE_SCENES
+
+    (tmp_path / name).write_bytes(content)
+    scene = tmp_path / "scene.toml"
+    scene.write_text((ROOT_FACE_SCENES / "face.toml").read_text().replace('file = "head"', f'file = "{name}"'))
+    out = tmp_path / "out"
+    out.mkdir()
+    line = assert_refused(["render", scene, "--camera", CAM, *LIGHTS, "--size", "8", "--spp", "2",
+                           "-o", out / "r.exr"], (str(scene), "[mesh]: field 'file'", name, "expected"), capsys, out)
+    assert "rendering" not in line
+
+
+def test_interruptible_passes_the_commands_result_and_errors_on():
+    from argparse import Namespace
+
+    from skinrender.cli.rendering import interruptible
+    from skinrender.errors import SkinrenderError
+
+    assert interruptible(lambda args: args.value * 2)(Namespace(value=21)) == 42
+
+    def fails(args):
+        raise SkinrenderError("--spp: bad")
+
+    with pytest.raises(SkinrenderError, match="--spp: bad"):
+        interruptible(fails)(Namespace())
+    with pytest.raises(SystemExit):
+        interruptible(lambda args: (_ for _ in ()).throw(SystemExit(1)))(Namespace())
+
+
+def test_ctrl_c_stops_a_render_at_once_with_no_output(tmp_path):
+    """Seen by a user: Ctrl-C waited for the whole Mitsuba render (~30 s at 160 px, 2048 spp)."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    output = tmp_path / "r.exr"
+    command = [sys.executable, "-c", "import sys; from skinrender.cli import main; sys.exit(main())", "render", "macbeth",
+               "--camera", CAM, *LIGHTS, "--spp", "65536", "-o", str(output)]
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    deadline = time.monotonic() + 120
+    while "rendering macbeth" not in (line := process.stderr.readline()) and time.monotonic() < deadline:
+        assert line, "the render ended before it could be interrupted"
+    time.sleep(2.0)  # inside Mitsuba's native render
+    process.send_signal(signal.SIGINT)
+    sent = time.monotonic()
+    try:
+        _, err = process.communicate(timeout=20)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        pytest.fail("Ctrl-C did not stop the render within 20 s")
+    assert process.returncode == 130 and "interrupted" in err
+    assert time.monotonic() - sent < 5.0
+    assert not output.exists() and not output.with_suffix(".png").exists()

@@ -14,6 +14,11 @@ from skinrender.spectra import GRID_DEFAULT
 BUNDLED = (ROOT_FACE_SCENES / "face.toml").read_text(encoding="utf-8")
 
 
+GOOD_OBJ = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n"
+GOOD_PLY = ("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n0.1 0 0\n0 0.1 0\n3 0 1 2\n")
+
+
 def write(tmp_path, text: str, name: str = "scene.toml"):
     path = tmp_path / name
     path.write_text(text, encoding="utf-8")
@@ -43,7 +48,7 @@ class TestLoadFaceScene:
         assert (scene.camera.width, scene.camera.height, scene.camera.fov) == (32, 24, 36.0)
 
     def test_a_user_mesh_relative_to_the_file(self, tmp_path):
-        (tmp_path / "ball.ply").write_text("ply\n")
+        (tmp_path / "ball.ply").write_text(GOOD_PLY)
         path = write(tmp_path, BUNDLED.replace('file = "head"', 'file = "ball.ply"'))
         assert load_face_scene(path).mesh == str((tmp_path / "ball.ply").resolve())
 
@@ -145,7 +150,7 @@ class TestSkinReflectanceOf:
 
     @pytest.mark.parametrize("spec, match", [
         ("skin-model:melanin=-0.1", "melanin"), ("skin-model:melanin=inf", "melanin"),
-        ("skin-model:hair=1", "hair"), ("skin:#999", "index"), ("nothing", "reflectance"),
+        ("skin-model:hair=1", "hair"), ("skin-model:melanin=0.1,melanin=0.3", "melanin is given twice"), ("skin:#999", "index"), ("nothing", "reflectance"),
     ])
     def test_bad_specs(self, spec, match):
         with pytest.raises(SkinrenderError, match=match):
@@ -166,3 +171,60 @@ class TestSkinReflectanceOf:
             warnings.simplefilter("error")  # a numpy RuntimeWarning would leak to the command line's stderr
             with pytest.raises(SkinrenderError, match=match):
                 skin_reflectance_of(spec)
+
+
+BINARY_PLY_HEADER = ("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                     "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n").encode()
+
+
+class TestMeshFiles:
+    """A user's mesh Mitsuba could not render is refused while the scene loads (an internal error mid-render before)."""
+
+    @pytest.mark.parametrize("name, content, match", [
+        ("empty.obj", b"", "is empty; expected a Wavefront OBJ"),
+        ("blank.obj", b"\n  \n", "is empty"),
+        ("binary.obj", bytes(range(256)) * 8, "is binary; expected a Wavefront OBJ"),
+        ("nofaces.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\n", "has 3 vertices but no face"),
+        ("edge.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "line 4: bad 'f' line"),
+        ("negative.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n", "line 4: bad 'f' line"),
+        ("beyond.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "faces indexing v 9 of 3"),
+        ("normals.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n", "faces indexing vn 1 of 0"),
+        ("text.obj", b"v 0 zero 0\nf 1 2 3\n", "line 1: bad 'v' line"),
+        ("badheader.ply", b"ply\nformat nonsense 1.0\nelement vertex 3\nend_header\n", "no valid PLY header"),
+        ("noheader.ply", b"ply\nformat ascii 1.0\nelement vertex 3\n", "no valid PLY header"),
+        ("notply.ply", b"solid cube\n", "no valid PLY header"),
+        ("nofaces.ply", b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n0\n0\n0\n",
+         "has 3 vertices and 0 faces"),
+        ("short.ply", GOOD_PLY.rsplit("\n", 3)[0].encode(), "cut short: .*\\(4 lines at least\\), it holds 2"),
+        ("short_binary.ply", BINARY_PLY_HEADER + bytes(20), "cut short: .*\\(49 bytes at least\\), it holds 20"),
+    ])
+    def test_a_bad_mesh_is_refused_naming_the_file_and_field(self, tmp_path, name, content, match):
+        (tmp_path / name).write_bytes(content)
+        path = write(tmp_path, BUNDLED.replace('file = "head"', f'file = "{name}"'))
+        with pytest.raises(SkinrenderError, match=match) as caught:
+            load_face_scene(path)
+        message = str(caught.value)
+        assert message.startswith(f"{path}: [mesh]: field 'file': mesh {tmp_path / name}") and "\n" not in message
+
+    @pytest.mark.parametrize("name, content", [
+        ("tri.obj", GOOD_OBJ.encode()),
+        ("quad.obj", b"# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 4/1\n"),
+        ("tri.ply", GOOD_PLY.encode()),
+        ("tri_binary.ply", BINARY_PLY_HEADER + bytes(36) + bytes([3]) + bytes(12)),
+    ])
+    def test_a_good_mesh_loads(self, tmp_path, name, content):
+        (tmp_path / name).write_bytes(content)
+        path = write(tmp_path, BUNDLED.replace('file = "head"', f'file = "{name}"'))
+        assert load_face_scene(path).mesh == str((tmp_path / name).resolve())
+
+    def test_mitsuba_renders_what_the_check_passes(self, tmp_path):
+        """The meshes the check passes are ones Mitsuba's plugins load with faces (the check is not too strict)."""
+        pytest.importorskip("mitsuba")
+        from skinrender.rendering.variants import choose_variant, mitsuba
+
+        mi = mitsuba(choose_variant())
+        for name, content in (("tri.obj", GOOD_OBJ), ("tri.ply", GOOD_PLY)):
+            (tmp_path / name).write_text(content)
+            path = write(tmp_path, BUNDLED.replace('file = "head"', f'file = "{name}"'))
+            shape = mi.load_dict({"type": name[-3:], "filename": load_face_scene(path).mesh, "face_normals": True})
+            assert shape.face_count() == 1

@@ -95,3 +95,33 @@ def test_refusals(kwargs, match):
 
 def test_scene_free_limits_are_named():
     assert set(LIMITS_SCENE_FREE) == {"furnace", "sphere"}
+
+
+def _verdict(*rows) -> bool | None:
+    """The verdict of checks given as (applies, passed) pairs."""
+    from skinrender.rendering.face_limits import LimitCheck
+    from skinrender.rendering.face_validation import FaceValidation
+
+    checks = [LimitCheck(f"check{i}", applies, passed, None, None, 0, "why") for i, (applies, passed) in enumerate(rows)]
+    return FaceValidation(None, checks, 12, 12, 12, 0, 0.0).passed
+
+
+@pytest.mark.parametrize("rows, expected", [
+    ([(True, True), (True, True), (False, None)], True),
+    ([(True, None), (True, True), (True, True)], None),  # the main check undecided: no pass on the others
+    ([(True, True), (True, None)], None),  # a scene-free limit undecided
+    ([(True, None), (True, False)], False),  # a failure decides whatever else is undecided
+    ([(False, None)], None),  # nothing applies
+    ([], None),
+])
+def test_the_verdict_passes_only_when_every_check_that_applies_passed(rows, expected):
+    assert _verdict(*rows) is expected
+
+
+def test_a_tiny_face_with_no_lit_skin_does_not_pass():
+    """At 2 px no skin pixel is lit: ``shading_cancels`` undecided, so the verdict is too (the sphere passes)."""
+    result = validate_face(CAM, size=2, spp=12, limits=("sphere",), prevailing=2856, calibration=2856)
+    shading, sphere = result.checks[0], result.checks[-1]
+    assert shading.name == "shading_cancels" and shading.applies and shading.passed is None and shading.pixels == 0
+    assert sphere.name == "closed_sphere" and sphere.passed is True
+    assert result.passed is None and result.document()["passed"] is None
