@@ -244,3 +244,97 @@ class TestTripletVolumes:
             _hull3d.chunk_volumes(signal, np.array([[0.0, 1.0, 2.0]]), gains, True, False, FLAT_SUSPECT)
         with pytest.raises(ValueError, match="signal must be a C-contiguous float64 array"):
             _hull3d.chunk_volumes(signal[..., ::2], np.array([[0, 1, 2]]), gains, True, False, FLAT_SUSPECT)
+
+
+@pytest.fixture
+def steps_restored():
+    """``_hull3d.steps`` as it was after the test (and its counts reset)."""
+    before = _hull3d.steps()[0]
+    yield
+    _hull3d.steps(int(before))
+
+
+def _cases_by_qhull(clouds: np.ndarray, gains: np.ndarray) -> np.ndarray:
+    """Each calibration case's volume and the all-calibration volume, Qhull on the full point sets."""
+    def volume(points):
+        centred = points - points.mean(axis=0)
+        scale = np.max(np.abs(centred), axis=0)
+        return ConvexHull(centred / scale).volume * np.prod(scale)
+
+    cases = [np.vstack([clouds[p] * gains[p, q] for p in range(len(clouds))]) for q in range(gains.shape[1])]
+    return np.array([volume(points) for points in cases] + [volume(np.vstack(cases))])
+
+
+@needs_kernel
+class TestSteps:
+    """Hulls built from the previous hull's faces (``hull_step``) against hulls built from scratch and Qhull."""
+
+    @pytest.mark.parametrize("sensor", [1, 4, 9])
+    @pytest.mark.parametrize("name", ["skin", "munsell"])
+    def test_stepped_hulls_equal_hulls_from_scratch(self, sensor, name, steps_restored):
+        from skinrender import reflectances
+        from skinrender.spectra import GRID_DEFAULT
+
+        positions = bank_module.positions_grid()
+        bank = bank_module.sensor_bank(sensor, reflectances(name).on(GRID_DEFAULT), positions)
+        chosen = bank_module.triplets(positions.size)[::150]
+
+        def volumes():  # a triplet the kernel declines (a flat cloud) gets Qhull's answer either way
+            return np.array([criteria_module.triplet_volumes_fast(bank, t) for t in chosen])
+
+        _hull3d.steps(0)
+        scratch = volumes()
+        _hull3d.steps(1)
+        stepped = volumes()
+        enabled, tried, taken = _hull3d.steps()
+        np.testing.assert_allclose(stepped, scratch, rtol=KERNEL_VS_QHULL, atol=0)
+        assert enabled and taken >= 0.9 * tried  # about 99 % taken, measured
+        assert tried >= len(chosen) * (len(bank.temperatures) - 1)  # at least the calibration cases' steps ran
+
+    @pytest.mark.parametrize("sensor", [1, 9])
+    def test_stepped_volumes_equal_qhull(self, sensor, steps_restored):
+        from skinrender import reflectances
+        from skinrender.spectra import GRID_DEFAULT
+
+        positions = bank_module.positions_grid()
+        bank = bank_module.sensor_bank(sensor, reflectances("munsell").on(GRID_DEFAULT), positions)
+        _hull3d.steps(1)
+        for triplet in bank_module.triplets(positions.size)[::900]:
+            clouds, gains = bank.clouds(triplet), np.ascontiguousarray(bank.gains(triplet))
+            answer = np.frombuffer(_hull3d.triplet_volumes(clouds, gains, True, bank.diagonal, FLAT_SUSPECT))
+            np.testing.assert_allclose(answer, _cases_by_qhull(clouds, gains), rtol=KERNEL_VS_QHULL, atol=0)
+
+    @pytest.mark.parametrize("spread", [0.002, 0.02, 0.2, 2.0])
+    @pytest.mark.parametrize("shape", ["gaussian", "sphere", "cone"])
+    def test_clouds_that_move_more_are_stepped_or_built_afresh_and_right(self, rng, spread, shape, steps_restored):
+        """Ten clouds, each the previous one moved by noise of ``spread`` (2.0: unrelated clouds): every
+        case equals Qhull's, whether the steps flipped, removed, added or declined."""
+        first = {"gaussian": rng.normal(size=(300, 3)), "cone": np.abs(rng.normal(size=(300, 3))) * rng.random((300, 1)),
+                 "sphere": rng.normal(size=(300, 3))}[shape]
+        if shape == "sphere":
+            first /= np.linalg.norm(first, axis=1)[:, None]
+        clouds = [first]
+        for _ in range(9):
+            clouds.append(clouds[-1] + spread * rng.normal(size=first.shape))
+        clouds = np.ascontiguousarray(clouds)
+        # per (prevailing, calibration) channel gains, each calibration's a little from the previous one's
+        drift = 1.0 + 0.01 * np.arange(4)[None, :, None] * rng.normal(size=(10, 1, 3))
+        gains = np.ascontiguousarray((1.0 + 0.3 * rng.random((10, 1, 3))) * drift)
+        _hull3d.steps(1)
+        answer = np.frombuffer(_hull3d.triplet_volumes(clouds, gains, True, False, FLAT_SUSPECT))
+        enabled, tried, taken = _hull3d.steps()
+        np.testing.assert_allclose(answer, _cases_by_qhull(clouds, gains), rtol=KERNEL_VS_QHULL, atol=0)
+        assert tried == 9 + 3  # nine prevailing steps, three calibration-case steps
+        if spread <= 0.02:  # small moves are mostly stepped (a step that cannot be certified is declined)
+            assert taken >= tried // 2
+
+    def test_steps_can_be_turned_off_and_counted(self, steps_restored):
+        clouds = np.ascontiguousarray(np.random.default_rng(1).normal(size=(3, 100, 3)))
+        gains = np.ones((3, 2, 3))
+        _hull3d.steps(0)
+        off = _hull3d.triplet_volumes(clouds, gains, True, False, FLAT_SUSPECT)
+        assert _hull3d.steps(1) == (False, 0, 0)
+        on = _hull3d.triplet_volumes(clouds, gains, True, False, FLAT_SUSPECT)
+        enabled, tried, taken = _hull3d.steps()
+        assert enabled and tried == 2 + 1 and _hull3d.steps() == (True, 0, 0)
+        np.testing.assert_allclose(np.frombuffer(on), np.frombuffer(off), rtol=KERNEL_VS_QHULL)
