@@ -272,6 +272,27 @@ static double det3(const double *a, const double *b, const double *c, const doub
     return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
 }
 
+/* The n points into the workspace, each axis centred and scaled to [-1, 1] by its box [lo, hi]; *unit the
+ * scales' product. -1 for an axis of no extent. */
+static int scale_points(Hull *h, const double *points, int n, const double *lo, const double *hi, double *unit) {
+    double centre[3], inverse[3];
+    *unit = 1.0;
+    for (int k = 0; k < 3; k++) {
+        double half = 0.5 * (hi[k] - lo[k]);
+        if (!(half > 0.0) || !isfinite(half)) return -1;
+        centre[k] = 0.5 * (lo[k] + hi[k]);
+        inverse[k] = 1.0 / half;
+        *unit *= half;
+    }
+    double *x = h->x;
+    for (int i = 0; i < n; i++) {
+        x[3 * i] = (points[3 * i] - centre[0]) * inverse[0];
+        x[3 * i + 1] = (points[3 * i + 1] - centre[1]) * inverse[1];
+        x[3 * i + 2] = (points[3 * i + 2] - centre[2]) * inverse[2];
+    }
+    return 0;
+}
+
 /* The bounding box of the n points, each axis then centred and scaled to
  * [-1, 1] into the workspace: a diagonal scaling keeps the hull's vertices and
  * multiplies its volume by the scales' product (*unit), and makes one tolerance
@@ -289,19 +310,7 @@ static int load_points(Hull *h, const double *points, int n, double *lo, double 
             if (value > hi[k]) hi[k] = value, arg_hi[k] = i;
         }
     if (!isfinite(sum)) return -1;
-    double centre[3], inverse[3];
-    *unit = 1.0;
-    for (int k = 0; k < 3; k++) {
-        double half = 0.5 * (hi[k] - lo[k]);
-        if (!(half > 0.0) || !isfinite(half)) return -1;
-        centre[k] = 0.5 * (lo[k] + hi[k]);
-        inverse[k] = 1.0 / half;
-        *unit *= half;
-    }
-    double *x = h->x;
-    for (int i = 0; i < n; i++)
-        for (int k = 0; k < 3; k++) x[3 * i + k] = (points[3 * i + k] - centre[k]) * inverse[k];
-    return 0;
+    return scale_points(h, points, n, lo, hi, unit);
 }
 
 /* 0 and the volume on success; -1 when the caller must fall back to Qhull. */
@@ -673,22 +682,7 @@ static int load_box(Hull *h, const double *points, int n, double *lo, double *hi
     }
     if (!isfinite(sum)) return -1;
     lo[0] = l0, lo[1] = l1, lo[2] = l2, hi[0] = h0, hi[1] = h1, hi[2] = h2;
-    double centre[3], inverse[3];
-    *unit = 1.0;
-    for (int k = 0; k < 3; k++) {
-        double half = 0.5 * (hi[k] - lo[k]);
-        if (!(half > 0.0) || !isfinite(half)) return -1;
-        centre[k] = 0.5 * (lo[k] + hi[k]);
-        inverse[k] = 1.0 / half;
-        *unit *= half;
-    }
-    double *x = h->x;
-    for (int i = 0; i < n; i++) {
-        x[3 * i] = (points[3 * i] - centre[0]) * inverse[0];
-        x[3 * i + 1] = (points[3 * i + 1] - centre[1]) * inverse[1];
-        x[3 * i + 2] = (points[3 * i + 2] - centre[2]) * inverse[2];
-    }
-    return 0;
+    return scale_points(h, points, n, lo, hi, unit);
 }
 
 /* Only the live faces kept, in order, their neighbours and the points' witnesses renumbered
