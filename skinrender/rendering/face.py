@@ -111,7 +111,8 @@ class FaceRendering:
         The white references and the Eq. 4 gain applied, per channel.
     info
         ``lights`` (``{name: {temperature_K, illuminance_lx}}``), and with
-        ``noise`` ``imager``, ``exposure_s``.
+        ``noise`` ``imager``, ``exposure_s``, ``clipping`` (pixels at the full well and the ADC range, per
+        channel) and ``notes`` (a capped ``auto`` exposure, clipped pixels).
     """
 
     scene: FaceScene
@@ -209,8 +210,8 @@ def _through_imager(radiance: NDArrayFloat, white_p: NDArrayFloat, scene: FaceSc
     """
     from ..model.exposure import electrons_mean
     from ..model.imager import imager as imager_of
-    from ..model.noise import simulate_dn
-    from .imaging import exposure_for
+    from ..model.noise import clipping_counts, clipping_note, simulate_dn_clipped
+    from .imaging import exposure_for, exposure_note
 
     im = imager_of(imager_)
     x = cam.sensitivities(grid)
@@ -221,11 +222,15 @@ def _through_imager(radiance: NDArrayFloat, white_p: NDArrayFloat, scene: FaceSc
     lux = getattr(scene, _prevailing_light(scene)).illuminance
     exposure_s = exposure_for(im, cam, calibration, lux, exposure, grid)
     electrons = (per_unit * radiance + im.dark_current_e_per_s) * exposure_s
-    frame = simulate_dn(im, electrons, np.random.default_rng([int(seed), 0x5EED]))  # the sensor's own stream
+    frame, well_full, adc_clipped = simulate_dn_clipped(im, electrons, np.random.default_rng([int(seed), 0x5EED]))
+    clipping = clipping_counts(well_full, adc_clipped)  # the sensor's own stream, as simulate_dn draws it
+    notes = [note for note in (exposure_note(im, cam, calibration, lux, exposure, grid), clipping_note(clipping))
+             if note]
     dn_per_unit = im.gain_dn_per_e * per_unit * exposure_s
     white_c_lux = _white_at(cam, calibration, lux, grid)  # the calibration white, the key light's lux
     return (np.maximum(frame - im.black_level_dn, 0.0), dn_per_unit * white_p, dn_per_unit * white_c_lux,
-            {"imager": im.name, "illuminance_lux": float(lux), "exposure_s": float(exposure_s)})
+            {"imager": im.name, "illuminance_lux": float(lux), "exposure_s": float(exposure_s), "clipping": clipping,
+             "notes": notes})
 
 
 def _white_at(cam: Camera, temperature: float, lux: float, grid: WavelengthGrid) -> NDArrayFloat:

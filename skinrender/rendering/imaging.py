@@ -61,7 +61,7 @@ from .renderer import RawRender, emitter_grid, render_raw
 from .scene import ChartScene, load_scene
 
 __all__ = ["AUTO_EXPOSURE_FRACTION", "ALPHA_FAMILY", "ImagedRendering", "ImagedValidation", "electrons_per_radiance",
-           "exposure_for", "render_imaged", "predicted_patches", "validate_imaged"]
+           "exposure_for", "exposure_note", "render_imaged", "predicted_patches", "validate_imaged"]
 
 AUTO_EXPOSURE_FRACTION = 0.7
 """``auto`` exposure puts the calibration white's brightest channel at this share of the full well."""
@@ -91,6 +91,18 @@ def electrons_per_radiance(im: Imager, cam: Camera, temperature: float, lux: flo
 
 def _is_auto(exposure: float | str) -> bool:
     return isinstance(exposure, str) and exposure.strip().lower() == "auto"
+
+
+def exposure_note(im: Imager, cam: Camera, calibration: float, lux: float, exposure: float | str,
+                  grid: WavelengthGrid = GRID_DEFAULT) -> str | None:
+    """
+    Where an ``auto`` exposure (:func:`exposure_for`) stopped at :data:`AUTO_EXPOSURE_MAX_S` before the
+    calibration white (K, under ``lux`` lx) reached its share of the well, the note saying so; else ``None``.
+    """
+    if not _is_auto(exposure):
+        return None
+    return auto_exposure_note(im, _white_rate(im, cam, calibration, lux, grid), AUTO_EXPOSURE_FRACTION,
+                              AUTO_EXPOSURE_MAX_S)
 
 
 def exposure_for(im: Imager, cam: Camera, calibration: float, lux: float, exposure: float | str,
@@ -178,9 +190,8 @@ def render_imaged(
                  + im.dark_current_e_per_s) * t
     dn, well_full, adc_clipped = simulate_dn_clipped(im, electrons, np.random.default_rng([seed, 0x5EED]))
     clipping = clipping_counts(well_full, adc_clipped)
-    capped = (auto_exposure_note(im, _white_rate(im, camera_, calibration, illuminance_lux, grid),
-                                 AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S) if _is_auto(exposure) else None)
-    notes = tuple(note for note in (capped, clipping_note(clipping)) if note)
+    notes = tuple(note for note in (exposure_note(im, camera_, calibration, illuminance_lux, exposure, grid),
+                                    clipping_note(clipping)) if note)
     white = {name: (_white_rate(im, camera_, k, illuminance_lux, grid) - im.dark_current_e_per_s)
              * t * im.gain_dn_per_e for name, k in (("p", prevailing), ("c", calibration))}
     if normalization == "white":

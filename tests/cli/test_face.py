@@ -112,6 +112,17 @@ class TestRenderFace:
                         "-o", tmp_path / "f.exr", "--json"], capsys)
         assert document["physics"] == "noise" and document["imager"] == "sony-icx418"
         assert document["illuminance_lux"] == 200 and document["exposure_s"] > 0
+        assert set(document["clipping"]) >= {"well_full", "adc_clipped"}
+
+    @pytest.mark.parametrize("settings, said", [(["--illuminance", "1"], "auto exposure capped"),
+                                                (["--illuminance", "200", "--exposure", "10"], "clipped")])
+    def test_a_capped_exposure_or_clipped_pixels_are_noted(self, settings, said, tmp_path, capsys):
+        """Nothing silently capped or clipped: a dim face's auto exposure stops at a video frame, a 10 s
+        exposure fills the wells; ``notes`` says which."""
+        document = run(["render", "face", "--camera", CAM, "--prevailing", "A", "--calibration", "A", "--spp", "1",
+                        "--size", "12", "--imager", "sony-icx418", *settings, "-o", tmp_path / "f.exr", "--json"],
+                       capsys)
+        assert any(note.startswith(said) for note in document["notes"]), document["notes"]
 
     @pytest.mark.parametrize("extra, name", [
         (["--physics", "glossy"], "--physics"), (["--skin", "skin-model:hair=1"], "--skin"),
