@@ -469,15 +469,16 @@ static int hull_points(Hull *h, const double *points, int n, double flat_fractio
  * the surface (the face its direction from an inner point crosses, found by a
  * walk from the face that held it before) and the points above their face are
  * added as Quickhull adds them. What comes out is certified, not assumed: every
- * edge convex, every face facing away from the inner point, the faces' solid
- * angles summing to 4 pi (so the surface wraps the inner point once: a convex
- * polytope), every point not a vertex under the plane of the face its direction
- * crosses (so inside it). Anything else answers -1 and the caller builds the
- * hull from scratch.
+ * edge convex, every face facing away from the inner point, a ray from that
+ * point crossing exactly one face (so the surface wraps it once: with the
+ * faces all facing away and the edges convex, a convex polytope), every point
+ * not a vertex under the plane of the face its direction crosses (so inside
+ * it). Anything else answers -1 and the caller builds the hull from scratch.
  * ------------------------------------------------------------------------- */
 
 #define WALK_STEPS_MAX 64 /* a longer walk gives way to a search over every face */
-#define SOLID_ANGLE_TOLERANCE 1e-6 /* relative, on the faces' solid angles summing to 4 pi */
+#define CONE_SLACK 1e-12 /* the search's face may miss y's direction by this much (relative), no more */
+#define FORWARDS_MAX 64 /* a dead face's chain of successors is followed this far at most */
 static const double RAY[3] = {0.5773502691896258, 0.5812381937190965, 0.5734623443633283}; /* a direction, no axis */
 #define RAY_GRAZE2 1e-18 /* a face's edge plane this close (1e-9, relative) to the ray: the count is in doubt */
 
@@ -648,7 +649,8 @@ static int mend(Hull *h) {
 }
 
 /* The face whose cone from o holds y = x - o: a walk from `start` across the edge plane y is most
- * behind, then (rarely) a search over every face for the cone y is least outside. */
+ * behind, then (rarely) a search over every face for the cone y is least outside; -1 where even that
+ * one misses y by more than CONE_SLACK. */
 static inline int locate(Hull *h, int start, const double *y) {
     int f = start;
     for (int s = 0; s < WALK_STEPS_MAX; s++) {
@@ -659,15 +661,18 @@ static inline int locate(Hull *h, int start, const double *y) {
         f = h->f[f].nb[t0 <= t1 ? (t0 <= t2 ? 0 : 2) : (t1 <= t2 ? 1 : 2)];
     }
     int best = -1;
-    double best_worst = -INFINITY;
+    double best_worst = -INFINITY; /* the edge planes' signed distances of y's direction, unit vectors */
     for (int fi = 0; fi < h->nf; fi++) {
         if (!h->f[fi].alive) continue;
         const double *e = h->en + 9 * (size_t)fi;
         double worst = INFINITY;
-        for (int j = 0; j < 3; j++) worst = fmin(worst, e[3 * j] * y[0] + e[3 * j + 1] * y[1] + e[3 * j + 2] * y[2]);
+        for (int j = 0; j < 3; j++) {
+            double length = sqrt(e[3 * j] * e[3 * j] + e[3 * j + 1] * e[3 * j + 1] + e[3 * j + 2] * e[3 * j + 2]);
+            worst = fmin(worst, (e[3 * j] * y[0] + e[3 * j + 1] * y[1] + e[3 * j + 2] * y[2]) / length);
+        }
         if (worst > best_worst) best_worst = worst, best = fi;
     }
-    return best;
+    return best_worst >= -CONE_SLACK * sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]) ? best : -1;
 }
 
 /* load_points without the extremes' indices (hull_step needs none): the box, each axis centred and
@@ -788,7 +793,8 @@ static int hull_step(Hull *h, const double *points, double flat_fraction, double
     for (int i = 0; i < n; i++) {
         if (is_vertex[i]) continue;
         int start = h->wit[i];
-        while (start >= 0 && !h->f[start].alive) start = h->f[start].fwd;
+        for (int k = 0; k < FORWARDS_MAX && start >= 0 && !h->f[start].alive; k++) start = h->f[start].fwd;
+        if (start >= 0 && !h->f[start].alive) start = -1;
         if (start < 0) start = last;
         const double *x = h->x + 3 * i;
         double y[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
