@@ -192,7 +192,8 @@ def command_search(args: argparse.Namespace) -> None:
 def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
     """
     What a search's tables do not show by themselves: a ``--slope`` given for the impulse (which has none), gamuts
-    that are all degenerate (zero volume), and a noisy criterion that no triplet meets.
+    that are all degenerate (zero volume), an ``auto`` exposure capped at a video frame, and a noisy criterion
+    that no triplet meets.
     """
     import numpy as np
 
@@ -205,6 +206,8 @@ def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
             if volumes.size and not np.any(volumes[:, columns] > 0):
                 notes.append(f"every {cases} {label} gamut has zero volume (degenerate: a --grid too coarse for "
                              "the sensors, or channels that coincide); the tables list every triplet as tied")
+    if result.info.get("exposure_note"):
+        notes.append(result.info["exposure_note"])
     if result.noisy is not None and not best.get("min_noisy_fpr"):
         notes.append(f"no triplet keeps a noisy TPR ≥ {result.info['tpr_min']:g}: the skin leaves its locus on "
                      "noisy pixels (for instance too little light, or pixels clipped at the full well by a long "

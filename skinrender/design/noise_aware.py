@@ -46,7 +46,7 @@ from ..evaluation.locus import hull_locus
 from ..hints import ArrayLike, NDArrayFloat
 from ..model.camera import sensor_curves
 from ..model.chromaticity import ncc
-from ..model.exposure import AUTO_EXPOSURE_MAX_S, auto_exposure, electrons_mean, irradiance_planck
+from ..model.exposure import AUTO_EXPOSURE_MAX_S, auto_exposure, auto_exposure_note, electrons_mean, irradiance_planck
 from ..model.imager import Imager, imager
 from ..model.noise import simulate_dn
 from ..model.response import gain
@@ -54,7 +54,7 @@ from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import SensorBank
 
 __all__ = ["TPR_MIN", "NOISE_SAMPLES_MAX", "NOISE_SEED_MAX", "NOISE_CALIBRATION_K", "AUTO_EXPOSURE_FRACTION",
-           "NoisySetting", "noisy_setting", "bank_rates", "calibration_index", "triplet_noisy_rates"]
+           "NoisySetting", "noisy_setting", "bank_rates", "calibration_index", "exposure_capped", "triplet_noisy_rates"]
 
 NOISE_SAMPLES_MAX = 1000
 """Most noisy frames per pixel (``--noise-samples``)."""
@@ -142,6 +142,20 @@ def calibration_index(temperatures: ArrayLike, calibration: float) -> int:
         listed = ", ".join(f"{t:g}" for t in np.asarray(temperatures, dtype=np.float64))
         raise SkinrenderError(f"noise calibration must be one of the illuminants ({listed} K), got {calibration!r}")
     return int(where[0])
+
+
+def exposure_capped(setting: NoisySetting, rates_skin: NDArrayFloat, temperatures: ArrayLike,
+                    index: NDArrayFloat) -> str | None:
+    """
+    With an ``auto`` exposure: a note where it stops at :data:`AUTO_EXPOSURE_MAX_S` (a video frame) before the
+    calibration white reaches :data:`AUTO_EXPOSURE_FRACTION` of the well, for how many of the triplets ``index``
+    (``(T, 3)`` positions, ascending); ``None`` where it never does or the exposure is fixed.
+    """
+    if setting.exposure != "auto":
+        return None
+    q = calibration_index(temperatures, setting.calibration)
+    whites = rates_skin[q][np.asarray(index)[:, ::-1]] + setting.imager.dark_current_e_per_s  # (T, 3): R, G, B
+    return auto_exposure_note(setting.imager, whites, AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S)
 
 
 def triplet_noisy_rates(skin: SensorBank, nonskin: SensorBank, rates_skin: NDArrayFloat,

@@ -40,7 +40,7 @@ from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import SensorBank, positions_grid, sensor_bank, triplets
 from .criteria import triplet_false_positive_rates, triplet_volumes_many, triplet_volumes_naive
-from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, triplet_noisy_rates
+from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, exposure_capped, triplet_noisy_rates
 
 __all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "WORKERS_MAX", "SearchResult", "search", "progress_bar", "stop_pool",
            "dask_client"]
@@ -394,7 +394,9 @@ def search(
               **({} if noisy is None else {"imager": noisy.imager.name, "illuminance_lux": noisy.illuminance_lux,
                                            "exposure": noisy.exposure, "calibration_K": noisy.calibration,
                                            "noise_samples": noisy.samples, "noise_seed": noisy.seed,
-                                           "tpr_min": TPR_MIN})},
+                                           "tpr_min": TPR_MIN,
+                                           "exposure_note": exposure_capped(noisy, pack[1], banks[0].temperatures,
+                                                                            index)})},
     )
 
 

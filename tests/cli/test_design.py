@@ -93,6 +93,9 @@ def test_search_extrapolates_named_sets_when_told(capsys):
     (["--grid", "400:700:300"], ["every one-calibration skin gamut has zero volume",
                                  "every one-calibration Munsell gamut has zero volume"]),
     (["--imager", "sony-imx174", "--exposure", "10"], ["no triplet keeps a noisy TPR ≥ 0.9"]),
+    (["--imager", "sony-imx174", "--illuminance", "500"], []),  # the auto exposure reaches its target
+    (["--imager", "sony-icx418", "--illuminance", "5"], ["auto exposure capped at the longest exposure",
+                                                         "no triplet keeps a noisy TPR ≥ 0.9"]),
 ])
 def test_search_notes_what_its_tables_do_not_show(extra, expected, capsys):
     argv = [a for a in SEARCH if a != "9" and a != "--sensor"] + (["--sensor", "9"] if "--sensor" not in extra else [])
