@@ -46,7 +46,8 @@ from ..evaluation.locus import hull_locus
 from ..hints import ArrayLike, NDArrayFloat
 from ..model.camera import sensor_curves
 from ..model.chromaticity import ncc
-from ..model.exposure import AUTO_EXPOSURE_MAX_S, auto_exposure, auto_exposure_note, electrons_mean, irradiance_planck
+from ..model.exposure import (AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S, auto_exposure,
+                              auto_exposure_note, electrons_mean, irradiance_planck)
 from ..model.imager import Imager, imager
 from ..model.noise import simulate_dn
 from ..model.response import gain
@@ -69,8 +70,6 @@ TPR_MIN = 0.9
 """A triplet is ranked by its noisy FPR only while at least this share of noisy skin pixels stays in the
 locus: otherwise noise that pushes every pixel out of the locus would look like a perfect detector."""
 
-AUTO_EXPOSURE_FRACTION = 0.7
-"""``auto``: the calibration white's brightest channel at this share of the full well."""
 
 
 @dataclass(frozen=True)

@@ -61,7 +61,8 @@ from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..model.camera import Camera
 from ..model.chromaticity import ncc
-from ..model.exposure import AUTO_EXPOSURE_MAX_S, auto_exposure, auto_exposure_note, electrons_mean, irradiance_planck
+from ..model.exposure import (AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S, auto_exposure,
+                              auto_exposure_note, electrons_mean, irradiance_planck)
 from ..model.illuminant import illuminants_array
 from ..model.imager import Imager, checked_array, imager
 from ..model.noise import (clipping_counts, clipping_note, ncc_covariance, random_generator, simulate_dn_clipped,
@@ -72,10 +73,6 @@ from .locus import SkinLocus, false_positive_rate, locus_points, skin_locus
 
 __all__ = ["AUTO_EXPOSURE_FRACTION", "NCC_LINEAR_MAX", "NoisyDetection", "PixelElectrons", "noisy_detection",
            "pixel_electrons"]
-
-AUTO_EXPOSURE_FRACTION = 0.7
-"""``auto`` exposure: the white's brightest channel under the calibration light at this share of the full well."""
-
 
 @dataclass(frozen=True)
 class NoisyDetection:

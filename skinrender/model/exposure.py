@@ -44,6 +44,7 @@ from .imager import imager as imager_of
 
 __all__ = [
     "CONSTANT_K_M",
+    "AUTO_EXPOSURE_FRACTION",
     "AUTO_EXPOSURE_MAX_S",
     "auto_exposure",
     "auto_exposure_note",
@@ -58,6 +59,10 @@ CONSTANT_K_M: float = 683.002
 """Maximum luminous efficacy for the CIE 1924 V(λ) table, lm/W (683 lm/W at
 540 THz, referred to V's tabulated peak at 555 nm)."""
 
+
+AUTO_EXPOSURE_FRACTION = 0.7
+"""``auto`` exposure puts the calibration white's brightest channel at this share of the full well (every
+user of :func:`auto_exposure` in the package: renders, faces, the noisy search and detection)."""
 
 AUTO_EXPOSURE_MAX_S = 1.0 / 30.0
 """The longest automatic exposure, s: one frame of a 30 frames/s video camera, as the paper's 3-CCD cameras

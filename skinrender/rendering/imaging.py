@@ -50,8 +50,8 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..model.camera import Camera
-from ..model.exposure import (AUTO_EXPOSURE_MAX_S, auto_exposure, auto_exposure_note, electrons_mean,
-                              irradiance_planck)
+from ..model.exposure import (AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S, auto_exposure,
+                              auto_exposure_note, electrons_mean, irradiance_planck)
 from ..model.imager import Imager, imager
 from ..model.noise import clipping_counts, clipping_note, code_probabilities, simulate_dn_clipped, statistics_dn
 from ..model.response import gain
@@ -63,8 +63,6 @@ from .scene import ChartScene, load_scene
 __all__ = ["AUTO_EXPOSURE_FRACTION", "ALPHA_FAMILY", "ImagedRendering", "ImagedValidation", "electrons_per_radiance",
            "exposure_for", "exposure_note", "render_imaged", "predicted_patches", "validate_imaged"]
 
-AUTO_EXPOSURE_FRACTION = 0.7
-"""``auto`` exposure puts the calibration white's brightest channel at this share of the full well."""
 
 
 def _white_radiance(cam: Camera, temperature: float, grid: WavelengthGrid) -> NDArrayFloat:
