@@ -310,10 +310,11 @@ def command_detect_face(args: argparse.Namespace) -> None:
     set), and score against the label channel: TPR over skin pixels, FPR over the props' pixels.
     """
     from ..datasets import reflectances
+    from ..evaluation.detection import SCORED_MIN_OUTPUT
     from ..evaluation.locus import skin_locus
     from ..rendering.exr import write_png, write_preview
     from ..rendering.face import render_face
-    from ..studies.ladder import SCORED_MIN_OUTPUT, score_frame
+    from ..studies.ladder import score_frame
 
     options = render_options(args)
     output = check_output(args.output, "--output", (".png",))

@@ -305,11 +305,10 @@ def command_detect(args: argparse.Namespace) -> None:
     if is_face_scene(args.scene):  # the label channel is the ground truth
         return command_detect_face(args)
 
-    from ..evaluation.detection import detect
+    from ..evaluation.detection import SCORED_MIN_OUTPUT, detect
     from ..datasets import reflectances
     from ..evaluation.locus import skin_locus
     from ..rendering.exr import write_png, write_preview
-    from ..studies.ladder import SCORED_MIN_OUTPUT
 
     chart_only(args, skin=False)
     locus_skin = locus_skin_of(args, chart=True)

@@ -23,7 +23,11 @@ from ..hints import NDArrayFloat
 from ..model.chromaticity import ncc
 from .locus import SkinLocus
 
-__all__ = ["Detection", "detect", "scored_pixels"]
+__all__ = ["SCORED_MIN_OUTPUT", "Detection", "detect", "scored_pixels"]
+
+SCORED_MIN_OUTPUT = 10.0
+"""A pixel is scored when its brightest channel reaches this (output units; the paper's lower bound): the
+threshold of ``detect`` on charts and faces, the ladder and the face loci."""
 
 
 @dataclass(frozen=True)
@@ -73,7 +77,7 @@ def detect(rendering, locus: SkinLocus, scored_min: float = 0.0) -> Detection:
     ``fpr`` that of the other patches' scored pixels (the white reference and
     the black gaps are left out). A pixel is scored when it has light and its
     brightest channel reaches ``scored_min`` (output units; ``skinrender
-    detect`` uses the face's :data:`~skinrender.studies.ladder.SCORED_MIN_OUTPUT`):
+    detect`` uses :data:`SCORED_MIN_OUTPUT`, as on faces):
     a pixel too dark has no chromaticity to classify, so a chart with nothing
     scored has undefined rates (``None`` and the reason), not 0. Each patch's
     row counts its ``pixels`` and ``scored_pixels``; its ``detected_fraction``

@@ -17,7 +17,7 @@ at the same spp, so that loading the scene and compiling the kernels are left
 out, as the chart bench does) and compared with a reference render of the
 same level at ``reference_spp`` with another seed. Over the skin pixels
 scored in the reference (label 1, brightest channel ≥
-:data:`~skinrender.studies.ladder.SCORED_MIN_OUTPUT`):
+:data:`~skinrender.evaluation.detection.SCORED_MIN_OUTPUT`):
 
 -   ``skin_ncc_rms``: the RMS per pixel of the NCC (r, g) difference
     (Euclidean), what pixel-wise detection sees;
@@ -148,7 +148,7 @@ def presets_of(spps: Sequence[int], errors: Sequence[float], reference_spp: int)
 
 
 def _scored_skin(rendering) -> np.ndarray:
-    from .ladder import SCORED_MIN_OUTPUT
+    from ..evaluation.detection import SCORED_MIN_OUTPUT
 
     return (rendering.labels == 1) & (rendering.image.max(axis=-1) >= SCORED_MIN_OUTPUT)
 
@@ -224,7 +224,7 @@ def bench_face(
     cam = camera(camera_spec)
     face = load_face_scene(scene)
     curve, presets = [], {}
-    from .ladder import SCORED_MIN_OUTPUT
+    from ..evaluation.detection import SCORED_MIN_OUTPUT
 
     none_scored = f"no scored skin pixel in the reference (brightest channel ≥ {SCORED_MIN_OUTPUT:g})"
     for level in levels:

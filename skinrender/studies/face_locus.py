@@ -26,6 +26,7 @@ from functools import partial
 import numpy as np
 from scipy.spatial import QhullError
 
+from ..evaluation.detection import SCORED_MIN_OUTPUT
 from ..evaluation.locus import hull_locus
 from ..hints import ArrayLike, NDArrayFloat
 from ..model.camera import Camera
@@ -36,7 +37,6 @@ from ..rendering.face_scene import skin_reflectance_of
 from ..rendering.variants import choose_variant
 from ..spectra import GRID_DEFAULT
 from .face_pool import run_renders
-from .ladder import SCORED_MIN_OUTPUT
 
 __all__ = ["SKIN_TONES", "face_locus", "convex_intersection_area"]
 
@@ -101,7 +101,7 @@ def face_locus(camera_: Camera, pairs: ArrayLike = ((2300.0, 5900.0), (2856.0, 5
     The skin locus of rendered faces beside the analytic one of the same skins and illuminant pairs.
 
     ``pairs``: (prevailing, calibration) in K. Each face is rendered at ``size`` pixels; its lit skin pixels
-    (brightest channel ≥ the ladder's :data:`~skinrender.studies.ladder.SCORED_MIN_OUTPUT`) give NCC (r, g).
+    (brightest channel ≥ the ladder's :data:`~skinrender.evaluation.detection.SCORED_MIN_OUTPUT`) give NCC (r, g).
     The analytic points are Eq. 4 of the same skin reflectances under the same pairs. The faces render in this
     process (``workers = 1``), in ``workers`` processes or on a Dask cluster (``dask``: an address or a
     ``distributed.Client``), with the same numbers (:func:`skinrender.studies.face_pool.run_renders`);

@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SkinrenderError
+from ..evaluation.detection import SCORED_MIN_OUTPUT
 from ..evaluation.locus import skin_locus
 from ..hints import NDArrayFloat
 from ..model.camera import camera
@@ -50,8 +51,6 @@ __all__ = ["LEVELS_DEFAULT", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "score_ren
 LEVELS_DEFAULT = ("direct", "interreflection", "sheen", "mixed", "noise", "interreflection+sheen+mixed+noise")
 """The levels of :func:`ladder`: the analytic model's world, each effect alone, then all of them."""
 
-SCORED_MIN_OUTPUT = 10.0
-"""A pixel is scored when its brightest channel reaches this (output units; the paper's lower bound)."""
 
 
 @dataclass(frozen=True)
