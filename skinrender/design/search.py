@@ -43,7 +43,7 @@ from .criteria import triplet_false_positive_rates, triplet_volumes_many, triple
 from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, exposure_capped, triplet_noisy_rates
 
 __all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "WORKERS_MAX", "SearchResult", "search", "progress_bar", "stop_pool",
-           "dask_client"]
+           "dask_client", "check_workers"]
 
 DASK_TIMEOUT_S = 10.0
 """Seconds to wait for a Dask scheduler before giving up."""
@@ -99,6 +99,21 @@ def _volumes_chunk(chunk: np.ndarray, method: str, banks: tuple[SensorBank, ...]
     if not detection:
         return out, None, noisy_rates
     return out, np.array([triplet_false_positive_rates(banks[0], banks[1], t) for t in chunk]), noisy_rates
+
+
+def check_workers(workers: int | None, flag: str = "--workers") -> int:
+    """
+    The worker processes: ``None`` means every core; anything but an integer (``int`` or a numpy integer, not a
+    bool or a float) in ``[1, WORKERS_MAX]`` is refused, naming ``flag``.
+
+    >>> check_workers(2)
+    2
+    """
+    if workers is None:
+        return os.cpu_count() or 1
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or not 1 <= workers <= WORKERS_MAX:
+        raise SkinrenderError(f"{flag} must be an integer in [1, {WORKERS_MAX}] (processes), got {workers!r}")
+    return int(workers)
 
 
 def _chunks(index: np.ndarray, count: int) -> list[np.ndarray]:
@@ -330,9 +345,7 @@ def search(
         raise SkinrenderError(f"{count} triplets ({where.size} positions) is more than max_triplets = {max_triplets} "
                               f"(about {count * 2.2e-3 / 3600:.2g} h on 2 cores at the measured ~2 ms per triplet "
                               "per core); raise the limit (--max-triplets) or use fewer positions")
-    workers = (os.cpu_count() or 1) if workers is None else workers
-    if not (isinstance(workers, (int, np.integer)) and 1 <= workers <= WORKERS_MAX):
-        raise SkinrenderError(f"workers must be an integer in [1, {WORKERS_MAX}] processes, got {workers!r}")
+    workers = check_workers(workers, "workers")
     banks = tuple(
         sensor_bank(sensor, values, where, illuminants, slope, normalization, knee, grid) for values in (skin, munsell)
     )

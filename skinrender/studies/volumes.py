@@ -24,7 +24,6 @@ computes every triplet.
 
 from __future__ import annotations
 
-import os
 import signal
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -33,8 +32,7 @@ import numpy as np
 
 from ..design.bank import SensorBank, triplets
 from ..design.criteria import triplet_gains, triplet_volumes_many
-from ..design.search import WORKERS_MAX, SearchResult, dask_client, progress_bar, stop_pool
-from ..errors import SkinrenderError
+from ..design.search import SearchResult, check_workers, dask_client, progress_bar, stop_pool
 from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import NDArrayFloat
 
@@ -60,22 +58,6 @@ chunk_gains = triplet_gains
 
 def _dask_chunk(bank: SensorBank, index: np.ndarray) -> NDArrayFloat:
     return _chunk(0, index, (bank,))
-
-
-def check_workers(workers: int | None, flag: str = "--workers") -> int:
-    """
-    The worker count: ``None`` means every core; anything but an integer in
-    ``[1, WORKERS_MAX]`` is refused (as :func:`skinrender.design.search.search` does).
-    """
-    if workers is None:
-        return os.cpu_count() or 1
-    try:
-        whole = not isinstance(workers, bool) and int(workers) == workers
-    except (TypeError, ValueError, OverflowError):
-        whole = False
-    if not whole or not 1 <= workers <= WORKERS_MAX:
-        raise SkinrenderError(f"{flag} must be an integer in [1, {WORKERS_MAX}] (processes), got {workers!r}")
-    return int(workers)
 
 
 def bank_key(sensor: float, spec: str, positions: NDArrayFloat, temperatures: NDArrayFloat, slope: float,

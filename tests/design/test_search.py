@@ -10,7 +10,7 @@ from skinrender.errors import SkinrenderError
 from skinrender.evaluation.gamut import gamut_calibration, gamut_all_calibrations
 from skinrender.design.bank import positions_grid, sensor_bank, triplets
 from skinrender.design.criteria import triplet_volumes_fast, triplet_volumes_naive
-from skinrender.design.search import SearchResult, search
+from skinrender.design.search import WORKERS_MAX, SearchResult, search
 from skinrender.spectra import GRID_DEFAULT
 
 POSITIONS_SMALL = "400:700:50"  # 7 positions, 35 triplets
@@ -132,8 +132,10 @@ class TestSearch:
     def test_bad_method_and_workers(self, sets):
         with pytest.raises(SkinrenderError, match="method"):
             search(3, *sets, POSITIONS_SMALL, method="quick")
-        with pytest.raises(SkinrenderError, match="workers"):
-            search(3, *sets, POSITIONS_SMALL, workers=0)
+        for workers in (0, True, 2.0, WORKERS_MAX + 1):  # one check, shared with the studies (check_workers)
+            with pytest.raises(SkinrenderError, match="workers must be an integer"):
+                search(3, *sets, POSITIONS_SMALL, workers=workers)
+        assert search(3, *sets, "400:700:100", workers=np.int64(1)).workers == 1
         with pytest.raises(SkinrenderError, match="sensor"):
             sensor_bank(-1, sets[0])
 

@@ -89,7 +89,7 @@ class TestCheckWorkers:
     def test_the_bounds_are_search_s(self):
         assert check_workers(1) == 1 and check_workers(WORKERS_MAX) == WORKERS_MAX
 
-    @pytest.mark.parametrize("bad", [0, -1, 1.5, True, 1000, "2", float("nan")])
+    @pytest.mark.parametrize("bad", [0, -1, 1.5, 2.0, True, 1000, "2", float("nan")])
     def test_refused(self, bad):
         with pytest.raises(SkinrenderError, match="--workers"):
             check_workers(bad)
