@@ -189,6 +189,11 @@ def resample(
         raise SkinrenderError(f"{source}: wavelengths must be strictly increasing")
     tolerance = 1e-9
     outside = (target < x[0] - tolerance) | (target > x[-1] + tolerance)
+    if np.all(outside) and target.size > 1:  # no extrapolation rule makes data of it (µm given for nm?)
+        raise SkinrenderError(
+            f"{source}: measured over {x[0]:g}–{x[-1]:g} nm, which does not overlap the grid "
+            f"{target[0]:g}–{target[-1]:g} nm at all{' (wavelengths in µm? they are in nm)' if x[-1] < 10 else ''}"
+        )
     if np.any(outside) and extrapolation == "refuse":
         raise SkinrenderError(
             f"{source}: measured over {x[0]:g}–{x[-1]:g} nm, which does not cover the "

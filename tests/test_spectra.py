@@ -154,6 +154,13 @@ class TestResample:
         assert zero[0] == 0 and zero[-1] == 0 and zero[100] == 0.5
         np.testing.assert_array_equal(constant, 0.5)
 
+    @pytest.mark.parametrize("extrapolation", ["refuse", "zero", "constant"])
+    @pytest.mark.parametrize("x, says", [([0.4, 0.55, 0.7], "in µm"), ([750.0, 900.0], "at all")])
+    def test_data_beside_the_grid_is_refused_whatever_the_extrapolation(self, x, says, extrapolation):
+        """No rule makes data of a spectrum that misses the grid entirely (zero would give silent zeros)."""
+        with pytest.raises(SkinrenderError, match=f"does not overlap the grid .*{says}"):
+            resample(x, np.full(len(x), 0.5), GRID_DEFAULT, extrapolation, source="mine.csv")
+
     def test_n_dimensional(self, rng):
         x = np.linspace(380, 780, 81)
         y = rng.random((2, 3, 81))

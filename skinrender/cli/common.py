@@ -21,7 +21,7 @@ from ..errors import SkinrenderError, naming
 
 __all__ = [
     "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
-    "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
+    "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "render_options", "choices_help", "coverage_hint",
 ]
 
@@ -31,6 +31,8 @@ HELP_CAMERA = (
     "(wavelength nm, R, G, B)"
 )
 HELP_ILLUMINANT = "kelvin (3300 or 3300K, a Planckian radiator), A (2856 K), H (Horizon, 2300 K) or a CSV path"
+HELP_PLANCKIAN = ("kelvin (3300 or 3300K, a Planckian radiator), A (2856 K) or H (Horizon, 2300 K); no CSV: renders "
+                  "need a temperature")
 HELP_GRID = "integration grid START:END:STEP in nm (default 400:700:1)"
 
 

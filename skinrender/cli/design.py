@@ -147,6 +147,9 @@ def command_search(args: argparse.Namespace) -> None:
 
         check_workers(args.workers)
     flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, slope)
+    if positions.min() < grid.start or positions.max() > grid.end:
+        raise SkinrenderError(f"--positions {positions.min():g}–{positions.max():g} nm leave the integration grid "
+                              f"{grid} (peaks are in nm; or widen --grid)")
     flag("--illuminants", sensor_bank, args.sensor, skin_values[:1], positions[:3], temperatures, slope,
          grid=grid)
     noisy = noisy_of(args, temperatures)

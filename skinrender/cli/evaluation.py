@@ -46,9 +46,11 @@ def nonskin_names(spec: str, munsell: str = "munsell") -> list[str]:
         raise SkinrenderError(f"--nonskin: expected comma-separated reflectance sets without empty items, got {spec!r}")
     names = [munsell if name == "munsell" else name for name in items]
     repeated = sorted({name for name in names if names.count(name) > 1})
+    if munsell in repeated and munsell != "munsell":
+        raise SkinrenderError(f"--munsell {munsell} is already in --nonskin {spec!r} (whose item 'munsell' is the "
+                              "--munsell set): name another set, or list the non-skin sets without it")
     if repeated:
-        raise SkinrenderError(f"--nonskin: each set once, got {', '.join(repeated)} more than once"
-                              + (" (the item 'munsell' is the --munsell set)" if munsell in repeated else ""))
+        raise SkinrenderError(f"--nonskin: each set once, got {', '.join(repeated)} more than once")
     if munsell != "munsell" and munsell not in names:
         raise SkinrenderError(f"--munsell {munsell} is not used: --nonskin {spec!r} has no item 'munsell'")
     return names

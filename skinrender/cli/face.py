@@ -14,7 +14,7 @@ import sys
 from pathlib import Path
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, HELP_ILLUMINANT, SEED_MAX, SPP_MAX, add_common, camera_of, check_output, check_seed,
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, camera_of, check_output, check_seed,
                      choices_help, emit, flag, integer_in, positive_number, refuse_sensor_settings, render_options,
                      sensor_settings, table, variant_of)
 
@@ -60,8 +60,8 @@ def add_parsers(commands) -> None:
                             "interreflection, sheen, mixed light, sensor noise, all), with the skin's NCC "
                             "and the skin locus's detection rates at each")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
-    p.add_argument("--prevailing", required=True, help="the key light, Planckian: " + HELP_ILLUMINANT)
-    p.add_argument("--calibration", required=True, help="the white balance, Planckian: " + HELP_ILLUMINANT)
+    p.add_argument("--prevailing", required=True, help="the key light: " + HELP_PLANCKIAN)
+    p.add_argument("--calibration", required=True, help="the white balance: " + HELP_PLANCKIAN)
     p.add_argument("--skin", help=HELP_SKIN)
     p.add_argument("--scene", default="face", help="face scene: a bundled name (face) or a .toml path")
     p.add_argument("--levels", default=",".join(LEVELS_DEFAULT),

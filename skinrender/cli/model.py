@@ -65,9 +65,8 @@ def command_illuminants(args: argparse.Namespace) -> None:
     flag("--range", temperature_range, args.range[0], args.range[1], args.step)
     flag("--pair", measure, np.full((1, 3), 1.0 / 3.0), args.pair)
     cam = camera_of(args, grid_of(args))
-    selection = illuminant_selection(
-        cam, args.count, args.range[0], args.range[1], args.step, grid_of(args), args.pair
-    )
+    selection = flag("--count", illuminant_selection,  # too many for the candidates is what can fail here
+                     cam, args.count, args.range[0], args.range[1], args.step, grid_of(args), args.pair)
     document = {
         "camera": cam.name,
         "pair": args.pair,
@@ -98,6 +97,7 @@ def command_response(args: argparse.Namespace) -> None:
     grid = grid_of(args)
     cam = camera_of(args, grid)
     refl = flag("--reflectances", reflectances, args.reflectances, extrapolation=args.extrapolation)
+    flag("--reflectances", refl.on, grid)  # its coverage of the grid, named here
     prevailing, calibration = flag("--prevailing", illuminant, args.prevailing), flag("--calibration", illuminant, args.calibration)
     for name, light in (("--prevailing", prevailing), ("--calibration", calibration)):
         check_lights(args, cam, light, grid, name)
@@ -140,13 +140,18 @@ def command_gamut(args: argparse.Namespace) -> None:
     check_lights(args, cam, temperatures, grid)
     if args.ratio == bool(args.reflectances):
         raise SkinrenderError("give either --reflectances R or --ratio (with --skin and --munsell), not both or neither")
+    if not args.ratio:
+        for name, default in (("skin", "skin"), ("munsell", "munsell")):
+            if getattr(args, name) != default:
+                raise SkinrenderError(f"--{name} goes with --ratio; with --reflectances it would be ignored")
     if args.calibration is not None:
         calibration = flag("--calibration", illuminant, args.calibration)
         if calibration.temperature is None:
             raise SkinrenderError("--calibration must be a Planckian illuminant (kelvin, A or H) for a gamut case")
 
-    def volume_of(spec: str):
-        refl = reflectances(spec, extrapolation=args.extrapolation)
+    def volume_of(spec: str, name: str):
+        refl = flag(name, reflectances, spec, extrapolation=args.extrapolation)
+        flag(name, refl.on, grid)  # its coverage of the grid, named here
         if args.all_calibrations:
             result = gamut_all_calibrations(cam, refl, temperatures, args.normalization, args.knee, grid)
         else:
@@ -162,8 +167,12 @@ def command_gamut(args: argparse.Namespace) -> None:
         "knee": args.knee,
     }
     if args.ratio:
-        (skin_name, skin), (munsell_name, munsell) = volume_of(args.skin), volume_of(args.munsell)
+        (skin_name, skin), (munsell_name, munsell) = volume_of(args.skin, "--skin"), volume_of(args.munsell,
+                                                                                              "--munsell")
         ratio = skin.volume / munsell.volume if munsell.volume > 0 else None
+        if ratio is None:
+            document["undefined"] = {"ratio": "the Munsell gamut has zero volume (degenerate: flat or coincident "
+                                              "channels), so skin / Munsell is undefined"}
         document.update(
             skin={"name": skin_name, "volume": skin.volume, "points": skin.points, "degenerate": skin.degenerate},
             munsell={"name": munsell_name, "volume": munsell.volume, "points": munsell.points,
@@ -173,7 +182,7 @@ def command_gamut(args: argparse.Namespace) -> None:
         text = (f"{cam.name}, {document['case']}: skin {skin.volume:.6g}, Munsell {munsell.volume:.6g} "
                 f"(output units³), ratio {'undefined (degenerate Munsell gamut)' if ratio is None else f'{ratio:.6g}'}")
     else:
-        name, result = volume_of(args.reflectances)
+        name, result = volume_of(args.reflectances, "--reflectances")
         document.update(reflectances=name, volume=result.volume, points=result.points, degenerate=result.degenerate)
         text = (f"{name} through {cam.name}, {document['case']}: volume {result.volume:.6g} output units³ "
                 f"({result.points} points{', degenerate' if result.degenerate else ''})")

@@ -10,7 +10,7 @@ import sys
 import numpy as np
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, HELP_ILLUMINANT, imaging_options, add_common, camera_of, add_grid, add_model, add_render, check_output,
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, imaging_options, add_common, camera_of, add_grid, add_model, add_render, check_output,
                      choices_help, emit, flag, grid_of, render_options, table)
 from .face import check_figure
 
@@ -27,8 +27,8 @@ def add_parsers(commands) -> None:
         p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path "
                        "(see scenes/)")
         p.add_argument("--camera", required=True, help=HELP_CAMERA)
-        p.add_argument("--prevailing", required=True, help="prevailing (emitter) illuminant, Planckian: " + HELP_ILLUMINANT)
-        p.add_argument("--calibration", required=True, help="calibration (white balance) illuminant: " + HELP_ILLUMINANT)
+        p.add_argument("--prevailing", required=True, help="prevailing (emitter) illuminant: " + HELP_PLANCKIAN)
+        p.add_argument("--calibration", required=True, help="calibration (white balance) illuminant: " + HELP_PLANCKIAN)
         add_render(p)
         add_model(p)
         add_grid(p)
@@ -54,8 +54,8 @@ def add_parsers(commands) -> None:
     p = commands.add_parser("detect", help="skin detection on a rendered chart or face with the camera's skin locus")
     p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
-    p.add_argument("--prevailing", required=True, help="prevailing illuminant, Planckian: " + HELP_ILLUMINANT)
-    p.add_argument("--calibration", required=True, help="calibration illuminant: " + HELP_ILLUMINANT)
+    p.add_argument("--prevailing", required=True, help="prevailing illuminant: " + HELP_PLANCKIAN)
+    p.add_argument("--calibration", required=True, help="calibration illuminant: " + HELP_PLANCKIAN)
     p.add_argument("--boundary", choices=list(BOUNDARIES), default="hull", help="locus boundary: " + choices_help(BOUNDARIES))
     p.add_argument("--locus-skin", metavar="SET",
                    help="skin reflectance set the locus is trained on, a name or CSV path (default skin)")

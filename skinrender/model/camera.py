@@ -91,6 +91,7 @@ class Camera:
             if self.kind == "measured":
                 values = self.measured.on(grid)
             else:
+                _check_peaks(self, grid)
                 values = sensor_curves(self.peaks, grid, self.fwhm, self.slope)
             values = np.ascontiguousarray(values, dtype=np.float64)
             values.setflags(write=False)
@@ -105,6 +106,17 @@ _PATTERN_GBELL = re.compile(
     r"^gbell:\s*(?P<n>[0-9.eE+-]+)\s*(,\s*b\s*=\s*(?P<b>[0-9.eE+-]+))?\s*@(?P<peaks>.*)$", re.IGNORECASE
 )
 _PATTERN_IMPULSE = re.compile(r"^impulse\s*@(?P<peaks>.*)$", re.IGNORECASE)
+
+
+def _check_peaks(cam: "Camera", grid: WavelengthGrid) -> None:
+    """A model camera's peaks lie on the grid's range, nm (outside it a channel sees only its curve's tail)."""
+    start, end = float(grid.wavelengths[0]), float(grid.wavelengths[-1])
+    outside = [p for p in cam.peaks if not start <= p <= end]
+    if outside:
+        hint = " (peaks are in nm, not µm)" if max(outside) < 10 else ""
+        which = "peak " + ", ".join(f"{p:g}" for p in outside) + (" nm lies" if len(outside) == 1 else " nm lie")
+        raise SkinrenderError(f"camera {cam.name!r}: {which} outside "
+                              f"the grid {start:g}–{end:g} nm{hint}: give peaks inside it, or a wider grid")
 
 
 def _parse_peaks(text: str, spec: str) -> tuple[float, float, float]:

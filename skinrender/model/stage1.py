@@ -32,6 +32,7 @@ from .chromaticity import measure, ncc
 from .response import response_raw
 
 __all__ = [
+    "ILLUMINANTS_MAX",
     "IlluminantTrack",
     "illuminant_track",
     "IlluminantSelection",
@@ -249,8 +250,21 @@ def illuminant_set(spec: str | ArrayLike | None = None, camera_: Camera | str | 
     return _distinct(values)
 
 
+ILLUMINANTS_MAX = 100
+"""Most illuminants in a set (the paper's has 10): each is a prevailing light and a calibration, so a gamut or
+search does work and holds memory growing with the count squared (1000 illuminants ran a machine of 24 GiB out of
+memory in ``gamut --all-calibrations``)."""
+
+
 def _distinct(temperatures: NDArrayFloat) -> NDArrayFloat:
-    """``temperatures`` (K), refused when one repeats (each would be a prevailing light and a calibration twice)."""
+    """
+    ``temperatures`` (K), refused when one repeats (each would be a prevailing light and a calibration twice) or
+    when there are more than :data:`ILLUMINANTS_MAX`.
+    """
+    if temperatures.size > ILLUMINANTS_MAX:
+        raise SkinrenderError(f"illuminants: at most {ILLUMINANTS_MAX} (each is a prevailing light and a calibration: "
+                              f"the work grows with the count squared, {(temperatures.size / 10) ** 2:.3g}× the "
+                              f"paper's 10), got {temperatures.size}")
     values, counts = np.unique(temperatures, return_counts=True)
     if np.any(counts > 1):
         repeated = ", ".join(f"{v:g} K" for v in values[counts > 1])

@@ -49,6 +49,8 @@ DESIGN = ["design", "--evaluations", "3"]
     (["--grid", "380:780:5"], ("--skin", "extrapolation")),
     (["--illuminants", "2000,,x"], "--illuminants"),
     (["--sensor", "1", "--positions", "400.5:650.5:50"], ("--positions", "400.5")),
+    (["--positions", "300:800:100"], ("--positions", "leave the integration grid")),  # it blamed --illuminants
+    (["--positions", "0.4:0.7:0.05"], ("--positions", "in nm")),
     (["--skin", "skn"], ("--skin", "skn")),
     (["--munsell", ""], "--munsell"),
     (["--method", "quick"], "--method"),

@@ -24,7 +24,7 @@ LOCUS = ["locus", "--camera", "gbell:9@450,540,610"]
     (["--nonskin", "macbeth,macbeth"], ("--nonskin", "macbeth")),
     (["--munsell", "nosuch"], ("--munsell", "nosuch")),
     (["--munsell", "munsell-nickerson", "--nonskin", "macbeth"], ("--munsell", "not used")),
-    (["--munsell", "macbeth"], ("--nonskin", "macbeth", "--munsell")),
+    (["--munsell", "macbeth"], ("--munsell macbeth is already in --nonskin",)),
     (["--skin", "SHORT_CSV"], ("--skin", "does not cover", "give spectra that cover it")),
     (["--munsell", "SHORT_CSV"], ("--munsell", "does not cover")),
     (["--camera", "SHORT_CAMERA"], ("--camera", "does not cover", "give spectra that cover it")),

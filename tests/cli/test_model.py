@@ -68,8 +68,16 @@ def test_response_refuses_bad_prevailing(prevailing, names, capsys):
     (["--prevailing", "A", "--calibration", "H", "--normalization", "loud"], "--normalization"),
     (["--prevailing", "A", "--calibration", "H", "--grid", "400:700:0.0001"], "--grid"),
     (["--prevailing", "A"], "--calibration"),
+    # peaks outside the grid: each channel saw only a curve's tail (every sample came out grey, silently)
+    (["--prevailing", "A", "--calibration", "H", "--camera", "gbell:9@0.45,0.54,0.61"], ("--camera", "not µm")),
+    (["--prevailing", "A", "--calibration", "H", "--camera", "gbell:9@100,540,610"], ("--camera", "100 nm lies")),
+    (["--prevailing", "A", "--calibration", "H", "--camera", "impulse@300,540,610"], ("--camera", "outside the grid")),
+    (["--prevailing", "A", "--calibration", "H", "--reflectances", "UM"], ("--reflectances", "in µm")),
 ])
-def test_response_refuses(extra, names, capsys):
+def test_response_refuses(extra, names, capsys, tmp_path):
+    microns = tmp_path / "um.csv"  # wavelengths in µm: no extrapolation makes data of them
+    microns.write_text("\n".join(f"{w / 1000},0.5" for w in range(400, 701, 10)))
+    extra = [str(microns) if a == "UM" else a for a in extra] + ["--extrapolation", "zero"]
     assert_refused(RESPONSE + extra, names, capsys)
 
 
@@ -101,9 +109,24 @@ def test_bad_illuminant_files(key, bad_files, capsys):
     (["--all-calibrations", "--illuminants", ""], "--illuminants"),
     (["--calibration", "nan"], "--calibration"),
     (["--calibration", "3300", "--ratio"], "--ratio"),
+    (["--calibration", "3300", "--munsell", "macbeth"], ("--munsell", "--ratio")),  # it was ignored
+    (["--calibration", "3300", "--skin", "macbeth"], ("--skin", "--ratio")),
+    (["--calibration", "3300", "--reflectances", "nope"], ("--reflectances", "nope")),
+    (["--calibration", "3300", "--reflectances", "SHORT"], ("--reflectances", "does not cover")),
 ])
-def test_gamut_refuses(extra, names, capsys):
+def test_gamut_refuses(extra, names, capsys, tmp_path):
+    short = tmp_path / "short.csv"
+    short.write_text("\n".join(f"{w},0.5" for w in range(420, 601, 10)))
+    extra = [str(short) if a == "SHORT" else a for a in extra]
     assert_refused(GAMUT + extra, names, capsys)
+
+
+def test_a_ratio_over_a_degenerate_munsell_gamut_is_null_with_the_reason(capsys):
+    status, out, err = run(["gamut", "--camera", "impulse@450,450,450", "--ratio", "--all-calibrations", "--json"],
+                           capsys)
+    document = json.loads(out)
+    assert status == 0, err
+    assert document["ratio"] is None and "zero volume" in document["undefined"]["ratio"]
 
 
 def test_coincident_sensors_give_a_zero_volume_not_an_error(capsys):

@@ -89,6 +89,14 @@ class TestIlluminantSet:
         with pytest.raises(SkinrenderError):
             illuminant_set(spec)
 
+    def test_too_many_illuminants_are_refused_with_the_cost(self):
+        from skinrender.model.stage1 import ILLUMINANTS_MAX
+
+        many = ",".join(str(2000 + 5 * k) for k in range(ILLUMINANTS_MAX + 1))
+        with pytest.raises(SkinrenderError, match=f"at most {ILLUMINANTS_MAX}.*count squared"):
+            illuminant_set(many)
+        assert illuminant_set(",".join(str(2000 + 5 * k) for k in range(ILLUMINANTS_MAX))).size == ILLUMINANTS_MAX
+
     @pytest.mark.parametrize("spec", ["3000,3300,3000", "A,2856", [2000.0, 2000.0]])
     def test_a_repeated_temperature_is_refused(self, spec):
         # each light is a prevailing light and a calibration: twice would double every search row
