@@ -220,7 +220,7 @@ def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
 
 def command_design(args: argparse.Namespace) -> None:
     from ..datasets import reflectances
-    from ..design.optimise import optimise_camera
+    from ..design.optimise import noisy_report, optimise_camera
     from ..spectra import GRID_DEFAULT
 
     try:
@@ -244,8 +244,12 @@ def command_design(args: argparse.Namespace) -> None:
                 "method": "Nelder-Mead (derivative-free)",
                 **({} if noisy is None else {"noisy": {"imager": noisy.imager.name, "illuminance_lux":
                                                        noisy.illuminance_lux, "exposure": noisy.exposure}})}
+    if noisy is not None:  # what the value stands for on noisy pixels, and what was capped
+        document["noisy"].update(noisy_report(result, skin.on(grid), munsell.on(grid), noisy))
+        document["notes"] = document["noisy"].pop("notes")
     lines = [f"{args.objective}: best {result.camera_spec} = {result.value:.5g}"]
     shown = lambda value: "undefined" if value is None else f"{value:.5g}"  # noqa: E731
     lines += [f"  start {s['start']} ({shown(s['start_value'])}) -> {[round(p, 1) for p in s['peaks']]} "
               f"({shown(s['value'])})" for s in result.starts]
+    lines += [f"note: {note}" for note in document.get("notes", [])]
     emit(args, document, "\n".join(lines))

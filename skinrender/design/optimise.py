@@ -32,9 +32,9 @@ from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import sensor_bank
 from .criteria import triplet_false_positive_rates, triplet_volumes_fast
-from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, triplet_noisy_rates
+from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, exposure_capped, triplet_noisy_rates
 
-__all__ = ["OBJECTIVES", "objective", "Design", "optimise_camera"]
+__all__ = ["OBJECTIVES", "objective", "Design", "optimise_camera", "noisy_report"]
 
 OBJECTIVES = {
     "detection": "Munsell false-positive rate inside the skin locus",
@@ -196,3 +196,24 @@ def optimise_camera(
                               "degenerate skin or Munsell gamut or locus); try other starts")
     best = min(scored, key=lambda r: r["value"])
     return Design(kind, np.array(best["peaks"]), best["fwhm"], best["slope"], best["value"], results)
+
+
+def noisy_report(design: Design, skin: NDArrayFloat, munsell: NDArrayFloat, noisy: NoisySetting,
+                 illuminants: ArrayLike = TEMPERATURES_PAPER, grid: WavelengthGrid = GRID_DEFAULT) -> dict:
+    """
+    What a noisy detection design's ``value`` stands for: the best camera's noisy ``tpr`` and ``fpr`` and
+    ``notes`` — the value is a penalty ``1 + (TPR_MIN − TPR)``, not an FPR, where no start kept the TPR at
+    :data:`~skinrender.design.noise_aware.TPR_MIN`; an ``auto`` exposure stopped at a video frame.
+    """
+    banks = [sensor_bank(design.fwhm / 10.0, values, design.peaks, illuminants, design.slope, grid=grid)
+             for values in (skin, munsell)]
+    rates = [bank_rates(bank, noisy, design.fwhm / 10.0, design.slope, grid) for bank in banks]
+    tpr, fpr = triplet_noisy_rates(*banks, *rates, [0, 1, 2], noisy)
+    notes = []
+    if not tpr >= TPR_MIN:
+        notes.append(f"no start kept a noisy TPR ≥ {TPR_MIN:g} (the best keeps {tpr:.3g}): the value "
+                     f"{design.value:.4g} is the penalty 1 + ({TPR_MIN:g} − TPR), not a false-positive rate")
+    capped = exposure_capped(noisy, rates[0], banks[0].temperatures, np.array([[0, 1, 2]]))
+    if capped:
+        notes.append(capped)
+    return {"tpr": _finite_or_none(tpr), "fpr": _finite_or_none(fpr), "notes": notes}

@@ -153,3 +153,20 @@ def test_ctrl_c_stops_a_search_with_one_line_and_no_worker_left(tmp_path):
     assert child.returncode == 130
     assert err.decode().strip().splitlines()[-1] == "skinrender search: interrupted"
     assert "Traceback" not in err.decode() and out == b""
+
+
+def test_a_noisy_design_says_what_its_value_stands_for(capsys):
+    """``design --imager``: the best camera's noisy TPR and FPR; where no start keeps TPR ≥ 0.9 the value is a
+    penalty (1 + 0.9 − TPR), said in a note, and a capped auto exposure is noted (both were silent)."""
+    status, out, err = run(["design", "--starts", "450,540,610", "--evaluations", "2", "--imager", "sony-icx418",
+                            "--json"], capsys)
+    document = json.loads(out)
+    assert status == 0, err
+    tpr = document["noisy"]["tpr"]
+    assert 0.0 <= tpr <= 1.0 and 0.0 <= document["noisy"]["fpr"] <= 1.0
+    if tpr < 0.9:
+        assert document["value"] == pytest.approx(1.0 + 0.9 - tpr)
+        assert any("penalty" in note for note in document["notes"])
+    else:
+        assert document["value"] == pytest.approx(document["noisy"]["fpr"])
+    assert any(note.startswith("auto exposure capped") for note in document["notes"])  # icx418 at 500 lx: 0.49
