@@ -237,8 +237,16 @@ def command_design(args: argparse.Namespace) -> None:
     noisy = noisy_of(args)
     if noisy is not None and args.objective != "detection":
         raise SkinrenderError("--imager goes with --objective detection (noisy pixels), not ratio")
-    result = optimise_camera(args.objective, skin.on(grid), munsell.on(grid), starts, args.sensor * 10.0, args.slope,
-                             args.free_shape, args.evaluations, noisy=noisy)
+    try:
+        result = optimise_camera(args.objective, skin.on(grid), munsell.on(grid), starts, args.sensor * 10.0,
+                                 args.slope, args.free_shape, args.evaluations, noisy=noisy)
+    except SkinrenderError as error:  # the argument at fault, by the flag the user gave it
+        text = str(error)
+        named = next((f for word, f in (("starts", "--starts"), ("evaluations", "--evaluations"),
+                                        ("slope", "--slope"), ("sensor width", "--sensor")) if text.startswith(word)),
+                     None)
+        text = text[len("starts: "):] if text.startswith("starts: ") else text
+        raise SkinrenderError(f"{named}: {text}" if named else text) from None
     document = {"objective": args.objective, "camera": result.camera_spec, "peaks": result.peaks.tolist(),
                 "fwhm_nm": result.fwhm, "slope": result.slope, "value": result.value, "starts": result.starts,
                 "method": "Nelder-Mead (derivative-free)",

@@ -113,15 +113,15 @@ def test_search_writes_its_csv_where_told(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("extra, names", [
-    (["--evaluations", "0"], "evaluations"),
-    (["--evaluations", "-1"], "evaluations"),
+    (["--evaluations", "0"], "--evaluations"),
+    (["--evaluations", "-1"], "--evaluations"),
     (["--sensor", "-3"], "--sensor"),
     (["--sensor", "0"], "--sensor"),
-    (["--slope", "0"], "slope"),
-    (["--slope", "-2"], "slope"),
-    (["--starts", "550,550,550"], "starts"),
-    (["--starts", "300,540,800"], "starts"),
-    (["--starts", "nan,540,610"], "starts"),
+    (["--slope", "0"], "--slope"),
+    (["--slope", "-2"], "--slope"),
+    (["--starts", "550,550,550"], "--starts"),
+    (["--starts", "300,540,800"], "--starts"),
+    (["--starts", "nan,540,610"], "--starts"),
     (["--starts", "450,540"], "--starts"),
     (["--starts", ""], "--starts"),
     (["--starts", "450,540,610;"], "--starts"),  # an empty start is refused, not dropped
