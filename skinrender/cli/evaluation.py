@@ -84,7 +84,9 @@ def command_locus(args: argparse.Namespace) -> None:
         which = "--munsell" if name == args.munsell and name != "munsell" else "--nonskin"
         sets[name] = flag(which, reflectances, name)
         flag(which, sets[name].on)
-    rates = {name: false_positive_rate(locus, cam, values) for name, values in sets.items()}
+    # keyed by the --nonskin items: the Munsell set's rate is 'munsell' whichever set --munsell names
+    items = [item.strip() for item in args.nonskin.split(",")]
+    rates = {item: false_positive_rate(locus, cam, sets[name]) for item, name in zip(items, names)}
     document = {"camera": cam.name, "boundary": args.boundary, "polygon": locus.polygon.tolist(), "area": locus.area, "degenerate": locus.degenerate,
                 "illuminants_K": temperatures.tolist(), "calibration_K": calibration, "skin": skin.name,
                 "munsell": args.munsell,
@@ -100,5 +102,6 @@ def command_locus(args: argparse.Namespace) -> None:
     text = (f"skin locus of {cam.name} ({args.boundary}, {len(locus.polygon)} vertices, area {locus.area:.5f} in r,g) "
             f"over {len(temperatures)} illuminants, "
             + ("every calibration" if calibration is None else f"calibration {calibration:g} K") + "\n"
-            + "\n".join(f"  false positives, {k}: {v:.3f}" for k, v in rates.items()))
+            + "\n".join(f"  false positives, {k}{f' ({args.munsell})' if k == 'munsell' != args.munsell else ''}: "
+                        f"{v:.3f}" for k, v in rates.items()))
     emit(args, document, text)

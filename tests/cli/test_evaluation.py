@@ -67,7 +67,7 @@ def test_locus_takes_the_munsell_set(capsys):
     nickerson = json.loads(out_n)
     assert status == status_n == 0, err + err_n
     assert default["munsell"] == "munsell" and nickerson["munsell"] == "munsell-nickerson"
-    assert list(nickerson["false_positive_rate"]) == ["munsell-nickerson", "macbeth"]
+    assert list(nickerson["false_positive_rate"]) == ["munsell", "macbeth"]  # keyed by the --nonskin items
     assert nickerson["false_positive_rate"]["macbeth"] == default["false_positive_rate"]["macbeth"]
     assert nickerson["polygon"] == default["polygon"]  # the locus is the skin set's alone
-    assert nickerson["false_positive_rate"]["munsell-nickerson"] != default["false_positive_rate"]["munsell"]
+    assert nickerson["false_positive_rate"]["munsell"] != default["false_positive_rate"]["munsell"]
