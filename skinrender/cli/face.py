@@ -15,8 +15,8 @@ from pathlib import Path
 
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, camera_of, check_output, check_seed,
-                     choices_help, emit, flag, integer_in, positive_number, refuse_sensor_settings, render_options,
-                     sensor_settings, table, variant_of)
+                     choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
+                     render_options, sensor_settings, table, variant_of)
 
 __all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
@@ -217,6 +217,7 @@ def is_face_scene(spec: str) -> bool:
     return "camera" in table and "mesh" in table
 
 
+@interruptible
 def command_ladder(args: argparse.Namespace) -> None:
     from ..rendering.face_scene import load_face_scene, skin_reflectance_of
     from ..studies.ladder import ladder

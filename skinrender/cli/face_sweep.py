@@ -18,7 +18,7 @@ import sys
 
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
-                     positive_number, table, variant_of)
+                     interruptible, positive_number, table, variant_of)
 from .face import HELP_SKIN, SIZE_MAX, levels_of, noise_sensor, planckian_flag
 
 __all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
@@ -148,6 +148,14 @@ def _checked(args: argparse.Namespace) -> dict:
 
 
 def command_face_sweep(args: argparse.Namespace) -> None:
+    """The sweep; rendering in this process (``--workers 1``), in a thread Ctrl-C can stop at once (a pool's
+    workers are stopped by the sweep itself, which Ctrl-C reaches between renders)."""
+    if args.dask is None and str(args.workers).strip() == "1":
+        return interruptible(_face_sweep)(args)
+    return _face_sweep(args)
+
+
+def _face_sweep(args: argparse.Namespace) -> None:
     from ..studies.face_sweep import face_sweep
 
     result = face_sweep(**_checked(args), progress=None if args.quiet else sys.stderr)

@@ -10,7 +10,7 @@ import sys
 import numpy as np
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, imaging_options, add_common, camera_of, add_grid, add_model, add_render, check_output,
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, camera_of, add_grid, add_model, add_render, check_output,
                      choices_help, emit, flag, grid_of, render_options, table)
 from .face import check_figure
 
@@ -152,38 +152,6 @@ def imaging_document(imaged) -> dict:
 def imaging_notes(imaged) -> str:
     """The text lines of a render's imaging notes (a capped exposure, clipped pixels), or nothing."""
     return "".join(f"\nnote: {note}" for note in (imaged.notes if imaged is not None else ()))
-
-
-def interruptible(command):
-    """
-    ``command`` (a function of the parsed arguments) run in a worker thread while the main thread waits, so that
-    Ctrl-C stops it at once: Mitsuba renders in native code, where the main thread would take the interrupt
-    only when the render returns (~30 s late at 160 px, 2048 spp, measured). The KeyboardInterrupt reaches
-    :func:`skinrender.cli.main`, which exits 130 at once (``os._exit``: the worker is not waited for, and
-    nothing is written after it). The command's own result or exception is passed on.
-    """
-    import functools
-    import threading
-
-    @functools.wraps(command)
-    def run(args: argparse.Namespace) -> None:
-        outcome: dict = {}
-
-        def work() -> None:
-            try:
-                outcome["result"] = command(args)
-            except BaseException as error:  # noqa: BLE001 - handed to the main thread as it is
-                outcome["error"] = error
-
-        worker = threading.Thread(target=work, name="skinrender render", daemon=True)
-        worker.start()
-        while worker.is_alive():
-            worker.join(0.1)  # wakes for signals: Ctrl-C raises KeyboardInterrupt here
-        if "error" in outcome:
-            raise outcome["error"]
-        return outcome.get("result")
-
-    return run
 
 
 @interruptible

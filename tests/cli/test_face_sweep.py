@@ -126,3 +126,18 @@ def test_ctrl_c_stops_a_sweep_with_one_line(tmp_path):
     assert err.decode().strip().splitlines()[-1] == "skinrender face-sweep: interrupted"
     assert "Traceback" not in err.decode() and out == b""
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("name, extra", [("face-sweep", ["--lights", "2856/5900", "--skin", "skin-model:melanin=0.02",
+                                                        "--workers", "1"]),
+                                         ("ladder", ["--prevailing", "A", "--calibration", "H"])])
+def test_ctrl_c_stops_an_in_process_render_at_once(name, extra, tmp_path):
+    """Seen by a user: Ctrl-C inside Mitsuba's native render (one process) gave an internal error ~20 s later."""
+    argv = [name, "--camera", CAM, *extra, "--levels", "direct", "--size", "160", "--spp", "2048", "--json"]
+    child = subprocess.Popen(command(argv), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    time.sleep(8)  # the scene loaded and rendering (the render takes ~30 s)
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=60)
+    assert child.returncode == 130, err.decode()[-800:]  # it was 1, an internal error from drjit
+    assert err.decode().strip().splitlines()[-1] == f"skinrender {name}: interrupted" and out == b""
