@@ -366,7 +366,7 @@ def interruptible(command):
             except BaseException as error:  # noqa: BLE001 - handed to the main thread as it is
                 outcome["error"] = error
 
-        worker = threading.Thread(target=work, name="skinrender render", daemon=True)
+        worker = threading.Thread(target=work, name="skinrender command", daemon=True)
         worker.start()
         while worker.is_alive():
             worker.join(0.1)  # wakes for signals: Ctrl-C raises KeyboardInterrupt here

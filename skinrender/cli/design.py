@@ -120,6 +120,7 @@ def command_search(args: argparse.Namespace) -> None:
     from ..design.bank import positions_grid, sensor_bank
     from ..design.search import search
     from ..model.camera import sensor_curves
+    from ..studies.unknowns import check_positions
 
     check_output(args.csv, "--csv", (".csv",))
     if not (math.isfinite(args.tie_tolerance) and args.tie_tolerance >= 0):
@@ -147,9 +148,7 @@ def command_search(args: argparse.Namespace) -> None:
 
         check_workers(args.workers)
     flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, slope)
-    if positions.min() < grid.start or positions.max() > grid.end:
-        raise SkinrenderError(f"--positions {positions.min():g}–{positions.max():g} nm leave the integration grid "
-                              f"{grid} (peaks are in nm; or widen --grid)")
+    check_positions(args.positions, grid)  # inside the grid, as reproduce checks them
     flag("--illuminants", sensor_bank, args.sensor, skin_values[:1], positions[:3], temperatures, slope,
          grid=grid)
     noisy = noisy_of(args, temperatures)

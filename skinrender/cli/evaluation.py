@@ -34,12 +34,12 @@ def add_parsers(commands) -> None:
     add_common(p)
 
 
-def nonskin_names(spec: str, munsell: str = "munsell") -> list[str]:
+def nonskin_sets(spec: str, munsell: str = "munsell") -> dict[str, str]:
     """
-    The non-skin sets of ``--nonskin`` in order, the item ``munsell`` standing for the ``--munsell`` set.
+    The items of ``--nonskin`` in order, each with its set; the item ``munsell`` stands for the ``--munsell`` set.
 
-    >>> nonskin_names("munsell,macbeth", "munsell-nickerson")
-    ['munsell-nickerson', 'macbeth']
+    >>> nonskin_sets("munsell,macbeth", "munsell-nickerson")
+    {'munsell': 'munsell-nickerson', 'macbeth': 'macbeth'}
     """
     items = [name.strip() for name in spec.split(",")]
     if not spec.strip() or any(not name for name in items):
@@ -53,7 +53,7 @@ def nonskin_names(spec: str, munsell: str = "munsell") -> list[str]:
         raise SkinrenderError(f"--nonskin: each set once, got {', '.join(repeated)} more than once")
     if munsell != "munsell" and munsell not in names:
         raise SkinrenderError(f"--munsell {munsell} is not used: --nonskin {spec!r} has no item 'munsell'")
-    return names
+    return dict(zip(items, names))
 
 
 def command_locus(args: argparse.Namespace) -> None:
@@ -78,15 +78,13 @@ def command_locus(args: argparse.Namespace) -> None:
     skin = flag("--skin", reflectances, args.skin)
     flag("--skin", skin.on)  # its coverage of the grid, checked here to name the flag
     locus = skin_locus(cam, skin, temperatures, calibration, args.boundary)
-    names = nonskin_names(args.nonskin, args.munsell)
-    sets = {}
-    for name in names:
-        which = "--munsell" if name == args.munsell and name != "munsell" else "--nonskin"
-        sets[name] = flag(which, reflectances, name)
-        flag(which, sets[name].on)
     # keyed by the --nonskin items: the Munsell set's rate is 'munsell' whichever set --munsell names
-    items = [item.strip() for item in args.nonskin.split(",")]
-    rates = {item: false_positive_rate(locus, cam, sets[name]) for item, name in zip(items, names)}
+    sets = {}
+    for item, name in nonskin_sets(args.nonskin, args.munsell).items():  # every set checked before any rate
+        which = "--munsell" if item == "munsell" and name != "munsell" else "--nonskin"
+        sets[item] = flag(which, reflectances, name)
+        flag(which, sets[item].on)  # its coverage of the grid, named here
+    rates = {item: false_positive_rate(locus, cam, values) for item, values in sets.items()}
     document = {"camera": cam.name, "boundary": args.boundary, "polygon": locus.polygon.tolist(), "area": locus.area, "degenerate": locus.degenerate,
                 "illuminants_K": temperatures.tolist(), "calibration_K": calibration, "skin": skin.name,
                 "munsell": args.munsell,

@@ -71,7 +71,6 @@ TPR_MIN = 0.9
 locus: otherwise noise that pushes every pixel out of the locus would look like a perfect detector."""
 
 
-
 @dataclass(frozen=True)
 class NoisySetting:
     """What the noisy criterion is computed for: imager, illuminance (lx), exposure (s or ``auto``), the

@@ -76,8 +76,7 @@ def objective(
         volumes = [triplet_volumes_fast(bank, [0, 1, 2])[-1] for bank in banks]
         return volumes[0] / volumes[1] if volumes[0] > 0 and volumes[1] > 0 else np.inf
     if noisy is not None:  # on noisy pixels: the FPR while the TPR holds, else a penalty above any FPR
-        rates = [bank_rates(bank, noisy, fwhm / 10.0, slope, grid) for bank in banks]
-        tpr, fpr = triplet_noisy_rates(*banks, *rates, [0, 1, 2], noisy)
+        tpr, fpr, _ = _noisy_rates(banks, fwhm, slope, grid, noisy)
         if not np.isfinite(fpr):
             return np.inf
         return fpr if tpr >= TPR_MIN else 1.0 + (TPR_MIN - tpr)
@@ -198,6 +197,12 @@ def optimise_camera(
     return Design(kind, np.array(best["peaks"]), best["fwhm"], best["slope"], best["value"], results)
 
 
+def _noisy_rates(banks: list, fwhm: float, slope: float, grid: WavelengthGrid, noisy: NoisySetting) -> tuple:
+    """A camera's noisy (TPR, FPR) from its skin and Munsell banks (peaks 0, 1, 2), with the banks' white rates."""
+    rates = [bank_rates(bank, noisy, fwhm / 10.0, slope, grid) for bank in banks]
+    return (*triplet_noisy_rates(*banks, *rates, [0, 1, 2], noisy), rates)
+
+
 def noisy_report(design: Design, skin: NDArrayFloat, munsell: NDArrayFloat, noisy: NoisySetting,
                  illuminants: ArrayLike = TEMPERATURES_PAPER, grid: WavelengthGrid = GRID_DEFAULT) -> dict:
     """
@@ -207,8 +212,7 @@ def noisy_report(design: Design, skin: NDArrayFloat, munsell: NDArrayFloat, nois
     """
     banks = [sensor_bank(design.fwhm / 10.0, values, design.peaks, illuminants, design.slope, grid=grid)
              for values in (skin, munsell)]
-    rates = [bank_rates(bank, noisy, design.fwhm / 10.0, design.slope, grid) for bank in banks]
-    tpr, fpr = triplet_noisy_rates(*banks, *rates, [0, 1, 2], noisy)
+    tpr, fpr, rates = _noisy_rates(banks, design.fwhm, design.slope, grid, noisy)
     notes = []
     if not tpr >= TPR_MIN:
         notes.append(f"no start kept a noisy TPR ≥ {TPR_MIN:g} (the best keeps {tpr:.3g}): the value "

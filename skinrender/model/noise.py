@@ -50,8 +50,8 @@ from ..hints import ArrayLike, NDArrayFloat
 from .imager import Imager, checked_array, is_integer
 from .imager import imager as imager_of
 
-__all__ = ["clipping_counts", "clipping_note", "code_probabilities", "ncc_covariance", "random_generator", "signal_dn", "simulate_dn", "simulate_dn_clipped",
-           "statistics_dn"]
+__all__ = ["clipping_counts", "clipping_note", "code_probabilities", "ncc_covariance", "random_generator", "signal_dn",
+           "simulate_dn", "simulate_dn_clipped", "statistics_dn"]
 
 _WINDOW_SIGMA = 8.0  # exact sums over codes reach ±8 σ: the normal tail beyond is < 1e-15
 _SWITCH_DN = 4.0  # σ ≥ 4 DN: closed form, whose Euler–Maclaurin remainder is < 1e-5 DN

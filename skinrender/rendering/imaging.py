@@ -64,7 +64,6 @@ __all__ = ["AUTO_EXPOSURE_FRACTION", "ALPHA_FAMILY", "ImagedRendering", "ImagedV
            "exposure_for", "exposure_note", "render_imaged", "predicted_patches", "validate_imaged"]
 
 
-
 def _white_radiance(cam: Camera, temperature: float, grid: WavelengthGrid) -> NDArrayFloat:
     """``∫ planck(λ, T) x_k(λ) dλ / π`` per channel: a perfect white's render value (trapezoid, emitter table)."""
     lam = emitter_grid(grid)
@@ -217,7 +216,6 @@ def predicted_patches(imaged: ImagedRendering, reference_ratio: NDArrayFloat,
     photo = reference_ratio * (_white_rate(im, r.camera, r.prevailing, imaged.illuminance_lux, grid)
                                - im.dark_current_e_per_s)
     return statistics_dn(im, (photo + im.dark_current_e_per_s) * imaged.exposure_s)
-
 
 
 def _patch_laws(imaged: ImagedRendering, reference_ratio: NDArrayFloat,

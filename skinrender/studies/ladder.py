@@ -52,7 +52,6 @@ LEVELS_DEFAULT = ("direct", "interreflection", "sheen", "mixed", "noise", "inter
 """The levels of :func:`ladder`: the analytic model's world, each effect alone, then all of them."""
 
 
-
 @dataclass(frozen=True)
 class Ladder:
     """

@@ -184,7 +184,7 @@ def check_positions(positions: str | ArrayLike, grid: WavelengthGrid, flag: str 
     where = _flagged(flag, positions_grid, positions)
     if where.min() < grid.start or where.max() > grid.end:
         raise SkinrenderError(f"{flag} {where.min():g}–{where.max():g} nm leave the integration grid {grid} "
-                              "(--grid)")
+                              "(peaks are in nm; or widen --grid)")
     return where
 
 
