@@ -35,7 +35,7 @@ HELP_SKIN = ("skin of the face: SET:SAMPLE, SET:#N or skin-model:melanin=0.05,bl
 
 
 def _physics_help() -> str:
-    from ..rendering.face_dict import PHYSICS
+    from ..rendering.face.document import PHYSICS
 
     return "level of physics: " + choices_help(PHYSICS) + "; effects combine with '+'"
 
@@ -124,8 +124,8 @@ def face_inputs(args: argparse.Namespace) -> tuple:
     naming its flag: ``(scene, camera, temperatures {prevailing, calibration} K, physics, skin, size px or None,
     imager, exposure, illuminance lx)``; with ``--imager`` the level gains ``noise``.
     """
-    from ..rendering.face_dict import parse_physics
-    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face.document import parse_physics
+    from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
 
     scene = flag("SCENE", load_face_scene, args.scene)
@@ -166,7 +166,7 @@ def levels_of(text: str) -> list[str]:
     ``--levels``: comma-separated levels of physics, none empty and none twice (``a+b`` and ``b+a`` are one
     level), each checked; a one-line error naming the flag otherwise.
     """
-    from ..rendering.face_dict import parse_physics
+    from ..rendering.face.document import parse_physics
 
     levels = [level.strip() for level in str(text).split(",")]
     if not any(levels) or not all(levels):
@@ -182,7 +182,7 @@ def noise_sensor(args: argparse.Namespace, levels: list[str]) -> float | None:
     The noise level's ``--imager`` checked and its ``--illuminance`` in lx (``None``: the scene's); either is
     refused where no level of ``levels`` has noise (nothing would see it).
     """
-    from ..rendering.face_dict import parse_physics
+    from ..rendering.face.document import parse_physics
 
     if args.imager is not None:
         from ..model.imager import imager
@@ -202,7 +202,7 @@ def is_face_scene(spec: str) -> bool:
     import tomllib
     from pathlib import Path
 
-    from ..rendering.face_scene import list_face_scenes
+    from ..rendering.face.scene import list_face_scenes
 
     text = str(spec).strip()
     if text in list_face_scenes():
@@ -219,7 +219,7 @@ def is_face_scene(spec: str) -> bool:
 
 @interruptible
 def command_ladder(args: argparse.Namespace) -> None:
-    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..studies.ladder import ladder
 
     plot = check_output(getattr(args, "plot", None), "--plot", (".png",))

@@ -107,7 +107,7 @@ def _checked(args: argparse.Namespace) -> dict:
 
     from ..model.camera import camera
     from ..model.response import response
-    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
     from ..studies.face_locus import SKIN_TONES
     from ..studies.face_sweep import WORKERS_MAX

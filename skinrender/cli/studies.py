@@ -218,8 +218,8 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
         if given:
             raise SkinrenderError(f"--{given[0].replace('_', '-')} goes with 'bench render --scene SCENE' (a face)")
         return None
-    from ..rendering.face_dict import active_lights, parse_physics
-    from ..rendering.face_scene import load_face_scene
+    from ..rendering.face.document import active_lights, parse_physics
+    from ..rendering.face.scene import load_face_scene
     from ..rendering.renderer import SAMPLES_MAX
     from ..studies.bench_face import LEVELS_BENCH, SIZE_BENCH, SPPS_BENCH
     from .common import SPP_MAX, flag

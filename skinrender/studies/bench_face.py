@@ -198,8 +198,8 @@ def bench_face(
     """
 
     from ..rendering.face import render_face
-    from ..rendering.face_dict import parse_physics
-    from ..rendering.face_scene import load_face_scene
+    from ..rendering.face.document import parse_physics
+    from ..rendering.face.scene import load_face_scene
 
     say = progress or (lambda line: None)
     start = time.perf_counter()

@@ -40,9 +40,9 @@ from ..hints import NDArrayFloat
 from ..model.camera import camera
 from ..model.chromaticity import ncc
 from ..rendering.face import planckian_temperature, render_face
-from ..rendering.face_dict import parse_physics
-from ..rendering.face_labels import LABEL_SKIN
-from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+from ..rendering.face.document import parse_physics
+from ..rendering.face.labels import LABEL_SKIN
+from ..rendering.face.scene import load_face_scene, skin_reflectance_of
 from ..rendering.validation import analytic_reference
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 

@@ -2,7 +2,7 @@
 Mitsuba documents of face scenes
 ================================
 
-The Mitsuba 3 scene dictionary of a :class:`~skinrender.rendering.face_scene.FaceScene`
+The Mitsuba 3 scene dictionary of a :class:`~skinrender.rendering.face.scene.FaceScene`
 at one level of physics, and the spectral pieces every face render shares.
 
 -   :data:`PHYSICS`: the levels, name → meaning; :func:`parse_physics`.
@@ -37,16 +37,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import SkinrenderError
-from ..hints import NDArrayFloat
-from ..methods import validate_method
-from ..model.camera import Camera
-from ..model.exposure import irradiance_planck
-from ..spectra import WavelengthGrid
-from .face_labels import SHAPE_SKIN, prop_shape_id
-from .face_scene import MESH_HEAD, FaceScene, Light, skin_reflectance_of
-from .renderer import EMITTER_REFINE, _separate, _spectrum, channel_names
-from .scene import reflectance_of
+from ...errors import SkinrenderError
+from ...hints import NDArrayFloat
+from ...methods import validate_method
+from ...model.camera import Camera
+from ...model.exposure import irradiance_planck
+from ...spectra import WavelengthGrid
+from .labels import SHAPE_SKIN, prop_shape_id
+from .scene import MESH_HEAD, FaceScene, Light, skin_reflectance_of
+from ..renderer import EMITTER_REFINE, _separate, _spectrum, channel_names
+from ..scene import reflectance_of
 
 __all__ = ["PHYSICS", "EFFECTS", "SHEEN_ALPHA", "SHEEN_IOR", "RUSSIAN_ROULETTE_DEPTH", "parse_physics",
            "channel_groups", "film_dict", "light_irradiance", "channel_integral", "active_lights",
@@ -203,7 +203,7 @@ def _mesh(mi, scene: FaceScene, bsdf: dict) -> dict | object:
         kind = "ply" if scene.mesh.lower().endswith(".ply") else "obj"
         return {"type": kind, "filename": scene.mesh, "to_world": mi.ScalarTransform4f(matrix), "bsdf": bsdf,
                 "face_normals": not scene.mesh_smooth}
-    from ..datasets.head import mesh_head
+    from ...datasets.head import mesh_head
 
     vertices, triangles = mesh_head()
     positions = vertices.astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
@@ -234,7 +234,7 @@ def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, effec
     effects
         From :func:`parse_physics`; ``noise`` acts after rendering.
     skin
-        The skin spec (:func:`~skinrender.rendering.face_scene.skin_reflectance_of`).
+        The skin spec (:func:`~skinrender.rendering.face.scene.skin_reflectance_of`).
     group
         The camera channels of this pass.
     lights

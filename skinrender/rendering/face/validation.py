@@ -3,7 +3,7 @@ Validating face renders
 =======================
 
 A face rendered at a level of physics, checked against the analytic limits
-that hold at that level (:mod:`skinrender.rendering.face_limits`), and told
+that hold at that level (:mod:`skinrender.rendering.face.limits`), and told
 how far its skin moves from Eq. 4 where none holds.
 
 -   :func:`validate_face`, :class:`FaceValidation`: the checks of one face scene.
@@ -26,7 +26,7 @@ every level             ``white_furnace`` (the scene's mesh, its camera),
                         ``eq4_shift``
 ======================  ====================================================
 
-The requested ``spp`` is split over :data:`~skinrender.rendering.face_limits.REPLICATES`
+The requested ``spp`` is split over :data:`~skinrender.rendering.face.limits.REPLICATES`
 renders with seeds ``seed, seed + 1, …`` (mod 2³²), each at ``⌈spp / K⌉``; their
 spread is each statistic's noise. Through an image sensor (``noise``) each
 replicate is a frame of its own (the sensor's stream is seeded from the
@@ -35,7 +35,7 @@ linear in the mean except for its dark signal (subtracted: dark current ×
 exposure), the clipping at 0 and at saturation (pixels with a clipped
 replicate are left out) and the rounding to codes (pixels whose modelled
 noise is below :data:`DITHER_SIGMA_DN` are left out; elsewhere the mean
-error is bounded by :func:`~skinrender.rendering.face_limits.rounding_bias`
+error is bounded by :func:`~skinrender.rendering.face.limits.rounding_bias`
 at each pixel's modelled σ and may be used up by a deviation, and the
 standard error is taken no smaller than the EMVA 1288 model's,
 ``√((σ² + 1/12 DN²) / K)``, since twelve frames may read one code). A dim scene
@@ -54,20 +54,20 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..constants import CONSTANT_OUTPUT_SCALE
-from ..errors import SkinrenderError
-from ..hints import NDArrayFloat
-from ..model.chromaticity import ncc
-from ..model.response import gain
-from ..spectra import GRID_DEFAULT
-from .face import IMAGER_DEFAULT, FaceRendering, render_face
-from .face_dict import active_lights, channel_integral, light_irradiance, parse_physics
-from .face_labels import LABEL_SKIN
-from .face_limit_scenes import furnace_radiance, sphere_channels
-from .face_limits import (REPLICATES, LimitCheck, check_dichromatic, check_furnace, check_shading, check_sphere,
+from ...constants import CONSTANT_OUTPUT_SCALE
+from ...errors import SkinrenderError
+from ...hints import NDArrayFloat
+from ...model.chromaticity import ncc
+from ...model.response import gain
+from ...spectra import GRID_DEFAULT
+from .render import IMAGER_DEFAULT, FaceRendering, render_face
+from .document import active_lights, channel_integral, light_irradiance, parse_physics
+from .labels import LABEL_SKIN
+from .limit_scenes import furnace_radiance, sphere_channels
+from .limits import (REPLICATES, LimitCheck, check_dichromatic, check_furnace, check_shading, check_sphere,
                           eq4_shift, rounding_bias)
-from .face_scene import Light, skin_reflectance_of
-from .validation import analytic_reference
+from .scene import Light, skin_reflectance_of
+from ..validation import analytic_reference
 
 __all__ = ["LIMITS_SCENE_FREE", "DITHER_SIGMA_DN", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "FaceValidation",
            "dichromatic_colours", "validate_face"]
@@ -94,7 +94,7 @@ SPHERE_SPP = 16
 DITHER_SIGMA_DN = 0.25
 """Through a sensor, a pixel is tested only where its modelled noise (shot and read, DN) is at least this in
 every channel: the noise then dithers the rounding to codes (its mean error below 0.003 DN,
-:func:`~skinrender.rendering.face_limits.rounding_bias`) and the replicates differ, so their spread measures
+:func:`~skinrender.rendering.face.limits.rounding_bias`) and the replicates differ, so their spread measures
 the noise; below it, twelve frames may read one code and hide a rounding error of up to half a code."""
 
 
@@ -108,7 +108,7 @@ class FaceValidation:
     rendering
         The first replicate (scene, camera, physics, labels, lights).
     checks
-        :class:`~skinrender.rendering.face_limits.LimitCheck` rows.
+        :class:`~skinrender.rendering.face.limits.LimitCheck` rows.
     spp, spp_requested
         Samples per pixel of all replicates together, and as asked.
     replicates, seed
@@ -163,7 +163,7 @@ def dichromatic_colours(rendering: FaceRendering, light: Light) -> tuple[NDArray
 
 def _sensor_terms(first: FaceRendering, images: NDArrayFloat, spec) -> tuple[NDArrayFloat, ...]:
     """Images less the dark signal, the pixels no replicate clipped, and the rounding's bound (output units)."""
-    from ..model.imager import imager as imager_of
+    from ...model.imager import imager as imager_of
 
     im = imager_of(spec or IMAGER_DEFAULT)
     g = np.asarray(first.gain, dtype=np.float64)  # output units per DN

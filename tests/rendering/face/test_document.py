@@ -1,4 +1,4 @@
-"""Tests for :mod:`skinrender.rendering.face_dict`: physics specs, transforms and the renderer's integral."""
+"""Tests for :mod:`skinrender.rendering.face.document`: physics specs, transforms and the renderer's integral."""
 
 from __future__ import annotations
 
@@ -11,9 +11,9 @@ from scipy.integrate import trapezoid
 from skinrender.errors import SkinrenderError
 from skinrender.model.camera import camera
 from skinrender.model.exposure import illuminance_lux
-from skinrender.rendering.face_dict import (EFFECTS, PHYSICS, active_lights, channel_groups, channel_integral,
+from skinrender.rendering.face.document import (EFFECTS, PHYSICS, active_lights, channel_groups, channel_integral,
                                             light_irradiance, parse_physics, transform)
-from skinrender.rendering.face_scene import Light, load_face_scene
+from skinrender.rendering.face.scene import Light, load_face_scene
 from skinrender.spectra import GRID_DEFAULT, WavelengthGrid
 
 
@@ -70,7 +70,7 @@ class TestActiveLights:
 
 def test_an_effect_named_twice_is_refused():
     from skinrender.errors import SkinrenderError
-    from skinrender.rendering.face_dict import parse_physics
+    from skinrender.rendering.face.document import parse_physics
 
     with pytest.raises(SkinrenderError, match="named twice"):
         parse_physics("sheen+interreflection+sheen")

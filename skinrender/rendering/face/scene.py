@@ -49,10 +49,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import SkinrenderError
-from ..hints import NDArrayFloat
-from ..spectra import GRID_DEFAULT, WavelengthGrid
-from .scene import PIXELS_MAX, ROOT_SCENES, check_mesh_file, read_scene_toml, reflectance_of
+from ...errors import SkinrenderError
+from ...hints import NDArrayFloat
+from ...spectra import GRID_DEFAULT, WavelengthGrid
+from ..scene import PIXELS_MAX, ROOT_SCENES, check_mesh_file, read_scene_toml, reflectance_of
 
 __all__ = ["ROOT_FACE_SCENES", "MESH_HEAD", "PROP_SHAPES", "FaceCamera", "Light", "Prop", "FaceScene",
            "skin_reflectance_of", "load_face_scene", "list_face_scenes"]
@@ -154,7 +154,7 @@ def skin_reflectance_of(spec: str, grid: WavelengthGrid = GRID_DEFAULT, where: s
     text = str(spec).strip()
     if not (text.startswith("skin-model:") and "=" in text):
         return reflectance_of(text, grid, where)
-    from ..datasets.skin_model import SkinParameters, check_parameters, skin_reflectance
+    from ...datasets.skin_model import SkinParameters, check_parameters, skin_reflectance
 
     known = {f.name for f in fields(SkinParameters)}
     values = {}

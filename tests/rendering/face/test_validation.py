@@ -1,5 +1,5 @@
 """
-Tests for :mod:`skinrender.rendering.face_validation`: which limits are checked at which level, the spp
+Tests for :mod:`skinrender.rendering.face.validation`: which limits are checked at which level, the spp
 split over replicates, the sensor's terms, and refusals. (The limits themselves and their failing
 controls: ``test_face.py`` and ``test_face_limits.py``.)
 """
@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.rendering.face_limits import rounding_bias
-from skinrender.rendering.face_validation import LIMITS_SCENE_FREE, _sensor_terms, validate_face
+from skinrender.rendering.face.limits import rounding_bias
+from skinrender.rendering.face.validation import LIMITS_SCENE_FREE, _sensor_terms, validate_face
 
 pytest.importorskip("mitsuba")
 
@@ -71,7 +71,7 @@ def test_sensor_terms_remove_the_dark_signal_and_clipped_pixels():
 
 def test_through_the_sensor_the_shading_check_runs_and_its_control_fails(monkeypatch):
     """The 8-bit sensor's dithered pixels pass; the same frames against an Eq. 4 off by 1 % in R fail."""
-    import skinrender.rendering.face_validation as module
+    import skinrender.rendering.face.validation as module
 
     kwargs = {"physics": "noise", "size": 64, "spp": 96, "limits": (), "prevailing": 2856, "calibration": 5900}
     check = validate_face(CAM, **kwargs).checks[0]
@@ -99,8 +99,8 @@ def test_scene_free_limits_are_named():
 
 def _verdict(*rows) -> bool | None:
     """The verdict of checks given as (applies, passed) pairs."""
-    from skinrender.rendering.face_limits import LimitCheck
-    from skinrender.rendering.face_validation import FaceValidation
+    from skinrender.rendering.face.limits import LimitCheck
+    from skinrender.rendering.face.validation import FaceValidation
 
     checks = [LimitCheck(f"check{i}", applies, passed, None, None, 0, "why") for i, (applies, passed) in enumerate(rows)]
     return FaceValidation(None, checks, 12, 12, 12, 0, 0.0).passed

@@ -13,7 +13,7 @@ values tested, so that a correct renderer fails a check with probability
 
 -   :func:`check_shading` (``direct``), :func:`check_dichromatic` (``sheen``) [Shafer1985],
     :func:`check_furnace`, :func:`check_sphere` (their scenes:
-    :mod:`skinrender.rendering.face_limit_scenes`); :func:`eq4_shift`: how far skin moves from
+    :mod:`skinrender.rendering.face.limit_scenes`); :func:`eq4_shift`: how far skin moves from
     Eq. 4 (information).
 -   :func:`critical_t`, :func:`jackknife`, :func:`rounding_bias`; :class:`LimitCheck`, a result.
 
@@ -41,14 +41,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..hints import NDArrayFloat
-from ..model.camera import Camera, camera
-from ..model.chromaticity import ncc
-from ..spectra import GRID_DEFAULT
-from .face_dict import channel_integral
-from .face_labels import LABEL_SKIN, interior
-from .face_limit_scenes import sphere_emission
-from .validation import FLOAT32_FLOOR
+from ...hints import NDArrayFloat
+from ...model.camera import Camera, camera
+from ...model.chromaticity import ncc
+from ...spectra import GRID_DEFAULT
+from .document import channel_integral
+from .labels import LABEL_SKIN, interior
+from .limit_scenes import sphere_emission
+from ..validation import FLOAT32_FLOOR
 
 __all__ = ["ALPHA", "REPLICATES", "LINEAR", "PIXELS_MIN", "LimitCheck", "critical_t", "jackknife", "rg",
            "rounding_bias", "lit_skin", "check_shading", "eq4_shift", "check_dichromatic", "check_furnace",

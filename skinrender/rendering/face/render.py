@@ -2,9 +2,9 @@
 Rendering faces
 ===============
 
-A face scene (:mod:`skinrender.rendering.face_scene`) rendered through a
+A face scene (:mod:`skinrender.rendering.face.scene`) rendered through a
 camera's three channels at a level of physics
-(:data:`~skinrender.rendering.face_dict.PHYSICS`), white balanced as Eq. 4
+(:data:`~skinrender.rendering.face.document.PHYSICS`), white balanced as Eq. 4
 does, with a label image from the geometry.
 
 -   :func:`render_face`, :class:`FaceRendering`: one render.
@@ -56,21 +56,21 @@ from pathlib import Path
 
 import numpy as np
 
-from ..constants import CONSTANT_OUTPUT_SCALE
-from ..errors import SkinrenderError
-from ..hints import NDArrayFloat
-from ..methods import validate_method
-from ..model.camera import Camera, camera
-from ..model.illuminant import illuminant
-from ..model.response import gain
-from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
-from .exr import write_exr, write_preview
-from .face_dict import (PHYSICS, active_lights, channel_groups, channel_integral, face_document,
+from ...constants import CONSTANT_OUTPUT_SCALE
+from ...errors import SkinrenderError
+from ...hints import NDArrayFloat
+from ...methods import validate_method
+from ...model.camera import Camera, camera
+from ...model.illuminant import illuminant
+from ...model.response import gain
+from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
+from ..exr import write_exr, write_preview
+from .document import (PHYSICS, active_lights, channel_groups, channel_integral, face_document,
                         light_irradiance, parse_physics)
-from .face_labels import label_names, render_labels, shape_labels
-from .face_scene import MESH_HEAD, FaceScene, load_face_scene, skin_reflectance_of
-from .renderer import SAMPLERS, SAMPLES_MAX, channel_names
-from .variants import choose_variant, mitsuba
+from .labels import label_names, render_labels, shape_labels
+from .scene import MESH_HEAD, FaceScene, load_face_scene, skin_reflectance_of
+from ..renderer import SAMPLERS, SAMPLES_MAX, channel_names
+from ..variants import choose_variant, mitsuba
 
 __all__ = ["PHYSICS", "IMAGER_DEFAULT", "FaceRendering", "planckian_temperature", "white_references",
            "render_face", "write_face_exr"]
@@ -208,10 +208,10 @@ def _through_imager(radiance: NDArrayFloat, white_p: NDArrayFloat, scene: FaceSc
     The signal (DN above black, ≥ 0) of one noisy frame, the noise-free whites ``white_p`` and
     ``white_c`` in DN at the same exposure (``white_c`` at the key light's illuminance), the settings.
     """
-    from ..model.exposure import electrons_mean
-    from ..model.imager import imager as imager_of
-    from ..model.noise import clipping_counts, clipping_note, simulate_dn_clipped
-    from .imaging import exposure_for, exposure_note
+    from ...model.exposure import electrons_mean
+    from ...model.imager import imager as imager_of
+    from ...model.noise import clipping_counts, clipping_note, simulate_dn_clipped
+    from ..imaging import exposure_for, exposure_note
 
     im = imager_of(imager_)
     x = cam.sensitivities(grid)
@@ -235,7 +235,7 @@ def _through_imager(radiance: NDArrayFloat, white_p: NDArrayFloat, scene: FaceSc
 
 def _white_at(cam: Camera, temperature: float, lux: float, grid: WavelengthGrid) -> NDArrayFloat:
     """A perfect white's channels under a Planckian of ``lux`` (radiance ``E / π``), specfilm units."""
-    from .face_scene import Light
+    from .scene import Light
 
     lam, irradiance = light_irradiance(Light(temperature, lux), grid)
     return channel_integral(cam, grid, lam, irradiance / np.pi)
