@@ -43,7 +43,7 @@ from ..evaluation.locus import skin_locus
 from ..model.camera import camera
 from ..model.chromaticity import ncc
 from ..rendering.face import planckian_temperature, render_face
-from ..rendering.face.document import parse_physics
+from ..rendering.face.effects import parse_physics
 from ..rendering.face.scene import load_face_scene, skin_reflectance_of
 from ..rendering.renderer import SAMPLES_MAX
 from ..rendering.scene import PIXELS_MAX

@@ -8,6 +8,9 @@ analytic limits that hold there. One module per concept:
 
 -   :mod:`~skinrender.rendering.face.scene`: face scene files
     (:class:`FaceScene`, :func:`load_face_scene`).
+-   :mod:`~skinrender.rendering.face.effects`: the effects of physics, one
+    module each, their registry and levels as their compositions
+    (:data:`PHYSICS`, :func:`physics_level`).
 -   :mod:`~skinrender.rendering.face.document`: the Mitsuba 3 scene
     dictionary of a face scene at a level, and the spectral pieces every face
     render shares.
@@ -27,8 +30,12 @@ The public names below are importable from here
 
 from __future__ import annotations
 
-from .document import PHYSICS
-from .render import IMAGER_DEFAULT, FaceRendering, planckian_temperature, render_face, white_references, write_face_exr
+from .effects import PHYSICS, Level, parse_physics, physics_level
+from .effects.noise import IMAGER_DEFAULT
+from .render import FaceRendering, planckian_temperature, render_face, white_references, write_face_exr
+from .scene import FaceScene, load_face_scene
+from .validation import FaceValidation, validate_face
 
-__all__ = ["PHYSICS", "IMAGER_DEFAULT", "FaceRendering", "planckian_temperature", "white_references",
-           "render_face", "write_face_exr"]
+__all__ = ["PHYSICS", "IMAGER_DEFAULT", "Level", "parse_physics", "physics_level", "FaceScene", "load_face_scene",
+           "FaceRendering", "planckian_temperature", "white_references", "render_face", "write_face_exr",
+           "FaceValidation", "validate_face"]

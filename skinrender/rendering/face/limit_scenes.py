@@ -8,7 +8,8 @@ mesh as a white furnace, and a closed emitting Lambertian sphere seen from
 inside.
 
 -   :func:`furnace_radiance`, :data:`FURNACE_SKY`: the white furnace.
--   :func:`sphere_channels`, :func:`sphere_emission`: the closed sphere.
+-   :func:`sphere_channels`: the closed sphere (its emission:
+    :func:`~skinrender.rendering.face.limits.sphere_emission`).
 
 Units: radiance in the specfilm's units (W·m⁻²·sr⁻¹ times the sensitivity's
 unit), wavelengths nm, temperatures K, illuminance lx.
@@ -22,11 +23,12 @@ import numpy as np
 
 from ...hints import NDArrayFloat
 from ...model.camera import Camera, camera
-from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
+from ...spectra import GRID_DEFAULT
 from .document import channel_groups, channel_integral, film_dict, light_irradiance
+from .limits import sphere_emission
 from .scene import FaceScene, Light, load_face_scene
 
-__all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "furnace_radiance", "sphere_emission", "sphere_channels"]
+__all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "furnace_radiance", "sphere_channels"]
 
 FURNACE_SKY = Light(temperature=5000.0, illuminance=500.0)
 """The white furnace's uniform environment: a 5000 K Planckian, 500 lx on a surface open to it."""
@@ -57,12 +59,6 @@ def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=r
     lam, irradiance = light_irradiance(sky, GRID_DEFAULT)
     expected = channel_integral(camera(cam), GRID_DEFAULT, lam, irradiance / np.pi)
     return np.array([r.radiance for r in renders]), renders[0].labels, expected
-
-
-def sphere_emission(grid: WavelengthGrid = GRID_DEFAULT) -> tuple[NDArrayFloat, NDArrayFloat]:
-    """Wavelengths (nm) and the relative emission of the sphere: a 3000 K Planckian, peak 1."""
-    lam = light_irradiance(Light(3000.0, 1.0), grid)[0]
-    return lam, planck(lam, 3000.0) / planck(lam, 3000.0).max()
 
 
 def sphere_channels(cam: Camera | str, rho: NDArrayFloat, depth: int, seeds=range(REPLICATES_DEFAULT),

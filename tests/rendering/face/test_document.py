@@ -1,33 +1,17 @@
-"""Tests for :mod:`skinrender.rendering.face.document`: physics specs, transforms and the renderer's integral."""
+"""Tests for :mod:`skinrender.rendering.face.document`: transforms, the renderer's integral, and each level's
+Mitsuba document as it was before the effects became a registry."""
 
 from __future__ import annotations
-
-from dataclasses import replace
 
 import numpy as np
 import pytest
 from scipy.integrate import trapezoid
 
-from skinrender.errors import SkinrenderError
 from skinrender.model.camera import camera
 from skinrender.model.exposure import illuminance_lux
-from skinrender.rendering.face.document import (EFFECTS, PHYSICS, active_lights, channel_groups, channel_integral,
-                                            light_irradiance, parse_physics, transform)
-from skinrender.rendering.face.scene import Light, load_face_scene
+from skinrender.rendering.face.document import channel_groups, channel_integral, light_irradiance, transform
+from skinrender.rendering.face.scene import Light
 from skinrender.spectra import GRID_DEFAULT, WavelengthGrid
-
-
-class TestParsePhysics:
-    def test_levels_and_combinations(self):
-        assert parse_physics("direct") == ()
-        assert parse_physics(" noise + mixed ") == ("mixed", "noise")
-        assert parse_physics("+".join(reversed(EFFECTS))) == EFFECTS
-        assert set(EFFECTS) | {"direct"} == set(PHYSICS)
-
-    @pytest.mark.parametrize("spec", ["", "glossy", "direct+noise", "sheen+", "subsurface"])
-    def test_refused(self, spec):
-        with pytest.raises(SkinrenderError, match="physics"):
-            parse_physics(spec)
 
 
 class TestTransform:
@@ -55,22 +39,3 @@ class TestSpectra:
     def test_channel_groups(self):
         assert channel_groups(camera("gbell:9@450,540,610"), GRID_DEFAULT) == [(0, 1, 2)]
         assert channel_groups(camera("impulse@450,540,610"), GRID_DEFAULT) == [(0,), (1,), (2,)]
-
-
-class TestActiveLights:
-    def test_levels_choose_lights(self):
-        scene = load_face_scene("face")
-        assert list(active_lights(scene, ())) == ["key"]
-        assert list(active_lights(scene, ("mixed",))) == ["key", "fill", "environment"]
-        sky = replace(scene, key=None, fill=None)
-        assert list(active_lights(sky, ())) == ["environment"]
-        with pytest.raises(SkinrenderError, match="mixed"):
-            active_lights(replace(scene, fill=None, environment=None), ("mixed",))
-
-
-def test_an_effect_named_twice_is_refused():
-    from skinrender.errors import SkinrenderError
-    from skinrender.rendering.face.document import parse_physics
-
-    with pytest.raises(SkinrenderError, match="named twice"):
-        parse_physics("sheen+interreflection+sheen")

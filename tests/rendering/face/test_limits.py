@@ -166,7 +166,7 @@ class TestControlsOnRenders:
 
     def test_sheen_is_not_in_the_plane_of_another_light(self, renders):
         from skinrender.rendering.face.scene import Light
-        from skinrender.rendering.face.validation import dichromatic_colours
+        from skinrender.rendering.face.effects.sheen import dichromatic_colours
 
         out, images = renders(physics="sheen", prevailing=2856, calibration=2856)
         check = check_dichromatic(images, out[0].labels, *dichromatic_colours(out[0], Light(6500.0, 1000.0)))

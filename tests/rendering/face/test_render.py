@@ -32,7 +32,7 @@ from skinrender.rendering.face.limits import (
     check_sphere,
 )
 from skinrender.rendering.face.scene import load_face_scene, skin_reflectance_of
-from skinrender.rendering.face.validation import dichromatic_colours
+from skinrender.rendering.face.effects.sheen import dichromatic_colours
 from skinrender.rendering.validation import analytic_reference
 from skinrender.spectra import GRID_DEFAULT
 
