@@ -284,11 +284,7 @@ def command_render_face(args: argparse.Namespace) -> None:
                 "labels": result.label_names, "physics": result.physics, "skin": result.skin,
                 "size": [result.scene.camera.width, result.scene.camera.height], **result.info}
     if figure is not None:
-        from ..studies.figures import figure_face
-
-        title = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
-                 f"{result.prevailing:g} K balanced to {result.calibration:g} K\n{result.spp} spp; the labels outlined")
-        document["figure"] = str(figure_face(result.image, result.labels, result.label_names, title, figure))
+        document["figure"] = str(result.figure(figure))  # skinrender.studies.labelled.face_figure
     labels = ", ".join(f"{k}={v}" for k, v in result.label_names.items())
     text = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
             f"{result.prevailing:g} K white-balanced to {result.calibration:g} K: {path} (+ {preview}, "
