@@ -6,7 +6,6 @@ controls: ``test_face.py`` and ``test_face_limits.py``.)
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
