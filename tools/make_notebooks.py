@@ -628,7 +628,7 @@ def notebook_07() -> nbformat.NotebookNode:
         ),
         new_markdown_cell(
             "## Reference API\n"
-            "`skinrender.rendering.face` (`render_face`), `rendering.face_scene`, `studies.ladder`, "
+            "`skinrender.rendering.face` (`render_face`), `rendering.face.scene`, `studies.ladder`, "
             "`studies.face_locus`; commands `render face --physics … --skin …`, `detect face`, `ladder`. "
             "The README's face section gives the full-size measurements."
         ),

@@ -33,7 +33,7 @@ from ..model.camera import Camera
 from ..model.chromaticity import ncc
 from ..model.response import response
 from ..rendering.face import render_face
-from ..rendering.face_scene import skin_reflectance_of
+from ..rendering.face.scene import skin_reflectance_of
 from ..rendering.variants import choose_variant
 from ..spectra import GRID_DEFAULT
 from .face_pool import run_renders
