@@ -20,7 +20,7 @@ white-balanced responses in output units (``v = 255`` for a white object at
 
 References
 ----------
--   [Martinkauppi2006]_ : the paper, Eqs. 1–11, with the errata of
+-   :cite:`Martinkauppi2006` : the paper, Eqs. 1–11, with the errata of
     docs/references.md (Eq. 8 scaled to 1 at p = c, Eq. 11's knee).
 """
 

@@ -18,7 +18,7 @@ Units: wavelength in nm, temperature in K.
 
 References
 ----------
--   [Martinkauppi2006]_ : Stage 1, Stage 3, Tables 2–5 (docs/references.md).
+-   :cite:`Martinkauppi2006` : Stage 1, Stage 3, Tables 2–5 (docs/references.md).
 """
 
 from __future__ import annotations
