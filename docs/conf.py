@@ -34,8 +34,8 @@ exclude_patterns = ["_build", "Thumbs.db", ".DS_Store"]
 myst_enable_extensions = ["colon_fence", "deflist"]
 myst_heading_anchors = 3
 
-# The API reference: one page per module, written at every build from the package itself (docs/_ext/api_pages.py;
-# docs/api/ is not tracked), so that a new module appears without editing the docs.
+# The API reference: one page per module, written at every build from the package itself
+# (docs/_ext/api_pages.py; docs/api/ is not tracked), so that a new module appears without editing the docs.
 sys.path.insert(0, str(DOCS / "_ext"))
 from api_pages import write_api_pages  # noqa: E402
 
@@ -55,10 +55,11 @@ html_theme = "alabaster"
 html_title = f"skinrender {release}"
 html_static_path: list[str] = []
 
-# Docstring markup in modules that other work is rewriting at the time of writing (rendering/face_validation.py,
-# rendering/validation.py, rendering/imaging.py, studies/bench_face.py) is mended here, at build time, rather
-# than in the modules: each entry is (object's full name, text in its docstring, what the docs show instead).
-# An entry whose text is no longer there does nothing; fix the module and remove the entry.
+# Docstring markup in modules that other work was rewriting when the site was built
+# (rendering/face_validation.py, rendering/validation.py, rendering/imaging.py, studies/bench_face.py) is
+# mended here, at build time, rather than in the modules: each entry is (object's full name, text in its
+# docstring, what the docs show instead). An entry whose text is no longer there does nothing; fix the module
+# and remove the entry.
 DOCSTRING_MENDS = [
     # a table cell one character wider than its column ("Malformed table")
     ("skinrender.rendering.face_validation", "``noise`` (+ the above) ", "``noise`` (+ above)     "),
@@ -79,8 +80,9 @@ def mend_docstring(app, what, name, obj, options, lines):
 
 def numpydoc_with_one_template():
     """
-    numpydoc compiles its Jinja template anew for every docstring it renders (``get_doc_object``): about a third of
-    this build's time. Compile it once per builder and hand numpydoc the same template (same output).
+    numpydoc compiles its Jinja template anew for every docstring it renders (``get_doc_object``): about a
+    third of this build's time. Compile it once per builder and hand numpydoc the same template (the pages are
+    the same).
     """
     import numpydoc.docscrape_sphinx as sphinx_docs
     import numpydoc.numpydoc
@@ -118,14 +120,13 @@ def other_pages(index_source: str) -> list[str]:
 
 
 def list_other_pages(app, docname, source):
-    """Put the other pages in place of :data:`OTHER_PAGES` (source-read); the caption goes when there are none."""
+    """Put the other pages in place of :data:`OTHER_PAGES` (source-read); with none, no caption shows."""
     if docname == "index":
-        pages = other_pages(source[0])
-        source[0] = source[0].replace(OTHER_PAGES, "\n".join(pages) if pages else "")
+        source[0] = source[0].replace(OTHER_PAGES, "\n".join(other_pages(source[0])))
 
 
 def reread_index(app, env, added, changed, removed):
-    """Read ``index.md`` again at every build, so that a page added since the last build is listed (env-get-outdated)."""
+    """Read ``index.md`` at every build, so that a page added since the last is listed (env-get-outdated)."""
     return ["index"]
 
 

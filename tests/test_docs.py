@@ -1,14 +1,14 @@
 """
 The documentation keeps in step with the code: the Sphinx site (``docs/``) builds without a warning, every
 ``:cite:`` key has its bibliography entry, the command lists of the README, ``docs/commands.md`` and
-``docs/contract.md`` are the parser's, and every console and Python example of the README runs and prints what it
-shows, as do those of docs/commands.md.
+``docs/contract.md`` are the parser's, and every console and Python example of the README and of
+docs/commands.md runs and prints what it shows.
 
 Examples: a ```` ```console ```` block holds ``$ COMMAND`` lines, each followed by what it prints: its
-standard output when it exits 0, its standard error otherwise (a refusal's one line); ``...`` stands for any text,
-as in doctests. A command exits 0 unless the next line is ``$ echo $?`` followed by its status. ``skinrender`` is
-this checkout's command line; each block runs in an empty folder of its own. A ```` ```pycon ```` block is a
-doctest (run in an empty folder too). Keep them quick: a few seconds each.
+standard output when it exits 0, its standard error otherwise (a refusal's one line); ``...`` stands for
+any text, as in doctests. A command exits 0 unless the next line is ``$ echo $?`` followed by its status.
+``skinrender`` is this checkout's command line; each block runs in an empty folder of its own. A
+```` ```pycon ```` block is a doctest (run in an empty folder too). Keep them quick: seconds each.
 """
 
 from __future__ import annotations
@@ -28,17 +28,18 @@ DOCS = REPOSITORY / "docs"
 README = REPOSITORY / "README.md"
 
 
-# ---------------------------------------------------------------------------------------------------- the site
+# --------------------------------------------------------------------------------------------------- the site
 
 
 @pytest.mark.slow
 def test_the_site_builds_without_a_warning(tmp_path):
-    """``sphinx-build -W`` (warnings are errors) of the whole site, the API reference from the docstrings included."""
+    """``sphinx-build -W`` (warnings are errors) of the whole site, API pages from the docstrings included."""
     for module in ("sphinx", "myst_parser", "numpydoc", "sphinxcontrib.bibtex"):
         pytest.importorskip(module)
     run = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html",
                           "-d", str(tmp_path / "doctrees"), str(DOCS), str(tmp_path / "html")],
-                         capture_output=True, text=True, cwd=REPOSITORY, env={**os.environ, "MPLBACKEND": "Agg"})
+                         capture_output=True, text=True, cwd=REPOSITORY,
+                         env={**os.environ, "MPLBACKEND": "Agg"})
     assert run.returncode == 0, run.stderr[-6000:]
     assert (tmp_path / "html" / "api" / "skinrender.html").exists()
 
@@ -70,8 +71,8 @@ LINK = re.compile(r"\]\(([^)\s]+)\)")
 
 
 def test_no_link_leaves_the_repository():
-    """Every relative link of the README, CONTRIBUTING, CHANGELOG and docs/ stays inside the repository (the JSON
-    contract once lived in ../shared/, outside it)."""
+    """Every relative link of the README, CONTRIBUTING, CHANGELOG and docs/ stays inside the repository (the
+    JSON contract once lived in ../shared/, outside it)."""
     pages = [README, REPOSITORY / "CONTRIBUTING.md", REPOSITORY / "CHANGELOG.md", *DOCS.glob("*.md")]
     outside = []
     for page in pages:
@@ -84,7 +85,7 @@ def test_no_link_leaves_the_repository():
     assert outside == []
 
 
-# ------------------------------------------------------------------------------------------------ the commands
+# ----------------------------------------------------------------------------------------------- the commands
 
 
 def parser_commands() -> tuple[set[str], set[str]]:
@@ -108,8 +109,8 @@ def section(path: Path, heading: str) -> str:
 
 
 def documented_commands(text: str) -> tuple[set[str], set[str]]:
-    """Commands and benchmarks named in the first column of the tables of ``text``: every backticked name there
-    (``skinrender`` left off); ``bench X`` and ``bench {X,Y}`` name benchmarks."""
+    """Commands and benchmarks named in the first column of the tables of ``text``: every backticked name
+    there (``skinrender`` left off); ``bench X`` and ``bench {X,Y}`` name benchmarks."""
     commands, benchmarks = set(), set()
     for line in text.splitlines():
         if not line.startswith("|") or line.startswith("|---"):
@@ -146,7 +147,7 @@ def test_the_contract_lists_every_command_and_benchmark():
     assert (listed, benches) == (commands, benchmarks)
 
 
-# ---------------------------------------------------------------------------------------- the README's examples
+# -------------------------------------------------------------------------------------------- the examples
 
 
 def fenced_blocks(text: str, language: str) -> list[tuple[int, str]]:
@@ -179,8 +180,10 @@ def normalised(text: str) -> str:
 
 RUN = [README, DOCS / "commands.md"]
 """The pages whose examples are run (other pages show longer runs, measured once)."""
-CONSOLE = [(page, line, body) for page in RUN for line, body in fenced_blocks(page.read_text(encoding="utf-8"), "console")]
-PYCON = [(page, line, body) for page in RUN for line, body in fenced_blocks(page.read_text(encoding="utf-8"), "pycon")]
+CONSOLE = [(page, line, body) for page in RUN
+           for line, body in fenced_blocks(page.read_text(encoding="utf-8"), "console")]
+PYCON = [(page, line, body) for page in RUN
+         for line, body in fenced_blocks(page.read_text(encoding="utf-8"), "pycon")]
 
 
 def test_the_readme_has_runnable_examples():
@@ -204,7 +207,7 @@ def command_line(tmp_path: Path) -> dict[str, str]:
             "MPLBACKEND": "Agg"}
 
 
-@pytest.mark.parametrize("page, line, body", CONSOLE, ids=[f"{page.name}:{line}" for page, line, _ in CONSOLE])
+@pytest.mark.parametrize("page, line, body", CONSOLE, ids=[f"{p.name}:{line}" for p, line, _ in CONSOLE])
 def test_console_example(page, line, body, command_line, tmp_path):
     """Each command of the block exits with the status shown and prints what is shown."""
     where = f"{page.name}:{line}"
@@ -212,7 +215,8 @@ def test_console_example(page, line, body, command_line, tmp_path):
     work.mkdir()
     checker = doctest.OutputChecker()
     for command, expected, status in console_steps(body):
-        run = subprocess.run(["bash", "-c", command], capture_output=True, text=True, cwd=work, env=command_line)
+        run = subprocess.run(["bash", "-c", command], capture_output=True, text=True, cwd=work,
+                             env=command_line)
         got = run.stdout if run.returncode == 0 else run.stderr
         assert run.returncode == status, f"{where}: `{command}` exited {run.returncode}:\n{run.stderr}"
         assert checker.check_output(normalised(expected), normalised(got), doctest.ELLIPSIS), (
@@ -226,4 +230,4 @@ def test_python_example(page, line, body, tmp_path, monkeypatch):
     test = doctest.DocTestParser().get_doctest(body, {}, f"{page.name}:{line}", str(page), line - 1)
     runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     runner.run(test)
-    assert runner.failures == 0, f"{page.name}:{line}: the example's output differs (the doctest report is above)"
+    assert runner.failures == 0, f"{page.name}:{line}: the output differs (the doctest report is above)"

@@ -1,6 +1,6 @@
 """
-The notebooks under notebooks/: each is paired with a jupytext percent script (``NN_name.py``) that holds the same
-cells, and each executes without an error cell (``slow``).
+The notebooks under notebooks/: each is paired with a jupytext percent script (``NN_name.py``) that holds
+the same cells, and each executes without an error cell (``slow``).
 
 Edit either side and sync the other with ``jupytext --sync notebooks/NN_name.ipynb`` (the pairing is in the
 notebook's metadata); the test below fails while the two differ.
@@ -34,7 +34,8 @@ def test_notebook_and_script_hold_the_same_cells(path):
     notebook, script = cells(path), cells(path.with_suffix(".py"))
     assert len(notebook) == len(script), f"{path.name}: {len(notebook)} cells, its script {len(script)}"
     for index, (a, b) in enumerate(zip(notebook, script)):
-        assert a == b, f"{path.name}, cell {index}: run `jupytext --sync {path.relative_to(ROOT_NOTEBOOKS.parent)}`"
+        sync = f"jupytext --sync {path.relative_to(ROOT_NOTEBOOKS.parent)}"
+        assert a == b, f"{path.name}, cell {index} differs from its script's: run `{sync}`"
 
 
 @pytest.mark.slow

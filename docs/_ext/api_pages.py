@@ -1,10 +1,11 @@
 """Write the API reference's pages from the package itself, at every build.
 
-One page per module (``automodule`` of its own members: names a module re-exports are documented where they
-are defined), one page per subpackage listing its modules, and a first page with the package's docstring and
-every name of ``skinrender.__all__`` linked to where it is defined. A module added to the package appears
-without editing the docs; the pages are written under ``docs/api/`` (not tracked): a page is rewritten only when
-its text changes (so that an incremental build reads only what changed) and a deleted module's page is removed.
+One page per module (``automodule`` of its own members: names a module re-exports are documented where
+they are defined), one page per subpackage listing its modules, and a first page with the package's
+docstring and every name of ``skinrender.__all__`` linked to where it is defined. A module added to the
+package appears without editing the docs. The pages are written under ``docs/api/`` (not tracked): a page
+is rewritten only when its text changes (an incremental build reads only what changed), and a deleted
+module's page is removed.
 """
 
 from __future__ import annotations
@@ -16,11 +17,12 @@ import shutil
 from pathlib import Path
 
 SKIPPED = {"skinrender.__main__", "skinrender.evaluation._hull3d"}
-"""Modules with no page: ``__main__`` runs the command line when imported; the compiled kernel has no docstrings."""
+"""Modules with no page: ``__main__`` runs the command line when imported; the compiled kernel has no
+docstrings."""
 
 
 def module_names(package: str = "skinrender") -> list[str]:
-    """Every module of ``package``, dotted, packages before their modules (``__main__`` and the kernel left out)."""
+    """Every module of ``package``, dotted, packages before their modules (:data:`SKIPPED` left out)."""
     root = importlib.import_module(package)
     names = [package] + [m.name for m in pkgutil.walk_packages(root.__path__, f"{package}.")]
     return sorted((n for n in names if n not in SKIPPED), key=lambda n: n.split("."))
@@ -37,13 +39,14 @@ def title(text: str) -> str:
 
 
 def public_names(init: Path) -> dict[str, str]:
-    """``skinrender.__all__``'s names → the module each is imported from (read from the ``__init__``'s imports)."""
+    """``skinrender.__all__``'s names → the module each is imported from (read from the ``__init__``)."""
     tree = ast.parse(init.read_text(encoding="utf-8"))
     where = {}
     for node in tree.body:
         if isinstance(node, ast.ImportFrom) and node.level == 1:
             for alias in node.names:
-                where[alias.asname or alias.name] = f"skinrender.{node.module}" if node.module else "skinrender"
+                module = f"skinrender.{node.module}" if node.module else "skinrender"
+                where[alias.asname or alias.name] = module
     return where
 
 
@@ -51,11 +54,14 @@ def top_page(package: str, subpackages: list[str], modules: list[str]) -> str:
     """The package's page: its docstring, the public names and where they live, its layers."""
     root = importlib.import_module(package)
     lines = [title(package), f".. automodule:: {package}\n", title("Public names").replace("=", "-"), ""]
-    lines += [".. list-table::", "   :header-rows: 1", "   :widths: 30 70", "", "   * - name", "     - defined in"]
+    lines += [".. list-table::", "   :header-rows: 1", "   :widths: 30 70", "",
+              "   * - name", "     - defined in"]
     where = public_names(Path(root.__file__))
     for name in root.__all__:
-        module = where[name]
-        role = "py:class" if isinstance(getattr(root, name), type) else "py:obj"
+        value = getattr(root, name)
+        defined = getattr(value, "__module__", None) if callable(value) else None  # constants: where imported
+        module = defined if defined and defined.startswith(package) else where[name]
+        role = "py:class" if isinstance(value, type) else "py:obj"
         lines += [f"   * - :{role}:`{name} <{module}.{name}>`", f"     - :py:mod:`{module}`"]
     lines += ["", ".. toctree::", "   :maxdepth: 1", ""]
     lines += [f"   {n}" for n in subpackages + modules]
@@ -71,7 +77,8 @@ def package_page(package: str, children: list[str]) -> str:
 
 def module_page(module: str) -> str:
     """A module's page: its docstring and its own public members."""
-    return "\n".join([title(module), f".. automodule:: {module}", "   :members:", "   :ignore-module-all:", ""])
+    return "\n".join([title(module), f".. automodule:: {module}", "   :members:", "   :ignore-module-all:",
+                      ""])
 
 
 def write_api_pages(folder: Path, package: str = "skinrender") -> list[str]:
