@@ -1,5 +1,5 @@
 """
-The house rules of the package (README, "How the pieces fit"): layers kept by
+The house rules of the package (docs/architecture.md, CONTRIBUTING.md): layers kept by
 import-linter, no import cycles, one meaning per ``skinrender.<name>``, no
 two module names a letter apart, small modules, doctests that pass on their
 own, and a core that runs without the optional extras.

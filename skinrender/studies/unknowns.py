@@ -112,7 +112,8 @@ class Setting:
 
 
 SETTING_DEFAULT = Setting()
-"""Our reading of the paper (README): b = 2, 400–700 nm every 1 nm, Vrhel skin, Joensuu Munsell, its ten illuminants."""
+"""Our reading of the paper (docs/model.md): b = 2, 400–700 nm every 1 nm, Vrhel skin, Joensuu Munsell, its ten
+illuminants."""
 
 
 @dataclass(frozen=True)
