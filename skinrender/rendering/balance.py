@@ -18,7 +18,7 @@ images in output units (255 for white at p = c).
 
 References
 ----------
--   [Martinkauppi2006]_ : Eqs. 4, 8, 10 (docs/references.md).
+-   :cite:`Martinkauppi2006` : Eqs. 4, 8, 10 (docs/references.md).
 """
 
 from __future__ import annotations

@@ -16,7 +16,7 @@ Units: chromaticities NCC (r, g), unitless; areas in (r, g) units².
 
 References
 ----------
--   [Storring2001]_, [Soriano2003]_ (docs/references.md).
+-   :cite:`Storring2001`, :cite:`Soriano2003` (docs/references.md).
 """
 
 from __future__ import annotations

@@ -21,7 +21,7 @@ level (effects)         checks
 ======================  ====================================================
 ``direct``              ``shading_cancels``
 ``sheen``               ``dichromatic_plane``
-``noise`` (+ the above) the same, on the frames' mean, dark signal removed,
+``noise`` (+ above)     the same, on the frames' mean, dark signal removed,
                         clipped pixels left out, quantisation bounded
 ``interreflection``,    none: ``eq4_shift`` only (information)
 ``mixed``
