@@ -305,9 +305,9 @@ def _kubelka_munk_layer(k: NDArrayFloat, s: NDArrayFloat, thickness: ArrayLike |
     b = np.sqrt(a * a - 1.0)
     if thickness is None:
         return a - b, np.zeros_like(a)
-    x = b * s * thickness
-    denominator = a * np.sinh(x) + b * np.cosh(x)
-    return np.sinh(x) / denominator, b / denominator
+    e = np.exp(-2.0 * b * s * thickness)  # sinh and cosh scaled by e^-x: no overflow in thick layers
+    denominator = a * (1.0 - e) + b * (1.0 + e)
+    return (1.0 - e) / denominator, 2.0 * b * np.sqrt(e) / denominator
 
 
 def kubelka_munk_two_layers(mu_a_epidermis: ArrayLike, mu_a_dermis: ArrayLike, mu_s: ArrayLike, g: float,
