@@ -105,6 +105,8 @@ def command_skin(args: argparse.Namespace) -> None:
 
     method = _method(args)
     check_output(args.plot, "--plot", (".png",))
+    if args.plot is None and args.compare != "skin":
+        raise SkinrenderError("--compare names the measured sets drawn with --plot: give --plot FILE.png")
     compare = _compare_sets(args) if args.plot else []
     parameters = parameters_of(args)
     if parameters.surface is not None and method != "kubelka-munk":

