@@ -33,7 +33,7 @@ time, measured on 12 NIST skins); the reported RMS is the model's
 (:func:`~skinrender.datasets.skin_model.skin_reflectance`) on every wavelength.
 
 -   :class:`SkinFit`: one column's result.
--   :func:`fit_skin_spectrum`: one spectrum.
+-   :func:`fit_skin_spectrum`: one spectrum; :func:`fit_skin`, its parameters and RMS.
 -   :func:`fit_skin_spectra`: every spectrum of a table, on worker processes.
 -   :func:`fit_seconds`: the time a fit of a table should take.
 
@@ -66,8 +66,8 @@ from .adding_doubling import QUAD_PTS_DEFAULT, Slab, stack_reflectance
 from .skin_model import (G_SKIN, SKIN_REFLECTANCE_METHODS, SURFACE_KUBELKA_MUNK, SkinParameters,
                          kubelka_munk_two_layers, layer_coefficients, skin_reflectance)
 
-__all__ = ["FIT_BOUNDS", "FIT_PARAMETERS", "SECONDS_PER_FIT", "SkinFit", "fit_skin_spectrum", "fit_skin_spectra",
-           "fit_seconds"]
+__all__ = ["FIT_BOUNDS", "FIT_PARAMETERS", "SECONDS_PER_FIT", "SkinFit", "fit_skin", "fit_skin_spectrum",
+           "fit_skin_spectra", "fit_seconds"]
 
 FIT_BOUNDS = {
     "melanin": (0.0, 0.5, "epidermal melanosome fractions up to 43 % (Jacques 1998)"),
@@ -228,6 +228,16 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
            for side in (("low",) if v <= lo + 1e-3 * s else ("high",) if v >= hi - 1e-3 * s else ())}
     converged = bool(found.status > 0 and math.isfinite(rms))
     return SkinFit(name, fitted, rms, hit, converged, str(found.message), evaluations)
+
+
+def fit_skin(wavelength: ArrayLike, reflectance: ArrayLike, start: SkinParameters | None = None,
+             method: str = "adding-doubling") -> tuple[SkinParameters, float]:
+    """
+    Fit the model to one measured spectrum within :data:`FIT_BOUNDS`: the fitted :class:`SkinParameters` and
+    the RMS reflectance error (fraction); :func:`fit_skin_spectrum` gives the whole report.
+    """
+    fitted = fit_skin_spectrum(wavelength, reflectance, method=method, start=start)
+    return fitted.parameters, fitted.rms
 
 
 def _fit_one(job):

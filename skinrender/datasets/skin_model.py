@@ -40,7 +40,7 @@ the model before adding-doubling, kept for comparison).
 -   :func:`reflectance_of_layers`: adding-doubling from any layers.
 -   :func:`skin_reflectance` (dispatcher), :func:`skin_reflectance_adding_doubling`,
     :func:`skin_reflectance_kubelka_munk`: the reflectance, in [0, 1], cached per spectrum.
--   :func:`fit_skin`: the parameters of one measured spectrum (:mod:`.skin_fit`).
+-   Fitting the model to measured spectra: :mod:`.skin_fit` (``fit_skin``, ``fit_skin_spectrum``).
 -   ``skin-model``, the reflectance set :func:`sds_skin_model`: 12 spectra of the
     default model, melanin volume fraction from 0.01 (very light) to 0.5 (very
     dark), 400–700 nm every 1 nm, bundled as ``resources/skin_model.csv``
@@ -84,7 +84,7 @@ from .registry import REGISTRY_REFLECTANCES, SpectralSet, read_bundled_csv, regi
 
 __all__ = ["SkinParameters", "PARAMETER_RANGES", "check_parameters", "SkinLayer", "skin_layers", "layer_coefficients",
            "reflectance_of_layers", "kubelka_munk_two_layers", "SKIN_REFLECTANCE_METHODS", "skin_reflectance", "skin_reflectance_adding_doubling",
-           "skin_reflectance_kubelka_munk", "fit_skin", "haemoglobin_extinction", "MELANIN_FRACTIONS",
+           "skin_reflectance_kubelka_munk", "haemoglobin_extinction", "MELANIN_FRACTIONS",
            "sds_skin_model", "G_SKIN", "N_SKIN", "SURFACE_KUBELKA_MUNK"]
 
 BLOOD_G_PER_L = 150.0
@@ -379,23 +379,6 @@ def skin_reflectance(wavelength: ArrayLike, parameters: SkinParameters = SkinPar
 @lru_cache(maxsize=1024)
 def _cached(wavelength: tuple, parameters: SkinParameters, method: str) -> NDArrayFloat:
     return SKIN_REFLECTANCE_METHODS[method](np.array(wavelength), parameters)
-
-
-def fit_skin(wavelength: ArrayLike, reflectance: ArrayLike, start: SkinParameters | None = None,
-             method: str = "adding-doubling") -> tuple[SkinParameters, float]:
-    """
-    Fit the model to one measured spectrum within the bounds of :data:`~skinrender.datasets.skin_fit.FIT_BOUNDS`
-    (see :func:`~skinrender.datasets.skin_fit.fit_skin_spectrum` for the whole report).
-
-    Returns
-    -------
-    parameters, rms
-        The fitted :class:`SkinParameters` and the RMS reflectance error (fraction).
-    """
-    from .skin_fit import fit_skin_spectrum
-
-    fitted = fit_skin_spectrum(wavelength, reflectance, method=method, start=start)
-    return fitted.parameters, fitted.rms
 
 
 SOURCE_SKIN_MODEL = ("two-layer adding-doubling skin model under a Fresnel boundary (skinrender.datasets.skin_model): "

