@@ -32,7 +32,7 @@ Two methods compute the reflectance from the same layers (:data:`SKIN_REFLECTANC
 ``adding-doubling`` (the default; total reflectance for collimated light at normal
 incidence, the surface's Fresnel reflection included, :mod:`.adding_doubling`)
 and ``kubelka-munk`` (two Kubelka–Munk layers, ``K = 2 μa``, ``S = 0.75 μs'``
-:cite:`Kubelka1931`, plus a flat surface reflectance ``surface`` and no boundary:
+:cite:`KubelkaMunk1931`, plus a flat surface reflectance ``surface`` and no boundary:
 the model before adding-doubling, kept for comparison).
 
 -   :class:`SkinParameters`, :func:`check_parameters`: the model's parameters.
