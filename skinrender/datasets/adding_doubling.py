@@ -238,10 +238,11 @@ def _add_above(r_below: NDArrayFloat, r_up: NDArrayFloat, r_down: NDArrayFloat, 
 
 
 def stack_reflectance(slabs: list[Slab] | tuple[Slab, ...], n: float = 1.4,
-                      quad_pts: int = QUAD_PTS_DEFAULT) -> NDArrayFloat:
+                      quad_pts: int = QUAD_PTS_DEFAULT, diffuse: bool = False) -> NDArrayFloat:
     """
     Total reflectance of a stack of layers (top first) of index ``n`` under air, for collimated light at normal
-    incidence, specular reflection at the surface included (Prahl's ``UR1``).
+    incidence, specular reflection at the surface included (Prahl's ``UR1``; by reciprocity also the radiance
+    factor seen along the normal under a uniform sky); with ``diffuse``, for diffuse incidence (``URU``).
 
     Parameters
     ----------
@@ -252,6 +253,8 @@ def stack_reflectance(slabs: list[Slab] | tuple[Slab, ...], n: float = 1.4,
         Refractive index of every layer (≥ 1; the layers are index-matched to each other).
     quad_pts
         Quadrature points (even).
+    diffuse
+        Reflectance for diffuse (Lambertian) incident light instead of collimated normal incidence.
 
     Returns
     -------
@@ -302,5 +305,7 @@ def stack_reflectance(slabs: list[Slab] | tuple[Slab, ...], n: float = 1.4,
     boundary_t = np.diag((1 - fresnel) / twonuw)
     total = _add_above(r_below, boundary_r, boundary_r, boundary_t, boundary_t, twonuw)
     above = nu > np.sqrt(max(0.0, 1 - 1 / n**2))  # directions that leave into air
-    ur1 = np.einsum("i,...i->...", twonuw[above], total[:, above, -1])
-    return np.clip(ur1, 0.0, 1.0).reshape(shape)
+    flux = np.einsum("i,...ij->...j", twonuw[above], total[:, above][:, :, above])  # per incident direction
+    if diffuse:  # weighted over the incident directions; n² for the radiance's change across the boundary
+        return np.clip(n**2 * flux @ twonuw[above], 0.0, 1.0).reshape(shape)
+    return np.clip(flux[:, -1], 0.0, 1.0).reshape(shape)

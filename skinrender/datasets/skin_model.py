@@ -276,17 +276,17 @@ def skin_layers(wavelength: ArrayLike, parameters: SkinParameters = SkinParamete
             SkinLayer("dermis", None, arrays[1], arrays[2], G_SKIN, n))
 
 
-def reflectance_of_layers(layers, quad_pts: int = QUAD_PTS_DEFAULT) -> NDArrayFloat:
+def reflectance_of_layers(layers, quad_pts: int = QUAD_PTS_DEFAULT, diffuse: bool = False) -> NDArrayFloat:
     """
-    Adding-doubling total reflectance (collimated normal incidence, surface reflection included) of
-    :class:`SkinLayer` s, top first, all of one refractive index (the last may be semi-infinite; otherwise
-    air lies below it).
+    Adding-doubling total reflectance (collimated normal incidence, surface reflection included; ``diffuse``:
+    for diffuse incidence) of :class:`SkinLayer` s, top first, all of one refractive index (the last may be
+    semi-infinite; otherwise air lies below it).
     """
     indices = {float(layer.n) for layer in layers}
     if len(indices) != 1:
         raise SkinrenderError(f"the layers must share one refractive index, got {sorted(indices)}")
     slabs = [Slab(layer.mu_a_per_mm, layer.mu_s_per_mm, layer.g, layer.thickness_mm) for layer in layers]
-    return stack_reflectance(slabs, n=indices.pop(), quad_pts=quad_pts)
+    return stack_reflectance(slabs, n=indices.pop(), quad_pts=quad_pts, diffuse=diffuse)
 
 
 def skin_reflectance_adding_doubling(wavelength: ArrayLike, parameters: SkinParameters = SkinParameters()) -> NDArrayFloat:

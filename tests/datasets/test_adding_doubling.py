@@ -84,6 +84,15 @@ class TestStackReflectance:
             theirs = iad.Sample(a=mu_s / (mu_a + mu_s), b=(mu_a + mu_s) * d, g=g, n=n, quad_pts=16).rt()[0]
             assert mine == pytest.approx(theirs, abs=TOLERANCE_IADPYTHON)
 
+    def test_diffuse_incidence_against_iadpython(self, rng):
+        iad = pytest.importorskip("iadpython")
+        for n, thickness in ((1.4, 0.5), (1.4, None), (1.0, 1.0)):
+            mu_a, mu_s, g = rng.uniform(0.05, 1), rng.uniform(2, 20), rng.uniform(0.5, 0.9)
+            mine = stack_reflectance([Slab(np.array([mu_a]), np.array([mu_s]), g, thickness)], n=n, diffuse=True)[0]
+            b = np.inf if thickness is None else (mu_a + mu_s) * thickness
+            theirs = iad.Sample(a=mu_s / (mu_a + mu_s), b=b, g=g, n=n, quad_pts=16).rt()[2]
+            assert mine == pytest.approx(theirs, abs=TOLERANCE_IADPYTHON)
+
     def test_semi_infinite_layers_against_iadpython(self, rng):
         iad = pytest.importorskip("iadpython")
         for _ in range(4):
