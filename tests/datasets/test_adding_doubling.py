@@ -119,7 +119,8 @@ class TestStackReflectance:
         mu_s = rng.uniform(5, 30, size=(2, 3, 5))
         stacked = stack_reflectance([Slab(mu_a, mu_s, 0.8, 0.1), Slab(mu_a / 2, mu_s, 0.8, None)])
         assert stacked.shape == (2, 3, 5)
-        alone = stack_reflectance([Slab(mu_a[1, 2], mu_s[1, 2], 0.8, 0.1), Slab(mu_a[1, 2] / 2, mu_s[1, 2], 0.8, None)])
+        alone = stack_reflectance([Slab(mu_a[1, 2], mu_s[1, 2], 0.8, 0.1),
+                                   Slab(mu_a[1, 2] / 2, mu_s[1, 2], 0.8, None)])
         np.testing.assert_allclose(stacked[1, 2], alone, atol=1e-13)
 
     def test_more_absorption_reflects_less(self):
