@@ -20,7 +20,7 @@ import skinrender
 ROOT = Path(skinrender.__file__).parent
 REPOSITORY = ROOT.parent
 LAYER_MODULES = {"constants", "errors", "hints", "spectra", "spectral_csv", "methods", "extras", "datasets", "model", "evaluation",
-                 "design", "rendering", "studies", "cli"}
+                 "design", "rendering", "studies", "cli", "testing"}
 """What ``skinrender.<name>`` may be when it is a module."""
 MODULE_LINES_MAX = 450
 """'None over ~400 lines': the largest module may exceed 400 by little."""
@@ -68,7 +68,7 @@ def test_one_meaning_per_top_level_name():
     for name, value in vars(skinrender).items():
         if isinstance(value, type(skinrender)) and not name.startswith("_"):
             assert name in LAYER_MODULES, f"skinrender.{name} is a module outside the layers"
-    for package in ("model", "evaluation", "design", "rendering", "studies", "cli", "datasets"):
+    for package in ("model", "evaluation", "design", "rendering", "studies", "cli", "datasets", "testing"):
         module = importlib.import_module(f"skinrender.{package}")
         for info in pkgutil.iter_modules(module.__path__):
             value = getattr(module, info.name, None)

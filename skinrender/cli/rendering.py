@@ -161,7 +161,7 @@ def command_render(args: argparse.Namespace) -> None:
     if is_face_scene(args.scene):  # a face (perspective camera, mesh, lights): its own renderer
         return command_render_face(args)
     chart_only(args)
-    from ..rendering.exr import write_exr, write_preview
+    from ..rendering.exr import camera_attributes, write_exr, write_preview
     from ..rendering.renderer import channel_names
 
     options = render_options(args)
@@ -180,7 +180,8 @@ def command_render(args: argparse.Namespace) -> None:
         result = replace(result, image=knee(result.image).astype(np.float32), knee=True)
     spp = result.raw[0].spp
     names = channel_names(result.camera)
-    write_exr(output, result.image, names, {"camera": result.camera.name, "prevailing_K": result.prevailing,
+    write_exr(output, result.image, names, {**camera_attributes(result.camera, grid_of(args)),
+                                            "prevailing_K": result.prevailing,
                                             "calibration_K": result.calibration, "spp": spp,
                                             "seed": args.seed, "variant": result.variant, "units": "Eq. 4 output units"})
     preview = write_preview(output.with_suffix(".png"), result.image)
