@@ -22,20 +22,24 @@ from ..hints import NDArrayFloat
 __all__ = ["region_z", "difference_figure"]
 
 
-def region_z(items: tuple[str, ...], z: NDArrayFloat) -> dict:
+def region_z(items: tuple[str, ...], z: NDArrayFloat, critical: NDArrayFloat | None = None) -> tuple[dict, set]:
     """
     Each patch's or region's largest ``|z|`` over its values (``"<name> / <channel>"``; the skin NCC counts
-    for ``skin``).
+    for ``skin``), and the names with a value beyond its ``critical`` value.
 
-    >>> region_z(("a / R", "a / G", "skin / R", "skin NCC / r"), np.array([1.0, -3.0, 0.5, 2.0]))
-    {'a': 3.0, 'skin': 2.0}
+    >>> region_z(("a / R", "a / G", "skin / R", "skin NCC / r"), np.array([1.0, -3.0, 0.5, 2.0]), np.full(4, 2.5))
+    ({'a': 3.0, 'skin': 2.0}, {'a'})
     """
     out: dict = {}
-    for item, value in zip(items, np.abs(np.asarray(z, dtype=np.float64))):
+    beyond = set()
+    critical = np.full(len(items), np.inf) if critical is None else np.asarray(critical, dtype=np.float64)
+    for item, value, c in zip(items, np.abs(np.asarray(z, dtype=np.float64)), critical):
         name = item.rsplit(" / ", 1)[0]
         name = "skin" if name == "skin NCC" else name
         out[name] = max(out.get(name, 0.0), float(value))
-    return out
+        if value > c:
+            beyond.add(name)
+    return out, beyond
 
 
 def _tone(image: NDArrayFloat) -> NDArrayFloat:
@@ -58,13 +62,14 @@ def _zones(shape, regions, scene, labels) -> list[tuple[str, NDArrayFloat]]:
 
 
 def difference_figure(path: str | Path, reference: NDArrayFloat, new: NDArrayFloat, items: tuple[str, ...],
-                      z: NDArrayFloat, critical: float, regions, title: str, scene=None,
+                      z: NDArrayFloat, critical: NDArrayFloat, regions, title: str, scene=None,
                       labels: NDArrayFloat | None = None) -> Path:
     """
     Write the PNG: reference, new render and the ``|z|`` map with names (module docstring).
 
-    ``regions``: the chart's patch names in order (with its ``scene`` for their boxes) or a face's
-    ``{name: label}`` (with its ``labels`` image).
+    ``critical``: each value's critical value (those beyond it are outlined). ``regions``: the chart's patch
+    names in order (with its ``scene`` for their boxes) or a face's ``{name: label}`` (with its ``labels``
+    image).
     """
     import matplotlib
 
@@ -72,7 +77,8 @@ def difference_figure(path: str | Path, reference: NDArrayFloat, new: NDArrayFlo
     import matplotlib.pyplot as plt
     from scipy.ndimage import distance_transform_edt
 
-    worst = region_z(items, z)
+    worst, beyond_names = region_z(items, z, critical)
+    critical = float(np.min(critical))
     zones = _zones(new.shape, regions, scene, labels)
     zmap = np.zeros(new.shape[:2])
     for name, mask in zones:
@@ -86,7 +92,7 @@ def difference_figure(path: str | Path, reference: NDArrayFloat, new: NDArrayFlo
         axis.set_title(name, fontsize=9)
     top = max(float(np.max(zmap)), 2.0 * critical)
     shown = axes[2].imshow(zmap, cmap="magma", vmin=0.0, vmax=top, interpolation="nearest")
-    axes[2].set_title(f"largest |z| per {'patch' if scene is not None else 'region'} (critical {critical:.3g})",
+    axes[2].set_title(f"largest |z| per {'patch' if scene is not None else 'region'} (critical ≥ {critical:.3g})",
                       fontsize=9)
     figure.colorbar(shown, ax=axes[2], shrink=0.8, label="|z|")
     for name, mask in zones:
@@ -94,7 +100,7 @@ def difference_figure(path: str | Path, reference: NDArrayFloat, new: NDArrayFlo
             continue
         row, column = np.unravel_index(int(np.argmax(distance_transform_edt(np.pad(mask, 1))[1:-1, 1:-1])),
                                        mask.shape)  # the pixel deepest inside: a label inside its region
-        beyond = worst.get(name, 0.0) > critical
+        beyond = name in beyond_names
         if beyond:
             axes[2].contour(mask.astype(float), levels=[0.5], colors="cyan", linewidths=1.0)
         axes[2].text(float(column), float(row), f"{name}\n{worst.get(name, 0.0):.3g}",

@@ -177,8 +177,7 @@ class RenderRegression:
 
     def _failure(self, new, reference, result: Comparison) -> str:
         settings = new.settings
-        c = result.verdict.threshold
-        beyond = [i for i in reversed(list(map(int, abs(result.z).argsort()))) if abs(result.z[i]) > c]
+        beyond = result.beyond
         lines = [f"render_regression.check: {settings['scene']} through {settings['camera']} differs from its "
                  f"reference {reference.path} beyond the noise:",
                  f"  {result.summary()}",
@@ -209,7 +208,7 @@ class RenderRegression:
         title = (f"{new.settings['scene']} through {new.settings['camera']}: "
                  + result.summary().split(" (critical")[0])
         figure = difference_figure(folder / f"{stem}.difference.png", reference.image, new.image, result.items,
-                                   result.z, result.verdict.threshold, regions, title, new.scene, new.labels)
+                                   result.z, result.critical, regions, title, new.scene, new.labels)
         return [written[0], copy, figure]
 
 

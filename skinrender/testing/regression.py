@@ -41,10 +41,9 @@ Satterthwaite's degrees of freedom ``(Σ v_i)² / Σ (v_i² / (K − 1))``; the
 NCC's by the delta method. The labels come from the geometry and are the same
 in every replicate.
 
-The verdict's critical value is Student's t at the smallest degrees of
-freedom of the values (Welch's for each difference): conservative for the
-rest. Values that are exactly equal with no noise (a black background) are
-exact and pass.
+Each difference is held to Student's t at its own (Welch's) degrees of
+freedom, at the Šidák level of the family. Values that are exactly equal with
+no noise (a black background) are exact and pass.
 
 Units: means and standard errors in Eq. 4 output units (255 for white at
 p = c), NCC fractions; temperatures K, illuminance lx.
@@ -69,7 +68,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SkinrenderError
-from ..evaluation.verdict import ALPHA_DIFFERENCE, Verdict, difference
+from ..evaluation.verdict import ALPHA_DIFFERENCE, Verdict, difference, sidak
 from ..hints import NDArrayFloat
 
 __all__ = ["REPLICATES", "REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
@@ -396,17 +395,25 @@ class Comparison:
     """
     A new measurement against a reference.
 
-    ``z`` per value (``(new − reference) / combined SE``; 0 where both are exact and equal), the
-    :class:`~skinrender.evaluation.verdict.Verdict`, the worst value's index and ``notes`` (settings that
-    differ from the reference's: camera curves, variant, spp, …).
+    ``z`` per value (``(new − reference) / combined SE``; 0 where both are exact and equal), each value's
+    ``critical`` value (Student's t at its Welch degrees of freedom, Šidák level), the
+    :class:`~skinrender.evaluation.verdict.Verdict`, and ``notes`` (settings that differ from the reference's:
+    camera curves, variant, spp, …).
     """
 
     items: tuple[str, ...]
     new: NDArrayFloat
     reference: NDArrayFloat
     z: NDArrayFloat
+    critical: NDArrayFloat
     verdict: Verdict
     notes: tuple[str, ...] = ()
+
+    @property
+    def beyond(self) -> list[int]:
+        """Indices of the values beyond their critical value, furthest first."""
+        ratio = np.abs(self.z) / self.critical
+        return [int(i) for i in np.argsort(-ratio) if ratio[i] > 1]
 
     @property
     def passed(self) -> bool:
@@ -415,11 +422,11 @@ class Comparison:
 
     @property
     def worst(self) -> int:
-        """Index of the value with the largest ``|z|``."""
-        return int(np.argmax(np.abs(self.z)))
+        """Index of the value furthest beyond (or nearest to) its critical value."""
+        return int(self.verdict.details.get("worst", np.argmax(np.abs(self.z))))
 
     def summary(self) -> str:
-        """One line: the verdict and the worst value with its z."""
+        """One line: the verdict and the worst value with its z and critical value."""
         i = self.worst
         return (f"worst {self.items[i]}: {self.new[i]:.6g} against {self.reference[i]:.6g}, z = {self.z[i]:+.3g} "
                 f"(critical {self.verdict.threshold:.3g} for {len(self.items)} values at family-wise "
@@ -455,7 +462,7 @@ def compare(new: Measurement, reference_mean: NDArrayFloat, reference_se: NDArra
     """
     ``new`` against a reference's means, standard errors and degrees of freedom (same items, same order):
     :func:`~skinrender.evaluation.verdict.difference` of the differences over their combined standard errors at
-    family-wise ``alpha``, Student's t at the smallest Welch degrees of freedom.
+    family-wise ``alpha``, each held to Student's t at its own Welch degrees of freedom.
 
     >>> m = Measurement("chart", None, None, (), (), ("a / R", "b / R"), np.array([1.0, 2.0]),
     ...                 np.array([0.1, 0.1]), np.array([50.0, 50.0]))
@@ -464,6 +471,8 @@ def compare(new: Measurement, reference_mean: NDArrayFloat, reference_se: NDArra
     >>> compare(m, np.array([3.0, 2.0]), np.array([0.1, 0.1]), np.array([50.0, 50.0])).summary().split(" (")[0]
     'worst a / R: 1 against 3, z = -14.1'
     """
+    from scipy import stats
+
     variance_new, variance_ref = new.standard_error**2, np.asarray(reference_se, dtype=np.float64) ** 2
     combined = variance_new + variance_ref
     deviation = new.mean - np.asarray(reference_mean, dtype=np.float64)
@@ -471,7 +480,8 @@ def compare(new: Measurement, reference_mean: NDArrayFloat, reference_se: NDArra
         welch = combined**2 / (variance_new**2 / new.dof + variance_ref**2 / np.asarray(reference_dof, float))
         z = np.where(combined > 0, deviation / np.sqrt(np.where(combined > 0, combined, 1.0)),
                      np.where(deviation == 0, 0.0, np.sign(deviation) * np.inf))
-    finite = welch[np.isfinite(welch) & (combined > 0)]
-    dof = max(1.0, float(finite.min())) if finite.size else None
+    dof = np.where(np.isfinite(welch) & (combined > 0), np.maximum(welch, 1.0), np.inf)
     verdict = difference(deviation, np.sqrt(combined), alpha, dof=dof, name="render regression")
-    return Comparison(new.items, new.mean, np.asarray(reference_mean, dtype=np.float64), z, verdict, tuple(notes))
+    critical = stats.t.isf(sidak(alpha, dof.size) / 2, dof)
+    return Comparison(new.items, new.mean, np.asarray(reference_mean, dtype=np.float64), z, critical, verdict,
+                      tuple(notes))
