@@ -24,6 +24,7 @@ Units: temperatures K (or ``A``, ``H``), illuminance lx, images in Eq. 4 output 
 from __future__ import annotations
 
 import re
+import shlex
 import shutil
 from pathlib import Path
 
@@ -164,9 +165,9 @@ class RenderRegression:
             self._config.stash.setdefault(_WRITTEN, []).append((self._request.node.nodeid, written[0]))
             return None
         if found == "missing":
-            raise ReferenceProblem(f"no reference render {path} (nor its sidecar {sidecar_of(path).name}): write "
-                                   f"it with `pytest --skinrender-regen {self._request.node.nodeid}` and commit both "
-                                   "files")
+            raise ReferenceProblem(f"no reference render {self._shown(path)} (nor its sidecar "
+                                   f"{sidecar_of(path).name}): write it with `pytest --skinrender-regen "
+                                   f"{shlex.quote(self._request.node.nodeid)}` and commit both files")
         new = measure(scene, camera, prevailing, calibration, **options)
         reference = read_reference(path, new)
         result = compare(new, reference.mean, reference.standard_error, reference.dof, alpha,
@@ -175,11 +176,18 @@ class RenderRegression:
             pytest.fail(self._failure(new, reference, result), pytrace=False)
         return result
 
+    def _shown(self, path: Path) -> Path:
+        """``path`` relative to the working folder where it lies inside it (as pytest shows test files)."""
+        try:
+            return Path(path).resolve().relative_to(Path.cwd().resolve())
+        except ValueError:
+            return Path(path)
+
     def _failure(self, new, reference, result: Comparison) -> str:
         settings = new.settings
         beyond = result.beyond
         lines = [f"render_regression.check: {settings['scene']} through {settings['camera']} differs from its "
-                 f"reference {reference.path} beyond the noise:",
+                 f"reference {self._shown(reference.path)} beyond the noise:",
                  f"  {result.summary()}",
                  f"  {len(beyond)} of {len(result.items)} values beyond it: "
                  + ", ".join(f"{result.items[i]} ({result.z[i]:+.3g})" for i in beyond[:6])
