@@ -66,7 +66,9 @@ def test_one_meaning_per_top_level_name():
     for name in skinrender.__all__:
         assert not isinstance(getattr(skinrender, name), type(skinrender)), f"skinrender.{name} is a module"
     for name, value in vars(skinrender).items():
-        if isinstance(value, type(skinrender)) and not name.startswith("_"):
+        # "@py_builtins", "@pytest_ar": pytest's assertion rewriting, which marks the whole package once its
+        # pytest11 entry point (skinrender.testing.plugin) is installed; never a Python name
+        if isinstance(value, type(skinrender)) and not name.startswith(("_", "@")):
             assert name in LAYER_MODULES, f"skinrender.{name} is a module outside the layers"
     for package in ("model", "evaluation", "design", "rendering", "studies", "cli", "datasets", "testing"):
         module = importlib.import_module(f"skinrender.{package}")

@@ -35,7 +35,7 @@ from ..evaluation.verdict import ALPHA_DIFFERENCE
 from .reference import ReferenceProblem, read_reference, sidecar_of, state, write_reference
 from .regression import REFERENCE_SPP_FACTOR, Comparison, compare, measure, setting_notes
 
-__all__ = ["RenderRegression", "render_regression", "pytest_addoption", "pytest_terminal_summary", "safe_name"]
+__all__ = ["RenderRegression", "render_regression", "pytest_addoption", "pytest_terminal_summary", "safe_name", "shown"]
 
 _WRITTEN = pytest.StashKey[list]()
 _CLAIMED = pytest.StashKey[dict]()
@@ -62,6 +62,14 @@ def safe_name(text: str) -> str:
     'tests_test_a.py__test_chart_macbeth-2856_'
     """
     return re.sub(r"[^\w.-]", "_", text)
+
+
+def shown(path: Path) -> Path:
+    """``path`` relative to the working folder where it lies inside it (as pytest shows test files)."""
+    try:
+        return Path(path).resolve().relative_to(Path.cwd().resolve())
+    except ValueError:
+        return Path(path)
 
 
 class RenderRegression:
@@ -165,7 +173,7 @@ class RenderRegression:
             self._config.stash.setdefault(_WRITTEN, []).append((self._request.node.nodeid, written[0]))
             return None
         if found == "missing":
-            raise ReferenceProblem(f"no reference render {self._shown(path)} (nor its sidecar "
+            raise ReferenceProblem(f"no reference render {shown(path)} (nor its sidecar "
                                    f"{sidecar_of(path).name}): write it with `pytest --skinrender-regen "
                                    f"{shlex.quote(self._request.node.nodeid)}` and commit both files")
         new = measure(scene, camera, prevailing, calibration, **options)
@@ -176,27 +184,23 @@ class RenderRegression:
             pytest.fail(self._failure(new, reference, result), pytrace=False)
         return result
 
-    def _shown(self, path: Path) -> Path:
-        """``path`` relative to the working folder where it lies inside it (as pytest shows test files)."""
-        try:
-            return Path(path).resolve().relative_to(Path.cwd().resolve())
-        except ValueError:
-            return Path(path)
-
     def _failure(self, new, reference, result: Comparison) -> str:
         settings = new.settings
         beyond = result.beyond
         lines = [f"render_regression.check: {settings['scene']} through {settings['camera']} differs from its "
-                 f"reference {self._shown(reference.path)} beyond the noise:",
+                 f"reference {shown(reference.path)} beyond the noise:",
                  f"  {result.summary()}",
-                 f"  {len(beyond)} of {len(result.items)} values beyond it: "
+                 f"  {len(beyond)} of {len(result.items)} values beyond their critical values: "
                  + ", ".join(f"{result.items[i]} ({result.z[i]:+.3g})" for i in beyond[:6])
                  + (", …" if len(beyond) > 6 else "")]
         lines += [f"  note: {note}" for note in result.notes]
         folder = self._config.getoption("skinrender_results")
         if folder is not None:
-            files = self._write_results(Path(folder), new, reference, result)
-            lines.append("  files: " + ", ".join(str(f) for f in files))
+            try:
+                files = self._write_results(Path(folder), new, reference, result)
+                lines.append("  files: " + ", ".join(str(f) for f in files))
+            except (OSError, SkinrenderError) as error:
+                lines.append(f"  files: --skinrender-results {folder}: not written ({error})")
         else:
             lines.append("  (--skinrender-results DIR writes the new render, the reference and a difference "
                          "figure; --skinrender-regen accepts the new render as the reference)")
@@ -232,4 +236,4 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config) -> None:
     if written:
         terminalreporter.section("skinrender references written")
         for node, path in written:
-            terminalreporter.write_line(f"{path} (+ {sidecar_of(path).name})  ← {node}")
+            terminalreporter.write_line(f"{shown(path)} (+ {sidecar_of(path).name})  ← {node}")

@@ -29,17 +29,10 @@ relative_k``.
 
 **Faces** (:func:`skinrender.rendering.face.render_face`): each labelled
 region's mean per channel (label 0 background, 1 skin, 2… props) and the skin
-region's NCC ``r, g`` (Eq. 2 of the region's mean). A region's pixels are not
-samples of one mean (its shading varies pixel to pixel), so its pixel spread
-says nothing of the noise. Instead the face is rendered as
-:data:`REPLICATES` independent replicates of ``spp / REPLICATES`` samples
-each (seeds drawn from ``seed``), the image is their mean, and each pixel's
-Monte Carlo covariance of that mean is its sample covariance over the
-replicates divided by their number. Pixels are independent (box filter), so a
-region mean's covariance is the sum of its pixels' over ``n²``, with
-Satterthwaite's degrees of freedom ``(Σ v_i)² / Σ (v_i² / (K − 1))``; the
-NCC's by the delta method. The labels come from the geometry and are the same
-in every replicate.
+region's NCC ``r, g``, their standard errors from :data:`REPLICATES`
+independent replicates (:mod:`skinrender.testing.replicates`: a region's
+pixels are not samples of one mean, its shading varies, so the noise comes
+from each pixel's Monte Carlo variance over the replicates).
 
 Each difference is held to Student's t at its own (Welch's) degrees of
 freedom, at the Šidák level of the family. Values that are exactly equal with
@@ -70,12 +63,10 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..evaluation.verdict import ALPHA_DIFFERENCE, Verdict, difference, sidak
 from ..hints import NDArrayFloat
+from .replicates import REPLICATES, measure_face, region_values
 
-__all__ = ["REPLICATES", "REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
-           "Comparison", "scene_kind", "measure", "values_of", "compare"]
-
-REPLICATES = 4
-"""Independent replicates a face is rendered as, for its per-pixel Monte Carlo covariance."""
+__all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
+           "Comparison", "scene_kind", "measure", "values_of", "setting_notes", "compare"]
 
 REFERENCE_SPP_FACTOR = 4
 """A reference is rendered at this many times the check's spp (and the same seed): its own noise then moves
@@ -237,91 +228,6 @@ def _chart(chart, cam, prevailing, calibration, spp, seed, imager, illuminance, 
                        se.ravel(), np.where(se.ravel() > 0, dof.ravel(), np.inf), settings)
 
 
-def replicate_seeds(seed: int, count: int = REPLICATES) -> list[int]:
-    """
-    The 32-bit seeds of a face's replicates: distinct for every ``seed`` and replicate.
-
-    >>> len(set(replicate_seeds(0) + replicate_seeds(1)))
-    8
-    """
-    return [int(s) for s in np.random.SeedSequence([int(seed), 0xFACE]).generate_state(count)]
-
-
-def _face_values(image: NDArrayFloat, labels: NDArrayFloat, regions: dict,
-                 covariance: NDArrayFloat | None = None) -> tuple:
-    """
-    The region means per channel and the skin NCC ``r, g`` of ``image``; with the per-pixel ``covariance``
-    of the mean ``(h, w, 3, 3)`` also their standard errors and Satterthwaite degrees of freedom.
-    """
-    means, ses, dofs = [], [], []
-    pixels = np.asarray(image, dtype=np.float64)
-    for name, label in regions.items():
-        mask = labels == label
-        n = int(mask.sum())
-        region = pixels[mask].mean(axis=0)
-        means.append(region)
-        if covariance is not None:
-            cov = covariance[mask].sum(axis=0) / n**2
-            variances = np.diagonal(covariance[mask], axis1=1, axis2=2)  # (n, 3)
-            total = variances.sum(axis=0)
-            spread = np.sum(variances**2, axis=0) / (REPLICATES - 1)
-            dof = np.divide(total**2, spread, out=np.full(3, np.inf), where=spread > 0)
-            ses.append(np.sqrt(np.maximum(np.diagonal(cov), 0.0)))
-            dofs.append(dof)
-            if name == "skin":
-                skin_cov, skin_dof = cov, float(np.min(dof))
-    if "skin" in regions:
-        skin = means[list(regions).index("skin")]
-        total = skin.sum()
-        ncc = skin / total if total > 0 else np.full(3, 1 / 3)
-        means.append(ncc[:2])
-        if covariance is not None:
-            jacobian = (np.eye(3) - ncc[:, None]) / (total if total > 0 else 1.0)
-            ses.append(np.sqrt(np.maximum(np.diagonal(jacobian @ skin_cov @ jacobian.T)[:2], 0.0)))
-            dofs.append(np.full(2, skin_dof))
-    mean = np.concatenate(means)
-    if covariance is None:
-        return mean, None, None
-    se = np.concatenate(ses)
-    return mean, se, np.where(se > 0, np.concatenate(dofs), np.inf)
-
-
-def _face(scene, cam, prevailing, calibration, spp, seed, physics, skin, imager, illuminance, size,
-          variant) -> Measurement:
-    from ..rendering.face import render_face
-    from ..rendering.renderer import channel_names
-
-    if spp < REPLICATES:
-        raise SkinrenderError(f"spp: a face check renders {REPLICATES} replicates, so spp must be at least "
-                              f"{REPLICATES}, got {spp}")
-    effects = physics or "direct"
-    if imager is not None and "noise" not in effects.split("+"):
-        effects = "noise" if effects == "direct" else effects + "+noise"
-    elif illuminance is not None and "noise" not in effects.split("+"):
-        raise SkinrenderError("illuminance sets the image sensor's exposure: it goes with imager (or physics "
-                              "'noise')")
-    renders = [render_face(cam, scene, prevailing, calibration, skin=skin, physics=effects, spp=spp // REPLICATES,
-                           seed=s, size=size, variant=variant, imager=imager, illuminance=illuminance)
-               for s in replicate_seeds(seed)]
-    first = renders[0]
-    stack = np.array([r.image for r in renders], dtype=np.float64)
-    image = stack.mean(axis=0).astype(np.float32)
-    deviation = stack - stack.mean(axis=0)
-    covariance = np.einsum("khwi,khwj->hwij", deviation, deviation) / (REPLICATES - 1) / REPLICATES
-    present = np.unique(first.labels)
-    regions = {name: int(label) for name, label in first.label_names.items() if label in present}
-    mean, se, dof = _face_values(image, first.labels, regions, covariance)
-    items = tuple(f"{n} / {c}" for n in regions for c in cam.channels)
-    items += ("skin NCC / r", "skin NCC / g") if "skin" in regions else ()
-    settings = {"spp": int(first.spp) * REPLICATES, "variant": first.variant, "physics": first.physics,
-                "skin": first.skin, "size": [int(first.image.shape[1]), int(first.image.shape[0])],
-                "replicates": REPLICATES, "scene_name": first.scene.name,
-                **({"imager": first.info["imager"], "illuminance_lux": first.info["illuminance_lux"]}
-                   if "imager" in first.info else {})}
-    return Measurement("face", image, first.labels.astype(np.int32), channel_names(cam), regions, items, mean, se,
-                       dof, settings)
-
-
 def _integer(value, name: str, low: int, high: int) -> int:
     if not (isinstance(value, (int, np.integer)) and not isinstance(value, bool) and low <= value < high):
         raise SkinrenderError(f"{name} must be an integer in [{low}, {high}), got {value!r}")
@@ -369,8 +275,8 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
         found = _chart(chart, cam, p, c, spp * factor, seed, imager, illuminance, variant)
         name = chart.name
     else:
-        found = _face(scene, cam, p, c, spp * factor, seed, physics, skin, imager, illuminance,
-                      SIZE_FACE if size is None else size, variant)
+        found = Measurement("face", *measure_face(scene, cam, p, c, spp * factor, seed, physics, skin, imager,
+                                                  illuminance, SIZE_FACE if size is None else size, variant))
         name = found.settings.pop("scene_name")
     from .. import __version__
 
@@ -387,7 +293,7 @@ def values_of(kind: str, image: NDArrayFloat, labels: NDArrayFloat | None, regio
         from ..rendering.balance import patch_statistics
 
         return patch_statistics(image, scene).mean.ravel()
-    return _face_values(image, labels, dict(regions))[0]
+    return region_values(image, labels, dict(regions))[0]
 
 
 @dataclass(frozen=True)

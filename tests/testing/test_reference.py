@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from skinrender.testing.reference import ReferenceProblem, read_reference, sidecar_of, state, write_reference
-from skinrender.testing.regression import Measurement, _face_values
+from skinrender.testing.regression import Measurement
+from skinrender.testing.replicates import region_values
 
 pytest.importorskip("OpenEXR")
 
@@ -21,7 +22,7 @@ def face(rng) -> Measurement:
     labels = np.zeros((6, 5), dtype=np.int32)
     labels[1:4, 1:4] = 1
     regions = {"background": 0, "skin": 1}
-    mean = _face_values(image, labels, regions)[0]
+    mean = region_values(image, labels, regions)[0]
     items = ("background / R", "background / G", "background / B", "skin / R", "skin / G", "skin / B",
              "skin NCC / r", "skin NCC / g")
     return Measurement("face", image, labels, ("R", "G", "B"), regions, items, mean, np.full(8, 0.5),
