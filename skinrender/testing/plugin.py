@@ -32,10 +32,10 @@ import pytest
 
 from ..errors import SkinrenderError
 from ..evaluation.verdict import ALPHA_DIFFERENCE
-from .reference import ReferenceProblem, read_reference, sidecar_of, state, write_reference
+from .reference import ReferenceProblem, read_reference, shown, sidecar_of, state, write_reference
 from .regression import REFERENCE_SPP_FACTOR, Comparison, compare, measure, setting_notes
 
-__all__ = ["RenderRegression", "render_regression", "pytest_addoption", "pytest_terminal_summary", "safe_name", "shown"]
+__all__ = ["RenderRegression", "render_regression", "pytest_addoption", "pytest_terminal_summary", "safe_name"]
 
 _WRITTEN = pytest.StashKey[list]()
 _CLAIMED = pytest.StashKey[dict]()
@@ -62,14 +62,6 @@ def safe_name(text: str) -> str:
     'tests_test_a.py__test_chart_macbeth-2856_'
     """
     return re.sub(r"[^\w.-]", "_", text)
-
-
-def shown(path: Path) -> Path:
-    """``path`` relative to the working folder where it lies inside it (as pytest shows test files)."""
-    try:
-        return Path(path).resolve().relative_to(Path.cwd().resolve())
-    except ValueError:
-        return Path(path)
 
 
 class RenderRegression:

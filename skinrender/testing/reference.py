@@ -31,7 +31,8 @@ from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from .regression import Measurement, values_of
 
-__all__ = ["FORMAT", "Reference", "ReferenceProblem", "sidecar_of", "state", "write_reference", "read_reference"]
+__all__ = ["FORMAT", "Reference", "ReferenceProblem", "shown", "sidecar_of", "state", "write_reference",
+           "read_reference"]
 
 FORMAT = 1
 """The sidecar format (key ``skinrender_reference``)."""
@@ -64,6 +65,14 @@ class Reference:
         return tuple(item["name"] for item in self.sidecar["compared"]["items"])
 
 
+def shown(path: Path) -> Path:
+    """``path`` relative to the working folder where it lies inside it (as pytest shows test files)."""
+    try:
+        return Path(path).resolve().relative_to(Path.cwd().resolve())
+    except ValueError:
+        return Path(path)
+
+
 def sidecar_of(path: Path) -> Path:
     """The JSON sidecar of a reference EXR."""
     return Path(path).with_suffix(".json")
@@ -78,11 +87,11 @@ def _load_sidecar(path: Path) -> dict:
     try:
         document = json.loads(sidecar.read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as error:
-        raise ReferenceProblem(f"the reference's sidecar {sidecar} is unreadable ({type(error).__name__}: "
+        raise ReferenceProblem(f"the reference's sidecar {shown(sidecar)} is unreadable ({type(error).__name__}: "
                                f"{error}); it was not rewritten: delete it (and {Path(path).name}) to regenerate"
                                ) from None
     if not isinstance(document, dict) or document.get("skinrender_reference") != FORMAT:
-        raise ReferenceProblem(f"{sidecar} is not a skinrender reference sidecar (no 'skinrender_reference': "
+        raise ReferenceProblem(f"{shown(sidecar)} is not a skinrender reference sidecar (no 'skinrender_reference': "
                                f"{FORMAT}); it was not overwritten: move it away or give the check another basename")
     return document
 
@@ -97,7 +106,7 @@ def state(path: Path) -> str:
     if not path.exists() and not sidecar.exists():
         return "missing"
     if not sidecar.exists():
-        raise ReferenceProblem(f"{path} is there but its sidecar {sidecar.name} is not: it is not a skinrender "
+        raise ReferenceProblem(f"{shown(path)} is there but its sidecar {sidecar.name} is not: it is not a skinrender "
                                "reference (or its sidecar was lost); it was not overwritten: move it away or give "
                                "the check another basename")
     _load_sidecar(path)
@@ -168,10 +177,10 @@ def read_reference(path: Path, new: Measurement) -> Reference:
     path = Path(path)
     document = _load_sidecar(path)
     if not path.exists():
-        raise ReferenceProblem(f"the reference render {path} is missing (its sidecar {sidecar_of(path).name} is "
+        raise ReferenceProblem(f"the reference render {shown(path)} is missing (its sidecar {sidecar_of(path).name} is "
                                "there): restore it, or delete the sidecar and rerun with --skinrender-regen")
     if _sha256(path) != document.get("exr_sha256"):
-        raise ReferenceProblem(f"{path} changed after its sidecar was written (SHA-256 differs): restore it, or "
+        raise ReferenceProblem(f"{shown(path)} changed after its sidecar was written (SHA-256 differs): restore it, or "
                                "rerun with --skinrender-regen to write both again")
     try:
         settings, compared = document["settings"], document["compared"]["items"]
@@ -180,25 +189,25 @@ def read_reference(path: Path, new: Measurement) -> Reference:
         se = np.array([item["standard_error"] for item in compared], dtype=np.float64)
         dof = np.array([np.inf if item["dof"] is None else item["dof"] for item in compared], dtype=np.float64)
     except (KeyError, TypeError, ValueError) as error:
-        raise ReferenceProblem(f"the sidecar {sidecar_of(path)} lacks {error} (not written by this version of "
+        raise ReferenceProblem(f"the sidecar {shown(sidecar_of(path))} lacks {error} (not written by this version of "
                                "skinrender?): rerun with --skinrender-regen") from None
     if kind != new.kind:
-        raise ReferenceProblem(f"{path} is the reference of a {kind}, the check renders a {new.kind}: rerun with "
+        raise ReferenceProblem(f"{shown(path)} is the reference of a {kind}, the check renders a {new.kind}: rerun with "
                                "--skinrender-regen if the scene changed on purpose")
     try:
         stored = read_exr(path, (*channels, "label") if kind == "face" else channels)
     except Exception as error:  # OpenEXR raises bare exceptions for a damaged file
-        raise ReferenceProblem(f"the reference render {path} is unreadable ({' '.join(str(error).split())}): "
+        raise ReferenceProblem(f"the reference render {shown(path)} is unreadable ({' '.join(str(error).split())}): "
                                "restore it, or delete it and its sidecar and rerun with --skinrender-regen") from None
     image, labels = stored[..., :3], (stored[..., 3].astype(np.int32) if kind == "face" else None)
     if image.shape != new.image.shape:
         (h, w), (nh, nw) = image.shape[:2], new.image.shape[:2]
-        raise ReferenceProblem(f"{path} is {w}×{h} pixels, the render now {nw}×{nh}: the scene or its size "
+        raise ReferenceProblem(f"{shown(path)} is {w}×{h} pixels, the render now {nw}×{nh}: the scene or its size "
                                "changed; rerun with --skinrender-regen if on purpose")
     if tuple(names) != tuple(new.items):
         gone = [n for n in names if n not in new.items][:4]
         added = [n for n in new.items if n not in names][:4]
-        raise ReferenceProblem(f"the values compared differ from {path}'s (the reference has {gone or 'no others'}"
+        raise ReferenceProblem(f"the values compared differ from {shown(path)}'s (the reference has {gone or 'no others'}"
                                f", the render now {added or 'no others'}): the scene changed; rerun with "
                                "--skinrender-regen if on purpose")
     regions = document.get("regions")
