@@ -214,3 +214,19 @@ def test_safe_names_are_file_names():
 
     assert safe_name("test_x[a/b c]") == "test_x_a_b_c_"
     assert np.all([c.isalnum() or c in "._-" for c in safe_name("é::[]/\\ ")])
+
+
+def test_the_entry_point_names_the_module_it_loads():
+    """pyproject's pytest11 entry point: its name is the module's, so that ``-p skinrender.testing.plugin`` (this
+    repository's addopts) and the installed entry point register one plugin, not the same module twice."""
+    import importlib
+    import tomllib
+    from pathlib import Path
+
+    import skinrender
+
+    table = tomllib.loads((Path(skinrender.__file__).parents[1] / "pyproject.toml").read_text(encoding="utf-8"))
+    points = table["project"]["entry-points"]["pytest11"]
+    assert points == {"skinrender.testing.plugin": "skinrender.testing.plugin"}
+    module = importlib.import_module(points["skinrender.testing.plugin"])
+    assert callable(module.pytest_addoption) and hasattr(module, "render_regression")
