@@ -27,7 +27,7 @@ degrees of freedom. Every patch is divided by the rendered white reference
 (:func:`_white_relative_variance`): ``SE² = SE_patch² + mean² ·
 relative_k``.
 
-**Faces** (:func:`skinrender.rendering.face.render_face`): each labelled
+**Faces** (:func:`skinrender.rendering.face.render.render_face`): each labelled
 region's mean per channel (label 0 background, 1 skin, 2… props) and the skin
 region's NCC ``r, g``, their standard errors from :data:`REPLICATES`
 independent replicates (:mod:`skinrender.testing.replicates`: a region's
@@ -54,9 +54,7 @@ References
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
@@ -129,28 +127,16 @@ class Measurement:
 
 def scene_kind(spec) -> str:
     """
-    ``face`` for a face scene (a :class:`~skinrender.rendering.face_scene.FaceScene`, a bundled face name,
-    or a ``.toml`` with a ``[mesh]``), else ``chart`` (the chart loader then names any error).
+    ``face`` for a face scene (:func:`skinrender.rendering.face.scene.is_face_scene`: a ``FaceScene``, a bundled
+    face name, or a ``.toml`` with ``[camera]`` and ``[mesh]``), else ``chart`` (the chart loader then names any
+    error).
 
     >>> scene_kind("macbeth"), scene_kind("face")
     ('chart', 'face')
     """
-    from ..rendering.scene import ROOT_SCENES, ChartScene
+    from ..rendering.face.scene import is_face_scene
 
-    if isinstance(spec, ChartScene):
-        return "chart"
-    if hasattr(spec, "mesh"):
-        return "face"
-    text = str(spec).strip()
-    if text in {p.stem for p in (ROOT_SCENES / "face").glob("*.toml")}:
-        return "face"
-    path = Path(text)
-    if path.suffix == ".toml" and path.is_file():
-        try:
-            return "face" if "mesh" in tomllib.loads(path.read_text(encoding="utf-8")) else "chart"
-        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
-            return "chart"
-    return "chart"
+    return "face" if is_face_scene(spec) else "chart"
 
 
 def _named(name: str, function, *args, **kwargs):
