@@ -14,6 +14,7 @@ from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options
                      choices_help, emit, flag, grid_of, render_options, table)
 from ..studies.labelled import chart_figure
 from .face import check_figure
+from .subsurface import subsurface_keys, subsurface_lines
 
 
 def add_parsers(commands) -> None:
@@ -81,12 +82,20 @@ def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
     """
     from ..rendering.scene import load_scene
 
+    from ..rendering.balance import CHART_PHYSICS
+
     flag("SCENE", load_scene, args.scene)
-    given = [name for name, on in (("--physics", args.physics != "direct"), ("--skin", skin and args.skin is not None),
-                                   ("--size", args.size is not None)) if on]
+    physics = str(args.physics).strip()
+    given = [name for name, on in (("--physics", physics not in CHART_PHYSICS),
+                                   ("--skin", skin and args.skin is not None), ("--size", args.size is not None)) if on]
     if given:
         raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
-                              "(e.g. 'face'), not a chart")
+                              f"(e.g. 'face'), not a chart" + (f" (a chart takes --physics {' or '.join(CHART_PHYSICS)})"
+                                                                if "--physics" in given else ""))
+    if physics == "subsurface":
+        from .subsurface import check_chart_subsurface
+
+        check_chart_subsurface(args)
 
 
 def render_inputs(args: argparse.Namespace) -> dict:
@@ -131,7 +140,8 @@ def render_with(args: argparse.Namespace, inputs: dict, options: dict, imaging: 
     grid = grid_of(args) if hasattr(args, "grid") else None
     extra = {} if grid is None else {"grid": grid}
     if imaging is None:
-        return render(**inputs, normalization=normalization, knee=knee, **extra, **options), None
+        physics = str(getattr(args, "physics", "direct")).strip()
+        return render(**inputs, normalization=normalization, knee=knee, physics=physics, **extra, **options), None
     from ..rendering.imaging import render_imaged
 
     imaged = render_imaged(inputs["scene"], inputs["camera_"], inputs["prevailing"], inputs["calibration"],
@@ -189,7 +199,8 @@ def command_render(args: argparse.Namespace) -> None:
                 "sampler": options["sampler"], "seed": args.seed, "variant": result.variant,
                 "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
-                "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged)}
+                "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged),
+                **subsurface_keys(result)}
     if figure is not None:
         document["figure"] = str(chart_figure(result, figure))
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "
@@ -216,7 +227,8 @@ def command_validate(args: argparse.Namespace) -> None:
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp and validating …", file=sys.stderr)
     if imaging is not None:
         return validate_through_imager(args, inputs, options, imaging)
-    result = validate(**inputs, normalization=args.normalization, knee=args.knee, grid=grid_of(args), **options)
+    result = validate(**inputs, normalization=args.normalization, knee=args.knee, grid=grid_of(args), **options,
+                      physics=str(args.physics).strip())
     r = result.rendering
     document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
                 "calibration_K": r.calibration, "normalization": args.normalization, "knee": args.knee,
@@ -224,8 +236,9 @@ def command_validate(args: argparse.Namespace) -> None:
                 "elapsed_s": r.seconds, "sigmas": SIGMAS, "patches": result.patches(), "worst": result.worst(),
                 "max_rel_error": float(result.rel_error.max()), "quadrature_rel_difference": result.quadrature,
                 "passed": result.passed}
+    document.update(subsurface_keys(r, document["patches"]))
     lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
-             f"{options['spp']} spp {options['sampler']}, {r.variant}, {r.seconds:.2f} s"]
+             f"{options['spp']} spp {options['sampler']}, {r.variant}, {r.seconds:.2f} s", *subsurface_lines(r)]
     rows = [[p["name"][:28], *(f"{v:.3f}" for v in p["rendered"]), *(f"{v:.1e}" for v in p["rel_error"]),
              "ok" if p["passed"] else "FAIL"] for p in document["patches"]]
     lines.append(table(rows, ["patch", "R", "G", "B", "relerr R", "relerr G", "relerr B", ""]))
@@ -300,7 +313,7 @@ def command_detect(args: argparse.Namespace) -> None:
                 "mask_png": str(output), "preview_png": str(preview), "per_patch": result.per_patch,
                 "scored_min_output": SCORED_MIN_OUTPUT,
                 "boundary": args.boundary, "spp": rendering.raw[0].spp, "spp_requested": options["spp"],
-                "variant": rendering.variant, **imaging_document(imaged)}
+                "variant": rendering.variant, **imaging_document(imaged), **subsurface_keys(rendering)}
     rows = [[p["name"][:30], "skin" if p["is_skin"] else "",
              "undefined" if p["detected_fraction"] is None else f"{p['detected_fraction']:.2f}"]
             for p in result.per_patch]

@@ -38,7 +38,14 @@ from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .renderer import RawRender, render_raw
 from .scene import ChartScene, load_scene
 
-__all__ = ["PatchStatistics", "patch_statistics", "Rendering", "pair_gain", "balance", "render"]
+__all__ = ["PatchStatistics", "patch_statistics", "Rendering", "pair_gain", "balance", "render", "CHART_PHYSICS"]
+
+CHART_PHYSICS = {
+    "direct": "Lambertian patches under the directional light along the view axis (the analytic model's world)",
+    "subsurface": "the skin patches as the skin model's two layers under a dielectric boundary, lit by a uniform "
+                  "sky, against their slab's adding-doubling reflectance",
+}
+"""Levels of physics of a chart, name → meaning."""
 
 
 @dataclass(frozen=True)
@@ -192,6 +199,7 @@ def render(
     channels: str = "auto",
     cache: dict | None = None,
     emitter: str = "tabulated",
+    physics: str = "direct",
 ) -> Rendering:
     """
     Render a chart through a camera under ``prevailing`` light, white balanced
@@ -208,6 +216,12 @@ def render(
         that its noise is independent of the prevailing render's.
     cache
         A dict to reuse raw renders across calls, keyed by temperature.
+    physics
+        ``direct`` (Lambertian patches under the directional light) or ``subsurface``: the skin patches as the
+        skin model's layers under a sky (:mod:`skinrender.rendering.subsurface_chart`; the calibration render
+        renders the Lambertian patches only, the white balance reading the white alone). ``info`` then has
+        ``physics``, ``reflectances`` (per patch, what Eq. 4 is checked with: the slab's adding-doubling
+        reflectance for a skin patch) and ``skin_model`` (per patch its layers' source, or ``None``).
 
     Returns
     -------
@@ -219,17 +233,24 @@ def render(
     validate_method(normalization, NORMALISATIONS, "normalization")
     p, c = _temperature(prevailing), _temperature(calibration)
     cache = {} if cache is None else cache
+    validate_method(physics, CHART_PHYSICS, "physics (of a chart)")
+    info = {}
+    if physics == "subsurface":
+        from .subsurface_chart import subsurface_renderer
 
-    def raw(temperature: float, offset: int) -> RawRender:
-        key = (temperature, offset)
+        renderer = subsurface_renderer(chart, cam, spp, sampler, variant, grid, channels)
+        info = {"physics": physics, "reflectances": renderer.chart.reflectances, "skin_model": renderer.chart.rows()}
+
+    def raw(temperature: float, offset: int, skins: bool = True) -> RawRender:
+        key = (temperature, offset) if physics == "direct" else (temperature, offset, physics, skins)
         if key not in cache:
-            cache[key] = render_raw(chart, cam, temperature, spp, seed + offset, sampler, variant, grid, channels,
-                                    emitter)
+            cache[key] = (render_raw(chart, cam, temperature, spp, seed + offset, sampler, variant, grid, channels,
+                                     emitter) if physics == "direct" else renderer.raw(temperature, seed + offset, skins))
         return cache[key]
 
     raw_p = raw(p, 0)
-    raw_c = raw_p if c == p else raw(c, 1)
+    raw_c = raw_p if c == p else raw(c, 1, skins=False)
     image, white_error, white_ratio = balance(raw_p, raw_c, chart, cam, normalization, knee, grid)
     return Rendering(chart, cam, p, c, normalization, knee, image, patch_statistics(image, chart), white_error,
-                     (raw_p,) if raw_c is raw_p else (raw_p, raw_c), {"white_ratio": white_ratio})
+                     (raw_p,) if raw_c is raw_p else (raw_p, raw_c), {"white_ratio": white_ratio, **info})
 

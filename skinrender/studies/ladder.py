@@ -40,7 +40,8 @@ from ..hints import NDArrayFloat
 from ..model.camera import camera
 from ..model.chromaticity import ncc
 from ..rendering.face import planckian_temperature, render_face
-from ..rendering.face.effects import LEVELS_LADDER, parse_physics
+from ..rendering.face.effects import LEVELS_LADDER, parse_physics, physics_level
+from ..rendering.face.render import check_cost
 from ..rendering.face.labels import LABEL_SKIN
 from ..rendering.face.scene import load_face_scene, skin_reflectance_of
 from ..rendering.validation import analytic_reference
@@ -247,6 +248,10 @@ def ladder(
         raise SkinrenderError("levels: name at least one level of physics")
     for level in levels:
         parse_physics(level)
+    side = (face.camera.width, face.camera.height) if size is None else (size, size)
+    seconds = sum(check_cost(physics_level(level), side[0] * side[1], spp) for level in levels)  # refused first
+    if progress is not None and seconds > 60:
+        progress(f"the {len(levels)} levels should take about {seconds / 60:.0f} min on one core")
     locus = skin_locus(cam, "skin", calibration=c, grid=grid)
     analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
     rows, frames, shape = [], [], None

@@ -56,13 +56,14 @@ from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
 from ..exr import camera_attributes, write_exr, write_preview
 from ..outputs import draw_figure, save_result
 from ..renderer import SAMPLERS, SAMPLES_MAX, channel_names
-from ..variants import choose_variant, mitsuba
+from ..variants import mitsuba
 from .document import channel_groups, channel_integral, face_document, light_irradiance
 from .effects import Frame, Level, physics_level
 from .labels import label_names, render_labels, shape_labels
 from .scene import MESH_HEAD, FaceScene, load_face_scene, prevailing_name, skin_reflectance_of
 
-__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "write_face_exr"]
+__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "write_face_exr",
+           "check_cost"]
 
 _LOADED: dict = {}
 _LOADED_MAX = 6
@@ -275,6 +276,7 @@ def render_face(
     if spp * pixels > SAMPLES_MAX:
         raise SkinrenderError(f"spp {spp} × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
                               f"{SAMPLES_MAX:.3g}; at most {SAMPLES_MAX // pixels} spp at this size")
+    check_cost(level, pixels, spp)
     name = prevailing_name(face)
     if illuminance is not None and getattr(face, name) is not None:
         if not (isinstance(illuminance, (int, float)) and np.isfinite(illuminance) and illuminance > 0):
@@ -290,7 +292,7 @@ def render_face(
     lights = level.lights(face)
     white_p, white_c = white_references(face, cam, c, grid)
     scale = max(float(np.max(light_irradiance(light, grid)[1])) for light in lights.values())
-    variant = choose_variant(variant)
+    variant = level.choose_variant(variant)
     mi = mitsuba(variant)
     groups = channel_groups(cam, grid, channels)
     width, height = face.camera.width, face.camera.height
@@ -312,6 +314,23 @@ def render_face(
     return FaceRendering(face, cam, level.name, skin, float(p), float(c), image.astype(np.float32), radiance,
                          labels, label_names(face), spp_used, int(spp), int(seed), sampler, variant,
                          time.perf_counter() - start, len(groups), white_p, white_c, applied, frame.info)
+
+
+def check_cost(level: Level, pixels: int, spp: int) -> float:
+    """
+    The seconds a render of ``pixels`` at ``spp`` should take at ``level`` on one core
+    (:meth:`~skinrender.rendering.face.effects.Level.seconds`), refused above the time the base takes for the most
+    samples one pass may hold (:data:`~skinrender.rendering.renderer.SAMPLES_MAX`), with the most spp at this size.
+    """
+    seconds = level.seconds(pixels * spp)
+    cap = level.effects[0].samples_per_s and SAMPLES_MAX / level.effects[0].samples_per_s
+    if cap and seconds > cap:
+        most = int(cap * level.samples_per_s // pixels)
+        raise SkinrenderError(f"spp {spp} × {pixels} pixels at physics {level.name} ({level.samples_per_s:.3g} "
+                              f"samples/s): about {seconds / 60:.0f} min on one core, more than the "
+                              f"{cap / 60:.0f} min a render may take; at most {most} spp at this size"
+                              + ("" if most else " (a smaller size)"))
+    return seconds
 
 
 def write_face_exr(path: str | Path, rendering: FaceRendering,

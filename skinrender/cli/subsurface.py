@@ -1,0 +1,86 @@
+"""
+``--physics subsurface`` on a chart (``render``, ``validate``, ``detect``)
+==========================================================================
+
+The chart commands take ``--physics direct`` (the default) or ``subsurface``:
+the chart's skin patches rendered as the skin model's two layers under a
+dielectric boundary, lit by a uniform sky
+(:mod:`skinrender.rendering.subsurface_chart`), each checked by ``validate``
+against Eq. 4 of its slab's adding-doubling reflectance.
+
+-   :func:`check_chart_subsurface`: the flags that do not go with it refused,
+    and a render too long refused with its estimate, before any work.
+-   :func:`subsurface_keys`: what the JSON of a subsurface chart adds.
+-   :func:`subsurface_lines`: the text lines it adds.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from ..errors import SkinrenderError
+from .common import flag, render_options
+
+__all__ = ["check_chart_subsurface", "subsurface_keys", "subsurface_lines"]
+
+
+def check_chart_subsurface(args: argparse.Namespace) -> None:
+    """
+    Refuse, naming the flag, what a subsurface chart does not take (``--imager`` and its settings, ``--gamut``), and
+    a render whose estimate on one core exceeds :data:`~skinrender.rendering.subsurface_chart.SECONDS_MAX`
+    (naming ``--spp`` with the most it may be).
+    """
+    from ..rendering.scene import load_scene
+    from ..rendering.subsurface_chart import SAMPLES_PER_S_SLAB, SECONDS_MAX, estimate_seconds
+
+    for name in ("imager", "illuminance", "exposure"):
+        if getattr(args, name, None) is not None:
+            raise SkinrenderError(f"--{name}: a chart at --physics subsurface is rendered without an image sensor; "
+                                  "drop it (or use --physics direct)")
+    if getattr(args, "gamut", False):
+        raise SkinrenderError("--gamut compares the Lambertian chart's gamut volumes; it does not go with --physics "
+                              "subsurface")
+    scene = flag("SCENE", load_scene, args.scene)
+    if not any(patch.skin for patch in scene.patches):
+        raise SkinrenderError(f"--physics subsurface renders a chart's skin patches (skin = true) as the skin "
+                              f"model's layers; {scene.name} has none")
+    spp = render_options(args)["spp"]
+    seconds = estimate_seconds(scene, spp)
+    if seconds > SECONDS_MAX:
+        most = max(1, int(spp * SECONDS_MAX / seconds))
+        raise SkinrenderError(f"--spp {spp}: the {sum(p.skin for p in scene.patches)} skin patches of {scene.name} "
+                              f"as media would take about {seconds / 60:.0f} min on one core "
+                              f"({SAMPLES_PER_S_SLAB:g} samples/s), more than {SECONDS_MAX / 60:.0f} min; give "
+                              f"--spp {most} or fewer")
+
+
+def subsurface_keys(rendering, rows: list[dict] | None = None) -> dict:
+    """
+    The keys a subsurface chart's JSON adds (``{}`` at ``direct``): ``physics``, ``light`` (the sky), and per
+    patch ``skin_model``: the layers' ``spec``, ``source`` (``parameters`` or ``fit``), ``parameters``,
+    ``fit_rms``, ``bounds_hit`` and ``dermis_mm`` (``None`` for a Lambertian patch), as a list in the scene's
+    order, or, given the document's per-patch ``rows``, added to each row.
+    """
+    if rendering.info.get("physics") != "subsurface":
+        return {}
+    models = rendering.info["skin_model"]
+    keys = {"physics": "subsurface",
+            "light": "a uniform sky of radiance P(λ)/π (Planck's P at the prevailing temperature), seen straight "
+                     "down: a skin patch's analytic value is Eq. 4 of its slab's adding-doubling reflectance (total, "
+                     "collimated normal incidence)"}
+    if rows is None:
+        return {**keys, "skin_model": models}
+    for row, model in zip(rows, models):
+        row["skin_model"] = model
+    return keys
+
+
+def subsurface_lines(rendering) -> list[str]:
+    """The text lines a subsurface chart adds (none at ``direct``): its skin patches' layers and their fits."""
+    if rendering.info.get("physics") != "subsurface":
+        return []
+    rows = [row for row in rendering.info["skin_model"] if row is not None]
+    fits = [row["fit_rms"] for row in rows if row["fit_rms"] is not None]
+    fitted = f", {len(fits)} fitted to their measured reflectance (RMS ≤ {max(fits):.4f})" if fits else ""
+    return [f"subsurface: {len(rows)} skin patches as the skin model's layers{fitted}, under a uniform sky; "
+            f"analytic: each slab's adding-doubling reflectance through Eq. 4"]
