@@ -82,7 +82,7 @@ SUBSURFACE_ALPHA = 0.35
 SCENE_SCALE_SUBSURFACE = 1000.0
 """The face's Mitsuba document in millimetres (scene units per metre)."""
 
-SAMPLES_PER_S_SUBSURFACE = 2000.0
+SAMPLES_PER_S_SUBSURFACE = 1200.0
 """Samples per second of the face (the ``face`` scene) at this level on one core, measured
 (``docs/subsurface.md``): the estimates' rate."""
 
