@@ -78,13 +78,13 @@ class TestEffectiveLayer:
     @pytest.mark.parametrize("melanin", MELANINS)
     def test_same_reflectance_at_normal_incidence_not_under_diffuse_light(self, melanin):
         """The approximation the face makes: exact for collimated normal incidence, off under diffuse light by
-        up to 0.007 (the epidermis filters twice near the surface; measured, docs/subsurface.md)."""
+        up to 0.012 (the epidermis filters twice near the surface; measured, docs/subsurface.md)."""
         layers = skin_layers(COARSE.wavelengths, SkinParameters(melanin=melanin))
         single = effective_layer(layers)
         assert single.thickness_mm is None and single.g == layers[1].g and single.n == layers[1].n
         np.testing.assert_allclose(reflectance_of_layers((single,)), reflectance_of_layers(layers), atol=1e-6)
         diffuse = np.abs(reflectance_of_layers((single,), diffuse=True) - reflectance_of_layers(layers, diffuse=True))
-        assert 1e-4 < diffuse.max() < 0.01
+        assert 1e-4 < diffuse.max() < 0.02
 
 
 class TestMitsubaPieces:

@@ -27,9 +27,9 @@ skin would skip a tenth of the epidermis (and an offset surface 0.1 mm inside
 a scanned mesh intersects itself). What the single medium misses: the
 epidermis filters the light twice near the surface where the effective medium
 spreads the absorption with depth, so under other light than collimated at
-normal incidence the two differ (diffuse incidence: by up to 0.007 in
-reflectance, 1.3 % at melanin 0.02 and 3.9 % at 0.3, measured with
-adding-doubling, ``docs/subsurface.md``).
+normal incidence the two differ (diffuse incidence: by up to 0.007, 0.012
+and 0.006 in reflectance, 1.3, 3.8 and 3.9 % relative, at melanin 0.02, 0.1
+and 0.3, measured with adding-doubling, ``docs/subsurface.md``).
 
 The document is written in millimetres (:data:`SCENE_SCALE_SUBSURFACE`) for
 the same reason; even so the skipped ~0.01 mm leaves a measured bias: a flat
