@@ -14,10 +14,10 @@ import argparse
 import json
 import math
 import sys
-import tempfile
 from pathlib import Path
 
 from ..errors import SkinrenderError, naming
+from ..files import check_output_path, shown
 
 __all__ = [
     "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
@@ -205,42 +205,23 @@ def variant_of(name: str | None) -> str | None:
     return name
 
 
-def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = (), folder: bool = False) -> Path | None:
+def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = ()) -> Path | None:
     """
-    Check an output path before any work is done (nothing is created).
+    Check an output file path before any work is done (nothing is left behind): the file it writes (a
+    symbolic link to a file: its target), or ``None`` when the flag ``name`` was not given.
 
-    Refused, with the flag ``name`` in the message: an empty path; a file path
-    that is an existing folder (or a folder path that is an existing file);
-    a suffix not in ``suffixes``; a parent that is a file; a place that cannot
-    be written. A missing parent folder is fine (it is created on writing).
-    ``None`` (the flag not given) passes through.
+    Refused, with the flag ``name`` in the message: an empty path; a suffix not in ``suffixes``; an existing
+    folder, pipe or device; a dangling symbolic link; a name too long; a parent that is a file; a place that
+    cannot be written (:func:`skinrender.files.check_output_path`). A missing parent folder is fine (it is
+    created on writing, and removed again when the writing fails).
     """
     if path is None:
         return None
     if not str(path).strip():
-        raise SkinrenderError(f"{name}: expected a {'folder' if folder else 'file'} path, got an empty one")
-    target = Path(path)
-    if folder and target.exists() and not target.is_dir():
-        raise SkinrenderError(f"{name}: {target} is an existing file, expected a folder")
-    if not folder:
-        if target.is_dir():
-            raise SkinrenderError(f"{name}: {target} is a folder, expected a file")
-        if suffixes and target.suffix.lower() not in suffixes:
-            raise SkinrenderError(f"{name}: {target} must end in {' or '.join(suffixes)}")
-    parent = target if folder else target.parent
-    existing = parent
-    while not existing.exists():
-        if existing == existing.parent:
-            break
-        existing = existing.parent
-    if existing.exists() and not existing.is_dir():
-        raise SkinrenderError(f"{name}: {existing} is a file, so {target} cannot be created")
-    try:  # the only sure test that a place takes files: make one there, and remove it
-        with tempfile.TemporaryFile(dir=existing):
-            pass
-    except OSError as error:
-        raise SkinrenderError(f"{name}: {target} cannot be written ({error.strerror or error})") from None
-    return target
+        raise SkinrenderError(f"{name}: expected a file path, got an empty one", flag=name)
+    if suffixes and Path(path).suffix.lower() not in suffixes:
+        raise SkinrenderError(f"{name}: {shown(path)} must end in {' or '.join(suffixes)}", flag=name)
+    return check_output_path(path, name)
 
 
 def check_lights(args: argparse.Namespace, cam, temperatures, grid=None, name: str = "--illuminants") -> None:
@@ -277,25 +258,30 @@ def camera_of(args: argparse.Namespace, grid=None, name: str = "--camera"):
     return cam
 
 
-def coverage_hint(message: str, args: argparse.Namespace) -> str:
+def coverage_hint(error, args: argparse.Namespace) -> str:
     """
-    A refusal of spectra that do not cover the grid, its advice kept to the flags the command has
-    (``--grid``, ``--extrapolation``); any other message as it is.
+    The line of a refusal: for spectra that do not cover the grid (``error.cause == "coverage"``) its advice
+    kept to the flags the command has (``--grid``, ``--extrapolation``; an ``--extrapolation`` that was given
+    and still refused does not apply to those spectra, so it is not advised); any other error as it is.
 
     >>> import argparse
-    >>> coverage_hint("x.csv: measured over 420–680 nm, which does not cover the grid 400–700 nm; choose a grid "
-    ...               "inside the data or state an extrapolation ('zero' or 'constant')", argparse.Namespace())
+    >>> from skinrender.errors import SkinrenderError
+    >>> coverage_hint(SkinrenderError("x.csv: measured over 420–680 nm, which does not cover the grid 400–700 nm",
+    ...                               cause="coverage", hint="choose a grid inside the data"), argparse.Namespace())
     'x.csv: measured over 420–680 nm, which does not cover the grid 400–700 nm; this command integrates over that grid: give spectra that cover it'
     """
-    advice = "; choose a grid inside the data or state an extrapolation ('zero' or 'constant')"
-    if not message.endswith(advice):
-        return message
-    grid, extrapolation = hasattr(args, "grid"), hasattr(args, "extrapolation")
-    if grid and extrapolation:
-        return message[: -len(advice)] + "; choose a --grid inside the data or an --extrapolation ('zero' or 'constant')"
+    if not isinstance(error, SkinrenderError) or error.cause != "coverage":
+        return str(error)
+    message = error.message
+    grid, extrapolation = hasattr(args, "grid"), getattr(args, "extrapolation", None)
+    if grid and extrapolation == "refuse":
+        return message + "; choose a --grid inside the data or an --extrapolation ('zero' or 'constant')"
+    if grid and extrapolation is not None:
+        return (message + f"; choose a --grid inside the data (--extrapolation {extrapolation} applies to CSV "
+                "files, not to these spectra)")
     if grid:
-        return message[: -len(advice)] + "; choose a --grid inside the data"
-    return message[: -len(advice)] + "; this command integrates over that grid: give spectra that cover it"
+        return message + "; choose a --grid inside the data"
+    return message + "; this command integrates over that grid: give spectra that cover it"
 
 
 ILLUMINANCE_DEFAULT = 500.0

@@ -159,7 +159,7 @@ def command_search(args: argparse.Namespace) -> None:
         max_triplets=max_triplets, noisy=noisy,
     )
     if args.csv is not None:
-        result.to_csv(args.csv)
+        result.to_csv(args.csv, "--csv")
     best = result.table(args.tie_tolerance)
     document = {
         "sensor": args.sensor,

@@ -9,6 +9,7 @@ import argparse
 import numpy as np
 
 from ..errors import SkinrenderError
+from ..files import write_output
 from .common import HELP_CAMERA, camera_of, check_lights, add_common, check_output, emit, flag
 
 
@@ -66,7 +67,7 @@ def command_locus(args: argparse.Namespace) -> None:
     from ..spectra import GRID_DEFAULT
     from ..studies.figures import figure_locus
 
-    check_output(args.plot, "--plot", (".png",))
+    plot = check_output(args.plot, "--plot", (".png",))
     cam = camera_of(args)
     temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
     check_lights(args, cam, temperatures)
@@ -93,10 +94,11 @@ def command_locus(args: argparse.Namespace) -> None:
         # the Planckian track: a white object under 2000–10000 K, balanced to the calibration (or 5900 K)
         reference = calibration if calibration is not None else 5900.0
         track = ncc(response(cam, np.ones((1, GRID_DEFAULT.size)), np.linspace(2000, 10000, 81), reference))[:, 0, :2]
-        figure_locus(locus.polygon, locus.area, args.boundary, locus_points(cam, skin, temperatures, calibration),
-                     skin.name, track, f"Planckian track (white, calibration {reference:g} K)",
-                     f"Skin locus of {cam.name}", args.plot)
-        document["plot"] = args.plot
+        points = locus_points(cam, skin, temperatures, calibration)
+        write_output(plot, lambda stream: figure_locus(
+            locus.polygon, locus.area, args.boundary, points, skin.name, track,
+            f"Planckian track (white, calibration {reference:g} K)", f"Skin locus of {cam.name}", stream), "--plot")
+        document["plot"] = str(plot)
     text = (f"skin locus of {cam.name} ({args.boundary}, {len(locus.polygon)} vertices, area {locus.area:.5f} in r,g) "
             f"over {len(temperatures)} illuminants, "
             + ("every calibration" if calibration is None else f"calibration {calibration:g} K") + "\n"

@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 
 from ..errors import SkinrenderError
+from ..files import TOML_BYTES_MAX, Output, exists, read_input, write_output, write_outputs
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, camera_of, check_output, check_seed,
                      choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
                      render_options, sensor_settings, table, variant_of)
@@ -208,11 +209,11 @@ def is_face_scene(spec: str) -> bool:
     if text in list_face_scenes():
         return True
     path = Path(text)
-    if path.suffix != ".toml" or not path.is_file():
-        return False
-    try:
-        table = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+    try:  # anything but a readable face TOML is left to the chart's loader, which says what is wrong
+        if path.suffix != ".toml" or not exists(path):
+            return False
+        table = tomllib.loads(read_input(path, TOML_BYTES_MAX, "a scene TOML").decode("utf-8"))
+    except (SkinrenderError, UnicodeDecodeError, tomllib.TOMLDecodeError):
         return False
     return "camera" in table and "mesh" in table
 
@@ -242,7 +243,8 @@ def command_ladder(args: argparse.Namespace) -> None:
                     progress=lambda line: print(line, file=sys.stderr))
     document = result.document()
     if plot is not None:
-        document["plot"] = str(result.figure(plot))
+        write_output(plot, result.figure, "--plot")
+        document["plot"] = str(plot)
 
     def triple(values) -> str:
         return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
@@ -267,7 +269,8 @@ def command_render_face(args: argparse.Namespace) -> None:
     face's (:func:`add_face_arguments`; absent ones take their defaults).
     """
     from ..model.response import knee as apply_knee
-    from ..rendering.face import render_face, write_face_exr
+    from ..rendering.exr import write_exr, write_preview
+    from ..rendering.face import face_exr, render_face
 
     options = render_options(args)
     output = check_output(getattr(args, "output", "render.exr"), "--output", (".exr",))
@@ -282,7 +285,17 @@ def command_render_face(args: argparse.Namespace) -> None:
         import dataclasses
 
         result = dataclasses.replace(result, image=apply_knee(result.image).astype(result.image.dtype))
-    path, preview = write_face_exr(output, result)
+    path, preview = output, output.with_suffix(".png")
+    outputs = [Output(path, "--output", lambda stream: write_exr(stream, *face_exr(result))),
+               Output(preview, "--output (its PNG preview)", lambda stream: write_preview(stream, result.image))]
+    if figure is not None:
+        from ..studies.figures import figure_face
+
+        title = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
+                 f"{result.prevailing:g} K balanced to {result.calibration:g} K\n{result.spp} spp; the labels outlined")
+        outputs.append(Output(figure, "--figure", lambda stream: figure_face(result.image, result.labels,
+                                                                             result.label_names, title, stream)))
+    write_outputs(*outputs)  # every file whole, or none of them
     document = {"image": str(path), "preview_png": str(preview), "channels": [*result.channels, "label"],
                 "spp": result.spp, "spp_requested": result.spp_requested, "sampler": result.sampler,
                 "seed": result.seed, "variant": result.variant, "elapsed_s": result.seconds,
@@ -292,11 +305,7 @@ def command_render_face(args: argparse.Namespace) -> None:
                 "labels": result.label_names, "physics": result.physics, "skin": result.skin,
                 "size": [result.scene.camera.width, result.scene.camera.height], **result.info}
     if figure is not None:
-        from ..studies.figures import figure_face
-
-        title = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
-                 f"{result.prevailing:g} K balanced to {result.calibration:g} K\n{result.spp} spp; the labels outlined")
-        document["figure"] = str(figure_face(result.image, result.labels, result.label_names, title, figure))
+        document["figure"] = str(figure)
     labels = ", ".join(f"{k}={v}" for k, v in result.label_names.items())
     text = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
             f"{result.prevailing:g} K white-balanced to {result.calibration:g} K: {path} (+ {preview}, "
@@ -333,8 +342,9 @@ def command_detect_face(args: argparse.Namespace) -> None:
     mask, scored = frame["inside"], frame["scored"]
     tpr, fpr = scores["tpr"], scores["fpr"]
     undefined = {key: reason for key, reason in scores["undefined"].items() if key in ("tpr", "fpr")}
-    write_png(output, mask.astype(float))
-    preview = write_preview(output.with_name(output.stem + "_preview.png"), result.image)
+    preview = output.with_name(output.stem + "_preview.png")
+    outputs = [Output(output, "--output", lambda stream: write_png(stream, mask.astype(float))),
+               Output(preview, "--output (its preview)", lambda stream: write_preview(stream, result.image))]
     per_label = []
     for name, ident in result.label_names.items():
         seen = scored & (result.labels == ident)
@@ -358,8 +368,10 @@ def command_detect_face(args: argparse.Namespace) -> None:
                  f"({result.physics}, {result.spp} spp): TPR {shown(tpr)}, FPR {shown(fpr)}\n"
                  f"detected: inside the analytic skin locus, scored pixels (brightest channel ≥ "
                  f"{SCORED_MIN_OUTPUT:g})")
-        document["figure"] = str(figure_face(result.image, result.labels, result.label_names, title, figure,
-                                             mask & scored))
+        outputs.append(Output(figure, "--figure", lambda stream: figure_face(
+            result.image, result.labels, result.label_names, title, stream, mask & scored)))
+        document["figure"] = str(figure)
+    write_outputs(*outputs)  # every file whole, or none of them
     rows = [[row["name"][:30], "skin" if row["is_skin"] else "", shown(row["detected_fraction"])] for row in per_label]
     emit(args, document, table(rows, ["region", "", "detected"]) + f"\nTPR {shown(tpr)}, FPR {shown(fpr)}; mask {output}"
          + (f"; figure {figure}" if figure is not None else ""))

@@ -160,7 +160,7 @@ def _face_sweep(args: argparse.Namespace) -> None:
 
     result = face_sweep(**_checked(args), progress=None if args.quiet else sys.stderr)
     if args.csv is not None:
-        result.to_csv(args.csv)
+        result.to_csv(args.csv, "--csv")
     document = {**result.document(), "csv": args.csv}
 
     def triple(values) -> str:

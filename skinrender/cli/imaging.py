@@ -13,6 +13,7 @@ import math
 import sys
 
 from ..errors import SkinrenderError
+from ..files import write_output
 from .common import (HELP_CAMERA, add_common, camera_of, check_lights, check_output, check_seed, emit, flag, integer_in,
                      positive_number, table)
 
@@ -165,7 +166,7 @@ def command_ptc(args: argparse.Namespace) -> None:
     from ..studies.figures import figure_ptc
     from ..studies.ptc import photon_transfer
 
-    check_output(args.plot, "--plot", (".png",))
+    plot = check_output(args.plot, "--plot", (".png",))
     cam = camera_of(args)
     sensor = flag("--imager", imager, args.imager)
     for name, value in (("--temperature", args.temperature), ("--illuminance", args.illuminance)):
@@ -180,7 +181,8 @@ def command_ptc(args: argparse.Namespace) -> None:
     result = flag("--points", photon_transfer, cam, sensor, args.temperature, args.illuminance, args.points,
                   args.spp, args.seed)
     if args.plot:
-        result["plot"] = str(figure_ptc(result, args.plot))
+        write_output(plot, lambda stream: figure_ptc(result, stream), "--plot")
+        result["plot"] = str(plot)
     shown = lambda v: "undefined" if v is None else f"{v:.4g}"  # noqa: E731
     rows = [[name, *(shown(result[key][k]) for key in ("gain_dn_per_e", "read_noise_e", "full_well_e",
                                                        "linearity_error"))]

@@ -10,6 +10,7 @@ import sys
 import numpy as np
 
 from ..errors import SkinrenderError
+from ..files import Output, write_outputs
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, camera_of, add_grid, add_model, add_render, check_output,
                      choices_help, emit, flag, grid_of, render_options, table)
 from .face import check_figure
@@ -116,8 +117,10 @@ def render_inputs(args: argparse.Namespace) -> dict:
     try:  # every patch's data covers the grid, before the render needs it
         scene.reflectances(grid)
     except SkinrenderError as error:  # the chart's own data: --extrapolation (CSV cameras') does not apply
-        raise SkinrenderError(f"--grid: {str(error).split('; choose a grid')[0]}; choose a --grid inside the "
-                              "chart's data") from None
+        if error.cause != "coverage":
+            raise error.reworded(f"SCENE: {error.message}", flag="SCENE") from None
+        raise error.reworded(f"--grid: {error.message}", flag="--grid", cause=None,
+                             hint="choose a --grid inside the chart's data") from None
     return {"scene": scene, "camera_": cam, "prevailing": temperatures["prevailing"],
             "calibration": temperatures["calibration"]}
 
@@ -180,10 +183,14 @@ def command_render(args: argparse.Namespace) -> None:
         result = replace(result, image=knee(result.image).astype(np.float32), knee=True)
     spp = result.raw[0].spp
     names = channel_names(result.camera)
-    write_exr(output, result.image, names, {"camera": result.camera.name, "prevailing_K": result.prevailing,
-                                            "calibration_K": result.calibration, "spp": spp,
-                                            "seed": args.seed, "variant": result.variant, "units": "Eq. 4 output units"})
-    preview = write_preview(output.with_suffix(".png"), result.image)
+    attributes = {"camera": result.camera.name, "prevailing_K": result.prevailing, "calibration_K": result.calibration,
+                  "spp": spp, "seed": args.seed, "variant": result.variant, "units": "Eq. 4 output units"}
+    preview = output.with_suffix(".png")
+    outputs = [Output(output, "--output", lambda stream: write_exr(stream, result.image, names, attributes)),
+               Output(preview, "--output (its PNG preview)", lambda stream: write_preview(stream, result.image))]
+    if figure is not None:
+        outputs.append(Output(figure, "--figure", lambda stream: chart_figure(result, stream)))
+    write_outputs(*outputs)  # every file whole, or none of them
     document = {"image": str(output), "preview_png": str(preview), "channels": list(names), "spp": spp,
                 "spp_requested": options["spp"],
                 "sampler": options["sampler"], "seed": args.seed, "variant": result.variant,
@@ -191,7 +198,7 @@ def command_render(args: argparse.Namespace) -> None:
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
                 "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged)}
     if figure is not None:
-        document["figure"] = str(chart_figure(result, figure))
+        document["figure"] = str(figure)
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "
             f"{result.calibration:g} K: {output} (+ {preview}), {spp} spp, {result.variant}, "
             f"{result.seconds:.2f} s" + (f"; figure {figure}" if figure is not None else "") + imaging_notes(imaged))
@@ -292,8 +299,14 @@ def command_detect(args: argparse.Namespace) -> None:
     # the camera is white-balanced to the calibration light: the locus of that one balancing
     locus = skin_locus(rendering.camera, skin, calibration=rendering.calibration, boundary=args.boundary)
     result = detect(rendering, locus, scored_min=SCORED_MIN_OUTPUT)  # scored as on a face: too dark has no colour
-    write_png(output, result.mask.astype(float))
-    preview = write_preview(output.with_name(output.stem + "_preview.png"), rendering.image)
+    preview = output.with_name(output.stem + "_preview.png")
+    rate = lambda value, key: "undefined (" + result.undefined[key] + ")" if value is None else f"{value:.3f}"  # noqa: E731
+    outputs = [Output(output, "--output", lambda stream: write_png(stream, result.mask.astype(float))),
+               Output(preview, "--output (its preview)", lambda stream: write_preview(stream, rendering.image))]
+    if figure is not None:
+        outputs.append(Output(figure, "--figure", lambda stream: chart_figure(
+            rendering, stream, result, f"TPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}")))
+    write_outputs(*outputs)  # every file whole, or none of them
     document = {"scene": rendering.scene.name, "camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
                 "calibration_K": rendering.calibration, "tpr": result.tpr, "fpr": result.fpr,
                 "undefined": result.undefined, "locus_degenerate": locus.degenerate,
@@ -304,10 +317,8 @@ def command_detect(args: argparse.Namespace) -> None:
     rows = [[p["name"][:30], "skin" if p["is_skin"] else "",
              "undefined" if p["detected_fraction"] is None else f"{p['detected_fraction']:.2f}"]
             for p in result.per_patch]
-    rate = lambda value, key: "undefined (" + result.undefined[key] + ")" if value is None else f"{value:.3f}"  # noqa: E731
     if figure is not None:
-        document["figure"] = str(chart_figure(rendering, figure, result,
-                                              f"TPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}"))
+        document["figure"] = str(figure)
     text = (table(rows, ["patch", "", "detected"])
             + f"\nTPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}; mask {output}"
             + (f"; figure {figure}" if figure is not None else "") + imaging_notes(imaged))

@@ -8,6 +8,7 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
+from ..files import write_output
 from .common import (HELP_CAMERA, add_common, add_grid, add_search, check_output, flag, integer_in,
                      emit, table)
 
@@ -286,12 +287,13 @@ def command_bench(args: argparse.Namespace) -> None:
     if args.what == "render":
         from ..studies.bench import bench_render
 
-        check_output(args.plot, "--plot", (".png",))  # before the ~30 s of timing
+        plot = check_output(args.plot, "--plot", (".png",))  # before the ~30 s of timing
         result = bench_render(quick=args.quick)
         if args.plot:
             from ..studies.figures import figure_render_curve
 
-            result["plot"] = str(figure_render_curve(result, args.plot))
+            write_output(plot, lambda stream: figure_render_curve(result, stream), "--plot")
+            result["plot"] = str(plot)
     elif args.what == "search":
         quick = {"full_steps": (20.0,), "sweep_positions": None} if args.quick else {}
         result = bench_search(_or_default(args, "sensor"), _or_default(args, "sample"), workers=args.workers, **quick)

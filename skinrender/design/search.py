@@ -27,13 +27,13 @@ import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
 from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError
 from ..extras import require
+from ..files import write_output
 from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
@@ -226,8 +226,9 @@ class SearchResult:
         """False-positive rates per calibration and their mean over calibrations, ``(T, Q + 1)``."""
         return np.hstack([self.fpr, np.nanmean(self.fpr, axis=1, keepdims=True)])
 
-    def to_csv(self, path) -> None:
-        """Every triplet's volumes (output units³) and ratios as CSV."""
+    def to_csv(self, path, flag: str | None = None) -> None:
+        """Every triplet's volumes (output units³) and ratios as CSV, whole or not at all (``flag``: the option
+        that named ``path``, for the message when it cannot be written)."""
         labels = [f"{t:g}K" for t in self.temperatures] + ["all"]
         header = ["p1_nm", "p2_nm", "p3_nm"]
         header += [f"skin_{label}" for label in labels] + [f"munsell_{label}" for label in labels]
@@ -240,14 +241,9 @@ class SearchResult:
             header += ["noisy_tpr", "noisy_fpr"]
             blocks.append(self.noisy)
         data = np.hstack(blocks)
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        partial = path.with_name(path.name + ".partial")
         row_format = ",".join(["%.17g"] * data.shape[1]) + "\n"  # one format per row: a third faster than per value
-        with open(partial, "w", encoding="utf-8", newline="\n") as handle:  # complete or absent, never half
-            handle.write(",".join(header) + "\n")
-            handle.writelines(row_format % tuple(row) for row in data.tolist())
-        os.replace(partial, path)
+        text = ",".join(header) + "\n" + "".join(row_format % tuple(row) for row in data.tolist())
+        write_output(path, text, flag)  # complete or absent, never half
 
 
 def stop_pool(pool: ProcessPoolExecutor) -> None:

@@ -50,6 +50,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SkinrenderError
+from ..files import exists
 from ..hints import NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .scene import PIXELS_MAX, ROOT_SCENES, check_mesh_file, read_scene_toml, reflectance_of
@@ -302,7 +303,7 @@ def _mesh(table: dict, where: str, folder: Path) -> str:
     path = Path(name) if Path(name).is_absolute() else folder / name
     if path.suffix.lower() not in MESH_SUFFIXES:
         raise SkinrenderError(f"{where}: field 'file' must be {MESH_HEAD!r} or an .obj or .ply path, got {name!r}")
-    if not path.is_file():
+    if not exists(path):  # anything else than a regular file: refused by check_mesh_file, saying what it is
         raise SkinrenderError(f"{where}: field 'file': mesh {path} does not exist")
     check_mesh_file(path, f"{where}: field 'file': mesh {path}")
     return str(path.resolve())

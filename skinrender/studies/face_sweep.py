@@ -28,6 +28,7 @@ Units: temperatures K, times s, image sides pixels, NCC and rates fractions.
 from __future__ import annotations
 
 import csv
+import io
 import itertools
 import os
 import time
@@ -40,6 +41,7 @@ import numpy as np
 from ..design.search import WORKERS_MAX
 from ..errors import SkinrenderError
 from ..evaluation.locus import skin_locus
+from ..files import write_output
 from ..model.camera import camera
 from ..model.chromaticity import ncc
 from ..rendering.face import planckian_temperature, render_face
@@ -169,27 +171,20 @@ class FaceSweep:
                 "variant": self.variant, "workers": self.workers, "dask": self.dask, "elapsed_s": self.elapsed_s,
                 "renders": len(self.combinations), "combinations": self.combinations}
 
-    def to_csv(self, path) -> Path:
-        """Every combination as a CSV row (:data:`CSV_COLUMNS`), written whole or not at all."""
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        partial = path.with_name(path.name + ".partial")
-        try:
-            with open(partial, "w", encoding="utf-8", newline="") as handle:
-                writer = csv.writer(handle, lineterminator="\n")
-                writer.writerow(CSV_COLUMNS)
-                for row in self.combinations:
-                    triples = [v for key in ("skin_ncc_mean", "skin_ncc_std")
-                               for v in (row[key] if row[key] is not None else [None] * 3)]
-                    cells = [row["camera"], row["prevailing_K"], row["calibration_K"], row["skin"], row["level"],
-                             row["seconds"], row["spp"], *triples, row["tpr"], row["fpr"], row["skin_pixels"],
-                             row["prop_pixels"], *row["skin_ncc_analytic"]]
-                    writer.writerow(["" if v is None else f"{v:.17g}" if isinstance(v, float) else v
-                                     for v in cells])
-            os.replace(partial, path)
-        finally:
-            partial.unlink(missing_ok=True)
-        return path
+    def to_csv(self, path, flag: str | None = None) -> Path:
+        """Every combination as a CSV row (:data:`CSV_COLUMNS`), written whole or not at all (``flag``: the
+        option that named ``path``, for the message when it cannot be written)."""
+        handle = io.StringIO(newline="")
+        writer = csv.writer(handle, lineterminator="\n")
+        writer.writerow(CSV_COLUMNS)
+        for row in self.combinations:
+            triples = [v for key in ("skin_ncc_mean", "skin_ncc_std")
+                       for v in (row[key] if row[key] is not None else [None] * 3)]
+            cells = [row["camera"], row["prevailing_K"], row["calibration_K"], row["skin"], row["level"],
+                     row["seconds"], row["spp"], *triples, row["tpr"], row["fpr"], row["skin_pixels"],
+                     row["prop_pixels"], *row["skin_ncc_analytic"]]
+            writer.writerow(["" if v is None else f"{v:.17g}" if isinstance(v, float) else v for v in cells])
+        return write_output(path, handle.getvalue(), flag)
 
 
 def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples: float, cores: int) -> None:

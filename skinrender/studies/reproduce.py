@@ -27,6 +27,7 @@ import time
 from pathlib import Path
 
 from ..design.bank import SENSORS_PAPER
+from ..files import write_output
 from ..hints import ArrayLike
 from ..spectra import WavelengthGrid
 from .folders import MANIFEST, check_output, output_folder
@@ -196,7 +197,7 @@ def reproduce(
                if observations else {}),
         }
         document["elapsed_s"] = time.perf_counter() - start
-        (folder / MANIFEST).write_text(json.dumps(document, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+        write_output(folder / MANIFEST, json.dumps(document, indent=2, allow_nan=False) + "\n")
     return document
 
 

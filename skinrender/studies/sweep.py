@@ -23,6 +23,7 @@ Units: wavelength in nm.
 from __future__ import annotations
 
 import csv
+import io
 import itertools
 import json
 import tempfile
@@ -31,6 +32,7 @@ from pathlib import Path
 
 from ..design.bank import SENSORS_PAPER
 from ..errors import SkinrenderError
+from ..files import write_output
 from ..hints import ArrayLike
 from .folders import MANIFEST, check_output, output_folder
 from .matching import unmatched_sensors
@@ -237,15 +239,16 @@ def write_sweep(result: dict, directory: str | Path) -> list[Path]:
     directory = Path(directory)
     keys = [key for _, key in TABLES]
     path_csv = directory / "sweep.csv"
-    with open(path_csv, "w", encoding="utf-8", newline="") as handle:
-        writer = csv.writer(handle, lineterminator="\n")
-        writer.writerow(["setting", "unknown", "exact", "within_step", "total"]
-                        + [f"{k}_{n}" for k in keys for n in ("exact", "within_step")]
-                        + ["temperatures_shared", "temperatures_total", "seconds"])
-        for row in result["sweep"]:
-            writer.writerow([row["setting"], row["unknown"], row["exact"], row["within_step"], row["total"]]
-                            + [row["matches_by_table"][k][n] for k in keys for n in ("exact", "within_step")]
-                            + [row["temperatures"]["shared"], row["temperatures"]["total"], f"{row['seconds']:.2f}"])
+    handle = io.StringIO(newline="")
+    writer = csv.writer(handle, lineterminator="\n")
+    writer.writerow(["setting", "unknown", "exact", "within_step", "total"]
+                    + [f"{k}_{n}" for k in keys for n in ("exact", "within_step")]
+                    + ["temperatures_shared", "temperatures_total", "seconds"])
+    for row in result["sweep"]:
+        writer.writerow([row["setting"], row["unknown"], row["exact"], row["within_step"], row["total"]]
+                        + [row["matches_by_table"][k][n] for k in keys for n in ("exact", "within_step")]
+                        + [row["temperatures"]["shared"], row["temperatures"]["total"], f"{row['seconds']:.2f}"])
+    write_output(path_csv, handle.getvalue())
     best = max((r["exact"], r["within_step"]) for r in result["sweep"])
     intro = (f"Sensors {', '.join(f'{s:g}' for s in result['sensors'])}, peak positions {result['positions']} nm. "
              "A cell matches exactly when one of our (tied) triplets equals one of the paper's; within one step "
@@ -264,7 +267,7 @@ def write_sweep(result: dict, directory: str | Path) -> list[Path]:
     lines += ["", f"Per table: exact/within 10 nm of its {len(result['sensors'])} cells (one per sensor).", ""]
     lines += [f"- combined: {', '.join(result['combined']) or 'none'}"] + [f"- {note}" for note in result["notes"]]
     path_md = directory / "sweep.md"
-    path_md.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    write_output(path_md, "\n".join(lines) + "\n")
     return [path_csv, path_md]
 
 
@@ -289,5 +292,5 @@ def reproduce_sweep(directory: str | Path, sensors: ArrayLike | str = SENSORS_PA
         artifacts = write_sweep(result, folder)
         result["artifacts"] = [str(target / p.name) for p in artifacts] + [str(target / MANIFEST)]
         result["elapsed_s"] = time.perf_counter() - start
-        (folder / MANIFEST).write_text(json.dumps(result, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+        write_output(folder / MANIFEST, json.dumps(result, indent=2, allow_nan=False) + "\n")
     return result
