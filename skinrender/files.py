@@ -98,7 +98,7 @@ def _kind(mode: int) -> str:
     return "not a regular file"
 
 
-def read_input(path: str | Path, limit: int, what: str = "file") -> bytes:
+def read_input(path: str | Path, limit: int, what: str = "a file") -> bytes:
     """
     The bytes of the input file ``path``, refused unless it is a regular file of at most ``limit`` bytes.
 
@@ -199,10 +199,10 @@ def check_output_path(path: str | Path, flag: str | None = None) -> Path:
     one line naming ``flag``: a folder, a dangling symbolic link, a name too long, a parent that is a file, a
     place where no file can be made (tried by making one and removing it). Missing parent folders are fine.
 
-    >>> check_output_path("/proc/x.png", "--plot")  # doctest: +ELLIPSIS
+    >>> check_output_path("/dev/null/x.png", "--plot")
     Traceback (most recent call last):
     ...
-    skinrender.errors.SkinrenderError: --plot /proc/x.png: cannot be written (...)
+    skinrender.errors.SkinrenderError: --plot /dev/null/x.png: /dev/null is not a folder, so no file can be made under it
     """
     where = _named(flag, path)
     text = str(path)
@@ -222,7 +222,7 @@ def check_output_path(path: str | Path, flag: str | None = None) -> Path:
         while not existing.exists() and existing != existing.parent:
             existing = existing.parent
         if not existing.is_dir():
-            raise SkinrenderError(f"{where}: {existing} is a file, so no file can be made under it")
+            raise SkinrenderError(f"{where}: {existing} is not a folder, so no file can be made under it")
         probe = existing / f".{secrets.token_hex(6)}.probe"
         os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
         os.unlink(probe)

@@ -160,6 +160,10 @@ def command_score(args: argparse.Namespace) -> None:
     emit(args, document, text)
 
 
+PTC_FIGURES = ("gain_dn_per_e", "read_noise_e", "dark_current_e_per_s", "full_well_e", "linearity_error")
+"""The per-channel figures of ``ptc``, in the text's columns: every one its JSON has."""
+
+
 def command_ptc(args: argparse.Namespace) -> None:
     from ..model.illuminant import illuminant
     from ..model.imager import imager
@@ -184,10 +188,11 @@ def command_ptc(args: argparse.Namespace) -> None:
         write_output(plot, lambda stream: figure_ptc(result, stream), "--plot")
         result["plot"] = str(plot)
     shown = lambda v: "undefined" if v is None else f"{v:.4g}"  # noqa: E731
-    rows = [[name, *(shown(result[key][k]) for key in ("gain_dn_per_e", "read_noise_e", "full_well_e",
-                                                       "linearity_error"))]
-            for k, name in enumerate("RGB")]
-    rows.append(["stated", f"{sensor.gain_dn_per_e:.4g}", f"{sensor.read_noise_e:.4g}", f"{sensor.full_well_e:.4g}", ""])
-    text = (f"photon transfer of {cam.name} through {sensor.name} ({len(result['points'])} exposures):\n"
-            + table(rows, ["channel", "gain DN/e⁻", "read noise e⁻", "full well e⁻", "linearity %"]))
+    rows = [[name, *(shown(result[key][k]) for key in PTC_FIGURES)] for k, name in enumerate("RGB")]
+    rows.append(["stated", *(f"{result['stated'][key]:.4g}" if key in result["stated"] else "" for key in PTC_FIGURES)])
+    text = (f"photon transfer of {cam.name} through {sensor.name} ({len(result['points'])} exposures, "
+            f"{args.illuminance:g} lx):\n"
+            + table(rows, ["channel", "gain DN/e⁻", "read noise e⁻", "dark current e⁻/s", "full well e⁻",
+                           "linearity %"])
+            + "".join(f"\n{key} undefined: {why}" for key, why in result["undefined"].items()))
     emit(args, result, text)

@@ -8,6 +8,7 @@ import math
 import pytest
 
 from skinrender.cli.common import coverage_hint, emit
+from skinrender.errors import SkinrenderError
 
 
 def test_a_document_that_cannot_be_json_prints_nothing_not_half(capsys):
@@ -23,22 +24,32 @@ def test_a_document_prints_whole(capsys):
     assert capsys.readouterr().out == '{\n  "a": [\n    1,\n    2\n  ]\n}\nas text\n'
 
 
-COVERAGE = ("c.csv: measured over 420–680 nm, which does not cover the grid 400–700 nm; choose a grid inside the "
-            "data or state an extrapolation ('zero' or 'constant')")
+def coverage_error():
+    """The refusal of spectra that do not cover the grid, as :func:`skinrender.spectra.resample` raises it."""
+    from skinrender.spectra import WavelengthGrid, resample
+
+    with pytest.raises(SkinrenderError) as caught:
+        resample([420.0, 680.0], [[0.5, 0.5]], WavelengthGrid(400, 700, 1), source="c.csv")
+    return caught.value
 
 
 @pytest.mark.parametrize("flags, advice", [
-    ({"grid": "400:700:1", "extrapolation": "refuse"}, "choose a --grid inside the data or an --extrapolation"),
+    ({"grid": "400:700:1", "extrapolation": "refuse"},
+     "choose a --grid inside the data or an --extrapolation ('zero' or 'constant')"),
+    ({"grid": "400:700:1", "extrapolation": "constant"},
+     "choose a --grid inside the data (--extrapolation constant applies to CSV files, not to these spectra)"),
     ({"grid": "400:700:1"}, "choose a --grid inside the data"),
-    ({}, "this command integrates over that grid"),
+    ({}, "this command integrates over that grid: give spectra that cover it"),
 ])
 def test_coverage_advice_names_only_the_flags_the_command_has(flags, advice):
-    line = coverage_hint(COVERAGE, argparse.Namespace(**flags))
-    assert line.startswith("c.csv: measured over 420–680 nm") and line.endswith(advice + (
-        " ('zero' or 'constant')" if "extrapolation" in flags else "" if "grid" in flags else ": give spectra that cover it"))
-    for name in ("--grid", "--extrapolation"):
-        assert (name in line) == (name.lstrip("-") in flags)
+    """The advice is chosen by the error's ``cause`` field, not by matching its words; an --extrapolation given
+    that did not apply is not advised again (seen: ``response --grid 300:900:1 --extrapolation constant``)."""
+    error = coverage_error()
+    assert error.cause == "coverage" and str(error).endswith(error.hint)  # the library's own words keep the hint
+    line = coverage_hint(error, argparse.Namespace(**flags))
+    assert line == "c.csv: measured over 420–680 nm, which does not cover the grid 400–700 nm; " + advice
 
 
 def test_other_messages_keep_their_words():
-    assert coverage_hint("--seed must be an integer", argparse.Namespace()) == "--seed must be an integer"
+    error = SkinrenderError("--seed must be an integer")
+    assert coverage_hint(error, argparse.Namespace(grid="400:700:1")) == "--seed must be an integer"
