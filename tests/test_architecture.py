@@ -19,7 +19,7 @@ import skinrender
 
 ROOT = Path(skinrender.__file__).parent
 REPOSITORY = ROOT.parent
-LAYER_MODULES = {"constants", "errors", "files", "hints", "spectra", "spectral_csv", "methods", "extras", "datasets", "model", "evaluation",
+LAYER_MODULES = {"constants", "errors", "files", "hints", "workload", "spectra", "spectral_csv", "methods", "extras", "datasets", "model", "evaluation",
                  "design", "rendering", "studies", "cli"}
 """What ``skinrender.<name>`` may be when it is a module."""
 MODULE_LINES_MAX = 450

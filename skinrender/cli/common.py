@@ -98,6 +98,15 @@ def add_render(parser: argparse.ArgumentParser) -> None:
                         "white's brightest channel at 0.7 of the full well; default)")
 
 
+def add_max_minutes(parser: argparse.ArgumentParser, what: str) -> None:
+    """``--max-minutes``: the cap on a run's estimated time (:mod:`skinrender.workload`); ``what`` scales it."""
+    from ..workload import MINUTES_MAX
+
+    parser.add_argument("--max-minutes", metavar="MIN", type=float, default=None,
+                        help=f"refuse runs estimated to take longer than this, minutes (default {MINUTES_MAX:g}; the "
+                        f"estimate, from {what}, is printed with the refusal)")
+
+
 def emit(args: argparse.Namespace, document: dict, text: str) -> None:
     """
     Print ``document`` as one JSON document (``--json``) or ``text``. The document is made whole before a
@@ -232,7 +241,7 @@ def check_lights(args: argparse.Namespace, cam, temperatures, grid=None, name: s
 
     grid = grid or GRID_DEFAULT
     items, _ = illuminants_array(temperatures)
-    flag(name, check_light, cam, items, spds_on(items, grid), grid, "illuminant")
+    flag({"camera": "--camera", None: name}, check_light, cam, items, spds_on(items, grid), grid, "illuminant")
 
 
 SEED_MAX = 2**32 - 2

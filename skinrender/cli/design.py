@@ -9,7 +9,8 @@ import math
 import sys
 
 from ..errors import SkinrenderError
-from .common import (add_common, add_grid, add_search, check_output, flag, imaging_options, integer_in,
+from ..workload import check_work
+from .common import (add_common, add_max_minutes, add_grid, add_search, check_output, flag, imaging_options, integer_in,
                      emit, grid_of)
 
 
@@ -106,6 +107,7 @@ def add_parsers(commands) -> None:
     p.add_argument("--evaluations", type=int, default=150, help="objective evaluations per start (default 150)")
     p.add_argument("--skin", default="skin", help="skin set (default skin)")
     p.add_argument("--munsell", default="munsell", help="Munsell set (default munsell)")
+    add_max_minutes(p, "the starts × --evaluations (× --noise-samples with --imager)")
     add_common(p)
 
 
@@ -152,7 +154,7 @@ def command_search(args: argparse.Namespace) -> None:
     flag("--illuminants", sensor_bank, args.sensor, skin_values[:1], positions[:3], temperatures, slope,
          grid=grid)
     noisy = noisy_of(args, temperatures)
-    result = search(
+    result = flag({"positions": "--positions", None: None}, search,
         args.sensor, skin_values, munsell_values, args.positions, temperatures, slope, grid=grid,
         method=args.method, workers=args.workers, dask=args.dask,
         progress=None if args.quiet else sys.stderr, label=f"sensor {args.sensor:g}", detection=args.detection,
@@ -217,6 +219,14 @@ def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
     return notes
 
 
+DESIGN_SECONDS_PER_EVALUATION = 0.16
+"""One evaluation of the detection objective on noise-free pixels, s (``design --evaluations`` 5 vs 40, one start,
+2-core AMD EPYC VM shared with other jobs)."""
+
+DESIGN_SECONDS_PER_NOISE_SAMPLE = 0.015
+"""What each ``--noise-samples`` adds to an evaluation with ``--imager``, s (4 vs 64 samples, same machine)."""
+
+
 def command_design(args: argparse.Namespace) -> None:
     from ..datasets import reflectances
     from ..design.optimise import noisy_report, optimise_camera
@@ -236,6 +246,10 @@ def command_design(args: argparse.Namespace) -> None:
     noisy = noisy_of(args)
     if noisy is not None and args.objective != "detection":
         raise SkinrenderError("--imager goes with --objective detection (noisy pixels), not ratio")
+    evaluations = len(starts) * max(int(args.evaluations), 0)
+    each = DESIGN_SECONDS_PER_EVALUATION + (0 if noisy is None else noisy.samples * DESIGN_SECONDS_PER_NOISE_SAMPLE)
+    check_work(evaluations * each, "--evaluations", f"{len(starts)} starts × {args.evaluations} evaluations",
+               args.max_minutes, fewer="ask for fewer --evaluations or --starts")
     try:
         result = optimise_camera(args.objective, skin.on(grid), munsell.on(grid), starts, args.sensor * 10.0,
                                  args.slope, args.free_shape, args.evaluations, noisy=noisy)

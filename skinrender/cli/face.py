@@ -10,12 +10,13 @@ fractions.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
 from ..errors import SkinrenderError
 from ..files import TOML_BYTES_MAX, Output, exists, read_input, write_output, write_outputs
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, camera_of, check_output, check_seed,
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_of, check_output, check_seed,
                      choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
                      render_options, sensor_settings, table, variant_of)
 
@@ -83,6 +84,7 @@ def add_parsers(commands) -> None:
     p.add_argument("--plot", metavar="PNG",
                    help="write the ladder's figure to this PNG: per level the render, the label mask, the "
                    "detected mask and the skin pixels' NCC over the analytic skin locus")
+    add_max_minutes(p, "the levels × --size² × --spp")
     add_common(p)
 
 
@@ -105,7 +107,7 @@ def _check_light(cam, temperatures: dict) -> None:
     from ..spectra import GRID_DEFAULT
 
     for name, t in temperatures.items():
-        flag(f"--{name}", response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
+        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
 
 
 def check_figure(args: argparse.Namespace, *taken) -> Path | None:
@@ -238,6 +240,12 @@ def command_ladder(args: argparse.Namespace) -> None:
     levels = levels_of(args.levels)
     variant_of(args.variant)
     lux = noise_sensor(args, levels)
+    from ..studies.face_sweep import estimate_seconds
+    from ..workload import check_work
+
+    check_work(estimate_seconds(len(levels), size * size, spp, os.cpu_count() or 1), "--spp",
+               f"{len(levels)} levels of {size}×{size} px at {spp} spp", args.max_minutes,
+               fewer="lower --spp or --size, or name fewer --levels")
     result = ladder(cam, temperatures["prevailing"], temperatures["calibration"], args.skin, levels, spp,
                     seed, size, scene, args.variant, imager=args.imager, illuminance=lux,
                     progress=lambda line: print(line, file=sys.stderr))

@@ -122,7 +122,7 @@ def _checked(args: argparse.Namespace) -> dict:
     pairs = _lights(args.lights or [LIGHTS_DEFAULT])
     for cam in cams:
         for t in sorted({t for pair in pairs for t in pair}):
-            flag("--lights", response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
+            flag({"camera": "--camera", None: "--lights"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
     skins = [s.strip() for s in (args.skin or SKIN_TONES)]
     for skin in skins:
         if not skin:

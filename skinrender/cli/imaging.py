@@ -14,7 +14,7 @@ import sys
 
 from ..errors import SkinrenderError
 from ..files import write_output
-from .common import (HELP_CAMERA, add_common, camera_of, check_lights, check_output, check_seed, emit, flag, integer_in,
+from .common import (HELP_CAMERA, add_common, add_max_minutes, camera_of, check_lights, check_output, check_seed, emit, flag, integer_in,
                      positive_number, table)
 
 __all__ = [
@@ -66,6 +66,7 @@ def add_parsers(commands) -> None:
     p.add_argument("--samples", metavar="N",
                    help=f"noisy pixels per reflectance and (prevailing, calibration) pair (default {SAMPLES_DEFAULT})")
     p.add_argument("--seed", metavar="S", help="random seed, an integer in [0, 2**32) (default 0)")
+    add_max_minutes(p, "--samples × the reflectances × the illuminant pairs")
     add_common(p)
 
 
@@ -81,10 +82,11 @@ def command_imagers(args: argparse.Namespace) -> None:
 
 def _noise_options(args: argparse.Namespace) -> dict | None:
     """The checked imager flags, or ``None`` without ``--imager``; nothing heavy is done here."""
-    given = [name for name in ("illuminance", "exposure", "samples", "seed") if getattr(args, name) is not None]
+    given = [name for name in ("illuminance", "exposure", "samples", "seed", "max_minutes")
+             if getattr(args, name) is not None]
     if args.imager is None:
         if given:
-            raise SkinrenderError(f"--{given[0]} applies to the noisy rates: give --imager S too")
+            raise SkinrenderError(f"--{given[0].replace('_', '-')} applies to the noisy rates: give --imager S too")
         return None
     from ..model.imager import imager
 
@@ -113,7 +115,8 @@ def command_score(args: argparse.Namespace) -> None:
     from ..datasets import reflectances
     from ..evaluation.gamut import gamut_all_calibrations
     from ..evaluation.locus import false_positive_rate, skin_locus
-    from ..evaluation.noisy_detection import noisy_detection
+    from ..evaluation.noisy_detection import SECONDS_PER_NOISY_PIXEL, noisy_detection
+    from ..workload import check_work
     from ..model.stage1 import illuminant_set
     from ..spectra import GRID_DEFAULT
 
@@ -135,6 +138,10 @@ def command_score(args: argparse.Namespace) -> None:
             + ("undefined (degenerate Munsell gamut)" if ratio is None else f"{ratio:.6g}") + "\n"
             f"  false positives ({munsell.name} in the {skin.name} locus, noise-free): {fpr:.4f}")
     if noise is not None:
+        pixels = (skin.count + munsell.count) * len(temperatures) ** 2
+        check_work(noise["samples"] * pixels * SECONDS_PER_NOISY_PIXEL, "--samples",
+                   f"{noise['samples']} noisy samples of {pixels} reflectance-and-light pairs", args.max_minutes,
+                   fewer="ask for fewer --samples")
         result = noisy_detection(cam, skin.on(GRID_DEFAULT), munsell.on(GRID_DEFAULT), temperatures, locus=locus,
                                  **noise)
         document["noisy"] = {

@@ -65,7 +65,7 @@ def command_illuminants(args: argparse.Namespace) -> None:
     flag("--range", temperature_range, args.range[0], args.range[1], args.step)
     flag("--pair", measure, np.full((1, 3), 1.0 / 3.0), args.pair)
     cam = camera_of(args, grid_of(args))
-    selection = flag("--count", illuminant_selection,  # too many for the candidates is what can fail here
+    selection = flag({"camera": "--camera", "illuminant": "--range", None: "--count"}, illuminant_selection,
                      cam, args.count, args.range[0], args.range[1], args.step, grid_of(args), args.pair)
     document = {
         "camera": cam.name,

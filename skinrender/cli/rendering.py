@@ -113,7 +113,9 @@ def render_inputs(args: argparse.Namespace) -> dict:
     from ..spectra import GRID_DEFAULT
 
     grid = grid or GRID_DEFAULT
-    response(cam, np.ones((1, grid.size)), temperatures["prevailing"], temperatures["calibration"], grid=grid)
+    for name, kelvin in temperatures.items():  # each light seen by the camera, the one at fault named
+        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, grid.size)), kelvin, kelvin,
+             grid=grid)
     try:  # every patch's data covers the grid, before the render needs it
         scene.reflectances(grid)
     except SkinrenderError as error:  # the chart's own data: --extrapolation (CSV cameras') does not apply

@@ -8,8 +8,9 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
+from ..workload import check_work
 from ..files import write_output
-from .common import (HELP_CAMERA, add_common, add_grid, add_search, check_output, flag, integer_in,
+from .common import (HELP_CAMERA, add_common, add_max_minutes, add_grid, add_search, check_output, flag, integer_in,
                      emit, table)
 
 
@@ -91,6 +92,7 @@ def add_parsers(commands) -> None:
                    help="render --scene: samples per pixel of the curve (default 4,16,64,256; --quick 4,16,64)")
     p.add_argument("--reference-spp", metavar="N",
                    help="render --scene: spp of each level's reference render (default 4 × the largest of --spp-list)")
+    add_max_minutes(p, "analytic: --repeat; search: --sample")
     add_common(p)
 
 
@@ -153,7 +155,7 @@ def command_table1(args: argparse.Namespace) -> None:
     integer_in(args.spp, "--spp", 1, SPP_MAX)  # each flag checked on its own, so that its error names it
     check_seed(args.seed)
     flag("--camera", camera, args.camera)
-    result = flag("--camera", table1, args.camera, spp=args.spp, seed=args.seed)
+    result = flag({"spp": "--spp", None: "--camera"}, table1, args.camera, spp=args.spp, seed=args.seed)
     rows = [[r["model"], r["case"], f"{r['mean']:.5f}", f"{r['std']:.5f}"] for r in result["rows"]]
     text = (f"Table 1 for {result['camera']} ({len(result['patches'])} Macbeth patches with 90 % of values in "
             f"10–245; render at {result['spp']} spp as the real camera):\n"
@@ -165,7 +167,8 @@ FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
 """``bench`` flags that go with ``render --scene``."""
 
 BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
-               "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render",), "scene": ("render",)}
+               "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render",), "scene": ("render",),
+               "max_minutes": ("analytic", "search")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
 :data:`FACE_BENCH_FLAGS`."""
 
@@ -252,6 +255,15 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     return {"scene": scene, "size": size, "spps": spps, "reference_spp": reference, "levels": levels}
 
 
+BENCH_ANALYTIC_SECONDS = 4.0
+"""One ``bench analytic`` repetition (both routes), s: --repeat 1 vs 4 took 8.3 and 20.2 s (2-core AMD EPYC VM
+shared with other jobs)."""
+
+BENCH_SEARCH_SECONDS_PER_SAMPLE = 0.33
+"""What each ``bench search --sample`` triplet adds, s: --quick --sample 20 vs 200 took 12 and 72 s (same
+machine, --workers 1)."""
+
+
 def command_bench(args: argparse.Namespace) -> None:
     from ..studies.bench import bench_analytic, bench_search, bench_sweep
 
@@ -296,10 +308,18 @@ def command_bench(args: argparse.Namespace) -> None:
             result["plot"] = str(plot)
     elif args.what == "search":
         quick = {"full_steps": (20.0,), "sweep_positions": None} if args.quick else {}
+        sample = _or_default(args, "sample")
+        if isinstance(sample, int) and sample >= 1:
+            check_work(sample * BENCH_SEARCH_SECONDS_PER_SAMPLE, "--sample", f"{sample} sampled triplets per method",
+                       args.max_minutes, fewer="ask for a smaller --sample")
         result = bench_search(_or_default(args, "sensor"), _or_default(args, "sample"), workers=args.workers, **quick)
     elif args.what == "sweep":
         result = bench_sweep(_or_default(args, "positions"), workers=args.workers)
     else:
-        result = bench_analytic(repeat=_or_default(args, "repeat"))
+        repeat = _or_default(args, "repeat")
+        if isinstance(repeat, int) and repeat >= 1:  # a bad count is refused by the benchmark, naming the flag
+            check_work(repeat * BENCH_ANALYTIC_SECONDS, "--repeat", f"{repeat} repetitions", args.max_minutes,
+                       fewer="ask for fewer --repeat")
+        result = bench_analytic(repeat=repeat)
     text = "\n".join(f"{key}: {value}" for key, value in result.items())
     emit(args, result, text)

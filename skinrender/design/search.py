@@ -38,6 +38,7 @@ from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..workload import duration_text
 from .bank import SensorBank, positions_grid, sensor_bank, triplets
 from .criteria import triplet_false_positive_rates, triplet_volumes_many, triplet_volumes_naive
 from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, exposure_capped, triplet_noisy_rates
@@ -339,8 +340,9 @@ def search(
     count = where.size * (where.size - 1) * (where.size - 2) // 6
     if count > max_triplets:
         raise SkinrenderError(f"{count} triplets ({where.size} positions) is more than max_triplets = {max_triplets} "
-                              f"(about {count * 2.2e-3 / 3600:.2g} h on 2 cores at the measured ~2 ms per triplet "
-                              "per core); raise the limit (--max-triplets) or use fewer positions")
+                              f"(about {duration_text(count * 2.2e-3 / 2)} on 2 cores at the measured ~2 ms per "
+                              "triplet per core); raise the limit (--max-triplets) or use fewer positions",
+                              role="positions")
     workers = check_workers(workers, "workers")
     banks = tuple(
         sensor_bank(sensor, values, where, illuminants, slope, normalization, knee, grid) for values in (skin, munsell)

@@ -52,6 +52,7 @@ from ..rendering.scene import PIXELS_MAX
 from ..rendering.validation import analytic_reference
 from ..rendering.variants import choose_variant
 from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..workload import duration_text
 from .face_pool import dask_name, run_renders
 from .ladder import score_rendering
 
@@ -195,7 +196,7 @@ def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples
         raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
                               f"most {SAMPLES_MAX // pixels} spp at this size")
     seconds, on = estimate_seconds(renders, pixels, spp, cores), f"on {cores} core{'s' * (cores > 1)}"
-    about = f"about {seconds / 3600:.3g} h {on}" if seconds >= 3600 else f"about {seconds / 60:.2g} min {on}"
+    about = f"about {duration_text(seconds)} {on}"
     if renders > max_renders:
         raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} ({about}); raise "
                               "the limit (--max-renders) or sweep fewer combinations")
