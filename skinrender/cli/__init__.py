@@ -78,6 +78,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         COMMANDS[args.command](args)
         sys.stdout.flush()  # here, so that a failing standard output is reported below, not at exit
+        _sampler_note(args.command)
     except SkinrenderError as error:
         print(f"skinrender {args.command}: error: {' '.join(coverage_hint(error, args).split())}", file=sys.stderr)
         return error.status
@@ -114,6 +115,14 @@ USER_PATH_ERRNOS = frozenset({errno.ENAMETOOLONG, errno.ELOOP, errno.EACCES, err
                               errno.ENOTDIR, errno.EISDIR})
 """Errors of a path the user gave (too long, a loop of links, no permission, missing): a refusal naming the path,
 should one reach :func:`main` past the checks that name its flag."""
+
+
+def _sampler_note(command: str) -> None:
+    """Mitsuba's "Sample count rounded up" warnings of the command, said once on stderr (never on stdout)."""
+    variants = sys.modules.get("skinrender.rendering.variants")  # not loaded: nothing rendered
+    note = variants.rounded_note() if variants is not None else None
+    if note:
+        print(f"skinrender {command}: note: {note}", file=sys.stderr)
 
 
 def _internal_error(command: str, error: BaseException) -> int:

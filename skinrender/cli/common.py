@@ -47,6 +47,20 @@ def add_common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print one JSON document on stdout")
 
 
+class Once(argparse.Action):
+    """
+    A value flag that may be given once, under any of its spellings (``--normalization`` and
+    ``--normalisation``): a second one is refused, rather than the last silently winning.
+    """
+
+    def __call__(self, parser, namespace, values, option_string=None):  # noqa: D102 - argparse's hook
+        seen = vars(namespace).setdefault("_given", {})
+        if self.dest in seen:
+            parser.error(f"{option_string}: {seen[self.dest]} was given already; give it once")
+        seen[self.dest] = option_string
+        setattr(namespace, self.dest, values)
+
+
 def add_grid(parser: argparse.ArgumentParser) -> None:
     """``--grid`` and ``--extrapolation``."""
     from ..spectra import EXTRAPOLATIONS
@@ -61,7 +75,7 @@ def add_model(parser: argparse.ArgumentParser) -> None:
     from ..model.response import NORMALISATIONS
 
     parser.add_argument("--normalization", "--normalisation", dest="normalization", default="white",
-                        choices=list(NORMALISATIONS), help="illuminant normalisation: " + choices_help(NORMALISATIONS))
+                        action=Once, choices=list(NORMALISATIONS), help="illuminant normalisation: " + choices_help(NORMALISATIONS))
     parser.add_argument("--knee", action="store_true", help="apply the knee of Eq. 11 (output ≤ 255)")
 
 

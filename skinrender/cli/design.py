@@ -8,6 +8,7 @@ import argparse
 import math
 import sys
 
+from ..constants import SENSOR_RULE
 from ..errors import SkinrenderError
 from ..workload import check_work
 from .common import (add_common, add_max_minutes, add_grid, add_search, check_output, flag, imaging_options, integer_in,
@@ -67,8 +68,7 @@ def add_parsers(commands) -> None:
     """Add the parsers of search, design."""
     p = commands.add_parser("search", help="Stage 3: gamut volumes of every sensor triplet (Tables 2–5)")
     p.add_argument("--sensor", required=True, type=float,
-                   help="the paper's sensor: 1 (impulse), or else a gbell of FWHM N·10 nm, N > 0 (the paper's 3, "
-                   "5, …, 15)")
+                   help="the paper's sensor: " + SENSOR_RULE)
     p.add_argument("--slope", type=float, default=None,
                    help="gbell slope b (default 2; the paper does not give it; the impulse has none)")
     p.add_argument("--positions", default="400:700:10",
@@ -140,8 +140,7 @@ def command_search(args: argparse.Namespace) -> None:
     temperatures = flag("--illuminants", illuminant_set, args.illuminants)
     positions = flag("--positions", positions_grid, args.positions)
     if not (math.isfinite(args.sensor) and args.sensor > 0):
-        raise SkinrenderError(f"--sensor must be 1 (impulse) or else a gbell number N > 0 (FWHM N·10 nm), "
-                              f"got {args.sensor}")
+        raise SkinrenderError(f"--sensor must be {SENSOR_RULE}, got {args.sensor}")
     slope = 2.0 if args.slope is None else args.slope
     if not (math.isfinite(slope) and slope > 0):
         raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope}")

@@ -29,8 +29,8 @@ def add_parsers(commands) -> None:
     p.add_argument("--munsell", default="munsell",
                    help="the Munsell set, name or CSV path: the 'munsell' item of --nonskin (default munsell)")
     p.add_argument("--nonskin", default="munsell,vrhel-nonskin,macbeth",
-                   help="comma-separated non-skin sets for false-positive rates, each counted once; the item "
-                        "'munsell' is the --munsell set (default munsell,vrhel-nonskin,macbeth)")
+                   help="comma-separated non-skin sets for false-positive rates, each named once (a set named twice "
+                        "is refused); the item 'munsell' is the --munsell set (default munsell,vrhel-nonskin,macbeth)")
     p.add_argument("--plot", help="write the locus, the training chromaticities and the Planckian track to this PNG")
     add_common(p)
 

@@ -45,8 +45,9 @@ def add_parsers(commands) -> None:
         add_face_arguments(p)
         if name == "render":
             p.add_argument("-o", "--output", default="render.exr",
-                           help="output EXR (float32, Eq. 4 output units, channels named by the camera); "
-                           "a PNG preview is written beside it")
+                           help="output EXR (float32, Eq. 4 output units, channels named by the camera); a PNG "
+                           "preview is written beside it (NAME.png); default render.exr (and render.png) in the "
+                           "current folder, replaced if there")
             p.add_argument("--figure", metavar="PNG",
                            help="also write a labelled figure: a chart upscaled with each patch's name on it "
                            "(skin patches outlined), a face with its labels outlined")
@@ -65,7 +66,9 @@ def add_parsers(commands) -> None:
     p.add_argument("--physics", default="direct", help="face scenes: the level of physics, as for render "
                    "(--imager adds noise)")
     p.add_argument("--size", metavar="PX", help="face scenes: image side, pixels (default: the scene's)")
-    p.add_argument("-o", "--output", default="detect.png", help="mask PNG (a preview PNG is written beside it)")
+    p.add_argument("-o", "--output", default="detect.png",
+                   help="mask PNG (white: detected skin); a preview PNG is written beside it (NAME_preview.png); "
+                   "default detect.png (and detect_preview.png) in the current folder, replaced if there")
     p.add_argument("--figure", metavar="PNG",
                    help="also write a labelled figure: a chart with its patch names over the render and over "
                    "the detection mask with each patch's detected fraction; a face with the detected skin over it "

@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..constants import SENSOR_RULE
 from ..errors import SkinrenderError
 from ..workload import check_work
 from ..files import write_output
@@ -42,7 +43,8 @@ def add_parsers(commands) -> None:
                             "their matches with the paper; --sweep: the tables under each choice of the paper's unknowns")
     p.add_argument("-o", "--output", required=True,
                    help="output folder: new, empty or an earlier reproduce folder (replaced only when the run completes)")
-    p.add_argument("--sensors", default="1,3,5,7,9,11,13,15", help="sensor numbers (default 1,3,…,15)")
+    p.add_argument("--sensors", default="1,3,5,7,9,11,13,15",
+                   help="comma-separated sensor numbers, each " + SENSOR_RULE + " (default 1,3,…,15)")
     p.add_argument("--positions", help=f"peak positions START:END:STEP in nm (default {POSITIONS_DEFAULT})")
     p.add_argument("--camera", default="Nikon 5100 (NPL)",
                    help="Stage 2 camera for Figs. 3–7 (the paper's Sony is not public); " + HELP_CAMERA)

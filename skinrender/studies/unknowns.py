@@ -29,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..constants import SENSOR_RULE
 from ..datasets import looks_like_path, reflectances
 from ..design.bank import positions_grid, sensor_bank
 from ..errors import SkinrenderError, naming
@@ -163,7 +164,7 @@ def resolve_setting(setting: Setting) -> ResolvedSetting:
 
 
 def check_sensors(sensors: str | ArrayLike) -> list[float]:
-    """The paper's sensor numbers (``1,3,…,15``; 1 = impulse, N > 1 a gbell of FWHM N·10 nm), checked."""
+    """The paper's sensor numbers (``1,3,…,15``; :data:`~skinrender.design.bank.SENSOR_RULE`), checked."""
     try:
         items = [float(v) for v in sensors.split(",")] if isinstance(sensors, str) else [float(v) for v in sensors]
     except (TypeError, ValueError):
@@ -171,9 +172,9 @@ def check_sensors(sensors: str | ArrayLike) -> list[float]:
                               f"got {sensors!r}") from None
     if not items:
         raise SkinrenderError("--sensors names no sensor")
-    bad = [v for v in items if not (np.isfinite(v) and (v == 1 or v > 1))]
+    bad = [v for v in items if not (np.isfinite(v) and v > 0)]
     if bad:
-        raise SkinrenderError(f"--sensors: {bad[0]:g} is not a sensor (1 = impulse, or a gbell number N > 1)")
+        raise SkinrenderError(f"--sensors: {bad[0]:g} is not a sensor: each must be {SENSOR_RULE}")
     if len(set(items)) != len(items):
         raise SkinrenderError(f"--sensors lists a sensor twice: {sensors!r}")
     return items
