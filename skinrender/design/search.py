@@ -260,11 +260,13 @@ def stop_pool(pool: ProcessPoolExecutor) -> None:
 def progress_bar(total: int, label: str, stream):
     """
     A tqdm progress bar on ``stream``, disabled when ``stream`` is ``None``
-    (``--quiet``) or not a terminal (a log file, a pipe, CI).
+    (``--quiet``); on a stream that is not a terminal (a log file, a pipe, CI) one line says the work started.
     """
     from tqdm import tqdm
 
     enabled = stream is not None and getattr(stream, "isatty", lambda: False)()
+    if stream is not None and not enabled:
+        print(f"{label}: {total} triplets …", file=stream, flush=True)
     return tqdm(total=total, desc=label, file=stream, disable=not enabled, unit="triplet", leave=True)
 
 

@@ -84,10 +84,13 @@ def _threaded(function: Callable, task):
 
 
 def _progress_bar(total: int, stream, label: str):
-    """A tqdm bar of renders on ``stream``; off when ``stream`` is ``None`` (``--quiet``) or not a terminal."""
+    """A tqdm bar of renders on ``stream``; off when ``stream`` is ``None`` (``--quiet``); on a stream that is not a
+    terminal one line says the renders started."""
     from tqdm import tqdm
 
     enabled = stream is not None and getattr(stream, "isatty", lambda: False)()
+    if stream is not None and not enabled:
+        print(f"{label}: {total} render{'s' * (total != 1)} …", file=stream, flush=True)
     return tqdm(total=total, desc=label, file=stream, disable=not enabled, unit="render", leave=True)
 
 
