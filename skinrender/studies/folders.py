@@ -53,6 +53,11 @@ def check_output(directory, flag: str = "-o") -> Path:
 def _checked(target: Path, directory, flag: str) -> Path:
     if len(target.name.encode()) > 255:
         raise OSError(errno.ENAMETOOLONG, os.strerror(errno.ENAMETOOLONG))
+    if target.is_symlink():  # the folder it names is the output; a link to nothing names none
+        if not target.exists():
+            raise SkinrenderError(f"{flag} {directory}: a symbolic link to nothing ({os.readlink(target)}); name a "
+                                  "folder")
+        target = Path(os.path.realpath(target))
     if target.exists() and not target.is_dir():
         raise SkinrenderError(f"{flag} {directory}: an existing file, not a folder")
     if target.is_dir() and any(target.iterdir()) and not (target / MANIFEST).is_file():

@@ -163,3 +163,38 @@ def test_a_noisy_design_says_what_its_value_stands_for(capsys):
     else:
         assert document["value"] == pytest.approx(document["noisy"]["fpr"])
     assert any(note.startswith("auto exposure capped") for note in document["notes"])  # icx418 at 500 lx: 0.49
+
+
+def test_a_full_disk_leaves_no_partial_csv(tmp_path, capsys, monkeypatch):
+    """Seen: ``search --csv`` on a full disk left ``*.partial`` and named no argument."""
+    import errno
+    import os
+
+    from skinrender import files
+
+    def write(handle, data):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(files.os, "write", write)
+    status, out, err = run([*SEARCH, "--positions", "400:700:50", "--csv", tmp_path / "rows.csv", "--json"], capsys)
+    assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
+    assert err.strip() == (f"skinrender search: error: --csv {tmp_path / 'rows.csv'}: cannot be written (no space "
+                           "left on the device (the disk is full)); nothing was written")
+
+
+@pytest.mark.parametrize("extra, names", [
+    (["--evaluations", "100000"], ("--evaluations", "13 h", "--max-minutes")),
+    (["--evaluations", "400", "--max-minutes", "1"], ("--evaluations", "--max-minutes")),
+    (["--max-minutes", "0"], "--max-minutes"),
+])
+def test_design_work_is_capped_by_its_estimated_time(extra, names, capsys):
+    assert_refused(["design", *extra], names, capsys)
+
+
+def test_search_and_reproduce_take_one_sensor_rule(capsys):
+    """Seen: reproduce said a gbell sensor needs N > 1, search N > 0; the model takes any N > 0."""
+    from skinrender.constants import SENSOR_RULE
+
+    for argv, name in ((["search", "--sensor", "-1"], "--sensor"),
+                       (["reproduce", "-o", "unused", "--sensors", "1,-1"], "--sensors")):
+        assert SENSOR_RULE in assert_refused(argv, name, capsys)

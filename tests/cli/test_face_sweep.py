@@ -137,3 +137,26 @@ def test_ctrl_c_stops_an_in_process_render_at_once(name, extra, marker):
     status, out, err = interrupt_after(argv, marker)
     assert status == 130, err[-800:]  # it was 1, an internal error from drjit
     assert err.strip().splitlines()[-1] == f"skinrender {name}: interrupted" and out == ""
+
+
+def test_rounded_spp_is_said_once_and_the_json_reports_the_count_used(capsys):
+    """Seen: Mitsuba's "Sample count rounded up" warnings reached the terminal (54 in the README's example) while
+    the JSON reported the requested spp."""
+    status, out, err = run([*SWEEP, "--spp", "7", "--workers", "1", "--json"], capsys)
+    document = json.loads(out)
+    assert status == 0 and document["spp"] == 8 and document["spp_requested"] == 7
+    assert "WARN" not in err and err.count("rounded") == 1
+
+
+def test_a_full_disk_leaves_no_csv(tmp_path, capsys, monkeypatch):
+    import errno
+
+    from skinrender import files
+
+    def write(handle, data):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(files.os, "write", write)
+    status, out, err = run([*SWEEP, "--workers", "1", "--csv", tmp_path / "s.csv", "--json"], capsys)
+    assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
+    assert f"error: --csv {tmp_path / 's.csv'}: cannot be written (no space left" in err

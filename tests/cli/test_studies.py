@@ -146,3 +146,40 @@ def test_quick_search_bench_times_the_20nm_search_and_estimates_the_rest(capsys)
     assert all(g["measured"].startswith("estimated from 2 triplets") for g in document["growth"][1:])
     assert document["full_search_s"] is None and document["sweep_s_per_setting"] is None
     assert np.isfinite(document["fast_ms_per_triplet"]) and document["max_rel_difference"] < 1e-9
+
+
+@pytest.mark.parametrize("argv, names", [
+    (["bench", "analytic", "--repeat", "1000000"], ("--repeat", "days", "--max-minutes")),
+    (["bench", "search", "--sample", "100000"], ("--sample", "--max-minutes")),
+    (["bench", "render", "--max-minutes", "5"], ("--max-minutes", "bench analytic")),
+    (["table1", "--spp", "1048576"], ("--spp", "at most 267232 spp")),
+])
+def test_work_and_its_flag_are_named(argv, names, capsys):
+    """Seen: ``bench analytic --repeat 1000000`` ran on without an estimate; ``table1 --spp 1048576`` was blamed on
+    --camera."""
+    assert_refused(argv, names, capsys)
+
+
+def test_reproduce_on_a_full_disk_leaves_no_folder_and_names_o(tmp_path, capsys, monkeypatch):
+    """A file of the reproduce folder cannot be written: the folder (made in a temporary beside it) is removed,
+    and the one line names -o and the reason, exit 1 (the machine's error)."""
+    import errno
+    import os
+
+    from skinrender import files
+
+    real, calls = os.write, []
+
+    def write(handle, data):
+        calls.append(1)
+        if len(calls) > 2:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        return real(handle, data)
+
+    monkeypatch.setattr(files.os, "write", write)
+    target = tmp_path / "out"
+    status, out, err = run(["reproduce", "-o", target, "--sensors", "9", "--positions", "400:700:50", "--no-figures",
+                            "--quiet", "--json"], capsys)
+    assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
+    assert err.strip().splitlines()[-1] == (f"skinrender reproduce: error: -o {target}: cannot be written (no space "
+                                            "left on the device (the disk is full)); nothing was left there")
