@@ -215,14 +215,15 @@ def check_output_path(path: str | Path, flag: str | None = None) -> Path:
             text = os.path.realpath(text)
         target = Path(text)
         if target.is_dir():
-            raise SkinrenderError(f"{where}: a folder, expected a file")
+            raise SkinrenderError(f"{where}: is a folder, expected a file")
         if target.exists() and not target.is_file():
             raise SkinrenderError(f"{where}: {_kind(os.stat(target).st_mode)}, expected a regular file")
         existing = target.parent
         while not existing.exists() and existing != existing.parent:
             existing = existing.parent
         if not existing.is_dir():
-            raise SkinrenderError(f"{where}: {existing} is not a folder, so no file can be made under it")
+            raise SkinrenderError(f"{where}: {existing} is {'a file' if existing.is_file() else 'not a folder'}, so no "
+                                  "file can be made under it")
         probe = existing / f".{secrets.token_hex(6)}.probe"
         os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
         os.unlink(probe)

@@ -76,6 +76,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
         commands.choices[args.command].error(f"unrecognized arguments: {' '.join(extra)}")
     try:
+        _sampler_note(None)  # forget an earlier command's (main may run several in one process)
         COMMANDS[args.command](args)
         sys.stdout.flush()  # here, so that a failing standard output is reported below, not at exit
         _sampler_note(args.command)
@@ -117,12 +118,15 @@ USER_PATH_ERRNOS = frozenset({errno.ENAMETOOLONG, errno.ELOOP, errno.EACCES, err
 should one reach :func:`main` past the checks that name its flag."""
 
 
-def _sampler_note(command: str) -> None:
-    """Mitsuba's "Sample count rounded up" warnings of the command, said once on stderr (never on stdout)."""
+def _sampler_note(command: str | None) -> None:
+    """Mitsuba's "Sample count rounded up" warnings of the command, said once on stderr (never on stdout), then
+    forgotten; ``None``: forgotten unsaid."""
     variants = sys.modules.get("skinrender.rendering.variants")  # not loaded: nothing rendered
     note = variants.rounded_note() if variants is not None else None
-    if note:
+    if note and command is not None:
         print(f"skinrender {command}: note: {note}", file=sys.stderr)
+    if variants is not None:
+        variants.ROUNDED.clear()
 
 
 def _internal_error(command: str, error: BaseException) -> int:

@@ -242,9 +242,10 @@ def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = ()) ->
         return None
     if not str(path).strip():
         raise SkinrenderError(f"{name}: expected a file path, got an empty one", flag=name)
+    target = check_output_path(path, name)  # a folder, a link to nothing, a name too long … first
     if suffixes and Path(path).suffix.lower() not in suffixes:
         raise SkinrenderError(f"{name}: {shown(path)} must end in {' or '.join(suffixes)}", flag=name)
-    return check_output_path(path, name)
+    return target
 
 
 def check_lights(args: argparse.Namespace, cam, temperatures, grid=None, name: str = "--illuminants") -> None:

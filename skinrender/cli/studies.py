@@ -63,6 +63,7 @@ def add_parsers(commands) -> None:
                    "quick look)")
     p.add_argument("--sweep-combine", type=int, default=None,
                    help="how many unknowns the sweep combines, the most telling first (default 3)")
+    add_max_minutes(p, "the sensors × the triplets of --positions (--sweep: of each setting)")
     p.add_argument("--sweep-values", type=int, default=None,
                    help="how many best values of each combined unknown are combined, beside the default (default 1)")
     add_search(p)
@@ -94,7 +95,7 @@ def add_parsers(commands) -> None:
                    help="render --scene: samples per pixel of the curve (default 4,16,64,256; --quick 4,16,64)")
     p.add_argument("--reference-spp", metavar="N",
                    help="render --scene: spp of each level's reference render (default 4 × the largest of --spp-list)")
-    add_max_minutes(p, "analytic: --repeat; search: --sample")
+    add_max_minutes(p, "analytic: --repeat; search: --sample; sweep: the triplets of --positions")
     add_common(p)
 
 
@@ -130,7 +131,8 @@ def command_reproduce(args: argparse.Namespace) -> None:
         result = reproduce_sweep(args.output, args.sensors, positions, base, positions_flag=named,
                                  combine=_or_default(args, "sweep_combine", SWEEP_FLAGS),
                                  values_per_unknown=_or_default(args, "sweep_values", SWEEP_FLAGS),
-                                 workers=args.workers, dask=args.dask, progress=progress)
+                                 workers=args.workers, dask=args.dask, progress=progress,
+                                 max_minutes=args.max_minutes)
         rows = [[r["setting"], r["unknown"], f"{r['exact']}/{r['total']}", str(r["within_step"]), f"{r['seconds']:.1f}"]
                 for r in result["sweep"]]
         text = (table(rows, ["setting", "changed", "exact", "within 10 nm", "s"])
@@ -145,6 +147,7 @@ def command_reproduce(args: argparse.Namespace) -> None:
         args.skin, args.munsell, args.slope, args.grid,
         workers=args.workers, dask=args.dask, progress=progress, illuminants=args.illuminants,
         stage1_camera=args.stage1_camera, extrapolation=args.extrapolation, figures=not args.no_figures,
+        max_minutes=args.max_minutes,
     )
     emit(args, result, summary_text(result))
 
@@ -170,7 +173,7 @@ FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
 
 BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
                "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render",), "scene": ("render",),
-               "max_minutes": ("analytic", "search")}
+               "max_minutes": ("analytic", "search", "sweep")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
 :data:`FACE_BENCH_FLAGS`."""
 
@@ -295,9 +298,12 @@ def command_bench(args: argparse.Namespace) -> None:
 
         check_workers(args.workers)
     if args.what == "sweep":
-        from ..design.bank import positions_grid
+        from ..design.bank import SENSORS_PAPER, positions_grid
+        from ..studies.unknowns import check_search_work
 
-        flag("--positions", positions_grid, _or_default(args, "positions"))
+        where = flag("--positions", positions_grid, _or_default(args, "positions"))
+        check_search_work(len(SENSORS_PAPER), where, "--positions", args.max_minutes, args.workers,
+                          "each setting's ")
     if args.what == "render":
         from ..studies.bench import bench_render
 

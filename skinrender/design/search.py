@@ -43,13 +43,17 @@ from .bank import SensorBank, positions_grid, sensor_bank, triplets
 from .criteria import triplet_false_positive_rates, triplet_volumes_many, triplet_volumes_naive
 from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, exposure_capped, triplet_noisy_rates
 
-__all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "WORKERS_MAX", "SearchResult", "search", "progress_bar", "stop_pool",
+__all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "WORKERS_MAX", "SECONDS_PER_TRIPLET", "SearchResult", "search", "progress_bar", "announce", "stop_pool",
            "dask_client", "check_workers"]
 
 DASK_TIMEOUT_S = 10.0
 """Seconds to wait for a Dask scheduler before giving up."""
 
 WORKERS_MAX = max(64, 4 * (os.cpu_count() or 1))
+
+SECONDS_PER_TRIPLET = 2.2e-3
+"""One triplet's volumes (skin and Munsell, every calibration) on one core, s: the estimates' rate (measured ~2 ms
+on a 2-core AMD EPYC VM)."""
 """Most worker processes a search may start (each holds the sensor banks)."""
 
 TOLERANCE_TIE = 1e-9
@@ -260,14 +264,25 @@ def stop_pool(pool: ProcessPoolExecutor) -> None:
 def progress_bar(total: int, label: str, stream):
     """
     A tqdm progress bar on ``stream``, disabled when ``stream`` is ``None``
-    (``--quiet``); on a stream that is not a terminal (a log file, a pipe, CI) one line says the work started.
+    (``--quiet``) or not a terminal (a log file, a pipe, CI: there :func:`announce` says the work started).
     """
     from tqdm import tqdm
 
     enabled = stream is not None and getattr(stream, "isatty", lambda: False)()
-    if stream is not None and not enabled:
-        print(f"{label}: {total} triplets …", file=stream, flush=True)
     return tqdm(total=total, desc=label, file=stream, disable=not enabled, unit="triplet", leave=True)
+
+
+def announce(stream, label: str, total: int, unit: str = "triplet") -> None:
+    """
+    One line on a progress ``stream`` that is not a terminal (where no bar is drawn) saying the work started:
+    ``label: total units …`` (nothing on a terminal, or without a stream).
+
+    >>> import io
+    >>> log = io.StringIO(); announce(log, "sensor 9", 4495); log.getvalue().strip()
+    'sensor 9: 4495 triplets …'
+    """
+    if stream is not None and not getattr(stream, "isatty", lambda: False)():
+        print(f"{label}: {total} {unit}{'s' * (total != 1)} …", file=stream, flush=True)
 
 
 def search(
@@ -342,7 +357,7 @@ def search(
     count = where.size * (where.size - 1) * (where.size - 2) // 6
     if count > max_triplets:
         raise SkinrenderError(f"{count} triplets ({where.size} positions) is more than max_triplets = {max_triplets} "
-                              f"(about {duration_text(count * 2.2e-3 / 2)} on 2 cores at the measured ~2 ms per "
+                              f"(about {duration_text(count * SECONDS_PER_TRIPLET / 2)} on 2 cores at the measured ~2 ms per "
                               "triplet per core); raise the limit (--max-triplets) or use fewer positions",
                               role="positions")
     workers = check_workers(workers, "workers")
@@ -373,6 +388,7 @@ def search(
     bar = progress_bar(len(index), label, progress)
     if dask is not None:
         client, own = dask_client(dask)
+        announce(progress, label, len(index))
         try:
             remote_banks = client.scatter(banks, broadcast=True)
             futures = [client.submit(_volumes_chunk, index[c], method, remote_banks, detection, pack, c, pure=False)
@@ -384,6 +400,7 @@ def search(
             if own:
                 client.close()
     elif workers == 1:
+        announce(progress, label, len(index))
         for chunk in chunks:
             store(chunk, _volumes_chunk(index[chunk], method, banks, detection, pack, chunk))
             bar.update(len(chunk))
@@ -391,6 +408,7 @@ def search(
         pool = ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(banks, pack))
         try:
             futures = [pool.submit(_volumes_chunk, index[c], method, None, detection, None, c) for c in chunks]
+            announce(progress, label, len(index))  # the workers are forked and busy
             for chunk, future in zip(chunks, futures):
                 store(chunk, future.result())
                 bar.update(len(chunk))

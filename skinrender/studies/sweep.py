@@ -38,8 +38,8 @@ from .folders import MANIFEST, check_output, output_folder
 from .matching import unmatched_sensors
 from .observations import paper_cameras, shared_file
 from .tables import TABLES
-from .unknowns import (SETTING_DEFAULT, Setting, check_positions, check_sensors, resolve_setting, setting_tables,
-                       with_unknown)
+from .unknowns import (SETTING_DEFAULT, Setting, check_positions, check_search_work, check_sensors, resolve_setting,
+                       setting_tables, with_unknown)
 from .volumes import VolumeCache, check_workers
 
 __all__ = ["SWEEP_SLOPES", "SWEEP_GRIDS", "SWEEP_MUNSELL", "SWEEP_SKIN", "UNKNOWNS", "sweep_candidates", "sweep",
@@ -283,8 +283,9 @@ def reproduce_sweep(directory: str | Path, sensors: ArrayLike | str = SENSORS_PA
     """
     start = time.perf_counter()
     target = check_output(directory)
-    check_sensors(sensors)
-    check_positions(positions, resolve_setting(base).grid, positions_flag)
+    where = check_positions(positions, resolve_setting(base).grid, positions_flag)
+    check_search_work(len(check_sensors(sensors)), where, positions_flag, options.pop("max_minutes", None),
+                      options.get("workers"), "each setting's ")
     check_workers(options.get("workers"))
     _check_combine(options.get("combine", 3), options.get("values_per_unknown", 1))
     with output_folder(target) as folder:
