@@ -23,7 +23,7 @@ __all__ = [
     "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "render_options", "choices_help", "coverage_hint",
-    "interruptible",
+    "interruptible", "check_render_work", "add_max_minutes",
 ]
 
 HELP_CAMERA = (
@@ -110,6 +110,7 @@ def add_render(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--exposure", default=None,
                         help="with --imager (or a face's noise level): exposure in s, or auto (the calibration "
                         "white's brightest channel at 0.7 of the full well; default)")
+    add_max_minutes(parser, "the renders × pixels × --spp")
 
 
 def add_max_minutes(parser: argparse.ArgumentParser, what: str) -> None:
@@ -119,6 +120,27 @@ def add_max_minutes(parser: argparse.ArgumentParser, what: str) -> None:
     parser.add_argument("--max-minutes", metavar="MIN", type=float, default=None,
                         help=f"refuse runs estimated to take longer than this, minutes (default {MINUTES_MAX:g}; the "
                         f"estimate, from {what}, is printed with the refusal)")
+
+
+def check_render_work(args: argparse.Namespace, pixels: int, spp: int, renders: int = 1) -> None:
+    """
+    Refuse, before anything renders, ``renders`` renders of ``pixels`` pixels at ``spp`` that one pass cannot hold
+    (:data:`~skinrender.rendering.renderer.SAMPLES_MAX`) or whose estimated time exceeds ``--max-minutes``
+    (:func:`~skinrender.studies.face_sweep.estimate_seconds` on every core), naming ``--spp``.
+    """
+    import os
+
+    from ..rendering.renderer import SAMPLES_MAX
+    from ..studies.face_sweep import estimate_seconds
+    from ..workload import check_work
+
+    if spp * pixels > SAMPLES_MAX:
+        raise SkinrenderError(f"--spp: {spp} spp × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
+                              f"{SAMPLES_MAX:.3g} (Mitsuba's 32-bit wavefront); at most {SAMPLES_MAX // pixels} spp "
+                              "for this scene", flag="--spp")
+    what = f"{renders} renders" if renders > 1 else "a render"
+    check_work(estimate_seconds(renders, pixels, spp, os.cpu_count() or 1), "--spp",
+               f"{what} of {pixels} pixels at {spp} spp", getattr(args, "max_minutes", None), fewer="lower --spp")
 
 
 def emit(args: argparse.Namespace, document: dict, text: str) -> None:
@@ -200,9 +222,10 @@ def integer_in(text, name: str, low: int, high: int | None = None) -> int:
     return value
 
 
-def positive_number(text, name: str, unit: str) -> float:
+def positive_number(text, name: str, unit: str, high: float | None = None) -> float:
     """
-    ``text`` as a finite number > 0, else a one-line error naming the flag ``name`` (``unit``: what it counts).
+    ``text`` as a finite number > 0 (and ≤ ``high`` where given), else a one-line error naming the flag ``name``
+    (``unit``: what it counts). ``--illuminance`` takes at most :data:`ILLUMINANCE_MAX` whatever ``high``.
 
     >>> positive_number("300", "--illuminance", "lx")
     300.0
@@ -211,9 +234,19 @@ def positive_number(text, name: str, unit: str) -> float:
         value = float(text)
     except (TypeError, ValueError):
         value = math.nan
-    if not math.isfinite(value) or value <= 0:
-        raise SkinrenderError(f"{name} must be a finite number > 0 ({unit}), got {text!r}")
+    high = ILLUMINANCE_MAX if high is None and name == "--illuminance" else high
+    if not math.isfinite(value) or value <= 0 or (high is not None and value > high):
+        bound = "" if high is None else f" and ≤ {high:g}"
+        raise SkinrenderError(f"{name} must be a finite number > 0{bound} ({unit}), got {text!r}")
     return value
+
+
+EXPOSURE_MAX = 1e5
+"""Longest ``--exposure``, s (about 28 h): far beyond it the electron counts overflow."""
+
+ILLUMINANCE_MAX = 1e15
+"""Largest ``--illuminance``, lx: ten orders of magnitude above direct sunlight (~1.2e5 lx); far beyond it the
+electron counts overflow."""
 
 
 def variant_of(name: str | None) -> str | None:
@@ -322,16 +355,18 @@ def sensor_settings(args: argparse.Namespace, default_lux: float | None = ILLUMI
     (500.0, 0.01)
     """
     lux = default_lux if args.illuminance is None else args.illuminance
-    if lux is not None and not (math.isfinite(lux) and lux > 0):
-        raise SkinrenderError(f"--illuminance must be a finite number of lux > 0, got {args.illuminance}")
+    if lux is not None and not (math.isfinite(lux) and 0 < lux <= ILLUMINANCE_MAX):
+        raise SkinrenderError(f"--illuminance must be a finite number of lux > 0 and ≤ {ILLUMINANCE_MAX:g}, got "
+                              f"{args.illuminance}")
     exposure = "auto" if args.exposure is None else str(args.exposure).strip().lower()
     if exposure != "auto":
         try:
             exposure = float(exposure)
         except ValueError:
             raise SkinrenderError(f"--exposure must be auto or seconds > 0, got {args.exposure!r}") from None
-        if not (math.isfinite(exposure) and exposure > 0):
-            raise SkinrenderError(f"--exposure must be auto or a finite number of seconds > 0, got {args.exposure!r}")
+        if not (math.isfinite(exposure) and 0 < exposure <= EXPOSURE_MAX):
+            raise SkinrenderError(f"--exposure must be auto or a finite number of seconds > 0 and ≤ {EXPOSURE_MAX:g}, "
+                                  f"got {args.exposure!r}")
     return lux, exposure
 
 

@@ -69,7 +69,7 @@ def command_locus(args: argparse.Namespace) -> None:
 
     plot = check_output(args.plot, "--plot", (".png",))
     cam = camera_of(args)
-    temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
+    temperatures = flag({"camera": "--camera", None: "--illuminants"}, illuminant_set, args.illuminants, cam)
     check_lights(args, cam, temperatures)
     calibration = None
     if args.calibration is not None:

@@ -16,8 +16,8 @@ from pathlib import Path
 
 from ..errors import SkinrenderError
 from ..files import TOML_BYTES_MAX, Output, exists, read_input, write_output, write_outputs
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_of, check_output, check_seed,
-                     choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_of,
+                     check_output, check_render_work, check_seed, choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
                      render_options, sensor_settings, table, variant_of)
 
 __all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
@@ -164,6 +164,11 @@ def face_inputs(args: argparse.Namespace) -> tuple:
     return scene, cam, temperatures, physics, skin, size, imager, exposure, lux
 
 
+def face_pixels(scene, size: int | None) -> int:
+    """The pixels of a face render: ``size``² where given, else the scene camera's."""
+    return size * size if size is not None else scene.camera.width * scene.camera.height
+
+
 def levels_of(text: str) -> list[str]:
     """
     ``--levels``: comma-separated levels of physics, none empty and none twice (``a+b`` and ``b+a`` are one
@@ -285,6 +290,7 @@ def command_render_face(args: argparse.Namespace) -> None:
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
     scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
+    check_render_work(args, face_pixels(scene, size), options["spp"])
     print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
     result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], skin, physics,
                          options["spp"], options["seed"], size, options["sampler"], options["variant"],
@@ -341,6 +347,7 @@ def command_detect_face(args: argparse.Namespace) -> None:
     scene, cam, temperatures, physics, face_skin, size, imager, exposure, lux = face_inputs(args)
     locus_skin = getattr(args, "locus_skin", None) or "skin"
     skin = flag("--locus-skin", reflectances, locus_skin)
+    check_render_work(args, face_pixels(scene, size), options["spp"])
     print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
     result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], face_skin, physics,
                          options["spp"], options["seed"], size, options["sampler"], options["variant"],

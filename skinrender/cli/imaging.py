@@ -14,7 +14,7 @@ import sys
 
 from ..errors import SkinrenderError
 from ..files import write_output
-from .common import (HELP_CAMERA, add_common, add_max_minutes, camera_of, check_lights, check_output, check_seed, emit, flag, integer_in,
+from .common import (EXPOSURE_MAX, HELP_CAMERA, add_common, add_max_minutes, camera_of, check_lights, check_output, check_seed, emit, flag, integer_in,
                      positive_number, table)
 
 __all__ = [
@@ -96,7 +96,7 @@ def _noise_options(args: argparse.Namespace) -> dict | None:
     if exposure.strip().lower() == "auto":
         exposure = "auto"
     else:
-        exposure = positive_number(exposure, "--exposure", "s, or 'auto'")
+        exposure = positive_number(exposure, "--exposure", "s, or 'auto'", EXPOSURE_MAX)
     return {
         "imager_": flag("--imager", imager, args.imager),
         "illuminance_lux": positive_number(args.illuminance, "--illuminance", "lx"),
@@ -122,7 +122,7 @@ def command_score(args: argparse.Namespace) -> None:
 
     noise = _noise_options(args)
     cam = camera_of(args)
-    temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
+    temperatures = flag({"camera": "--camera", None: "--illuminants"}, illuminant_set, args.illuminants, cam)
     skin, munsell = flag("--skin", reflectances, args.skin), flag("--munsell", reflectances, args.munsell)
     skin_gamut = gamut_all_calibrations(cam, skin, temperatures)
     munsell_gamut = gamut_all_calibrations(cam, munsell, temperatures)
@@ -180,7 +180,8 @@ def command_ptc(args: argparse.Namespace) -> None:
     plot = check_output(args.plot, "--plot", (".png",))
     cam = camera_of(args)
     sensor = flag("--imager", imager, args.imager)
-    for name, value in (("--temperature", args.temperature), ("--illuminance", args.illuminance)):
+    positive_number(args.illuminance, "--illuminance", "lx")
+    for name, value in (("--temperature", args.temperature),):
         if not (math.isfinite(value) and value > 0):
             raise SkinrenderError(f"{name} must be a finite number > 0, got {value}")
     flag("--temperature", illuminant, args.temperature)
@@ -188,6 +189,7 @@ def command_ptc(args: argparse.Namespace) -> None:
     if not 1 <= args.spp <= 65536:
         raise SkinrenderError(f"--spp must be an integer in [1, 65536], got {args.spp}")
     check_seed(args.seed)
+    integer_in(args.points, "--points", 4, 1000)  # before the progress line, so a refusal is its one line
     print(f"rendering the grey chart at {args.spp} spp …", file=sys.stderr)
     result = flag("--points", photon_transfer, cam, sensor, args.temperature, args.illuminance, args.points,
                   args.spp, args.seed)

@@ -136,7 +136,7 @@ def command_gamut(args: argparse.Namespace) -> None:
 
     grid = grid_of(args)
     cam = camera_of(args, grid_of(args))
-    temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
+    temperatures = flag({"camera": "--camera", None: "--illuminants"}, illuminant_set, args.illuminants, cam)
     check_lights(args, cam, temperatures, grid)
     if args.ratio == bool(args.reflectances):
         raise SkinrenderError("give either --reflectances R or --ratio (with --skin and --munsell), not both or neither")

@@ -11,8 +11,9 @@ import numpy as np
 
 from ..errors import SkinrenderError
 from ..files import Output, write_outputs
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, camera_of, add_grid, add_model, add_render, check_output,
-                     choices_help, emit, flag, grid_of, render_options, table)
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, camera_of, add_grid,
+                     add_model, add_render, check_output, check_render_work, choices_help, emit, flag, grid_of,
+                     render_options, table)
 from .face import check_figure
 
 
@@ -130,6 +131,12 @@ def render_inputs(args: argparse.Namespace) -> dict:
             "calibration": temperatures["calibration"]}
 
 
+def pixels_of(scene) -> int:
+    """The pixels of a chart scene's image."""
+    width, height = scene.size
+    return int(width) * int(height)
+
+
 def render_with(args: argparse.Namespace, inputs: dict, options: dict, imaging: dict | None, knee: bool = False):
     """The render of a command: plain (Eq. 4 on the radiance) or through ``--imager``; returns (rendering, imaged)."""
     from ..rendering.balance import render
@@ -178,6 +185,7 @@ def command_render(args: argparse.Namespace) -> None:
     figure = check_figure(args, output.with_suffix(".png"))
     inputs = render_inputs(args)
     imaging = imaging_options(args)
+    check_render_work(args, pixels_of(inputs["scene"]), options["spp"])
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
     result, imaged = render_with(args, inputs, options, imaging, args.knee)
     if imaged is not None and args.knee:
@@ -225,6 +233,7 @@ def command_validate(args: argparse.Namespace) -> None:
     options = render_options(args)
     inputs = render_inputs(args)
     imaging = imaging_options(args)
+    check_render_work(args, pixels_of(inputs["scene"]), options["spp"], 11 if args.gamut else 1)  # --gamut: 10 more
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp and validating …", file=sys.stderr)
     if imaging is not None:
         return validate_through_imager(args, inputs, options, imaging)
@@ -299,6 +308,7 @@ def command_detect(args: argparse.Namespace) -> None:
     inputs = render_inputs(args)
     imaging = imaging_options(args)
     skin = flag("--locus-skin" if args.skin is None else "--skin", reflectances, locus_skin)
+    check_render_work(args, pixels_of(inputs["scene"]), options["spp"])
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
     rendering, imaged = render_with(args, inputs, options, imaging)
     # the camera is white-balanced to the calibration light: the locus of that one balancing
