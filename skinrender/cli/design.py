@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 
 from ..constants import SENSOR_RULE
@@ -87,6 +88,7 @@ def add_parsers(commands) -> None:
     p.add_argument("--max-triplets", type=int, default=1_000_000,
                    help="refuse searches of more triplets than this (default 1 000 000; the 5 nm grid has 35 990, "
                    "measured at ~80 s on 2 cores; the estimate is printed with the refusal)")
+    add_max_minutes(p, "the triplets (× --noise-samples with --imager)")
     p.add_argument("--tie-tolerance", type=float, default=1e-9,
                    help="relative difference under which two values tie (default 1e-9); ties are all listed")
     p.add_argument("--illuminants", default="paper",
@@ -153,6 +155,16 @@ def command_search(args: argparse.Namespace) -> None:
     flag("--illuminants", sensor_bank, args.sensor, skin_values[:1], positions[:3], temperatures, slope,
          grid=grid)
     noisy = noisy_of(args, temperatures)
+    from ..design.noise_aware import SECONDS_PER_NOISY_SAMPLE
+    from ..design.search import SECONDS_PER_TRIPLET, check_workers as workers_of
+
+    count = positions.size * (positions.size - 1) * (positions.size - 2) // 6
+    cores = min(workers_of(args.workers), os.cpu_count() or 1) if args.dask is None else 1
+    each = SECONDS_PER_TRIPLET + (0 if noisy is None else noisy.samples * SECONDS_PER_NOISY_SAMPLE)
+    check_work(count * each / cores, "--positions" if noisy is None else "--noise-samples",
+               f"{count} triplets" + ("" if noisy is None else f" × {noisy.samples} noise samples")
+               + f" on {cores} core{'s' * (cores != 1)}", args.max_minutes,
+               fewer="use fewer positions" + ("" if noisy is None else " or --noise-samples"))
     result = flag({"positions": "--positions", None: None}, search,
         args.sensor, skin_values, munsell_values, args.positions, temperatures, slope, grid=grid,
         method=args.method, workers=args.workers, dask=args.dask,
