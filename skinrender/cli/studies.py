@@ -89,8 +89,10 @@ def add_parsers(commands) -> None:
     p.add_argument("--scene", help="render: a face scene (face or a .toml with [camera] and [mesh]) to time the "
                    "face at each level of physics instead of the charts")
     p.add_argument("--size", metavar="PX", help="render --scene: image side, pixels (default 256; --quick 64)")
+    from ..studies.bench_face import LEVELS_BENCH
+
     p.add_argument("--levels", help="render --scene: comma-separated levels of physics (default "
-                   "direct,interreflection,sheen,mixed,noise)")
+                   + ",".join(LEVELS_BENCH) + ")")
     p.add_argument("--spp-list", metavar="N,N,…",
                    help="render --scene: samples per pixel of the curve (default 4,16,64,256; --quick 4,16,64)")
     p.add_argument("--reference-spp", metavar="N",
@@ -227,8 +229,8 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
         if given:
             raise SkinrenderError(f"--{given[0].replace('_', '-')} goes with 'bench render --scene SCENE' (a face)")
         return None
-    from ..rendering.face_dict import active_lights, parse_physics
-    from ..rendering.face_scene import load_face_scene
+    from ..rendering.face.effects import active_lights, parse_physics
+    from ..rendering.face.scene import load_face_scene
     from ..rendering.renderer import SAMPLES_MAX
     from ..studies.bench_face import LEVELS_BENCH, SIZE_BENCH, SPPS_BENCH
     from .common import SPP_MAX, flag
