@@ -155,16 +155,7 @@ def command_search(args: argparse.Namespace) -> None:
     flag("--illuminants", sensor_bank, args.sensor, skin_values[:1], positions[:3], temperatures, slope,
          grid=grid)
     noisy = noisy_of(args, temperatures)
-    from ..design.noise_aware import SECONDS_PER_NOISY_SAMPLE
-    from ..design.search import SECONDS_PER_TRIPLET, check_workers as workers_of
-
-    count = positions.size * (positions.size - 1) * (positions.size - 2) // 6
-    cores = min(workers_of(args.workers), os.cpu_count() or 1) if args.dask is None else 1
-    each = SECONDS_PER_TRIPLET + (0 if noisy is None else noisy.samples * SECONDS_PER_NOISY_SAMPLE)
-    check_work(count * each / cores, "--positions" if noisy is None else "--noise-samples",
-               f"{count} triplets" + ("" if noisy is None else f" × {noisy.samples} noise samples")
-               + f" on {cores} core{'s' * (cores != 1)}", args.max_minutes,
-               fewer="use fewer positions" + ("" if noisy is None else " or --noise-samples"))
+    check_search_time(args, positions.size, noisy, max_triplets)
     result = flag({"positions": "--positions", None: None}, search,
         args.sensor, skin_values, munsell_values, args.positions, temperatures, slope, grid=grid,
         method=args.method, workers=args.workers, dask=args.dask,
@@ -202,6 +193,26 @@ def command_search(args: argparse.Namespace) -> None:
             lines += [f"{label}:"] + [f"  {_row_text(row)}" for row in best[key]]
     lines += [f"note: {note}" for note in document["notes"]]
     emit(args, document, "\n".join(lines))
+
+
+def check_search_time(args: argparse.Namespace, positions: int, noisy, max_triplets: int) -> None:
+    """
+    Refuse a search whose estimated time (every triplet, and its noise samples with ``--imager``, at the measured
+    rates on the cores that will run it) exceeds ``--max-minutes``; more triplets than ``--max-triplets`` are the
+    search's own refusal, with its count cap.
+    """
+    from ..design.noise_aware import SECONDS_PER_NOISY_SAMPLE
+    from ..design.search import SECONDS_PER_TRIPLET, check_workers
+
+    count = positions * (positions - 1) * (positions - 2) // 6
+    if count > max_triplets:
+        return
+    cores = min(check_workers(args.workers), os.cpu_count() or 1) if args.dask is None else 1
+    each = SECONDS_PER_TRIPLET + (0 if noisy is None else noisy.samples * SECONDS_PER_NOISY_SAMPLE)
+    check_work(count * each / cores, "--positions" if noisy is None else "--noise-samples",
+               f"{count} triplets" + ("" if noisy is None else f" × {noisy.samples} noise samples")
+               + f" on {cores} core{'s' * (cores != 1)}", args.max_minutes,
+               fewer="use fewer positions" + ("" if noisy is None else " or --noise-samples"))
 
 
 def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:

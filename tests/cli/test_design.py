@@ -198,3 +198,9 @@ def test_search_and_reproduce_take_one_sensor_rule(capsys):
     for argv, name in ((["search", "--sensor", "-1"], "--sensor"),
                        (["reproduce", "-o", "unused", "--sensors", "1,-1"], "--sensors")):
         assert SENSOR_RULE in assert_refused(argv, name, capsys)
+
+
+def test_a_noisy_search_is_capped_by_its_estimated_time(capsys):
+    """--noise-samples 1000 on the 10 nm grid was ~14 h with no estimate."""
+    assert_refused(["search", "--sensor", "9", "--imager", "sony-imx174", "--noise-samples", "1000"],
+                   ("--noise-samples", "--max-minutes"), capsys)

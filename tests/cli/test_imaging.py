@@ -117,3 +117,7 @@ def test_score_samples_are_capped_by_their_estimated_time(capsys):
                            "--samples", "100000000"], ("--samples", "--max-minutes"), capsys)
     assert "would take about" in line and "days" in line
     assert_refused(["score", "--camera", CAMERA, "--max-minutes", "5"], ("--max-minutes", "--imager"), capsys)
+
+
+def test_ptc_points_are_refused_before_the_render(capsys):
+    assert_refused(["ptc", "--camera", CAMERA, "--imager", "sony-imx174", "--points", "1000000"], "--points", capsys)

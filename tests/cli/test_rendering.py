@@ -311,3 +311,16 @@ def test_a_device_as_the_scene_is_refused_unread(scene, reason, capsys):
     """Seen: ``render /dev/zero …`` read 12.8 GB in 15 s."""
     line = assert_refused(["render", scene, "--camera", CAM, *LIGHTS], "SCENE", capsys)
     assert reason in line
+
+
+@pytest.mark.parametrize("extra, names", [
+    (["--spp", "1048576"], ("--spp", "at most 267232 spp")),
+    (["--imager", "sony-imx174", "--illuminance", "1e308"], "--illuminance"),
+    (["--imager", "sony-imx174", "--exposure", "1e308"], "--exposure"),
+    (["--spp", "200000", "--max-minutes", "1"], ("--spp", "--max-minutes")),
+])
+def test_a_render_out_of_bounds_is_refused_before_its_progress_line(extra, names, tmp_path, capsys):
+    """Seen: a render of too many samples was refused after "rendering … at N spp", unflagged; an illuminance
+    or exposure of 1e308 overflowed into a warning and an unflagged error."""
+    assert_refused(["render", "macbeth", "--camera", CAM, *LIGHTS, "-o", tmp_path / "r.exr", *extra], names, capsys,
+                   output=tmp_path)

@@ -183,3 +183,15 @@ def test_reproduce_on_a_full_disk_leaves_no_folder_and_names_o(tmp_path, capsys,
     assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
     assert err.strip().splitlines()[-1] == (f"skinrender reproduce: error: -o {target}: cannot be written (no space "
                                             "left on the device (the disk is full)); nothing was left there")
+
+
+@pytest.mark.parametrize("argv, name", [
+    (["reproduce", "-o", "{out}", "--positions", "400:700:1"], "--positions"),
+    (["reproduce", "-o", "{out}", "--sweep", "--sweep-positions", "400:700:1"], "--sweep-positions"),
+    (["bench", "sweep", "--positions", "400:700:1"], "--positions"),
+])
+def test_searches_of_the_studies_are_capped_by_their_estimated_time(argv, name, tmp_path, capsys):
+    """1 nm positions ran the paper's eight searches (4.5 million triplets each) for hours, unannounced."""
+    line = assert_refused([a.format(out=tmp_path / "out") for a in argv], (name, "--max-minutes"), capsys,
+                          output=tmp_path)
+    assert "4499950 triplets" in line and "would take about" in line
