@@ -15,6 +15,8 @@ from skinrender import files
 from skinrender.errors import SkinrenderError
 from skinrender.files import Output, OutputError, check_output_path, exists, read_input, write_output, write_outputs
 
+from .cli.refusal import full_disk
+
 LONG = "n" * 300
 """A file name longer than any file system takes (255 bytes)."""
 
@@ -68,21 +70,6 @@ class TestReadInput:
             exists(tmp_path / LONG)
 
 
-def fail_writing(monkeypatch, after: int = 0, code: int = errno.ENOSPC):
-    """``os.write`` in :mod:`skinrender.files` fails with ``code`` after ``after`` successful calls (a disk that
-    fills up while the outputs are written)."""
-    calls = {"n": 0}
-    real = os.write
-
-    def write(handle, data):
-        calls["n"] += 1
-        if calls["n"] > after:
-            raise OSError(code, os.strerror(code))
-        return real(handle, data)
-
-    monkeypatch.setattr(files.os, "write", write)
-
-
 class TestWriteOutputs:
     def test_every_output_is_written_and_parents_made(self, tmp_path):
         written = write_outputs(Output(tmp_path / "a.png", "--output", b"a"),
@@ -96,7 +83,7 @@ class TestWriteOutputs:
         The disk fills on the first or the second file: no temporary, no target, no folder made is left, an
         earlier file of the same name is untouched, and the message names the flag and the reason."""
         (tmp_path / "m.png").write_bytes(b"earlier")
-        fail_writing(monkeypatch, after)
+        full_disk(monkeypatch, after)
         with pytest.raises(OutputError) as caught:
             write_outputs(Output(tmp_path / "m.png", "--output", b"mask"),
                           Output(tmp_path / "figures" / "f.png", "--figure", b"figure"))

@@ -7,6 +7,8 @@ left behind in the output folder.
 
 from __future__ import annotations
 
+import errno
+import os
 import signal
 import subprocess
 import sys
@@ -110,3 +112,20 @@ def interrupt_after(argv: list, marker: str, timeout: float = 600.0) -> tuple[in
         if child.poll() is None:
             child.kill()
     return child.returncode, out, "".join(seen) + err
+
+
+def full_disk(monkeypatch, after: int = 0, code: int = errno.ENOSPC) -> None:
+    """``os.write`` in :mod:`skinrender.files` (every output's writes) fails with ``code`` (a full disk) after
+    ``after`` successful calls: the disk fills while the outputs are written."""
+    from skinrender import files
+
+    calls = {"n": 0}
+    real = os.write
+
+    def write(handle, data):
+        calls["n"] += 1
+        if calls["n"] > after:
+            raise OSError(code, os.strerror(code))
+        return real(handle, data)
+
+    monkeypatch.setattr(files.os, "write", write)

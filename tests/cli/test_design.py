@@ -167,15 +167,9 @@ def test_a_noisy_design_says_what_its_value_stands_for(capsys):
 
 def test_a_full_disk_leaves_no_partial_csv(tmp_path, capsys, monkeypatch):
     """Seen: ``search --csv`` on a full disk left ``*.partial`` and named no argument."""
-    import errno
-    import os
+    from .refusal import full_disk
 
-    from skinrender import files
-
-    def write(handle, data):
-        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-
-    monkeypatch.setattr(files.os, "write", write)
+    full_disk(monkeypatch)
     status, out, err = run([*SEARCH, "--positions", "400:700:50", "--csv", tmp_path / "rows.csv", "--json"], capsys)
     assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
     assert err.strip() == (f"skinrender search: error: --csv {tmp_path / 'rows.csv'}: cannot be written (no space "

@@ -149,14 +149,9 @@ def test_rounded_spp_is_said_once_and_the_json_reports_the_count_used(capsys):
 
 
 def test_a_full_disk_leaves_no_csv(tmp_path, capsys, monkeypatch):
-    import errno
+    from .refusal import full_disk
 
-    from skinrender import files
-
-    def write(handle, data):
-        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-
-    monkeypatch.setattr(files.os, "write", write)
+    full_disk(monkeypatch)
     status, out, err = run([*SWEEP, "--workers", "1", "--csv", tmp_path / "s.csv", "--json"], capsys)
     assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
     assert f"error: --csv {tmp_path / 's.csv'}: cannot be written (no space left" in err

@@ -5,9 +5,7 @@ anything renders; Mitsuba's own warnings stay off stdout; undefined rates are nu
 
 from __future__ import annotations
 
-import errno
 import json
-import os
 import subprocess
 import sys
 
@@ -277,17 +275,9 @@ def test_a_full_disk_leaves_no_render_behind(tmp_path):
 def test_detect_writes_its_mask_preview_and_figure_all_or_none(tmp_path, capsys, monkeypatch):
     """Seen: ``detect -o m.png --figure f.png`` failing on the figure left m.png and m_preview.png. The disk fills
     on the third file: none of the three is left, and the line names --figure and the reason."""
-    from skinrender import files
+    from .refusal import full_disk
 
-    real, calls = os.write, []
-
-    def write(handle, data):
-        calls.append(len(data))
-        if len(calls) > 2:
-            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-        return real(handle, data)
-
-    monkeypatch.setattr(files.os, "write", write)
+    full_disk(monkeypatch, after=2)
     status, out, err = run(["detect", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "1", "-o", tmp_path / "m.png",
                             "--figure", tmp_path / "f.png", "--json"], capsys)
     lines = [line for line in err.splitlines() if "error" in line]

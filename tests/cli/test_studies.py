@@ -163,20 +163,9 @@ def test_work_and_its_flag_are_named(argv, names, capsys):
 def test_reproduce_on_a_full_disk_leaves_no_folder_and_names_o(tmp_path, capsys, monkeypatch):
     """A file of the reproduce folder cannot be written: the folder (made in a temporary beside it) is removed,
     and the one line names -o and the reason, exit 1 (the machine's error)."""
-    import errno
-    import os
+    from .refusal import full_disk
 
-    from skinrender import files
-
-    real, calls = os.write, []
-
-    def write(handle, data):
-        calls.append(1)
-        if len(calls) > 2:
-            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-        return real(handle, data)
-
-    monkeypatch.setattr(files.os, "write", write)
+    full_disk(monkeypatch, after=2)
     target = tmp_path / "out"
     status, out, err = run(["reproduce", "-o", target, "--sensors", "9", "--positions", "400:700:50", "--no-figures",
                             "--quiet", "--json"], capsys)
