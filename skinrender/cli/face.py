@@ -170,7 +170,7 @@ def face_inputs(args: argparse.Namespace) -> tuple:
 
 
 def face_pixels(scene, size: int | None) -> int:
-    """The pixels of a face render: ``size``² where given, else the scene camera's."""
+    """The pixels of a face render: ``size`` squared where given, else the scene camera's."""
     return size * size if size is not None else scene.camera.width * scene.camera.height
 
 
