@@ -39,7 +39,7 @@ from typing import BinaryIO, NamedTuple
 from .errors import SkinrenderError
 
 __all__ = ["MACHINE_ERRNOS", "TOML_BYTES_MAX", "MESH_BYTES_MAX", "OutputError", "Output", "read_input", "exists",
-           "reason_of", "shown", "check_output_path", "write_outputs", "write_output"]
+           "reason_of", "shown", "check_output_path", "write_outputs", "write_output", "remove_pending"]
 
 TOML_BYTES_MAX = 1_000_000
 """Largest scene or imager TOML read, bytes: the bundled ones are under 4 kB; a chart of 2 000 patches ~100 kB."""
@@ -295,9 +295,11 @@ def write_outputs(*outputs: Output | tuple) -> list[Path]:
                 if not folder.exists():
                     folder.mkdir()
                     created.append(folder)
+                    _PENDING.append(folder)
             temporary = target.with_name(f".{target.name[:100]}.{secrets.token_hex(4)}.partial")
             handle = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0), 0o666)
             staged.append(temporary)
+            _PENDING.append(temporary)
             try:
                 view = memoryview(data)
                 while view:
@@ -307,6 +309,7 @@ def write_outputs(*outputs: Output | tuple) -> list[Path]:
         for item, target, temporary in zip(items, targets, staged):
             current = item
             os.replace(temporary, target)
+            _PENDING.remove(temporary)
     except BaseException as error:
         for temporary in staged:
             try:
@@ -318,11 +321,34 @@ def write_outputs(*outputs: Output | tuple) -> list[Path]:
                 folder.rmdir()
             except OSError:
                 break
+        _forget(staged + created)
         if isinstance(error, OSError):
             raise OutputError(f"{_named(current.flag, current.path)}: cannot be written ({reason_of(error)}); "
                               "nothing was written", current.flag, error) from None
         raise
+    _forget(created)
     return targets
+
+
+_PENDING: list[Path] = []
+"""Temporary files and new folders of writes under way: :func:`remove_pending` removes them when the process
+must end at once (Ctrl-C while a command's worker thread writes)."""
+
+
+def _forget(paths: list[Path]) -> None:
+    for path in paths:
+        if path in _PENDING:
+            _PENDING.remove(path)
+
+
+def remove_pending() -> None:
+    """Remove the temporary files and new folders of writes under way (newest first); for an immediate exit."""
+    for path in reversed(list(_PENDING)):
+        try:
+            path.rmdir() if path.is_dir() else path.unlink()
+        except OSError:
+            pass
+    _PENDING.clear()
 
 
 def write_output(path: str | Path, content, flag: str | None = None) -> Path:

@@ -111,6 +111,22 @@ class TestWriteOutputs:
             write_output(tmp_path / "out" / "r.exr", b"x", "--output")
         assert list(tmp_path.iterdir()) == []
 
+    def test_an_immediate_exit_removes_the_writes_under_way(self, tmp_path, monkeypatch):
+        """Ctrl-C while a command's worker thread writes: the main thread exits at once (os._exit) after
+        :func:`~skinrender.files.remove_pending`, which leaves no temporary and no new folder."""
+        seen = []
+
+        def write(handle, data):  # the main thread's turn, mid-write
+            seen.append(sorted(p.name for p in (tmp_path / "new").iterdir()))
+            files.remove_pending()
+            raise SystemExit(130)
+
+        monkeypatch.setattr(files.os, "write", write)
+        with pytest.raises(SystemExit):
+            write_output(tmp_path / "new" / "r.exr", b"x", "--output")
+        assert len(seen[0]) == 1 and seen[0][0].startswith(".r.exr.") and seen[0][0].endswith(".partial")
+        assert list(tmp_path.iterdir()) == [] and files._PENDING == []
+
     def test_content_that_fails_to_draw_writes_nothing(self, tmp_path):
         def draw(stream):
             raise ValueError("no figure")

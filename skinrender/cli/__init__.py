@@ -85,6 +85,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return error.status
     except KeyboardInterrupt:
         print(f"skinrender {args.command}: interrupted", file=sys.stderr, flush=True)
+        files.remove_pending()  # a worker thread's half-written temporaries, which os._exit would leave
         # at once: the interpreter's exit would wait on worker pipes that no one reads any more
         os._exit(130)
     except BrokenPipeError:

@@ -26,12 +26,15 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import SkinrenderError
-from ..files import OutputError, reason_of, shown
+from ..files import OutputError, read_input, reason_of, shown
 
 __all__ = ["MANIFEST", "check_output", "foreign_files", "output_folder"]
 
 MANIFEST = "reproduce.json"
 """Written last into every ``reproduce`` folder: an existing folder holding it may be replaced."""
+
+MANIFEST_BYTES_MAX = 64_000_000
+"""Largest earlier :data:`MANIFEST` read, bytes (a sweep's is ~1 MB): a larger one lists nothing."""
 
 
 def check_output(directory, flag: str = "-o") -> Path:
@@ -84,10 +87,11 @@ def foreign_files(folder: Path) -> list[str]:
     listed file. Replacing the folder would delete them. Everything is foreign when the manifest cannot be read.
     """
     try:
-        artifacts = [Path(p) for p in json.loads((folder / MANIFEST).read_text(encoding="utf-8"))["artifacts"]]
+        manifest = read_input(folder / MANIFEST, MANIFEST_BYTES_MAX, f"a {MANIFEST}").decode("utf-8")
+        artifacts = [Path(p) for p in json.loads(manifest)["artifacts"]]
         written = next(p.parent for p in artifacts if p.name == MANIFEST)  # the folder as it was named then
         listed = {p.relative_to(written).as_posix() for p in artifacts}
-    except (OSError, ValueError, KeyError, TypeError, StopIteration):
+    except (OSError, ValueError, KeyError, TypeError, StopIteration):  # SkinrenderError is a ValueError
         listed = set()
     foreign = []
     for root, folders, files in os.walk(folder):  # links to folders are listed among folders, not entered
