@@ -199,7 +199,7 @@ def command_render(args: argparse.Namespace) -> None:
     spp = result.raw[0].spp
     names = channel_names(result.camera)
     preview = output.with_suffix(".png")
-    outputs = [Output(output, "--output", lambda stream: write_chart_exr(stream, result, args.seed)),
+    outputs = [Output(output, "--output", lambda stream: write_chart_exr(stream, result, args.seed, grid_of(args))),
                Output(preview, "--output (its PNG preview)", lambda stream: write_preview(stream, result.image))]
     if figure is not None:
         outputs.append(Output(figure, "--figure", lambda stream: chart_figure(result, stream)))
