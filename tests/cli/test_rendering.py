@@ -12,6 +12,7 @@ import sys
 import pytest
 
 from .refusal import assert_refused, bad_files, interrupt_after, run  # noqa: F401  (fixture)
+from skinrender.files import shown  # long paths are cut in messages (tmp_path under xdist is long)
 
 pytest.importorskip("mitsuba")
 
@@ -282,7 +283,7 @@ def test_a_full_disk_leaves_no_render_behind(tmp_path):
     lines = [line for line in done.stderr.splitlines() if line.startswith("skinrender render: error")]  # (drjit
     # says it could not cache a kernel under the same limit)
     assert done.returncode == 1 and done.stdout == "" and len(lines) == 1, done.stderr[-800:]
-    assert lines[0].startswith(f"skinrender render: error: --output {target}: cannot be written (the file would "
+    assert lines[0].startswith(f"skinrender render: error: --output {shown(target)}: cannot be written (the file would "
                                "be larger than this system allows)")
     assert list(tmp_path.iterdir()) == []
 
@@ -297,7 +298,7 @@ def test_detect_writes_its_mask_preview_and_figure_all_or_none(tmp_path, capsys,
                             "--figure", tmp_path / "f.png", "--json"], capsys)
     lines = [line for line in err.splitlines() if "error" in line]
     assert status == 1 and out == "" and len(lines) == 1, err
-    assert lines[0].startswith(f"skinrender detect: error: --figure {tmp_path / 'f.png'}: cannot be written (no "
+    assert lines[0].startswith(f"skinrender detect: error: --figure {shown(tmp_path / 'f.png')}: cannot be written (no "
                                "space left on the device (the disk is full)); nothing was written")
     assert list(tmp_path.iterdir()) == []
 
