@@ -50,8 +50,8 @@ def command_validate(args: argparse.Namespace) -> None:
     if is_face_scene(args.scene):  # the face: the analytic limits that hold at its level of physics
         from .face_validation import command_validate_face
 
-        for name, given in (("--tolerance", args.tolerance is not None),
-                            ("--spp auto", str(args.spp).strip().lower() == "auto")):
+        for name, given in (("--spp auto", str(args.spp).strip().lower() == "auto"),
+                            ("--tolerance", args.tolerance is not None)):
             if given:
                 raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts")
         return command_validate_face(args)
