@@ -70,11 +70,14 @@ def add_parsers(commands) -> None:
     p.add_argument("--seed", type=int, default=0, help="sampler seed (default 0)")
     add_common(p)
 
-    p = commands.add_parser("bench", help="speed and accuracy figures")
-    p.add_argument("what", choices=["analytic", "search", "sweep", "render"], help="which benchmark")
+    p = commands.add_parser("bench", help="speed and accuracy figures; calibration: the validation's false-alarm "
+                            "rates over seeds; validate: seconds, bound and false alarms per spp")
+    p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate"],
+                   help="which benchmark")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant); search: "
                    "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep (~8 s)")
-    p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG")
+    p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG; calibration: the "
+                   "observed false-alarm rates with their 95 %% intervals against the nominal α")
     p.add_argument("--repeat", type=int, help="analytic: timed repetitions, best kept (default 3)")
     p.add_argument("--sensor", type=float, help="search: sensor number (default 9)")
     p.add_argument("--sample", type=int, help="search: triplets timed per method (default 20)")
@@ -82,14 +85,19 @@ def add_parsers(commands) -> None:
     p.add_argument("--positions",
                    help="sweep: peak positions START:END:STEP nm of the timed sweep (default 400:700:20)")
     p.add_argument("--scene", help="render: a face scene (face or a .toml with [camera] and [mesh]) to time the "
-                   "face at each level of physics instead of the charts")
+                   "face at each level of physics instead of the charts; calibration, validate: the chart (default "
+                   "macbeth; a face is refused until its checks' calibration is registered)")
     p.add_argument("--size", metavar="PX", help="render --scene: image side, pixels (default 256; --quick 64)")
     p.add_argument("--levels", help="render --scene: comma-separated levels of physics (default "
                    "direct,interreflection,sheen,mixed,noise)")
     p.add_argument("--spp-list", metavar="N,N,…",
-                   help="render --scene: samples per pixel of the curve (default 4,16,64,256; --quick 4,16,64)")
+                   help="render --scene: samples per pixel of the curve (default 4,16,64,256; --quick 4,16,64); "
+                   "validate: the spp of the rows (default 4,16,64,256)")
     p.add_argument("--reference-spp", metavar="N",
                    help="render --scene: spp of each level's reference render (default 4 × the largest of --spp-list)")
+    from .calibration import add_bench_arguments
+
+    add_bench_arguments(p)
     add_common(p)
 
 
@@ -164,9 +172,10 @@ FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
 """``bench`` flags that go with ``render --scene``."""
 
 BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
-               "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render",), "scene": ("render",)}
+               "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render", "calibration"),
+               "scene": ("render", "calibration", "validate")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
-:data:`FACE_BENCH_FLAGS`."""
+:data:`FACE_BENCH_FLAGS`, the verdict benchmarks' :data:`skinrender.cli.calibration.VERDICT_BENCH_FLAGS`."""
 
 BENCH_DEFAULTS = {"repeat": 3, "sensor": 9.0, "sample": 20, "positions": "400:700:20"}
 """Defaults of the benchmarks' own flags (left ``None`` by the parser so that a given flag is seen)."""
@@ -177,8 +186,10 @@ def refuse_foreign_flags(args: argparse.Namespace) -> None:
     Refuse (one line naming it) the first ``bench`` flag given that the benchmark ``args.what`` does not take
     (``--plot`` with ``--scene``: refused by :func:`face_bench_options`).
     """
+    from .calibration import VERDICT_BENCH_FLAGS
+
     face = getattr(args, "scene", None) is not None and args.what == "render"
-    for dest, benches in BENCH_FLAGS.items():
+    for dest, benches in {**BENCH_FLAGS, **VERDICT_BENCH_FLAGS}.items():
         value = getattr(args, dest, None)
         if value is None or value is False or dest == "scene":
             continue
@@ -212,7 +223,8 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     """
     given = [name for name in FACE_BENCH_FLAGS if getattr(args, name, None) is not None]
     if args.scene is not None and args.what != "render":
-        raise SkinrenderError(f"--scene goes with 'bench render', not 'bench {args.what}'")
+        raise SkinrenderError(f"--scene goes with 'bench render', 'bench calibration' or 'bench validate', not "
+                              f"'bench {args.what}'")
     refuse_foreign_flags(args)
     if args.scene is None:
         if given:
@@ -251,20 +263,51 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     return {"scene": scene, "size": size, "spps": spps, "reference_spp": reference, "levels": levels}
 
 
+def _bench_camera(args: argparse.Namespace) -> str:
+    """``bench render --camera`` checked (its curves on the default grid), or the default gbell:9@450,540,610."""
+    if args.camera is None:
+        return "gbell:9@450,540,610"
+    return flag("--camera", _camera_spec, args.camera)
+
+
+def _camera_spec(spec: str) -> str:
+    """``spec`` when it names a camera whose curves cover the default grid (else the camera's own error)."""
+    from ..model.camera import camera
+    from ..spectra import GRID_DEFAULT
+
+    camera(spec).sensitivities(GRID_DEFAULT)
+    return spec
+
+
 def command_bench(args: argparse.Namespace) -> None:
     from ..studies.bench import bench_analytic, bench_search, bench_sweep
 
+    if args.what in ("calibration", "validate"):
+        from .calibration import command_bench_verdicts
+        from .common import SPP_MAX
+
+        refuse_foreign_flags(args)
+        for name in FACE_BENCH_FLAGS:
+            if getattr(args, name, None) is not None and not (name == "spp_list" and args.what == "validate"):
+                raise SkinrenderError(f"--{name.replace('_', '-')} goes with 'bench render --scene SCENE' (a face)"
+                                      + (" or 'bench validate'" if name == "spp_list" else ""))
+        spps = None if args.spp_list is None else _integers(args.spp_list, "--spp-list", SPP_MAX)
+        if spps is not None and len(set(spps)) < len(spps):
+            raise SkinrenderError(f"--spp-list: each spp once, got {args.spp_list!r}")
+        return command_bench_verdicts(args, spps)
     face = face_bench_options(args)
     if face is not None:
         from ..studies.bench_face import bench_face
 
-        result = bench_face(levels=face["levels"], spps=face["spps"], size=face["size"],
-                            reference_spp=face["reference_spp"], scene=face["scene"],
+        result = bench_face(camera_spec=_bench_camera(args), levels=face["levels"], spps=face["spps"],
+                            size=face["size"], reference_spp=face["reference_spp"], scene=face["scene"],
                             progress=lambda line: print(line, file=sys.stderr))
         rows = [[r["level"], r["spp"], f"{r['seconds']:.3f}", _g(r["skin_ncc_error"]), _g(r["skin_ncc_rms"])]
                 for r in result["curve"]]
-        presets = [[level, *(_spp(p.get(name)) for name in ("draft", "standard", "reference")), _g(p.get("floor")),
+        presets = [[level, *(_spp(p.get(name)) + ("*" if name in p.get("extrapolated", ()) else "")
+                             for name in ("draft", "standard", "reference")), _g(p.get("floor")),
                     _spp(p.get("spp_at_floor"))] for level, p in result["presets"].items()]
+        extrapolated = any(p.get("extrapolated") for p in result["presets"].values())
         undefined = [f"\nnote: {level} {key}: {reason}" for level, p in result["presets"].items()
                      for key, reason in p.get("undefined", {}).items()]
         text = (f"the face ({result['scene']}) through {result['camera']}, {size_text(result['size'])}, reference "
@@ -272,7 +315,8 @@ def command_bench(args: argparse.Namespace) -> None:
                 + table(rows, ["level", "spp", "s", "mean NCC error", "RMS NCC error"])
                 + "\npresets (spp reaching RMS " + ", ".join(f"{k} {v:g}" for k, v in result["thresholds"].items())
                 + "):\n" + table(presets, ["level", "draft", "standard", "reference", "floor", "spp at floor"])
-                + "".join(undefined))
+                + ("\n* extrapolated beyond the measured spp by the error model's fit (not measured)"
+                   if extrapolated else "") + "".join(undefined))
         emit(args, result, text)
         return
     if args.workers is not None:  # before any timing starts
@@ -287,7 +331,7 @@ def command_bench(args: argparse.Namespace) -> None:
         from ..studies.bench import bench_render
 
         check_output(args.plot, "--plot", (".png",))  # before the ~30 s of timing
-        result = bench_render(quick=args.quick)
+        result = bench_render(camera_spec=_bench_camera(args), quick=args.quick)
         if args.plot:
             from ..studies.figures import figure_render_curve
 

@@ -249,9 +249,9 @@ def _verdict(name: str, p_values: NDArrayFloat, level: float, alpha: float, test
     if rejected:
         return Verdict(name, "fail", alpha, test, smallest, level,
                        reason=f"{rejected} test{'s' * (rejected > 1)} reject (smallest p {smallest:.2g})",
-                       details={"rejected": rejected})
+                       details={"rejected": rejected, "tests": int(p_values.size)})
     return Verdict(name, "pass", alpha, test, smallest, level, reason="no difference detected",
-                   details={"rejected": 0})
+                   details={"rejected": 0, "tests": int(p_values.size)})
 
 
 def _channel_tests(codes: NDArrayFloat, other: NDArrayFloat | None, electrons: NDArrayFloat, means: NDArrayFloat,
