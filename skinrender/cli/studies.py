@@ -9,7 +9,7 @@ import sys
 
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, add_common, add_grid, add_search, check_output, flag, integer_in,
-                     emit, table)
+                     emit, positive_number, table)
 
 
 def _g(value) -> str:
@@ -68,6 +68,9 @@ def add_parsers(commands) -> None:
     p.add_argument("--camera", default="gbell:9@450,540,610", help=HELP_CAMERA)
     p.add_argument("--spp", type=int, default=256, help="samples per pixel (default 256)")
     p.add_argument("--seed", type=int, default=0, help="sampler seed (default 0)")
+    p.add_argument("--tolerance", metavar="NCC", help="the verdict's tolerance: an absolute NCC difference in (0, 1) "
+                   "every kept patch's rendered NCC must be shown within of Eq. 4's, at family-wise 95 %% confidence "
+                   "(default 0.001); exit status 0 pass, 1 fail, 3 inconclusive")
     add_common(p)
 
     p = commands.add_parser("bench", help="speed and accuracy figures; calibration: the validation's false-alarm "
@@ -157,15 +160,31 @@ def command_table1(args: argparse.Namespace) -> None:
     from ..studies.tables import table1
     from .common import SPP_MAX, check_seed
 
+    from ..evaluation.verdict import EXIT_STATUS
+    from ..studies.tables import TABLE1_TOLERANCE
+
     integer_in(args.spp, "--spp", 1, SPP_MAX)  # each flag checked on its own, so that its error names it
     check_seed(args.seed)
+    tolerance = TABLE1_TOLERANCE if args.tolerance is None else positive_number(args.tolerance, "--tolerance", "NCC")
+    if tolerance >= 1:
+        raise SkinrenderError(f"--tolerance must be an NCC difference in (0, 1), got {args.tolerance!r}")
     flag("--camera", camera, args.camera)
-    result = flag("--camera", table1, args.camera, spp=args.spp, seed=args.seed)
+    result = flag("--camera", table1, args.camera, spp=args.spp, seed=args.seed, tolerance=tolerance)
     rows = [[r["model"], r["case"], f"{r['mean']:.5f}", f"{r['std']:.5f}"] for r in result["rows"]]
+    verdict = result["verdict"]
+    result["exit_status"] = EXIT_STATUS[verdict["verdict"]]
     text = (f"Table 1 for {result['camera']} ({len(result['patches'])} Macbeth patches with 90 % of values in "
             f"10–245; render at {result['spp']} spp as the real camera):\n"
-            + table(rows, ["model", "case", "mean |ΔNCC|", "std"]))
+            + table(rows, ["model", "case", "mean |ΔNCC|", "std"])
+            + f"\nverdict (Eq. 4 against the render, NCC within {tolerance:g}): "
+            f"{verdict['verdict'].upper().replace('_', ' ')} — {verdict['reason']}; bound {result['bound']:.2g}"
+            f"\n  test: {verdict['test']}"
+            f"\ndifference, Eq. 4: {result['difference']['verdict']} — {result['difference']['reason']}"
+            f"\ndifference, Eq. 1 with WP: {result['difference_eq1']['verdict']} — {result['difference_eq1']['reason']}"
+            f"\nexit status {result['exit_status']}")
     emit(args, result, text)
+    if result["exit_status"]:
+        raise SystemExit(result["exit_status"])
 
 
 FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")

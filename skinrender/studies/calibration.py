@@ -73,11 +73,12 @@ def _chart_run(scene, camera_, prevailing: float, calibration: float, spp: int, 
         result = validate(scene, camera_, prevailing, calibration, grid=grid, spp=spp, seed=seed, **settings)
         return {"checks": {"difference": result.difference, "equivalence": result.verdict}, "bound": result.bound,
                 "seconds": result.rendering.seconds, "spp": result.rendering.raw[0].spp}
+    from ..model.camera import camera
     from ..rendering.imaging import render_imaged
     from ..rendering.sensor_validation import validate_imaged
 
     start = time.perf_counter()
-    imaged = render_imaged(scene, camera_, prevailing, calibration, **imaging, spp=spp, seed=seed, grid=grid)
+    imaged = render_imaged(scene, camera(camera_), prevailing, calibration, **imaging, spp=spp, seed=seed, grid=grid)
     ratio = analytic_reference(imaged.rendering.camera, imaged.rendering.scene.reflectances(grid), prevailing,
                                prevailing, grid=grid) / 255.0
     result = validate_imaged(imaged, ratio, grid=grid, mc_variance=mc_variance, **settings)
