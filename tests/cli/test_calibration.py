@@ -20,17 +20,9 @@ from .refusal import assert_refused, run
 pytest.importorskip("mitsuba")
 
 
-@pytest.fixture(scope="module")
-def tiny(tmp_path_factory):
-    path = tmp_path_factory.mktemp("scene") / "tiny.toml"
-    path.write_text("columns = 2\npatch_px = 10\n[[patch]]\nreflectance = 'macbeth:dark skin'\n"
-                    "[[patch]]\nreflectance = 'macbeth:blue'\n")
-    return path
-
-
-def test_calibration_document_and_plot(tiny, tmp_path, capsys):
+def test_calibration_document_and_plot(small_chart, tmp_path, capsys):
     plot = tmp_path / "rates.png"
-    status, out, err = run(["bench", "calibration", "--scene", tiny, "--seeds", "3", "--spp", "4", "--plot", plot,
+    status, out, err = run(["bench", "calibration", "--scene", small_chart, "--seeds", "3", "--spp", "4", "--plot", plot,
                             "--json"], capsys)
     assert status == 0, err[-500:]
     document = json.loads(out)
@@ -42,8 +34,8 @@ def test_calibration_document_and_plot(tiny, tmp_path, capsys):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["rates.png"]  # no temporary file left
 
 
-def test_calibration_through_a_sensor_reports_each_check(tiny, capsys):
-    status, out, err = run(["bench", "calibration", "--scene", tiny, "--seeds", "2", "--spp", "4", "--imager",
+def test_calibration_through_a_sensor_reports_each_check(small_chart, capsys):
+    status, out, err = run(["bench", "calibration", "--scene", small_chart, "--seeds", "2", "--spp", "4", "--imager",
                             "sony-imx174", "--mc-variance", "pixels", "--json"], capsys)
     assert status == 0, err[-500:]
     document = json.loads(out)
@@ -51,8 +43,8 @@ def test_calibration_through_a_sensor_reports_each_check(tiny, capsys):
     assert document["mc_variance"] == "pixels" and document["imager"] == "sony-imx174"
 
 
-def test_validate_rows_in_text(tiny, capsys):
-    status, out, err = run(["bench", "validate", "--scene", tiny, "--seeds", "2", "--spp-list", "4,16"], capsys)
+def test_validate_rows_in_text(small_chart, capsys):
+    status, out, err = run(["bench", "validate", "--scene", small_chart, "--seeds", "2", "--spp-list", "4,16"], capsys)
     assert status == 0, err[-500:]
     header = next(line for line in out.splitlines() if line.startswith("spp"))
     assert header.split()[:4] == ["spp", "used", "s", "per"] and "2 seeds per spp" in out

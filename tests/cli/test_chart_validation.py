@@ -19,20 +19,12 @@ CAM = "gbell:9@450,540,610"
 LIGHTS = ["--prevailing", "3300", "--calibration", "4800"]
 
 
-@pytest.fixture(scope="module")
-def small(tmp_path_factory):
-    path = tmp_path_factory.mktemp("scene") / "small.toml"
-    path.write_text("columns = 2\npatch_px = 10\n[[patch]]\nreflectance = 'macbeth:dark skin'\n"
-                    "[[patch]]\nreflectance = 'macbeth:purplish blue'\n[[patch]]\nreflectance = 'skin:#3'\n")
-    return path
-
-
 @pytest.mark.parametrize("extra, verdict, status", [
     (["--spp", "256", "--tolerance", "0.05"], "pass", 0),
     (["--spp", "4", "--tolerance", "0.002"], "inconclusive", 3),
 ])
-def test_exit_status_says_the_verdict(small, extra, verdict, status, capsys):
-    code, out, err = run(["validate", small, "--camera", CAM, *LIGHTS, *extra, "--json"], capsys)
+def test_exit_status_says_the_verdict(small_chart, extra, verdict, status, capsys):
+    code, out, err = run(["validate", small_chart, "--camera", CAM, *LIGHTS, *extra, "--json"], capsys)
     document = json.loads(out)
     assert code == status == document["exit_status"], err
     assert document["verdict"] == verdict and document["passed"] is (verdict == "pass")
@@ -62,8 +54,8 @@ def test_text_has_headed_columns_and_full_names(capsys):
     assert "equivalence: PASS" in out and "difference:" in out and "verdict: PASS (exit status 0)" in out
 
 
-def test_spp_auto_says_what_it_chose_and_why(small, capsys):
-    code, out, err = run(["validate", small, "--camera", CAM, *LIGHTS, "--spp", "auto", "--tolerance", "0.01",
+def test_spp_auto_says_what_it_chose_and_why(small_chart, capsys):
+    code, out, err = run(["validate", small_chart, "--camera", CAM, *LIGHTS, "--spp", "auto", "--tolerance", "0.01",
                           "--json"], capsys)
     document = json.loads(out)
     choice = document["spp_auto"]

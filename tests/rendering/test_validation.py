@@ -16,30 +16,9 @@ from skinrender.rendering.validation import validate
 pytest.importorskip("mitsuba")
 
 CAMERA = "gbell:9@450,540,610"
-SMALL = """
-name = "small"
-columns = 3
-patch_px = 10
-gap_px = 1
-border_px = 1
-[[patch]]
-reflectance = "macbeth:dark skin"
-[[patch]]
-reflectance = "macbeth:blue"
-[[patch]]
-reflectance = "skin:#14"
-[[patch]]
-reflectance = "macbeth:black 2 (1.5 D)"
-[[patch]]
-reflectance = "macbeth:yellow"
-"""
-
-
 @pytest.fixture(scope="module")
-def small(tmp_path_factory):
-    path = tmp_path_factory.mktemp("scene") / "small.toml"
-    path.write_text(SMALL)
-    return sr.load_scene(path)
+def small(small_chart):
+    return sr.load_scene(small_chart)
 
 
 class TestOutcomes:

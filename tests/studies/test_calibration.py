@@ -1,7 +1,7 @@
 """
 Tests for :mod:`skinrender.studies.calibration`: the paths by kind of scene (the face's refused until registered, a
 chart's level refused), the time estimate and its cap, the false-alarm bookkeeping on a simulated run, and small-N
-calibrations of real renders (12 seeds on an 8 × 8-pixel-patch chart, where the expected failures are ~0.1).
+calibrations of real renders (12 seeds on a chart of 8 × 8-pixel patches, where the expected failures are ~0.1).
 """
 
 from __future__ import annotations
@@ -14,30 +14,13 @@ from skinrender.studies.calibration import (CALIBRATION_PATHS, bench_calibration
                                             check_seconds, estimate_seconds)
 
 CAMERA = "gbell:9@450,540,610"
-TINY = """
-name = "tiny"
-columns = 3
-patch_px = 10
-gap_px = 1
-border_px = 1
-[[patch]]
-reflectance = "macbeth:dark skin"
-[[patch]]
-reflectance = "macbeth:blue"
-[[patch]]
-reflectance = "skin:#14"
-[[patch]]
-reflectance = "macbeth:yellow"
-"""
 
 
 @pytest.fixture(scope="module")
-def tiny(tmp_path_factory):
+def tiny(small_chart):
     from skinrender.rendering.scene import load_scene
 
-    path = tmp_path_factory.mktemp("scene") / "tiny.toml"
-    path.write_text(TINY)
-    return load_scene(path)
+    return load_scene(small_chart)
 
 
 class TestPaths:
