@@ -110,7 +110,9 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
                                   "render may take")
     passes = render_passes(cam)
     renders = 1 if imaging else renders_of(lights["prevailing"], lights["calibration"])
-    seconds = sum(estimate_seconds(seeds, width * height, spp, renders, passes, imaging is not None) for spp in spps)
+    startup = estimate_seconds(0, width * height, 1)  # the first compilation, once
+    seconds = startup + sum(estimate_seconds(seeds, width * height, spp, renders, passes, imaging is not None)
+                            - startup for spp in spps)
     what = (f"{seeds} seeds at {spps[0]} spp" if args.what == "calibration"
             else f"{seeds} seeds at each of {', '.join(map(str, spps))} spp")
     check_seconds(seconds, cap, what)
