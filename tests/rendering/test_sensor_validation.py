@@ -103,9 +103,10 @@ class TestEquivalence:
             validate_imaged(bright, RATIO, tolerance=1.5)
 
 
-def _simulated_rates(method: str, trials: int, rng, share: float = 0.3, pixels: int = 144):
+def _simulated_rates(method: str, trials: int, rng, share: float = 0.3, pixels: int = 144, excess: float = 0.0):
     """Rejections at level 0.05 of one patch channel's mean and variance tests, ``trials`` times: the sensor's
-    noise plus a render spread whose variance is ``share`` of it (pixels' electrons vary as a render's would)."""
+    noise plus a render spread whose variance is ``share`` of it (pixels' electrons vary as a render's would);
+    ``excess``: extra sensor variance the model does not know, as a share of its own."""
     model = imager("sony-imx174")
     expected = 4000.0  # e⁻: σ ≈ 7.8 DN, the normal regime
     _, sensor = statistics_dn(model, [expected])
@@ -114,7 +115,8 @@ def _simulated_rates(method: str, trials: int, rng, share: float = 0.3, pixels: 
     rejected = np.zeros(2)
     for _ in range(trials):
         electrons = expected + rng.normal(0.0, spread_e, pixels)
-        codes, other = simulate_dn(model, electrons, rng), simulate_dn(model, electrons, rng)
+        extra = np.sqrt(excess * sensor[0])
+        codes, other = (simulate_dn(model, electrons, rng) + np.rint(rng.normal(0.0, extra, pixels)) for _ in "ab")
         means, variances = statistics_dn(model, electrons)
         _, p_mean, p_variance, _, _ = _channel_tests(codes, other, electrons, means, variances, mean, variance,
                                                      expected, model, method)
@@ -131,6 +133,14 @@ def test_the_render_variance_correction_is_calibrated_on_simulated_pixels(method
         lo, hi = binomial_interval(int(round(rate * trials)), trials, 0.999)
         assert lo <= 0.05 <= hi, rate
     assert _simulated_rates("none", trials, rng)[1] > 0.2
+
+
+def test_two_frames_see_a_wrong_noise_model_more_often(rng):
+    """A sensor 25 % noisier than its model: the second frame's variance test (no render noise in it) rejects more
+    often than the one that subtracts the render's pixel variance (whose cross term widens its law)."""
+    frames = _simulated_rates("frames", 300, rng, share=0.3, excess=0.25)[1]
+    pixels = _simulated_rates("pixels", 300, rng, share=0.3, excess=0.25)[1]
+    assert frames > pixels + 0.05, (frames, pixels)
 
 
 def test_at_16_spp_the_render_variance_decides_the_false_alarms(greys, dim_ratio):
