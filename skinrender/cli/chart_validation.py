@@ -117,10 +117,7 @@ def _auto_spp(args, inputs, options, imaging, tolerance) -> dict:
 
 def command_validate_chart(args: argparse.Namespace) -> None:
     """``validate`` on a chart (the face is :mod:`skinrender.cli.face_validation`)."""
-    from ..constants import CONSTANT_OUTPUT_SCALE
     from ..evaluation.verdict import EXIT_STATUS
-    from ..rendering.agreement import DARK_LEVEL
-    from ..rendering.renderer import channel_names
     from ..rendering.validation import validate
     from .rendering import chart_only, render_inputs
 
@@ -131,52 +128,23 @@ def command_validate_chart(args: argparse.Namespace) -> None:
         raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart")
     if args.gamut and args.imager is not None:
         raise SkinrenderError("--gamut compares the noise-free render's gamut volumes: it goes without --imager")
-    spp_flag = args.spp
-    args.spp = None if auto else args.spp
-    options = render_options(args)
-    options["spp_requested"] = "auto" if auto else options["spp"]
+    options = render_options(argparse.Namespace(**{**vars(args), "spp": None}) if auto else args)
+    requested = "auto" if auto else options["spp"]
     inputs = render_inputs(args)
     imaging = imaging_options(args)
     choice = None
     if auto:
-        choice = _auto_spp(args, inputs, {k: v for k, v in options.items() if k != "spp_requested"}, imaging,
-                           tolerance)
+        choice = _auto_spp(args, inputs, options, imaging, tolerance)
         options["spp"] = choice["spp"]
-    args.spp = spp_flag
-    requested = options.pop("spp_requested")
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp and validating …", file=sys.stderr)
     if imaging is not None:
         result, imaged = _imaged(args, inputs, options, imaging, tolerance)
-        document, text = _imaged_report(args, result, imaged, options, requested)
+        document, text = _imaged_report(args, result, imaged, requested)
         verdict = result.verdict
     else:
         result = validate(**inputs, normalization=args.normalization, knee=args.knee, grid=grid_of(args),
                           tolerance=tolerance, **options)
-        r = result.rendering
-        checks = {"equivalence": result.verdict, "difference": result.difference}
-        document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
-                    "calibration_K": r.calibration, "normalization": args.normalization, "knee": args.knee,
-                    "spp": r.raw[0].spp, "spp_requested": requested, "sampler": options["sampler"],
-                    "seed": args.seed, "variant": r.variant, "elapsed_s": r.seconds, "tolerance": tolerance,
-                    "dark_floor_output": tolerance * DARK_LEVEL * CONSTANT_OUTPUT_SCALE,
-                    "bound": result.bound, "spp_needed": result.spp_needed,
-                    "checks": {name: v.document() for name, v in checks.items()}, "patches": result.patches(),
-                    "worst": result.worst(), "max_rel_error": float(result.rel_error.max()),
-                    "quadrature_rel_difference": result.quadrature}
-        names = channel_names(r.camera)
-        rows = [[p["name"], names[k], _number(p["analytic"][k]), _number(p["rendered"][k]), f"{p['error'][k]:+.3g}",
-                 f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", p["shown"][k]]
-                for p in document["patches"] for k in range(3)]
-        lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
-                 f"{r.raw[0].spp} spp {options['sampler']}, {r.variant}, {r.seconds:.2f} s; output units "
-                 "(white = 255 at p = c); bound: the upper 95 % (family-wise) confidence bound of |error|",
-                 table(rows, ["patch", "channel", "analytic", "rendered", "error", "bound", "tolerance", "shown"])]
-        lines += _summary("equivalence", result.verdict)
-        lines.append(f"  bound {result.bound:.3g} (the smallest relative tolerance that would pass; asked "
-                     f"{tolerance:g}); spp needed ≈ {result.spp_needed if result.spp_needed is not None else '—'} "
-                     "(bounds taken to fall as 1/√spp: an upper estimate for multijitter)")
-        lines += _summary("difference", result.difference)
-        lines.append(f"paper Σ vs rendered integral (quadrature): {result.quadrature:.1e} relative")
+        document, lines = _chart_report(args, result, options, requested, tolerance)
         verdict = result.verdict
         if args.gamut:
             verdict = _gamut(args, options, tolerance, document, lines, verdict)
@@ -191,6 +159,40 @@ def command_validate_chart(args: argparse.Namespace) -> None:
     emit(args, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])
+
+
+def _chart_report(args, result, options, requested, tolerance) -> tuple[dict, list[str]]:
+    """A chart validation's document and text lines: per patch and channel the values, error, bound, tolerance."""
+    from ..constants import CONSTANT_OUTPUT_SCALE
+    from ..rendering.agreement import DARK_LEVEL
+    from ..rendering.renderer import channel_names
+
+    r = result.rendering
+    checks = {"equivalence": result.verdict, "difference": result.difference}
+    document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
+                "calibration_K": r.calibration, "normalization": args.normalization, "knee": args.knee,
+                "spp": r.raw[0].spp, "spp_requested": requested, "sampler": options["sampler"],
+                "seed": args.seed, "variant": r.variant, "elapsed_s": r.seconds, "tolerance": tolerance,
+                "dark_floor_output": tolerance * DARK_LEVEL * CONSTANT_OUTPUT_SCALE,
+                "bound": result.bound, "spp_needed": result.spp_needed,
+                "checks": {name: v.document() for name, v in checks.items()}, "patches": result.patches(),
+                "worst": result.worst(), "max_rel_error": float(result.rel_error.max()),
+                "quadrature_rel_difference": result.quadrature}
+    names = channel_names(r.camera)
+    rows = [[p["name"], names[k], _number(p["analytic"][k]), _number(p["rendered"][k]), f"{p['error'][k]:+.3g}",
+             f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", p["shown"][k]]
+            for p in document["patches"] for k in range(3)]
+    lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
+             f"{r.raw[0].spp} spp {options['sampler']}, {r.variant}, {r.seconds:.2f} s; output units "
+             "(white = 255 at p = c); bound: the upper 95 % (family-wise) confidence bound of |error|",
+             table(rows, ["patch", "channel", "analytic", "rendered", "error", "bound", "tolerance", "shown"])]
+    lines += _summary("equivalence", result.verdict)
+    needed = result.spp_needed if result.spp_needed is not None else "—"
+    lines.append(f"  bound {result.bound:.3g} (the smallest relative tolerance that would pass; asked {tolerance:g}); "
+                 f"spp needed ≈ {needed} (bounds taken to fall as 1/√spp: an upper estimate for multijitter)")
+    lines += _summary("difference", result.difference)
+    lines.append(f"paper Σ vs rendered integral (quadrature): {result.quadrature:.1e} relative")
+    return document, lines
 
 
 def _gamut(args, options, tolerance, document, lines, verdict):
@@ -227,7 +229,7 @@ def _imaged(args, inputs, options, imaging, tolerance):
     return validate_imaged(imaged, ratio, grid=grid, tolerance=tolerance), imaged
 
 
-def _imaged_report(args, result, imaged, options, requested) -> tuple[dict, str]:
+def _imaged_report(args, result, imaged, requested) -> tuple[dict, str]:
     """``validate --imager``'s document and text."""
     from ..rendering.renderer import channel_names
     from .rendering import imaging_document, imaging_notes

@@ -86,3 +86,14 @@ def test_the_face_refuses_the_chart_flags(extra, name, capsys):
 def test_help_documents_the_exit_statuses_and_the_default(capsys):
     code, out, _ = run(["validate", "--help"], capsys)
     assert code == 0 and "0 pass, 1 fail, 3 inconclusive" in out and "default 0.01" in out
+
+
+def test_gamut_verdict_joins_the_patches(small_chart, capsys):
+    code, out, err = run(["validate", small_chart, "--camera", CAM, *LIGHTS, "--spp", "64", "--tolerance", "0.05",
+                          "--gamut", "--json"], capsys)
+    document = json.loads(out)
+    gamut = document["gamut"]
+    assert len(gamut["bound"]) == len(gamut["illuminants_K"]) + 1 and gamut["verdict"]["tolerance"] == 0.05
+    assert document["verdict"] == ("pass" if gamut["passed"] and document["checks"]["equivalence"]["passed"]
+                                   else document["verdict"])
+    assert code == document["exit_status"]
