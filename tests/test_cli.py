@@ -1,4 +1,4 @@
-"""Tests for :mod:`skinrender.cli`: the commands of CONTRACT.md with ``--json``, and clean errors."""
+"""Tests for :mod:`skinrender.cli`: the commands of docs/contract.md with ``--json``, and clean errors."""
 
 from __future__ import annotations
 

@@ -18,7 +18,7 @@ from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common,
                      choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
                      render_options, sensor_settings, table, variant_of)
 
-__all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
+__all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
 
 SIZE_MAX = 2000
@@ -35,9 +35,16 @@ HELP_SKIN = ("skin of the face: SET:SAMPLE, SET:#N or skin-model:melanin=0.05,bl
 
 
 def _physics_help() -> str:
-    from ..rendering.face_dict import PHYSICS
+    from ..rendering.face.effects import PHYSICS
 
     return "level of physics: " + choices_help(PHYSICS) + "; effects combine with '+'"
+
+
+def level_names(short: bool = False) -> str:
+    """The registered levels of physics, comma-separated (``short``: as words for prose, ``mixed light``)."""
+    from ..rendering.face.effects import PHYSICS_EFFECTS
+
+    return ", ".join(effect.short or name if short else name for name, effect in PHYSICS_EFFECTS.items())
 
 
 def add_face_arguments(parser: argparse.ArgumentParser) -> None:
@@ -56,9 +63,8 @@ def add_parsers(commands) -> None:
     """Add the parser of ladder."""
     from ..studies.ladder import LEVELS_DEFAULT
 
-    p = commands.add_parser("ladder", help="the face rendered at each level of physics (direct, "
-                            "interreflection, sheen, mixed light, sensor noise, all), with the skin's NCC "
-                            "and the skin locus's detection rates at each")
+    p = commands.add_parser("ladder", help=f"the face rendered at each level of physics ({level_names(True)}, "
+                            "all), with the skin's NCC and the skin locus's detection rates at each")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--prevailing", required=True, help="the key light: " + HELP_PLANCKIAN)
     p.add_argument("--calibration", required=True, help="the white balance: " + HELP_PLANCKIAN)
@@ -124,8 +130,8 @@ def face_inputs(args: argparse.Namespace) -> tuple:
     naming its flag: ``(scene, camera, temperatures {prevailing, calibration} K, physics, skin, size px or None,
     imager, exposure, illuminance lx)``; with ``--imager`` the level gains ``noise``.
     """
-    from ..rendering.face_dict import parse_physics
-    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face.effects import parse_physics
+    from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
 
     scene = flag("SCENE", load_face_scene, args.scene)
@@ -140,8 +146,7 @@ def face_inputs(args: argparse.Namespace) -> tuple:
     physics = getattr(args, "physics", None)
     physics = "direct" if physics is None else physics
     if not str(physics).strip():
-        raise SkinrenderError("--physics: name a level (direct, interreflection, sheen, mixed, noise; '+' "
-                              "combines them), got ''")
+        raise SkinrenderError(f"--physics: name a level ({level_names()}; '+' combines them), got ''")
     flag("--physics", parse_physics, physics)
     skin = getattr(args, "skin", None)
     if skin is not None:
@@ -166,7 +171,7 @@ def levels_of(text: str) -> list[str]:
     ``--levels``: comma-separated levels of physics, none empty and none twice (``a+b`` and ``b+a`` are one
     level), each checked; a one-line error naming the flag otherwise.
     """
-    from ..rendering.face_dict import parse_physics
+    from ..rendering.face.effects import parse_physics
 
     levels = [level.strip() for level in str(text).split(",")]
     if not any(levels) or not all(levels):
@@ -182,7 +187,7 @@ def noise_sensor(args: argparse.Namespace, levels: list[str]) -> float | None:
     The noise level's ``--imager`` checked and its ``--illuminance`` in lx (``None``: the scene's); either is
     refused where no level of ``levels`` has noise (nothing would see it).
     """
-    from ..rendering.face_dict import parse_physics
+    from ..rendering.face.effects import parse_physics
 
     if args.imager is not None:
         from ..model.imager import imager
@@ -199,27 +204,14 @@ def noise_sensor(args: argparse.Namespace, levels: list[str]) -> float | None:
 
 def is_face_scene(spec: str) -> bool:
     """Whether a ``render`` SCENE is a face scene: bundled, or a TOML with ``[camera]`` and ``[mesh]``."""
-    import tomllib
-    from pathlib import Path
+    from ..rendering.face.scene import is_face_scene as face_scene
 
-    from ..rendering.face_scene import list_face_scenes
-
-    text = str(spec).strip()
-    if text in list_face_scenes():
-        return True
-    path = Path(text)
-    if path.suffix != ".toml" or not path.is_file():
-        return False
-    try:
-        table = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
-        return False
-    return "camera" in table and "mesh" in table
+    return face_scene(spec)
 
 
 @interruptible
 def command_ladder(args: argparse.Namespace) -> None:
-    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..studies.ladder import ladder
 
     plot = check_output(getattr(args, "plot", None), "--plot", (".png",))
@@ -292,11 +284,7 @@ def command_render_face(args: argparse.Namespace) -> None:
                 "labels": result.label_names, "physics": result.physics, "skin": result.skin,
                 "size": [result.scene.camera.width, result.scene.camera.height], **result.info}
     if figure is not None:
-        from ..studies.figures import figure_face
-
-        title = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
-                 f"{result.prevailing:g} K balanced to {result.calibration:g} K\n{result.spp} spp; the labels outlined")
-        document["figure"] = str(figure_face(result.image, result.labels, result.label_names, title, figure))
+        document["figure"] = str(result.figure(figure))  # skinrender.studies.labelled.face_figure
     labels = ", ".join(f"{k}={v}" for k, v in result.label_names.items())
     text = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
             f"{result.prevailing:g} K white-balanced to {result.calibration:g} K: {path} (+ {preview}, "

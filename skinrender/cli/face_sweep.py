@@ -19,7 +19,7 @@ import sys
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
                      interruptible, positive_number, table, variant_of)
-from .face import HELP_SKIN, SIZE_MAX, levels_of, noise_sensor, planckian_flag
+from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
 
 __all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
 
@@ -51,8 +51,8 @@ def add_parsers(commands) -> None:
                    help="a skin (repeat the flag for several): " + HELP_SKIN.split(" (default")[0]
                    + "; default: light to very dark, " + " ".join(SKIN_TONES))
     p.add_argument("--levels", default=",".join(LEVELS_DEFAULT),
-                   help="comma-separated levels of physics (direct, interreflection, sheen, mixed, noise; "
-                   "effects combine with '+'); default " + ",".join(LEVELS_DEFAULT))
+                   help=f"comma-separated levels of physics ({level_names()}; effects combine with '+'); default "
+                   + ",".join(LEVELS_DEFAULT))
     p.add_argument("--scene", default="face", help="face scene: a bundled name (face) or a .toml path")
     p.add_argument("--size", metavar="PX", default=str(SIZE_DEFAULT),
                    help=f"image side in pixels (default {SIZE_DEFAULT})")
@@ -107,7 +107,7 @@ def _checked(args: argparse.Namespace) -> dict:
 
     from ..model.camera import camera
     from ..model.response import response
-    from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
     from ..studies.face_locus import SKIN_TONES
     from ..studies.face_sweep import WORKERS_MAX

@@ -1,7 +1,7 @@
 """
 ``skinrender validate`` on a face scene: the face rendered at ``--physics``'s
 level in replicates and checked against the analytic limits that hold there
-(:mod:`skinrender.rendering.face_validation`): ``shading_cancels`` at
+(:mod:`skinrender.rendering.face.validation`): ``shading_cancels`` at
 ``direct``, ``dichromatic_plane`` at ``sheen`` (both through the sensor too,
 with ``noise`` or ``--imager``), the white furnace and the closed sphere at
 every level, and ``eq4_shift`` (how far skin moves from Eq. 4: information,
@@ -33,7 +33,7 @@ def limits_of(text: str | None) -> tuple[str, ...]:
     >>> limits_of("sphere"), limits_of("none"), limits_of(None)
     (('sphere',), (), ('furnace', 'sphere'))
     """
-    from ..rendering.face_validation import LIMITS_SCENE_FREE
+    from ..rendering.face.validation import LIMITS_SCENE_FREE
 
     if text is None:
         return tuple(LIMITS_SCENE_FREE)
@@ -58,7 +58,7 @@ def check_samples(spp: int, pixels: int) -> None:
 
     >>> check_samples(48, 256 * 256)
     """
-    from ..rendering.face_limits import REPLICATES
+    from ..rendering.face.limits import REPLICATES
     from ..rendering.renderer import SAMPLES_MAX
     from ..studies.face_sweep import SAMPLES_PER_S
 
@@ -80,7 +80,7 @@ def command_validate_face(args: argparse.Namespace) -> None:
     ``--calibration``, the render options) and the face's (``--physics``, ``--skin``, ``--size``);
     every flag is checked before anything renders.
     """
-    from ..rendering.face_validation import validate_face
+    from ..rendering.face.validation import validate_face
     from .common import emit, flag, render_options, table
     from .face import face_inputs
 

@@ -13,6 +13,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, camera_of, add_grid, add_model, add_render, check_output,
                      choices_help, emit, flag, grid_of, render_options, table)
+from ..studies.labelled import chart_figure
 from .face import check_figure
 
 
@@ -164,7 +165,8 @@ def command_render(args: argparse.Namespace) -> None:
     if is_face_scene(args.scene):  # a face (perspective camera, mesh, lights): its own renderer
         return command_render_face(args)
     chart_only(args)
-    from ..rendering.exr import write_exr, write_preview
+    from ..rendering.exr import write_preview
+    from ..rendering.outputs import write_chart_exr
     from ..rendering.renderer import channel_names
 
     options = render_options(args)
@@ -183,9 +185,7 @@ def command_render(args: argparse.Namespace) -> None:
         result = replace(result, image=knee(result.image).astype(np.float32), knee=True)
     spp = result.raw[0].spp
     names = channel_names(result.camera)
-    write_exr(output, result.image, names, {"camera": result.camera.name, "prevailing_K": result.prevailing,
-                                            "calibration_K": result.calibration, "spp": spp,
-                                            "seed": args.seed, "variant": result.variant, "units": "Eq. 4 output units"})
+    write_chart_exr(output, result, args.seed)
     preview = write_preview(output.with_suffix(".png"), result.image)
     document = {"image": str(output), "preview_png": str(preview), "channels": list(names), "spp": spp,
                 "spp_requested": options["spp"],
@@ -262,22 +262,3 @@ def command_detect(args: argparse.Namespace) -> None:
             + f"\nTPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}; mask {output}"
             + (f"; figure {figure}" if figure is not None else "") + imaging_notes(imaged))
     emit(args, document, text)
-
-
-def chart_figure(rendering, path, detection=None, rates: str = ""):
-    """
-    The labelled figure of a chart render (:func:`~skinrender.studies.figures.figure_chart`): its patch names
-    and boxes from the scene, and with a ``detection`` its mask and each patch's detected fraction.
-    """
-    from ..studies.figures import figure_chart
-
-    chart = rendering.scene
-    boxes = [chart.patch_box(i) for i in range(len(chart.patches))]
-    names = [patch.name for patch in chart.patches]
-    skin = [patch.skin for patch in chart.patches]
-    title = (f"{chart.name} through {rendering.camera.name}, {rendering.prevailing:g} K white-balanced to "
-             f"{rendering.calibration:g} K, {rendering.raw[0].spp} spp")
-    if detection is None:
-        return figure_chart(rendering.image, boxes, names, skin, title, path)
-    fractions = [p["detected_fraction"] for p in detection.per_patch] + [None]  # the white reference: not scored
-    return figure_chart(rendering.image, boxes, names, skin, f"{title}: {rates}", path, detection.mask, fractions)

@@ -91,8 +91,10 @@ def add_parsers(commands) -> None:
                    "face at each level of physics instead of the charts; calibration, validate: the chart (default "
                    "macbeth; a face is refused until its checks' calibration is registered)")
     p.add_argument("--size", metavar="PX", help="render --scene: image side, pixels (default 256; --quick 64)")
+    from ..studies.bench_face import LEVELS_BENCH
+
     p.add_argument("--levels", help="render --scene: comma-separated levels of physics (default "
-                   "direct,interreflection,sheen,mixed,noise)")
+                   + ",".join(LEVELS_BENCH) + ")")
     p.add_argument("--spp-list", metavar="N,N,…",
                    help="render --scene: samples per pixel of the curve (default 4,16,64,256; --quick 4,16,64); "
                    "validate: the spp of the rows (default 4,16,64,256)")
@@ -249,8 +251,8 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
         if given:
             raise SkinrenderError(f"--{given[0].replace('_', '-')} goes with 'bench render --scene SCENE' (a face)")
         return None
-    from ..rendering.face_dict import active_lights, parse_physics
-    from ..rendering.face_scene import load_face_scene
+    from ..rendering.face.effects import active_lights, parse_physics
+    from ..rendering.face.scene import load_face_scene
     from ..rendering.renderer import SAMPLES_MAX
     from ..studies.bench_face import LEVELS_BENCH, SIZE_BENCH, SPPS_BENCH
     from .common import SPP_MAX, flag

@@ -18,7 +18,7 @@ times unitless sensitivities and reflectances, times nm).
 
 References
 ----------
--   [Martinkauppi2006]_ : the paper, Stage 3 (docs/references.md).
+-   :cite:`Martinkauppi2006` : the paper, Stage 3 (docs/references.md).
 """
 
 from __future__ import annotations

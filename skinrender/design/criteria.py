@@ -7,7 +7,7 @@ What the Stage 3 search computes for one sensor triplet: its gamut volumes
 the fast, exact way, and the detection criterion (false-positive rate of a
 non-skin set inside the skin locus).
 
-The fast method is exact (docs/references.md, [Martinkauppi2006]_ Stage 3),
+The fast method is exact (docs/references.md, :cite:`Martinkauppi2006` Stage 3),
 not an approximation:
 
 1.  Eq. 4 without the knee is, for one (prevailing *p*, calibration *q*) pair,
@@ -28,7 +28,7 @@ are computed the straightforward way.
 
 References
 ----------
--   [Martinkauppi2006]_, [Barber1996]_ (docs/references.md).
+-   :cite:`Martinkauppi2006`, :cite:`Barber1996` (docs/references.md).
 """
 
 from __future__ import annotations

@@ -31,7 +31,7 @@ Units: illuminance lx, exposure s, rates are fractions in [0, 1].
 
 References
 ----------
--   [EMVA1288]_, [Martinkauppi2006]_ (docs/references.md).
+-   :cite:`EMVA1288`, :cite:`Martinkauppi2006` (docs/references.md).
 """
 
 from __future__ import annotations

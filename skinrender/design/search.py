@@ -16,7 +16,7 @@ triplets over every core (processes) or a Dask cluster and ranks them.
 
 References
 ----------
--   [Martinkauppi2006]_ : Stage 3, Tables 2–5 (docs/references.md).
+-   :cite:`Martinkauppi2006` : Stage 3, Tables 2–5 (docs/references.md).
 """
 
 from __future__ import annotations

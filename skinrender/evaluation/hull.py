@@ -17,7 +17,7 @@ compiler.
 
 References
 ----------
--   [Barber1996]_ : Quickhull (docs/references.md).
+-   :cite:`Barber1996` : Quickhull (docs/references.md).
 """
 
 from __future__ import annotations

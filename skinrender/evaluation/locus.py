@@ -19,10 +19,10 @@ white balancing (one calibration illuminant) or with several.
 
 References
 ----------
--   [Storring2001]_ : Störring, M., Andersen, H. J., & Granum, E. (2001).
+-   :cite:`Storring2001` : Störring, M., Andersen, H. J., & Granum, E. (2001).
     Physics-based modelling of human skin colour under mixed illuminants.
     Robotics and Autonomous Systems, 35(3–4), 131–142.
--   [Soriano2003]_ : Soriano, M., Martinkauppi, B., Huovinen, S., &
+-   :cite:`Soriano2003` : Soriano, M., Martinkauppi, B., Huovinen, S., &
     Laaksonen, M. (2003). Adaptive skin color modeling using the skin locus for
     selecting training pixels. Pattern Recognition, 36(3), 681–690.
 """

@@ -45,7 +45,7 @@ References
 ----------
 -   :cite:`EMVA1288` : the linear camera model of
     :mod:`skinrender.model.noise`.
--   [Martinkauppi2006]_ : Eqs. 1, 2 and 4 (docs/references.md).
+-   :cite:`Martinkauppi2006` : Eqs. 1, 2 and 4 (docs/references.md).
 """
 
 from __future__ import annotations

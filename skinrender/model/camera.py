@@ -16,7 +16,7 @@ unit-area delta, measured curves as published).
 
 References
 ----------
--   [Martinkauppi2006]_ : the paper's Stage 3 sensors (docs/references.md).
+-   :cite:`Martinkauppi2006` : the paper's Stage 3 sensors (docs/references.md).
 """
 
 from __future__ import annotations

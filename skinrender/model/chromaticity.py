@@ -11,7 +11,7 @@ Units: responses in any unit (NCC is scale-free); chromaticities unitless.
 
 References
 ----------
--   [Martinkauppi2006]_ : Eqs. 2 and 3 (docs/references.md).
+-   :cite:`Martinkauppi2006` : Eqs. 2 and 3 (docs/references.md).
 """
 
 from __future__ import annotations

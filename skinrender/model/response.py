@@ -20,8 +20,8 @@ white-balanced responses in output units (``v = 255`` for a white object at
 
 References
 ----------
--   [Martinkauppi2006]_ : the paper, Eqs. 1–11, with the errata of
-    docs/references.md (Eq. 8 scaled to 1 at p = c, Eq. 11's knee).
+-   :cite:`Martinkauppi2006` : the paper, Eqs. 1–11, with the decisions of
+    docs/model.md (Eq. 8 scaled to 1 at p = c, Eq. 11's knee with its erratum).
 """
 
 from __future__ import annotations

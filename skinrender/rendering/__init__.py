@@ -10,6 +10,11 @@ Layer 5 (beside design, independent of it): scene files, Mitsuba variants, the r
 -   :mod:`skinrender.rendering.balance`
 -   :mod:`skinrender.rendering.exr`
 -   :mod:`skinrender.rendering.validation`
+-   :mod:`skinrender.rendering.face` (the face: scenes, effects of physics,
+    render, labels, limits, validation)
+-   :mod:`skinrender.rendering.outputs` (a result's ``.save()`` and
+    ``.figure()``), :mod:`skinrender.rendering.dispatch` (one ``render`` for
+    charts and faces)
 
 A name under ``skinrender.rendering`` is always a module; the public functions
 and classes are imported from their modules, or from ``skinrender`` itself.

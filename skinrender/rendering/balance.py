@@ -18,7 +18,7 @@ images in output units (255 for white at p = c).
 
 References
 ----------
--   [Martinkauppi2006]_ : Eqs. 4, 8, 10 (docs/references.md).
+-   :cite:`Martinkauppi2006` : Eqs. 4, 8, 10 (docs/references.md).
 """
 
 from __future__ import annotations
@@ -99,6 +99,26 @@ class Rendering:
     def seconds(self) -> float:
         """Rendering time, s."""
         return sum(r.seconds for r in self.raw)
+
+    def save(self, exr, png=True, figure=None) -> dict:
+        """
+        Write the render: the float32 EXR (channels named by the camera, output units), a PNG preview (``True``:
+        beside the EXR; a path; ``False``: none) and the labelled figure (a PNG path; ``None``: none). Returns
+        ``{"exr": path, "png": path or None, "figure": path or None}``
+        (:func:`skinrender.rendering.outputs.save_result`).
+        """
+        from .outputs import save_result, write_chart_exr
+
+        return save_result(self, "chart", exr, png, figure, lambda path: write_chart_exr(path, self))
+
+    def figure(self, path, **options):
+        """
+        Draw the render with each patch's name on it into a PNG at ``path`` and return it
+        (:func:`skinrender.studies.labelled.chart_figure`; ``detection``, ``rates``: a detection's mask over it).
+        """
+        from .outputs import draw_figure
+
+        return draw_figure("chart", self, path, **options)
 
 
 def _temperature(spec) -> float:

@@ -114,7 +114,7 @@ QUALITY_PRESETS = {
     "reference": {"spp": 4096, "sampler": "multijitter"},
 }
 """Named settings; their expected error and time are measured by
-``skinrender bench render`` (README table)."""
+``skinrender bench render`` (docs/speed.md)."""
 
 
 def channel_names(cam: Camera) -> tuple[str, str, str]:

@@ -6,6 +6,8 @@ Layer 6: the paper's tables and figures, the reproduction and the benchmarks. :m
 
 -   :mod:`skinrender.studies.tables`
 -   :mod:`skinrender.studies.figures`
+-   :mod:`skinrender.studies.labelled` (the figures of renders, registered
+    for ``Rendering.figure()`` and ``FaceRendering.figure()``)
 -   :mod:`skinrender.studies.reproduce`
 -   :mod:`skinrender.studies.bench`
 

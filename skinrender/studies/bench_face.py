@@ -50,13 +50,15 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..model.camera import camera
 from ..model.chromaticity import ncc
+from ..rendering.face.effects import LEVELS_EACH
 from .bench import _at_least_one, machine
 
 __all__ = ["LEVELS_BENCH", "SPPS_BENCH", "SIZE_BENCH", "PRESET_THRESHOLDS", "fit_error", "spp_for", "presets_of",
            "bench_face"]
 
-LEVELS_BENCH = ("direct", "interreflection", "sheen", "mixed", "noise")
-"""The levels timed: the analytic model's world and each effect alone."""
+LEVELS_BENCH = LEVELS_EACH
+"""The levels timed: the analytic model's world and each effect alone (read from the registry of effects,
+:data:`skinrender.rendering.face.effects.LEVELS_EACH`)."""
 
 SPPS_BENCH = (4, 16, 64, 256)
 """Samples per pixel of the curve."""
@@ -198,8 +200,8 @@ def bench_face(
     """
 
     from ..rendering.face import render_face
-    from ..rendering.face_dict import parse_physics
-    from ..rendering.face_scene import load_face_scene
+    from ..rendering.face.effects import parse_physics
+    from ..rendering.face.scene import load_face_scene
 
     say = progress or (lambda line: None)
     start = time.perf_counter()

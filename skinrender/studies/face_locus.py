@@ -16,7 +16,7 @@ Units: chromaticities NCC (r, g), unitless; areas in (r, g) units².
 
 References
 ----------
--   [Storring2001]_, [Soriano2003]_ (docs/references.md).
+-   :cite:`Storring2001`, :cite:`Soriano2003` (docs/references.md).
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ from ..model.camera import Camera
 from ..model.chromaticity import ncc
 from ..model.response import response
 from ..rendering.face import render_face
-from ..rendering.face_scene import skin_reflectance_of
+from ..rendering.face.scene import skin_reflectance_of
 from ..rendering.variants import choose_variant
 from ..spectra import GRID_DEFAULT
 from .face_pool import run_renders

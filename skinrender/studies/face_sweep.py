@@ -43,8 +43,8 @@ from ..evaluation.locus import skin_locus
 from ..model.camera import camera
 from ..model.chromaticity import ncc
 from ..rendering.face import planckian_temperature, render_face
-from ..rendering.face_dict import parse_physics
-from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+from ..rendering.face.effects import parse_physics
+from ..rendering.face.scene import load_face_scene, skin_reflectance_of
 from ..rendering.renderer import SAMPLES_MAX
 from ..rendering.scene import PIXELS_MAX
 from ..rendering.validation import analytic_reference

@@ -26,7 +26,7 @@ unitless, times in s.
 
 References
 ----------
--   [Martinkauppi2006]_ : Figs. 3–7 (docs/references.md).
+-   :cite:`Martinkauppi2006` : Figs. 3–7 (docs/references.md).
 """
 
 from __future__ import annotations

@@ -40,16 +40,17 @@ from ..hints import NDArrayFloat
 from ..model.camera import camera
 from ..model.chromaticity import ncc
 from ..rendering.face import planckian_temperature, render_face
-from ..rendering.face_dict import parse_physics
-from ..rendering.face_labels import LABEL_SKIN
-from ..rendering.face_scene import load_face_scene, skin_reflectance_of
+from ..rendering.face.effects import LEVELS_LADDER, parse_physics
+from ..rendering.face.labels import LABEL_SKIN
+from ..rendering.face.scene import load_face_scene, skin_reflectance_of
 from ..rendering.validation import analytic_reference
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
 __all__ = ["LEVELS_DEFAULT", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "score_rendering", "score_frame"]
 
-LEVELS_DEFAULT = ("direct", "interreflection", "sheen", "mixed", "noise", "interreflection+sheen+mixed+noise")
-"""The levels of :func:`ladder`: the analytic model's world, each effect alone, then all of them."""
+LEVELS_DEFAULT = LEVELS_LADDER
+"""The levels of :func:`ladder`: the analytic model's world, each effect alone, then all of them (read from the
+registry of effects, :data:`skinrender.rendering.face.effects.LEVELS_LADDER`)."""
 
 
 @dataclass(frozen=True)

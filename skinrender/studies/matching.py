@@ -25,7 +25,7 @@ Units: peaks in nm, temperatures in K.
 
 References
 ----------
--   [Martinkauppi2006]_ : Tables 2–5 (docs/references.md).
+-   :cite:`Martinkauppi2006` : Tables 2–5 (docs/references.md).
 """
 
 from __future__ import annotations

@@ -19,9 +19,9 @@ Units: temperatures in K; chromaticities unitless.
 
 References
 ----------
--   [Martinkauppi2006]_ : Stage 1 (text beside Fig. 2), Stage 2 (Figs. 3–5)
+-   :cite:`Martinkauppi2006` : Stage 1 (text beside Fig. 2), Stage 2 (Figs. 3–5)
     (docs/references.md).
--   [Barnard2002]_ : the SFU data set, DXC-930 sensitivities.
+-   :cite:`Barnard2002` : the SFU data set, DXC-930 sensitivities.
 """
 
 from __future__ import annotations

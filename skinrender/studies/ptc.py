@@ -34,7 +34,7 @@ value.
 
 References
 ----------
--   [EMVA1288]_ : EMVA Standard 1288, release 4.0 (docs/references.md).
+-   :cite:`EMVA1288` : EMVA Standard 1288, release 4.0 (docs/references.md).
 """
 
 from __future__ import annotations

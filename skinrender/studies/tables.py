@@ -16,7 +16,7 @@ Units: peaks in nm, temperatures in K, NCC unitless.
 
 References
 ----------
--   [Martinkauppi2006]_ : Tables 1–5 (docs/references.md).
+-   :cite:`Martinkauppi2006` : Tables 1–5 (docs/references.md).
 """
 
 from __future__ import annotations

@@ -18,7 +18,7 @@ Units: wavelength in nm, temperature in K.
 
 References
 ----------
--   [Martinkauppi2006]_ : Stage 1, Stage 3, Tables 2–5 (docs/references.md).
+-   :cite:`Martinkauppi2006` : Stage 1, Stage 3, Tables 2–5 (docs/references.md).
 """
 
 from __future__ import annotations
@@ -112,7 +112,8 @@ class Setting:
 
 
 SETTING_DEFAULT = Setting()
-"""Our reading of the paper (README): b = 2, 400–700 nm every 1 nm, Vrhel skin, Joensuu Munsell, its ten illuminants."""
+"""Our reading of the paper (docs/model.md): b = 2, 400–700 nm every 1 nm, Vrhel skin, Joensuu Munsell, its ten
+illuminants."""
 
 
 @dataclass(frozen=True)

@@ -59,7 +59,7 @@ def test_coincident_sensors_give_a_degenerate_locus(boundary, capsys):
 
 
 def test_locus_takes_the_munsell_set(capsys):
-    """``--munsell`` (CONTRACT.md: commands with skin and Munsell sets take both) replaces the 'munsell' item."""
+    """``--munsell`` (docs/contract.md: commands with skin and Munsell sets take both) replaces the 'munsell' item."""
     argv = LOCUS + ["--nonskin", "munsell,macbeth", "--json"]
     status, out, err = run(argv, capsys)
     default = json.loads(out)

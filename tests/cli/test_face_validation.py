@@ -13,7 +13,7 @@ import pytest
 
 from skinrender.cli.face_validation import command_validate_face, limits_of
 from skinrender.errors import SkinrenderError
-from skinrender.rendering.face_limits import LimitCheck
+from skinrender.rendering.face.limits import LimitCheck
 
 from .refusal import assert_refused, run
 
@@ -59,7 +59,7 @@ def test_interreflection_is_information_and_the_sensor_is_named(capsys):
 
 def test_a_failing_check_exits_1_with_its_document(capsys, monkeypatch):
     import skinrender.cli.face_validation as cli
-    import skinrender.rendering.face_validation as module
+    import skinrender.rendering.face.effects.direct as module  # the base level's check
 
     failed = LimitCheck("shading_cancels", True, False, 9.0, 7.0, 100, "forced")
     monkeypatch.setattr(module, "check_shading", lambda *a, **k: failed)

@@ -1,7 +1,7 @@
 """
 Tests for :mod:`skinrender.cli.imaging`: ``skinrender imagers`` and
 ``skinrender score`` through :func:`skinrender.cli.main`, their ``--json``
-documents (CONTRACT.md keys), and a one-line error (exit status 2) for every
+documents (docs/contract.md keys), and a one-line error (exit status 2) for every
 bad number (:func:`tests.cli.refusal.assert_refused`).
 """
 

@@ -212,7 +212,7 @@ def test_a_grid_outside_the_charts_data_is_refused_before_rendering(tmp_path, ca
 ])
 def test_a_bad_mesh_is_refused_before_rendering(name, content, tmp_path, capsys):
     """Each kind gave Mitsuba's 'internal error' after the render had started; now one line, exit 2."""
-    from skinrender.rendering.face_scene import ROOT_FACE_SCENES
+    from skinrender.rendering.face.scene import ROOT_FACE_SCENES
 
     (tmp_path / name).write_bytes(content)
     scene = tmp_path / "scene.toml"

@@ -137,7 +137,7 @@ class TestRender:
     def test_impulse_bias_is_small(self, tiny):
         """The impulse is rendered as a unit-area triangle of base 2 nm; against the exact sample (Eq. 4's Σ)
         it is biased by the reflectance's curvature within ±1 nm: measured 1.9e-3 at most here (a 2 nm-sampled
-        skin spectrum at a kink), stated as < 3e-3 in the README."""
+        skin spectrum at a kink), stated as < 3e-3 in docs/rendering.md."""
         result = validate(tiny, "impulse@450,550,650", 3300, 3300, spp=16, seed=1)
         reflectance = sr.load_scene(tiny).reflectances(sr.GRID_DEFAULT)
         exact = sr.response("impulse@450,550,650", reflectance, 3300, 3300)

@@ -9,7 +9,7 @@ from skinrender.studies.matching import (STEP_MATCH_NM, cell_match, cell_tempera
 from skinrender.studies.tables import PAPER_TABLES
 
 # Our Tables 2–5 at the default setting and full size (`skinrender reproduce -o DIR`, measured): the
-# README quotes 11 of 48 exact cells for them.
+# docs/unknowns.md quotes 11 of 48 exact cells for them.
 TABLES_DEFAULT = {
     "1": ["400 520 700, 3300 K", "420 530 700, 3300 K", "560 570 580, 2000 K", "470 610 700", "430 530 700",
           "560 570 580"],
@@ -102,7 +102,7 @@ class TestCountMatches:
         assert count_matches({2: {"table4_skin": "470 610 700"}})["total"] == 0
 
     def test_default_tables_match_eleven_of_48(self):
-        """The README's 11 of 48 for the default setting (tables recorded from a full-size run)."""
+        """docs/unknowns.md's 11 of 48 for the default setting (tables recorded from a full-size run)."""
         rows = {sensor: dict(zip(KEYS, cells)) for sensor, cells in TABLES_DEFAULT.items()}
         counts = count_matches(rows)
         assert (counts["exact"], counts["within_step"], counts["total"]) == (11, 20, 48)

@@ -1,12 +1,12 @@
-"""Tests for :mod:`skinrender.rendering.face_labels`: label names and ids, and the interior of a label."""
+"""Tests for :mod:`skinrender.rendering.face.labels`: label names and ids, and the interior of a label."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from skinrender.rendering.face_labels import (LABEL_BACKGROUND, LABEL_SKIN, SHAPE_SKIN, interior, label_names,
+from skinrender.rendering.face.labels import (LABEL_BACKGROUND, LABEL_SKIN, SHAPE_SKIN, interior, label_names,
                                               prop_shape_id, shape_labels)
-from skinrender.rendering.face_scene import load_face_scene
+from skinrender.rendering.face.scene import load_face_scene
 
 
 class TestLabelNames:

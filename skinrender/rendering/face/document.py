@@ -2,15 +2,19 @@
 Mitsuba documents of face scenes
 ================================
 
-The Mitsuba 3 scene dictionary of a :class:`~skinrender.rendering.face_scene.FaceScene`
+The Mitsuba 3 scene dictionary of a :class:`~skinrender.rendering.face.scene.FaceScene`
 at one level of physics, and the spectral pieces every face render shares.
+What a level puts in it (the integrator, the skin's and props' materials,
+the lights) comes from its effects
+(:class:`~skinrender.rendering.face.effects.levels.Level`); this module
+places them in the scene.
 
--   :data:`PHYSICS`: the levels, name → meaning; :func:`parse_physics`.
 -   :func:`channel_groups`, :func:`film_dict`: the camera's channels as
     ``specfilm`` passes (as the chart renderer splits them).
 -   :func:`light_irradiance`, :func:`channel_integral`: a light's spectral
     irradiance (W·m⁻²·nm⁻¹ from its illuminance) and ``∫ f(λ) x_k(λ) dλ``
     as the renderer integrates it.
+-   :func:`transform`: a shape's 4×4 matrix.
 -   :func:`face_document`: the scene dictionary.
 
 Modelling choices
@@ -23,8 +27,10 @@ Modelling choices
     tabulated in float64 every ``grid.step / EMITTER_REFINE`` nm and handed
     to Mitsuba divided by one ``scale`` (the largest irradiance peak),
     restored after rendering, as the chart renderer does.
--   Every surface is ``twosided``: the scan is open at the shoulders, and a
-    path that enters it must meet skin, not a black back face.
+-   Every surface of the effects of today is ``twosided``
+    (:func:`~skinrender.rendering.face.effects.base.twosided`): the scan is
+    open at the shoulders, and a path that enters it must meet skin, not a
+    black back face.
 -   The bundled head becomes a Mitsuba ``Mesh`` built from its arrays; a
     user's mesh file is loaded by Mitsuba's ``obj`` or ``ply`` plugin with
     the same transform. Shading is flat (each triangle's own normal) unless
@@ -37,77 +43,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import SkinrenderError
-from ..hints import NDArrayFloat
-from ..methods import validate_method
-from ..model.camera import Camera
-from ..model.exposure import irradiance_planck
-from ..spectra import WavelengthGrid
-from .face_labels import SHAPE_SKIN, prop_shape_id
-from .face_scene import MESH_HEAD, FaceScene, Light, skin_reflectance_of
-from .renderer import EMITTER_REFINE, _separate, _spectrum, channel_names
-from .scene import reflectance_of
+from ...hints import NDArrayFloat
+from ...model.camera import Camera
+from ...model.exposure import irradiance_planck
+from ...spectra import WavelengthGrid
+from ..renderer import EMITTER_REFINE, _separate, _spectrum, channel_names
+from ..scene import reflectance_of
+from .labels import SHAPE_SKIN, prop_shape_id
+from .scene import MESH_HEAD, FaceScene, Light, skin_reflectance_of
 
-__all__ = ["PHYSICS", "EFFECTS", "SHEEN_ALPHA", "SHEEN_IOR", "RUSSIAN_ROULETTE_DEPTH", "parse_physics",
-           "channel_groups", "film_dict", "light_irradiance", "channel_integral", "active_lights",
-           "transform", "face_document"]
-
-PHYSICS = {
-    "direct": "Lambertian skin and props under the key light alone, direct lighting only (Mitsuba's direct "
-              "integrator): the analytic model's world, shading aside",
-    "interreflection": "every bounce (path tracing, Russian roulette: unbiased): light from the props and "
-                       "from the face onto itself",
-    "sheen": "the skin under a rough dielectric coat (roughplastic, GGX) over the same diffuse spectrum: the "
-             "oily surface's highlights in the light's colour (the dichromatic model)",
-    "mixed": "the second light and the environment beside the key light, each at its own temperature",
-    "noise": "through an image sensor (skinrender.model.noise.simulate_dn): shot, dark, read and "
-             "quantisation noise, full well and ADC clipping",
-}
-"""Levels of physics, name → meaning. ``direct`` is the base; the others each
-add one effect to it and combine with ``+`` (``interreflection+sheen+mixed``).
-Subsurface scattering is not offered: Mitsuba 3 has no BSSRDF, and a
-volumetric skin (a homogeneous medium inside a rough dielectric head, its
-albedo inverted from the skin's reflectance by the diffusion model, reduced
-scattering 46 cm⁻¹ at 500 nm, volpath) measured 41 s a 256² 64-spp render on
-this 2-core machine, against 2.5–10 s for the other levels, and left NaN
-pixels (a spectrally varying medium under hero-wavelength sampling)."""
-
-EFFECTS = tuple(name for name in PHYSICS if name != "direct")
-"""The levels that add an effect to ``direct``, in ladder order."""
-
-SHEEN_ALPHA = 0.35
-"""GGX roughness α of the skin's coat: Weyrich et al. (2006) fit Torrance–Sparrow
-roughness 0.3–0.45 to faces."""
-
-SHEEN_IOR = 1.4
-"""Refractive index of the skin's surface (Donner & Jensen 2006 use 1.4)."""
-
-RUSSIAN_ROULETTE_DEPTH = 5
-"""Path depth from which Russian roulette ends paths (Mitsuba's default; unbiased)."""
-
-
-def parse_physics(spec: str) -> tuple[str, ...]:
-    """
-    The effects of a physics spec, in :data:`EFFECTS` order (``()`` for ``direct``).
-
-    Examples
-    --------
-    >>> parse_physics("sheen+interreflection")
-    ('interreflection', 'sheen')
-    >>> parse_physics("direct")
-    ()
-    """
-
-    text = str(spec).strip()
-    parts = [part.strip() for part in text.split("+")]
-    for part in parts:
-        validate_method(part, PHYSICS, f"physics ({text!r})")
-    if "direct" in parts and len(parts) > 1:
-        raise SkinrenderError(f"physics: 'direct' is the base and combines with nothing, got {text!r}")
-    twice = sorted({part for part in parts if parts.count(part) > 1})
-    if twice:
-        raise SkinrenderError(f"physics: {', '.join(twice)} named twice in {text!r}; name each effect once")
-    return tuple(name for name in EFFECTS if name in parts)
+__all__ = ["channel_groups", "film_dict", "light_irradiance", "channel_integral", "transform", "face_document"]
 
 
 def channel_groups(cam: Camera, grid: WavelengthGrid, channels: str = "auto") -> list[tuple[int, ...]]:
@@ -148,25 +93,6 @@ def channel_integral(cam: Camera, grid: WavelengthGrid, wavelengths: NDArrayFloa
     return (np.asarray(spectrum) * weights) @ x.T
 
 
-def active_lights(scene: FaceScene, effects: tuple[str, ...]) -> dict[str, Light]:
-    """
-    The lights of a render: ``key`` (or, in a scene without one, the
-    ``environment``), plus ``fill`` and ``environment`` with ``mixed``.
-    """
-    if "mixed" in effects:
-        names = ("key", "fill", "environment")
-        lights = {name: getattr(scene, name) for name in names if getattr(scene, name)}
-        if len(lights) < 2:
-            raise SkinrenderError(f"physics 'mixed' needs a [fill] light or an [environment] beside the key "
-                                  f"light ({scene.source or scene.name})")
-        return lights
-    if scene.key is not None:
-        return {"key": scene.key}
-    if scene.environment is not None:
-        return {"environment": scene.environment}
-    raise SkinrenderError(f"face scene {scene.source or scene.name} has no light")
-
-
 def _rotation(degrees) -> NDArrayFloat:
     """About x, then y, then z (degrees)."""
     out = np.eye(3)
@@ -187,28 +113,20 @@ def transform(translate, rotate, scale) -> NDArrayFloat:
     return m
 
 
-def _bsdf(reflectance: NDArrayFloat, grid: WavelengthGrid, sheen: bool) -> dict:
-    spectrum = _spectrum(grid.wavelengths, reflectance)
-    if not sheen:
-        inner = {"type": "diffuse", "reflectance": spectrum}
-    else:
-        inner = {"type": "roughplastic", "distribution": "ggx", "alpha": SHEEN_ALPHA, "int_ior": SHEEN_IOR,
-                 "ext_ior": 1.0, "nonlinear": False, "diffuse_reflectance": spectrum}
-    return {"type": "twosided", "bsdf": inner}
-
-
-def _mesh(mi, scene: FaceScene, bsdf: dict) -> dict | object:
+def _mesh(mi, scene: FaceScene, material: dict) -> dict | object:
+    """The head: a Mitsuba ``Mesh`` of the bundled scan, or the user's ``obj``/``ply``, with ``material``."""
     matrix = transform(scene.mesh_translate, scene.mesh_rotate, scene.mesh_scale)
     if scene.mesh != MESH_HEAD:
         kind = "ply" if scene.mesh.lower().endswith(".ply") else "obj"
-        return {"type": kind, "filename": scene.mesh, "to_world": mi.ScalarTransform4f(matrix), "bsdf": bsdf,
+        return {"type": kind, "filename": scene.mesh, "to_world": mi.ScalarTransform4f(matrix), **material,
                 "face_normals": not scene.mesh_smooth}
-    from ..datasets.head import mesh_head
+    from ...datasets.head import mesh_head
 
     vertices, triangles = mesh_head()
     positions = vertices.astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
     props = mi.Properties()
-    props["bsdf"] = mi.load_dict(bsdf)
+    for key, value in material.items():
+        props[key] = mi.load_dict(value)
     mesh = mi.Mesh(SHAPE_SKIN, len(vertices), len(triangles), props=props,
                    has_vertex_normals=scene.mesh_smooth)
     params = mi.traverse(mesh)
@@ -221,9 +139,9 @@ def _mesh(mi, scene: FaceScene, bsdf: dict) -> dict | object:
     return mesh
 
 
-def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, effects: tuple[str, ...],
-                  skin: str, group: tuple[int, ...], spp: int, seed: int, sampler: str,
-                  lights: dict[str, Light], scale: float) -> dict:
+def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, level, skin: str,
+                  group: tuple[int, ...], spp: int, seed: int, sampler: str, lights: dict[str, Light],
+                  scale: float) -> dict:
     """
     The Mitsuba scene dictionary of a face scene.
 
@@ -231,14 +149,16 @@ def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, effec
     ----------
     mi
         The ``mitsuba`` module, its (spectral) variant set.
-    effects
-        From :func:`parse_physics`; ``noise`` acts after rendering.
+    level
+        The :class:`~skinrender.rendering.face.effects.levels.Level`: its effects give the integrator and
+        the skin's and props' materials (effects acting after rendering, as ``noise``, add nothing here).
     skin
-        The skin spec (:func:`~skinrender.rendering.face_scene.skin_reflectance_of`).
+        The skin spec (:func:`~skinrender.rendering.face.scene.skin_reflectance_of`).
     group
         The camera channels of this pass.
     lights
-        The lights to add (:func:`active_lights`), with their temperatures.
+        The lights to add (the level's, :meth:`~skinrender.rendering.face.effects.levels.Level.lights`),
+        with their temperatures: a point light where it has a position, else the uniform environment.
     scale
         Every emitter spectrum is divided by it (W·m⁻²·nm⁻¹): multiply the
         render by it.
@@ -246,14 +166,10 @@ def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, effec
 
     matrix = mi.ScalarTransform4f
     c = scene.camera
-    if "interreflection" in effects:
-        integrator = {"type": "path", "max_depth": -1, "rr_depth": RUSSIAN_ROULETTE_DEPTH}
-    else:  # one light sample per hit; a BSDF sample only where it can meet a light (the environment)
-        points = all(light.position is not None for light in lights.values())
-        integrator = {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0 if points else 1}
+    setup = level.setup(scene, cam, grid, lights)
     document = {
         "type": "scene",
-        "integrator": integrator,
+        "integrator": level.integrator(setup),
         "sensor": {
             "type": "perspective", "fov": c.fov, "fov_axis": "x", "near_clip": 1e-3, "far_clip": 1e3,
             "to_world": matrix().look_at(origin=list(c.position), target=list(c.target), up=list(c.up)),
@@ -261,13 +177,12 @@ def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, effec
             "film": film_dict(cam, grid, group, c.width, c.height),
         },
     }
-    rho = skin_reflectance_of(skin, grid, "skin")
-    document[SHAPE_SKIN] = _mesh(mi, scene, _bsdf(rho, grid, "sheen" in effects))
+    document[SHAPE_SKIN] = _mesh(mi, scene, level.skin(skin_reflectance_of(skin, grid, "skin"), setup))
     for k, prop in enumerate(scene.props):
         size = [prop.size[0] / 2, prop.size[1] / 2, prop.size[2] / 2 if prop.shape == "cube" else 1.0]
         document[prop_shape_id(k)] = {
             "type": prop.shape, "to_world": matrix(transform(prop.position, prop.rotate, size)),
-            "bsdf": _bsdf(reflectance_of(prop.reflectance, grid, f"prop {prop.name!r}"), grid, False),
+            **level.prop(reflectance_of(prop.reflectance, grid, f"prop {prop.name!r}"), setup),
         }
     target = np.asarray(c.target)
     for name, light in lights.items():

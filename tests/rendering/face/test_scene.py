@@ -1,4 +1,4 @@
-"""Tests for :mod:`skinrender.rendering.face_scene`: face scenes; bad ones refused naming file and field."""
+"""Tests for :mod:`skinrender.rendering.face.scene`: face scenes; bad ones refused naming file and field."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.rendering.face_scene import (MESH_HEAD, ROOT_FACE_SCENES, FaceScene, list_face_scenes,
+from skinrender.rendering.face.scene import (MESH_HEAD, ROOT_FACE_SCENES, FaceScene, list_face_scenes,
                                              load_face_scene, skin_reflectance_of)
 from skinrender.rendering.scene import list_scenes
 from skinrender.spectra import GRID_DEFAULT

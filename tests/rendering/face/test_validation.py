@@ -1,17 +1,15 @@
 """
-Tests for :mod:`skinrender.rendering.face_validation`: which limits are checked at which level, the spp
-split over replicates, the sensor's terms, and refusals. (The limits themselves and their failing
+Tests for :mod:`skinrender.rendering.face.validation`: which limits are checked at which level, the spp
+split over replicates, the sensor's checks, and refusals. (The limits themselves and their failing
 controls: ``test_face.py`` and ``test_face_limits.py``.)
 """
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.rendering.face_limits import rounding_bias
-from skinrender.rendering.face_validation import LIMITS_SCENE_FREE, _sensor_terms, validate_face
+from skinrender.rendering.face.validation import LIMITS_SCENE_FREE, validate_face
 
 pytest.importorskip("mitsuba")
 
@@ -47,31 +45,9 @@ def test_spp_is_split_over_the_replicates_and_seeds_follow():
     assert result.spp == 4 * 7 and result.spp_requested == 25 and result.seed == 2**32 - 3
 
 
-def test_sensor_terms_remove_the_dark_signal_and_clipped_pixels():
-    from skinrender.model.imager import imager
-    from skinrender.rendering.face import render_face
-
-    first = render_face(CAM, size=2, spp=1, physics="noise")
-    im = imager("sony-icx418")
-    g = np.asarray(first.gain)
-    signal = np.full((3, 2, 2, 3), 50.0)
-    signal[1, 0, 0, 2] = 0.0  # clipped at the black level in one replicate
-    signal[2, 1, 1, 0] = im.max_dn - im.black_level_dn  # saturated
-    images, usable, bias, floor, excluded = _sensor_terms(first, signal * g, "sony-icx418")
-    dark = im.gain_dn_per_e * im.dark_current_e_per_s * first.info["exposure_s"]
-    assert np.allclose(images[0, 0, 1], g * (50.0 - dark))
-    assert usable.tolist() == [[False, True], [True, False]]
-    sigma = im.gain_dn_per_e * np.sqrt(50.0 / im.gain_dn_per_e + im.read_noise_e**2)
-    assert np.allclose(bias[0, 1], g * rounding_bias(sigma))
-    assert np.allclose(floor[0, 1], g**2 * (sigma**2 + 1 / 12) / 3)  # EMVA: shot, read, quantisation; 3 frames
-    assert set(excluded) == {"skin_pixels_clipped", "skin_pixels_undithered"}
-    dim = _sensor_terms(first, np.full((3, 2, 2, 3), 2.0) * g, "sony-icx418")[1]  # σ ≈ 0.2 DN: codes undithered
-    assert not dim.any()
-
-
 def test_through_the_sensor_the_shading_check_runs_and_its_control_fails(monkeypatch):
     """The 8-bit sensor's dithered pixels pass; the same frames against an Eq. 4 off by 1 % in R fail."""
-    import skinrender.rendering.face_validation as module
+    import skinrender.rendering.face.validation as module
 
     kwargs = {"physics": "noise", "size": 64, "spp": 96, "limits": (), "prevailing": 2856, "calibration": 5900}
     check = validate_face(CAM, **kwargs).checks[0]
@@ -99,8 +75,8 @@ def test_scene_free_limits_are_named():
 
 def _verdict(*rows) -> bool | None:
     """The verdict of checks given as (applies, passed) pairs."""
-    from skinrender.rendering.face_limits import LimitCheck
-    from skinrender.rendering.face_validation import FaceValidation
+    from skinrender.rendering.face.limits import LimitCheck
+    from skinrender.rendering.face.validation import FaceValidation
 
     checks = [LimitCheck(f"check{i}", applies, passed, None, None, 0, "why") for i, (applies, passed) in enumerate(rows)]
     return FaceValidation(None, checks, 12, 12, 12, 0, 0.0).passed

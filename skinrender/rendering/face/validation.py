@@ -3,21 +3,25 @@ Validating face renders
 =======================
 
 A face rendered at a level of physics, checked against the analytic limits
-that hold at that level (:mod:`skinrender.rendering.face_limits`), and told
+that hold at that level (:mod:`skinrender.rendering.face.limits`), and told
 how far its skin moves from Eq. 4 where none holds.
 
 -   :func:`validate_face`, :class:`FaceValidation`: the checks of one face scene.
--   :func:`dichromatic_colours`: the body and light colours of a render's skin.
 -   :data:`LIMITS_SCENE_FREE`: the limits that hold whatever the level.
 
 What holds where
 ----------------
+Each effect states its limits (:class:`~skinrender.rendering.face.effects.base.Limits`):
+the check it makes the level's test, or that it breaks every limit, and why;
+a level composes them (:attr:`~skinrender.rendering.face.effects.levels.Level.check`,
+``.why``, ``.measure``). With today's effects:
+
 ======================  ====================================================
 level (effects)         checks
 ======================  ====================================================
 ``direct``              ``shading_cancels``
 ``sheen``               ``dichromatic_plane``
-``noise`` (+ the above) the same, on the frames' mean, dark signal removed,
+``noise`` (+ above)     the same, on the frames' mean, dark signal removed,
                         clipped pixels left out, quantisation bounded
 ``interreflection``,    none: ``eq4_shift`` only (information)
 ``mixed``
@@ -26,7 +30,7 @@ every level             ``white_furnace`` (the scene's mesh, its camera),
                         ``eq4_shift``
 ======================  ====================================================
 
-The requested ``spp`` is split over :data:`~skinrender.rendering.face_limits.REPLICATES`
+The requested ``spp`` is split over :data:`~skinrender.rendering.face.limits.REPLICATES`
 renders with seeds ``seed, seed + 1, …`` (mod 2³²), each at ``⌈spp / K⌉``; their
 spread is each statistic's noise. Through an image sensor (``noise``) each
 replicate is a frame of its own (the sensor's stream is seeded from the
@@ -34,8 +38,8 @@ render's seed), so the spread holds the sensor's noise too; the sensor is
 linear in the mean except for its dark signal (subtracted: dark current ×
 exposure), the clipping at 0 and at saturation (pixels with a clipped
 replicate are left out) and the rounding to codes (pixels whose modelled
-noise is below :data:`DITHER_SIGMA_DN` are left out; elsewhere the mean
-error is bounded by :func:`~skinrender.rendering.face_limits.rounding_bias`
+noise is below :data:`~skinrender.rendering.face.effects.noise.DITHER_SIGMA_DN` are left out; elsewhere the mean
+error is bounded by :func:`~skinrender.rendering.face.limits.rounding_bias`
 at each pixel's modelled σ and may be used up by a deviation, and the
 standard error is taken no smaller than the EMVA 1288 model's,
 ``√((σ² + 1/12 DN²) / K)``, since twelve frames may read one code). A dim scene
@@ -54,23 +58,18 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..constants import CONSTANT_OUTPUT_SCALE
-from ..errors import SkinrenderError
-from ..hints import NDArrayFloat
-from ..model.chromaticity import ncc
-from ..model.response import gain
-from ..spectra import GRID_DEFAULT
-from .face import IMAGER_DEFAULT, FaceRendering, render_face
-from .face_dict import active_lights, channel_integral, light_irradiance, parse_physics
-from .face_labels import LABEL_SKIN
-from .face_limit_scenes import furnace_radiance, sphere_channels
-from .face_limits import (REPLICATES, LimitCheck, check_dichromatic, check_furnace, check_shading, check_sphere,
-                          eq4_shift, rounding_bias)
-from .face_scene import Light, skin_reflectance_of
-from .validation import analytic_reference
+from ...errors import SkinrenderError
+from ...model.chromaticity import ncc
+from ...spectra import GRID_DEFAULT
+from ..validation import analytic_reference
+from .effects import Level, Replicates, physics_level
+from .limit_scenes import furnace_radiance, sphere_channels
+from .limits import REPLICATES, LimitCheck, check_furnace, check_sphere, eq4_shift
+from .render import FaceRendering, render_face
+from .scene import skin_reflectance_of
 
-__all__ = ["LIMITS_SCENE_FREE", "DITHER_SIGMA_DN", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "FaceValidation",
-           "dichromatic_colours", "validate_face"]
+__all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "FaceValidation",
+           "validate_face"]
 
 LIMITS_SCENE_FREE = {
     "furnace": "white furnace: the scene's mesh, reflectance 1, every bounce, in a uniform sky",
@@ -91,13 +90,6 @@ SPHERE_SPP = 16
 """Samples per pixel of each closed-sphere replicate."""
 
 
-DITHER_SIGMA_DN = 0.25
-"""Through a sensor, a pixel is tested only where its modelled noise (shot and read, DN) is at least this in
-every channel: the noise then dithers the rounding to codes (its mean error below 0.003 DN,
-:func:`~skinrender.rendering.face_limits.rounding_bias`) and the replicates differ, so their spread measures
-the noise; below it, twelve frames may read one code and hide a rounding error of up to half a code."""
-
-
 @dataclass(frozen=True)
 class FaceValidation:
     """
@@ -108,7 +100,7 @@ class FaceValidation:
     rendering
         The first replicate (scene, camera, physics, labels, lights).
     checks
-        :class:`~skinrender.rendering.face_limits.LimitCheck` rows.
+        :class:`~skinrender.rendering.face.limits.LimitCheck` rows.
     spp, spp_requested
         Samples per pixel of all replicates together, and as asked.
     replicates, seed
@@ -148,59 +140,13 @@ class FaceValidation:
                 "checks": [c.document() for c in self.checks], "passed": self.passed}
 
 
-def dichromatic_colours(rendering: FaceRendering, light: Light) -> tuple[NDArrayFloat, NDArrayFloat]:
-    """
-    The body colour ``∫ ρ E x_k`` of the rendering's skin and the colour ``∫ E x_k`` of ``light``,
-    balanced with the rendering's Eq. 4 gain (of its noise-free whites), output units, ``(3,)`` each.
-    """
-    lam, irradiance = light_irradiance(light, GRID_DEFAULT)
-    rho = np.interp(lam, GRID_DEFAULT.wavelengths, skin_reflectance_of(rendering.skin, GRID_DEFAULT, "skin"))
-    g = gain(rendering.white_prevailing, rendering.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
-    cam = rendering.camera
-    return (g * channel_integral(cam, GRID_DEFAULT, lam, rho * irradiance),
-            g * channel_integral(cam, GRID_DEFAULT, lam, irradiance))
-
-
-def _sensor_terms(first: FaceRendering, images: NDArrayFloat, spec) -> tuple[NDArrayFloat, ...]:
-    """Images less the dark signal, the pixels no replicate clipped, and the rounding's bound (output units)."""
-    from ..model.imager import imager as imager_of
-
-    im = imager_of(spec or IMAGER_DEFAULT)
-    g = np.asarray(first.gain, dtype=np.float64)  # output units per DN
-    k = im.gain_dn_per_e
-    dark = k * im.dark_current_e_per_s * first.info["exposure_s"]  # DN
-    signal = images / g  # DN above the black level
-    saturation = min(float(im.max_dn), k * im.full_well_e + im.black_level_dn) - im.black_level_dn
-    electrons = np.maximum(signal.mean(axis=0) / k, 0.0)
-    sigma = k * np.sqrt(electrons + im.read_noise_e**2)
-    unclipped = np.all((signal > 0) & (signal < saturation - 0.5), axis=(0, -1))
-    dithered = np.all(sigma >= DITHER_SIGMA_DN, axis=-1)
-    skin = first.labels == LABEL_SKIN
-    excluded = {"skin_pixels_clipped": int((skin & ~unclipped).sum()),
-                "skin_pixels_undithered": int((skin & unclipped & ~dithered).sum())}
-    floor = g**2 * (sigma**2 + 1.0 / 12.0) / images.shape[0]  # EMVA 1288: shot, read and quantisation
-    return images - g * dark, unclipped & dithered, g * rounding_bias(sigma), floor, excluded
-
-
-def _why_not(effects: tuple[str, ...]) -> str:
-    if "interreflection" in effects:
-        return ("light reaches the skin from other surfaces (props, the face itself) and is no longer the "
-                "light's spectrum: no analytic limit at this level")
-    if "mixed" in effects:
-        return ("lights of different temperatures mix by each pixel's geometry: no analytic limit at this "
-                "level")
-    if "sheen" in effects:
-        return "the coat adds the light's colour at highlights: the dichromatic plane is the test"
-    return "the shading check is the test at this level"
-
-
 def validate_face(
     camera_,
     scene="face",
     prevailing=None,
     calibration=None,
     skin: str | None = None,
-    physics: str = "direct",
+    physics: str | Level = "direct",
     spp: int = 256,
     seed: int = 0,
     size=None,
@@ -242,7 +188,7 @@ def validate_face(
 
     start = time.perf_counter()
     say = progress or (lambda line: None)
-    effects = parse_physics(physics)
+    level = physics_level(physics)
     if isinstance(replicates, bool) or not isinstance(replicates, (int, np.integer)) or replicates < 3:
         raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}")
     unknown = [name for name in limits if name not in LIMITS_SCENE_FREE]
@@ -253,8 +199,8 @@ def validate_face(
         raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
     each = max(1, math.ceil(int(spp) / replicates))
     seeds = [(int(seed) + k) % 2**32 for k in range(replicates)]
-    say(f"rendering the face ({'+'.join(effects) or 'direct'}) {replicates} times at {each} spp …")
-    renders = [render_face(camera_, scene, prevailing, calibration, skin, physics, each, s, size, sampler, variant,
+    say(f"rendering the face ({level.name}) {replicates} times at {each} spp …")
+    renders = [render_face(camera_, scene, prevailing, calibration, skin, level, each, s, size, sampler, variant,
                            channels=channels, imager=imager, exposure=exposure, illuminance=illuminance)
                for s in seeds]
     first = renders[0]
@@ -262,26 +208,19 @@ def validate_face(
     images = np.array([r.image for r in renders], dtype=np.float64)
     rho = skin_reflectance_of(first.skin, GRID_DEFAULT, "skin")
     expected = ncc(analytic_reference(cam, rho[None], first.prevailing, first.calibration))[0]
-    usable = bias = floor = None
-    excluded: dict = {}
-    if "noise" in effects:
-        images, usable, bias, floor, excluded = _sensor_terms(first, images, imager)
-    one_light = not {"interreflection", "mixed"} & set(effects)
+    measured = level.measure(images, first, imager)  # through a sensor: its dark signal, clipping, codes
+    images, usable = measured.images, measured.usable
     checks: list[LimitCheck] = []
-    if one_light and "sheen" not in effects:
-        checks.append(check_shading(images, labels, expected, usable, bias, floor))
-    elif one_light:
-        (light,) = active_lights(first.scene, effects).values()
-        checks.append(check_dichromatic(images, labels, *dichromatic_colours(first, light), usable, bias, floor))
-    if excluded:  # through the sensor: say which pixels it left out, and why a check may have none
+    check = level.check  # the level's analytic limit (the last effect's that has one), or none
+    if check is not None:
+        checks.append(check(Replicates(images, labels, expected, first, level.lights(first.scene), usable,
+                                       measured.bias, measured.floor)))
+    if measured.excluded:  # say which pixels the measurement left out, and why a check may have none
         row = checks[0] if checks else None
         if row is not None and row.passed is None:
-            checks[0] = replace(row, reason=f"{row.reason}; the sensor left out {excluded['skin_pixels_clipped']} "
-                                f"skin pixels clipped at 0 or saturation and {excluded['skin_pixels_undithered']} "
-                                f"whose noise is below {DITHER_SIGMA_DN:g} DN in some channel (its codes too "
-                                "coarse for it: more light, or a sensor of finer codes)")
-        checks = [replace(c, details={**c.details, **excluded}) for c in checks]
-    checks.append(eq4_shift(images, labels, expected, _why_not(effects), usable))
+            checks[0] = replace(row, reason=f"{row.reason}; {measured.note}")
+        checks = [replace(c, details={**c.details, **measured.excluded}) for c in checks]
+    checks.append(eq4_shift(images, labels, expected, level.why, usable))
     if "furnace" in limits:
         say(f"white furnace ({FURNACE_SIZE}² px, {replicates} × {FURNACE_SPP} spp) …")
         checks.append(check_furnace(*furnace_radiance(cam, first.scene, seeds, FURNACE_SIZE, FURNACE_SPP,

@@ -13,9 +13,10 @@ values tested, so that a correct renderer fails a check with probability
 
 -   :func:`check_shading` (``direct``), :func:`check_dichromatic` (``sheen``) [Shafer1985],
     :func:`check_furnace`, :func:`check_sphere` (their scenes:
-    :mod:`skinrender.rendering.face_limit_scenes`); :func:`eq4_shift`: how far skin moves from
+    :mod:`skinrender.rendering.face.limit_scenes`); :func:`eq4_shift`: how far skin moves from
     Eq. 4 (information).
--   :func:`critical_t`, :func:`jackknife`, :func:`rounding_bias`; :class:`LimitCheck`, a result.
+-   :func:`critical_t`, :func:`jackknife`, :func:`rounding_bias`; :class:`LimitCheck`, a result;
+    :func:`sphere_emission`, the closed sphere's emission.
 
 A check's ``statistic`` is the largest ``|deviation| / standard error`` (a
 Student t) over the values it tests, its ``tolerance`` the Šidák critical t;
@@ -41,18 +42,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..hints import NDArrayFloat
-from ..model.camera import Camera, camera
-from ..model.chromaticity import ncc
-from ..spectra import GRID_DEFAULT
-from .face_dict import channel_integral
-from .face_labels import LABEL_SKIN, interior
-from .face_limit_scenes import sphere_emission
-from .validation import FLOAT32_FLOOR
+from ...hints import NDArrayFloat
+from ...model.camera import Camera, camera
+from ...model.chromaticity import ncc
+from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
+from ..validation import FLOAT32_FLOOR
+from .document import channel_integral, light_irradiance
+from .labels import LABEL_SKIN, interior
+from .scene import Light
 
 __all__ = ["ALPHA", "REPLICATES", "LINEAR", "PIXELS_MIN", "LimitCheck", "critical_t", "jackknife", "rg",
            "rounding_bias", "lit_skin", "check_shading", "eq4_shift", "check_dichromatic", "check_furnace",
-           "check_sphere"]
+           "check_sphere", "sphere_emission"]
 
 ALPHA = 0.01
 """Family-wise false-alarm rate of each check (Šidák-corrected over its pixels and channels)."""
@@ -67,6 +68,11 @@ error is then first order, its neglected bias ~LINEAR² of the value, far below 
 PIXELS_MIN = 10
 """Fewer tested pixels than this and a check is not run (``passed`` None): too small an image or too few spp."""
 
+
+def sphere_emission(grid: WavelengthGrid = GRID_DEFAULT) -> tuple[NDArrayFloat, NDArrayFloat]:
+    """Wavelengths (nm) and the relative emission of the closed sphere: a 3000 K Planckian, peak 1."""
+    lam = light_irradiance(Light(3000.0, 1.0), grid)[0]
+    return lam, planck(lam, 3000.0) / planck(lam, 3000.0).max()
 
 
 @dataclass(frozen=True)

@@ -2,12 +2,12 @@
 Tests for :mod:`skinrender.rendering.face`: where the analytic model holds on a face, exactly.
 
 Four analytic limits, each rendered small (48 × 48 or less, a few spp) and replicated with
-independent seeds, checked by :mod:`skinrender.rendering.face_limits` (the statistics ``skinrender
+independent seeds, checked by :mod:`skinrender.rendering.face.limits` (the statistics ``skinrender
 validate`` runs too): every per-pixel statistic is compared with its analytic value against its own
 measured noise (the jackknife over the replicates, Student's t with K − 1 degrees of freedom), the
 critical value Šidák-corrected for the number of pixels and channels tested, so that a correct
-renderer fails a test with probability :data:`~skinrender.rendering.face_limits.ALPHA` at most. The
-controls that must fail are in ``tests/rendering/test_face_limits.py``.
+renderer fails a test with probability :data:`~skinrender.rendering.face.limits.ALPHA` at most. The
+controls that must fail are in ``tests/rendering/face/test_limits.py``.
 """
 
 from __future__ import annotations
@@ -22,17 +22,17 @@ from skinrender.model.camera import camera
 from skinrender.model.chromaticity import ncc
 from skinrender.rendering.exr import read_exr
 from skinrender.rendering.face import render_face, white_references, write_face_exr
-from skinrender.rendering.face_dict import channel_integral, light_irradiance
-from skinrender.rendering.face_limit_scenes import furnace_radiance, sphere_channels
-from skinrender.rendering.face_limits import (
+from skinrender.rendering.face.document import channel_integral, light_irradiance
+from skinrender.rendering.face.limit_scenes import furnace_radiance, sphere_channels
+from skinrender.rendering.face.limits import (
     REPLICATES,
     check_dichromatic,
     check_furnace,
     check_shading,
     check_sphere,
 )
-from skinrender.rendering.face_scene import load_face_scene, skin_reflectance_of
-from skinrender.rendering.face_validation import dichromatic_colours
+from skinrender.rendering.face.scene import load_face_scene, skin_reflectance_of
+from skinrender.rendering.face.effects.sheen import dichromatic_colours
 from skinrender.rendering.validation import analytic_reference
 from skinrender.spectra import GRID_DEFAULT
 

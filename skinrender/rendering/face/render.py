@@ -2,15 +2,17 @@
 Rendering faces
 ===============
 
-A face scene (:mod:`skinrender.rendering.face_scene`) rendered through a
+A face scene (:mod:`skinrender.rendering.face.scene`) rendered through a
 camera's three channels at a level of physics
-(:data:`~skinrender.rendering.face_dict.PHYSICS`), white balanced as Eq. 4
-does, with a label image from the geometry.
+(:mod:`skinrender.rendering.face.effects`), white balanced as Eq. 4 does,
+with a label image from the geometry.
 
--   :func:`render_face`, :class:`FaceRendering`: one render.
+-   :func:`render_face`, :class:`FaceRendering`: one render (``.save()``,
+    ``.figure()``).
 -   :func:`white_references`: the channel responses to a white under the
     prevailing and the calibration light.
 -   :func:`write_face_exr`: the float32 EXR, with a ``label`` channel.
+-   :func:`planckian_temperature`: a Planckian light spec in K.
 
 The white balance
 -----------------
@@ -26,23 +28,10 @@ linearly interpolated, the Planckian tabulated every 0.1 nm, trapezoid):
 The image is ``gain(white_p, white_c) · radiance``
 (:func:`skinrender.model.response.gain`, WP of Eq. 8): a surface facing
 the key light at the target, lit by it alone, reads exactly as Eq. 4 gives
-its reflectance, and a white there reads 255 at p = c.
-
-The image sensor (physics ``noise``)
-------------------------------------
-A channel's quantum efficiency is taken proportional to ``x_k(λ) / λ`` (the
-curves weight energy, as in Eq. 1), so a pixel's electron rate is a constant
-per channel times its rendered ``∫ L x_k dλ``
-(:func:`skinrender.model.exposure.electrons_mean`); the lights keep their
-illuminances (lx); the exposure is given or ``auto``, as for charts
-(:func:`skinrender.rendering.imaging.exposure_for`: the calibration white at
-the key light's illuminance, its brightest channel at 0.7 of the full well, a
-video frame at most); one frame (:func:`skinrender.model.noise.simulate_dn`,
-seeded from the render's seed on a stream of its own), less the black level
-and clipped at 0 DN as a raw pipeline does (and as
-:mod:`skinrender.evaluation.noisy_detection` does: NCC needs light, not
-negative DN), is balanced with the gain of the noise-free whites in DN, as
-:func:`skinrender.rendering.imaging.render_imaged` does.
+its reflectance, and a white there reads 255 at p = c. An effect acting
+after the render (``noise``: :mod:`skinrender.rendering.face.effects.noise`)
+replaces the radiance and the whites first (DN of one frame, and the whites
+in DN at the same exposure).
 
 Units: radiance images in W·m⁻²·sr⁻¹ times the sensitivity's unit (the
 specfilm's ``∫ L x_k dλ``); balanced images in output units; illuminance lx.
@@ -56,28 +45,24 @@ from pathlib import Path
 
 import numpy as np
 
-from ..constants import CONSTANT_OUTPUT_SCALE
-from ..errors import SkinrenderError
-from ..hints import NDArrayFloat
-from ..methods import validate_method
-from ..model.camera import Camera, camera
-from ..model.illuminant import illuminant
-from ..model.response import gain
-from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
-from .exr import write_exr, write_preview
-from .face_dict import (PHYSICS, active_lights, channel_groups, channel_integral, face_document,
-                        light_irradiance, parse_physics)
-from .face_labels import label_names, render_labels, shape_labels
-from .face_scene import MESH_HEAD, FaceScene, load_face_scene, skin_reflectance_of
-from .renderer import SAMPLERS, SAMPLES_MAX, channel_names
-from .variants import choose_variant, mitsuba
+from ...constants import CONSTANT_OUTPUT_SCALE
+from ...errors import SkinrenderError
+from ...hints import NDArrayFloat
+from ...methods import validate_method
+from ...model.camera import Camera, camera
+from ...model.illuminant import illuminant
+from ...model.response import gain
+from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
+from ..exr import write_exr, write_preview
+from ..outputs import draw_figure, save_result
+from ..renderer import SAMPLERS, SAMPLES_MAX, channel_names
+from ..variants import choose_variant, mitsuba
+from .document import channel_groups, channel_integral, face_document, light_irradiance
+from .effects import Frame, Level, physics_level
+from .labels import label_names, render_labels, shape_labels
+from .scene import MESH_HEAD, FaceScene, load_face_scene, prevailing_name, skin_reflectance_of
 
-__all__ = ["PHYSICS", "IMAGER_DEFAULT", "FaceRendering", "planckian_temperature", "white_references",
-           "render_face", "write_face_exr"]
-
-IMAGER_DEFAULT = "sony-icx418"
-"""The image sensor of physics ``noise`` unless one is named: the paper's class of 3-CCD camera, 8-bit."""
-
+__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "write_face_exr"]
 
 _LOADED: dict = {}
 _LOADED_MAX = 6
@@ -142,6 +127,22 @@ class FaceRendering:
         """EXR channel names of the image (as the chart renderer's)."""
         return channel_names(self.camera)
 
+    def save(self, exr: str | Path, png: bool | str | Path = True, figure: str | Path | None = None) -> dict:
+        """
+        Write the render: the float32 EXR with its ``label`` channel (:func:`write_face_exr`), a PNG preview
+        (``True``: beside the EXR; a path; ``False``: none) and a labelled figure (a PNG path; ``None``:
+        none). Returns ``{"exr": path, "png": path or None, "figure": path or None}``.
+        """
+        return save_result(self, "face", exr, png, figure, lambda path: write_face_exr(path, self, False)[0])
+
+    def figure(self, path: str | Path, **options) -> Path:
+        """
+        Draw the render with its labels outlined into a PNG at ``path`` and return it
+        (:func:`skinrender.studies.labelled.face_figure`; ``mask``: detected pixels drawn over it,
+        ``title``: the figure's title).
+        """
+        return draw_figure("face", self, path, **options)
+
 
 def planckian_temperature(spec, name: str) -> float:
     """
@@ -157,10 +158,6 @@ def planckian_temperature(spec, name: str) -> float:
     return float(item.temperature)
 
 
-def _prevailing_light(scene: FaceScene) -> str:
-    return "key" if scene.key is not None else "environment"
-
-
 def white_references(scene: FaceScene, cam: Camera, calibration: float,
                      grid: WavelengthGrid = GRID_DEFAULT) -> tuple[NDArrayFloat, NDArrayFloat]:
     """
@@ -169,7 +166,7 @@ def white_references(scene: FaceScene, cam: Camera, calibration: float,
     scene without one), and under the calibration Planckian at ``calibration``
     K (its scale arbitrary: Eq. 4 cancels it).
     """
-    light = getattr(scene, _prevailing_light(scene))
+    light = getattr(scene, prevailing_name(scene))
     if light is None:
         raise SkinrenderError(f"face scene {scene.source or scene.name} has no key light and no environment")
     lam, irradiance = light_irradiance(light, grid)
@@ -181,15 +178,14 @@ def white_references(scene: FaceScene, cam: Camera, calibration: float,
     return white_p, white_c
 
 
-def _loaded(scene, cam, grid, effects, skin, group, spp, sampler, variant, lights, scale):
-    key = (scene, cam.name, cam.kind, cam.sensitivities(grid).tobytes(), grid,
-           tuple(e for e in effects if e != "noise"), skin, group, spp, sampler, variant,
-           tuple(sorted(lights.items())), scale)
+def _loaded(scene, cam, grid, level: Level, skin, group, spp, sampler, variant, lights, scale):
+    key = (scene, cam.name, cam.kind, cam.sensitivities(grid).tobytes(), grid, level.document_key, skin, group, spp,
+           sampler, variant, tuple(sorted(lights.items())), scale)
     if key not in _LOADED:
         if len(_LOADED) >= _LOADED_MAX:
             _LOADED.pop(next(iter(_LOADED)))
         mi = mitsuba(variant)
-        document = face_document(mi, scene, cam, grid, effects, skin, group, spp, 0, sampler, lights, scale)
+        document = face_document(mi, scene, cam, grid, level, skin, group, spp, 0, sampler, lights, scale)
         try:
             _LOADED[key] = mi.load_dict(document)
         except RuntimeError as error:  # the checks of load_face_scene passed, yet Mitsuba refused the user's mesh
@@ -201,53 +197,13 @@ def _loaded(scene, cam, grid, effects, skin, group, spp, sampler, variant, light
     return _LOADED[key]
 
 
-def _through_imager(radiance: NDArrayFloat, white_p: NDArrayFloat, scene: FaceScene, cam: Camera,
-                    calibration: float, grid: WavelengthGrid, imager_, exposure,
-                    seed: int) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat, dict]:
-    """
-    The signal (DN above black, ≥ 0) of one noisy frame, the noise-free whites ``white_p`` and
-    ``white_c`` in DN at the same exposure (``white_c`` at the key light's illuminance), the settings.
-    """
-    from ..model.exposure import electrons_mean
-    from ..model.imager import imager as imager_of
-    from ..model.noise import clipping_counts, clipping_note, simulate_dn_clipped
-    from .imaging import exposure_for, exposure_note
-
-    im = imager_of(imager_)
-    x = cam.sensitivities(grid)
-    # electrons per second per unit of ∫ L x_k dλ: the same for every spectrum (QE ∝ x_k / λ): any probe
-    probe = planck(grid.wavelengths, calibration)
-    per_unit = (electrons_mean(im, x / grid.wavelengths, probe, 1.0, grid) - im.dark_current_e_per_s) / (
-        probe @ x.T * grid.step)
-    lux = getattr(scene, _prevailing_light(scene)).illuminance
-    exposure_s = exposure_for(im, cam, calibration, lux, exposure, grid)
-    electrons = (per_unit * radiance + im.dark_current_e_per_s) * exposure_s
-    frame, well_full, adc_clipped = simulate_dn_clipped(im, electrons, np.random.default_rng([int(seed), 0x5EED]))
-    clipping = clipping_counts(well_full, adc_clipped)  # the sensor's own stream, as simulate_dn draws it
-    notes = [note for note in (exposure_note(im, cam, calibration, lux, exposure, grid), clipping_note(clipping))
-             if note]
-    dn_per_unit = im.gain_dn_per_e * per_unit * exposure_s
-    white_c_lux = _white_at(cam, calibration, lux, grid)  # the calibration white, the key light's lux
-    return (np.maximum(frame - im.black_level_dn, 0.0), dn_per_unit * white_p, dn_per_unit * white_c_lux,
-            {"imager": im.name, "illuminance_lux": float(lux), "exposure_s": float(exposure_s), "clipping": clipping,
-             "notes": notes})
-
-
-def _white_at(cam: Camera, temperature: float, lux: float, grid: WavelengthGrid) -> NDArrayFloat:
-    """A perfect white's channels under a Planckian of ``lux`` (radiance ``E / π``), specfilm units."""
-    from .face_scene import Light
-
-    lam, irradiance = light_irradiance(Light(temperature, lux), grid)
-    return channel_integral(cam, grid, lam, irradiance / np.pi)
-
-
 def render_face(
     camera_: Camera | str,
     scene: FaceScene | str = "face",
     prevailing=None,
     calibration=None,
     skin: str | None = None,
-    physics: str = "direct",
+    physics: str | Level = "direct",
     spp: int = 64,
     seed: int = 0,
     size: int | tuple[int, int] | None = None,
@@ -277,14 +233,15 @@ def render_face(
         The skin spec (``SET:SAMPLE``, ``SET:#N``, ``skin-model:melanin=…``);
         ``None`` keeps the scene's.
     physics
-        ``direct`` or effects of :data:`PHYSICS` joined by ``+``.
+        ``direct`` or effects of :data:`~skinrender.rendering.face.effects.PHYSICS` joined by ``+``
+        (or a :class:`~skinrender.rendering.face.effects.Level`).
     spp, seed, sampler, variant, grid, channels
         As :func:`skinrender.rendering.renderer.render_raw`.
     size
         Image size in pixels (``N`` or ``(width, height)``); ``None`` keeps the scene's.
     imager, exposure
         For ``noise``: the image sensor (a preset or TOML; default
-        :data:`IMAGER_DEFAULT`) and ``auto`` or seconds.
+        :data:`~skinrender.rendering.face.effects.noise.IMAGER_DEFAULT`) and ``auto`` or seconds.
     illuminance
         The key light's illuminance at the target, lx (every light scaled
         with it); ``None`` keeps the scene's. Only ``noise`` sees it: Eq. 4
@@ -305,7 +262,7 @@ def render_face(
             raise SkinrenderError(f"size must be a positive number of pixels (or two), got {size!r}")
         face = face.resized(int(width), int(height))
     cam = camera(camera_)
-    effects = parse_physics(physics)
+    level = physics_level(physics)
     skin = face.skin if skin is None else str(skin).strip()
     skin_reflectance_of(skin, grid, "skin")
     validate_method(sampler, SAMPLERS, "sampler")
@@ -318,7 +275,7 @@ def render_face(
     if spp * pixels > SAMPLES_MAX:
         raise SkinrenderError(f"spp {spp} × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
                               f"{SAMPLES_MAX:.3g}; at most {SAMPLES_MAX // pixels} spp at this size")
-    name = _prevailing_light(face)
+    name = prevailing_name(face)
     if illuminance is not None and getattr(face, name) is not None:
         if not (isinstance(illuminance, (int, float)) and np.isfinite(illuminance) and illuminance > 0):
             raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance!r}")
@@ -330,7 +287,7 @@ def render_face(
         face = replace(face, **{name: light})
     p = getattr(face, name).temperature if getattr(face, name) is not None else None
     c = p if calibration is None else planckian_temperature(calibration, "calibration")
-    lights = active_lights(face, effects)
+    lights = level.lights(face)
     white_p, white_c = white_references(face, cam, c, grid)
     scale = max(float(np.max(light_irradiance(light, grid)[1])) for light in lights.values())
     variant = choose_variant(variant)
@@ -340,7 +297,7 @@ def render_face(
     radiance = np.zeros((height, width, 3))
     spp_used, first = int(spp), None
     for group in groups:
-        loaded = _loaded(face, cam, grid, effects, skin, group, int(spp), sampler, variant, lights, scale)
+        loaded = _loaded(face, cam, grid, level, skin, group, int(spp), sampler, variant, lights, scale)
         first = first or loaded
         spp_used = int(loaded.sensors()[0].sampler().sample_count())
         values = np.array(mi.render(loaded, seed=int(seed)), dtype=np.float64)
@@ -348,19 +305,13 @@ def render_face(
     labels = render_labels(mi, first, width, height, shape_labels(face))
     info = {"lights": {k: {"temperature_K": v.temperature, "illuminance_lx": v.illuminance}
                        for k, v in lights.items()}}
-    if "noise" in effects:
-        signal, white_p_dn, white_c_dn, settings = _through_imager(radiance, white_p, face, cam, c, grid,
-                                                                   imager or IMAGER_DEFAULT, exposure, seed)
-        info.update(settings)
-        applied = gain(white_p_dn, white_c_dn, scale=CONSTANT_OUTPUT_SCALE)
-        image = applied * signal
-    else:
-        applied = gain(white_p, white_c, scale=CONSTANT_OUTPUT_SCALE)
-        image = applied * radiance
-    return FaceRendering(face, cam, "+".join(effects) or "direct", skin, float(p), float(c),
-                         image.astype(np.float32), radiance, labels, label_names(face), spp_used, int(spp),
-                         int(seed), sampler, variant, time.perf_counter() - start, len(groups), white_p,
-                         white_c, applied, info)
+    after = level.setup(face, cam, grid, lights, calibration=c, seed=int(seed), imager=imager, exposure=exposure)
+    frame = level.post(Frame(radiance, white_p, white_c, info), after)  # e.g. noise: one frame through a sensor
+    applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
+    image = applied * frame.signal
+    return FaceRendering(face, cam, level.name, skin, float(p), float(c), image.astype(np.float32), radiance,
+                         labels, label_names(face), spp_used, int(spp), int(seed), sampler, variant,
+                         time.perf_counter() - start, len(groups), white_p, white_c, applied, frame.info)
 
 
 def write_face_exr(path: str | Path, rendering: FaceRendering,

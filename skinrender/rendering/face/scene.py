@@ -8,14 +8,17 @@ a perspective camera. Where a chart scene (:mod:`skinrender.rendering.scene`)
 is built so that the analytic model holds exactly, a face scene is built to
 find where it stops holding: curved, self-shadowing skin, light bounced from
 the props and the face itself, a second light and a sky of other
-temperatures (:data:`skinrender.rendering.face.PHYSICS` chooses which).
+temperatures (the level of physics, :mod:`skinrender.rendering.face.effects`,
+chooses which).
 
 -   :class:`FaceCamera`, :class:`Light`, :class:`Prop`, :class:`FaceScene`:
     a parsed scene (frozen, hashable).
 -   :func:`load_face_scene`: a scene from a bundled name (``face``) or a
     path; a bad file is refused naming the file and the field.
--   :func:`list_face_scenes`: the bundled names.
+-   :func:`list_face_scenes`: the bundled names; :func:`is_face_scene`:
+    whether a scene spec names a face (else a chart).
 -   :func:`skin_reflectance_of`: a skin spec on a grid.
+-   :func:`prevailing_name`: which light the white balance calls prevailing.
 
 Scene file fields
 -----------------
@@ -49,13 +52,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import SkinrenderError
-from ..hints import NDArrayFloat
-from ..spectra import GRID_DEFAULT, WavelengthGrid
-from .scene import PIXELS_MAX, ROOT_SCENES, check_mesh_file, read_scene_toml, reflectance_of
+from ...errors import SkinrenderError
+from ...hints import NDArrayFloat
+from ...spectra import GRID_DEFAULT, WavelengthGrid
+from ..scene import PIXELS_MAX, ROOT_SCENES, check_mesh_file, read_scene_toml, reflectance_of
 
 __all__ = ["ROOT_FACE_SCENES", "MESH_HEAD", "PROP_SHAPES", "FaceCamera", "Light", "Prop", "FaceScene",
-           "skin_reflectance_of", "load_face_scene", "list_face_scenes"]
+           "skin_reflectance_of", "load_face_scene", "list_face_scenes", "is_face_scene", "prevailing_name"]
 
 ROOT_FACE_SCENES = ROOT_SCENES / "face"
 """Bundled face scene files."""
@@ -154,7 +157,7 @@ def skin_reflectance_of(spec: str, grid: WavelengthGrid = GRID_DEFAULT, where: s
     text = str(spec).strip()
     if not (text.startswith("skin-model:") and "=" in text):
         return reflectance_of(text, grid, where)
-    from ..datasets.skin_model import SkinParameters, check_parameters, skin_reflectance
+    from ...datasets.skin_model import SkinParameters, check_parameters, skin_reflectance
 
     known = {f.name for f in fields(SkinParameters)}
     values = {}
@@ -189,6 +192,36 @@ def skin_reflectance_of(spec: str, grid: WavelengthGrid = GRID_DEFAULT, where: s
 def list_face_scenes() -> list[str]:
     """Names of the bundled face scenes."""
     return sorted(p.stem for p in ROOT_FACE_SCENES.glob("*.toml"))
+
+
+def is_face_scene(spec) -> bool:
+    """
+    Whether a scene spec is a face scene: a :class:`FaceScene`, a bundled name, or a TOML with ``[camera]`` and
+    ``[mesh]`` (anything else is left to the chart scenes, which word their own errors).
+
+    >>> is_face_scene("face"), is_face_scene("macbeth")
+    (True, False)
+    """
+    import tomllib
+
+    if isinstance(spec, FaceScene):
+        return True
+    text = str(spec).strip()
+    if text in list_face_scenes():
+        return True
+    path = Path(text)
+    if path.suffix != ".toml" or not path.is_file():
+        return False
+    try:
+        table = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return False
+    return "camera" in table and "mesh" in table
+
+
+def prevailing_name(scene: FaceScene) -> str:
+    """The light the white balance calls prevailing: ``key``, or ``environment`` in a scene without a key light."""
+    return "key" if scene.key is not None else "environment"
 
 
 def _number(table: dict, key: str, where: str, low: float = -math.inf, high: float = math.inf,

@@ -25,8 +25,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..hints import NDArrayFloat
-from .face_scene import FaceScene
+from ...hints import NDArrayFloat
+from .scene import FaceScene
 
 __all__ = ["LABEL_BACKGROUND", "LABEL_SKIN", "SHAPE_SKIN", "label_names", "prop_shape_id", "shape_labels",
            "render_labels", "interior"]
@@ -52,7 +52,7 @@ def label_names(scene: FaceScene) -> dict[str, int]:
 
     Examples
     --------
-    >>> from skinrender.rendering.face_scene import load_face_scene
+    >>> from skinrender.rendering.face.scene import load_face_scene
     >>> label_names(load_face_scene("face"))["skin"]
     1
     """

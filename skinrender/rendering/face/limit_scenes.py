@@ -2,13 +2,14 @@
 Scenes of the scene-free limits
 ===============================
 
-The renders that :func:`~skinrender.rendering.face_limits.check_furnace` and
-:func:`~skinrender.rendering.face_limits.check_sphere` check: a face scene's
+The renders that :func:`~skinrender.rendering.face.limits.check_furnace` and
+:func:`~skinrender.rendering.face.limits.check_sphere` check: a face scene's
 mesh as a white furnace, and a closed emitting Lambertian sphere seen from
 inside.
 
 -   :func:`furnace_radiance`, :data:`FURNACE_SKY`: the white furnace.
--   :func:`sphere_channels`, :func:`sphere_emission`: the closed sphere.
+-   :func:`sphere_channels`: the closed sphere (its emission:
+    :func:`~skinrender.rendering.face.limits.sphere_emission`).
 
 Units: radiance in the specfilm's units (W·m⁻²·sr⁻¹ times the sensitivity's
 unit), wavelengths nm, temperatures K, illuminance lx.
@@ -20,19 +21,20 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..hints import NDArrayFloat
-from ..model.camera import Camera, camera
-from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
-from .face_dict import channel_groups, channel_integral, film_dict, light_irradiance
-from .face_scene import FaceScene, Light, load_face_scene
+from ...hints import NDArrayFloat
+from ...model.camera import Camera, camera
+from ...spectra import GRID_DEFAULT
+from .document import channel_groups, channel_integral, film_dict, light_irradiance
+from .limits import sphere_emission
+from .scene import FaceScene, Light, load_face_scene
 
-__all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "furnace_radiance", "sphere_emission", "sphere_channels"]
+__all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "furnace_radiance", "sphere_channels"]
 
 FURNACE_SKY = Light(temperature=5000.0, illuminance=500.0)
 """The white furnace's uniform environment: a 5000 K Planckian, 500 lx on a surface open to it."""
 
 REPLICATES_DEFAULT = 12
-"""Seeds rendered unless named (:data:`skinrender.rendering.face_limits.REPLICATES`)."""
+"""Seeds rendered unless named (:data:`skinrender.rendering.face.limits.REPLICATES`)."""
 
 
 def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=range(REPLICATES_DEFAULT),
@@ -49,7 +51,7 @@ def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=r
         size, 3)`` and the label image (specfilm units), and ``∫ (E / π) x_k dλ``,
         the sky's radiance through the camera, ``(3,)``.
     """
-    from .face import render_face
+    from .render import render_face
 
     furnace = replace(load_face_scene(scene), props=(), key=None, fill=None, environment=sky)
     renders = [render_face(cam, furnace, skin="perfect", physics=physics, size=size, spp=spp, seed=int(s),
@@ -59,12 +61,6 @@ def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=r
     return np.array([r.radiance for r in renders]), renders[0].labels, expected
 
 
-def sphere_emission(grid: WavelengthGrid = GRID_DEFAULT) -> tuple[NDArrayFloat, NDArrayFloat]:
-    """Wavelengths (nm) and the relative emission of the sphere: a 3000 K Planckian, peak 1."""
-    lam = light_irradiance(Light(3000.0, 1.0), grid)[0]
-    return lam, planck(lam, 3000.0) / planck(lam, 3000.0).max()
-
-
 def sphere_channels(cam: Camera | str, rho: NDArrayFloat, depth: int, seeds=range(REPLICATES_DEFAULT),
                     spp: int = 16,
                     size: int = 16, variant: str | None = None) -> NDArrayFloat:
@@ -72,8 +68,8 @@ def sphere_channels(cam: Camera | str, rho: NDArrayFloat, depth: int, seeds=rang
     Mean channels of a closed emitting Lambertian sphere of reflectance ``rho`` (on the default grid),
     rendered from its centre to path depth ``depth`` (−1: every bounce); one row per seed, specfilm units.
     """
-    from .renderer import _spectrum
-    from .variants import choose_variant, mitsuba
+    from ..renderer import _spectrum
+    from ..variants import choose_variant, mitsuba
 
     mi = mitsuba(choose_variant(variant))
     cam = camera(cam)

@@ -1,5 +1,5 @@
 """
-Tests for :mod:`skinrender.rendering.face_limits`: the statistics on synthetic replicates (a correct
+Tests for :mod:`skinrender.rendering.face.limits`: the statistics on synthetic replicates (a correct
 image passes, a wrong one fails), and the controls that must fail on renders: each limit applied
 where it does not hold, or against a wrong analytic value.
 """
@@ -11,9 +11,9 @@ import pytest
 from scipy import stats
 
 from skinrender.model.chromaticity import ncc
-from skinrender.rendering.face_labels import LABEL_SKIN
-from skinrender.rendering.face_limit_scenes import furnace_radiance, sphere_channels
-from skinrender.rendering.face_limits import (
+from skinrender.rendering.face.labels import LABEL_SKIN
+from skinrender.rendering.face.limit_scenes import furnace_radiance, sphere_channels
+from skinrender.rendering.face.limits import (
     ALPHA,
     LINEAR,
     PIXELS_MIN,
@@ -156,7 +156,7 @@ class TestControlsOnRenders:
     """Each limit where it does not hold, or against a wrong value: the check must fail."""
 
     def test_shading_does_not_cancel_under_sheen(self, renders):
-        from skinrender.rendering.face_scene import skin_reflectance_of
+        from skinrender.rendering.face.scene import skin_reflectance_of
         from skinrender.rendering.validation import analytic_reference
 
         out, images = renders(physics="sheen", prevailing=2856, calibration=2856)
@@ -165,8 +165,8 @@ class TestControlsOnRenders:
         assert check.passed is False, check
 
     def test_sheen_is_not_in_the_plane_of_another_light(self, renders):
-        from skinrender.rendering.face_scene import Light
-        from skinrender.rendering.face_validation import dichromatic_colours
+        from skinrender.rendering.face.scene import Light
+        from skinrender.rendering.face.effects.sheen import dichromatic_colours
 
         out, images = renders(physics="sheen", prevailing=2856, calibration=2856)
         check = check_dichromatic(images, out[0].labels, *dichromatic_colours(out[0], Light(6500.0, 1000.0)))
@@ -180,7 +180,7 @@ class TestControlsOnRenders:
 
     def test_one_bounce_is_not_the_closed_form_of_every_bounce(self):
         pytest.importorskip("mitsuba")
-        from skinrender.rendering.face_scene import skin_reflectance_of
+        from skinrender.rendering.face.scene import skin_reflectance_of
 
         rho = skin_reflectance_of(SKIN)
         one = sphere_channels(CAMERA, rho, 2)

@@ -1,0 +1,93 @@
+"""
+One render for charts and faces
+===============================
+
+:func:`render` (``skinrender.render``) renders any scene the command line's
+``render`` takes: a chart (``macbeth``, ``skin_patches``, ``face_chart``, a
+chart TOML, a :class:`~skinrender.rendering.scene.ChartScene`) through
+:func:`skinrender.rendering.balance.render`, a face (``face``, a TOML with
+``[camera]`` and ``[mesh]``, a :class:`~skinrender.rendering.face.scene.FaceScene`)
+through :func:`skinrender.rendering.face.render.render_face`. Both results
+save themselves (``.save(exr, png=…, figure=…)``) and draw their labelled
+figure (``.figure(path)``).
+
+Units: temperatures K; images in Eq. 4 output units (255 for white at p = c).
+"""
+
+from __future__ import annotations
+
+import inspect
+
+from ..errors import SkinrenderError
+
+__all__ = ["render"]
+
+
+def render(scene, camera=None, prevailing=None, calibration=None, **options):
+    """
+    Render a chart or a face scene through a camera, white balanced to the calibration light (Eq. 4).
+
+    Parameters
+    ----------
+    scene
+        A chart or a face scene: a bundled name, a TOML path, or a parsed scene.
+    camera
+        A :class:`~skinrender.model.camera.Camera` or a camera spec (``gbell:9@450,540,610``, a CSV path).
+    prevailing, calibration
+        Planckian lights: kelvin, ``A`` (2856 K) or ``H`` (2300 K). A chart needs both; a face keeps its
+        scene's key light where ``prevailing`` is ``None``, and is balanced to the prevailing light where
+        ``calibration`` is ``None``.
+    **options
+        A chart's: ``normalization``, ``knee``, ``spp`` (default 256), ``seed``, ``sampler``, ``variant``,
+        ``grid``, ``channels``, ``cache``, ``emitter`` (:func:`skinrender.rendering.balance.render`).
+        A face's: ``skin``, ``physics`` (``direct``, effects joined by ``+``), ``spp`` (default 64), ``seed``,
+        ``size`` (pixels), ``sampler``, ``variant``, ``grid``, ``channels``, ``imager``, ``exposure`` (s or
+        ``auto``), ``illuminance`` (lx) (:func:`skinrender.rendering.face.render.render_face`).
+
+    Returns
+    -------
+    :class:`~skinrender.rendering.balance.Rendering` or :class:`~skinrender.rendering.face.render.FaceRendering`
+
+    Raises
+    ------
+    SkinrenderError
+        A bad scene, camera, light or option, each named; an option of the other kind of scene (``physics``
+        for a chart, ``normalization`` for a face).
+
+    Examples
+    --------
+    >>> import skinrender as sr
+    >>> face = sr.render("face", camera="gbell:9@450,540,610", prevailing=2856, calibration=5900,
+    ...                  physics="sheen", spp=4, size=16)  # doctest: +SKIP
+    >>> face.physics, face.image.shape  # doctest: +SKIP
+    ('sheen', (16, 16, 3))
+    """
+
+    if "camera_" in options:  # the chart renderer's name for it
+        if camera is not None:
+            raise SkinrenderError("render: give the camera once (camera or camera_)")
+        camera = options.pop("camera_")
+    if camera is None:
+        raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)")
+    from .face.scene import is_face_scene  # here: importing skinrender need not load the face's modules
+
+    if is_face_scene(scene):
+        from .face.render import render_face
+
+        kind, function = "face", render_face
+        arguments = {"camera_": camera, "scene": scene, "prevailing": prevailing, "calibration": calibration}
+    else:
+        from .balance import render as render_chart
+
+        for name, value in (("prevailing", prevailing), ("calibration", calibration)):
+            if value is None:
+                raise SkinrenderError(f"{name}: a chart render needs the {name} light (kelvin, A or H)")
+        kind, function = "chart", render_chart
+        arguments = {"scene": scene, "camera_": camera, "prevailing": prevailing, "calibration": calibration}
+    known = [name for name in inspect.signature(function).parameters if name not in arguments]
+    unknown = sorted(set(options) - set(known))
+    if unknown:
+        verb = "is not an option" if len(unknown) == 1 else "are not options"
+        raise SkinrenderError(f"render: {', '.join(unknown)} {verb} of a {kind} scene; its options: "
+                              f"{', '.join(known)}")
+    return function(**arguments, **options)

@@ -1,0 +1,55 @@
+"""
+The base level: direct
+======================
+
+Lambertian skin and props under the key light alone (or, in a scene without
+one, the uniform environment), direct lighting only: the analytic model's
+world, shading aside. Every level starts from it.
+
+-   :data:`DIRECT`: the effect.
+
+Its limit: under one Planckian with direct light only a skin pixel's
+radiance is ``ρ(λ) E(λ) G``, the shading ``G`` independent of λ, so its NCC
+is Eq. 4's (:func:`~skinrender.rendering.face.limits.check_shading`).
+"""
+
+from __future__ import annotations
+
+from ..limits import check_shading
+from .base import Effect, Limits, Replicates, Setup, spectrum, twosided
+
+__all__ = ["DIRECT"]
+
+
+def _integrator(integrator: dict | None, setup: Setup) -> dict:
+    """One light sample per hit; a BSDF sample only where it can meet a light (the environment)."""
+    points = all(light.position is not None for light in setup.lights.values())
+    return {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0 if points else 1}
+
+
+def _lambertian(material: dict, reflectance, setup: Setup) -> dict:
+    return {"bsdf": twosided({"type": "diffuse", "reflectance": spectrum(setup.grid, reflectance)})}
+
+
+def _lights(lights: dict, scene) -> dict:
+    """The key light, or in a scene without one the environment; none: ``{}`` (refused by the level)."""
+    if scene.key is not None:
+        return {"key": scene.key}
+    if scene.environment is not None:
+        return {"environment": scene.environment}
+    return {}
+
+
+def _check(replicates: Replicates):
+    r = replicates
+    return check_shading(r.images, r.labels, r.expected, r.usable, r.bias, r.floor)
+
+
+DIRECT = Effect(
+    "direct",
+    "Lambertian skin and props under the key light alone, direct lighting only (Mitsuba's direct integrator): "
+    "the analytic model's world, shading aside",
+    integrator=_integrator, skin=_lambertian, prop=_lambertian, lights=_lights,
+    limits=Limits(check=_check, why="the shading check is the test at this level"),
+)
+"""The base of every level."""

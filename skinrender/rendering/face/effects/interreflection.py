@@ -1,0 +1,34 @@
+"""
+Interreflection
+===============
+
+Every bounce: path tracing with Russian roulette (unbiased), so light reaches
+the skin from the props and from the face itself.
+
+-   :data:`INTERREFLECTION`: the effect; :data:`RUSSIAN_ROULETTE_DEPTH`.
+
+No analytic limit holds: light bounced off other surfaces is no longer the
+light's spectrum, so the shading no longer cancels in NCC.
+"""
+
+from __future__ import annotations
+
+from .base import Effect, Limits, Setup
+
+__all__ = ["INTERREFLECTION", "RUSSIAN_ROULETTE_DEPTH"]
+
+RUSSIAN_ROULETTE_DEPTH = 5
+"""Path depth from which Russian roulette ends paths (Mitsuba's default; unbiased)."""
+
+
+def _integrator(integrator: dict | None, setup: Setup) -> dict:
+    return {"type": "path", "max_depth": -1, "rr_depth": RUSSIAN_ROULETTE_DEPTH}
+
+
+INTERREFLECTION = Effect(
+    "interreflection",
+    "every bounce (path tracing, Russian roulette: unbiased): light from the props and from the face onto itself",
+    integrator=_integrator,
+    limits=Limits(holds=False, why="light reaches the skin from other surfaces (props, the face itself) and is "
+                                   "no longer the light's spectrum: no analytic limit at this level"),
+)

@@ -1,0 +1,229 @@
+"""
+The registry of effects, and levels as their compositions
+=========================================================
+
+:data:`PHYSICS_EFFECTS` is the one table of effects (name → :class:`~.base.Effect`),
+in the order they apply: the base, ``direct``, first. A level of physics is
+the base alone (``direct``) or the base with effects joined by ``+``
+(``interreflection+sheen``): a :class:`Level`, which applies its effects in
+the table's order, whatever order they were named in. The renderer, the
+validation, the ladder, the face sweep, the face bench and the command line
+all read this table; nothing else lists the levels.
+
+-   :data:`PHYSICS_EFFECTS`, :data:`PHYSICS_BASE`: the registry.
+-   :data:`PHYSICS`: name → description (read from the registry);
+    :data:`EFFECTS`: the names that add to the base.
+-   :data:`LEVELS_EACH`, :data:`LEVELS_LADDER`: the base and each effect
+    alone (``bench render --scene``), and then all together (``ladder``,
+    ``face-sweep``).
+-   :func:`parse_physics`: a spec's effects as names (a tuple);
+    :func:`physics_level`: a spec as a :class:`Level`.
+-   :func:`active_lights`: the lights a level adds to a scene.
+
+Adding an effect is one module beside the others (see ``docs/effects.md``)
+and its line in :data:`PHYSICS_EFFECTS`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass
+
+from ....errors import SkinrenderError
+from ....methods import validate_method
+from ..scene import FaceScene, Light
+from .base import Effect, Frame, Measured, Setup
+from .direct import DIRECT
+from .interreflection import INTERREFLECTION
+from .mixed import MIXED
+from .noise import NOISE
+from .sheen import SHEEN
+
+__all__ = ["PHYSICS_EFFECTS", "PHYSICS_BASE", "PHYSICS", "EFFECTS", "LEVELS_EACH", "LEVELS_LADDER", "Level",
+           "parse_physics", "physics_level", "active_lights"]
+
+PHYSICS_EFFECTS: dict[str, Effect] = {effect.name: effect for effect in (
+    DIRECT,
+    INTERREFLECTION,
+    SHEEN,
+    MIXED,
+    NOISE,
+)}
+"""The effects of physics, name → :class:`~.base.Effect`, in the order a level applies them (and names them:
+``interreflection+sheen+mixed+noise``). The first is the base."""
+
+PHYSICS_BASE = next(iter(PHYSICS_EFFECTS))
+"""The base every level starts from: ``direct``."""
+
+
+class _Descriptions(Mapping):
+    """name → one-line description of every registered effect, read from :data:`PHYSICS_EFFECTS` when asked."""
+
+    def __getitem__(self, name: str) -> str:
+        return PHYSICS_EFFECTS[name].description
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(PHYSICS_EFFECTS)
+
+    def __len__(self) -> int:
+        return len(PHYSICS_EFFECTS)
+
+    def __repr__(self) -> str:
+        return repr(dict(self))
+
+
+PHYSICS: Mapping[str, str] = _Descriptions()
+"""Levels of physics, name → meaning (the registry's descriptions). ``direct`` is the base; the others each
+add one effect to it and combine with ``+`` (``interreflection+sheen+mixed``)."""
+
+EFFECTS = tuple(name for name in PHYSICS_EFFECTS if name != PHYSICS_BASE)
+"""The effects that add to ``direct``, in ladder order."""
+
+LEVELS_EACH = (PHYSICS_BASE, *EFFECTS)
+"""The base and each effect alone (the face bench's levels)."""
+
+LEVELS_LADDER = (*LEVELS_EACH, "+".join(EFFECTS))
+"""The base, each effect alone, then all of them (the ladder's and the face sweep's levels)."""
+
+
+@dataclass(frozen=True)
+class Level:
+    """
+    A level of physics: the base and the effects added to it, applied in the registry's order.
+
+    Attributes
+    ----------
+    effects
+        The :class:`~.base.Effect` objects, the base first.
+    """
+
+    effects: tuple[Effect, ...]
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """The effects added to the base, in the registry's order (``()`` for ``direct``)."""
+        return tuple(effect.name for effect in self.effects[1:])
+
+    @property
+    def name(self) -> str:
+        """``direct``, or the added effects joined by ``+``."""
+        return "+".join(self.names) or self.effects[0].name
+
+    def __contains__(self, name: object) -> bool:
+        return any(effect.name == name for effect in self.effects)
+
+    @property
+    def document_key(self) -> tuple[str, ...]:
+        """The added effects that change the Mitsuba document (not those acting after the render only)."""
+        return tuple(effect.name for effect in self.effects[1:] if effect.changes_document)
+
+    def _fold(self, part: str, value, *arguments):
+        for effect in self.effects:
+            function = getattr(effect, part)
+            if function is not None:
+                value = function(value, *arguments)
+        return value
+
+    def lights(self, scene: FaceScene) -> dict[str, Light]:
+        """The lights a render of ``scene`` at this level adds, ``{name: Light}``; none: a one-line error."""
+        lights = self._fold("lights", {}, scene)
+        if not lights:
+            raise SkinrenderError(f"face scene {scene.source or scene.name} has no light")
+        return lights
+
+    @staticmethod
+    def setup(scene: FaceScene, camera, grid, lights: Mapping[str, Light], **after) -> Setup:
+        """What the effects read (:class:`~.base.Setup`); ``after``: ``calibration``, ``seed``, ``imager``,
+        ``exposure`` for ``post``."""
+        return Setup(scene, camera, grid, lights, **after)
+
+    def integrator(self, setup: Setup) -> dict:
+        """The Mitsuba integrator."""
+        return self._fold("integrator", None, setup)
+
+    def skin(self, reflectance, setup: Setup) -> dict:
+        """The skin's shape properties (``{"bsdf": …}``) for its reflectance on ``setup.grid``."""
+        return self._fold("skin", {}, reflectance, setup)
+
+    def prop(self, reflectance, setup: Setup) -> dict:
+        """A prop's shape properties for its reflectance."""
+        return self._fold("prop", {}, reflectance, setup)
+
+    def post(self, frame: Frame, setup: Setup) -> Frame:
+        """The frame after every effect's post-processing."""
+        return self._fold("post", frame, setup)
+
+    def measure(self, images, first, imager=None) -> Measured:
+        """The replicate images as the checks see them (:class:`~.base.Measured`)."""
+        measured = Measured(images)
+        for effect in self.effects:
+            if effect.limits.measure is not None:
+                measured = effect.limits.measure(measured, first, imager)
+        return measured
+
+    @property
+    def check(self):
+        """The analytic limit tested at this level (``(Replicates) → LimitCheck``), or ``None`` where none holds."""
+        if any(not effect.limits.holds for effect in self.effects):
+            return None
+        checks = [effect.limits.check for effect in self.effects if effect.limits.check is not None]
+        return checks[-1] if checks else None
+
+    @property
+    def why(self) -> str:
+        """Why the level's check is what it is, or why there is none (``eq4_shift``'s reason)."""
+        broken = [effect for effect in self.effects if not effect.limits.holds]
+        deciding = broken[:1] or [effect for effect in self.effects if effect.limits.check is not None][-1:]
+        return deciding[0].limits.why if deciding else "no analytic limit at this level"
+
+
+def parse_physics(spec: str) -> tuple[str, ...]:
+    """
+    The effects of a physics spec, in the registry's order (``()`` for ``direct``).
+
+    Examples
+    --------
+    >>> parse_physics("sheen+interreflection")
+    ('interreflection', 'sheen')
+    >>> parse_physics("direct")
+    ()
+    """
+
+    text = str(spec).strip()
+    parts = [part.strip() for part in text.split("+")]
+    for part in parts:
+        validate_method(part, PHYSICS_EFFECTS, f"physics ({text!r})")
+    if PHYSICS_BASE in parts and len(parts) > 1:
+        raise SkinrenderError(f"physics: {PHYSICS_BASE!r} is the base and combines with nothing, got {text!r}")
+    twice = sorted({part for part in parts if parts.count(part) > 1})
+    if twice:
+        raise SkinrenderError(f"physics: {', '.join(twice)} named twice in {text!r}; name each effect once")
+    return tuple(name for name in PHYSICS_EFFECTS if name in parts and name != PHYSICS_BASE)
+
+
+def physics_level(spec: str | Sequence[str] | Level) -> Level:
+    """
+    A level of physics from a spec (``direct``, ``sheen+noise``), a sequence of effect names (``()`` is
+    ``direct``) or a :class:`Level` (returned as it is).
+
+    Examples
+    --------
+    >>> level = physics_level("noise+sheen")
+    >>> level.name, "sheen" in level, [effect.name for effect in level.effects]
+    ('sheen+noise', True, ['direct', 'sheen', 'noise'])
+    """
+
+    if isinstance(spec, Level):
+        return spec
+    if not isinstance(spec, str):
+        spec = "+".join(spec) or PHYSICS_BASE
+    names = parse_physics(spec)
+    return Level((PHYSICS_EFFECTS[PHYSICS_BASE], *(PHYSICS_EFFECTS[name] for name in names)))
+
+
+def active_lights(scene: FaceScene, effects: str | Sequence[str] | Level) -> dict[str, Light]:
+    """
+    The lights of a render: ``key`` (or, in a scene without one, the ``environment``), plus ``fill`` and
+    ``environment`` with ``mixed`` (:meth:`Level.lights`).
+    """
+    return physics_level(effects).lights(scene)

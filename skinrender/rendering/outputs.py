@@ -1,0 +1,98 @@
+"""
+Saving and drawing renders
+==========================
+
+What a render's result (a chart's :class:`~skinrender.rendering.balance.Rendering`,
+a face's :class:`~skinrender.rendering.face.render.FaceRendering`) does
+beside its arrays: ``.save(exr, png=…, figure=…)`` and ``.figure(path)``.
+
+Only the studies layer draws (matplotlib stays out of ``rendering``, an
+import-linter contract): it registers a drawer per kind of result here
+(:func:`register_figure`; :mod:`skinrender.studies.labelled` does, and
+``import skinrender`` imports it), and a result's ``.figure()`` reaches it
+through :func:`draw_figure`, so ``rendering`` never imports ``studies``.
+
+-   :data:`FIGURE_DRAWERS`, :func:`register_figure`, :func:`draw_figure`.
+-   :func:`output_paths`: a save's paths, checked before anything is written.
+-   :func:`save_result`: figure, EXR and PNG preview of a result.
+-   :func:`write_chart_exr`: a chart render's float32 EXR.
+
+Units: images in Eq. 4 output units (255 for white at p = c).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+from ..errors import SkinrenderError
+from .exr import write_exr, write_preview
+from .renderer import channel_names
+
+__all__ = ["FIGURE_DRAWERS", "register_figure", "draw_figure", "output_paths", "save_result", "write_chart_exr"]
+
+FIGURE_DRAWERS: dict[str, Callable] = {}
+"""Kind of result (``chart``, ``face``) → ``drawer(result, path, **options) → Path``; filled by the studies
+layer (:mod:`skinrender.studies.labelled`) when ``skinrender`` is imported."""
+
+
+def register_figure(kind: str, drawer: Callable) -> None:
+    """Register the figure ``drawer(result, path, **options) → Path`` of results of ``kind``."""
+    FIGURE_DRAWERS[kind] = drawer
+
+
+def draw_figure(kind: str, result, path: str | Path, **options) -> Path:
+    """Draw ``result`` (a ``kind`` result) into a PNG at ``path`` with its registered drawer; the path."""
+    if kind not in FIGURE_DRAWERS:
+        raise SkinrenderError(f"no figure of a {kind} render is registered: they are drawn by "
+                              "skinrender.studies.labelled (import skinrender registers them)")
+    path = Path(path)
+    if path.suffix.lower() != ".png" or path.is_dir():
+        raise SkinrenderError(f"figure: {path} must be a .png file path")
+    return Path(FIGURE_DRAWERS[kind](result, path, **options))
+
+
+def output_paths(exr: str | Path, png: bool | str | Path | None = True,
+                 figure: str | Path | None = None) -> tuple[Path, Path | None, Path | None]:
+    """
+    The paths of a save, checked before anything is written: the EXR (``.exr``), the PNG preview
+    (``True``: the EXR's path with ``.png``; a path; ``False``/``None``: none) and the figure (a ``.png``
+    path or ``None``), none a folder and no two the same; a one-line error naming the argument otherwise.
+
+    >>> [str(p) for p in output_paths("out/face.exr", True, "out/figure.png")]
+    ['out/face.exr', 'out/face.png', 'out/figure.png']
+    """
+    exr = Path(exr)
+    png = None if png is None or png is False else exr.with_suffix(".png") if png is True else Path(png)
+    figure = None if figure is None else Path(figure)
+    for name, path, suffix in (("exr", exr, ".exr"), ("png", png, ".png"), ("figure", figure, ".png")):
+        if path is not None and (path.suffix.lower() != suffix or path.is_dir()):
+            raise SkinrenderError(f"{name}: {path} must be a {suffix} file path")
+    if figure is not None and png is not None and figure.resolve() == png.resolve():
+        raise SkinrenderError(f"figure: {figure} is also the PNG preview; name another PNG")
+    return exr, png, figure
+
+
+def save_result(result, kind: str, exr: str | Path, png: bool | str | Path | None, figure: str | Path | None,
+                write: Callable[[Path], Path]) -> dict:
+    """
+    Save a render: its figure first (the step most likely to fail), then the EXR (``write(path)``) and the PNG
+    preview (tone-mapped from the output units). ``{"exr": path, "png": path or None, "figure": path or None}``.
+    """
+    exr, png, figure = output_paths(exr, png, figure)
+    drawn = draw_figure(kind, result, figure) if figure is not None else None
+    written = write(exr)
+    preview = write_preview(png, result.image) if png is not None else None
+    return {"exr": written, "png": preview, "figure": drawn}
+
+
+def write_chart_exr(path: str | Path, rendering, seed=None) -> Path:
+    """
+    A chart render's float32 EXR: its image in output units, channels named by the camera, and the render's
+    settings as attributes (``seed``: as given to the render, default the prevailing render's).
+    """
+    raw = rendering.raw[0]
+    return write_exr(path, rendering.image, channel_names(rendering.camera), {
+        "camera": rendering.camera.name, "prevailing_K": rendering.prevailing, "calibration_K": rendering.calibration,
+        "spp": raw.spp, "seed": raw.seed if seed is None else seed, "variant": rendering.variant,
+        "units": "Eq. 4 output units"})

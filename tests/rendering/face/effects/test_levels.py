@@ -1,0 +1,203 @@
+"""
+Tests for :mod:`skinrender.rendering.face.effects.levels`: physics specs, the registry (every effect has its
+parts; levels compose; unknown and duplicate effects refused as before), and a toy effect registered for a test
+only and rendered with.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from skinrender.errors import SkinrenderError
+from skinrender.rendering.face.effects import (EFFECTS, LEVELS_EACH, LEVELS_LADDER, PHYSICS, PHYSICS_BASE,
+                                               PHYSICS_EFFECTS, Effect, Limits, active_lights, parse_physics,
+                                               physics_level)
+from skinrender.rendering.face.effects.direct import DIRECT
+from skinrender.rendering.face.effects.noise import NOISE
+from skinrender.rendering.face.effects.sheen import SHEEN
+from skinrender.rendering.face.labels import LABEL_SKIN
+from skinrender.rendering.face.scene import Light, load_face_scene
+from skinrender.rendering.renderer import _spectrum
+from skinrender.spectra import GRID_DEFAULT
+from skinrender.studies.bench_face import LEVELS_BENCH
+from skinrender.studies.ladder import LEVELS_DEFAULT
+
+CAM = "gbell:9@450,540,610"
+
+
+class TestParsePhysics:
+    def test_levels_and_combinations(self):
+        assert parse_physics("direct") == ()
+        assert parse_physics(" noise + mixed ") == ("mixed", "noise")
+        assert parse_physics("+".join(reversed(EFFECTS))) == EFFECTS
+        assert set(EFFECTS) | {"direct"} == set(PHYSICS)
+
+    @pytest.mark.parametrize("spec", ["", "glossy", "direct+noise", "sheen+", "subsurface"])
+    def test_refused(self, spec):
+        with pytest.raises(SkinrenderError, match="physics"):
+            parse_physics(spec)
+
+
+class TestActiveLights:
+    def test_levels_choose_lights(self):
+        scene = load_face_scene("face")
+        assert list(active_lights(scene, ())) == ["key"]
+        assert list(active_lights(scene, ("mixed",))) == ["key", "fill", "environment"]
+        sky = replace(scene, key=None, fill=None)
+        assert list(active_lights(sky, ())) == ["environment"]
+        with pytest.raises(SkinrenderError, match="mixed"):
+            active_lights(replace(scene, fill=None, environment=None), ("mixed",))
+
+
+def test_an_effect_named_twice_is_refused():
+    with pytest.raises(SkinrenderError, match="named twice"):
+        parse_physics("sheen+interreflection+sheen")
+
+
+class TestRegistry:
+    def test_every_effect_has_its_parts(self):
+        """A name (its key), a one-line description, each part a function or None, and limits that say why."""
+        parts = ("integrator", "skin", "prop", "lights", "post")
+        assert next(iter(PHYSICS_EFFECTS)) == PHYSICS_BASE == "direct"
+        for name, effect in PHYSICS_EFFECTS.items():
+            assert isinstance(effect, Effect) and effect.name == name and name.isidentifier()
+            assert effect.description.strip() and "\n" not in effect.description and PHYSICS[name] == effect.description
+            assert all(getattr(effect, part) is None or callable(getattr(effect, part)) for part in parts)
+            assert isinstance(effect.limits, Limits)
+            for hook in (effect.limits.check, effect.limits.measure):
+                assert hook is None or callable(hook)
+            if effect.limits.check is not None or not effect.limits.holds:
+                assert effect.limits.why, f"{name}: a check or a broken limit says why"
+            changes = [part for part in parts if getattr(effect, part) is not None] + (
+                ["measure"] if effect.limits.measure else [])
+            assert changes, f"{name} changes nothing"
+        base = PHYSICS_EFFECTS[PHYSICS_BASE]
+        assert all(getattr(base, part) is not None for part in ("integrator", "skin", "prop", "lights"))
+        assert base.limits.check is not None and base.limits.holds
+
+    def test_level_lists_are_read_from_the_registry(self):
+        assert EFFECTS == tuple(PHYSICS_EFFECTS)[1:] == ("interreflection", "sheen", "mixed", "noise")
+        assert LEVELS_EACH == ("direct", *EFFECTS)
+        assert LEVELS_LADDER == (*LEVELS_EACH, "interreflection+sheen+mixed+noise")
+        assert LEVELS_DEFAULT is LEVELS_LADDER and LEVELS_BENCH is LEVELS_EACH
+        assert list(PHYSICS) == list(PHYSICS_EFFECTS) and dict(PHYSICS)["noise"] == NOISE.description
+
+
+class TestRefusals:
+    """Unknown and duplicate effects are refused with the messages they had before the registry."""
+
+    @pytest.mark.parametrize("spec, message", [
+        ("glossy", "physics ('glossy') must be one of direct, interreflection, sheen, mixed, noise, got 'glossy'"),
+        ("", "physics ('') must be one of direct, interreflection, sheen, mixed, noise, got ''"),
+        ("sheen+", "physics ('sheen+') must be one of direct, interreflection, sheen, mixed, noise, got ''"),
+        ("direct+noise", "physics: 'direct' is the base and combines with nothing, got 'direct+noise'"),
+        ("sheen+interreflection+sheen",
+         "physics: sheen named twice in 'sheen+interreflection+sheen'; name each effect once"),
+    ])
+    def test_messages(self, spec, message):
+        for parse in (parse_physics, physics_level):
+            with pytest.raises(SkinrenderError) as error:
+                parse(spec)
+            assert str(error.value) == message
+
+
+def _old_integrator(effects: tuple[str, ...], lights: dict) -> dict:
+    if "interreflection" in effects:
+        return {"type": "path", "max_depth": -1, "rr_depth": 5}
+    points = all(light.position is not None for light in lights.values())
+    return {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0 if points else 1}
+
+
+def _old_bsdf(reflectance, sheen: bool) -> dict:
+    spectrum = _spectrum(GRID_DEFAULT.wavelengths, reflectance)
+    if not sheen:
+        inner = {"type": "diffuse", "reflectance": spectrum}
+    else:
+        inner = {"type": "roughplastic", "distribution": "ggx", "alpha": 0.35, "int_ior": 1.4, "ext_ior": 1.0,
+                 "nonlinear": False, "diffuse_reflectance": spectrum}
+    return {"type": "twosided", "bsdf": inner}
+
+
+def _old_lights(scene, effects: tuple[str, ...]) -> dict:
+    if "mixed" in effects:
+        return {name: getattr(scene, name) for name in ("key", "fill", "environment") if getattr(scene, name)}
+    return {"key": scene.key} if scene.key is not None else {"environment": scene.environment}
+
+
+LEVELS_ALL = ["+".join(c) for n in range(len(EFFECTS) + 1) for c in itertools.combinations(EFFECTS, n)]
+"""Every level: direct (the empty combination) and each of the 15 combinations of the four effects."""
+
+
+@pytest.mark.parametrize("spec", LEVELS_ALL)
+def test_each_level_composes_what_its_branches_built_before_the_registry(spec):
+    """
+    The parts of every level equal what the ``if "sheen" in effects`` branches of face_dict and face_validation
+    built before the registry (written out above): the integrator, the skin's and props' BSDFs, the lights, the
+    effects that change the document, the check run and eq4_shift's reason. (A render from the same document
+    and seed is the same image: measured bit-for-bit on every level before and after, docs/effects.md.)
+    """
+    level = physics_level(spec or "direct")
+    effects = level.names
+    assert effects == parse_physics(spec or "direct") and level.name == ("+".join(effects) or "direct")
+    scene = load_face_scene("face")
+    for variant in (scene, replace(scene, key=None, fill=None)):  # point lights; and the sky alone
+        if "mixed" in effects and variant.key is None:
+            continue
+        lights = level.lights(variant)
+        assert lights == _old_lights(variant, effects)
+        setup = level.setup(variant, None, GRID_DEFAULT, lights)
+        assert level.integrator(setup) == _old_integrator(effects, lights)
+    rho = np.linspace(0.2, 0.6, GRID_DEFAULT.size)
+    assert level.skin(rho, setup) == {"bsdf": _old_bsdf(rho, "sheen" in effects)}
+    assert level.prop(rho, setup) == {"bsdf": _old_bsdf(rho, False)}
+    assert level.document_key == tuple(e for e in effects if e != "noise")
+    one_light = not {"interreflection", "mixed"} & set(effects)
+    expected_check = None if not one_light else (SHEEN if "sheen" in effects else DIRECT).limits.check
+    assert level.check is expected_check
+    why = ("interreflection" if "interreflection" in effects else "mixed" if "mixed" in effects
+           else "sheen" if "sheen" in effects else "direct")
+    assert level.why == PHYSICS_EFFECTS[why].limits.why
+    measures = [effect.name for effect in level.effects if effect.limits.measure is not None]
+    assert measures == (["noise"] if "noise" in effects else [])  # through the sensor: its terms
+    if not measures:
+        images = np.ones((3, 2, 2, 3))
+        assert level.measure(images, None).images is images
+
+
+def _ambient(lights: dict, scene) -> dict:
+    """A uniform sky at the key light's temperature, a fifth of its illuminance (the docs' worked example)."""
+    key = lights.get("key") or scene.key
+    return {**lights, "ambient": Light(key.temperature, key.illuminance / 5)}
+
+
+AMBIENT = Effect("ambient", "a uniform sky at the key light's temperature, a fifth of its illuminance: no pure-"
+                 "black shadow, and one Planckian still lights the face", lights=_ambient)
+
+
+def test_a_toy_effect_registered_for_a_test_only_renders_and_validates(monkeypatch):
+    """
+    Adding an effect is its module and its line in the registry: here a toy registered for this test only
+    (monkeypatch puts the registry back). It composes with the others, renders, and keeps the base's analytic
+    limit: its light has the key's spectrum, so the shading still cancels in NCC.
+    """
+    pytest.importorskip("mitsuba")
+    from skinrender.rendering.face import render_face, validate_face
+
+    monkeypatch.setitem(PHYSICS_EFFECTS, "ambient", AMBIENT)
+    assert parse_physics("ambient+sheen") == ("sheen", "ambient") and "ambient" in PHYSICS
+    assert list(physics_level("mixed+ambient").lights(load_face_scene("face"))) == [
+        "key", "fill", "environment", "ambient"]
+    kwargs = {"size": 24, "spp": 8, "seed": 1, "prevailing": 2856, "calibration": 2856}
+    direct, lit = render_face(CAM, physics="direct", **kwargs), render_face(CAM, physics="ambient", **kwargs)
+    assert lit.physics == "ambient" and list(lit.info["lights"]) == ["key", "ambient"]
+    skin = lit.labels == LABEL_SKIN
+    assert (direct.image[skin].max(axis=-1) == 0).any(), "the key light alone leaves some skin pixel black"
+    assert (lit.image[skin].min(axis=-1) > 0).all(), "the sky reaches every skin pixel"
+    result = validate_face(CAM, physics="ambient", size=32, spp=48, limits=(), prevailing=2856, calibration=2856)
+    assert [c.name for c in result.checks] == ["shading_cancels", "eq4_shift"]
+    assert result.checks[0].passed is True, result.checks[0]
+    assert "ambient" not in PHYSICS_EFFECTS or PHYSICS_EFFECTS["ambient"] is AMBIENT
