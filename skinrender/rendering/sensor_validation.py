@@ -36,7 +36,7 @@ the equivalence.
 
 References
 ----------
--   [EMVA1288]_ : two frames per exposure for the temporal variance (docs/references.md).
+-   :cite:`EMVA1288` : two frames per exposure for the temporal variance (docs/references.md).
 -   :cite:`Satterthwaite1946` : F. E. Satterthwaite (1946). An approximate distribution of estimates of
     variance components. Biometrics Bulletin 2(6), 110–114.
 """

@@ -180,7 +180,7 @@ class Validation:
         return self.verdict.outcome == "pass"
 
     def worst(self) -> list[dict]:
-        """The worst patch per channel (largest |z|)."""
+        """The worst patch per channel (largest ``|z|``)."""
         names = self.rendering.camera.channels
         out = []
         for k, channel in enumerate(names):
