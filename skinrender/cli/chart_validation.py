@@ -166,6 +166,7 @@ def _chart_report(args, result, options, requested, tolerance) -> tuple[dict, li
     from ..constants import CONSTANT_OUTPUT_SCALE
     from ..rendering.agreement import DARK_LEVEL
     from ..rendering.renderer import channel_names
+    from .common import SPP_MAX
 
     r = result.rendering
     checks = {"equivalence": result.verdict, "difference": result.difference}
@@ -187,7 +188,8 @@ def _chart_report(args, result, options, requested, tolerance) -> tuple[dict, li
              "(white = 255 at p = c); bound: the upper 95 % (family-wise) confidence bound of |error|",
              table(rows, ["patch", "channel", "analytic", "rendered", "error", "bound", "tolerance", "shown"])]
     lines += _summary("equivalence", result.verdict)
-    needed = result.spp_needed if result.spp_needed is not None else "—"
+    needed = "—" if result.spp_needed is None else (result.spp_needed if result.spp_needed <= SPP_MAX
+                                                    else f"{result.spp_needed:.3g} (more than a render may take)")
     lines.append(f"  bound {result.bound:.3g} (the smallest relative tolerance that would pass; asked {tolerance:g}); "
                  f"spp needed ≈ {needed} (bounds taken to fall as 1/√spp: an upper estimate for multijitter)")
     lines += _summary("difference", result.difference)

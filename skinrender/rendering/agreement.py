@@ -90,7 +90,8 @@ def tolerance_scale(analytic: ArrayLike, scale: float = CONSTANT_OUTPUT_SCALE) -
 def agreement(rendered: ArrayLike, analytic: ArrayLike, sigma: ArrayLike, tolerance: float, spp: int,
               dof: float | None = None, floor: ArrayLike = 0.0, alpha: float = ALPHA_EQUIVALENCE,
               alpha_difference: float = ALPHA_DIFFERENCE, what: str = "patch channel means",
-              scale: float = CONSTANT_OUTPUT_SCALE) -> dict:
+              scale: float = CONSTANT_OUTPUT_SCALE, skewness: ArrayLike | None = None,
+              skew_max: float | None = None) -> dict:
     """
     The equivalence and difference verdicts of rendered values against analytic ones.
 
@@ -110,6 +111,10 @@ def agreement(rendered: ArrayLike, analytic: ArrayLike, sigma: ArrayLike, tolera
         A known systematic allowance (the float32 floor), left out of the difference test only.
     what
         The values, in words, for the tests' statements.
+    skewness, skew_max
+        Each error's skewness and the largest at which its normal law is trusted: a value beyond is neither shown
+        within nor outside the tolerance (at best inconclusive) and is left out of the difference test (which is
+        then at best inconclusive).
 
     Returns
     -------
@@ -118,7 +123,8 @@ def agreement(rendered: ArrayLike, analytic: ArrayLike, sigma: ArrayLike, tolera
         equivalence's ``bound`` is the smallest relative tolerance that would pass and its details hold
         ``spp_needed``), ``error``, ``upper`` (the bound on ``|error|``), ``tolerance`` (allowed ``|error|``),
         ``relative_bound`` (``upper / scale``), ``z`` (``error / sigma``, 0 where σ = 0), ``shown_within``,
-        ``shown_outside``, arrays shaped as ``rendered``; ``spp_needed`` (``None`` after a fail).
+        ``shown_outside``, ``trusted`` (the normal law trusted), arrays shaped as ``rendered``; ``spp_needed``
+        (``None`` after a fail).
 
     Examples
     --------
@@ -134,21 +140,41 @@ def agreement(rendered: ArrayLike, analytic: ArrayLike, sigma: ArrayLike, tolera
     width = tolerance_scale(a, scale)
     allowed = tolerance * width
     verdict, rows = equivalence(error, s, allowed, alpha, dof, "equivalence", scale=width)
+    statement = (f"{what}: |rendered − analytic| + c·SE ≤ {tolerance:g} × max(|analytic|, "
+                 f"{DARK_LEVEL * scale:g}) for every value; {verdict.test}")
+    trusted = np.ones(r.shape, dtype=bool)
+    skewed = ""
+    if skewness is not None and skew_max is not None:
+        gamma = np.abs(np.broadcast_to(np.asarray(skewness, dtype=np.float64), r.shape))
+        trusted = gamma <= skew_max
+        count = int(np.sum(~trusted))
+        skewed = (f"{count} value{'s' * (count > 1)} too skewed for the normal law "
+                  f"(skewness up to {gamma.max():.2g} > {skew_max:g}): more spp")
+        statement += f"; values whose error's skewness exceeds {skew_max:g} decide nothing"
+    verdict = replace(verdict, test=statement, tolerance=tolerance)
+    if not np.all(trusted) and rows:
+        within, outside = rows["shown_within"] & trusted, rows["shown_outside"] & trusted
+        rows = {**rows, "shown_within": within, "shown_outside": outside}
+        if np.any(outside):
+            verdict = replace(verdict, outcome="fail",
+                              reason=f"{int(np.sum(outside))} value(s) shown beyond the tolerance; {skewed}")
+        else:
+            verdict = replace(verdict, outcome="inconclusive", reason=skewed)
     needed = None
     if verdict.outcome in ("pass", "inconclusive"):
         needed = samples_needed(spp, error, s, allowed, alpha, dof, shrinking=True)
-    statement = (f"{what}: |rendered − analytic| + c·SE ≤ {tolerance:g} × max(|analytic|, "
-                 f"{DARK_LEVEL * scale:g}) for every value; {verdict.test}")
-    verdict = replace(verdict, test=statement, tolerance=tolerance,
-                      details={**verdict.details, "spp_needed": needed, "tolerance_relative": tolerance,
-                               "dark_level": DARK_LEVEL * scale})
+    verdict = replace(verdict, details={**verdict.details, "spp_needed": needed, "tolerance_relative": tolerance,
+                                        "dark_level": DARK_LEVEL * scale, "skewed": int(np.sum(~trusted))})
     beyond = np.sign(error) * np.maximum(np.abs(error) - np.broadcast_to(np.asarray(floor, dtype=np.float64),
                                                                           r.shape), 0.0)
-    test = difference(beyond, s, alpha_difference, dof, "difference")
-    test = replace(test, test=f"{what}: rendered − analytic beyond the float32 floor, over its SE; {test.test}")
+    test = difference(beyond[trusted], s[trusted], alpha_difference, dof, "difference")
+    test = replace(test, test=f"{what}: rendered − analytic beyond the float32 floor, over its SE; {test.test}"
+                   + (f"; {int(np.sum(~trusted))} too skewed left out" if not np.all(trusted) else ""))
+    if not np.all(trusted) and test.outcome in ("pass", "not_applicable"):
+        test = replace(test, outcome="inconclusive", reason=f"no difference among the rest; {skewed}")
     z = np.divide(error, s, out=np.zeros_like(error), where=s > 0)
     return {"equivalence": verdict, "difference": test, "error": error, "upper": rows.get("upper", error),
             "tolerance": allowed, "relative_bound": rows.get("upper", error) / width, "z": z,
             "shown_within": rows.get("shown_within"), "shown_outside": rows.get("shown_outside"),
-            "spp_needed": needed}
+            "trusted": trusted, "spp_needed": needed}
 

@@ -13,12 +13,12 @@ Render validation against the analytic model
 -   :func:`validate_gamut`: gamut volumes of a rendered chart against the
     analytic ones, with the same two verdicts.
 
-The standard error of a patch channel is
-``σ² = SE_patch² + X² (e_c,k² + Σ_j w_j² (e_p,j² + e_c,j²))``: the patch's
-standard error plus the white reference's relative standard errors under the
-calibration (``e_c``, which divides every patch) and, through WP (Eq. 8), of
-both whites with weights ``w_j = r_j / Σ r`` (``r_j`` the white ratios). The
-pixels of a patch are independent (a box filter), so the standard errors have
+The standard error of a patch channel
+(:func:`~skinrender.rendering.patch_errors.error_law`) is the patch's standard
+error together with the white references' errors carried through the white
+balance and WP (Eq. 8), linearised with their channel covariances; a value
+whose error is too skewed for the normal law decides nothing. The pixels of a
+patch are independent (a box filter), so the standard errors have
 ``pixels − 1`` degrees of freedom (Student t). The difference test allows a
 float32 floor (:func:`float32_floor`) beyond the noise. At p = c the whites
 are one render and WP is exactly 1. Renders of p and c use different seeds, so
@@ -40,12 +40,13 @@ from ..model.response import gain, knee as apply_knee, response
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .agreement import TOLERANCE_DEFAULT, agreement, check_tolerance, tolerance_scale
 from .balance import Rendering, pair_gain, patch_statistics, render
+from .patch_errors import SKEW_MAX, error_law
 from .renderer import chart_renderer
 from .scene import ChartScene, load_scene
 from .spp_choice import square_spp
 
 __all__ = ["FLOAT32_FLOOR", "REFINE", "analytic_reference", "quadrature_difference", "Validation", "validate",
-           "validate_gamut", "noise_of"]
+           "validate_gamut"]
 
 FLOAT32_FLOOR = 2e-6
 """Relative floor for float32 accumulation in the renderer (≈ 16 ulp)."""
@@ -137,6 +138,10 @@ class Validation:
         The upper confidence bound of each ``|rendered − analytic|``, output units.
     spp_needed
         The samples per pixel at which the verdict is expected to pass (``None`` after a fail).
+    skewness
+        The skewness of each patch channel's error
+        (:func:`~skinrender.rendering.patch_errors.error_law`): beyond
+        :data:`~skinrender.rendering.patch_errors.SKEW_MAX` its normal law is not trusted and the value decides nothing.
     """
 
     rendering: Rendering
@@ -151,6 +156,7 @@ class Validation:
     difference: Verdict
     upper: NDArrayFloat
     spp_needed: int | None
+    skewness: NDArrayFloat | None = None
 
     @property
     def error(self) -> NDArrayFloat:
@@ -198,9 +204,10 @@ class Validation:
         rows = []
         scale = tolerance_scale(self.analytic)
         for i, patch in enumerate(self.rendering.scene.patches):
-            within = self.upper[i] <= self.tolerance[i]
+            trusted = np.ones(3, dtype=bool) if self.skewness is None else np.abs(self.skewness[i]) <= SKEW_MAX
+            within = (self.upper[i] <= self.tolerance[i]) & trusted
             lower = np.abs(self.error[i]) - (self.upper[i] - np.abs(self.error[i]))
-            outside = lower > self.tolerance[i]
+            outside = (lower > self.tolerance[i]) & trusted
             rows.append({
                 "name": patch.name,
                 "rendered": self.rendered[i].tolist(),
@@ -212,6 +219,7 @@ class Validation:
                 "relative_bound": (self.upper[i] / scale[i]).tolist(),
                 "sigma": self.sigma[i].tolist(),
                 "z": self.z[i].tolist(),
+                "skewness": (np.zeros(3) if self.skewness is None else self.skewness[i]).tolist(),
                 "shown": ["within" if w else "outside" if o else "undecided" for w, o in zip(within, outside)],
                 "passed": bool(np.all(within)),
             })
@@ -227,18 +235,6 @@ def float32_floor(cam: Camera, grid: WavelengthGrid) -> NDArrayFloat:
     else:
         return np.full(3, FLOAT32_FLOOR)
     return np.full(3, max(FLOAT32_FLOOR, EPS_FLOAT32 * grid.end / width))
-
-
-def noise_of(rendering: Rendering, reference: NDArrayFloat) -> NDArrayFloat:
-    """The standard error of every patch channel's balanced mean, output units (module docstring)."""
-    e_p, e_c = rendering.white_relative_error
-    relative_white = e_c**2  # the calibration white divides each channel
-    if rendering.normalization == "white" and rendering.prevailing != rendering.calibration:
-        # WP = 3 / Σ r_k, r_k = white_p,k / white_c,k: δWP/WP = −Σ (r_k / Σ r) (δp_k − δc_k)
-        ratio = rendering.info["white_ratio"]
-        weights = ratio / ratio.sum()
-        relative_white = relative_white + np.sum(weights**2 * (e_p**2 + e_c**2))
-    return np.sqrt(rendering.patches.standard_error**2 + reference**2 * relative_white[None, :])
 
 
 def validate(
@@ -297,14 +293,14 @@ def validate(
     reference = analytic_reference(r.camera, reflectance, r.prevailing, r.calibration, r.normalization, r.knee, grid)
     quadrature = quadrature_difference(r.camera, reflectance, r.prevailing, r.calibration, r.normalization, grid,
                                        exact=None if r.knee else reference)
-    sigma = noise_of(rendering, reference)
+    sigma, skewness = error_law(rendering, reference)
     floor = float32_floor(rendering.camera, grid)[None, :] * np.abs(reference)
     dof = float(np.min(rendering.patches.count) - 1)
     out = agreement(rendering.patches.mean, reference, sigma, tolerance, r.raw[0].spp, dof, floor, alpha,
-                    alpha_difference)
+                    alpha_difference, skewness=skewness, skew_max=SKEW_MAX)
     needed = None if out["spp_needed"] is None else square_spp(out["spp_needed"], r.raw[0].sampler)
     return Validation(rendering, rendering.patches.mean, reference, sigma, floor, quadrature, out["tolerance"],
-                      tolerance, out["equivalence"], out["difference"], out["upper"], needed)
+                      tolerance, out["equivalence"], out["difference"], out["upper"], needed, skewness)
 
 
 def validate_gamut(

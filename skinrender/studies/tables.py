@@ -33,7 +33,8 @@ from ..model.chromaticity import ncc
 from ..model.response import response_raw, white_coefficient
 from ..rendering.balance import render
 from ..rendering.scene import load_scene
-from ..rendering.validation import analytic_reference, noise_of
+from ..rendering.patch_errors import noise_of
+from ..rendering.validation import analytic_reference
 from ..hints import NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 

@@ -62,3 +62,19 @@ class TestAgreement:
                                   alpha_difference=0.05)["difference"].outcome == "fail"
         lo, hi = binomial_interval(failures, trials, 0.999)
         assert lo <= 0.05 <= hi, failures / trials
+
+
+class TestSkewedValues:
+    def test_a_skewed_value_decides_nothing(self):
+        analytic = np.array([100.0, 50.0])
+        sigma = np.array([0.01, 0.01])
+        out = agreement(analytic * 1.0001, analytic, sigma, 0.01, 64, skewness=[0.9, 0.0], skew_max=0.5)
+        assert out["equivalence"].outcome == "inconclusive" and "too skewed" in out["equivalence"].reason
+        assert not out["trusted"][0] and out["trusted"][1]
+        far = agreement([110.0, 60.0], analytic, sigma, 0.01, 64, skewness=[0.9, 0.0], skew_max=0.5)
+        assert far["equivalence"].outcome == "fail"  # the trusted value alone is shown beyond
+        assert far["difference"].outcome == "fail" and far["difference"].details["values"] == 1
+
+    def test_no_difference_among_the_trusted_is_inconclusive(self):
+        out = agreement([100.0, 50.0], [100.0, 50.0], 0.01, 0.01, 64, skewness=[0.9, 0.1], skew_max=0.5)
+        assert out["difference"].outcome == "inconclusive"
