@@ -18,6 +18,7 @@ computation happens elsewhere and hands arrays here.
 -   :func:`figure_face`: a face render with its labels outlined (and the
     detected skin over it).
 -   :func:`figure_ladder`: the physics ladder, one row per level.
+-   :func:`figure_skin_model`: the skin model's reflectance beside measured skin.
 -   :func:`display_srgb`: how renders are shown (camera RGB as sRGB).
 
 Every function writes a PNG (Agg backend, no display needed) and returns its
@@ -38,7 +39,7 @@ import numpy as np
 from ..hints import NDArrayFloat
 
 __all__ = ["figure_pairs", "figure_gamuts", "figure_cases", "figure_render_curve", "figure_locus", "figure_ptc",
-           "figure_chart", "figure_face", "figure_ladder", "figure_calibration", "display_srgb"]
+           "figure_chart", "figure_face", "figure_ladder", "figure_calibration", "display_srgb", "figure_skin_model"]
 
 DPI = 110
 """Resolution of every figure, dots per inch."""
@@ -390,3 +391,22 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
     handles = [Patch(color=cmap(i), label=names.get(i, f"label {i}")) for i in range(cmap.N)]
     figure.suptitle(title, fontsize=11)
     return _save(figure, path, {"handles": handles, "ncol": min(len(handles), 6), "title": "labels"})
+
+
+def figure_skin_model(wavelength: NDArrayFloat, reflectance: NDArrayFloat, label: str, measured: list[tuple],
+                      path: str | Path) -> Path:
+    """
+    The skin model's reflectance ``R(λ)`` (fraction, λ in nm) beside the range (min–max band and median) of each
+    measured set in ``measured``: ``(name, wavelengths nm, values (n, n_wl))``.
+    """
+    plt = _pyplot()
+    figure, axis = plt.subplots(figsize=(6.4, 4.2))
+    for (name, lam, values), colour in zip(measured, ("tab:orange", "tab:blue", "tab:green", "tab:purple")):
+        axis.fill_between(lam, values.min(axis=0), values.max(axis=0), color=colour, alpha=0.2,
+                          label=f"{name}: range of {len(values)}")
+        axis.plot(lam, np.median(values, axis=0), ":", color=colour, lw=1, label=f"{name}: median")
+    axis.plot(wavelength, reflectance, "k-", lw=2, label=label)
+    axis.set(xlabel="wavelength (nm)", ylabel="reflectance", xlim=(wavelength[0], wavelength[-1]), ylim=(0, None),
+             title="Skin model against measured skin")
+    axis.legend(fontsize=7)
+    return _save(figure, path)
