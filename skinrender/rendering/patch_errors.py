@@ -7,7 +7,7 @@ Carlo error and the white references' through the white balance and WP
 (Eq. 8). :func:`error_law` gives each patch channel's standard error and the
 skewness of its error, from which the validation's tests
 (:mod:`skinrender.rendering.validation`) take their normal law — trusted up
-to :data:`SKEW_MAX`.
+to :data:`SKEW_MAX`, beyond which they use distribution-free bounds.
 
 -   :data:`SKEW_MAX`, :func:`error_law`, :func:`noise_of`.
 
@@ -27,9 +27,11 @@ __all__ = ["SKEW_MAX", "error_law", "noise_of"]
 
 SKEW_MAX = 0.5
 """Largest skewness of a patch channel's error (its mean's third cumulant over σ³) at which the tests' normal law
-is trusted. Measured on the Macbeth chart: at most 0.05–0.15 at 4–64 spp under 3300–4800 K, 0.3 through the
-Nikon at 2300 K and 16 spp, up to 1.0 for a gbell:3 channel at 400 nm under 1000 K at 64 spp, whose white's
-pixels have a kurtosis of ~90 (there the difference test failed 14 of 40 seeds at α = 0.01)."""
+is trusted (beyond it: distribution-free bounds). Measured on the Macbeth chart: at most 0.05–0.15 at 4–64 spp
+under 3300–4800 K, 0.3 through the Nikon at 2300 K and 16 spp; 0.6 for a near-exact white at 1024 spp (relative
+error 7e-6); up to 1.0 for a gbell:3 channel at 400 nm under 1000 K at 64 spp, whose calibration white's pixels
+have a kurtosis of ~90. There the sample's own skewness is unreliable too: the difference test still failed 10 of
+40 seeds at α = 0.01 (docs/verdicts.md, its limits)."""
 
 
 def _relative_pixels(raw: RawRender, scene: ChartScene) -> NDArrayFloat:

@@ -17,7 +17,8 @@ The standard error of a patch channel
 (:func:`~skinrender.rendering.patch_errors.error_law`) is the patch's standard
 error together with the white references' errors carried through the white
 balance and WP (Eq. 8), linearised with their channel covariances; a value
-whose error is too skewed for the normal law decides nothing. The pixels of a
+whose error is too skewed for the normal law is held to distribution-free
+(Cantelli, Chebyshev) bounds instead. The pixels of a
 patch are independent (a box filter), so the standard errors have
 ``pixels − 1`` degrees of freedom (Student t). The difference test allows a
 float32 floor (:func:`float32_floor`) beyond the noise. At p = c the whites
@@ -139,9 +140,9 @@ class Validation:
     spp_needed
         The samples per pixel at which the verdict is expected to pass (``None`` after a fail).
     skewness
-        The skewness of each patch channel's error
-        (:func:`~skinrender.rendering.patch_errors.error_law`): beyond
-        :data:`~skinrender.rendering.patch_errors.SKEW_MAX` its normal law is not trusted and the value decides nothing.
+        The skewness of each patch channel's error (:func:`~skinrender.rendering.patch_errors.error_law`): beyond
+        :data:`~skinrender.rendering.patch_errors.SKEW_MAX` its normal law is not trusted and the value is held to
+        distribution-free bounds (:func:`~skinrender.rendering.agreement.agreement`).
     """
 
     rendering: Rendering
@@ -204,10 +205,9 @@ class Validation:
         rows = []
         scale = tolerance_scale(self.analytic)
         for i, patch in enumerate(self.rendering.scene.patches):
-            trusted = np.ones(3, dtype=bool) if self.skewness is None else np.abs(self.skewness[i]) <= SKEW_MAX
-            within = (self.upper[i] <= self.tolerance[i]) & trusted
+            within = self.upper[i] <= self.tolerance[i]
             lower = np.abs(self.error[i]) - (self.upper[i] - np.abs(self.error[i]))
-            outside = (lower > self.tolerance[i]) & trusted
+            outside = lower > self.tolerance[i]
             rows.append({
                 "name": patch.name,
                 "rendered": self.rendered[i].tolist(),

@@ -65,16 +65,21 @@ class TestAgreement:
 
 
 class TestSkewedValues:
-    def test_a_skewed_value_decides_nothing(self):
+    def test_a_skewed_value_is_held_to_a_distribution_free_bound(self):
+        """Cantelli's one-sided bound at the Šidák level of 2 values at α = 0.05 is 6.2 σ (the normal's 1.95 σ)."""
         analytic = np.array([100.0, 50.0])
         sigma = np.array([0.01, 0.01])
-        out = agreement(analytic * 1.0001, analytic, sigma, 0.01, 64, skewness=[0.9, 0.0], skew_max=0.5)
-        assert out["equivalence"].outcome == "inconclusive" and "too skewed" in out["equivalence"].reason
-        assert not out["trusted"][0] and out["trusted"][1]
-        far = agreement([110.0, 60.0], analytic, sigma, 0.01, 64, skewness=[0.9, 0.0], skew_max=0.5)
-        assert far["equivalence"].outcome == "fail"  # the trusted value alone is shown beyond
-        assert far["difference"].outcome == "fail" and far["difference"].details["values"] == 1
+        plain = agreement(analytic * 1.001, analytic, sigma, 0.01, 64)
+        skewed = agreement(analytic * 1.001, analytic, sigma, 0.01, 64, skewness=[0.9, 0.0], skew_max=0.5)
+        assert plain["equivalence"].outcome == skewed["equivalence"].outcome == "pass"
+        assert skewed["upper"][0] == pytest.approx(0.1 + 0.01 * np.sqrt(1 / (1 - 0.95 ** 0.5) - 1))
+        assert skewed["upper"][1] == plain["upper"][1] and "distribution-free" in skewed["equivalence"].reason
+        near = agreement([100.7, 50.0], analytic, 0.1, 0.01, 64, skewness=[0.9, 0.0], skew_max=0.5)
+        assert near["equivalence"].outcome == "inconclusive"  # 0.7 + 6.2 × 0.1 > 1, though 0.7 + 1.95 × 0.1 is not
+        assert agreement([100.7, 50.0], analytic, 0.1, 0.01, 64)["equivalence"].outcome == "pass"
 
-    def test_no_difference_among_the_trusted_is_inconclusive(self):
-        out = agreement([100.0, 50.0], [100.0, 50.0], 0.01, 0.01, 64, skewness=[0.9, 0.1], skew_max=0.5)
-        assert out["difference"].outcome == "inconclusive"
+    def test_a_skewed_value_needs_a_chebyshev_distance_to_differ(self):
+        analytic = np.array([100.0, 50.0])
+        out = agreement([100.1, 50.0], analytic, 0.01, 0.01, 64, skewness=[0.9, 0.0], skew_max=0.5)
+        assert out["difference"].outcome == "pass"  # 10 σ: beyond the normal's 2.8 σ, within Chebyshev's 14 σ
+        assert agreement([100.1, 50.0], analytic, 0.01, 0.01, 64)["difference"].outcome == "fail"
