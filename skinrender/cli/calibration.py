@@ -11,14 +11,11 @@ Units: temperatures K, illuminance lx, times s, rates fractions.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
-import tempfile
-from pathlib import Path
 
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, check_output, emit, flag, imaging_options,
-                     integer_in, interruptible, positive_number, table)
+                     integer_in, interruptible, table)
 
 __all__ = ["VERDICT_BENCH_FLAGS", "add_bench_arguments", "command_bench_verdicts"]
 
@@ -27,7 +24,7 @@ VERDICT_BENCH_FLAGS = {"camera": ("render", "calibration", "validate"), "prevail
                        "seeds": ("calibration", "validate"), "seed": ("calibration", "validate"),
                        "imager": ("calibration", "validate"), "illuminance": ("calibration", "validate"),
                        "exposure": ("calibration", "validate"), "level": ("calibration",),
-                       "mc_variance": ("calibration", "validate"), "max_seconds": ("calibration", "validate")}
+                       "mc_variance": ("calibration", "validate")}
 """``bench`` flags of the verdict benchmarks (``dest``: the benchmarks they go with)."""
 
 SEEDS_DEFAULT = {"calibration": 40, "validate": 5}
@@ -40,7 +37,6 @@ SPP_LIST_DEFAULT = (4, 16, 64, 256)
 def add_bench_arguments(p: argparse.ArgumentParser) -> None:
     """The verdict benchmarks' flags (each ``None`` unless given, so that a flag given elsewhere is refused)."""
     from ..rendering.sensor_validation import MC_VARIANCE
-    from ..studies.calibration import SECONDS_MAX
     from .common import choices_help
 
     p.add_argument("--camera", help="render, calibration, validate: the camera (default gbell:9@450,540,610); "
@@ -60,8 +56,7 @@ def add_bench_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--mc-variance", choices=list(MC_VARIANCE),
                    help="calibration, validate with --imager: how the render's own variance enters the sensor's "
                    "predictions: " + choices_help(MC_VARIANCE))
-    p.add_argument("--max-seconds", metavar="S", help=f"calibration, validate: refuse runs estimated above this many "
-                   f"seconds (default {SECONDS_MAX:g}; the estimate is printed with the refusal)")
+    # --max-minutes (the cap on the estimated time) is bench's own (skinrender.workload)
 
 
 def _or(value, default):
@@ -75,7 +70,8 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     from ..model.illuminant import illuminant
     from ..rendering.renderer import SAMPLES_MAX, render_passes
     from ..rendering.scene import load_scene
-    from ..studies.calibration import SECONDS_MAX, calibration_path, check_seconds, estimate_seconds, renders_of
+    from ..studies.calibration import calibration_path, estimate_seconds, renders_of
+    from ..workload import check_work
     from .face import is_face_scene
 
     scene_spec = _or(args.scene, "macbeth")
@@ -101,7 +97,6 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
         spps = [integer_in(_or(args.spp, 64 if imaging else 16), "--spp", 1, SPP_MAX)]
     else:
         spps = list(SPP_LIST_DEFAULT) if spp_list is None else list(spp_list)
-    cap = positive_number(_or(args.max_seconds, SECONDS_MAX), "--max-seconds", "s")
     plot = check_output(args.plot, "--plot", (".png",))
     width, height = scene.size
     for spp in spps:
@@ -115,32 +110,13 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
                             - startup for spp in spps)
     what = (f"{seeds} seeds at {spps[0]} spp" if args.what == "calibration"
             else f"{seeds} seeds at each of {', '.join(map(str, spps))} spp")
-    check_seconds(seconds, cap, what)
+    check_work(seconds, "--seeds", what, args.max_minutes, fewer="run fewer --seeds")
     return {"run": run, "scene": scene, "camera_": cam, **lights, "spps": spps, "seeds": seeds, "first_seed": first,
             "imaging": imaging, "mc_variance": _or(args.mc_variance, "frames"), "plot": plot, "estimate_s": seconds,
             "level": args.level}
 
 
-_RUN: dict = {"cancelled": False, "temporary": []}
-"""The run in progress: whether Ctrl-C stopped it, and its temporary files (removed then)."""
-
-
-def command_bench_verdicts(args: argparse.Namespace, spp_list: list[int] | None = None) -> None:
-    """``bench calibration`` or ``bench validate`` (``spp_list``: the parsed ``--spp-list``): Ctrl-C stops it at
-    once, exit 130, leaving no file behind."""
-    try:
-        return _work(args, spp_list)
-    except KeyboardInterrupt:
-        _RUN["cancelled"] = True
-        for path in list(_RUN["temporary"]):
-            path.unlink(missing_ok=True)
-        raise
-
-
-def _work(args: argparse.Namespace, spp_list: list[int] | None) -> None:
-    interruptible(_run)(argparse.Namespace(args=args, spp_list=spp_list))
-
-
+@interruptible
 def _run(wrapped: argparse.Namespace) -> None:
     from ..studies.calibration import bench_calibration, bench_validate
 
@@ -155,8 +131,10 @@ def _run(wrapped: argparse.Namespace) -> None:
         result = bench_calibration(options["run"], spp=options["spps"][0], seeds=options["seeds"],
                                    level=options["level"], **common)
         result["estimate_s"] = options["estimate_s"]
-        if options["plot"] is not None:
-            result["plot"] = str(_plot(result, options["plot"]))
+        if options["plot"] is not None:  # written whole or not at all
+            from ..studies.figures import figure_calibration
+
+            result["plot"] = str(figure_calibration(result, options["plot"]))
         text = _calibration_text(result)
     else:
         result = bench_validate(options["run"], spps=options["spps"], seeds=options["seeds"], **common)
@@ -165,23 +143,10 @@ def _run(wrapped: argparse.Namespace) -> None:
     emit(args, result, text)
 
 
-def _plot(result: dict, path: Path) -> Path:
-    """The plot written whole or not at all: to a temporary file beside it, then renamed."""
-    from ..studies.figures import figure_calibration
-
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, name = tempfile.mkstemp(prefix=f".{path.stem}.partial-", suffix=".png", dir=path.parent)
-    os.close(handle)
-    temporary = Path(name)
-    _RUN["temporary"].append(temporary)
-    try:
-        figure_calibration(result, temporary)
-        if not _RUN["cancelled"]:
-            os.replace(temporary, path)
-    finally:
-        temporary.unlink(missing_ok=True)
-        _RUN["temporary"].remove(temporary)
-    return path
+def command_bench_verdicts(args: argparse.Namespace, spp_list: list[int] | None = None) -> None:
+    """``bench calibration`` or ``bench validate`` (``spp_list``: the parsed ``--spp-list``); Ctrl-C stops it at
+    once (exit 130) and the plot is written whole or not at all."""
+    _run(argparse.Namespace(args=args, spp_list=spp_list))
 
 
 def _settings_text(result: dict) -> str:

@@ -118,8 +118,10 @@ def _auto_spp(args, inputs, options, imaging, tolerance) -> dict:
 def command_validate_chart(args: argparse.Namespace) -> None:
     """``validate`` on a chart (the face is :mod:`skinrender.cli.face_validation`)."""
     from ..evaluation.verdict import EXIT_STATUS
+    from ..rendering.spp_choice import PILOT_SPP
     from ..rendering.validation import validate
-    from .rendering import chart_only, render_inputs
+    from .common import check_render_work
+    from .rendering import chart_only, pixels_of, render_inputs
 
     tolerance = tolerance_of(args)
     auto = spp_of(args)
@@ -132,10 +134,13 @@ def command_validate_chart(args: argparse.Namespace) -> None:
     requested = "auto" if auto else options["spp"]
     inputs = render_inputs(args)
     imaging = imaging_options(args)
+    renders = 11 if args.gamut else 1  # --gamut: ten more, one per paper illuminant
     choice = None
     if auto:
+        check_render_work(args, pixels_of(inputs["scene"]), max(PILOT_SPP), len(PILOT_SPP))
         choice = _auto_spp(args, inputs, options, imaging, tolerance)
         options["spp"] = choice["spp"]
+    check_render_work(args, pixels_of(inputs["scene"]), options["spp"], renders)
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp and validating …", file=sys.stderr)
     if imaging is not None:
         result, imaged = _imaged(args, inputs, options, imaging, tolerance)

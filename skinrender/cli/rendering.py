@@ -11,9 +11,11 @@ import sys
 import numpy as np
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, camera_of, add_grid, add_model, add_render, check_output,
-                     choices_help, emit, flag, grid_of, render_options, table)
+from ..files import Output, write_outputs
 from ..studies.labelled import chart_figure
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, camera_of, add_grid,
+                     add_model, add_render, check_output, check_render_work, choices_help, emit, flag, grid_of,
+                     render_options, table)
 from .face import check_figure
 
 
@@ -48,8 +50,9 @@ def add_parsers(commands) -> None:
         add_face_arguments(p)
         if name == "render":
             p.add_argument("-o", "--output", default="render.exr",
-                           help="output EXR (float32, Eq. 4 output units, channels named by the camera); "
-                           "a PNG preview is written beside it")
+                           help="output EXR (float32, Eq. 4 output units, channels named by the camera); a PNG "
+                           "preview is written beside it (NAME.png); default render.exr (and render.png) in the "
+                           "current folder, replaced if there")
             p.add_argument("--figure", metavar="PNG",
                            help="also write a labelled figure: a chart upscaled with each patch's name on it "
                            "(skin patches outlined), a face with its labels outlined")
@@ -68,7 +71,9 @@ def add_parsers(commands) -> None:
     p.add_argument("--physics", default="direct", help="face scenes: the level of physics, as for render "
                    "(--imager adds noise)")
     p.add_argument("--size", metavar="PX", help="face scenes: image side, pixels (default: the scene's)")
-    p.add_argument("-o", "--output", default="detect.png", help="mask PNG (a preview PNG is written beside it)")
+    p.add_argument("-o", "--output", default="detect.png",
+                   help="mask PNG (white: detected skin); a preview PNG is written beside it (NAME_preview.png); "
+                   "default detect.png (and detect_preview.png) in the current folder, replaced if there")
     p.add_argument("--figure", metavar="PNG",
                    help="also write a labelled figure: a chart with its patch names over the render and over "
                    "the detection mask with each patch's detected fraction; a face with the detected skin over it "
@@ -116,14 +121,24 @@ def render_inputs(args: argparse.Namespace) -> dict:
     from ..spectra import GRID_DEFAULT
 
     grid = grid or GRID_DEFAULT
-    response(cam, np.ones((1, grid.size)), temperatures["prevailing"], temperatures["calibration"], grid=grid)
+    for name, kelvin in temperatures.items():  # each light seen by the camera, the one at fault named
+        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, grid.size)), kelvin, kelvin,
+             grid=grid)
     try:  # every patch's data covers the grid, before the render needs it
         scene.reflectances(grid)
     except SkinrenderError as error:  # the chart's own data: --extrapolation (CSV cameras') does not apply
-        raise SkinrenderError(f"--grid: {str(error).split('; choose a grid')[0]}; choose a --grid inside the "
-                              "chart's data") from None
+        if error.cause != "coverage":
+            raise error.reworded(f"SCENE: {error.message}", flag="SCENE") from None
+        raise error.reworded(f"--grid: {error.message}", flag="--grid", cause=None,
+                             hint="choose a --grid inside the chart's data") from None
     return {"scene": scene, "camera_": cam, "prevailing": temperatures["prevailing"],
             "calibration": temperatures["calibration"]}
+
+
+def pixels_of(scene) -> int:
+    """The pixels of a chart scene's image."""
+    width, height = scene.size
+    return int(width) * int(height)
 
 
 def render_with(args: argparse.Namespace, inputs: dict, options: dict, imaging: dict | None, knee: bool = False):
@@ -175,6 +190,7 @@ def command_render(args: argparse.Namespace) -> None:
     figure = check_figure(args, output.with_suffix(".png"))
     inputs = render_inputs(args)
     imaging = imaging_options(args)
+    check_render_work(args, pixels_of(inputs["scene"]), options["spp"])
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
     result, imaged = render_with(args, inputs, options, imaging, args.knee)
     if imaged is not None and args.knee:
@@ -185,8 +201,12 @@ def command_render(args: argparse.Namespace) -> None:
         result = replace(result, image=knee(result.image).astype(np.float32), knee=True)
     spp = result.raw[0].spp
     names = channel_names(result.camera)
-    write_chart_exr(output, result, args.seed, grid_of(args))
-    preview = write_preview(output.with_suffix(".png"), result.image)
+    preview = output.with_suffix(".png")
+    outputs = [Output(output, "--output", lambda stream: write_chart_exr(stream, result, args.seed, grid_of(args))),
+               Output(preview, "--output (its PNG preview)", lambda stream: write_preview(stream, result.image))]
+    if figure is not None:
+        outputs.append(Output(figure, "--figure", lambda stream: chart_figure(result, stream)))
+    write_outputs(*outputs)  # every file whole, or none of them
     document = {"image": str(output), "preview_png": str(preview), "channels": list(names), "spp": spp,
                 "spp_requested": options["spp"],
                 "sampler": options["sampler"], "seed": args.seed, "variant": result.variant,
@@ -194,7 +214,7 @@ def command_render(args: argparse.Namespace) -> None:
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
                 "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged)}
     if figure is not None:
-        document["figure"] = str(chart_figure(result, figure))
+        document["figure"] = str(figure)
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "
             f"{result.calibration:g} K: {output} (+ {preview}), {spp} spp, {result.variant}, "
             f"{result.seconds:.2f} s" + (f"; figure {figure}" if figure is not None else "") + imaging_notes(imaged))
@@ -237,13 +257,20 @@ def command_detect(args: argparse.Namespace) -> None:
     inputs = render_inputs(args)
     imaging = imaging_options(args)
     skin = flag("--locus-skin" if args.skin is None else "--skin", reflectances, locus_skin)
+    check_render_work(args, pixels_of(inputs["scene"]), options["spp"])
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
     rendering, imaged = render_with(args, inputs, options, imaging)
     # the camera is white-balanced to the calibration light: the locus of that one balancing
     locus = skin_locus(rendering.camera, skin, calibration=rendering.calibration, boundary=args.boundary)
     result = detect(rendering, locus, scored_min=SCORED_MIN_OUTPUT)  # scored as on a face: too dark has no colour
-    write_png(output, result.mask.astype(float))
-    preview = write_preview(output.with_name(output.stem + "_preview.png"), rendering.image)
+    preview = output.with_name(output.stem + "_preview.png")
+    rate = lambda value, key: "undefined (" + result.undefined[key] + ")" if value is None else f"{value:.3f}"  # noqa: E731
+    outputs = [Output(output, "--output", lambda stream: write_png(stream, result.mask.astype(float))),
+               Output(preview, "--output (its preview)", lambda stream: write_preview(stream, rendering.image))]
+    if figure is not None:
+        outputs.append(Output(figure, "--figure", lambda stream: chart_figure(
+            rendering, stream, result, f"TPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}")))
+    write_outputs(*outputs)  # every file whole, or none of them
     document = {"scene": rendering.scene.name, "camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
                 "calibration_K": rendering.calibration, "tpr": result.tpr, "fpr": result.fpr,
                 "undefined": result.undefined, "locus_degenerate": locus.degenerate,
@@ -254,10 +281,8 @@ def command_detect(args: argparse.Namespace) -> None:
     rows = [[p["name"][:30], "skin" if p["is_skin"] else "",
              "undefined" if p["detected_fraction"] is None else f"{p['detected_fraction']:.2f}"]
             for p in result.per_patch]
-    rate = lambda value, key: "undefined (" + result.undefined[key] + ")" if value is None else f"{value:.3f}"  # noqa: E731
     if figure is not None:
-        document["figure"] = str(chart_figure(rendering, figure, result,
-                                              f"TPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}"))
+        document["figure"] = str(figure)
     text = (table(rows, ["patch", "", "detected"])
             + f"\nTPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}; mask {output}"
             + (f"; figure {figure}" if figure is not None else "") + imaging_notes(imaged))

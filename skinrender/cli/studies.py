@@ -7,8 +7,11 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..constants import SENSOR_RULE
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, add_common, add_grid, add_search, check_output, flag, integer_in,
+from ..workload import check_work
+from ..files import write_output
+from .common import (HELP_CAMERA, add_common, add_max_minutes, add_grid, add_search, check_output, flag, integer_in,
                      emit, positive_number, table)
 
 
@@ -40,7 +43,8 @@ def add_parsers(commands) -> None:
                             "their matches with the paper; --sweep: the tables under each choice of the paper's unknowns")
     p.add_argument("-o", "--output", required=True,
                    help="output folder: new, empty or an earlier reproduce folder (replaced only when the run completes)")
-    p.add_argument("--sensors", default="1,3,5,7,9,11,13,15", help="sensor numbers (default 1,3,…,15)")
+    p.add_argument("--sensors", default="1,3,5,7,9,11,13,15",
+                   help="comma-separated sensor numbers, each " + SENSOR_RULE + " (default 1,3,…,15)")
     p.add_argument("--positions", help=f"peak positions START:END:STEP in nm (default {POSITIONS_DEFAULT})")
     p.add_argument("--camera", default="Nikon 5100 (NPL)",
                    help="Stage 2 camera for Figs. 3–7 (the paper's Sony is not public); " + HELP_CAMERA)
@@ -59,6 +63,7 @@ def add_parsers(commands) -> None:
                    "quick look)")
     p.add_argument("--sweep-combine", type=int, default=None,
                    help="how many unknowns the sweep combines, the most telling first (default 3)")
+    add_max_minutes(p, "the sensors × the triplets of --positions (--sweep: of each setting)")
     p.add_argument("--sweep-values", type=int, default=None,
                    help="how many best values of each combined unknown are combined, beside the default (default 1)")
     add_search(p)
@@ -100,6 +105,8 @@ def add_parsers(commands) -> None:
                    "validate: the spp of the rows (default 4,16,64,256)")
     p.add_argument("--reference-spp", metavar="N",
                    help="render --scene: spp of each level's reference render (default 4 × the largest of --spp-list)")
+    add_max_minutes(p, "analytic: --repeat; search: --sample; sweep: the triplets of --positions; calibration: "
+                    "--seeds × --spp; validate: --seeds × --spp-list")
     from .calibration import add_bench_arguments
 
     add_bench_arguments(p)
@@ -138,7 +145,8 @@ def command_reproduce(args: argparse.Namespace) -> None:
         result = reproduce_sweep(args.output, args.sensors, positions, base, positions_flag=named,
                                  combine=_or_default(args, "sweep_combine", SWEEP_FLAGS),
                                  values_per_unknown=_or_default(args, "sweep_values", SWEEP_FLAGS),
-                                 workers=args.workers, dask=args.dask, progress=progress)
+                                 workers=args.workers, dask=args.dask, progress=progress,
+                                 max_minutes=args.max_minutes)
         rows = [[r["setting"], r["unknown"], f"{r['exact']}/{r['total']}", str(r["within_step"]), f"{r['seconds']:.1f}"]
                 for r in result["sweep"]]
         text = (table(rows, ["setting", "changed", "exact", "within 10 nm", "s"])
@@ -153,6 +161,7 @@ def command_reproduce(args: argparse.Namespace) -> None:
         args.skin, args.munsell, args.slope, args.grid,
         workers=args.workers, dask=args.dask, progress=progress, illuminants=args.illuminants,
         stage1_camera=args.stage1_camera, extrapolation=args.extrapolation, figures=not args.no_figures,
+        max_minutes=args.max_minutes,
     )
     emit(args, result, summary_text(result))
 
@@ -171,7 +180,8 @@ def command_table1(args: argparse.Namespace) -> None:
     if tolerance >= 1:
         raise SkinrenderError(f"--tolerance must be an NCC difference in (0, 1), got {args.tolerance!r}")
     flag("--camera", camera, args.camera)
-    result = flag("--camera", table1, args.camera, spp=args.spp, seed=args.seed, tolerance=tolerance)
+    result = flag({"spp": "--spp", None: "--camera"}, table1, args.camera, spp=args.spp, seed=args.seed,
+                  tolerance=tolerance)
     rows = [[r["model"], r["case"], f"{r['mean']:.5f}", f"{r['std']:.5f}"] for r in result["rows"]]
     verdict = result["verdict"]
     result["exit_status"] = EXIT_STATUS[verdict["verdict"]]
@@ -194,7 +204,8 @@ FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
 
 BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
                "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render", "calibration"),
-               "scene": ("render", "calibration", "validate")}
+               "scene": ("render", "calibration", "validate"),
+               "max_minutes": ("analytic", "search", "sweep", "calibration", "validate")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
 :data:`FACE_BENCH_FLAGS`, the verdict benchmarks' :data:`skinrender.cli.calibration.VERDICT_BENCH_FLAGS`."""
 
@@ -284,6 +295,15 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     return {"scene": scene, "size": size, "spps": spps, "reference_spp": reference, "levels": levels}
 
 
+BENCH_ANALYTIC_SECONDS = 4.0
+"""One ``bench analytic`` repetition (both routes), s: --repeat 1 vs 4 took 8.3 and 20.2 s (2-core AMD EPYC VM
+shared with other jobs)."""
+
+BENCH_SEARCH_SECONDS_PER_SAMPLE = 0.33
+"""What each ``bench search --sample`` triplet adds, s: --quick --sample 20 vs 200 took 12 and 72 s (same
+machine, --workers 1)."""
+
+
 def _bench_camera(args: argparse.Namespace) -> str:
     """``bench render --camera`` checked (its curves on the default grid), or the default gbell:9@450,540,610."""
     if args.camera is None:
@@ -345,24 +365,36 @@ def command_bench(args: argparse.Namespace) -> None:
 
         check_workers(args.workers)
     if args.what == "sweep":
-        from ..design.bank import positions_grid
+        from ..design.bank import SENSORS_PAPER, positions_grid
+        from ..studies.unknowns import check_search_work
 
-        flag("--positions", positions_grid, _or_default(args, "positions"))
+        where = flag("--positions", positions_grid, _or_default(args, "positions"))
+        check_search_work(len(SENSORS_PAPER), where, "--positions", args.max_minutes, args.workers,
+                          "each setting's ")
     if args.what == "render":
         from ..studies.bench import bench_render
 
-        check_output(args.plot, "--plot", (".png",))  # before the ~30 s of timing
+        plot = check_output(args.plot, "--plot", (".png",))  # before the ~30 s of timing
         result = bench_render(camera_spec=_bench_camera(args), quick=args.quick)
         if args.plot:
             from ..studies.figures import figure_render_curve
 
-            result["plot"] = str(figure_render_curve(result, args.plot))
+            write_output(plot, lambda stream: figure_render_curve(result, stream), "--plot")
+            result["plot"] = str(plot)
     elif args.what == "search":
         quick = {"full_steps": (20.0,), "sweep_positions": None} if args.quick else {}
+        sample = _or_default(args, "sample")
+        if isinstance(sample, int) and sample >= 1:
+            check_work(sample * BENCH_SEARCH_SECONDS_PER_SAMPLE, "--sample", f"{sample} sampled triplets per method",
+                       args.max_minutes, fewer="ask for a smaller --sample")
         result = bench_search(_or_default(args, "sensor"), _or_default(args, "sample"), workers=args.workers, **quick)
     elif args.what == "sweep":
         result = bench_sweep(_or_default(args, "positions"), workers=args.workers)
     else:
-        result = bench_analytic(repeat=_or_default(args, "repeat"))
+        repeat = _or_default(args, "repeat")
+        if isinstance(repeat, int) and repeat >= 1:  # a bad count is refused by the benchmark, naming the flag
+            check_work(repeat * BENCH_ANALYTIC_SECONDS, "--repeat", f"{repeat} repetitions", args.max_minutes,
+                       fewer="ask for fewer --repeat")
+        result = bench_analytic(repeat=repeat)
     text = "\n".join(f"{key}: {value}" for key, value in result.items())
     emit(args, result, text)

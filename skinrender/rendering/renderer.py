@@ -293,12 +293,12 @@ class ChartRenderer:
         self.camera = camera(camera_)
         validate_method(sampler, SAMPLERS, "sampler")
         if not (isinstance(spp, (int, np.integer)) and not isinstance(spp, bool) and spp >= 1):
-            raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
+            raise SkinrenderError(f"spp must be a positive integer, got {spp!r}", role="spp")
         width, height = self.scene.size
         if spp * width * height > SAMPLES_MAX:
             raise SkinrenderError(f"spp {spp} × {width * height} pixels = {spp * width * height:.3g} samples per pass, "
                                   f"more than {SAMPLES_MAX:.3g} (Mitsuba's 32-bit wavefront); at most "
-                                  f"{SAMPLES_MAX // (width * height)} spp for this chart")
+                                  f"{SAMPLES_MAX // (width * height)} spp for this chart", role="spp")
         validate_method(emitter, EMITTERS, "emitter")
         self.sampler, self.grid, self.emitter = sampler, grid, emitter
         self.variant = choose_variant(variant)

@@ -9,8 +9,8 @@ the samples per pixel grow (``skinrender bench validate``).
 -   :data:`CALIBRATION_PATHS`, :func:`calibration_path`: the validate paths a
     calibration runs, by kind of scene (``chart``; ``face`` is left for the
     face's own validation to register).
--   :func:`estimate_seconds`, :func:`check_seconds`: the time a run of
-    validations takes, and its refusal above a cap.
+-   :func:`estimate_seconds`: the time a run of validations takes (the
+    command line refuses one above ``--max-minutes``, :mod:`skinrender.workload`).
 -   :func:`bench_calibration`: per check, the observed false-alarm rate with
     its Clopper–Pearson 95 % interval against the nominal α.
 -   :func:`bench_validate`: per spp, the seconds, the bound (the smallest
@@ -40,12 +40,8 @@ from ..errors import SkinrenderError
 from ..evaluation.verdict import ALPHA_DIFFERENCE, ALPHA_EQUIVALENCE, binomial_interval
 from .bench import machine
 
-__all__ = ["CALIBRATION_PATHS", "SECONDS_MAX", "CHART_SAMPLES_PER_S", "CHART_SECONDS_PER_RENDER",
-           "calibration_path", "estimate_seconds", "check_seconds", "renders_of", "bench_calibration",
-           "bench_validate"]
-
-SECONDS_MAX = 3600.0
-"""Most seconds a calibration or validate bench may be estimated to take unless the cap is raised."""
+__all__ = ["CALIBRATION_PATHS", "CHART_SAMPLES_PER_S", "CHART_SECONDS_PER_RENDER", "calibration_path",
+           "estimate_seconds", "renders_of", "bench_calibration", "bench_validate"]
 
 CHART_SAMPLES_PER_S = 2.8e6
 """Samples per second of a chart render (fitted with :data:`CHART_SECONDS_PER_RENDER` to the Macbeth chart through
@@ -117,14 +113,6 @@ def estimate_seconds(runs: int, pixels: int, spp: int, renders: int = 2, passes:
     per_render = CHART_SECONDS_PER_RENDER + pixels * spp * passes / CHART_SAMPLES_PER_S
     per_run = renders * per_render + (SENSOR_SECONDS if sensor else 0.0)
     return STARTUP_SECONDS + runs * per_run
-
-
-def check_seconds(seconds: float, max_seconds: float, what: str, flag_count: str = "--seeds") -> None:
-    """Refuse (one line naming ``flag_count`` and ``--max-seconds``, with the estimate) a run above the cap."""
-    if seconds > max_seconds:
-        about = f"about {seconds / 3600:.3g} h" if seconds >= 3600 else f"about {seconds / 60:.2g} min"
-        raise SkinrenderError(f"{flag_count}: {what} would take {about} on this machine (estimated), more than "
-                              f"--max-seconds {max_seconds:g}; raise the limit (--max-seconds) or run fewer")
 
 
 def _rates(runs: list[dict], nominal: dict) -> list[dict]:

@@ -36,6 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..files import write_output
 from ..hints import NDArrayFloat
 
 __all__ = ["figure_pairs", "figure_gamuts", "figure_cases", "figure_render_curve", "figure_locus", "figure_ptc",
@@ -55,22 +56,27 @@ def _pyplot():
     return plt
 
 
-def _save(figure, path: str | Path, legend: dict | None = None, layout: bool = True) -> Path:
+def _save(figure, path, legend: dict | None = None, layout: bool = True):
     """
     Lay out (``layout``: tight layout; ``False`` where the caller placed the
     panels), write and close a figure; ``legend``: a figure legend's
-    keywords, put below the panels.
+    keywords, put below the panels. ``path``: a PNG written whole or not at
+    all (:func:`skinrender.files.write_output`), or a binary stream (PNG).
     """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if layout:
-        figure.tight_layout()
-    if legend is not None:
-        figure.legend(**{"loc": "upper center", "bbox_to_anchor": (0.5, 0.0), "fontsize": 8, "frameon": False,
-                         **legend})
-    figure.savefig(path, dpi=DPI, **({} if legend is None else {"bbox_inches": "tight"}))
-    _pyplot().close(figure)
-    return path
+    try:
+        if layout:
+            figure.tight_layout()
+        if legend is not None:
+            figure.legend(**{"loc": "upper center", "bbox_to_anchor": (0.5, 0.0), "fontsize": 8, "frameon": False,
+                             **legend})
+        options = {"dpi": DPI, **({} if legend is None else {"bbox_inches": "tight"})}
+        if hasattr(path, "write"):
+            figure.savefig(path, format="png", **options)
+            return path
+        form = Path(path).suffix.lstrip(".").lower() or "png"
+        return write_output(path, lambda stream: figure.savefig(stream, format=form, **options))
+    finally:
+        _pyplot().close(figure)
 
 
 def figure_pairs(volumes: NDArrayFloat, temperatures: NDArrayFloat, title: str, path: str | Path) -> Path:

@@ -22,12 +22,14 @@ References
 from __future__ import annotations
 
 import csv
+import io
 from pathlib import Path
 
 import numpy as np
 
 from ..design.search import TOLERANCE_TIE, SearchResult
 from ..errors import SkinrenderError
+from ..files import write_output
 from ..model.camera import Camera, camera
 from ..model.chromaticity import ncc
 from ..model.response import response_raw, white_coefficient
@@ -111,17 +113,16 @@ def write_tables(rows: dict[float, dict], directory: Path) -> list[Path]:
     for title, key in TABLES:
         markdown += [f"## {title}", "", "| sensor | skinrender | paper |", "|---|---|---|"]
         path = directory / f"{key}.csv"
-        with open(path, "w", encoding="utf-8", newline="") as handle:
-            writer = csv.writer(handle, lineterminator="\n")
-            writer.writerow(["sensor", "skinrender", "paper"])
-            for sensor, entries in rows.items():
-                paper = PAPER_TABLES[key].get(int(sensor), "")
-                writer.writerow([f"{sensor:g}", entries[key], paper])
-                markdown.append(f"| {sensor:g} | {entries[key]} | {paper} |")
+        handle = io.StringIO(newline="")
+        writer = csv.writer(handle, lineterminator="\n")
+        writer.writerow(["sensor", "skinrender", "paper"])
+        for sensor, entries in rows.items():
+            paper = PAPER_TABLES[key].get(int(sensor), "")
+            writer.writerow([f"{sensor:g}", entries[key], paper])
+            markdown.append(f"| {sensor:g} | {entries[key]} | {paper} |")
         markdown.append("")
-        paths.append(path)
-    md = directory / "tables.md"
-    md.write_text("\n".join(markdown), encoding="utf-8")
+        paths.append(write_output(path, handle.getvalue()))
+    md = write_output(directory / "tables.md", "\n".join(markdown))
     return [md, *paths]
 
 

@@ -52,8 +52,8 @@ def test_validate_rows_in_text(small_chart, capsys):
 
 
 @pytest.mark.parametrize("argv, names", [
-    (["calibration", "--seeds", "100000"], ("--seeds", "estimated", "--max-seconds")),
-    (["calibration", "--seeds", "50", "--max-seconds", "1"], ("--seeds", "--max-seconds")),
+    (["calibration", "--seeds", "100000"], ("--seeds", "estimated", "--max-minutes")),
+    (["calibration", "--seeds", "50", "--max-minutes", "0.01"], ("--seeds", "--max-minutes")),
     (["calibration", "--seeds", "0"], "--seeds"),
     (["calibration", "--spp", "0"], "--spp"),
     (["calibration", "--level", "direct"], ("--level", "face")),
@@ -86,7 +86,7 @@ def test_render_bench_checks_its_camera_first(capsys):
 def test_ctrl_c_exits_130_and_leaves_nothing(tmp_path):
     plot = tmp_path / "rates.png"
     argv = [sys.executable, "-c", "import sys; from skinrender.cli import main; sys.exit(main())", "bench",
-            "calibration", "--seeds", "5000", "--spp", "64", "--max-seconds", "100000", "--plot", str(plot), "--json"]
+            "calibration", "--seeds", "5000", "--spp", "64", "--max-minutes", "10000", "--plot", str(plot), "--json"]
     child = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                              preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     deadline = time.monotonic() + 120

@@ -181,3 +181,41 @@ def test_table1_exit_status_says_its_verdict(capsys):
     document = json.loads(out)
     assert document["verdict"]["verdict"] in ("inconclusive", "fail") and status == document["exit_status"] != 0
     assert document["difference_eq1"]["verdict"] == "fail"  # Eq. 1 with WP differs, as the paper's Table 1 shows
+
+
+@pytest.mark.parametrize("argv, names", [
+    (["bench", "analytic", "--repeat", "1000000"], ("--repeat", "days", "--max-minutes")),
+    (["bench", "search", "--sample", "100000"], ("--sample", "--max-minutes")),
+    (["bench", "render", "--max-minutes", "5"], ("--max-minutes", "bench analytic")),
+    (["table1", "--spp", "1048576"], ("--spp", "at most 267232 spp")),
+])
+def test_work_and_its_flag_are_named(argv, names, capsys):
+    """Seen: ``bench analytic --repeat 1000000`` ran on without an estimate; ``table1 --spp 1048576`` was blamed on
+    --camera."""
+    assert_refused(argv, names, capsys)
+
+
+def test_reproduce_on_a_full_disk_leaves_no_folder_and_names_o(tmp_path, capsys, monkeypatch):
+    """A file of the reproduce folder cannot be written: the folder (made in a temporary beside it) is removed,
+    and the one line names -o and the reason, exit 1 (the machine's error)."""
+    from .refusal import full_disk
+
+    full_disk(monkeypatch, after=2)
+    target = tmp_path / "out"
+    status, out, err = run(["reproduce", "-o", target, "--sensors", "9", "--positions", "400:700:50", "--no-figures",
+                            "--quiet", "--json"], capsys)
+    assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
+    assert err.strip().splitlines()[-1] == (f"skinrender reproduce: error: -o {target}: cannot be written (no space "
+                                            "left on the device (the disk is full)); nothing was left there")
+
+
+@pytest.mark.parametrize("argv, name", [
+    (["reproduce", "-o", "{out}", "--positions", "400:700:1"], "--positions"),
+    (["reproduce", "-o", "{out}", "--sweep", "--sweep-positions", "400:700:1"], "--sweep-positions"),
+    (["bench", "sweep", "--positions", "400:700:1"], "--positions"),
+])
+def test_searches_of_the_studies_are_capped_by_their_estimated_time(argv, name, tmp_path, capsys):
+    """1 nm positions ran the paper's eight searches (4.5 million triplets each) for hours, unannounced."""
+    line = assert_refused([a.format(out=tmp_path / "out") for a in argv], (name, "--max-minutes"), capsys,
+                          output=tmp_path)
+    assert "4499950 triplets" in line and "would take about" in line
