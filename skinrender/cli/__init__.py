@@ -11,7 +11,7 @@ never a traceback.
 One module per command group: :mod:`~skinrender.cli.data`,
 :mod:`~skinrender.cli.model`, :mod:`~skinrender.cli.evaluation`,
 :mod:`~skinrender.cli.design`, :mod:`~skinrender.cli.rendering`,
-:mod:`~skinrender.cli.studies`, :mod:`~skinrender.cli.face`,
+:mod:`~skinrender.cli.chart_validation`, :mod:`~skinrender.cli.studies`, :mod:`~skinrender.cli.face`,
 :mod:`~skinrender.cli.face_sweep`, :mod:`~skinrender.cli.skin`; :mod:`~skinrender.cli.common` holds what
 they share.
 """
@@ -26,7 +26,7 @@ from collections.abc import Sequence
 
 from .. import files
 from ..errors import SkinrenderError
-from . import data, design, evaluation, face, face_sweep, imaging, model, rendering, skin, studies
+from . import chart_validation, data, design, evaluation, face, face_sweep, imaging, model, rendering, skin, studies
 from .common import Parser, coverage_hint
 
 __all__ = ["main", "build_parser", "COMMANDS"]
@@ -40,7 +40,7 @@ COMMANDS = {
     "search": design.command_search,
     "reproduce": studies.command_reproduce,
     "render": rendering.command_render,
-    "validate": rendering.command_validate,
+    "validate": chart_validation.command_validate,
     "table1": studies.command_table1,
     "locus": evaluation.command_locus,
     "design": design.command_design,
@@ -64,7 +64,8 @@ def build_parser() -> argparse.ArgumentParser:
         "(wavelengths in nm, temperatures in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹).",
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser)
-    for group in (data, model, design, studies, rendering, evaluation, imaging, face, face_sweep, skin):
+    for group in (data, model, design, studies, rendering, chart_validation, evaluation, imaging, face, face_sweep,
+                  skin):
         group.add_parsers(commands)
     return parser
 

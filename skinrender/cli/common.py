@@ -88,14 +88,18 @@ def add_search(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
 
 
-def add_render(parser: argparse.ArgumentParser) -> None:
-    """The Mitsuba options: quality, spp, sampler, seed, variant, channels."""
+def add_render(parser: argparse.ArgumentParser, spp_auto: bool = False) -> None:
+    """The Mitsuba options: quality, spp (``spp_auto``: also ``auto``), sampler, seed, variant, channels."""
     from ..rendering.renderer import CHANNEL_GROUPINGS, QUALITY_PRESETS, SAMPLERS
 
     parser.add_argument("--quality", choices=list(QUALITY_PRESETS), default="standard",
                         help="preset: " + ", ".join(f"{k} ({v['spp']} spp)" for k, v in QUALITY_PRESETS.items())
                         + "; multijitter sampler; default standard")
-    parser.add_argument("--spp", type=int, help="samples per pixel (overrides --quality)")
+    if spp_auto:
+        parser.add_argument("--spp", help="samples per pixel (overrides --quality), or auto with --tolerance: the "
+                            "smallest spp expected to pass, from two cheap pilot renders")
+    else:
+        parser.add_argument("--spp", type=int, help="samples per pixel (overrides --quality)")
     parser.add_argument("--sampler", choices=list(SAMPLERS), help="Mitsuba sampler: " + choices_help(SAMPLERS))
     parser.add_argument("--seed", type=int, default=0, help="sampler seed; the same seed gives the same image (default 0)")
     parser.add_argument("--variant", help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral); "
@@ -183,6 +187,10 @@ def render_options(args: argparse.Namespace) -> dict:
 
     preset = QUALITY_PRESETS[args.quality]
     spp = args.spp if args.spp is not None else preset["spp"]
+    if isinstance(spp, str):  # a command whose --spp also takes auto (validate), which it resolves itself
+        if spp.strip().lower() == "auto":
+            raise SkinrenderError("--spp auto goes with a chart's 'validate --tolerance T'")
+        spp = integer_in(spp, "--spp", 1, SPP_MAX)
     if not 1 <= spp <= SPP_MAX:
         raise SkinrenderError(f"--spp must be an integer in [1, {SPP_MAX}], got {spp}")
     return {"spp": spp, "sampler": args.sampler or preset["sampler"], "seed": check_seed(args.seed),

@@ -1,5 +1,6 @@
 """
-Rendering commands: ``render``, ``validate``, ``detect``.
+Rendering commands: ``render``, ``validate``, ``detect`` (``validate``'s command and verdict flags are
+:mod:`skinrender.cli.chart_validation`).
 """
 
 from __future__ import annotations
@@ -24,21 +25,23 @@ def add_parsers(commands) -> None:
 
     for name, text in (("render", "spectral render of a chart or face scene with Mitsuba 3 (float32 EXR + PNG "
                                   "preview)"),
-                       ("validate", "render a chart and check every patch against Eq. 4 within its noise; a face: "
-                                    "the analytic limits that hold at its level of physics")):
+                       ("validate", "render a chart and check every patch against Eq. 4: pass, fail or "
+                                    "inconclusive within --tolerance; a face: the analytic limits that hold at its "
+                                    "level of physics")):
         p = commands.add_parser(name, help=text)
         p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path "
                        "(see scenes/)")
         p.add_argument("--camera", required=True, help=HELP_CAMERA)
         p.add_argument("--prevailing", required=True, help="prevailing (emitter) illuminant: " + HELP_PLANCKIAN)
         p.add_argument("--calibration", required=True, help="calibration (white balance) illuminant: " + HELP_PLANCKIAN)
-        add_render(p)
+        add_render(p, spp_auto=name == "validate")
         add_model(p)
         add_grid(p)
-        if name == "validate":
+        if name == "validate":  # its verdict's flags (--tolerance): skinrender.cli.chart_validation
             p.add_argument("--gamut", action="store_true",
                            help="also render the chart under every paper illuminant and compare its gamut volumes "
-                           "(one calibration case each, and all calibrations) with the analytic ones")
+                           "(one calibration case each, and all calibrations) with the analytic ones, within "
+                           "--tolerance (relative to each volume)")
             p.add_argument("--limits", metavar="LIST",
                            help="face scenes: the scene-free limits run beside the level's own: furnace, sphere "
                            "(comma-separated) or none (default: both)")
@@ -218,60 +221,6 @@ def command_render(args: argparse.Namespace) -> None:
     emit(args, document, text)
 
 
-@interruptible
-def command_validate(args: argparse.Namespace) -> None:
-    from ..rendering.validation import SIGMAS, validate
-    from .face import is_face_scene
-
-    if is_face_scene(args.scene):  # the face: the analytic limits that hold at its level of physics
-        from .face_validation import command_validate_face
-
-        return command_validate_face(args)
-    chart_only(args)
-    if args.limits is not None:
-        raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart")
-    options = render_options(args)
-    inputs = render_inputs(args)
-    imaging = imaging_options(args)
-    check_render_work(args, pixels_of(inputs["scene"]), options["spp"], 11 if args.gamut else 1)  # --gamut: 10 more
-    print(f"rendering {inputs['scene'].name} at {options['spp']} spp and validating …", file=sys.stderr)
-    if imaging is not None:
-        return validate_through_imager(args, inputs, options, imaging)
-    result = validate(**inputs, normalization=args.normalization, knee=args.knee, grid=grid_of(args), **options)
-    r = result.rendering
-    document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
-                "calibration_K": r.calibration, "normalization": args.normalization, "knee": args.knee,
-                "spp": r.raw[0].spp, "spp_requested": options["spp"], "sampler": options["sampler"], "seed": args.seed, "variant": r.variant,
-                "elapsed_s": r.seconds, "sigmas": SIGMAS, "patches": result.patches(), "worst": result.worst(),
-                "max_rel_error": float(result.rel_error.max()), "quadrature_rel_difference": result.quadrature,
-                "passed": result.passed}
-    lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
-             f"{options['spp']} spp {options['sampler']}, {r.variant}, {r.seconds:.2f} s"]
-    rows = [[p["name"][:28], *(f"{v:.3f}" for v in p["rendered"]), *(f"{v:.1e}" for v in p["rel_error"]),
-             "ok" if p["passed"] else "FAIL"] for p in document["patches"]]
-    lines.append(table(rows, ["patch", "R", "G", "B", "relerr R", "relerr G", "relerr B", ""]))
-    lines += [f"worst {w['channel']}: {w['patch']} ({w['z']:+.2f} σ, {w['rel_error']:.1e} relative)" for w in result.worst()]
-    lines.append(f"paper Σ vs rendered integral (quadrature): {result.quadrature:.1e} relative; "
-                 f"{'PASSED' if result.passed else 'FAILED'} (tolerance {SIGMAS:g} σ of the measured noise)")
-    passed = result.passed
-    if args.gamut:
-        from ..rendering.validation import validate_gamut
-
-        gamuts = validate_gamut(args.scene, args.camera, spp=options["spp"], seed=args.seed,
-                                sampler=options["sampler"], variant=args.variant, grid=grid_of(args))
-        document["gamut"] = gamuts
-        passed = passed and gamuts["passed"]
-        lines.append(f"gamut volumes (output units³), rendered vs analytic, {len(gamuts['illuminants_K'])} illuminants:")
-        labels = [f"calibration {t:g} K" for t in gamuts["illuminants_K"]] + ["all calibrations"]
-        for label, r, a, sg in zip(labels, gamuts["rendered"], gamuts["analytic"], gamuts["sigma"]):
-            lines.append(f"  {label:20s} {r:.6g} vs {a:.6g} (σ {sg:.2g})")
-        lines.append("gamuts " + ("agree within 5 σ" if gamuts["passed"] else "DISAGREE"))
-    document["passed"] = passed
-    emit(args, document, "\n".join(lines))
-    if not passed:
-        raise SystemExit(1)
-
-
 def locus_skin_of(args: argparse.Namespace, chart: bool) -> str:
     """
     The skin set ``detect`` trains the locus on: ``--locus-skin`` (default ``skin``); on a chart ``--skin`` is
@@ -338,33 +287,3 @@ def command_detect(args: argparse.Namespace) -> None:
             + f"\nTPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}; mask {output}"
             + (f"; figure {figure}" if figure is not None else "") + imaging_notes(imaged))
     emit(args, document, text)
-
-
-def validate_through_imager(args: argparse.Namespace, inputs: dict, options: dict, imaging: dict) -> None:
-    """``validate --imager``: every patch's pixel mean (z-test) and variance (χ² test) against the sensor model."""
-    from ..rendering.imaging import validate_imaged
-    from ..rendering.validation import analytic_reference
-
-    rendering, imaged = render_with(args, inputs, options, imaging)
-    grid = grid_of(args)
-    ratio = analytic_reference(rendering.camera, rendering.scene.reflectances(grid), rendering.prevailing,
-                               rendering.prevailing, grid=grid) / 255.0
-    result = validate_imaged(imaged, ratio, grid=grid)
-    patches = result.patches()
-    document = {"scene": rendering.scene.name, "camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
-                "calibration_K": rendering.calibration, "normalization": args.normalization,
-                "spp": rendering.raw[0].spp, "spp_requested": options["spp"], "seed": args.seed,
-                "variant": rendering.variant, "elapsed_s": rendering.seconds, **imaging_document(imaged),
-                "test": "per patch and channel: the mean and the variance, exact on the code lattice where the "
-                        "noise spans a few codes, else z-test and chi-square; Sidak-corrected",
-                "alpha_per_test": result.level, "patches": patches, "passed": result.passed}
-    rows = [[p["name"][:28], *(f"{v:.2f}" for v in p["rendered_std"]), *(f"{v:.2f}" for v in p["predicted_std"]),
-             "ok" if p["passed"] else "FAIL"] for p in patches]
-    text = (f"{rendering.scene.name} through {rendering.camera.name} and {imaged.imager.name}, "
-            f"{imaged.illuminance_lux:g} lx, {imaged.exposure_s * 1e3:.3g} ms; std (output units):\n"
-            + table(rows, ["patch", "rendered R", "G", "B", "predicted R", "G", "B", ""])
-            + f"\n{'PASSED' if result.passed else 'FAILED'} (each test at {result.level:.2g}, family-wise 0.01)"
-            + imaging_notes(imaged))
-    emit(args, document, text)
-    if not result.passed:
-        raise SystemExit(1)

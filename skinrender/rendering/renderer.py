@@ -71,6 +71,7 @@ __all__ = [
     "QUALITY_PRESETS",
     "EMITTERS",
     "channel_names",
+    "render_passes",
     "scene_dict",
     "RawRender",
     "render_raw",
@@ -263,6 +264,16 @@ def _separate(cam: Camera, grid: WavelengthGrid, channels: str) -> bool:
         return True
     areas = cam.sensitivities(grid).sum(axis=1)
     return bool(areas.max() > CHANNEL_AREA_RATIO_SEPARATE * areas.min())
+
+
+def render_passes(cam: Camera, grid: WavelengthGrid = GRID_DEFAULT, channels: str = "auto") -> int:
+    """
+    Passes a chart render of ``cam`` takes: 3 where its channels are rendered separately, else 1.
+
+    >>> render_passes(camera("gbell:9@450,540,610")), render_passes(camera("impulse@450,550,650"))
+    (1, 3)
+    """
+    return 3 if _separate(camera(cam), grid, channels) else 1
 
 
 class ChartRenderer:

@@ -120,10 +120,12 @@ def test_a_black_patch_renders_and_validates(tmp_path, capsys):
     scene = tmp_path / "black.toml"
     scene.write_text("columns = 2\n[[patch]]\nname = 'black'\nreflectance = 'grey:0'\n"
                      "[[patch]]\nreflectance = 'grey:0.5'\n")
-    status, out, err = run(["validate", scene, "--camera", CAM, *LIGHTS, "--spp", "4", "--json"], capsys)
+    status, out, err = run(["validate", scene, "--camera", CAM, *LIGHTS, "--spp", "4", "--tolerance", "0.2",
+                            "--json"], capsys)
     document = json.loads(out)
     assert status == 0, err
     assert document["patches"][0]["rendered"] == [0.0, 0.0, 0.0] and document["passed"]
+    assert document["patches"][0]["shown"] == ["within"] * 3 and document["verdict"] == "pass"
 
 
 def test_detect_on_a_chart_without_non_skin_says_the_rate_is_undefined(tmp_path, capsys):
@@ -138,11 +140,13 @@ def test_detect_on_a_chart_without_non_skin_says_the_rate_is_undefined(tmp_path,
 def test_validate_through_an_imager_reports_the_noise(capsys):
     """``validate --imager``: per patch rendered and predicted standard deviations, the sensor's settings."""
     status, out, err = run(["validate", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "64", "--imager", "sony-imx174",
-                            "--illuminance", "300", "--json"], capsys)
+                            "--illuminance", "300", "--tolerance", "0.05", "--json"], capsys)
     document = json.loads(out)
     assert status == 0, err
     assert document["imager"] == "sony-imx174" and document["illuminance_lux"] == 300.0 and document["exposure_s"] > 0
     assert document["passed"] and all(len(p["rendered_std"]) == 3 for p in document["patches"])
+    assert set(document["checks"]) == {"mean", "variance", "equivalence", "difference"}
+    assert document["mc_variance"] == "frames" and document["bound"] < 0.05
 
 
 def test_render_through_an_imager_says_what_it_clipped_and_capped(tmp_path, capsys):
