@@ -81,7 +81,7 @@ def command_validate_face(args: argparse.Namespace) -> None:
     every flag is checked before anything renders.
     """
     from ..rendering.face.validation import validate_face
-    from .common import emit, flag, render_options, table
+    from .common import check_render_work, emit, flag, render_options, table
     from .face import face_inputs
 
     options = render_options(args)
@@ -90,7 +90,9 @@ def command_validate_face(args: argparse.Namespace) -> None:
     if getattr(args, "gamut", False):
         raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene")
     scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
-    check_samples(options["spp"], scene.camera.width * scene.camera.height if size is None else size * size)
+    pixels = scene.camera.width * scene.camera.height if size is None else size * size
+    check_samples(options["spp"], pixels)
+    check_render_work(args, pixels, options["spp"], levels=[physics])  # subsurface: its own rate
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
                   skin, physics, options["spp"], options["seed"], size, options["sampler"], options["variant"],

@@ -27,11 +27,14 @@ __all__ = ["check_chart_subsurface", "subsurface_keys", "subsurface_lines"]
 def check_chart_subsurface(args: argparse.Namespace) -> None:
     """
     Refuse, naming the flag, what a subsurface chart does not take (``--imager`` and its settings, ``--gamut``), and
-    a render whose estimate on one core exceeds :data:`~skinrender.rendering.subsurface_chart.SECONDS_MAX`
-    (naming ``--spp`` with the most it may be).
+    a render whose estimate (:func:`~skinrender.rendering.subsurface_chart.estimate_seconds` on every core) exceeds
+    ``--max-minutes`` (:func:`skinrender.workload.check_work`, naming ``--spp``).
     """
+    import os
+
     from ..rendering.scene import load_scene
-    from ..rendering.subsurface_chart import SAMPLES_PER_S_SLAB, SECONDS_MAX, estimate_seconds
+    from ..rendering.subsurface_chart import SAMPLES_PER_S_SLAB, estimate_seconds
+    from ..workload import check_work
 
     for name in ("imager", "illuminance", "exposure"):
         if getattr(args, name, None) is not None:
@@ -44,14 +47,15 @@ def check_chart_subsurface(args: argparse.Namespace) -> None:
     if not any(patch.skin for patch in scene.patches):
         raise SkinrenderError(f"--physics subsurface renders a chart's skin patches (skin = true) as the skin "
                               f"model's layers; {scene.name} has none")
+    if str(getattr(args, "spp", None)).strip().lower() == "auto":
+        raise SkinrenderError("--spp auto picks spp from the Lambertian chart's pilot renders; give --spp N with "
+                              "--physics subsurface")
     spp = render_options(args)["spp"]
-    seconds = estimate_seconds(scene, spp)
-    if seconds > SECONDS_MAX:
-        most = max(1, int(spp * SECONDS_MAX / seconds))
-        raise SkinrenderError(f"--spp {spp}: the {sum(p.skin for p in scene.patches)} skin patches of {scene.name} "
-                              f"as media would take about {seconds / 60:.0f} min on one core "
-                              f"({SAMPLES_PER_S_SLAB:g} samples/s), more than {SECONDS_MAX / 60:.0f} min; give "
-                              f"--spp {most} or fewer")
+    cores = os.cpu_count() or 1
+    check_work(estimate_seconds(scene, int(spp)) / cores, "--spp",
+               f"the {sum(p.skin for p in scene.patches)} skin patches of {scene.name} as media at {spp} spp "
+               f"({SAMPLES_PER_S_SLAB:g} samples/s per core, {cores} core{'s' * (cores > 1)})",
+               getattr(args, "max_minutes", None), fewer="lower --spp")
 
 
 def subsurface_keys(rendering, rows: list[dict] | None = None) -> dict:

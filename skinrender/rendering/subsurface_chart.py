@@ -13,8 +13,8 @@ patch (the white reference too) stays Lambertian.
     rendered, with the reflectance of each that Eq. 4 is checked with.
 -   :class:`SubsurfaceChartRenderer`, :func:`subsurface_renderer`: the raw
     renders (:class:`~skinrender.rendering.renderer.RawRender`).
--   :func:`estimate_seconds`, :data:`SAMPLES_PER_S_SLAB`,
-    :data:`SECONDS_MAX`: the cost, and the refusal above it.
+-   :func:`estimate_seconds`, :data:`SAMPLES_PER_S_SLAB`: the cost (the
+    command line refuses beyond ``--max-minutes`` with it).
 
 The geometry and the light, and why the check is exact
 ------------------------------------------------------
@@ -83,7 +83,7 @@ from .subsurface import (INTEGRATOR_SUBSURFACE, SLAB_DERMIS_MM, SkinMedia, check
                          skin_media_of, slab_reflectance, subsurface_variant)
 from .variants import mitsuba
 
-__all__ = ["FOOTPRINT_MM", "SLAB_HALF_WIDTH_MM", "SAMPLES_PER_S_SLAB", "SECONDS_PER_FIT", "SECONDS_MAX",
+__all__ = ["FOOTPRINT_MM", "SLAB_HALF_WIDTH_MM", "SAMPLES_PER_S_SLAB", "SECONDS_PER_FIT",
            "SubsurfaceChart", "subsurface_chart", "SubsurfaceChartRenderer", "subsurface_renderer",
            "estimate_seconds", "slab_document"]
 
@@ -100,9 +100,6 @@ SAMPLES_PER_S_SLAB = 500.0
 SECONDS_PER_FIT = 1.3
 """Seconds to fit the skin model to one measured skin patch (one core, ~101 wavelengths), the estimates'."""
 
-SECONDS_MAX = 2400.0
-"""A subsurface chart whose estimate on one core exceeds this is refused, s: about as long as a direct face render
-of the most samples one pass may take (2³¹ − 1 at the face's 9e5 samples/s), the renders' usual cap."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -247,13 +244,6 @@ class SubsurfaceChartRenderer:
         if spp * self.scene.patch_px**2 > SAMPLES_MAX:
             raise SkinrenderError(f"spp {spp} × {self.scene.patch_px**2} pixels is more than {SAMPLES_MAX:.3g} "
                                   "samples per pass")
-        seconds = estimate_seconds(self.scene, spp)
-        if seconds > SECONDS_MAX:
-            most = max(1, int(spp * SECONDS_MAX / seconds))
-            raise SkinrenderError(f"spp {spp}: the {sum(p.skin for p in self.scene.patches)} skin patches of "
-                                  f"{self.scene.name} as media take about {seconds / 60:.0f} min on one core "
-                                  f"({SAMPLES_PER_S_SLAB:g} samples/s), more than {SECONDS_MAX / 60:.0f} min; at "
-                                  f"most {most} spp (or fewer, smaller skin patches)")
         self.chart = subsurface_chart(self.scene, grid)
         self.sampler, self.grid, self.requested_spp = sampler, grid, int(spp)
         self.variant = subsurface_variant(variant)

@@ -228,13 +228,12 @@ def bench_face(
             raise SkinrenderError(f"--levels: {error}") from None
     cam = camera(camera_spec)
     face = load_face_scene(scene)
-    from ..rendering.face.render import check_cost
+    from ..workload import check_work
 
     for level in levels:  # a level too long is refused before anything renders
-        try:
-            check_cost(physics_level(level), size * size, reference_spp)
-        except SkinrenderError as error:
-            raise SkinrenderError(f"--levels: {level}'s reference: {error}") from None
+        check_work(physics_level(level).seconds(size * size * reference_spp), "--levels",
+                   f"{level}'s reference ({size}×{size} px at {reference_spp} spp)",
+                   fewer="a smaller --size or --reference-spp")
     curve, presets = [], {}
     from ..evaluation.detection import SCORED_MIN_OUTPUT
 

@@ -41,11 +41,11 @@ from ..model.camera import camera
 from ..model.chromaticity import ncc
 from ..rendering.face import planckian_temperature, render_face
 from ..rendering.face.effects import LEVELS_LADDER, parse_physics, physics_level
-from ..rendering.face.render import check_cost
 from ..rendering.face.labels import LABEL_SKIN
 from ..rendering.face.scene import load_face_scene, skin_reflectance_of
 from ..rendering.validation import analytic_reference
 from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..workload import duration_text
 
 __all__ = ["LEVELS_DEFAULT", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "score_rendering", "score_frame"]
 
@@ -249,9 +249,9 @@ def ladder(
     for level in levels:
         parse_physics(level)
     side = (face.camera.width, face.camera.height) if size is None else (size, size)
-    seconds = sum(check_cost(physics_level(level), side[0] * side[1], spp) for level in levels)  # refused first
-    if progress is not None and seconds > 60:
-        progress(f"the {len(levels)} levels should take about {seconds / 60:.0f} min on one core")
+    seconds = sum(physics_level(level).seconds(side[0] * side[1] * spp) for level in levels)
+    if progress is not None and seconds > 60:  # subsurface: minutes (the command line refuses beyond --max-minutes)
+        progress(f"the {len(levels)} levels should take about {duration_text(seconds)} on one core")
     locus = skin_locus(cam, "skin", calibration=c, grid=grid)
     analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
     rows, frames, shape = [], [], None

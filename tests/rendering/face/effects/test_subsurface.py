@@ -118,9 +118,3 @@ class TestRender:
         with pytest.raises(SkinrenderError, match="skin: 'grey:0.5' is a measured reflectance .*skin-model:"):
             render_face(CAM, physics="subsurface", skin="grey:0.5", spp=1, size=4)
 
-    def test_a_render_too_long_is_refused_with_an_estimate(self):
-        from skinrender.rendering.face import render_face
-
-        with pytest.raises(SkinrenderError, match=r"physics subsurface .* about \d+ min on one core, more than the "
-                                                  r"\d+ min a render may take; at most \d+ spp at this size"):
-            render_face(CAM, physics="subsurface", skin=SKIN, spp=4096, size=256)
