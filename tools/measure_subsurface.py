@@ -9,6 +9,8 @@ reflectance through a camera, per channel, with its pixel standard deviation and
     PYTHONPATH=$PWD python tools/measure_subsurface.py offsets       # the face's one medium away from the origin
     PYTHONPATH=$PWD python tools/measure_subsurface.py effective     # the one medium vs the two layers (diffuse light)
     PYTHONPATH=$PWD python tools/measure_subsurface.py depth         # the dermis' depth (adding-doubling alone)
+    PYTHONPATH=$PWD python tools/measure_subsurface.py samplers      # patch means' spread vs their standard errors
+    PYTHONPATH=$PWD python tools/measure_subsurface.py calibration   # validate's difference test: false alarms
 
 Each prints one line per setting: the rendered mean over adding-doubling's, minus 1, per channel (R G B), the pixel
 standard deviation relative to the mean, the standard error of that ratio, and the seconds of the render.
@@ -40,9 +42,14 @@ def _world(document: dict, mi, unit_mm: float, offset_mm: float) -> dict:
     return document
 
 
+FIT_095 = dict(melanin=0.0374, blood=0.0214, oxygenation=0.767, scattering=72.0, scattering_power=1.24)
+"""The skin model fitted to Vrhel's 095 (a patch of skin_patches, its lowest scattering): rounded."""
+
+
 def slab(melanin: float, spp: int, integrator: str = "volpathmis", rr_depth: int | None = None,
          variant: str = "scalar_spectral", single: bool = False, unit_mm: float = 1.0, offset_mm: float = 0.0,
-         seed: int = 1) -> tuple[np.ndarray, np.ndarray, float]:
+         seed: int = 1, sampler: str = "multijitter", parameters: dict | None = None, px: int = PX,
+         ) -> tuple[np.ndarray, np.ndarray, float]:
     """Rendered mean / adding-doubling − 1 per channel, the pixel std relative to the mean, seconds."""
     from skinrender.datasets.skin_model import SkinParameters, reflectance_of_layers, skin_layers
     from skinrender.model.camera import camera
@@ -55,11 +62,12 @@ def slab(melanin: float, spp: int, integrator: str = "volpathmis", rr_depth: int
 
     mi = mitsuba(variant)
     grid, cam = GRID_DEFAULT, camera(CAMERA)
-    layers = skin_layers(grid.wavelengths, SkinParameters(melanin=melanin))
-    media = SkinMedia(f"melanin {melanin}", SkinParameters(melanin=melanin), None, layers, grid.wavelengths)
+    chosen = SkinParameters(**(parameters or {"melanin": melanin}))
+    layers = skin_layers(grid.wavelengths, chosen)
+    media = SkinMedia(str(chosen), chosen, None, layers, grid.wavelengths)
     sky = planck(emitter_grid(grid), 2856.0)
     sky = sky / sky.max()
-    document = slab_document(mi, media, None, cam, grid, (0, 1, 2), PX, spp, "multijitter", sky)
+    document = slab_document(mi, media, None, cam, grid, (0, 1, 2), px, spp, sampler, sky)
     document["integrator"]["type"] = integrator
     if rr_depth is not None:
         document["integrator"]["rr_depth"] = rr_depth
@@ -80,6 +88,31 @@ def slab(melanin: float, spp: int, integrator: str = "volpathmis", rr_depth: int
     expected = channel_integral(cam, grid, lam, np.interp(lam, grid.wavelengths, reflectance) * sky)
     mean, std = image.mean(axis=0), image.std(axis=0, ddof=1)
     return mean / expected - 1, std / mean, seconds
+
+
+def _calibration(seeds: int) -> None:
+    """validate's difference test (family-wise α 0.01) on a chart of three slabs over many seeds."""
+    import tempfile
+
+    from skinrender.evaluation.verdict import binomial_interval
+    from skinrender.rendering.validation import validate
+
+    chart = ('name = "three"\ncolumns = 4\npatch_px = 8\ngap_px = 2\n' + "".join(
+        f'[[patch]]\nname = "{name}"\nreflectance = "skin-model:{spec}"\nskin = true\n' for name, spec in (
+            ("light", "melanin=0.02"), ("095", ",".join(f"{k}={v}" for k, v in FIT_095.items())),
+            ("dark", "melanin=0.3"))))
+    with tempfile.NamedTemporaryFile("w", suffix=".toml", delete=False) as handle:
+        handle.write(chart)
+    fails, largest, start = 0, [], time.perf_counter()
+    for seed in range(seeds):
+        result = validate(handle.name, CAMERA, 2856, 5900, spp=16, seed=2 * seed, sampler="independent",
+                          physics="subsurface", tolerance=0.5)
+        fails += result.difference.outcome == "fail"
+        largest.append(float(np.abs(result.z).max()))
+    low, high = binomial_interval(fails, seeds)
+    print(f"difference test (α 0.01), 3 slabs at 8 × 8 px, 16 spp, independent sampler: {fails}/{seeds} false "
+          f"alarms (95 % interval {low:.3f}–{high:.3f}); largest |z| median {np.median(largest):.2f}, max "
+          f"{max(largest):.2f}; {time.perf_counter() - start:.0f} s")
 
 
 def _line(label: str, result) -> None:
@@ -117,6 +150,17 @@ def main(what: str) -> None:
             two, one = reflectance_of_layers(layers, diffuse=True), reflectance_of_layers((single,), diffuse=True)
             print(f"melanin {melanin}: normal incidence max |ΔR| {normal:.1e}; diffuse incidence max |ΔR| "
                   f"{np.abs(one - two).max():.4f}, max relative {np.abs(one / two - 1).max():.4f}")
+    elif what == "samplers":
+        for sampler in ("independent", "multijitter"):
+            runs = [slab(0.0, 16, sampler=sampler, parameters=FIT_095, px=8, seed=seed) for seed in range(150)]
+            errors = np.array([r[0] for r in runs])
+            se = np.array([r[1] * (1 + r[0]) / 8 for r in runs])  # pixel std over √64, relative to the analytic
+            ratio = errors.std(axis=0, ddof=1) / np.sqrt(np.mean(se**2, axis=0))
+            print(f"{sampler}: 150 seeds, Vrhel 095's fit, 8 × 8 px, 16 spp: spread of the means over their "
+                  f"standard errors {' '.join(f'{v:.2f}' for v in ratio)}; max |z| "
+                  f"{np.abs(errors / se).max():.1f}")
+    elif what == "calibration":
+        _calibration(100)
     elif what == "depth":
         from skinrender.datasets.skin_model import SkinParameters, reflectance_of_layers, skin_layers
         from skinrender.rendering.subsurface import slab_reflectance

@@ -26,14 +26,15 @@ __all__ = ["check_chart_subsurface", "subsurface_keys", "subsurface_lines"]
 
 def check_chart_subsurface(args: argparse.Namespace) -> None:
     """
-    Refuse, naming the flag, what a subsurface chart does not take (``--imager`` and its settings, ``--gamut``), and
+    Take :data:`~skinrender.rendering.subsurface_chart.SAMPLER_SUBSURFACE` unless ``--sampler`` is given; refuse,
+    naming the flag, what a subsurface chart does not take (``--imager`` and its settings, ``--gamut``), and
     a render whose estimate (:func:`~skinrender.rendering.subsurface_chart.estimate_seconds` on every core) exceeds
     ``--max-minutes`` (:func:`skinrender.workload.check_work`, naming ``--spp``).
     """
     import os
 
     from ..rendering.scene import load_scene
-    from ..rendering.subsurface_chart import SAMPLES_PER_S_SLAB, estimate_seconds
+    from ..rendering.subsurface_chart import SAMPLER_SUBSURFACE, SAMPLES_PER_S_SLAB, estimate_seconds
     from ..workload import check_work
 
     for name in ("imager", "illuminance", "exposure"):
@@ -47,6 +48,8 @@ def check_chart_subsurface(args: argparse.Namespace) -> None:
     if not any(patch.skin for patch in scene.patches):
         raise SkinrenderError(f"--physics subsurface renders a chart's skin patches (skin = true) as the skin "
                               f"model's layers; {scene.name} has none")
+    if getattr(args, "sampler", None) is None:  # the pixels' errors honest (SAMPLER_SUBSURFACE's measurement)
+        args.sampler = SAMPLER_SUBSURFACE
     if str(getattr(args, "spp", None)).strip().lower() == "auto":
         raise SkinrenderError("--spp auto picks spp from the Lambertian chart's pilot renders; give --spp N with "
                               "--physics subsurface")

@@ -46,6 +46,7 @@ def test_validate_gives_each_patch_its_slab(chart, capsys):
     assert status == 0, err[-500:]
     document = json.loads(out)
     assert document["physics"] == "subsurface" and "uniform sky" in document["light"]
+    assert document["sampler"] == "independent"  # SAMPLER_SUBSURFACE unless --sampler names one
     light, grey, white = document["patches"]
     assert light["skin_model"]["source"] == "parameters" and light["skin_model"]["parameters"]["melanin"] == 0.02
     assert grey["skin_model"] is None and white["skin_model"] is None
