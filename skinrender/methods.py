@@ -23,10 +23,11 @@ from .errors import SkinrenderError
 __all__ = ["validate_method", "parse_range"]
 
 
-def validate_method(name: object, methods: Mapping[str, object], what: str) -> str:
+def validate_method(name: object, methods: Mapping[str, object], what: str, role: str | None = None) -> str:
     """
     ``name`` if it is a key of ``methods``, else a :class:`SkinrenderError`
-    naming ``what`` and listing the choices.
+    naming ``what`` and listing the choices (its ``role``: ``role``, the
+    argument at fault, for the command line to name its flag).
 
     Examples
     --------
@@ -39,7 +40,7 @@ def validate_method(name: object, methods: Mapping[str, object], what: str) -> s
     """
 
     if not isinstance(name, str) or name not in methods:
-        raise SkinrenderError(f"{what} must be one of {', '.join(methods)}, got {name!r}")
+        raise SkinrenderError(f"{what} must be one of {', '.join(methods)}, got {name!r}", role=role)
     return name
 
 

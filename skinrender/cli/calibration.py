@@ -69,7 +69,7 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     from ..model.camera import camera
     from ..model.illuminant import illuminant
     from ..rendering.renderer import SAMPLES_MAX, render_passes
-    from ..rendering.scene import load_scene
+    from ..rendering.scene import load_chart_scene
     from ..studies.calibration import calibration_path, estimate_seconds, renders_of
     from ..workload import check_work
     from .face import is_face_scene
@@ -77,7 +77,7 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     scene_spec = _or(args.scene, "macbeth")
     kind = "face" if is_face_scene(scene_spec) else "chart"
     run = calibration_path(kind, args.level)
-    scene = flag("--scene", load_scene, scene_spec)
+    scene = flag("--scene", load_chart_scene, scene_spec)
     cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))
     lights = {}
     for name, default in (("prevailing", "3300"), ("calibration", "4800")):

@@ -22,7 +22,7 @@ from ..files import check_output_path, shown
 __all__ = [
     "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
-    "add_render", "emit", "table", "range_text", "grid_of", "render_options", "choices_help", "coverage_hint",
+    "add_render", "emit", "table", "range_text", "grid_of", "settings_of", "choices_help", "coverage_hint",
     "interruptible", "check_render_work", "add_max_minutes",
 ]
 
@@ -90,7 +90,7 @@ def add_search(parser: argparse.ArgumentParser) -> None:
 
 def add_render(parser: argparse.ArgumentParser, spp_auto: bool = False) -> None:
     """The Mitsuba options: quality, spp (``spp_auto``: also ``auto``), sampler, seed, variant, channels."""
-    from ..rendering.renderer import CHANNEL_GROUPINGS, QUALITY_PRESETS, SAMPLERS
+    from ..rendering.settings import CHANNEL_GROUPINGS, QUALITY_PRESETS, SAMPLERS
 
     parser.add_argument("--quality", choices=list(QUALITY_PRESETS), default="standard",
                         help="preset: " + ", ".join(f"{k} ({v['spp']} spp)" for k, v in QUALITY_PRESETS.items())
@@ -175,26 +175,33 @@ def range_text(values: list) -> str:
 
 
 def grid_of(args: argparse.Namespace):
-    """The :class:`~skinrender.spectra.WavelengthGrid` of ``--grid``."""
-    from ..spectra import WavelengthGrid
+    """The :class:`~skinrender.spectra.WavelengthGrid` of ``--grid`` (the default grid for a command without it),
+    parsed once per command: the commands pass the object on."""
+    from ..spectra import GRID_DEFAULT, WavelengthGrid
 
+    if getattr(args, "grid", None) is None:
+        return GRID_DEFAULT
     return flag("--grid", WavelengthGrid.parse, args.grid)
 
 
-def render_options(args: argparse.Namespace) -> dict:
-    """``spp``, ``sampler``, ``seed``, ``variant``, ``channels`` from the render flags."""
-    from ..rendering.renderer import QUALITY_PRESETS
+def settings_of(args: argparse.Namespace):
+    """
+    The :class:`~skinrender.rendering.settings.RenderSettings` of the render flags, made once per command:
+    ``--quality``'s spp and sampler unless ``--spp`` or ``--sampler`` is given, ``--seed``, ``--variant`` (checked to
+    run here before anything renders) and ``--channels``; each refusal names its flag.
+    """
+    from ..rendering.settings import QUALITY_PRESETS, RenderSettings
 
     preset = QUALITY_PRESETS[args.quality]
     spp = args.spp if args.spp is not None else preset["spp"]
     if isinstance(spp, str):  # a command whose --spp also takes auto (validate), which it resolves itself
         if spp.strip().lower() == "auto":
-            raise SkinrenderError("--spp auto goes with a chart's 'validate --tolerance T'")
+            raise SkinrenderError("--spp auto goes with a chart's 'validate --tolerance T'", flag="--spp")
         spp = integer_in(spp, "--spp", 1, SPP_MAX)
     if not 1 <= spp <= SPP_MAX:
-        raise SkinrenderError(f"--spp must be an integer in [1, {SPP_MAX}], got {spp}")
-    return {"spp": spp, "sampler": args.sampler or preset["sampler"], "seed": check_seed(args.seed),
-            "variant": variant_of(args.variant), "channels": args.channels}
+        raise SkinrenderError(f"--spp must be an integer in [1, {SPP_MAX}], got {spp}", flag="--spp")
+    return RenderSettings(spp, check_seed(args.seed), args.sampler or preset["sampler"], variant_of(args.variant),
+                          args.channels)
 
 
 SPP_MAX = 1 << 20

@@ -74,27 +74,27 @@ def check_samples(spp: int, pixels: int) -> None:
                               f"min on one core at {SAMPLES_PER_S:.1e} samples/s); at most {most} spp at this size")
 
 
-def command_validate_face(args: argparse.Namespace) -> None:
+def command_validate_face(args: argparse.Namespace, scene) -> None:
     """
     ``validate SCENE …`` for a face scene: the ``validate`` flags (``--camera``, ``--prevailing``,
     ``--calibration``, the render options) and the face's (``--physics``, ``--skin``, ``--size``);
-    every flag is checked before anything renders.
+    every flag is checked before anything renders; ``scene``: the face scene loaded.
     """
     from ..rendering.face.validation import validate_face
-    from .common import emit, flag, render_options, table
+    from .common import emit, flag, settings_of, table
     from .face import face_inputs
 
-    options = render_options(args)
+    settings = settings_of(args)
     if getattr(args, "knee", False):
         raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee")
     if getattr(args, "gamut", False):
         raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene")
-    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
-    check_samples(options["spp"], scene.camera.width * scene.camera.height if size is None else size * size)
+    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
+    check_samples(settings.spp, scene.camera.width * scene.camera.height if size is None else size * size)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
-                  skin, physics, options["spp"], options["seed"], size, options["sampler"], options["variant"],
-                  options["channels"], imager, exposure, lux, limits=limits,
+                  skin, physics, settings.spp, settings.seed, size, settings.sampler, settings.variant,
+                  settings.channels, imager, exposure, lux, limits=limits,
                   progress=lambda line: print(line, file=sys.stderr))
     document = result.document()
     rows = [[c.name, "yes" if c.applies else "info",

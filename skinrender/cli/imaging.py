@@ -175,6 +175,7 @@ def command_ptc(args: argparse.Namespace) -> None:
     from ..model.illuminant import illuminant
     from ..model.imager import imager
     from ..studies.figures import figure_ptc
+    from ..rendering.settings import RenderSettings
     from ..studies.ptc import photon_transfer
 
     plot = check_output(args.plot, "--plot", (".png",))
@@ -192,7 +193,7 @@ def command_ptc(args: argparse.Namespace) -> None:
     integer_in(args.points, "--points", 4, 1000)  # before the progress line, so a refusal is its one line
     print(f"rendering the grey chart at {args.spp} spp …", file=sys.stderr)
     result = flag("--points", photon_transfer, cam, sensor, args.temperature, args.illuminance, args.points,
-                  args.spp, args.seed)
+                  RenderSettings(spp=args.spp, seed=args.seed))
     if args.plot:
         write_output(plot, lambda stream: figure_ptc(result, stream), "--plot")
         result["plot"] = str(plot)

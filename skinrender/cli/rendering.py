@@ -7,16 +7,20 @@ from __future__ import annotations
 
 import argparse
 import sys
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import SkinrenderError
 from ..files import Output, write_outputs
 from ..studies.labelled import chart_figure
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, camera_of, add_grid,
-                     add_model, add_render, check_output, check_render_work, choices_help, emit, flag, grid_of,
-                     render_options, table)
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, add_grid, add_model,
+                     add_render, check_output, check_render_work, choices_help, emit, flag, settings_of, table)
 from .face import check_figure
+from .inputs import ChartInputs, chart_inputs, chart_only, scene_of
+
+if TYPE_CHECKING:
+    from ..rendering.settings import RenderSettings
 
 
 def add_parsers(commands) -> None:
@@ -82,78 +86,22 @@ def add_parsers(commands) -> None:
     add_common(p)
 
 
-def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
-    """
-    A chart command's scene loaded first (its own error for an unknown or broken scene), then the face-only
-    flags refused: ``--physics``, ``--size`` and (but for ``detect``) ``--skin``.
-    """
-    from ..rendering.scene import load_scene
-
-    flag("SCENE", load_scene, args.scene)
-    given = [name for name, on in (("--physics", args.physics != "direct"), ("--skin", skin and args.skin is not None),
-                                   ("--size", args.size is not None)) if on]
-    if given:
-        raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
-                              "(e.g. 'face'), not a chart")
-
-
-def render_inputs(args: argparse.Namespace) -> dict:
-    """
-    The scene, camera and the two Planckian temperatures (K) of a render
-    command, each parsed once here with its flag named in any error, and
-    checked to give the camera light on the grid before anything renders.
-    """
-    import numpy as np
-
-    from ..model.illuminant import illuminant
-    from ..model.response import response
-    from ..rendering.scene import load_scene
-
-    scene = flag("SCENE", load_scene, args.scene)
-    grid = grid_of(args) if hasattr(args, "grid") else None
-    cam = camera_of(args, grid)
-    temperatures = {}
-    for name in ("prevailing", "calibration"):
-        light = flag(f"--{name}", illuminant, getattr(args, name))
-        if light.temperature is None:
-            raise SkinrenderError(f"--{name}: rendering needs a Planckian illuminant (kelvin, A or H), got {light}")
-        temperatures[name] = light.temperature
-    from ..spectra import GRID_DEFAULT
-
-    grid = grid or GRID_DEFAULT
-    for name, kelvin in temperatures.items():  # each light seen by the camera, the one at fault named
-        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, grid.size)), kelvin, kelvin,
-             grid=grid)
-    try:  # every patch's data covers the grid, before the render needs it
-        scene.reflectances(grid)
-    except SkinrenderError as error:  # the chart's own data: --extrapolation (CSV cameras') does not apply
-        if error.cause != "coverage":
-            raise error.reworded(f"SCENE: {error.message}", flag="SCENE") from None
-        raise error.reworded(f"--grid: {error.message}", flag="--grid", cause=None,
-                             hint="choose a --grid inside the chart's data") from None
-    return {"scene": scene, "camera_": cam, "prevailing": temperatures["prevailing"],
-            "calibration": temperatures["calibration"]}
-
-
 def pixels_of(scene) -> int:
     """The pixels of a chart scene's image."""
     width, height = scene.size
     return int(width) * int(height)
 
 
-def render_with(args: argparse.Namespace, inputs: dict, options: dict, imaging: dict | None, knee: bool = False):
+def render_with(inputs: ChartInputs, settings: RenderSettings, imaging: dict | None, knee: bool = False):
     """The render of a command: plain (Eq. 4 on the radiance) or through ``--imager``; returns (rendering, imaged)."""
     from ..rendering.balance import render
 
-    normalization = getattr(args, "normalization", "white")
-    grid = grid_of(args) if hasattr(args, "grid") else None
-    extra = {} if grid is None else {"grid": grid}
     if imaging is None:
-        return render(**inputs, normalization=normalization, knee=knee, **extra, **options), None
+        return render(**{**inputs.keywords(), "knee": knee}, settings=settings), None
     from ..rendering.imaging import render_imaged
 
-    imaged = render_imaged(inputs["scene"], inputs["camera_"], inputs["prevailing"], inputs["calibration"],
-                           **imaging, normalization=normalization, **extra, **options)
+    imaged = render_imaged(inputs.scene, inputs.camera, inputs.prevailing, inputs.calibration, **imaging,
+                           normalization=inputs.normalization, settings=settings, grid=inputs.grid)
     return imaged.rendering, imaged
 
 
@@ -175,24 +123,26 @@ def imaging_notes(imaged) -> str:
 
 @interruptible
 def command_render(args: argparse.Namespace) -> None:
-    from .face import command_render_face, is_face_scene
+    from ..rendering.face.scene import FaceScene
+    from .face import command_render_face
 
-    if is_face_scene(args.scene):  # a face (perspective camera, mesh, lights): its own renderer
-        return command_render_face(args)
+    scene = scene_of(args)  # loaded once: a face (perspective camera, mesh, lights) takes its own renderer
+    if isinstance(scene, FaceScene):
+        return command_render_face(args, scene)
     chart_only(args)
     from ..rendering.exr import write_preview
     from ..rendering.outputs import write_chart_exr
     from ..rendering.renderer import channel_names
 
-    options = render_options(args)
+    settings = settings_of(args)
     output = check_output(args.output, "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
-    inputs = render_inputs(args)
+    inputs = chart_inputs(args, scene)
     imaging = imaging_options(args)
-    check_render_work(args, pixels_of(inputs["scene"]), options["spp"])
-    print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
-    result, imaged = render_with(args, inputs, options, imaging, args.knee)
+    check_render_work(args, pixels_of(inputs.scene), settings.spp)
+    print(f"rendering {inputs.scene.name} at {settings.spp} spp …", file=sys.stderr)
+    result, imaged = render_with(inputs, settings, imaging, args.knee)
     if imaged is not None and args.knee:
         from dataclasses import replace
 
@@ -202,14 +152,14 @@ def command_render(args: argparse.Namespace) -> None:
     spp = result.raw[0].spp
     names = channel_names(result.camera)
     preview = output.with_suffix(".png")
-    outputs = [Output(output, "--output", lambda stream: write_chart_exr(stream, result, args.seed, grid_of(args))),
+    outputs = [Output(output, "--output", lambda stream: write_chart_exr(stream, result, settings.seed, inputs.grid)),
                Output(preview, "--output (its PNG preview)", lambda stream: write_preview(stream, result.image))]
     if figure is not None:
         outputs.append(Output(figure, "--figure", lambda stream: chart_figure(result, stream)))
     write_outputs(*outputs)  # every file whole, or none of them
     document = {"image": str(output), "preview_png": str(preview), "channels": list(names), "spp": spp,
-                "spp_requested": options["spp"],
-                "sampler": options["sampler"], "seed": args.seed, "variant": result.variant,
+                "spp_requested": settings.spp,
+                "sampler": settings.sampler, "seed": settings.seed, "variant": result.variant,
                 "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
                 "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged)}
@@ -238,10 +188,12 @@ def locus_skin_of(args: argparse.Namespace, chart: bool) -> str:
 
 @interruptible
 def command_detect(args: argparse.Namespace) -> None:
-    from .face import command_detect_face, is_face_scene
+    from ..rendering.face.scene import FaceScene
+    from .face import command_detect_face
 
-    if is_face_scene(args.scene):  # the label channel is the ground truth
-        return command_detect_face(args)
+    scene = scene_of(args)
+    if isinstance(scene, FaceScene):  # the label channel is the ground truth
+        return command_detect_face(args, scene)
 
     from ..evaluation.detection import SCORED_MIN_OUTPUT, detect
     from ..datasets import reflectances
@@ -250,16 +202,16 @@ def command_detect(args: argparse.Namespace) -> None:
 
     chart_only(args, skin=False)
     locus_skin = locus_skin_of(args, chart=True)
-    options = render_options(args)
+    settings = settings_of(args)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
-    inputs = render_inputs(args)
+    inputs = chart_inputs(args, scene)
     imaging = imaging_options(args)
     skin = flag("--locus-skin" if args.skin is None else "--skin", reflectances, locus_skin)
-    check_render_work(args, pixels_of(inputs["scene"]), options["spp"])
-    print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
-    rendering, imaged = render_with(args, inputs, options, imaging)
+    check_render_work(args, pixels_of(inputs.scene), settings.spp)
+    print(f"rendering {inputs.scene.name} at {settings.spp} spp …", file=sys.stderr)
+    rendering, imaged = render_with(inputs, settings, imaging)
     # the camera is white-balanced to the calibration light: the locus of that one balancing
     locus = skin_locus(rendering.camera, skin, calibration=rendering.calibration, boundary=args.boundary)
     result = detect(rendering, locus, scored_min=SCORED_MIN_OUTPUT)  # scored as on a face: too dark has no colour
@@ -276,7 +228,7 @@ def command_detect(args: argparse.Namespace) -> None:
                 "undefined": result.undefined, "locus_degenerate": locus.degenerate,
                 "mask_png": str(output), "preview_png": str(preview), "per_patch": result.per_patch,
                 "scored_min_output": SCORED_MIN_OUTPUT,
-                "boundary": args.boundary, "spp": rendering.raw[0].spp, "spp_requested": options["spp"],
+                "boundary": args.boundary, "spp": rendering.raw[0].spp, "spp_requested": settings.spp,
                 "variant": rendering.variant, **imaging_document(imaged)}
     rows = [[p["name"][:30], "skin" if p["is_skin"] else "",
              "undefined" if p["detected_fraction"] is None else f"{p['detected_fraction']:.2f}"]

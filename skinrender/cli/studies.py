@@ -174,14 +174,16 @@ def command_table1(args: argparse.Namespace) -> None:
     from ..evaluation.verdict import EXIT_STATUS
     from ..studies.tables import TABLE1_TOLERANCE
 
-    integer_in(args.spp, "--spp", 1, SPP_MAX)  # each flag checked on its own, so that its error names it
-    check_seed(args.seed)
+    from ..rendering.settings import RenderSettings
+
+    spp = integer_in(args.spp, "--spp", 1, SPP_MAX)  # each flag checked on its own, so that its error names it
+    settings = RenderSettings(spp=spp, seed=check_seed(args.seed))
     tolerance = TABLE1_TOLERANCE if args.tolerance is None else positive_number(args.tolerance, "--tolerance", "NCC")
     if tolerance >= 1:
-        raise SkinrenderError(f"--tolerance must be an NCC difference in (0, 1), got {args.tolerance!r}")
-    flag("--camera", camera, args.camera)
-    result = flag({"spp": "--spp", None: "--camera"}, table1, args.camera, spp=args.spp, seed=args.seed,
-                  tolerance=tolerance)
+        raise SkinrenderError(f"--tolerance must be an NCC difference in (0, 1), got {args.tolerance!r}",
+                              flag="--tolerance")
+    cam = flag("--camera", camera, args.camera)
+    result = flag({"spp": "--spp", None: "--camera"}, table1, cam, settings, tolerance=tolerance)
     rows = [[r["model"], r["case"], f"{r['mean']:.5f}", f"{r['std']:.5f}"] for r in result["rows"]]
     verdict = result["verdict"]
     result["exit_status"] = EXIT_STATUS[verdict["verdict"]]

@@ -9,8 +9,9 @@ directional emitter. The renderer models only that: direct lighting, no
 interreflection (a flat chart has none), no polarisation, no depth of field.
 
 -   :class:`Patch`, :class:`ChartScene`: a parsed scene.
--   :func:`load_scene`: a scene from a name in ``scenes/`` or a path; a bad
-    file gets an error naming the file and the field.
+-   :func:`load_chart_scene`: a chart scene from a name in ``scenes/`` or a
+    path; a bad file gets an error naming the file and the field (charts and
+    faces alike: :func:`skinrender.rendering.dispatch.load_scene`).
 -   :func:`list_scenes`: the bundled scene names.
 -   :func:`check_mesh_file`: a face scene's ``.obj``/``.ply`` mesh checked before any render.
 
@@ -43,7 +44,7 @@ from ..files import MESH_BYTES_MAX, TOML_BYTES_MAX, exists, read_input
 from ..hints import NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_scene", "list_scenes", "read_scene_toml", "reflectance_of",
+__all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_chart_scene", "list_scenes", "read_scene_toml", "reflectance_of",
            "check_mesh_file"]
 
 ROOT_SCENES = Path(__file__).resolve().parent / "scenes"
@@ -296,10 +297,13 @@ def check_mesh_file(path: str | Path, where: str = "mesh") -> None:
     (_check_ply if path.suffix.lower() == ".ply" else _check_obj)(data, where)
 
 
-def load_scene(spec: str | Path | ChartScene) -> ChartScene:
+def load_chart_scene(spec: str | Path | ChartScene) -> ChartScene:
     """
     A chart scene from a bundled name (``macbeth``, ``skin_patches``,
-    ``face_chart``) or a path to a TOML file of the same format.
+    ``face_chart``) or a path to a TOML file of the same format; a
+    :class:`ChartScene` is returned as it is. A face scene is
+    :func:`~skinrender.rendering.face.scene.load_face_scene`'s, either kind
+    :func:`~skinrender.rendering.dispatch.load_scene`'s.
 
     Raises
     ------

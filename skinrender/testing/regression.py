@@ -236,11 +236,11 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     """
     from ..model.camera import camera as camera_of
     from ..rendering.exr import camera_attributes
-    from ..rendering.scene import load_scene
+    from ..rendering.scene import load_chart_scene
 
     kind = scene_kind(scene)
     if kind == "chart":
-        chart = _named("scene", load_scene, scene)
+        chart = _named("scene", load_chart_scene, scene)
         given = [n for n, v in (("physics", physics not in (None, "direct")), ("skin", skin is not None),
                                 ("size", size is not None)) if v]
         if given:

@@ -12,6 +12,7 @@ import pytest
 
 from skinrender.cli import face
 from skinrender.cli.common import Parser, add_common, add_grid, add_model, add_render
+from skinrender.cli.inputs import scene_of
 from skinrender.errors import SkinrenderError
 
 pytest.importorskip("mitsuba")
@@ -40,7 +41,10 @@ def parser() -> Parser:
 
 def run(argv, capsys) -> dict:
     args = parser().parse_args([str(a) for a in argv])
-    (face.command_ladder if args.command == "ladder" else face.command_render_face)(args)
+    if args.command == "ladder":
+        face.command_ladder(args)
+    else:  # the render command loads the scene once and hands the face its scene
+        face.command_render_face(args, scene_of(args))
     return json.loads(capsys.readouterr().out)
 
 

@@ -12,6 +12,7 @@ import json
 import pytest
 
 from skinrender.cli.face_validation import command_validate_face, limits_of
+from skinrender.cli.inputs import scene_of
 from skinrender.errors import SkinrenderError
 from skinrender.rendering.face.limits import LimitCheck
 
@@ -49,7 +50,7 @@ def test_interreflection_is_information_and_the_sensor_is_named(capsys):
                               illuminance=300.0, exposure="auto", normalization="white", knee=False,
                               grid="400:700:1", extrapolation="refuse", gamut=False, physics="interreflection",
                               skin=None, size="16", limits="none", json=True)
-    command_validate_face(args)
+    command_validate_face(args, scene_of(args))
     document = json.loads(capsys.readouterr().out)
     assert document["physics"] == "interreflection+noise" and document["imager"] == "sony-icx418"
     assert document["illuminance_lux"] == 300.0
