@@ -88,11 +88,12 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     imaging = imaging_options(args)
     if args.mc_variance is not None and imaging is None:
         raise SkinrenderError("--mc-variance sets how the render's variance enters a sensor's predictions: it goes "
-                              "with --imager")
+                              "with --imager", flag="--mc-variance")
     seeds = integer_in(_or(args.seeds, SEEDS_DEFAULT[args.what]), "--seeds", 1, 100_000)
     first = integer_in(_or(args.seed, 0), "--seed", 0, SEED_MAX)
     if first + 2 * seeds - 1 > SEED_MAX:
-        raise SkinrenderError(f"--seed: the runs use seeds {first} to {first + 2 * seeds - 1}, beyond {SEED_MAX}")
+        raise SkinrenderError(f"--seed: the runs use seeds {first} to {first + 2 * seeds - 1}, beyond {SEED_MAX}",
+                              flag="--seed")
     if args.what == "calibration":
         spps = [integer_in(_or(args.spp, 64 if imaging else 16), "--spp", 1, SPP_MAX)]
     else:
@@ -102,7 +103,7 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     for spp in spps:
         if spp * width * height > SAMPLES_MAX:
             raise SkinrenderError(f"--spp: {spp} spp × {width * height} pixels is more than {SAMPLES_MAX} samples a "
-                                  "render may take")
+                                  "render may take", flag="--spp")
     passes = render_passes(cam)
     renders = 1 if imaging else renders_of(lights["prevailing"], lights["calibration"])
     startup = estimate_seconds(0, width * height, 1)  # the first compilation, once

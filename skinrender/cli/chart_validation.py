@@ -22,7 +22,7 @@ import sys
 from ..errors import SkinrenderError
 from .common import emit, imaging_options, interruptible, settings_of, table
 
-__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_parsers", "tolerance_of", "spp_of", "command_validate",
+__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_verdict_arguments", "tolerance_of", "spp_of", "command_validate",
            "command_validate_chart"]
 
 HELP_TOLERANCE = (
@@ -35,9 +35,8 @@ EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the ve
                    "a check fails), 2 a refused input, 130 interrupted")
 
 
-def add_parsers(commands) -> None:
-    """``validate``'s verdict flags, added to the parser :mod:`skinrender.cli.rendering` built."""
-    p = commands.choices["validate"]
+def add_verdict_arguments(p) -> None:
+    """``validate``'s verdict flags and epilog, added to the parser :mod:`skinrender.cli.rendering` builds."""
     p.add_argument("--tolerance", metavar="REL", help=HELP_TOLERANCE)
     p.epilog = EPILOG_VALIDATE
 
@@ -120,7 +119,6 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     from ..rendering.validation import validate
     from .common import check_render_work
     from .inputs import chart_inputs, chart_only
-    from .rendering import pixels_of
 
     tolerance = tolerance_of(args)
     auto = spp_of(args)
@@ -137,10 +135,10 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     renders = 11 if args.gamut else 1  # --gamut: ten more, one per paper illuminant
     choice = None
     if auto:
-        check_render_work(args, pixels_of(inputs.scene), max(PILOT_SPP), len(PILOT_SPP))
+        check_render_work(args, inputs.pixels, max(PILOT_SPP), len(PILOT_SPP))
         choice = _auto_spp(inputs, settings, imaging, tolerance)
         settings = settings.replace(spp=choice["spp"])
-    check_render_work(args, pixels_of(inputs.scene), settings.spp, renders)
+    check_render_work(args, inputs.pixels, settings.spp, renders)
     print(f"rendering {inputs.scene.name} at {settings.spp} spp and validating …", file=sys.stderr)
     if imaging is not None:
         result, imaged = _imaged(inputs, settings, imaging, tolerance)
@@ -226,9 +224,7 @@ def _imaged(inputs, settings, imaging, tolerance):
     """The render through the sensor and its validation: (validation, imaged)."""
     from ..rendering.sensor_validation import validate_imaged
     from ..rendering.validation import analytic_reference
-    from .rendering import render_with
-
-    rendering, imaged = render_with(inputs, settings, imaging)
+    rendering, imaged = inputs.render(settings, imaging)
     grid = inputs.grid
     ratio = analytic_reference(rendering.camera, rendering.scene.reflectances(grid), rendering.prevailing,
                                rendering.prevailing, grid=grid) / 255.0
@@ -238,7 +234,7 @@ def _imaged(inputs, settings, imaging, tolerance):
 def _imaged_report(result, imaged, requested) -> tuple[dict, str]:
     """``validate --imager``'s document and text."""
     from ..rendering.renderer import channel_names
-    from .rendering import imaging_document, imaging_notes
+    from .inputs import imaging_document, imaging_notes
 
     rendering = imaged.rendering
     patches = result.patches()

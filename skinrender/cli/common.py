@@ -209,7 +209,15 @@ SPP_MAX = 1 << 20
 
 
 class Parser(argparse.ArgumentParser):
-    """An argument parser whose errors are one line, ``skinrender COMMAND: error: …``, exit status 2."""
+    """
+    An argument parser whose errors are one line, ``skinrender COMMAND: error: …``, exit status 2; a command's
+    parser carries ``run``, the function of the parsed arguments that runs the command (the command registry:
+    ``commands.add_parser(NAME, run=FUNCTION, help=…)``, :func:`skinrender.cli.commands`).
+    """
+
+    def __init__(self, *args, run=None, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.run = run
 
     def error(self, message: str):  # noqa: D102 - argparse's hook
         self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
@@ -233,7 +241,7 @@ def integer_in(text, name: str, low: int, high: int | None = None) -> int:
         value = None
     if value is None or value < low or (high is not None and value > high):
         bounds = f"≥ {low}" if high is None else f"in [{low}, {high}]"
-        raise SkinrenderError(f"{name} must be an integer {bounds}, got {text!r}")
+        raise SkinrenderError(f"{name} must be an integer {bounds}, got {text!r}", flag=name)
     return value
 
 
@@ -252,7 +260,7 @@ def positive_number(text, name: str, unit: str, high: float | None = None) -> fl
     high = ILLUMINANCE_MAX if high is None and name == "--illuminance" else high
     if not math.isfinite(value) or value <= 0 or (high is not None and value > high):
         bound = "" if high is None else f" and ≤ {high:g}"
-        raise SkinrenderError(f"{name} must be a finite number > 0{bound} ({unit}), got {text!r}")
+        raise SkinrenderError(f"{name} must be a finite number > 0{bound} ({unit}), got {text!r}", flag=name)
     return value
 
 
@@ -271,7 +279,8 @@ def variant_of(name: str | None) -> str | None:
     from ..rendering.variants import VARIANTS_SPECTRAL, choose_variant
 
     if name not in VARIANTS_SPECTRAL:
-        raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, got {name!r}")
+        raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, got {name!r}",
+                              flag="--variant")
     flag("--variant", choose_variant, name)
     return name
 
@@ -315,7 +324,7 @@ def check_seed(seed: int, name: str = "--seed") -> int:
     """A seed in ``[0, SEED_MAX]``, else a one-line error naming the flag."""
     if not 0 <= seed <= SEED_MAX:
         raise SkinrenderError(f"{name} must be an integer in [0, {SEED_MAX}] (32-bit, and the calibration render "
-                              f"uses seed + 1), got {seed}")
+                              f"uses seed + 1), got {seed}", flag=name)
     return seed
 
 
@@ -372,16 +381,17 @@ def sensor_settings(args: argparse.Namespace, default_lux: float | None = ILLUMI
     lux = default_lux if args.illuminance is None else args.illuminance
     if lux is not None and not (math.isfinite(lux) and 0 < lux <= ILLUMINANCE_MAX):
         raise SkinrenderError(f"--illuminance must be a finite number of lux > 0 and ≤ {ILLUMINANCE_MAX:g}, got "
-                              f"{args.illuminance}")
+                              f"{args.illuminance}", flag="--illuminance")
     exposure = "auto" if args.exposure is None else str(args.exposure).strip().lower()
     if exposure != "auto":
         try:
             exposure = float(exposure)
         except ValueError:
-            raise SkinrenderError(f"--exposure must be auto or seconds > 0, got {args.exposure!r}") from None
+            raise SkinrenderError(f"--exposure must be auto or seconds > 0, got {args.exposure!r}",
+                                  flag="--exposure") from None
         if not (math.isfinite(exposure) and 0 < exposure <= EXPOSURE_MAX):
             raise SkinrenderError(f"--exposure must be auto or a finite number of seconds > 0 and ≤ {EXPOSURE_MAX:g}, "
-                                  f"got {args.exposure!r}")
+                                  f"got {args.exposure!r}", flag="--exposure")
     return lux, exposure
 
 
@@ -389,7 +399,7 @@ def refuse_sensor_settings(args: argparse.Namespace, instead: str = "--imager") 
     """``--illuminance`` and ``--exposure`` set the image sensor: refused (one line) where there is none."""
     for name in ("illuminance", "exposure"):
         if getattr(args, name, None) is not None:
-            raise SkinrenderError(f"--{name} sets the image sensor's exposure: it goes with {instead}")
+            raise SkinrenderError(f"--{name} sets the image sensor's exposure: it goes with {instead}", flag=f"--{name}")
 
 
 def imaging_options(args: argparse.Namespace) -> dict | None:

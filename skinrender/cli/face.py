@@ -65,7 +65,8 @@ def add_parsers(commands) -> None:
     """Add the parser of ladder."""
     from ..studies.ladder import LEVELS_DEFAULT
 
-    p = commands.add_parser("ladder", help=f"the face rendered at each level of physics ({level_names(True)}, "
+    p = commands.add_parser("ladder", run=command_ladder,
+                            help=f"the face rendered at each level of physics ({level_names(True)}, "
                             "all), with the skin's NCC and the skin locus's detection rates at each")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--prevailing", required=True, help="the key light: " + HELP_PLANCKIAN)
@@ -123,7 +124,8 @@ def check_figure(args: argparse.Namespace, *taken) -> Path | None:
     """
     figure = check_output(getattr(args, "figure", None), "--figure", (".png",))
     if figure is not None and any(figure.resolve() == Path(other).resolve() for other in taken):
-        raise SkinrenderError(f"--figure: {figure} is also another output of the command; name another PNG")
+        raise SkinrenderError(f"--figure: {figure} is also another output of the command; name another PNG",
+                              flag="--figure")
     return figure
 
 
@@ -143,13 +145,13 @@ def face_inputs(args: argparse.Namespace, scene) -> tuple:
     _check_light(cam, temperatures)
     if getattr(args, "normalization", "white") != "white":
         raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
-                              f"got {args.normalization!r}")
+                              f"got {args.normalization!r}", flag="--normalization")
     if str(getattr(args, "grid", "400:700:1")).strip() != "400:700:1":
-        raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}")
+        raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}", flag="--grid")
     physics = getattr(args, "physics", None)
     physics = "direct" if physics is None else physics
     if not str(physics).strip():
-        raise SkinrenderError(f"--physics: name a level ({level_names()}; '+' combines them), got ''")
+        raise SkinrenderError(f"--physics: name a level ({level_names()}; '+' combines them), got ''", flag="--physics")
     flag("--physics", parse_physics, physics)
     skin = getattr(args, "skin", None)
     if skin is not None:
@@ -183,10 +185,10 @@ def levels_of(text: str) -> list[str]:
 
     levels = [level.strip() for level in str(text).split(",")]
     if not any(levels) or not all(levels):
-        raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {text!r}")
+        raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {text!r}", flag="--levels")
     effects = [flag("--levels", parse_physics, level) for level in levels]
     if len(set(effects)) < len(effects):
-        raise SkinrenderError(f"--levels: a level is named twice in {text!r}; name each once")
+        raise SkinrenderError(f"--levels: a level is named twice in {text!r}; name each once", flag="--levels")
     return levels
 
 
@@ -206,7 +208,8 @@ def noise_sensor(args: argparse.Namespace, levels: list[str]) -> float | None:
         for name in ("imager", "illuminance"):
             if getattr(args, name) is not None:
                 raise SkinrenderError(f"--{name} is the noise level's: add a level with noise to --levels "
-                                      f"(e.g. noise or interreflection+noise), got {','.join(levels)!r}")
+                                      f"(e.g. noise or interreflection+noise), got {','.join(levels)!r}",
+                                      flag=f"--{name}")
     return lux
 
 

@@ -43,7 +43,7 @@ def limits_of(text: str | None) -> tuple[str, ...]:
     unknown = [name for name in names if name not in LIMITS_SCENE_FREE]
     if unknown or not names:
         raise SkinrenderError(f"--limits must be 'none' or a comma-separated list of {', '.join(LIMITS_SCENE_FREE)}, "
-                              f"got {text!r}")
+                              f"got {text!r}", flag="--limits")
     return tuple(dict.fromkeys(names))
 
 
@@ -68,10 +68,11 @@ def check_samples(spp: int, pixels: int) -> None:
         most = REPLICATES * (SAMPLES_MAX // (REPLICATES * int(pixels)))
         if not most:
             raise SkinrenderError(f"--size: {pixels} pixels is too many for {REPLICATES} replicates; use a smaller "
-                                  "--size")
+                                  "--size", flag="--size")
         raise SkinrenderError(f"--spp: {REPLICATES} replicates × {each} spp × {pixels} pixels is {total:.3g} "
                               f"samples, more than one render may take ({SAMPLES_MAX}, ~{SAMPLES_MAX / SAMPLES_PER_S / 60:.0f} "
-                              f"min on one core at {SAMPLES_PER_S:.1e} samples/s); at most {most} spp at this size")
+                              f"min on one core at {SAMPLES_PER_S:.1e} samples/s); at most {most} spp at this size",
+                              flag="--spp")
 
 
 def command_validate_face(args: argparse.Namespace, scene) -> None:
@@ -86,9 +87,10 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
 
     settings = settings_of(args)
     if getattr(args, "knee", False):
-        raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee")
+        raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee", flag="--knee")
     if getattr(args, "gamut", False):
-        raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene")
+        raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene",
+                              flag="--gamut")
     scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
     check_samples(settings.spp, scene.camera.width * scene.camera.height if size is None else size * size)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))

@@ -14,7 +14,9 @@ everything below the command line takes those objects (never the strings):
     ``--extrapolation``), the two Planckian lights (K), the grid, the
     normalisation and knee of a chart render, each checked against the others
     before anything renders;
--   :func:`chart_only`: the face's flags refused on a chart.
+-   :func:`chart_only`: the face's flags refused on a chart;
+-   :func:`imaging_document`, :func:`imaging_notes`: what a render through
+    ``--imager`` adds to a command's JSON and text.
 
 The render settings (``--quality``, ``--spp``, ``--sampler``, ``--seed``,
 ``--variant``, ``--channels``) are :func:`~skinrender.cli.common.settings_of`'s
@@ -36,9 +38,10 @@ if TYPE_CHECKING:
     from ..model.camera import Camera
     from ..rendering.face.scene import FaceScene
     from ..rendering.scene import ChartScene
+    from ..rendering.settings import RenderSettings
     from ..spectra import WavelengthGrid
 
-__all__ = ["scene_of", "ChartInputs", "chart_inputs", "chart_only"]
+__all__ = ["scene_of", "ChartInputs", "chart_inputs", "chart_only", "imaging_document", "imaging_notes"]
 
 
 def scene_of(args: argparse.Namespace, name: str = "SCENE") -> ChartScene | FaceScene:
@@ -78,6 +81,28 @@ class ChartInputs:
         return {"scene": self.scene, "camera_": self.camera, "prevailing": self.prevailing,
                 "calibration": self.calibration, "normalization": self.normalization, "knee": self.knee,
                 "grid": self.grid}
+
+    @property
+    def pixels(self) -> int:
+        """The pixels of the chart's image."""
+        width, height = self.scene.size
+        return int(width) * int(height)
+
+    def render(self, settings: RenderSettings, imaging: dict | None = None, knee: bool = False) -> tuple:
+        """
+        The chart rendered with ``settings``: plain (Eq. 4 on the radiance; ``knee`` applied there) or through the
+        image sensor of ``imaging`` (:func:`~skinrender.cli.common.imaging_options`); ``(rendering, imaged)``,
+        ``imaged`` ``None`` without a sensor.
+        """
+        from ..rendering.balance import render
+
+        if imaging is None:
+            return render(**{**self.keywords(), "knee": knee}, settings=settings), None
+        from ..rendering.imaging import render_imaged
+
+        imaged = render_imaged(self.scene, self.camera, self.prevailing, self.calibration, **imaging,
+                               normalization=self.normalization, settings=settings, grid=self.grid)
+        return imaged.rendering, imaged
 
 
 def chart_inputs(args: argparse.Namespace, scene: ChartScene) -> ChartInputs:
@@ -121,3 +146,19 @@ def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
     if given:
         raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
                               "(e.g. 'face'), not a chart", flag=given[0])
+
+
+def imaging_document(imaged) -> dict:
+    """
+    The JSON keys a render through an imager adds: imager, illuminance_lux, exposure_s, ``clipping`` (pixels at the
+    full well and at the ADC range, per channel) and ``notes`` (a capped ``auto`` exposure, clipped pixels).
+    """
+    if imaged is None:
+        return {}
+    return {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux, "exposure_s": imaged.exposure_s,
+            "clipping": imaged.clipping, "notes": list(imaged.notes)}
+
+
+def imaging_notes(imaged) -> str:
+    """The text lines of a render's imaging notes (a capped exposure, clipped pixels), or nothing."""
+    return "".join(f"\nnote: {note}" for note in (imaged.notes if imaged is not None else ()))

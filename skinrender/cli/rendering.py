@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,10 +16,9 @@ from ..studies.labelled import chart_figure
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, add_grid, add_model,
                      add_render, check_output, check_render_work, choices_help, emit, flag, settings_of, table)
 from .face import check_figure
-from .inputs import ChartInputs, chart_inputs, chart_only, scene_of
+from .chart_validation import add_verdict_arguments, command_validate
+from .inputs import chart_inputs, chart_only, imaging_document, imaging_notes, scene_of
 
-if TYPE_CHECKING:
-    from ..rendering.settings import RenderSettings
 
 
 def add_parsers(commands) -> None:
@@ -32,7 +30,7 @@ def add_parsers(commands) -> None:
                        ("validate", "render a chart and check every patch against Eq. 4: pass, fail or "
                                     "inconclusive within --tolerance; a face: the analytic limits that hold at its "
                                     "level of physics")):
-        p = commands.add_parser(name, help=text)
+        p = commands.add_parser(name, run=command_validate if name == "validate" else command_render, help=text)
         p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path "
                        "(see scenes/)")
         p.add_argument("--camera", required=True, help=HELP_CAMERA)
@@ -61,8 +59,11 @@ def add_parsers(commands) -> None:
                            help="also write a labelled figure: a chart upscaled with each patch's name on it "
                            "(skin patches outlined), a face with its labels outlined")
         add_common(p)
+        if name == "validate":
+            add_verdict_arguments(p)
 
-    p = commands.add_parser("detect", help="skin detection on a rendered chart or face with the camera's skin locus")
+    p = commands.add_parser("detect", run=command_detect,
+                            help="skin detection on a rendered chart or face with the camera's skin locus")
     p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--prevailing", required=True, help="prevailing illuminant: " + HELP_PLANCKIAN)
@@ -86,41 +87,6 @@ def add_parsers(commands) -> None:
     add_common(p)
 
 
-def pixels_of(scene) -> int:
-    """The pixels of a chart scene's image."""
-    width, height = scene.size
-    return int(width) * int(height)
-
-
-def render_with(inputs: ChartInputs, settings: RenderSettings, imaging: dict | None, knee: bool = False):
-    """The render of a command: plain (Eq. 4 on the radiance) or through ``--imager``; returns (rendering, imaged)."""
-    from ..rendering.balance import render
-
-    if imaging is None:
-        return render(**{**inputs.keywords(), "knee": knee}, settings=settings), None
-    from ..rendering.imaging import render_imaged
-
-    imaged = render_imaged(inputs.scene, inputs.camera, inputs.prevailing, inputs.calibration, **imaging,
-                           normalization=inputs.normalization, settings=settings, grid=inputs.grid)
-    return imaged.rendering, imaged
-
-
-def imaging_document(imaged) -> dict:
-    """
-    The JSON keys a render through an imager adds: imager, illuminance_lux, exposure_s, ``clipping`` (pixels at the
-    full well and at the ADC range, per channel) and ``notes`` (a capped ``auto`` exposure, clipped pixels).
-    """
-    if imaged is None:
-        return {}
-    return {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux, "exposure_s": imaged.exposure_s,
-            "clipping": imaged.clipping, "notes": list(imaged.notes)}
-
-
-def imaging_notes(imaged) -> str:
-    """The text lines of a render's imaging notes (a capped exposure, clipped pixels), or nothing."""
-    return "".join(f"\nnote: {note}" for note in (imaged.notes if imaged is not None else ()))
-
-
 @interruptible
 def command_render(args: argparse.Namespace) -> None:
     from ..rendering.face.scene import FaceScene
@@ -140,9 +106,9 @@ def command_render(args: argparse.Namespace) -> None:
     figure = check_figure(args, output.with_suffix(".png"))
     inputs = chart_inputs(args, scene)
     imaging = imaging_options(args)
-    check_render_work(args, pixels_of(inputs.scene), settings.spp)
+    check_render_work(args, inputs.pixels, settings.spp)
     print(f"rendering {inputs.scene.name} at {settings.spp} spp …", file=sys.stderr)
-    result, imaged = render_with(inputs, settings, imaging, args.knee)
+    result, imaged = inputs.render(settings, imaging, args.knee)
     if imaged is not None and args.knee:
         from dataclasses import replace
 
@@ -179,7 +145,8 @@ def locus_skin_of(args: argparse.Namespace, chart: bool) -> str:
     locus_skin = getattr(args, "locus_skin", None)
     if chart and args.skin is not None:
         if locus_skin is not None:
-            raise SkinrenderError("--skin: on a chart it is the deprecated name of --locus-skin; give one of them")
+            raise SkinrenderError("--skin: on a chart it is the deprecated name of --locus-skin; give one of them",
+                                  flag="--skin")
         print("skinrender detect: notice: --skin on a chart names the locus's training set; it is deprecated, "
               "use --locus-skin (on a face --skin is the face's skin)", file=sys.stderr)
         return args.skin
@@ -209,9 +176,9 @@ def command_detect(args: argparse.Namespace) -> None:
     inputs = chart_inputs(args, scene)
     imaging = imaging_options(args)
     skin = flag("--locus-skin" if args.skin is None else "--skin", reflectances, locus_skin)
-    check_render_work(args, pixels_of(inputs.scene), settings.spp)
+    check_render_work(args, inputs.pixels, settings.spp)
     print(f"rendering {inputs.scene.name} at {settings.spp} spp …", file=sys.stderr)
-    rendering, imaged = render_with(inputs, settings, imaging)
+    rendering, imaged = inputs.render(settings, imaging)
     # the camera is white-balanced to the calibration light: the locus of that one balancing
     locus = skin_locus(rendering.camera, skin, calibration=rendering.calibration, boundary=args.boundary)
     result = detect(rendering, locus, scored_min=SCORED_MIN_OUTPUT)  # scored as on a face: too dark has no colour

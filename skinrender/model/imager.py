@@ -152,22 +152,23 @@ def _read_imager_toml(path: Path) -> Imager:
     try:
         data = tomllib.loads(read_input(path, TOML_BYTES_MAX, "an imager TOML").decode("utf-8"))
     except SkinrenderError as error:
-        raise SkinrenderError(f"imager file {error}") from None
+        raise SkinrenderError(f"imager file {error}", role="imager") from None
     except tomllib.TOMLDecodeError as error:
-        raise SkinrenderError(f"imager file {path}: not valid TOML ({error})") from None
+        raise SkinrenderError(f"imager file {path}: not valid TOML ({error})", role="imager") from None
     except UnicodeDecodeError:
-        raise SkinrenderError(f"imager file {path}: not a UTF-8 text file (TOML is text)") from None
+        raise SkinrenderError(f"imager file {path}: not a UTF-8 text file (TOML is text)", role="imager") from None
     names = [field.name for field in fields(Imager)]
     for key in data:
         if key not in names:
-            raise SkinrenderError(f"imager file {path}: unknown field {key!r} (expected {', '.join(names)})")
+            raise SkinrenderError(f"imager file {path}: unknown field {key!r} (expected {', '.join(names)})",
+                                  role="imager")
     for key in names:
         if key not in data:
-            raise SkinrenderError(f"imager file {path}: missing field {key!r}")
+            raise SkinrenderError(f"imager file {path}: missing field {key!r}", role="imager")
     try:
         return Imager(**data)
     except SkinrenderError as error:
-        raise SkinrenderError(f"imager file {path}: {error}") from None
+        raise SkinrenderError(f"imager file {path}: {error}", role="imager") from None
 
 
 @lru_cache(maxsize=1)
@@ -206,14 +207,15 @@ def imager(spec: str | Path | Imager) -> Imager:
     if isinstance(spec, Imager):
         return spec
     if not isinstance(spec, (str, Path)):
-        raise SkinrenderError(f"imager must be a preset name, a TOML path or an Imager, got {spec!r}")
+        raise SkinrenderError(f"imager must be a preset name, a TOML path or an Imager, got {spec!r}", role="imager")
     presets = _presets()
     if isinstance(spec, str) and spec.strip().lower() in presets:
         return presets[spec.strip().lower()]
     if exists(spec):  # a file: read if it is a regular one of a sensible size, else refused saying what it is
         return _read_imager_toml(Path(spec))
     names = ", ".join(item.name for item in presets.values())
-    raise SkinrenderError(f"imager {str(spec)!r} is neither a preset ({names}) nor an existing TOML file")
+    raise SkinrenderError(f"imager {str(spec)!r} is neither a preset ({names}) nor an existing TOML file",
+                          role="imager")
 
 
 def list_imagers() -> list[dict]:

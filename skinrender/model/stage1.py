@@ -231,7 +231,7 @@ def illuminant_set(spec: str | ArrayLike | None = None, camera_: Camera | str | 
         text = spec.strip()
         if text.lower() == "auto":
             if camera_ is None:
-                raise SkinrenderError("--illuminants auto needs a camera (--camera)")
+                raise SkinrenderError("--illuminants auto needs a camera (--camera)", flag="--illuminants")
             return select_illuminants(camera_)
 
         parts = text.split(",")

@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from ..datasets import reflectances
-from ..errors import SkinrenderError
+from ..errors import SkinrenderError, flag_of
 from ..files import MESH_BYTES_MAX, TOML_BYTES_MAX, exists, read_input
 from ..hints import NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
@@ -126,7 +126,8 @@ def reflectance_of(spec: str, grid: WavelengthGrid, where: str = "reflectance") 
         except ValueError:
             value = np.nan
         if not 0 <= value <= 1:
-            raise SkinrenderError(f"{where}: grey reflectance must be grey:F with F in [0, 1], got {text!r}")
+            raise SkinrenderError(f"{where}: grey reflectance must be grey:F with F in [0, 1], got {text!r}",
+                                  flag=flag_of(where))
         return np.full(grid.size, value)
     if ":" not in text:
         raise SkinrenderError(f"{where}: reflectance must be SET:SAMPLE, SET:#N, perfect or grey:F, got {text!r}")
@@ -134,17 +135,19 @@ def reflectance_of(spec: str, grid: WavelengthGrid, where: str = "reflectance") 
     try:
         dataset = reflectances(set_name)
     except SkinrenderError as error:
-        raise SkinrenderError(f"{where}: {error}") from None
+        raise SkinrenderError(f"{where}: {error}", flag=flag_of(where)) from None
     if sample.startswith("#"):
         try:
             index = int(sample[1:])
         except ValueError:
             index = -1
         if not 0 <= index < dataset.count:
-            raise SkinrenderError(f"{where}: {text!r}: index must be #0 … #{dataset.count - 1}")
+            raise SkinrenderError(f"{where}: {text!r}: index must be #0 … #{dataset.count - 1}",
+                                  flag=flag_of(where))
     else:
         if sample not in dataset.names:
-            raise SkinrenderError(f"{where}: {text!r}: no sample {sample!r} in set {set_name!r}")
+            raise SkinrenderError(f"{where}: {text!r}: no sample {sample!r} in set {set_name!r}",
+                                  flag=flag_of(where))
         index = dataset.names.index(sample)
     return dataset.on(grid)[index]
 
@@ -163,11 +166,11 @@ def read_scene_toml(spec, root: Path, kind: str, bundled: str) -> tuple[Path, di
     if path.suffix != ".toml" and len(path.parts) == 1 and "\0" not in text and len(text) < 200 and named.is_file():
         path = named
     elif exists(path) and path.is_dir():
-        raise SkinrenderError(f"{kind} {text} is a folder, expected a .toml file or a bundled name")
+        raise SkinrenderError(f"{kind} {text} is a folder, expected a .toml file or a bundled name", role="scene")
     elif not (path.suffix == ".toml" or exists(path)):
         raise SkinrenderError(f"unknown {kind} {text!r}; {bundled}, or a .toml path")
     elif not exists(path):
-        raise SkinrenderError(f"{kind} file {text} does not exist")
+        raise SkinrenderError(f"{kind} file {text} does not exist", role="scene")
     data = read_input(path, TOML_BYTES_MAX, f"a {kind} TOML")  # a pipe, a device, a huge file: refused unread
     try:
         return path, tomllib.loads(data.decode("utf-8"))
@@ -290,10 +293,7 @@ def check_mesh_file(path: str | Path, where: str = "mesh") -> None:
     skinrender.errors.SkinrenderError: --mesh has 3 vertices but no face ('f' line); expected a Wavefront OBJ: text, 'v x y z' vertex and 'f i j k' face lines, indices from 1
     """
     path = Path(path)
-    try:
-        data = read_input(path, MESH_BYTES_MAX, "a mesh (OBJ or PLY)")
-    except SkinrenderError as error:  # the file's own problem (a pipe, too large) after the caller's words
-        raise SkinrenderError(f"{where}: {error.message.removeprefix(f'{path}: ')}") from None
+    data = read_input(path, MESH_BYTES_MAX, "a mesh (OBJ or PLY)", where)  # a pipe, too large: after where
     (_check_ply if path.suffix.lower() == ".ply" else _check_obj)(data, where)
 
 

@@ -35,7 +35,7 @@ __all__ = ["machine", "bench_analytic", "bench_search", "bench_sweep", "bench_re
 def _at_least_one(value, flag: str) -> int:
     """An integer ≥ 1, or a one-line :class:`SkinrenderError` naming ``flag``."""
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
-        raise SkinrenderError(f"{flag} must be an integer ≥ 1, got {value!r}")
+        raise SkinrenderError(f"{flag} must be an integer ≥ 1, got {value!r}", flag=flag)
     return int(value)
 
 

@@ -94,10 +94,10 @@ def calibration_path(kind: str, level: str | None = None) -> Callable[..., dict]
     if kind not in CALIBRATION_PATHS:
         raise SkinrenderError(f"--scene: no calibration of a {kind} scene's checks is registered yet (the face's come "
                               "with its validation's registry of physics effects); bench calibration and bench "
-                              "validate run charts: macbeth, skin_patches, face_chart or a chart .toml")
+                              "validate run charts: macbeth, skin_patches, face_chart or a chart .toml", flag="--scene")
     if kind == "chart" and level is not None:
         raise SkinrenderError(f"--level {level}: levels of physics go with a face scene; a chart has none (its "
-                              "renders are direct lighting only)")
+                              "renders are direct lighting only)", flag="--level")
     return CALIBRATION_PATHS[kind]
 
 

@@ -156,7 +156,7 @@ def photon_transfer(
             f"--illuminance: {illuminance_lux:g} lx at {temperature:g} K gives the brightest channel {brightest:.3g} "
             f"e⁻/s, not above {DARK_SHARE_MAX:g}× the dark current ({im.dark_current_e_per_s:g} e⁻/s): the dark "
             "current would fill the well before the light does, and no transfer curve can be measured; raise the "
-            "illuminance")
+            "illuminance", flag="--illuminance")
     fill = im.full_well_e / brightest
     exposures = np.linspace(0.0, 1.3 * fill, points)
     rows, dark_noise, dark_means = [], [], []

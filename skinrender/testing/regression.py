@@ -140,12 +140,14 @@ def scene_kind(spec) -> str:
 
 
 def _named(name: str, function, *args, **kwargs):
-    """``function(*args)``, its :class:`SkinrenderError` prefixed with the argument ``name``."""
+    """``function(*args)``, its :class:`SkinrenderError` prefixed with the argument ``name`` unless it names it
+    already (its ``role`` is ``name``: ``camera 'x': …``)."""
     try:
         return function(*args, **kwargs)
     except SkinrenderError as error:
-        text = str(error)
-        raise SkinrenderError(text if text.startswith(f"{name}") else f"{name}: {text}") from None
+        if error.role == name:
+            raise
+        raise error.reworded(f"{name}: {error.message}", role=name) from None
 
 
 def _planckian(spec, name: str) -> float:

@@ -46,7 +46,7 @@ from pathlib import Path
 import numpy as np
 
 from ...constants import CONSTANT_OUTPUT_SCALE
-from ...errors import SkinrenderError
+from ...errors import SkinrenderError, flag_of
 from ...files import Output, write_outputs
 from ...hints import NDArrayFloat
 from ...methods import validate_method
@@ -156,7 +156,8 @@ def planckian_temperature(spec, name: str) -> float:
     """
     item = illuminant(spec)
     if item.temperature is None:
-        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}")
+        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}",
+                              flag=flag_of(name))
     return float(item.temperature)
 
 
