@@ -22,7 +22,7 @@ import sys
 from ..errors import SkinrenderError
 from .common import emit, imaging_options, interruptible, settings_of, table
 
-__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_verdict_arguments", "tolerance_of", "spp_of", "command_validate",
+__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_check_arguments", "add_verdict_arguments", "tolerance_of", "spp_of", "command_validate",
            "command_validate_chart"]
 
 HELP_TOLERANCE = (
@@ -33,6 +33,18 @@ HELP_TOLERANCE = (
 
 EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the verdict of --tolerance; a face: 1 when "
                    "a check fails), 2 a refused input, 130 interrupted")
+
+
+def add_check_arguments(p) -> None:
+    """``validate``'s ``--gamut`` (charts) and ``--limits`` (faces), added to the parser
+    :mod:`skinrender.cli.rendering` builds."""
+    p.add_argument("--gamut", action="store_true",
+                   help="also render the chart under every paper illuminant and compare its gamut volumes "
+                   "(one calibration case each, and all calibrations) with the analytic ones, within "
+                   "--tolerance (relative to each volume)")
+    p.add_argument("--limits", metavar="LIST",
+                   help="face scenes: the scene-free limits run beside the level's own: furnace, sphere "
+                   "(comma-separated) or none (default: both)")
 
 
 def add_verdict_arguments(p) -> None:

@@ -16,7 +16,7 @@ from ..studies.labelled import chart_figure
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, add_grid, add_model,
                      add_render, check_output, check_render_work, choices_help, emit, flag, settings_of, table)
 from .face import check_figure
-from .chart_validation import add_verdict_arguments, command_validate
+from .chart_validation import add_check_arguments, add_verdict_arguments, command_validate
 from .inputs import chart_inputs, chart_only, imaging_document, imaging_notes, scene_of
 
 
@@ -39,14 +39,8 @@ def add_parsers(commands) -> None:
         add_render(p, spp_auto=name == "validate")
         add_model(p)
         add_grid(p)
-        if name == "validate":  # its verdict's flags (--tolerance): skinrender.cli.chart_validation
-            p.add_argument("--gamut", action="store_true",
-                           help="also render the chart under every paper illuminant and compare its gamut volumes "
-                           "(one calibration case each, and all calibrations) with the analytic ones, within "
-                           "--tolerance (relative to each volume)")
-            p.add_argument("--limits", metavar="LIST",
-                           help="face scenes: the scene-free limits run beside the level's own: furnace, sphere "
-                           "(comma-separated) or none (default: both)")
+        if name == "validate":  # what it checks (--gamut, --limits) and its verdict's flags (--tolerance, below)
+            add_check_arguments(p)
         from .face import add_face_arguments
 
         add_face_arguments(p)

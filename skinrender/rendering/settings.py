@@ -21,10 +21,9 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
-import numpy as np
-
 from ..errors import SkinrenderError
 from ..methods import validate_method
+from ..model.imager import is_integer
 
 __all__ = ["SAMPLERS", "CHANNEL_GROUPINGS", "QUALITY_PRESETS", "RenderSettings"]
 
@@ -52,14 +51,9 @@ QUALITY_PRESETS = {
 """Named settings; their expected error and time are measured by
 ``skinrender bench render`` (docs/speed.md)."""
 
-def _is_integer(value: object) -> bool:
-    return isinstance(value, (int, np.integer)) and not isinstance(value, bool)
-
-
 @dataclass(frozen=True)
 class RenderSettings:
-    """
-    How a render samples.
+    """How a render samples: what every render takes beside its scene, camera and lights.
 
     Parameters
     ----------
@@ -99,9 +93,9 @@ class RenderSettings:
     channels: str = "auto"
 
     def __post_init__(self) -> None:
-        if not (_is_integer(self.spp) and self.spp >= 1):
+        if not (is_integer(self.spp) and self.spp >= 1):
             raise SkinrenderError(f"spp must be a positive integer, got {self.spp!r}", role="spp")
-        if not (_is_integer(self.seed) and 0 <= self.seed < 2**32):
+        if not (is_integer(self.seed) and 0 <= self.seed < 2**32):
             raise SkinrenderError(f"seed must be an integer in [0, 2^32) (Mitsuba's seeds are 32-bit), got "
                                   f"{self.seed!r}", role="seed")
         validate_method(self.sampler, SAMPLERS, "sampler", role="sampler")
