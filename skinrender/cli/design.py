@@ -155,7 +155,7 @@ def command_search(args: argparse.Namespace) -> None:
 
         check_workers(args.workers)
     flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, slope)
-    check_positions(args.positions, grid)  # inside the grid, as reproduce checks them
+    check_positions(positions, grid)  # inside the grid, as reproduce checks them
     flag("--illuminants", sensor_bank, args.sensor, skin_values[:1], positions[:3], temperatures, slope,
          grid=grid)
     noisy = noisy_of(args, temperatures)

@@ -67,9 +67,10 @@ def command_illuminants(args: argparse.Namespace) -> None:
         raise SkinrenderError(f"--step must be a finite number of kelvin > 0, got {args.step}", flag="--step")
     flag("--range", temperature_range, args.range[0], args.range[1], args.step)
     flag("--pair", measure, np.full((1, 3), 1.0 / 3.0), args.pair)
-    cam = camera_of(args, grid_of(args))
+    grid = grid_of(args)
+    cam = camera_of(args, grid)
     selection = flag({"camera": "--camera", "illuminant": "--range", None: "--count"}, illuminant_selection,
-                     cam, args.count, args.range[0], args.range[1], args.step, grid_of(args), args.pair)
+                     cam, args.count, args.range[0], args.range[1], args.step, grid, args.pair)
     document = {
         "camera": cam.name,
         "pair": args.pair,
@@ -138,7 +139,7 @@ def command_gamut(args: argparse.Namespace) -> None:
     from ..model.stage1 import illuminant_set
 
     grid = grid_of(args)
-    cam = camera_of(args, grid_of(args))
+    cam = camera_of(args, grid)
     temperatures = flag({"camera": "--camera", None: "--illuminants"}, illuminant_set, args.illuminants, cam)
     check_lights(args, cam, temperatures, grid)
     if args.ratio == bool(args.reflectances):

@@ -126,3 +126,18 @@ def test_chart_only_refuses_the_face_flags_naming_them():
         chart_only(Namespace(physics="sheen", skin=None, size="8"))
     assert error.value.flag == "--physics"
     chart_only(Namespace(physics="direct", skin="skin:#1", size=None), skin=False)  # detect's --skin: the locus's
+
+
+@pytest.mark.parametrize("command, expected", [
+    (["illuminants", "--camera", CAM, "--count", "4", "--grid", "400:700:5"], {"camera": 1, "grid": 1}),
+    (["response", "--camera", CAM, "--reflectances", "macbeth", "--prevailing", "2856", "--calibration", "2300",
+      "--grid", "400:700:5"], {"camera": 1, "grid": 1}),
+    (["gamut", "--camera", CAM, "--reflectances", "skin", "--all-calibrations", "--grid", "400:700:5"],
+     {"camera": 1, "grid": 1}),
+    (["locus", "--camera", CAM], {"camera": 1}),
+    (["search", "--sensor", "9", "--positions", "400:700:100", "--workers", "1", "--quiet"], {"grid": 1}),
+])
+def test_the_analytic_commands_parse_each_input_once(command, expected, parses, capsys):
+    status, out, err = run([*command, "--json"], capsys)
+    assert status == 0, err[-800:]
+    assert parses == expected, " ".join(command)
