@@ -140,7 +140,7 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     if args.gamut and args.imager is not None:
         raise SkinrenderError("--gamut compares the noise-free render's gamut volumes: it goes without --imager",
                               flag="--gamut")
-    settings = settings_of(argparse.Namespace(**{**vars(args), "spp": None}) if auto else args)
+    settings = settings_of(args, auto)
     requested = "auto" if auto else settings.spp
     inputs = chart_inputs(args, scene)
     imaging = imaging_options(args)

@@ -184,16 +184,17 @@ def grid_of(args: argparse.Namespace):
     return flag("--grid", WavelengthGrid.parse, args.grid)
 
 
-def settings_of(args: argparse.Namespace):
+def settings_of(args: argparse.Namespace, auto: bool = False):
     """
     The :class:`~skinrender.rendering.settings.RenderSettings` of the render flags, made once per command:
     ``--quality``'s spp and sampler unless ``--spp`` or ``--sampler`` is given, ``--seed``, ``--variant`` (checked to
-    run here before anything renders) and ``--channels``; each refusal names its flag.
+    run here before anything renders) and ``--channels``; each refusal names its flag. ``auto``: ``--spp auto``,
+    which the command resolves itself (``validate``), the quality's spp standing in until it has.
     """
     from ..rendering.settings import QUALITY_PRESETS, RenderSettings
 
     preset = QUALITY_PRESETS[args.quality]
-    spp = args.spp if args.spp is not None else preset["spp"]
+    spp = args.spp if args.spp is not None and not auto else preset["spp"]
     if isinstance(spp, str):  # a command whose --spp also takes auto (validate), which it resolves itself
         if spp.strip().lower() == "auto":
             raise SkinrenderError("--spp auto goes with a chart's 'validate --tolerance T'", flag="--spp")
