@@ -77,6 +77,17 @@ class Camera:
         """Channel names, ``("R", "G", "B")``."""
         return CHANNELS
 
+    @property
+    def extrapolation(self) -> str | None:
+        """
+        How measured curves extend beyond their data onto a wider grid (``refuse``, ``zero``, ``constant``: the
+        ``extrapolation`` the camera was made with), ``None`` for a model camera (gbell, impulse).
+
+        >>> camera("gbell:9@450,540,610").extrapolation is None
+        True
+        """
+        return None if self.measured is None else self.measured.extrapolation
+
     def sensitivities(self, grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
         """
         Sensitivities on ``grid``, shape ``(3, grid.size)``, rows R, G, B.

@@ -109,7 +109,7 @@ def test_chart_inputs_are_objects_with_the_flags_named(small_chart, tmp_path):
                      normalization="white", knee=False)
     inputs = chart_inputs(args, chart)
     assert isinstance(inputs, ChartInputs) and inputs.scene is chart
-    assert inputs.camera.measured.extrapolation == "zero" and (inputs.prevailing, inputs.calibration) == (2856, 3300)
+    assert inputs.camera.extrapolation == "zero" and (inputs.prevailing, inputs.calibration) == (2856, 3300)
     assert inputs.grid == WavelengthGrid(400, 700, 5) and inputs.keywords()["camera_"] is inputs.camera
     light = tmp_path / "light.csv"
     np.savetxt(light, np.column_stack([wavelengths, np.ones(wavelengths.size)]), delimiter=",",
