@@ -23,7 +23,8 @@ def add_parsers(commands) -> None:
     for name, text in (("render", "spectral render of a chart or face scene with Mitsuba 3 (float32 EXR + PNG "
                                   "preview)"),
                        ("validate", "render a chart and check every patch against Eq. 4 within its noise; a face: "
-                                    "the analytic limits that hold at its level of physics")):
+                                    "the analytic limits that hold at its level of physics and Eq. 4's error "
+                                    "against the detection budget (exit 0 pass, 1 fail, 3 inconclusive)")):
         p = commands.add_parser(name, help=text)
         p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path "
                        "(see scenes/)")

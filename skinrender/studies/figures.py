@@ -314,16 +314,19 @@ def figure_face(image: NDArrayFloat, labels: NDArrayFloat, label_names: dict, ti
 
 
 def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFloat, title: str,
-                  path: str | Path, label_names: dict | None = None) -> Path:
+                  path: str | Path, label_names: dict | None = None, budget: float | None = None) -> Path:
     """
     The physics ladder: one row per level with the render, its label mask, the detected mask and the skin
-    pixels' NCC (r, g) over the analytic skin locus.
+    pixels' NCC (r, g) over the analytic skin locus, with the detection budget around Eq. 4's skin and, in
+    each row's title, how far the level moves the skin (against the budget), the rates and the seconds.
 
     ``levels``: ``{"name", "image" (h, w, 3) output units, "labels" (h, w) ints, "detected" (h, w) bools
     (scored pixels inside the locus), "skin_rg" (N, 2) and "prop_rg" (M, 2) NCC of the scored skin and prop
-    pixels, "tpr", "fpr" (fractions or None), "seconds", "spp"}``; ``polygon``: the locus, closed or not,
-    ``(K, 2)``; ``analytic``: Eq. 4's skin NCC ``(r, g, …)``; ``label_names``: ``{name: id}`` for the labels'
-    legend.
+    pixels, "tpr", "fpr" (fractions or None), "seconds", "spp"}`` and optionally ``"eq4_shift"``,
+    ``"within_budget"``, ``"tpr_change"``, ``"fpr_change"`` and ``"eq4_ncc_mean"`` (the skin's mean (r, g));
+    ``polygon``: the locus, closed or not, ``(K, 2)``; ``analytic``: Eq. 4's skin NCC ``(r, g, …)``;
+    ``label_names``: ``{name: id}`` for the labels' legend; ``budget``: the detection budget (NCC), drawn as a
+    circle around Eq. 4's skin.
     """
     plt = _pyplot()
     from matplotlib.colors import ListedColormap
@@ -349,7 +352,11 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
         row[1].imshow(labels, cmap=cmap, vmin=-0.5, vmax=cmap.N - 0.5, interpolation="nearest")
         row[1].set_title("labels (the ground truth)", fontsize=9)
         row[2].imshow(np.asarray(level["detected"]), cmap="gray", vmin=0, vmax=1, interpolation="nearest")
-        row[2].set_title(f"detected: TPR {shown(level['tpr'])}, FPR {shown(level['fpr'])}", fontsize=9)
+        changes = ""
+        if level.get("tpr_change") is not None and level["name"] != "direct":
+            changes = f" (Δ {level['tpr_change']:+.3f}, {level['fpr_change']:+.3f})" if level.get(
+                "fpr_change") is not None else f" (Δ {level['tpr_change']:+.3f})"
+        row[2].set_title(f"detected: TPR {shown(level['tpr'])}, FPR {shown(level['fpr'])}{changes}", fontsize=9)
         for axis in row[:3]:
             axis.set_xticks([])
             axis.set_yticks([])
@@ -359,6 +366,16 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
                     label="skin pixels")
         row[3].plot(*closed.T, "-", color="tab:red", lw=1.2, label="analytic skin locus")
         row[3].plot(analytic[0], analytic[1], "k+", ms=10, mew=2, label="Eq. 4's skin")
+        if budget is not None:
+            angle = np.linspace(0, 2 * np.pi, 90)
+            row[3].plot(analytic[0] + budget * np.cos(angle), analytic[1] + budget * np.sin(angle), "k:", lw=1,
+                        label="detection budget")
+        if level.get("eq4_ncc_mean") is not None:
+            row[3].plot(*level["eq4_ncc_mean"][:2], "kx", ms=8, mew=1.5, label="skin's mean")
+        if level.get("eq4_shift") is not None:
+            said = {True: "within", False: "beyond", None: "undecided:"}[level.get("within_budget")]
+            row[3].set_title(f"shift {level['eq4_shift']:.4f} {said} budget"
+                             + ("" if budget is None else f" {budget:.4f}"), fontsize=9)
         row[3].set(xlim=(low[0] - pad, high[0] + pad), ylim=(low[1] - pad, high[1] + pad))
         row[3].set_xlabel("NCC r", fontsize=8)
         row[3].set_ylabel("NCC g", fontsize=8)
@@ -369,3 +386,45 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
     handles = [Patch(color=cmap(i), label=names.get(i, f"label {i}")) for i in range(cmap.N)]
     figure.suptitle(title, fontsize=11)
     return _save(figure, path, {"handles": handles, "ncol": min(len(handles), 6), "title": "labels"})
+
+
+def figure_effects(rows: list[dict], title: str, path: str | Path) -> Path:
+    """
+    The effects table (:mod:`skinrender.studies.effects_table`) drawn: per level (grouped) and skin tone (bars),
+    the shift of the skin's mean NCC from Eq. 4 (to its 95 % upper bound, the tone's budget a dash), the change
+    of TPR and FPR from ``direct``, and the seconds.
+
+    ``rows``: ``{"tone", "level", "eq4_shift", "eq4_shift_bound", "budget", "tpr_change", "fpr_change",
+    "seconds"}`` (``None`` values left out).
+    """
+    plt = _pyplot()
+    tones = list(dict.fromkeys(row["tone"] for row in rows))
+    levels = list(dict.fromkeys(row["level"] for row in rows))
+    width = 0.8 / max(len(tones), 1)
+    figure, axes = plt.subplots(1, 4, figsize=(16, 4.2))
+    colours = ["#e8b88a", "#b07848", "#5a3820", *_LABEL_COLOURS]
+    value = lambda row, key: np.nan if row.get(key) is None else row[key]  # noqa: E731
+    for t, tone in enumerate(tones):
+        mine = {row["level"]: row for row in rows if row["tone"] == tone}
+        x = np.arange(len(levels)) + (t - (len(tones) - 1) / 2) * width
+        get = lambda key: np.array([value(mine.get(level, {}), key) for level in levels], dtype=float)  # noqa: E731
+        shift, bound, budget = get("eq4_shift"), get("eq4_shift_bound"), get("budget")
+        axes[0].bar(x, shift, width, color=colours[t % len(colours)], label=f"{tone} skin")
+        axes[0].errorbar(x, shift, yerr=[np.zeros_like(shift), np.maximum(bound - shift, 0)], fmt="none",
+                         ecolor="k", lw=0.8)
+        axes[0].plot(x, budget, "_", color="k", ms=14, mew=2)
+        axes[1].bar(x, get("tpr_change"), width, color=colours[t % len(colours)])
+        axes[2].bar(x, get("fpr_change"), width, color=colours[t % len(colours)])
+        axes[3].bar(x, get("seconds"), width, color=colours[t % len(colours)])
+    names = ("skin's NCC shift from Eq. 4 (— budget)", "TPR change from direct", "FPR change from direct",
+             "seconds per level")
+    for axis, name in zip(axes, names):
+        axis.set_xticks(np.arange(len(levels)), [level.replace("+", "+\n") for level in levels], fontsize=8)
+        axis.set_title(name, fontsize=10)
+        axis.tick_params(labelsize=8)
+    for axis in axes[1:3]:
+        axis.axhline(0, color="k", lw=0.6)
+    axes[0].set_yscale("symlog", linthresh=1e-3)
+    axes[0].legend(fontsize=8)
+    figure.suptitle(title, fontsize=11)
+    return _save(figure, path)

@@ -130,6 +130,7 @@ class Replicated:
     measured: Measured
     expected: np.ndarray
     seconds: float
+    grid: object = GRID_DEFAULT
 
     @property
     def first(self) -> FaceRendering:
@@ -145,21 +146,21 @@ class Replicated:
 
 def render_replicates(camera_, scene, prevailing, calibration, skin, level: Level, spp: int, seeds, size=None,
                       sampler: str = "multijitter", variant: str | None = None, channels: str = "auto", imager=None,
-                      exposure="auto", illuminance: float | None = None) -> Replicated:
+                      exposure="auto", illuminance: float | None = None, grid=GRID_DEFAULT) -> Replicated:
     """
     The face rendered once per seed of ``seeds`` at ``spp`` each (arguments as
     :func:`~skinrender.rendering.face.render_face`), measured as the level's checks see it.
     """
     start = time.perf_counter()
     renders = [render_face(camera_, scene, prevailing, calibration, skin, level, spp, s, size, sampler, variant,
-                           channels=channels, imager=imager, exposure=exposure, illuminance=illuminance)
+                           grid=grid, channels=channels, imager=imager, exposure=exposure, illuminance=illuminance)
                for s in seeds]
     first = renders[0]
     images = np.array([r.image for r in renders], dtype=np.float64)
-    rho = skin_reflectance_of(first.skin, GRID_DEFAULT, "skin")
-    expected = ncc(analytic_reference(first.camera, rho[None], first.prevailing, first.calibration))[0]
+    rho = skin_reflectance_of(first.skin, grid, "skin")
+    expected = ncc(analytic_reference(first.camera, rho[None], first.prevailing, first.calibration, grid=grid))[0]
     measured = level.measure(images, first, imager)  # through a sensor: its dark signal, clipping, codes
-    return Replicated(renders, level, measured, expected, time.perf_counter() - start)
+    return Replicated(renders, level, measured, expected, time.perf_counter() - start, grid)
 
 
 def mean_rendering(replicated: Replicated, imager=None, exposure="auto") -> FaceRendering:
@@ -170,7 +171,7 @@ def mean_rendering(replicated: Replicated, imager=None, exposure="auto") -> Face
     """
     renders, level, first = replicated.renders, replicated.level, replicated.first
     radiance = np.mean([r.radiance for r in renders], axis=0)
-    setup = level.setup(first.scene, first.camera, GRID_DEFAULT, level.lights(first.scene),
+    setup = level.setup(first.scene, first.camera, replicated.grid, level.lights(first.scene),
                         calibration=first.calibration, seed=first.seed, imager=imager, exposure=exposure)
     frame = level.post(Frame(radiance, first.white_prevailing, first.white_calibration,
                              {"lights": first.info.get("lights", {})}), setup)
