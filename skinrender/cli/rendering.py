@@ -183,7 +183,7 @@ def command_render(args: argparse.Namespace) -> None:
         result = replace(result, image=knee(result.image).astype(np.float32), knee=True)
     spp = result.raw[0].spp
     names = channel_names(result.camera)
-    write_chart_exr(output, result, args.seed)
+    write_chart_exr(output, result, args.seed, grid_of(args))
     preview = write_preview(output.with_suffix(".png"), result.image)
     document = {"image": str(output), "preview_png": str(preview), "channels": list(names), "spp": spp,
                 "spp_requested": options["spp"],

@@ -280,12 +280,17 @@ def equivalence(error: ArrayLike, standard_error: ArrayLike, tolerance: ArrayLik
 
 
 def difference(deviation: ArrayLike, standard_error: ArrayLike, alpha: float = ALPHA_DIFFERENCE,
-               dof: float | None = None, name: str = "difference") -> Verdict:
+               dof: float | ArrayLike | None = None, name: str = "difference") -> Verdict:
     """
     Whether any ``deviation`` differs from 0 beyond its noise, at family-wise false-alarm rate ``alpha``:
     the largest ``|deviation| / standard_error`` against the two-sided Šidák critical value (normal, or
-    Student-t with ``dof``). Values with a zero standard error and zero deviation are exact and pass;
-    a non-zero deviation with a zero standard error fails.
+    Student-t with ``dof`` degrees of freedom). Values with a zero standard error and zero deviation are exact
+    and pass; a non-zero deviation with a zero standard error fails.
+
+    ``dof`` may also give each value its own degrees of freedom (broadcast to ``deviation``; ``inf`` is
+    normal), e.g. Welch's for differences of means estimated from samples of different sizes: each value is
+    then held to its own critical value at the Šidák level, and ``statistic`` and ``threshold`` are those of
+    the value nearest to, or furthest beyond, its own.
 
     Examples
     --------
@@ -293,6 +298,9 @@ def difference(deviation: ArrayLike, standard_error: ArrayLike, alpha: float = A
     'pass'
     >>> difference([1.0, 0.0], [0.1, 0.1]).outcome
     'fail'
+    >>> v = difference([4.0, 4.0], [1.0, 1.0], dof=[3.0, 1e6])  # 4 SE: beyond the normal's 2.8, not t(3)'s
+    >>> v.outcome, v.details["worst"], round(v.threshold, 2)
+    ('fail', 1, 2.81)
     """
 
     d = np.asarray(deviation, dtype=np.float64)
@@ -303,16 +311,27 @@ def difference(deviation: ArrayLike, standard_error: ArrayLike, alpha: float = A
         raise SkinrenderError("difference: deviations and standard errors must be finite (standard errors ≥ 0)")
     with np.errstate(divide="ignore", invalid="ignore"):
         z = np.where(se > 0, np.abs(d) / np.where(se > 0, se, 1), np.where(d == 0, 0.0, np.inf))
-    c = critical_z(alpha, d.size, sides=2, dof=dof)
-    law = f"Student t, {dof:g} dof" if dof is not None else "normal"
-    test = f"difference: max |deviation| / SE ≤ {c:.3g} over {d.size} values (Šidák, two-sided, {law})"
-    statistic = float(np.max(z))
-    worst = int(np.argmax(z))
-    if statistic <= c:
-        return Verdict(name, "pass", alpha, test, statistic, c, reason="no difference detected",
+    if dof is not None and np.ndim(dof) > 0:
+        from scipy import stats
+
+        dofs = np.broadcast_to(np.asarray(dof, dtype=np.float64), d.shape)
+        if np.any(~(dofs > 0)):
+            raise SkinrenderError("difference: degrees of freedom must be > 0")
+        c = stats.t.isf(sidak(alpha, d.size) / 2, dofs)
+        law = f"Student t, {np.min(dofs):.3g}–{np.max(dofs):.3g} dof per value"
+    else:
+        c = np.full(d.shape, critical_z(alpha, d.size, sides=2, dof=dof))
+        law = f"Student t, {dof:g} dof" if dof is not None else "normal"
+    ratio = z / c
+    worst = int(np.argmax(ratio))
+    statistic, threshold = float(z.flat[worst]), float(c.flat[worst])
+    shown = f"{threshold:.3g}" if np.ptp(c) == 0 else f"its own critical value ({np.min(c):.3g}–{np.max(c):.3g})"
+    test = f"difference: max |deviation| / SE ≤ {shown} over {d.size} values (Šidák, two-sided, {law})"
+    if np.all(z <= c):
+        return Verdict(name, "pass", alpha, test, statistic, threshold, reason="no difference detected",
                        details={"values": int(d.size), "worst": worst})
-    return Verdict(name, "fail", alpha, test, statistic, c,
-                   reason=f"a difference detected: {statistic:.3g} standard errors against {c:.3g}",
+    return Verdict(name, "fail", alpha, test, statistic, threshold,
+                   reason=f"a difference detected: {statistic:.3g} standard errors against {threshold:.3g}",
                    details={"values": int(d.size), "worst": worst})
 
 

@@ -4,7 +4,9 @@ Image files
 
 -   :func:`write_exr`, :func:`read_exr`: float32 OpenEXR with one named channel
     per last-axis slice (EXR files sort channels by name: they are looked up
-    by name).
+    by name); :func:`read_exr_attributes`: the header's attributes.
+-   :func:`camera_attributes`: the header attributes that trace a file back to
+    its camera's curves (a SHA-256 of them on the grid).
 -   :func:`write_preview`: a tone-mapped 8-bit PNG (sRGB transfer curve).
 
 Units: whatever the image holds (output units for balanced renders).
@@ -21,7 +23,7 @@ from ..errors import SkinrenderError
 from ..extras import require
 from ..hints import NDArrayFloat
 
-__all__ = ["write_exr", "read_exr", "write_preview", "write_png"]
+__all__ = ["write_exr", "read_exr", "read_exr_attributes", "camera_attributes", "write_preview", "write_png"]
 
 
 def write_exr(path: str | Path, image: NDArrayFloat, names: tuple[str, ...], attributes: dict | None = None) -> Path:
@@ -45,12 +47,46 @@ def read_exr(path: str | Path, names: tuple[str, ...]) -> NDArrayFloat:
     require("render", "reading EXR files")
     import OpenEXR
 
-    with OpenEXR.File(str(path)) as handle:
+    # separate_channels: else OpenEXR merges channels named R, G, B (every CSV or bundled camera) into one "RGB"
+    with OpenEXR.File(str(path), separate_channels=True) as handle:
         channels = handle.channels()
         missing = [n for n in names if n not in channels]
         if missing:
             raise SkinrenderError(f"{path}: no channel(s) {', '.join(missing)}; it has {', '.join(sorted(channels))}")
         return np.stack([np.asarray(channels[n].pixels, dtype=np.float32) for n in names], axis=-1)
+
+
+def read_exr_attributes(path: str | Path) -> dict:
+    """The header attributes of an EXR that are text (as :func:`write_exr` stores every given attribute)."""
+    require("render", "reading EXR files")
+    import OpenEXR
+
+    with OpenEXR.File(str(path), header_only=True) as handle:
+        return {k: v for k, v in handle.header().items() if isinstance(v, str)}
+
+
+def camera_attributes(cam, grid=None) -> dict:
+    """
+    ``camera`` (its name), ``camera_sha256`` (SHA-256 of its sensitivities on ``grid`` as little-endian float64,
+    rows R, G, B, after the grid's text) and ``camera_grid_nm``: enough to trace an image back to the curves
+    that made it (the same curves from a CSV, a gbell spec or a bundled camera give the same hash).
+
+    >>> from skinrender.model.camera import camera
+    >>> a = camera_attributes(camera("gbell:9@450,540,610"))
+    >>> a["camera_grid_nm"], len(a["camera_sha256"])
+    ('400:700:1', 64)
+    >>> a["camera_sha256"] == camera_attributes(camera("gbell:9@452,542,612"))["camera_sha256"]
+    False
+    """
+    import hashlib
+
+    from ..spectra import GRID_DEFAULT
+
+    grid = GRID_DEFAULT if grid is None else grid
+    text = f"{grid.start:g}:{grid.end:g}:{grid.step:g}"
+    curves = np.ascontiguousarray(cam.sensitivities(grid), dtype="<f8")
+    return {"camera": cam.name, "camera_sha256": hashlib.sha256(text.encode() + curves.tobytes()).hexdigest(),
+            "camera_grid_nm": text}
 
 
 

@@ -26,7 +26,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import SkinrenderError
-from .exr import write_exr, write_preview
+from .exr import camera_attributes, write_exr, write_preview
 from .renderer import channel_names
 
 __all__ = ["FIGURE_DRAWERS", "register_figure", "draw_figure", "output_paths", "save_result", "write_chart_exr"]
@@ -86,13 +86,16 @@ def save_result(result, kind: str, exr: str | Path, png: bool | str | Path | Non
     return {"exr": written, "png": preview, "figure": drawn}
 
 
-def write_chart_exr(path: str | Path, rendering, seed=None) -> Path:
+def write_chart_exr(path: str | Path, rendering, seed=None, grid=None) -> Path:
     """
     A chart render's float32 EXR: its image in output units, channels named by the camera, and the render's
-    settings as attributes (``seed``: as given to the render, default the prevailing render's).
+    settings as attributes (``seed``: as given to the render, default the prevailing render's), with the
+    camera's curves' hash on ``grid`` (:func:`~skinrender.rendering.exr.camera_attributes`; default the
+    default grid).
     """
     raw = rendering.raw[0]
     return write_exr(path, rendering.image, channel_names(rendering.camera), {
-        "camera": rendering.camera.name, "prevailing_K": rendering.prevailing, "calibration_K": rendering.calibration,
+        **camera_attributes(rendering.camera, grid), "prevailing_K": rendering.prevailing,
+        "calibration_K": rendering.calibration,
         "spp": raw.spp, "seed": raw.seed if seed is None else seed, "variant": rendering.variant,
         "units": "Eq. 4 output units"})

@@ -344,7 +344,9 @@ def chart_renderer(scene, camera_, spp=256, sampler="multijitter", variant=None,
                    channels="auto", emitter="tabulated") -> ChartRenderer:
     """A :class:`ChartRenderer`, reused across calls with the same settings (a few kept)."""
     chart, cam = load_scene(scene), camera(camera_)
-    key = (chart, cam.name, cam.kind, spp, sampler, variant, grid, channels, emitter)
+    # the curves too: a CSV camera rewritten under the same path must not reuse the old curves' renderer
+    key = (chart, cam.name, cam.kind, cam.sensitivities(grid).tobytes(), spp, sampler, variant, grid, channels,
+           emitter)
     if key not in _RENDERERS:
         if len(_RENDERERS) >= 8:
             _RENDERERS.pop(next(iter(_RENDERERS)))

@@ -18,6 +18,7 @@ computation happens elsewhere and hands arrays here.
 -   :func:`figure_face`: a face render with its labels outlined (and the
     detected skin over it).
 -   :func:`figure_ladder`: the physics ladder, one row per level.
+-   :func:`figure_skin_model`: the skin model's reflectance beside measured skin.
 -   :func:`display_srgb`: how renders are shown (camera RGB as sRGB).
 
 Every function writes a PNG (Agg backend, no display needed) and returns its
@@ -38,7 +39,7 @@ import numpy as np
 from ..hints import NDArrayFloat
 
 __all__ = ["figure_pairs", "figure_gamuts", "figure_cases", "figure_render_curve", "figure_locus", "figure_ptc",
-           "figure_chart", "figure_face", "figure_ladder", "display_srgb"]
+           "figure_chart", "figure_face", "figure_ladder", "display_srgb", "figure_skin_model"]
 
 DPI = 110
 """Resolution of every figure, dots per inch."""
@@ -388,14 +389,31 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
     return _save(figure, path, {"handles": handles, "ncol": min(len(handles), 6), "title": "labels"})
 
 
+def figure_skin_model(wavelength: NDArrayFloat, reflectance: NDArrayFloat, label: str, measured: list[tuple],
+                      path: str | Path) -> Path:
+    """
+    The skin model's reflectance ``R(λ)`` (fraction, λ in nm) beside the range (min–max band and median) of each
+    measured set in ``measured``: ``(name, wavelengths nm, values (n, n_wl))``.
+    """
+    plt = _pyplot()
+    figure, axis = plt.subplots(figsize=(6.4, 4.2))
+    for (name, lam, values), colour in zip(measured, ("tab:orange", "tab:blue", "tab:green", "tab:purple")):
+        axis.fill_between(lam, values.min(axis=0), values.max(axis=0), color=colour, alpha=0.2,
+                          label=f"{name}: range of {len(values)}")
+        axis.plot(lam, np.median(values, axis=0), ":", color=colour, lw=1, label=f"{name}: median")
+    axis.plot(wavelength, reflectance, "k-", lw=2, label=label)
+    axis.set(xlabel="wavelength (nm)", ylabel="reflectance", xlim=(wavelength[0], wavelength[-1]), ylim=(0, None),
+             title="Skin model against measured skin")
+    axis.legend(fontsize=7)
+    return _save(figure, path)
+
+
 def figure_effects(rows: list[dict], title: str, path: str | Path) -> Path:
     """
-    The effects table (:mod:`skinrender.studies.effects_table`) drawn: per level (grouped) and skin tone (bars),
-    the shift of the skin's mean NCC from Eq. 4 (to its 95 % upper bound, the tone's budget a dash), the change
-    of TPR and FPR from ``direct``, and the seconds.
-
+    The effects table (:mod:`skinrender.studies.effects_table`): per level and skin tone the skin's NCC shift from
+    Eq. 4 (to its 95 % upper bound; the tone's budget a dash), the TPR and FPR change from ``direct``, the seconds.
     ``rows``: ``{"tone", "level", "eq4_shift", "eq4_shift_bound", "budget", "tpr_change", "fpr_change",
-    "seconds"}`` (``None`` values left out).
+    "seconds"}`` (``None`` left out).
     """
     plt = _pyplot()
     tones = list(dict.fromkeys(row["tone"] for row in rows))
@@ -416,9 +434,8 @@ def figure_effects(rows: list[dict], title: str, path: str | Path) -> Path:
         axes[1].bar(x, get("tpr_change"), width, color=colours[t % len(colours)])
         axes[2].bar(x, get("fpr_change"), width, color=colours[t % len(colours)])
         axes[3].bar(x, get("seconds"), width, color=colours[t % len(colours)])
-    names = ("skin's NCC shift from Eq. 4 (— budget)", "TPR change from direct", "FPR change from direct",
-             "seconds per level")
-    for axis, name in zip(axes, names):
+    for axis, name in zip(axes, ("skin's NCC shift from Eq. 4 (— budget)", "TPR change from direct",
+                                 "FPR change from direct", "seconds per level")):
         axis.set_xticks(np.arange(len(levels)), [level.replace("+", "+\n") for level in levels], fontsize=8)
         axis.set_title(name, fontsize=10)
         axis.tick_params(labelsize=8)

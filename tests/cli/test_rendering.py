@@ -94,6 +94,21 @@ def test_rounded_spp_is_reported_and_the_json_stays_one_document(tmp_path, capsy
     assert status == 0 and document["spp"] == 8 and document["spp_requested"] == 7
 
 
+def test_the_exr_header_traces_the_camera(tmp_path, capsys):
+    """``render``'s EXR carries its camera's curves' SHA-256 (on the --grid), and reads back by name."""
+    from skinrender.model.camera import camera
+    from skinrender.rendering.exr import camera_attributes, read_exr, read_exr_attributes
+    from skinrender.spectra import WavelengthGrid
+
+    status, out, err = run(["render", "macbeth", "--camera", "Kodak DCS-200", *LIGHTS, "--spp", "4", "--grid",
+                            "400:700:2", "-o", tmp_path / "r.exr"], capsys)
+    assert status == 0, err
+    attributes = read_exr_attributes(tmp_path / "r.exr")
+    grid = WavelengthGrid.parse("400:700:2")
+    assert attributes["camera_sha256"] == camera_attributes(camera("Kodak DCS-200"), grid)["camera_sha256"]
+    assert attributes["camera_grid_nm"] == "400:700:2" and read_exr(tmp_path / "r.exr", ("R", "G", "B")).shape[-1] == 3
+
+
 def test_a_black_patch_renders_and_validates(tmp_path, capsys):
     scene = tmp_path / "black.toml"
     scene.write_text("columns = 2\n[[patch]]\nname = 'black'\nreflectance = 'grey:0'\n"

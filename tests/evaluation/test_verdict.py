@@ -98,6 +98,24 @@ class TestDifference:
         assert difference([0.0], [0.0]).outcome == "pass"
         assert difference([1e-9], [0.0]).outcome == "fail"
 
+    def test_per_value_dof_false_alarm_rate_is_alpha(self, rng):
+        """Each value a Student t of its own degrees of freedom (3 to normal): the rate is α; the smallest dof
+        for all (the conservative alternative) would fall far below it."""
+        trials, alpha = 4000, 0.05
+        dof = np.array([3.0, 5.0, 10.0, 30.0, np.inf] * 4)
+        draws = [rng.standard_t(np.where(np.isinf(dof), 1e9, dof)) for _ in range(trials)]
+        failures = sum(difference(t, 1.0, alpha, dof=dof).outcome == "fail" for t in draws)
+        lo, hi = binomial_interval(failures, trials, 0.999)
+        assert lo <= alpha <= hi
+        conservative = sum(difference(t, 1.0, alpha, dof=3.0).outcome == "fail" for t in draws)
+        assert conservative < 0.5 * failures
+
+    def test_per_value_dof_reports_the_worst_against_its_own_critical_value(self):
+        verdict = difference([4.0, 3.5], [1.0, 1.0], dof=[3.0, np.inf])
+        assert verdict.outcome == "fail" and verdict.details["worst"] == 1 and verdict.statistic == 3.5
+        with pytest.raises(SkinrenderError, match="degrees of freedom"):
+            difference([1.0], [1.0], dof=[0.0])
+
 
 class TestSamplesNeeded:
     def test_scales_as_inverse_square(self):

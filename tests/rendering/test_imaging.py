@@ -164,3 +164,10 @@ def test_capped_auto_exposure_and_clipping_are_reported(sub_dn):
     full = np.count_nonzero(long.dn.reshape(-1, 3) >= long.imager.black_level_dn
                             + long.imager.gain_dn_per_e * long.imager.full_well_e - 1, axis=0)
     assert 0 < long.clipping["well_full"][0] <= full[0] and any("full well" in note for note in long.notes)
+
+
+def test_a_chart_through_an_imager_renders_as_its_reference(render_regression):
+    """Regression, on the package's pytest plugin: the face chart recorded by the paper's class of 3-CCD camera
+    at 300 lx (Monte Carlo and sensor noise together in each patch's standard error)."""
+    render_regression.check("face_chart", camera="Kodak DCS-200", prevailing="A", calibration=5900,
+                            imager="sony-icx418", illuminance=300.0, basename="face_chart_icx418")

@@ -53,7 +53,7 @@ from ...model.camera import Camera, camera
 from ...model.illuminant import illuminant
 from ...model.response import gain
 from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
-from ..exr import write_exr, write_preview
+from ..exr import camera_attributes, write_exr, write_preview
 from ..outputs import draw_figure, save_result
 from ..renderer import SAMPLERS, SAMPLES_MAX, channel_names
 from ..variants import choose_variant, mitsuba
@@ -322,7 +322,7 @@ def write_face_exr(path: str | Path, rendering: FaceRendering,
     """
     path = Path(path)
     stack = np.concatenate([rendering.image, rendering.labels[..., None].astype(np.float32)], axis=-1)
-    attributes = {"camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
+    attributes = {**camera_attributes(rendering.camera), "prevailing_K": rendering.prevailing,
                   "calibration_K": rendering.calibration, "spp": rendering.spp, "seed": rendering.seed,
                   "variant": rendering.variant, "physics": rendering.physics, "skin": rendering.skin,
                   "labels": ", ".join(f"{k}={v}" for k, v in rendering.label_names.items()),

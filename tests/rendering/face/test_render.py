@@ -148,6 +148,16 @@ class TestLabels:
         assert np.allclose(result.gain * white_p, 255.0)
 
 
+class TestRegression:
+    """The package's own face regressions, on its pytest plugin (:mod:`skinrender.testing`): each region's mean
+    and the skin's NCC within their noise of the stored render's (``tests/rendering/face/test_render/``)."""
+
+    @pytest.mark.parametrize("physics", ["direct", "interreflection+sheen"])
+    def test_the_face_renders_as_its_reference(self, render_regression, physics):
+        render_regression.check("face", camera="Kodak DCS-200", prevailing="A", calibration=5900, physics=physics,
+                                basename=f"face_{physics.replace('+', '_')}")
+
+
 class TestRefusals:
     @pytest.mark.parametrize("kwargs, match", [
         ({"physics": "glossy"}, "physics"),

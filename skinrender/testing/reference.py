@@ -1,0 +1,215 @@
+"""
+Stored reference renders
+========================
+
+A reference is two files beside each other: ``NAME.exr`` (the image, float32, channels named by the camera,
+a face's ``label`` channel; the camera's curves' hash and the settings in its header) and ``NAME.json`` (the
+sidecar: the settings, the EXR's SHA-256, and what is compared: each value's name, mean, standard error and
+degrees of freedom). The means are recomputed from the EXR at every check (the EXR is the reference); the
+standard errors come from the sidecar (a face's come from its replicates, which the EXR does not hold).
+
+-   :func:`write_reference`: both files, each written to a temporary name and renamed into place.
+-   :func:`read_reference`, :class:`Reference`: both files checked (a missing, unreadable or foreign file, an
+    EXR changed after its sidecar was written, each has its own one-line message).
+-   :func:`state`: ``missing``, ``ours`` or a refusal, before anything is overwritten.
+
+Units: output units (Eq. 4) for images and means, NCC fractions.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import SkinrenderError
+from ..hints import NDArrayFloat
+from .regression import Measurement, values_of
+
+__all__ = ["FORMAT", "Reference", "ReferenceProblem", "shown", "sidecar_of", "state", "write_reference",
+           "read_reference"]
+
+FORMAT = 1
+"""The sidecar format (key ``skinrender_reference``)."""
+
+
+class ReferenceProblem(SkinrenderError):
+    """A reference that is missing, unreadable, foreign or does not fit the check."""
+
+
+@dataclass(frozen=True)
+class Reference:
+    """A stored reference: its image (and a face's labels), the means recomputed from them, the sidecar."""
+
+    path: Path
+    image: NDArrayFloat
+    labels: NDArrayFloat | None
+    mean: NDArrayFloat
+    standard_error: NDArrayFloat
+    dof: NDArrayFloat
+    sidecar: dict
+
+    @property
+    def settings(self) -> dict:
+        """What made it (:attr:`~skinrender.testing.regression.Measurement.settings`)."""
+        return self.sidecar["settings"]
+
+    @property
+    def items(self) -> tuple[str, ...]:
+        """The compared values' names."""
+        return tuple(item["name"] for item in self.sidecar["compared"]["items"])
+
+
+def shown(path: Path) -> Path:
+    """``path`` relative to the working folder where it lies inside it (as pytest shows test files)."""
+    try:
+        return Path(path).resolve().relative_to(Path.cwd().resolve())
+    except ValueError:
+        return Path(path)
+
+
+def sidecar_of(path: Path) -> Path:
+    """The JSON sidecar of a reference EXR."""
+    return Path(path).with_suffix(".json")
+
+
+def _sha256(path: Path) -> str:
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def _load_sidecar(path: Path) -> dict:
+    sidecar = sidecar_of(path)
+    try:
+        document = json.loads(sidecar.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as error:
+        raise ReferenceProblem(f"the reference's sidecar {shown(sidecar)} is unreadable ({type(error).__name__}: "
+                               f"{error}); it was not rewritten: delete it (and {Path(path).name}) to regenerate"
+                               ) from None
+    if not isinstance(document, dict) or document.get("skinrender_reference") != FORMAT:
+        raise ReferenceProblem(f"{shown(sidecar)} is not a skinrender reference sidecar (no 'skinrender_reference': "
+                               f"{FORMAT}); it was not overwritten: move it away or give the check another basename")
+    return document
+
+
+def state(path: Path) -> str:
+    """
+    ``missing`` (neither file), ``ours`` (a readable skinrender sidecar, the EXR there or not); a
+    :class:`ReferenceProblem` for an EXR without a sidecar (foreign: never overwritten) or a sidecar that is
+    unreadable or not ours.
+    """
+    path, sidecar = Path(path), sidecar_of(path)
+    if not path.exists() and not sidecar.exists():
+        return "missing"
+    if not sidecar.exists():
+        raise ReferenceProblem(f"{shown(path)} is there but its sidecar {sidecar.name} is not: it is not a skinrender "
+                               "reference (or its sidecar was lost); it was not overwritten: move it away or give "
+                               "the check another basename")
+    _load_sidecar(path)
+    return "ours"
+
+
+def _json_number(value: float) -> float | None:
+    return float(value) if math.isfinite(value) else None
+
+
+def _replace(path: Path, write) -> None:
+    """``write(temporary)`` then rename it onto ``path``: no half-written reference is ever left."""
+    temporary = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
+    try:
+        write(temporary)
+        os.replace(temporary, path)
+    finally:
+        temporary.unlink(missing_ok=True)
+
+
+def write_reference(path: Path, measurement: Measurement, alpha: float) -> tuple[Path, Path]:
+    """Write ``measurement`` as the reference ``path`` (EXR) and its sidecar; returns both paths."""
+    from ..rendering.exr import write_exr
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    settings = measurement.settings
+    header = {key: json.dumps(value) if not isinstance(value, str) else value for key, value in settings.items()}
+    header["skinrender_reference"] = str(FORMAT)
+    names = measurement.channels
+    image = measurement.image
+    if measurement.labels is not None:
+        names, image = (*names, "label"), np.concatenate([image, measurement.labels[..., None].astype(np.float32)],
+                                                         axis=-1)
+    _replace(path, lambda temporary: write_exr(temporary, image, names, header))
+    regions = measurement.regions if isinstance(measurement.regions, dict) else list(measurement.regions)
+    document = {
+        "skinrender_reference": FORMAT,
+        "exr": path.name,
+        "exr_sha256": _sha256(path),
+        "settings": settings,
+        "channels": list(measurement.channels),
+        "regions": regions,
+        "compared": {
+            "test": ("difference of each value from the check's over the combined standard error of both, "
+                     "Student t, Šidák over all values (skinrender.testing.regression)"),
+            "alpha_when_written": alpha,
+            "items": [{"name": n, "mean": float(m), "standard_error": float(s), "dof": _json_number(d)}
+                      for n, m, s, d in zip(measurement.items, measurement.mean, measurement.standard_error,
+                                            measurement.dof)],
+        },
+    }
+    sidecar = sidecar_of(path)
+    _replace(sidecar, lambda temporary: temporary.write_text(json.dumps(document, indent=1, ensure_ascii=False)
+                                                             + "\n", encoding="utf-8"))
+    return path, sidecar
+
+
+def read_reference(path: Path, new: Measurement) -> Reference:
+    """
+    The reference ``path`` for the check ``new``: both files read and checked, and its means recomputed from
+    the EXR in the order of ``new``'s values. A :class:`ReferenceProblem` (one line) when a file is missing,
+    unreadable or foreign, the EXR changed after the sidecar was written, or the reference is of another kind,
+    size or set of patches/regions than the check.
+    """
+    from ..rendering.exr import read_exr
+
+    path = Path(path)
+    document = _load_sidecar(path)
+    if not path.exists():
+        raise ReferenceProblem(f"the reference render {shown(path)} is missing (its sidecar {sidecar_of(path).name} is "
+                               "there): restore it, or delete the sidecar and rerun with --skinrender-regen")
+    if _sha256(path) != document.get("exr_sha256"):
+        raise ReferenceProblem(f"{shown(path)} changed after its sidecar was written (SHA-256 differs): restore it, or "
+                               "rerun with --skinrender-regen to write both again")
+    try:
+        settings, compared = document["settings"], document["compared"]["items"]
+        kind, channels = settings["kind"], tuple(document["channels"])
+        names = [item["name"] for item in compared]
+        se = np.array([item["standard_error"] for item in compared], dtype=np.float64)
+        dof = np.array([np.inf if item["dof"] is None else item["dof"] for item in compared], dtype=np.float64)
+    except (KeyError, TypeError, ValueError) as error:
+        raise ReferenceProblem(f"the sidecar {shown(sidecar_of(path))} lacks {error} (not written by this version of "
+                               "skinrender?): rerun with --skinrender-regen") from None
+    if kind != new.kind:
+        raise ReferenceProblem(f"{shown(path)} is the reference of a {kind}, the check renders a {new.kind}: rerun with "
+                               "--skinrender-regen if the scene changed on purpose")
+    try:
+        stored = read_exr(path, (*channels, "label") if kind == "face" else channels)
+    except Exception as error:  # OpenEXR raises bare exceptions for a damaged file
+        raise ReferenceProblem(f"the reference render {shown(path)} is unreadable ({' '.join(str(error).split())}): "
+                               "restore it, or delete it and its sidecar and rerun with --skinrender-regen") from None
+    image, labels = stored[..., :3], (stored[..., 3].astype(np.int32) if kind == "face" else None)
+    if image.shape != new.image.shape:
+        (h, w), (nh, nw) = image.shape[:2], new.image.shape[:2]
+        raise ReferenceProblem(f"{shown(path)} is {w}×{h} pixels, the render now {nw}×{nh}: the scene or its size "
+                               "changed; rerun with --skinrender-regen if on purpose")
+    if tuple(names) != tuple(new.items):
+        gone = [n for n in names if n not in new.items][:4]
+        added = [n for n in new.items if n not in names][:4]
+        raise ReferenceProblem(f"the values compared differ from {shown(path)}'s (the reference has {gone or 'no others'}"
+                               f", the render now {added or 'no others'}): the scene changed; rerun with "
+                               "--skinrender-regen if on purpose")
+    regions = document.get("regions")
+    mean = values_of(kind, image, labels, regions, new.scene)
+    return Reference(path, image, labels, mean, se, dof, document)

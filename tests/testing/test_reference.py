@@ -1,0 +1,61 @@
+"""Tests for :mod:`skinrender.testing.reference`: a reference written and read back, and every damaged or foreign
+file reported in one line, never overwritten."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from skinrender.testing.reference import ReferenceProblem, read_reference, sidecar_of, state, write_reference
+from skinrender.testing.regression import Measurement
+from skinrender.testing.replicates import region_values
+
+pytest.importorskip("OpenEXR")
+
+
+@pytest.fixture
+def face(rng) -> Measurement:
+    """A small synthetic face measurement (channels R, G, B: the names OpenEXR once merged into 'RGB')."""
+    image = rng.uniform(0, 200, (6, 5, 3)).astype(np.float32)
+    labels = np.zeros((6, 5), dtype=np.int32)
+    labels[1:4, 1:4] = 1
+    regions = {"background": 0, "skin": 1}
+    mean = region_values(image, labels, regions)[0]
+    items = ("background / R", "background / G", "background / B", "skin / R", "skin / G", "skin / B",
+             "skin NCC / r", "skin NCC / g")
+    return Measurement("face", image, labels, ("R", "G", "B"), regions, items, mean, np.full(8, 0.5),
+                       np.array([30.0] * 7 + [np.inf]), {"kind": "face", "camera": "c.csv", "spp": 16})
+
+
+def test_round_trip(face, tmp_path):
+    path, sidecar = write_reference(tmp_path / "ref" / "x.exr", face, 0.01)
+    assert state(path) == "ours" and sidecar == sidecar_of(path) and sorted(p.name for p in path.parent.iterdir()) \
+        == ["x.exr", "x.json"]  # no temporary left
+    back = read_reference(path, face)
+    np.testing.assert_array_equal(back.image, face.image)
+    np.testing.assert_array_equal(back.labels, face.labels)
+    np.testing.assert_allclose(back.mean, face.mean, rtol=1e-12)
+    assert back.items == face.items and back.dof[-1] == np.inf and back.settings["spp"] == 16
+    document = json.loads(sidecar.read_text())
+    assert document["compared"]["items"][-1]["dof"] is None and document["regions"] == {"background": 0, "skin": 1}
+
+
+def test_state_of_missing_and_foreign(face, tmp_path):
+    assert state(tmp_path / "none.exr") == "missing"
+    (tmp_path / "a.exr").write_bytes(b"not ours")
+    with pytest.raises(ReferenceProblem, match="its sidecar a.json is not: it is not a skinrender reference"):
+        state(tmp_path / "a.exr")
+
+
+@pytest.mark.parametrize("change, match", [
+    ({"kind": "chart"}, "is the reference of a face, the check renders a chart"),
+    ({"items": ("a / R",) * 8}, "the values compared differ"),
+    ({"image": np.zeros((7, 5, 3), np.float32)}, "is 5×6 pixels, the render now 5×7"),
+])
+def test_a_reference_that_does_not_fit_the_check(face, tmp_path, change, match):
+    path, _ = write_reference(tmp_path / "x.exr", face, 0.01)
+    other = Measurement(**{**face.__dict__, **change})
+    with pytest.raises(ReferenceProblem, match=match):
+        read_reference(path, other)
