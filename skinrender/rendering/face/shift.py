@@ -35,6 +35,13 @@ to codes is left out of the bound: the tested pixels are dithered, their
 mean error below 0.003 DN (:data:`~skinrender.rendering.face.effects.noise.DITHER_SIGMA_DN`).
 
 Units: NCC fractions; images in Eq. 4 output units.
+
+References
+----------
+-   :cite:`Efron1982` : see :mod:`skinrender.rendering.face.limits` (the
+    jackknife's bias correction and standard error).
+-   :cite:`Schuirmann1987` : see :mod:`skinrender.evaluation.verdict` (two
+    one-sided tests).
 """
 
 from __future__ import annotations
