@@ -51,8 +51,8 @@ from ..rendering.face.effects import LEVELS_LADDER, parse_physics, physics_level
 from ..rendering.face.labels import LABEL_SKIN
 from ..rendering.face.limits import REPLICATES
 from ..rendering.face.scene import load_face_scene, skin_reflectance_of
-from ..rendering.face.shift import budget_rates, eq4_shift, face_budget
-from ..rendering.face.validation import mean_rendering, render_replicates
+from ..rendering.face.shift import face_budget
+from ..rendering.face.validation import mean_rendering, render_replicates, shift_against
 from ..rendering.validation import analytic_reference
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
@@ -339,10 +339,8 @@ def ladder(
                                        imager=imager, illuminance=illuminance, grid=grid)
         mean = mean_rendering(replicated, imager)
         scores, frame = score_frame(mean, locus)
-        measured = replicated.measured
-        shift = eq4_shift(measured.images, mean.labels, replicated.expected, effects.why, budget, measured.usable)
-        rows.append(_level_row(level, replicated, mean, scores, shift,
-                               budget_rates(mean.image, mean.labels, locus, budget)))
+        shift = shift_against(replicated, budget, locus, mean.image)
+        rows.append(_level_row(level, replicated, mean, scores, shift, shift.details["budget_rates"]))
         frames.append(frame)
         verdicts.append(replace(shift.verdict, name=f"eq4_shift at {rows[-1]['name']}"))
         shape = (mean.scene.camera.width, mean.scene.camera.height)

@@ -80,8 +80,8 @@ def scored_skin(mean: NDArrayFloat, labels: NDArrayFloat, usable: NDArrayFloat |
 
 def _not_run(pixels: int, why: str, budget: DetectionBudget | None) -> LimitCheck:
     return LimitCheck("eq4_shift", True, None, None, None if budget is None else budget.budget, pixels,
-                      f"{why}; only {pixels} scored skin pixels (brightest channel ≥ {SCORED_MIN_OUTPUT:g}): no shift "
-                      "measured", {"within_budget": None}, outcome="inconclusive", alpha=ALPHA_EQUIVALENCE,
+                      f"{why}; only {pixels} scored skin pixels (interior, brightest channel ≥ {SCORED_MIN_OUTPUT:g}, "
+                      "usable through a sensor): no shift measured", {"within_budget": None}, outcome="inconclusive", alpha=ALPHA_EQUIVALENCE,
                       test="equivalence against the detection budget (not run)")
 
 

@@ -9,7 +9,8 @@ how far its skin moves from Eq. 4 where none holds.
 -   :func:`validate_face`, :class:`FaceValidation`: the checks of one face scene.
 -   :func:`render_replicates`, :class:`Replicated`: the replicate renders a
     validation (and the ladder) measures; :func:`mean_rendering`, their mean
-    as one render.
+    as one render; :func:`shift_against`, their ``eq4_shift`` against the
+    detection budget.
 -   :data:`LIMITS_SCENE_FREE`: the limits that hold whatever the level.
 
 What holds where
@@ -84,7 +85,7 @@ from .scene import skin_reflectance_of
 from .shift import budget_rates, eq4_shift, face_budget
 
 __all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "FaceValidation",
-           "Replicated", "render_replicates", "mean_rendering", "validate_face"]
+           "Replicated", "render_replicates", "mean_rendering", "shift_against", "validate_face"]
 
 LIMITS_SCENE_FREE = {
     "furnace": "white furnace: the scene's mesh, reflectance 1, every bounce, in a uniform sky",
@@ -179,6 +180,22 @@ def mean_rendering(replicated: Replicated, imager=None, exposure="auto") -> Face
     return replace(first, image=(applied * frame.signal).astype(np.float32), radiance=radiance, gain=applied,
                    spp=int(sum(r.spp for r in renders)), spp_requested=int(sum(r.spp_requested for r in renders)),
                    seconds=replicated.seconds, info=frame.info)
+
+
+def shift_against(replicated: Replicated, budget, locus, mean=None) -> LimitCheck:
+    """
+    ``eq4_shift`` of the replicates against the detection ``budget``
+    (:func:`~skinrender.rendering.face.shift.eq4_shift`), with ``budget_rates`` (what a shift of the budget does
+    to the pixels of ``mean``, an image ``(h, w, 3)``; ``None``: the replicates' mean) in its details and, where
+    a sensor left too few pixels to decide, which it left out in its reason.
+    """
+    measured, first = replicated.measured, replicated.first
+    shift = eq4_shift(measured.images, first.labels, replicated.expected, replicated.level.why, budget,
+                      measured.usable)
+    mean = measured.images.mean(axis=0) if mean is None else mean
+    reason = f"{shift.reason}; {measured.note}" if shift.outcome == "inconclusive" and measured.note else shift.reason
+    return replace(shift, reason=reason, details={**shift.details, "budget_rates": budget_rates(mean, first.labels,
+                                                                                                locus, budget)})
 
 
 @dataclass(frozen=True)
@@ -315,9 +332,7 @@ def validate_face(
         checks = [replace(c, details={**c.details, **measured.excluded}) for c in checks]
     fraction = BUDGET_FRACTION if budget_fraction is None else budget_fraction
     budget, locus = face_budget(first.camera, replicated.expected, first.calibration, fraction)
-    shift = eq4_shift(measured.images, first.labels, replicated.expected, level.why, budget, measured.usable)
-    rates = budget_rates(measured.images.mean(axis=0), first.labels, locus, budget)
-    checks.append(replace(shift, details={**shift.details, "budget_rates": rates}))
+    checks.append(shift_against(replicated, budget, locus))
     cam = first.camera
     if "furnace" in limits:
         say(f"white furnace ({FURNACE_SIZE}² px, {replicates} × {FURNACE_SPP} spp) …")

@@ -107,12 +107,14 @@ def coat_internal_reflectance(variant: str | None = None) -> float:
     return _INTERNAL[key]
 
 
-def coat_body_reflectance(reflectance: NDArrayFloat, nonlinear: bool = SHEEN_NONLINEAR) -> NDArrayFloat:
+def coat_body_reflectance(reflectance: NDArrayFloat, nonlinear: bool | None = None) -> NDArrayFloat:
     """
     The body reflectance the coat shows over a diffuse base ``reflectance`` (fractions), up to a spectrally flat
-    factor: ``ρ / (1 − R ρ)`` with the coat's internal scattering (``nonlinear``), else ρ.
+    factor: ``ρ / (1 − R ρ)`` with the coat's internal scattering (``nonlinear``; ``None``:
+    :data:`SHEEN_NONLINEAR`), else ρ.
     """
     rho = np.asarray(reflectance, dtype=np.float64)
+    nonlinear = SHEEN_NONLINEAR if nonlinear is None else nonlinear
     return rho / (1.0 - coat_internal_reflectance() * rho) if nonlinear else rho
 
 
