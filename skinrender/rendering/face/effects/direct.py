@@ -25,9 +25,15 @@ __all__ = ["DIRECT"]
 
 
 def _integrator(integrator: dict | None, setup: Setup) -> dict:
-    """One light sample per hit; a BSDF sample only where it can meet a light (the environment)."""
+    """
+    One light sample per hit; a BSDF sample only where it can meet a light (the environment). In a lamp-lit
+    scene (one with a key light) the sky lights the face but is hidden from the camera: the background stays
+    black, and the silhouette's pixels are skin and black, not skin and sky (which would pull their NCC towards
+    the light's colour). A scene lit by its environment alone (the white furnace) sees it.
+    """
     points = all(light.position is not None for light in setup.lights.values())
-    return {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0 if points else 1}
+    hidden = {"hide_emitters": True} if setup.scene.key is not None and not points else {}
+    return {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0 if points else 1, **hidden}
 
 
 def _lambertian(material: dict, reflectance, setup: Setup) -> dict:
