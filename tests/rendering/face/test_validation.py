@@ -40,12 +40,13 @@ def test_the_checks_of_each_level(physics, expected, shift):
     first, last = result.checks[0], result.checks[-1]
     if first.name != "eq4_shift" and "noise" not in physics:
         assert first.passed is True, first
-    elif first.name != "eq4_shift":  # the 8-bit sensor at 48 px leaves few pixels: no highlight resolved at sheen
-        assert first.outcome in ("pass", "not_applicable"), first
+    elif first.name != "eq4_shift":  # the 8-bit sensor at 48 px leaves ~10 pixels usable: never a failure, but
+        assert first.outcome != "fail", first  # no highlight resolved, or too few pixels (the sensor: test below)
     assert all(c.applies for c in result.checks)
     if shift is not None:
         assert last.outcome == shift, last
-    assert last.tolerance == pytest.approx(result.info["budget"]["budget"]) and last.bound >= last.statistic
+    assert last.tolerance == pytest.approx(result.info["budget"]["budget"])
+    assert last.statistic is None or last.bound >= last.statistic  # None: too few usable pixels (the 8-bit sensor)
     document = result.document()
     assert document["physics"] == physics and document["checks"][0]["name"] == expected[0]
     assert document["verdict"] == result.verdict.outcome and document["exit_status"] == EXIT_STATUS[
