@@ -28,12 +28,14 @@ n 1.4, measured from the plugin by :func:`coat_internal_reflectance`), times
 spectrally flat geometry and Fresnel factors, and without it
 ``ρ / (1 − R)``. The model of Shafer holds in both cases, with the body
 reflectance ``ρ_b`` each gives (:func:`coat_body_reflectance`): a check built
-on ρ fails with ``nonlinear`` on (t 45.5 against 8.84, measured before this
-was known), because the plane it tests is spanned by the wrong body colour —
-the check was wrong, not the model. Eq. 4, built on ρ, does not see the
-saturation of the body colour: the shift from Eq. 4 that ``eq4_shift``
-measures at ``sheen`` is mostly that (0.0042 in NCC without the coat's
-internal scattering, 0.0138 with). Whether it is an error of Eq. 4 or of the
+on ρ fails with ``nonlinear`` on (t 16.3 per pixel and 273 pooled against
+9.49 and 3.50, at 128 px, 192 spp, 2856 K balanced to 2856 K; the check with
+ρ_b passes at 6.58 and 0.13), because the plane it tests is spanned by the
+wrong body colour — the check was wrong, not the model. Eq. 4, built on ρ,
+does not see the saturation of the body colour: the skin's shift from Eq. 4
+at ``sheen`` turns from the light's colour (0.0072 in NCC without the
+coat's internal scattering) to redder (0.0105 with), beyond the detection
+budget (0.0075 there). Whether it is an error of Eq. 4 or of the
 scene depends on what ρ is: a measured skin reflectance (the NIST and Vrhel
 spectra: integrating-sphere measurements) already holds the surface's
 internal reflections, so taking it as the base under a nonlinear coat counts
