@@ -32,7 +32,8 @@ import numpy as np
 import skinrender as sr
 from skinrender.model.imager import list_imagers
 from skinrender.studies.ptc import photon_transfer
-from skinrender.rendering.imaging import render_imaged, validate_imaged
+from skinrender.rendering.imaging import render_imaged
+from skinrender.rendering.sensor_validation import validate_imaged
 from skinrender.rendering.validation import analytic_reference
 from skinrender.design.bank import sensor_bank, positions_grid
 from skinrender.design.noise_aware import noisy_setting, bank_rates, triplet_noisy_rates, TPR_MIN
@@ -65,7 +66,7 @@ for ax, lux in zip(axes, (20.0, 2000.0)):
     imaged = render_imaged(chart, CAM, 2856.0, 2856.0, 'sony-imx174', lux, spp=16, seed=1)
     check = validate_imaged(imaged, ratio)
     ax.imshow(np.clip(imaged.rendering.image / 255.0, 0, 1) ** (1 / 2.2)); ax.axis('off')
-    ax.set_title(f'{lux:g} lx, {imaged.exposure_s * 1e3:.1f} ms, model {"passes" if check.passed else "fails"}')
+    ax.set_title(f'{lux:g} lx, {imaged.exposure_s * 1e3:.1f} ms, noise model: {check.difference.reason}')
 
 # %% [markdown]
 # ## Step 3: detection against the light level

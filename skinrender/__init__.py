@@ -29,6 +29,11 @@ Units throughout: wavelength in nm, temperature in K, spectral radiance in
 W·m⁻²·sr⁻¹·nm⁻¹, reflectance as a fraction in [0, 1], responses in output
 units (255 for white at p = c).
 
+A render's validation (:func:`validate`) returns a :class:`Validation` whose
+``verdict`` (a :class:`Verdict`: pass, fail or inconclusive) says whether every
+patch is shown within a relative tolerance of the analytic model, with the
+``bound`` it reached and the ``spp_needed`` to pass.
+
 Examples
 --------
 >>> import skinrender as sr
@@ -48,6 +53,7 @@ from .errors import SkinrenderError
 from .evaluation.detection import Detection, detect
 from .evaluation.gamut import Gamut, gamut, gamut_all_calibrations, gamut_calibration, gamut_volume
 from .evaluation.locus import SkinLocus, skin_locus
+from .evaluation.verdict import Verdict
 from .model.camera import CHANNELS, Camera, camera
 from .model.illuminant import Illuminant, illuminant
 from .model.chromaticity import measure, ncc
@@ -64,7 +70,7 @@ from .model.stage1 import illuminant_selection, illuminant_set, illuminant_track
 from .rendering.balance import Rendering
 from .rendering.dispatch import render
 from .rendering.scene import ChartScene, load_scene
-from .rendering.validation import validate, validate_gamut
+from .rendering.validation import Validation, validate, validate_gamut
 from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse, planck, resample
 from .studies import labelled as _labelled  # noqa: F401 (registers the figures of Rendering and FaceRendering)
 from .studies.tables import table1
@@ -87,6 +93,8 @@ __all__ = [
     "SkinLocus",
     "SkinrenderError",
     "SpectralSet",
+    "Validation",
+    "Verdict",
     "WavelengthGrid",
     "camera",
     "detect",

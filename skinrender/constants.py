@@ -26,6 +26,7 @@ __all__ = [
     "CONSTANT_KNEE_POINT",
     "CONSTANT_KNEE_END",
     "CONSTANT_KNEE_CEILING",
+    "SENSOR_RULE",
     "TEMPERATURES_PAPER",
     "TEMPERATURE_A",
     "TEMPERATURE_HORIZON",
@@ -45,6 +46,10 @@ CONSTANT_K_B: float = 1.380_649e-23
 
 CONSTANT_OUTPUT_SCALE: float = 255.0
 """The paper's output scale *v* of Eq. 4 (8-bit output range 0–255)."""
+
+SENSOR_RULE: str = "1 (impulse) or else a gbell number N > 0 (FWHM N·10 nm; the paper's 3, 5, …, 15)"
+"""What the paper's sensor number may be (:cite:`Martinkauppi2006`), in the words every command's help and refusal
+use (``search --sensor``, ``reproduce --sensors``)."""
 
 CONSTANT_KNEE_FACTOR: float = 0.0127
 """Knee factor *a* of Eq. 11, read by the paper from the Sony manual."""

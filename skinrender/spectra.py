@@ -197,8 +197,8 @@ def resample(
     if np.any(outside) and extrapolation == "refuse":
         raise SkinrenderError(
             f"{source}: measured over {x[0]:g}–{x[-1]:g} nm, which does not cover the "
-            f"grid {target[0]:g}–{target[-1]:g} nm; choose a grid inside the data or "
-            f"state an extrapolation ('zero' or 'constant')"
+            f"grid {target[0]:g}–{target[-1]:g} nm", cause="coverage",
+            hint="choose a grid inside the data or state an extrapolation ('zero' or 'constant')",
         )
     flat = y.reshape(-1, x.size)
     if x.size == 1:

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import SkinrenderError
+from .files import read_input
 from .hints import Literal, NDArrayFloat
 
 __all__ = ["CSV_BYTES_MAX", "SpectraTable", "read_spectra_csv", "validate_spectra"]
@@ -134,20 +135,14 @@ def read_spectra_csv(
     """
 
     path = Path(path)
-    if not path.is_file():
-        raise SkinrenderError(f"{path}: no such file")
     rows: list[list[float]] = []
     lines: list[int] = []
     names: list[str] | None = None
-    if path.stat().st_size > CSV_BYTES_MAX:
-        raise SkinrenderError(f"{path}: {path.stat().st_size / 1e6:.0f} MB is larger than a spectral table can be "
-                              f"({CSV_BYTES_MAX / 1e6:.0f} MB)")
+    data = read_input(path, CSV_BYTES_MAX, "a spectral CSV")
     try:
-        text = path.read_text(encoding="utf-8-sig")
+        text = data.decode("utf-8-sig")
     except UnicodeDecodeError as error:
         raise SkinrenderError(f"{path}: not a UTF-8 text file (byte {error.start}); expected a CSV of numbers") from None
-    except OSError as error:
-        raise SkinrenderError(f"{path}: cannot be read ({error.strerror})") from None
     if "\x00" in text:
         raise SkinrenderError(f"{path}: a binary file, not a CSV of numbers")
     try:

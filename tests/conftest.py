@@ -34,3 +34,31 @@ def sony_dxc930_csv(shared_data: Path, tmp_path: Path) -> Path:
     )
     np.savetxt(out, rows, delimiter=",", header="wavelength_nm,R,G,B", comments="", fmt="%.6g")
     return out
+
+
+SMALL_CHART = """
+name = "small"
+columns = 3
+patch_px = 10
+gap_px = 1
+border_px = 1
+[[patch]]
+reflectance = "macbeth:dark skin"
+[[patch]]
+reflectance = "macbeth:blue"
+[[patch]]
+reflectance = "skin:#14"
+[[patch]]
+reflectance = "macbeth:black 2 (1.5 D)"
+[[patch]]
+reflectance = "macbeth:yellow"
+"""
+"""A small chart for fast statistical tests of renders: five patches of 8 × 8 inner pixels and the white."""
+
+
+@pytest.fixture(scope="session")
+def small_chart(tmp_path_factory) -> Path:
+    """The path of :data:`SMALL_CHART` as a scene file."""
+    path = tmp_path_factory.mktemp("scene") / "small.toml"
+    path.write_text(SMALL_CHART)
+    return path

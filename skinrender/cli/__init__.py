@@ -11,7 +11,7 @@ never a traceback.
 One module per command group: :mod:`~skinrender.cli.data`,
 :mod:`~skinrender.cli.model`, :mod:`~skinrender.cli.evaluation`,
 :mod:`~skinrender.cli.design`, :mod:`~skinrender.cli.rendering`,
-:mod:`~skinrender.cli.studies`, :mod:`~skinrender.cli.face`,
+:mod:`~skinrender.cli.chart_validation`, :mod:`~skinrender.cli.studies`, :mod:`~skinrender.cli.face`,
 :mod:`~skinrender.cli.face_sweep`, :mod:`~skinrender.cli.skin`; :mod:`~skinrender.cli.common` holds what
 they share.
 """
@@ -24,8 +24,9 @@ import os
 import sys
 from collections.abc import Sequence
 
+from .. import files
 from ..errors import SkinrenderError
-from . import data, design, evaluation, face, face_sweep, imaging, model, rendering, skin, studies
+from . import chart_validation, data, design, evaluation, face, face_sweep, imaging, model, rendering, skin, studies
 from .common import Parser, coverage_hint
 
 __all__ = ["main", "build_parser", "COMMANDS"]
@@ -39,7 +40,7 @@ COMMANDS = {
     "search": design.command_search,
     "reproduce": studies.command_reproduce,
     "render": rendering.command_render,
-    "validate": rendering.command_validate,
+    "validate": chart_validation.command_validate,
     "table1": studies.command_table1,
     "locus": evaluation.command_locus,
     "design": design.command_design,
@@ -63,7 +64,8 @@ def build_parser() -> argparse.ArgumentParser:
         "(wavelengths in nm, temperatures in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹).",
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser)
-    for group in (data, model, design, studies, rendering, evaluation, imaging, face, face_sweep, skin):
+    for group in (data, model, design, studies, rendering, chart_validation, evaluation, imaging, face, face_sweep,
+                  skin):
         group.add_parsers(commands)
     return parser
 
@@ -76,18 +78,24 @@ def main(argv: Sequence[str] | None = None) -> int:
         commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
         commands.choices[args.command].error(f"unrecognized arguments: {' '.join(extra)}")
     try:
+        _sampler_note(None)  # forget an earlier command's (main may run several in one process)
         COMMANDS[args.command](args)
         sys.stdout.flush()  # here, so that a failing standard output is reported below, not at exit
+        _sampler_note(args.command)
     except SkinrenderError as error:
-        print(f"skinrender {args.command}: error: {' '.join(coverage_hint(str(error), args).split())}", file=sys.stderr)
-        return 2
+        print(f"skinrender {args.command}: error: {' '.join(coverage_hint(error, args).split())}", file=sys.stderr)
+        return error.status
     except KeyboardInterrupt:
         print(f"skinrender {args.command}: interrupted", file=sys.stderr, flush=True)
+        files.remove_pending()  # a worker thread's half-written temporaries, which os._exit would leave
         # at once: the interpreter's exit would wait on worker pipes that no one reads any more
         os._exit(130)
     except BrokenPipeError:
         return 0
     except OSError as error:
+        if error.errno in USER_PATH_ERRNOS and error.filename:  # a path given that no check caught: still one line
+            print(f"skinrender {args.command}: error: {error.filename}: {files.reason_of(error)}", file=sys.stderr)
+            return 2
         if error.errno not in MACHINE_ERRNOS:
             return _internal_error(args.command, error)
         where = f" ({error.filename})" if error.filename else ""  # the machine's, not the input's: one line
@@ -102,9 +110,26 @@ def main(argv: Sequence[str] | None = None) -> int:
     return 0
 
 
-MACHINE_ERRNOS = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EIO, errno.EROFS})
+MACHINE_ERRNOS = files.MACHINE_ERRNOS
 """Errors of the machine rather than of the input or of skinrender (a full disk or standard output, a failing
 device, a read-only file system): said in one line; any other ``OSError`` is an internal error to report."""
+
+
+USER_PATH_ERRNOS = frozenset({errno.ENAMETOOLONG, errno.ELOOP, errno.EACCES, errno.EPERM, errno.ENOENT,
+                              errno.ENOTDIR, errno.EISDIR})
+"""Errors of a path the user gave (too long, a loop of links, no permission, missing): a refusal naming the path,
+should one reach :func:`main` past the checks that name its flag."""
+
+
+def _sampler_note(command: str | None) -> None:
+    """Mitsuba's "Sample count rounded up" warnings of the command, said once on stderr (never on stdout), then
+    forgotten; ``None``: forgotten unsaid."""
+    variants = sys.modules.get("skinrender.rendering.variants")  # not loaded: nothing rendered
+    note = variants.rounded_note() if variants is not None else None
+    if note and command is not None:
+        print(f"skinrender {command}: note: {note}", file=sys.stderr)
+    if variants is not None:
+        variants.ROUNDED.clear()
 
 
 def _internal_error(command: str, error: BaseException) -> int:

@@ -14,16 +14,16 @@ import argparse
 import json
 import math
 import sys
-import tempfile
 from pathlib import Path
 
 from ..errors import SkinrenderError, naming
+from ..files import check_output_path, shown
 
 __all__ = [
     "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "render_options", "choices_help", "coverage_hint",
-    "interruptible",
+    "interruptible", "check_render_work", "add_max_minutes",
 ]
 
 HELP_CAMERA = (
@@ -47,6 +47,20 @@ def add_common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print one JSON document on stdout")
 
 
+class Once(argparse.Action):
+    """
+    A value flag that may be given once, under any of its spellings (``--normalization`` and
+    ``--normalisation``): a second one is refused, rather than the last silently winning.
+    """
+
+    def __call__(self, parser, namespace, values, option_string=None):  # noqa: D102 - argparse's hook
+        seen = vars(namespace).setdefault("_given", {})
+        if self.dest in seen:
+            parser.error(f"{option_string}: {seen[self.dest]} was given already; give it once")
+        seen[self.dest] = option_string
+        setattr(namespace, self.dest, values)
+
+
 def add_grid(parser: argparse.ArgumentParser) -> None:
     """``--grid`` and ``--extrapolation``."""
     from ..spectra import EXTRAPOLATIONS
@@ -61,7 +75,7 @@ def add_model(parser: argparse.ArgumentParser) -> None:
     from ..model.response import NORMALISATIONS
 
     parser.add_argument("--normalization", "--normalisation", dest="normalization", default="white",
-                        choices=list(NORMALISATIONS), help="illuminant normalisation: " + choices_help(NORMALISATIONS))
+                        action=Once, choices=list(NORMALISATIONS), help="illuminant normalisation: " + choices_help(NORMALISATIONS))
     parser.add_argument("--knee", action="store_true", help="apply the knee of Eq. 11 (output ≤ 255)")
 
 
@@ -74,14 +88,18 @@ def add_search(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
 
 
-def add_render(parser: argparse.ArgumentParser) -> None:
-    """The Mitsuba options: quality, spp, sampler, seed, variant, channels."""
+def add_render(parser: argparse.ArgumentParser, spp_auto: bool = False) -> None:
+    """The Mitsuba options: quality, spp (``spp_auto``: also ``auto``), sampler, seed, variant, channels."""
     from ..rendering.renderer import CHANNEL_GROUPINGS, QUALITY_PRESETS, SAMPLERS
 
     parser.add_argument("--quality", choices=list(QUALITY_PRESETS), default="standard",
                         help="preset: " + ", ".join(f"{k} ({v['spp']} spp)" for k, v in QUALITY_PRESETS.items())
                         + "; multijitter sampler; default standard")
-    parser.add_argument("--spp", type=int, help="samples per pixel (overrides --quality)")
+    if spp_auto:
+        parser.add_argument("--spp", help="samples per pixel (overrides --quality), or auto with --tolerance: the "
+                            "smallest spp expected to pass, from two cheap pilot renders")
+    else:
+        parser.add_argument("--spp", type=int, help="samples per pixel (overrides --quality)")
     parser.add_argument("--sampler", choices=list(SAMPLERS), help="Mitsuba sampler: " + choices_help(SAMPLERS))
     parser.add_argument("--seed", type=int, default=0, help="sampler seed; the same seed gives the same image (default 0)")
     parser.add_argument("--variant", help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral); "
@@ -96,6 +114,37 @@ def add_render(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--exposure", default=None,
                         help="with --imager (or a face's noise level): exposure in s, or auto (the calibration "
                         "white's brightest channel at 0.7 of the full well; default)")
+    add_max_minutes(parser, "the renders × pixels × --spp")
+
+
+def add_max_minutes(parser: argparse.ArgumentParser, what: str) -> None:
+    """``--max-minutes``: the cap on a run's estimated time (:mod:`skinrender.workload`); ``what`` scales it."""
+    from ..workload import MINUTES_MAX
+
+    parser.add_argument("--max-minutes", metavar="MIN", type=float, default=None,
+                        help=f"refuse runs estimated to take longer than this, minutes (default {MINUTES_MAX:g}; the "
+                        f"estimate, from {what}, is printed with the refusal)")
+
+
+def check_render_work(args: argparse.Namespace, pixels: int, spp: int, renders: int = 1) -> None:
+    """
+    Refuse, before anything renders, ``renders`` renders of ``pixels`` pixels at ``spp`` that one pass cannot hold
+    (:data:`~skinrender.rendering.renderer.SAMPLES_MAX`) or whose estimated time exceeds ``--max-minutes``
+    (:func:`~skinrender.studies.face_sweep.estimate_seconds` on every core), naming ``--spp``.
+    """
+    import os
+
+    from ..rendering.renderer import SAMPLES_MAX
+    from ..studies.face_sweep import estimate_seconds
+    from ..workload import check_work
+
+    if spp * pixels > SAMPLES_MAX:
+        raise SkinrenderError(f"--spp: {spp} spp × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
+                              f"{SAMPLES_MAX:.3g} (Mitsuba's 32-bit wavefront); at most {SAMPLES_MAX // pixels} spp "
+                              "for this scene", flag="--spp")
+    what = f"{renders} renders" if renders > 1 else "a render"
+    check_work(estimate_seconds(renders, pixels, spp, os.cpu_count() or 1), "--spp",
+               f"{what} of {pixels} pixels at {spp} spp", getattr(args, "max_minutes", None), fewer="lower --spp")
 
 
 def emit(args: argparse.Namespace, document: dict, text: str) -> None:
@@ -138,6 +187,10 @@ def render_options(args: argparse.Namespace) -> dict:
 
     preset = QUALITY_PRESETS[args.quality]
     spp = args.spp if args.spp is not None else preset["spp"]
+    if isinstance(spp, str):  # a command whose --spp also takes auto (validate), which it resolves itself
+        if spp.strip().lower() == "auto":
+            raise SkinrenderError("--spp auto goes with a chart's 'validate --tolerance T'")
+        spp = integer_in(spp, "--spp", 1, SPP_MAX)
     if not 1 <= spp <= SPP_MAX:
         raise SkinrenderError(f"--spp must be an integer in [1, {SPP_MAX}], got {spp}")
     return {"spp": spp, "sampler": args.sampler or preset["sampler"], "seed": check_seed(args.seed),
@@ -177,9 +230,10 @@ def integer_in(text, name: str, low: int, high: int | None = None) -> int:
     return value
 
 
-def positive_number(text, name: str, unit: str) -> float:
+def positive_number(text, name: str, unit: str, high: float | None = None) -> float:
     """
-    ``text`` as a finite number > 0, else a one-line error naming the flag ``name`` (``unit``: what it counts).
+    ``text`` as a finite number > 0 (and ≤ ``high`` where given), else a one-line error naming the flag ``name``
+    (``unit``: what it counts). ``--illuminance`` takes at most :data:`ILLUMINANCE_MAX` whatever ``high``.
 
     >>> positive_number("300", "--illuminance", "lx")
     300.0
@@ -188,9 +242,19 @@ def positive_number(text, name: str, unit: str) -> float:
         value = float(text)
     except (TypeError, ValueError):
         value = math.nan
-    if not math.isfinite(value) or value <= 0:
-        raise SkinrenderError(f"{name} must be a finite number > 0 ({unit}), got {text!r}")
+    high = ILLUMINANCE_MAX if high is None and name == "--illuminance" else high
+    if not math.isfinite(value) or value <= 0 or (high is not None and value > high):
+        bound = "" if high is None else f" and ≤ {high:g}"
+        raise SkinrenderError(f"{name} must be a finite number > 0{bound} ({unit}), got {text!r}")
     return value
+
+
+EXPOSURE_MAX = 1e5
+"""Longest ``--exposure``, s (about 28 h): far beyond it the electron counts overflow."""
+
+ILLUMINANCE_MAX = 1e15
+"""Largest ``--illuminance``, lx: ten orders of magnitude above direct sunlight (~1.2e5 lx); far beyond it the
+electron counts overflow."""
 
 
 def variant_of(name: str | None) -> str | None:
@@ -205,41 +269,23 @@ def variant_of(name: str | None) -> str | None:
     return name
 
 
-def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = (), folder: bool = False) -> Path | None:
+def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = ()) -> Path | None:
     """
-    Check an output path before any work is done (nothing is created).
+    Check an output file path before any work is done (nothing is left behind): the file it writes (a
+    symbolic link to a file: its target), or ``None`` when the flag ``name`` was not given.
 
-    Refused, with the flag ``name`` in the message: an empty path; a file path
-    that is an existing folder (or a folder path that is an existing file);
-    a suffix not in ``suffixes``; a parent that is a file; a place that cannot
-    be written. A missing parent folder is fine (it is created on writing).
-    ``None`` (the flag not given) passes through.
+    Refused, with the flag ``name`` in the message: an empty path; a suffix not in ``suffixes``; an existing
+    folder, pipe or device; a dangling symbolic link; a name too long; a parent that is a file; a place that
+    cannot be written (:func:`skinrender.files.check_output_path`). A missing parent folder is fine (it is
+    created on writing, and removed again when the writing fails).
     """
     if path is None:
         return None
     if not str(path).strip():
-        raise SkinrenderError(f"{name}: expected a {'folder' if folder else 'file'} path, got an empty one")
-    target = Path(path)
-    if folder and target.exists() and not target.is_dir():
-        raise SkinrenderError(f"{name}: {target} is an existing file, expected a folder")
-    if not folder:
-        if target.is_dir():
-            raise SkinrenderError(f"{name}: {target} is a folder, expected a file")
-        if suffixes and target.suffix.lower() not in suffixes:
-            raise SkinrenderError(f"{name}: {target} must end in {' or '.join(suffixes)}")
-    parent = target if folder else target.parent
-    existing = parent
-    while not existing.exists():
-        if existing == existing.parent:
-            break
-        existing = existing.parent
-    if existing.exists() and not existing.is_dir():
-        raise SkinrenderError(f"{name}: {existing} is a file, so {target} cannot be created")
-    try:  # the only sure test that a place takes files: make one there, and remove it
-        with tempfile.TemporaryFile(dir=existing):
-            pass
-    except OSError as error:
-        raise SkinrenderError(f"{name}: {target} cannot be written ({error.strerror or error})") from None
+        raise SkinrenderError(f"{name}: expected a file path, got an empty one", flag=name)
+    target = check_output_path(path, name)  # a folder, a link to nothing, a name too long … first
+    if suffixes and Path(path).suffix.lower() not in suffixes:
+        raise SkinrenderError(f"{name}: {shown(path)} must end in {' or '.join(suffixes)}", flag=name)
     return target
 
 
@@ -251,7 +297,7 @@ def check_lights(args: argparse.Namespace, cam, temperatures, grid=None, name: s
 
     grid = grid or GRID_DEFAULT
     items, _ = illuminants_array(temperatures)
-    flag(name, check_light, cam, items, spds_on(items, grid), grid, "illuminant")
+    flag({"camera": "--camera", None: name}, check_light, cam, items, spds_on(items, grid), grid, "illuminant")
 
 
 SEED_MAX = 2**32 - 2
@@ -277,25 +323,30 @@ def camera_of(args: argparse.Namespace, grid=None, name: str = "--camera"):
     return cam
 
 
-def coverage_hint(message: str, args: argparse.Namespace) -> str:
+def coverage_hint(error, args: argparse.Namespace) -> str:
     """
-    A refusal of spectra that do not cover the grid, its advice kept to the flags the command has
-    (``--grid``, ``--extrapolation``); any other message as it is.
+    The line of a refusal: for spectra that do not cover the grid (``error.cause == "coverage"``) its advice
+    kept to the flags the command has (``--grid``, ``--extrapolation``; an ``--extrapolation`` that was given
+    and still refused does not apply to those spectra, so it is not advised); any other error as it is.
 
     >>> import argparse
-    >>> coverage_hint("x.csv: measured over 420–680 nm, which does not cover the grid 400–700 nm; choose a grid "
-    ...               "inside the data or state an extrapolation ('zero' or 'constant')", argparse.Namespace())
+    >>> from skinrender.errors import SkinrenderError
+    >>> coverage_hint(SkinrenderError("x.csv: measured over 420–680 nm, which does not cover the grid 400–700 nm",
+    ...                               cause="coverage", hint="choose a grid inside the data"), argparse.Namespace())
     'x.csv: measured over 420–680 nm, which does not cover the grid 400–700 nm; this command integrates over that grid: give spectra that cover it'
     """
-    advice = "; choose a grid inside the data or state an extrapolation ('zero' or 'constant')"
-    if not message.endswith(advice):
-        return message
-    grid, extrapolation = hasattr(args, "grid"), hasattr(args, "extrapolation")
-    if grid and extrapolation:
-        return message[: -len(advice)] + "; choose a --grid inside the data or an --extrapolation ('zero' or 'constant')"
+    if not isinstance(error, SkinrenderError) or error.cause != "coverage":
+        return str(error)
+    message = error.message
+    grid, extrapolation = hasattr(args, "grid"), getattr(args, "extrapolation", None)
+    if grid and extrapolation == "refuse":
+        return message + "; choose a --grid inside the data or an --extrapolation ('zero' or 'constant')"
+    if grid and extrapolation is not None:
+        return (message + f"; choose a --grid inside the data (--extrapolation {extrapolation} applies to CSV "
+                "files, not to these spectra)")
     if grid:
-        return message[: -len(advice)] + "; choose a --grid inside the data"
-    return message[: -len(advice)] + "; this command integrates over that grid: give spectra that cover it"
+        return message + "; choose a --grid inside the data"
+    return message + "; this command integrates over that grid: give spectra that cover it"
 
 
 ILLUMINANCE_DEFAULT = 500.0
@@ -312,16 +363,18 @@ def sensor_settings(args: argparse.Namespace, default_lux: float | None = ILLUMI
     (500.0, 0.01)
     """
     lux = default_lux if args.illuminance is None else args.illuminance
-    if lux is not None and not (math.isfinite(lux) and lux > 0):
-        raise SkinrenderError(f"--illuminance must be a finite number of lux > 0, got {args.illuminance}")
+    if lux is not None and not (math.isfinite(lux) and 0 < lux <= ILLUMINANCE_MAX):
+        raise SkinrenderError(f"--illuminance must be a finite number of lux > 0 and ≤ {ILLUMINANCE_MAX:g}, got "
+                              f"{args.illuminance}")
     exposure = "auto" if args.exposure is None else str(args.exposure).strip().lower()
     if exposure != "auto":
         try:
             exposure = float(exposure)
         except ValueError:
             raise SkinrenderError(f"--exposure must be auto or seconds > 0, got {args.exposure!r}") from None
-        if not (math.isfinite(exposure) and exposure > 0):
-            raise SkinrenderError(f"--exposure must be auto or a finite number of seconds > 0, got {args.exposure!r}")
+        if not (math.isfinite(exposure) and 0 < exposure <= EXPOSURE_MAX):
+            raise SkinrenderError(f"--exposure must be auto or a finite number of seconds > 0 and ≤ {EXPOSURE_MAX:g}, "
+                                  f"got {args.exposure!r}")
     return lux, exposure
 
 

@@ -6,10 +6,13 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 
+from ..constants import SENSOR_RULE
 from ..errors import SkinrenderError
-from .common import (add_common, add_grid, add_search, check_output, flag, imaging_options, integer_in,
+from ..workload import check_work
+from .common import (add_common, add_max_minutes, add_grid, add_search, check_output, flag, imaging_options, integer_in,
                      emit, grid_of)
 
 
@@ -66,8 +69,7 @@ def add_parsers(commands) -> None:
     """Add the parsers of search, design."""
     p = commands.add_parser("search", help="Stage 3: gamut volumes of every sensor triplet (Tables 2–5)")
     p.add_argument("--sensor", required=True, type=float,
-                   help="the paper's sensor: 1 (impulse), or else a gbell of FWHM N·10 nm, N > 0 (the paper's 3, "
-                   "5, …, 15)")
+                   help="the paper's sensor: " + SENSOR_RULE)
     p.add_argument("--slope", type=float, default=None,
                    help="gbell slope b (default 2; the paper does not give it; the impulse has none)")
     p.add_argument("--positions", default="400:700:10",
@@ -86,6 +88,7 @@ def add_parsers(commands) -> None:
     p.add_argument("--max-triplets", type=int, default=1_000_000,
                    help="refuse searches of more triplets than this (default 1 000 000; the 5 nm grid has 35 990, "
                    "measured at ~80 s on 2 cores; the estimate is printed with the refusal)")
+    add_max_minutes(p, "the triplets (× --noise-samples with --imager)")
     p.add_argument("--tie-tolerance", type=float, default=1e-9,
                    help="relative difference under which two values tie (default 1e-9); ties are all listed")
     p.add_argument("--illuminants", default="paper",
@@ -106,6 +109,7 @@ def add_parsers(commands) -> None:
     p.add_argument("--evaluations", type=int, default=150, help="objective evaluations per start (default 150)")
     p.add_argument("--skin", default="skin", help="skin set (default skin)")
     p.add_argument("--munsell", default="munsell", help="Munsell set (default munsell)")
+    add_max_minutes(p, "the starts × --evaluations (× --noise-samples with --imager)")
     add_common(p)
 
 
@@ -138,8 +142,7 @@ def command_search(args: argparse.Namespace) -> None:
     temperatures = flag("--illuminants", illuminant_set, args.illuminants)
     positions = flag("--positions", positions_grid, args.positions)
     if not (math.isfinite(args.sensor) and args.sensor > 0):
-        raise SkinrenderError(f"--sensor must be 1 (impulse) or else a gbell number N > 0 (FWHM N·10 nm), "
-                              f"got {args.sensor}")
+        raise SkinrenderError(f"--sensor must be {SENSOR_RULE}, got {args.sensor}")
     slope = 2.0 if args.slope is None else args.slope
     if not (math.isfinite(slope) and slope > 0):
         raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope}")
@@ -152,14 +155,15 @@ def command_search(args: argparse.Namespace) -> None:
     flag("--illuminants", sensor_bank, args.sensor, skin_values[:1], positions[:3], temperatures, slope,
          grid=grid)
     noisy = noisy_of(args, temperatures)
-    result = search(
+    check_search_time(args, positions.size, noisy, max_triplets)
+    result = flag({"positions": "--positions", None: None}, search,
         args.sensor, skin_values, munsell_values, args.positions, temperatures, slope, grid=grid,
         method=args.method, workers=args.workers, dask=args.dask,
         progress=None if args.quiet else sys.stderr, label=f"sensor {args.sensor:g}", detection=args.detection,
         max_triplets=max_triplets, noisy=noisy,
     )
     if args.csv is not None:
-        result.to_csv(args.csv)
+        result.to_csv(args.csv, "--csv")
     best = result.table(args.tie_tolerance)
     document = {
         "sensor": args.sensor,
@@ -191,6 +195,26 @@ def command_search(args: argparse.Namespace) -> None:
     emit(args, document, "\n".join(lines))
 
 
+def check_search_time(args: argparse.Namespace, positions: int, noisy, max_triplets: int) -> None:
+    """
+    Refuse a search whose estimated time (every triplet, and its noise samples with ``--imager``, at the measured
+    rates on the cores that will run it) exceeds ``--max-minutes``; more triplets than ``--max-triplets`` are the
+    search's own refusal, with its count cap.
+    """
+    from ..design.noise_aware import SECONDS_PER_NOISY_SAMPLE
+    from ..design.search import SECONDS_PER_TRIPLET, check_workers
+
+    count = positions * (positions - 1) * (positions - 2) // 6
+    if count > max_triplets:
+        return
+    cores = min(check_workers(args.workers), os.cpu_count() or 1) if args.dask is None else 1
+    each = SECONDS_PER_TRIPLET + (0 if noisy is None else noisy.samples * SECONDS_PER_NOISY_SAMPLE)
+    check_work(count * each / cores, "--positions" if noisy is None else "--noise-samples",
+               f"{count} triplets" + ("" if noisy is None else f" × {noisy.samples} noise samples")
+               + f" on {cores} core{'s' * (cores != 1)}", args.max_minutes,
+               fewer="use fewer positions" + ("" if noisy is None else " or --noise-samples"))
+
+
 def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
     """
     What a search's tables do not show by themselves: a ``--slope`` given for the impulse (which has none), gamuts
@@ -217,6 +241,14 @@ def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
     return notes
 
 
+DESIGN_SECONDS_PER_EVALUATION = 0.16
+"""One evaluation of the detection objective on noise-free pixels, s (``design --evaluations`` 5 vs 40, one start,
+2-core AMD EPYC VM shared with other jobs)."""
+
+DESIGN_SECONDS_PER_NOISE_SAMPLE = 0.015
+"""What each ``--noise-samples`` adds to an evaluation with ``--imager``, s (4 vs 64 samples, same machine)."""
+
+
 def command_design(args: argparse.Namespace) -> None:
     from ..datasets import reflectances
     from ..design.optimise import noisy_report, optimise_camera
@@ -236,6 +268,10 @@ def command_design(args: argparse.Namespace) -> None:
     noisy = noisy_of(args)
     if noisy is not None and args.objective != "detection":
         raise SkinrenderError("--imager goes with --objective detection (noisy pixels), not ratio")
+    evaluations = len(starts) * max(int(args.evaluations), 0)
+    each = DESIGN_SECONDS_PER_EVALUATION + (0 if noisy is None else noisy.samples * DESIGN_SECONDS_PER_NOISE_SAMPLE)
+    check_work(evaluations * each, "--evaluations", f"{len(starts)} starts × {args.evaluations} evaluations",
+               args.max_minutes, fewer="ask for fewer --evaluations or --starts")
     try:
         result = optimise_camera(args.objective, skin.on(grid), munsell.on(grid), starts, args.sensor * 10.0,
                                  args.slope, args.free_shape, args.evaluations, noisy=noisy)

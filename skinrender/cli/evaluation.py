@@ -9,6 +9,7 @@ import argparse
 import numpy as np
 
 from ..errors import SkinrenderError
+from ..files import write_output
 from .common import HELP_CAMERA, camera_of, check_lights, add_common, check_output, emit, flag
 
 
@@ -28,8 +29,8 @@ def add_parsers(commands) -> None:
     p.add_argument("--munsell", default="munsell",
                    help="the Munsell set, name or CSV path: the 'munsell' item of --nonskin (default munsell)")
     p.add_argument("--nonskin", default="munsell,vrhel-nonskin,macbeth",
-                   help="comma-separated non-skin sets for false-positive rates, each counted once; the item "
-                        "'munsell' is the --munsell set (default munsell,vrhel-nonskin,macbeth)")
+                   help="comma-separated non-skin sets for false-positive rates, each named once (a set named twice "
+                        "is refused); the item 'munsell' is the --munsell set (default munsell,vrhel-nonskin,macbeth)")
     p.add_argument("--plot", help="write the locus, the training chromaticities and the Planckian track to this PNG")
     add_common(p)
 
@@ -66,9 +67,9 @@ def command_locus(args: argparse.Namespace) -> None:
     from ..spectra import GRID_DEFAULT
     from ..studies.figures import figure_locus
 
-    check_output(args.plot, "--plot", (".png",))
+    plot = check_output(args.plot, "--plot", (".png",))
     cam = camera_of(args)
-    temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
+    temperatures = flag({"camera": "--camera", None: "--illuminants"}, illuminant_set, args.illuminants, cam)
     check_lights(args, cam, temperatures)
     calibration = None
     if args.calibration is not None:
@@ -93,10 +94,11 @@ def command_locus(args: argparse.Namespace) -> None:
         # the Planckian track: a white object under 2000–10000 K, balanced to the calibration (or 5900 K)
         reference = calibration if calibration is not None else 5900.0
         track = ncc(response(cam, np.ones((1, GRID_DEFAULT.size)), np.linspace(2000, 10000, 81), reference))[:, 0, :2]
-        figure_locus(locus.polygon, locus.area, args.boundary, locus_points(cam, skin, temperatures, calibration),
-                     skin.name, track, f"Planckian track (white, calibration {reference:g} K)",
-                     f"Skin locus of {cam.name}", args.plot)
-        document["plot"] = args.plot
+        points = locus_points(cam, skin, temperatures, calibration)
+        write_output(plot, lambda stream: figure_locus(
+            locus.polygon, locus.area, args.boundary, points, skin.name, track,
+            f"Planckian track (white, calibration {reference:g} K)", f"Skin locus of {cam.name}", stream), "--plot")
+        document["plot"] = str(plot)
     text = (f"skin locus of {cam.name} ({args.boundary}, {len(locus.polygon)} vertices, area {locus.area:.5f} in r,g) "
             f"over {len(temperatures)} illuminants, "
             + ("every calibration" if calibration is None else f"calibration {calibration:g} K") + "\n"

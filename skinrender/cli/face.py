@@ -10,12 +10,14 @@ fractions.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, camera_of, check_output, check_seed,
-                     choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
+from ..files import TOML_BYTES_MAX, Output, exists, read_input, write_output, write_outputs
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_of,
+                     check_output, check_render_work, check_seed, choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
                      render_options, sensor_settings, table, variant_of)
 
 __all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
@@ -96,6 +98,7 @@ def add_parsers(commands) -> None:
                    help="write the ladder's figure to this PNG: per level the render, the label mask, the "
                    "detected mask and the skin pixels' NCC over the analytic skin locus with the budget; with "
                    "--effects, the table's bars")
+    add_max_minutes(p, "the levels × --size² × --spp (with --effects, × the skins)")
     add_common(p)
 
 
@@ -118,7 +121,7 @@ def _check_light(cam, temperatures: dict) -> None:
     from ..spectra import GRID_DEFAULT
 
     for name, t in temperatures.items():
-        flag(f"--{name}", response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
+        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
 
 
 def check_figure(args: argparse.Namespace, *taken) -> Path | None:
@@ -172,6 +175,11 @@ def face_inputs(args: argparse.Namespace) -> tuple:
         refuse_sensor_settings(args, "--imager or a noise level (--physics noise)")
     lux, exposure = sensor_settings(args, default_lux=None)  # None: the scene's illuminance
     return scene, cam, temperatures, physics, skin, size, imager, exposure, lux
+
+
+def face_pixels(scene, size: int | None) -> int:
+    """The pixels of a face render: ``size`` squared where given, else the scene camera's."""
+    return size * size if size is not None else scene.camera.width * scene.camera.height
 
 
 def levels_of(text: str) -> list[str]:
@@ -245,6 +253,17 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
                               f"{','.join(levels)!r}")
     variant_of(args.variant)
     lux = noise_sensor(args, levels)
+    from ..studies.effects_table import SKIN_TONES
+    from ..studies.face_sweep import estimate_seconds
+    from ..studies.ladder import REPLICATES_LADDER
+    from ..workload import check_work
+
+    renders = len(levels) * REPLICATES_LADDER * (len(skins or SKIN_TONES) if args.effects else 1)
+    each = -(-spp // REPLICATES_LADDER)
+    check_work(estimate_seconds(renders, size * size, each, 1), "--spp",
+               f"{len(levels)} levels of {REPLICATES_LADDER} × {size}×{size} px at {each} spp"
+               + (f" for {len(skins or SKIN_TONES)} skins" if args.effects else ""), args.max_minutes,
+               fewer="lower --spp or --size, or name fewer --levels")
     return {"camera_": cam, "prevailing": temperatures["prevailing"], "calibration": temperatures["calibration"],
             "levels": levels, "spp": spp, "seed": seed, "size": size, "scene": scene, "variant": args.variant,
             "imager": args.imager, "illuminance": lux, "skins": skins}
@@ -290,7 +309,8 @@ def command_ladder(args: argparse.Namespace) -> None:
                 f"({budget['reason']}):\n"
                 + table(rows, ["level", "s", "spp", "skin NCC r g b", "shift", "within", "TPR", "FPR"]))
     if plot is not None:
-        document["plot"] = str(result.figure(plot))
+        write_output(plot, result.figure, "--plot")
+        document["plot"] = str(plot)
         text += f"\nfigure: {plot}"
     text += f"\nverdict: {document['verdict'].upper().replace('_', ' ')} (exit status {document['exit_status']})"
     emit(args, document, text)
@@ -305,13 +325,15 @@ def command_render_face(args: argparse.Namespace) -> None:
     face's (:func:`add_face_arguments`; absent ones take their defaults).
     """
     from ..model.response import knee as apply_knee
-    from ..rendering.face import render_face, write_face_exr
+    from ..rendering.exr import write_exr, write_preview
+    from ..rendering.face.render import face_exr, render_face
 
     options = render_options(args)
     output = check_output(getattr(args, "output", "render.exr"), "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
     scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
+    check_render_work(args, face_pixels(scene, size), options["spp"])
     print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
     result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], skin, physics,
                          options["spp"], options["seed"], size, options["sampler"], options["variant"],
@@ -320,7 +342,14 @@ def command_render_face(args: argparse.Namespace) -> None:
         import dataclasses
 
         result = dataclasses.replace(result, image=apply_knee(result.image).astype(result.image.dtype))
-    path, preview = write_face_exr(output, result)
+    path, preview = output, output.with_suffix(".png")
+    outputs = [Output(path, "--output", lambda stream: write_exr(stream, *face_exr(result))),
+               Output(preview, "--output (its PNG preview)", lambda stream: write_preview(stream, result.image))]
+    if figure is not None:
+        from ..studies.labelled import face_figure
+
+        outputs.append(Output(figure, "--figure", lambda stream: face_figure(result, stream)))
+    write_outputs(*outputs)  # every file whole, or none of them
     document = {"image": str(path), "preview_png": str(preview), "channels": [*result.channels, "label"],
                 "spp": result.spp, "spp_requested": result.spp_requested, "sampler": result.sampler,
                 "seed": result.seed, "variant": result.variant, "elapsed_s": result.seconds,
@@ -330,7 +359,7 @@ def command_render_face(args: argparse.Namespace) -> None:
                 "labels": result.label_names, "physics": result.physics, "skin": result.skin,
                 "size": [result.scene.camera.width, result.scene.camera.height], **result.info}
     if figure is not None:
-        document["figure"] = str(result.figure(figure))  # skinrender.studies.labelled.face_figure
+        document["figure"] = str(figure)
     labels = ", ".join(f"{k}={v}" for k, v in result.label_names.items())
     text = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
             f"{result.prevailing:g} K white-balanced to {result.calibration:g} K: {path} (+ {preview}, "
@@ -358,6 +387,7 @@ def command_detect_face(args: argparse.Namespace) -> None:
     scene, cam, temperatures, physics, face_skin, size, imager, exposure, lux = face_inputs(args)
     locus_skin = getattr(args, "locus_skin", None) or "skin"
     skin = flag("--locus-skin", reflectances, locus_skin)
+    check_render_work(args, face_pixels(scene, size), options["spp"])
     print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
     result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], face_skin, physics,
                          options["spp"], options["seed"], size, options["sampler"], options["variant"],
@@ -367,8 +397,9 @@ def command_detect_face(args: argparse.Namespace) -> None:
     mask, scored = frame["inside"], frame["scored"]
     tpr, fpr = scores["tpr"], scores["fpr"]
     undefined = {key: reason for key, reason in scores["undefined"].items() if key in ("tpr", "fpr")}
-    write_png(output, mask.astype(float))
-    preview = write_preview(output.with_name(output.stem + "_preview.png"), result.image)
+    preview = output.with_name(output.stem + "_preview.png")
+    outputs = [Output(output, "--output", lambda stream: write_png(stream, mask.astype(float))),
+               Output(preview, "--output (its preview)", lambda stream: write_preview(stream, result.image))]
     per_label = []
     for name, ident in result.label_names.items():
         seen = scored & (result.labels == ident)
@@ -392,8 +423,10 @@ def command_detect_face(args: argparse.Namespace) -> None:
                  f"({result.physics}, {result.spp} spp): TPR {shown(tpr)}, FPR {shown(fpr)}\n"
                  f"detected: inside the analytic skin locus, scored pixels (brightest channel ≥ "
                  f"{SCORED_MIN_OUTPUT:g})")
-        document["figure"] = str(figure_face(result.image, result.labels, result.label_names, title, figure,
-                                             mask & scored))
+        outputs.append(Output(figure, "--figure", lambda stream: figure_face(
+            result.image, result.labels, result.label_names, title, stream, mask & scored)))
+        document["figure"] = str(figure)
+    write_outputs(*outputs)  # every file whole, or none of them
     rows = [[row["name"][:30], "skin" if row["is_skin"] else "", shown(row["detected_fraction"])] for row in per_label]
     emit(args, document, table(rows, ["region", "", "detected"]) + f"\nTPR {shown(tpr)}, FPR {shown(fpr)}; mask {output}"
          + (f"; figure {figure}" if figure is not None else ""))

@@ -122,7 +122,7 @@ def _checked(args: argparse.Namespace) -> dict:
     pairs = _lights(args.lights or [LIGHTS_DEFAULT])
     for cam in cams:
         for t in sorted({t for pair in pairs for t in pair}):
-            flag("--lights", response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
+            flag({"camera": "--camera", None: "--lights"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
     skins = [s.strip() for s in (args.skin or SKIN_TONES)]
     for skin in skins:
         if not skin:
@@ -160,8 +160,16 @@ def _face_sweep(args: argparse.Namespace) -> None:
 
     result = face_sweep(**_checked(args), progress=None if args.quiet else sys.stderr)
     if args.csv is not None:
-        result.to_csv(args.csv)
+        result.to_csv(args.csv, "--csv")
     document = {**result.document(), "csv": args.csv}
+    used = sorted({row["spp"] for row in document["combinations"]})  # the sampler may round spp up
+    document["spp_requested"] = result.spp
+    if len(used) == 1:
+        document["spp"] = used[0]
+    from ..rendering.variants import ROUNDED
+
+    if not ROUNDED:  # rendered in worker processes, whose warnings are not seen here: said once by the command line
+        ROUNDED.extend(row["spp"] for row in document["combinations"] if row["spp"] != result.spp)
 
     def triple(values) -> str:
         return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
@@ -173,7 +181,7 @@ def _face_sweep(args: argparse.Namespace) -> None:
              f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]), rate(row["tpr"]), rate(row["fpr"])]
             for row in document["combinations"]]
     text = (table(rows, ["camera", "P/C K", "skin", "level", "s", "spp", "skin NCC r g b", "TPR", "FPR"])
-            + f"\n{len(rows)} render{'s' * (len(rows) != 1)} of {result.size}×{result.size} px at {result.spp} spp in "
+            + f"\n{len(rows)} render{'s' * (len(rows) != 1)} of {result.size}×{result.size} px at {document['spp']} spp in "
             f"{result.elapsed_s:.1f} s ({'Dask' if result.dask else f'{result.workers} worker' + 's' * (result.workers > 1)}, {result.variant})"
             + (f"; wrote {args.csv}" if args.csv else ""))
     emit(args, document, text)

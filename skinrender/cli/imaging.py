@@ -13,7 +13,8 @@ import math
 import sys
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, add_common, camera_of, check_lights, check_output, check_seed, emit, flag, integer_in,
+from ..files import write_output
+from .common import (EXPOSURE_MAX, HELP_CAMERA, add_common, add_max_minutes, camera_of, check_lights, check_output, check_seed, emit, flag, integer_in,
                      positive_number, table)
 
 __all__ = [
@@ -65,6 +66,7 @@ def add_parsers(commands) -> None:
     p.add_argument("--samples", metavar="N",
                    help=f"noisy pixels per reflectance and (prevailing, calibration) pair (default {SAMPLES_DEFAULT})")
     p.add_argument("--seed", metavar="S", help="random seed, an integer in [0, 2**32) (default 0)")
+    add_max_minutes(p, "--samples × the reflectances × the illuminant pairs")
     add_common(p)
 
 
@@ -80,10 +82,11 @@ def command_imagers(args: argparse.Namespace) -> None:
 
 def _noise_options(args: argparse.Namespace) -> dict | None:
     """The checked imager flags, or ``None`` without ``--imager``; nothing heavy is done here."""
-    given = [name for name in ("illuminance", "exposure", "samples", "seed") if getattr(args, name) is not None]
+    given = [name for name in ("illuminance", "exposure", "samples", "seed", "max_minutes")
+             if getattr(args, name) is not None]
     if args.imager is None:
         if given:
-            raise SkinrenderError(f"--{given[0]} applies to the noisy rates: give --imager S too")
+            raise SkinrenderError(f"--{given[0].replace('_', '-')} applies to the noisy rates: give --imager S too")
         return None
     from ..model.imager import imager
 
@@ -93,7 +96,7 @@ def _noise_options(args: argparse.Namespace) -> dict | None:
     if exposure.strip().lower() == "auto":
         exposure = "auto"
     else:
-        exposure = positive_number(exposure, "--exposure", "s, or 'auto'")
+        exposure = positive_number(exposure, "--exposure", "s, or 'auto'", EXPOSURE_MAX)
     return {
         "imager_": flag("--imager", imager, args.imager),
         "illuminance_lux": positive_number(args.illuminance, "--illuminance", "lx"),
@@ -112,13 +115,14 @@ def command_score(args: argparse.Namespace) -> None:
     from ..datasets import reflectances
     from ..evaluation.gamut import gamut_all_calibrations
     from ..evaluation.locus import false_positive_rate, skin_locus
-    from ..evaluation.noisy_detection import noisy_detection
+    from ..evaluation.noisy_detection import SECONDS_PER_NOISY_PIXEL, noisy_detection
+    from ..workload import check_work
     from ..model.stage1 import illuminant_set
     from ..spectra import GRID_DEFAULT
 
     noise = _noise_options(args)
     cam = camera_of(args)
-    temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
+    temperatures = flag({"camera": "--camera", None: "--illuminants"}, illuminant_set, args.illuminants, cam)
     skin, munsell = flag("--skin", reflectances, args.skin), flag("--munsell", reflectances, args.munsell)
     skin_gamut = gamut_all_calibrations(cam, skin, temperatures)
     munsell_gamut = gamut_all_calibrations(cam, munsell, temperatures)
@@ -134,6 +138,10 @@ def command_score(args: argparse.Namespace) -> None:
             + ("undefined (degenerate Munsell gamut)" if ratio is None else f"{ratio:.6g}") + "\n"
             f"  false positives ({munsell.name} in the {skin.name} locus, noise-free): {fpr:.4f}")
     if noise is not None:
+        pixels = (skin.count + munsell.count) * len(temperatures) ** 2
+        check_work(noise["samples"] * pixels * SECONDS_PER_NOISY_PIXEL, "--samples",
+                   f"{noise['samples']} noisy samples of {pixels} reflectance-and-light pairs", args.max_minutes,
+                   fewer="ask for fewer --samples")
         result = noisy_detection(cam, skin.on(GRID_DEFAULT), munsell.on(GRID_DEFAULT), temperatures, locus=locus,
                                  **noise)
         document["noisy"] = {
@@ -159,16 +167,21 @@ def command_score(args: argparse.Namespace) -> None:
     emit(args, document, text)
 
 
+PTC_FIGURES = ("gain_dn_per_e", "read_noise_e", "dark_current_e_per_s", "full_well_e", "linearity_error")
+"""The per-channel figures of ``ptc``, in the text's columns: every one its JSON has."""
+
+
 def command_ptc(args: argparse.Namespace) -> None:
     from ..model.illuminant import illuminant
     from ..model.imager import imager
     from ..studies.figures import figure_ptc
     from ..studies.ptc import photon_transfer
 
-    check_output(args.plot, "--plot", (".png",))
+    plot = check_output(args.plot, "--plot", (".png",))
     cam = camera_of(args)
     sensor = flag("--imager", imager, args.imager)
-    for name, value in (("--temperature", args.temperature), ("--illuminance", args.illuminance)):
+    positive_number(args.illuminance, "--illuminance", "lx")
+    for name, value in (("--temperature", args.temperature),):
         if not (math.isfinite(value) and value > 0):
             raise SkinrenderError(f"{name} must be a finite number > 0, got {value}")
     flag("--temperature", illuminant, args.temperature)
@@ -176,16 +189,19 @@ def command_ptc(args: argparse.Namespace) -> None:
     if not 1 <= args.spp <= 65536:
         raise SkinrenderError(f"--spp must be an integer in [1, 65536], got {args.spp}")
     check_seed(args.seed)
+    integer_in(args.points, "--points", 4, 1000)  # before the progress line, so a refusal is its one line
     print(f"rendering the grey chart at {args.spp} spp …", file=sys.stderr)
     result = flag("--points", photon_transfer, cam, sensor, args.temperature, args.illuminance, args.points,
                   args.spp, args.seed)
     if args.plot:
-        result["plot"] = str(figure_ptc(result, args.plot))
+        write_output(plot, lambda stream: figure_ptc(result, stream), "--plot")
+        result["plot"] = str(plot)
     shown = lambda v: "undefined" if v is None else f"{v:.4g}"  # noqa: E731
-    rows = [[name, *(shown(result[key][k]) for key in ("gain_dn_per_e", "read_noise_e", "full_well_e",
-                                                       "linearity_error"))]
-            for k, name in enumerate("RGB")]
-    rows.append(["stated", f"{sensor.gain_dn_per_e:.4g}", f"{sensor.read_noise_e:.4g}", f"{sensor.full_well_e:.4g}", ""])
-    text = (f"photon transfer of {cam.name} through {sensor.name} ({len(result['points'])} exposures):\n"
-            + table(rows, ["channel", "gain DN/e⁻", "read noise e⁻", "full well e⁻", "linearity %"]))
+    rows = [[name, *(shown(result[key][k]) for key in PTC_FIGURES)] for k, name in enumerate("RGB")]
+    rows.append(["stated", *(f"{result['stated'][key]:.4g}" if key in result["stated"] else "" for key in PTC_FIGURES)])
+    text = (f"photon transfer of {cam.name} through {sensor.name} ({len(result['points'])} exposures, "
+            f"{args.illuminance:g} lx):\n"
+            + table(rows, ["channel", "gain DN/e⁻", "read noise e⁻", "dark current e⁻/s", "full well e⁻",
+                           "linearity %"])
+            + "".join(f"\n{key} undefined: {why}" for key, why in result["undefined"].items()))
     emit(args, result, text)

@@ -65,7 +65,7 @@ def command_illuminants(args: argparse.Namespace) -> None:
     flag("--range", temperature_range, args.range[0], args.range[1], args.step)
     flag("--pair", measure, np.full((1, 3), 1.0 / 3.0), args.pair)
     cam = camera_of(args, grid_of(args))
-    selection = flag("--count", illuminant_selection,  # too many for the candidates is what can fail here
+    selection = flag({"camera": "--camera", "illuminant": "--range", None: "--count"}, illuminant_selection,
                      cam, args.count, args.range[0], args.range[1], args.step, grid_of(args), args.pair)
     document = {
         "camera": cam.name,
@@ -136,7 +136,7 @@ def command_gamut(args: argparse.Namespace) -> None:
 
     grid = grid_of(args)
     cam = camera_of(args, grid_of(args))
-    temperatures = flag("--illuminants", illuminant_set, args.illuminants, cam)
+    temperatures = flag({"camera": "--camera", None: "--illuminants"}, illuminant_set, args.illuminants, cam)
     check_lights(args, cam, temperatures, grid)
     if args.ratio == bool(args.reflectances):
         raise SkinrenderError("give either --reflectances R or --ratio (with --skin and --munsell), not both or neither")

@@ -1,5 +1,6 @@
 """
-Rendering commands: ``render``, ``validate``, ``detect``.
+Rendering commands: ``render``, ``validate``, ``detect`` (``validate``'s command and verdict flags are
+:mod:`skinrender.cli.chart_validation`).
 """
 
 from __future__ import annotations
@@ -10,9 +11,11 @@ import sys
 import numpy as np
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, camera_of, add_grid, add_model, add_render, check_output,
-                     choices_help, emit, flag, grid_of, render_options, table)
+from ..files import Output, write_outputs
 from ..studies.labelled import chart_figure
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, camera_of, add_grid,
+                     add_model, add_render, check_output, check_render_work, choices_help, emit, flag, grid_of,
+                     render_options, table)
 from .face import check_figure
 
 
@@ -22,22 +25,23 @@ def add_parsers(commands) -> None:
 
     for name, text in (("render", "spectral render of a chart or face scene with Mitsuba 3 (float32 EXR + PNG "
                                   "preview)"),
-                       ("validate", "render a chart and check every patch against Eq. 4 within its noise; a face: "
-                                    "the analytic limits that hold at its level of physics and Eq. 4's error "
-                                    "against the detection budget (exit 0 pass, 1 fail, 3 inconclusive)")):
+                       ("validate", "render a chart and check every patch against Eq. 4: pass, fail or "
+                                    "inconclusive within --tolerance; a face: the analytic limits that hold at its "
+                                    "level of physics and Eq. 4's error against the detection budget")):
         p = commands.add_parser(name, help=text)
         p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path "
                        "(see scenes/)")
         p.add_argument("--camera", required=True, help=HELP_CAMERA)
         p.add_argument("--prevailing", required=True, help="prevailing (emitter) illuminant: " + HELP_PLANCKIAN)
         p.add_argument("--calibration", required=True, help="calibration (white balance) illuminant: " + HELP_PLANCKIAN)
-        add_render(p)
+        add_render(p, spp_auto=name == "validate")
         add_model(p)
         add_grid(p)
-        if name == "validate":
+        if name == "validate":  # its verdict's flags (--tolerance): skinrender.cli.chart_validation
             p.add_argument("--gamut", action="store_true",
                            help="also render the chart under every paper illuminant and compare its gamut volumes "
-                           "(one calibration case each, and all calibrations) with the analytic ones")
+                           "(one calibration case each, and all calibrations) with the analytic ones, within "
+                           "--tolerance (relative to each volume)")
             p.add_argument("--limits", metavar="LIST",
                            help="face scenes: the scene-free limits run beside the level's own: furnace, sphere "
                            "(comma-separated) or none (default: both)")
@@ -46,8 +50,9 @@ def add_parsers(commands) -> None:
         add_face_arguments(p)
         if name == "render":
             p.add_argument("-o", "--output", default="render.exr",
-                           help="output EXR (float32, Eq. 4 output units, channels named by the camera); "
-                           "a PNG preview is written beside it")
+                           help="output EXR (float32, Eq. 4 output units, channels named by the camera); a PNG "
+                           "preview is written beside it (NAME.png); default render.exr (and render.png) in the "
+                           "current folder, replaced if there")
             p.add_argument("--figure", metavar="PNG",
                            help="also write a labelled figure: a chart upscaled with each patch's name on it "
                            "(skin patches outlined), a face with its labels outlined")
@@ -66,7 +71,9 @@ def add_parsers(commands) -> None:
     p.add_argument("--physics", default="direct", help="face scenes: the level of physics, as for render "
                    "(--imager adds noise)")
     p.add_argument("--size", metavar="PX", help="face scenes: image side, pixels (default: the scene's)")
-    p.add_argument("-o", "--output", default="detect.png", help="mask PNG (a preview PNG is written beside it)")
+    p.add_argument("-o", "--output", default="detect.png",
+                   help="mask PNG (white: detected skin); a preview PNG is written beside it (NAME_preview.png); "
+                   "default detect.png (and detect_preview.png) in the current folder, replaced if there")
     p.add_argument("--figure", metavar="PNG",
                    help="also write a labelled figure: a chart with its patch names over the render and over "
                    "the detection mask with each patch's detected fraction; a face with the detected skin over it "
@@ -114,14 +121,24 @@ def render_inputs(args: argparse.Namespace) -> dict:
     from ..spectra import GRID_DEFAULT
 
     grid = grid or GRID_DEFAULT
-    response(cam, np.ones((1, grid.size)), temperatures["prevailing"], temperatures["calibration"], grid=grid)
+    for name, kelvin in temperatures.items():  # each light seen by the camera, the one at fault named
+        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, grid.size)), kelvin, kelvin,
+             grid=grid)
     try:  # every patch's data covers the grid, before the render needs it
         scene.reflectances(grid)
     except SkinrenderError as error:  # the chart's own data: --extrapolation (CSV cameras') does not apply
-        raise SkinrenderError(f"--grid: {str(error).split('; choose a grid')[0]}; choose a --grid inside the "
-                              "chart's data") from None
+        if error.cause != "coverage":
+            raise error.reworded(f"SCENE: {error.message}", flag="SCENE") from None
+        raise error.reworded(f"--grid: {error.message}", flag="--grid", cause=None,
+                             hint="choose a --grid inside the chart's data") from None
     return {"scene": scene, "camera_": cam, "prevailing": temperatures["prevailing"],
             "calibration": temperatures["calibration"]}
+
+
+def pixels_of(scene) -> int:
+    """The pixels of a chart scene's image."""
+    width, height = scene.size
+    return int(width) * int(height)
 
 
 def render_with(args: argparse.Namespace, inputs: dict, options: dict, imaging: dict | None, knee: bool = False):
@@ -173,6 +190,7 @@ def command_render(args: argparse.Namespace) -> None:
     figure = check_figure(args, output.with_suffix(".png"))
     inputs = render_inputs(args)
     imaging = imaging_options(args)
+    check_render_work(args, pixels_of(inputs["scene"]), options["spp"])
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
     result, imaged = render_with(args, inputs, options, imaging, args.knee)
     if imaged is not None and args.knee:
@@ -183,8 +201,12 @@ def command_render(args: argparse.Namespace) -> None:
         result = replace(result, image=knee(result.image).astype(np.float32), knee=True)
     spp = result.raw[0].spp
     names = channel_names(result.camera)
-    write_chart_exr(output, result, args.seed, grid_of(args))
-    preview = write_preview(output.with_suffix(".png"), result.image)
+    preview = output.with_suffix(".png")
+    outputs = [Output(output, "--output", lambda stream: write_chart_exr(stream, result, args.seed, grid_of(args))),
+               Output(preview, "--output (its PNG preview)", lambda stream: write_preview(stream, result.image))]
+    if figure is not None:
+        outputs.append(Output(figure, "--figure", lambda stream: chart_figure(result, stream)))
+    write_outputs(*outputs)  # every file whole, or none of them
     document = {"image": str(output), "preview_png": str(preview), "channels": list(names), "spp": spp,
                 "spp_requested": options["spp"],
                 "sampler": options["sampler"], "seed": args.seed, "variant": result.variant,
@@ -192,64 +214,11 @@ def command_render(args: argparse.Namespace) -> None:
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
                 "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged)}
     if figure is not None:
-        document["figure"] = str(chart_figure(result, figure))
+        document["figure"] = str(figure)
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "
             f"{result.calibration:g} K: {output} (+ {preview}), {spp} spp, {result.variant}, "
             f"{result.seconds:.2f} s" + (f"; figure {figure}" if figure is not None else "") + imaging_notes(imaged))
     emit(args, document, text)
-
-
-@interruptible
-def command_validate(args: argparse.Namespace) -> None:
-    from ..rendering.validation import SIGMAS, validate
-    from .face import is_face_scene
-
-    if is_face_scene(args.scene):  # the face: the analytic limits that hold at its level of physics
-        from .face_validation import command_validate_face
-
-        return command_validate_face(args)
-    chart_only(args)
-    if args.limits is not None:
-        raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart")
-    options = render_options(args)
-    inputs = render_inputs(args)
-    imaging = imaging_options(args)
-    print(f"rendering {inputs['scene'].name} at {options['spp']} spp and validating …", file=sys.stderr)
-    if imaging is not None:
-        return validate_through_imager(args, inputs, options, imaging)
-    result = validate(**inputs, normalization=args.normalization, knee=args.knee, grid=grid_of(args), **options)
-    r = result.rendering
-    document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
-                "calibration_K": r.calibration, "normalization": args.normalization, "knee": args.knee,
-                "spp": r.raw[0].spp, "spp_requested": options["spp"], "sampler": options["sampler"], "seed": args.seed, "variant": r.variant,
-                "elapsed_s": r.seconds, "sigmas": SIGMAS, "patches": result.patches(), "worst": result.worst(),
-                "max_rel_error": float(result.rel_error.max()), "quadrature_rel_difference": result.quadrature,
-                "passed": result.passed}
-    lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
-             f"{options['spp']} spp {options['sampler']}, {r.variant}, {r.seconds:.2f} s"]
-    rows = [[p["name"][:28], *(f"{v:.3f}" for v in p["rendered"]), *(f"{v:.1e}" for v in p["rel_error"]),
-             "ok" if p["passed"] else "FAIL"] for p in document["patches"]]
-    lines.append(table(rows, ["patch", "R", "G", "B", "relerr R", "relerr G", "relerr B", ""]))
-    lines += [f"worst {w['channel']}: {w['patch']} ({w['z']:+.2f} σ, {w['rel_error']:.1e} relative)" for w in result.worst()]
-    lines.append(f"paper Σ vs rendered integral (quadrature): {result.quadrature:.1e} relative; "
-                 f"{'PASSED' if result.passed else 'FAILED'} (tolerance {SIGMAS:g} σ of the measured noise)")
-    passed = result.passed
-    if args.gamut:
-        from ..rendering.validation import validate_gamut
-
-        gamuts = validate_gamut(args.scene, args.camera, spp=options["spp"], seed=args.seed,
-                                sampler=options["sampler"], variant=args.variant, grid=grid_of(args))
-        document["gamut"] = gamuts
-        passed = passed and gamuts["passed"]
-        lines.append(f"gamut volumes (output units³), rendered vs analytic, {len(gamuts['illuminants_K'])} illuminants:")
-        labels = [f"calibration {t:g} K" for t in gamuts["illuminants_K"]] + ["all calibrations"]
-        for label, r, a, sg in zip(labels, gamuts["rendered"], gamuts["analytic"], gamuts["sigma"]):
-            lines.append(f"  {label:20s} {r:.6g} vs {a:.6g} (σ {sg:.2g})")
-        lines.append("gamuts " + ("agree within 5 σ" if gamuts["passed"] else "DISAGREE"))
-    document["passed"] = passed
-    emit(args, document, "\n".join(lines))
-    if not passed:
-        raise SystemExit(1)
 
 
 def locus_skin_of(args: argparse.Namespace, chart: bool) -> str:
@@ -288,13 +257,20 @@ def command_detect(args: argparse.Namespace) -> None:
     inputs = render_inputs(args)
     imaging = imaging_options(args)
     skin = flag("--locus-skin" if args.skin is None else "--skin", reflectances, locus_skin)
+    check_render_work(args, pixels_of(inputs["scene"]), options["spp"])
     print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
     rendering, imaged = render_with(args, inputs, options, imaging)
     # the camera is white-balanced to the calibration light: the locus of that one balancing
     locus = skin_locus(rendering.camera, skin, calibration=rendering.calibration, boundary=args.boundary)
     result = detect(rendering, locus, scored_min=SCORED_MIN_OUTPUT)  # scored as on a face: too dark has no colour
-    write_png(output, result.mask.astype(float))
-    preview = write_preview(output.with_name(output.stem + "_preview.png"), rendering.image)
+    preview = output.with_name(output.stem + "_preview.png")
+    rate = lambda value, key: "undefined (" + result.undefined[key] + ")" if value is None else f"{value:.3f}"  # noqa: E731
+    outputs = [Output(output, "--output", lambda stream: write_png(stream, result.mask.astype(float))),
+               Output(preview, "--output (its preview)", lambda stream: write_preview(stream, rendering.image))]
+    if figure is not None:
+        outputs.append(Output(figure, "--figure", lambda stream: chart_figure(
+            rendering, stream, result, f"TPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}")))
+    write_outputs(*outputs)  # every file whole, or none of them
     document = {"scene": rendering.scene.name, "camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
                 "calibration_K": rendering.calibration, "tpr": result.tpr, "fpr": result.fpr,
                 "undefined": result.undefined, "locus_degenerate": locus.degenerate,
@@ -305,41 +281,9 @@ def command_detect(args: argparse.Namespace) -> None:
     rows = [[p["name"][:30], "skin" if p["is_skin"] else "",
              "undefined" if p["detected_fraction"] is None else f"{p['detected_fraction']:.2f}"]
             for p in result.per_patch]
-    rate = lambda value, key: "undefined (" + result.undefined[key] + ")" if value is None else f"{value:.3f}"  # noqa: E731
     if figure is not None:
-        document["figure"] = str(chart_figure(rendering, figure, result,
-                                              f"TPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}"))
+        document["figure"] = str(figure)
     text = (table(rows, ["patch", "", "detected"])
             + f"\nTPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}; mask {output}"
             + (f"; figure {figure}" if figure is not None else "") + imaging_notes(imaged))
     emit(args, document, text)
-
-
-def validate_through_imager(args: argparse.Namespace, inputs: dict, options: dict, imaging: dict) -> None:
-    """``validate --imager``: every patch's pixel mean (z-test) and variance (χ² test) against the sensor model."""
-    from ..rendering.imaging import validate_imaged
-    from ..rendering.validation import analytic_reference
-
-    rendering, imaged = render_with(args, inputs, options, imaging)
-    grid = grid_of(args)
-    ratio = analytic_reference(rendering.camera, rendering.scene.reflectances(grid), rendering.prevailing,
-                               rendering.prevailing, grid=grid) / 255.0
-    result = validate_imaged(imaged, ratio, grid=grid)
-    patches = result.patches()
-    document = {"scene": rendering.scene.name, "camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
-                "calibration_K": rendering.calibration, "normalization": args.normalization,
-                "spp": rendering.raw[0].spp, "spp_requested": options["spp"], "seed": args.seed,
-                "variant": rendering.variant, "elapsed_s": rendering.seconds, **imaging_document(imaged),
-                "test": "per patch and channel: the mean and the variance, exact on the code lattice where the "
-                        "noise spans a few codes, else z-test and chi-square; Sidak-corrected",
-                "alpha_per_test": result.level, "patches": patches, "passed": result.passed}
-    rows = [[p["name"][:28], *(f"{v:.2f}" for v in p["rendered_std"]), *(f"{v:.2f}" for v in p["predicted_std"]),
-             "ok" if p["passed"] else "FAIL"] for p in patches]
-    text = (f"{rendering.scene.name} through {rendering.camera.name} and {imaged.imager.name}, "
-            f"{imaged.illuminance_lux:g} lx, {imaged.exposure_s * 1e3:.3g} ms; std (output units):\n"
-            + table(rows, ["patch", "rendered R", "G", "B", "predicted R", "G", "B", ""])
-            + f"\n{'PASSED' if result.passed else 'FAILED'} (each test at {result.level:.2g}, family-wise 0.01)"
-            + imaging_notes(imaged))
-    emit(args, document, text)
-    if not result.passed:
-        raise SystemExit(1)

@@ -7,9 +7,12 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..constants import SENSOR_RULE
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, add_common, add_grid, add_search, check_output, flag, integer_in,
-                     emit, table)
+from ..workload import check_work
+from ..files import write_output
+from .common import (HELP_CAMERA, add_common, add_max_minutes, add_grid, add_search, check_output, flag, integer_in,
+                     emit, positive_number, table)
 
 
 def _g(value) -> str:
@@ -40,7 +43,8 @@ def add_parsers(commands) -> None:
                             "their matches with the paper; --sweep: the tables under each choice of the paper's unknowns")
     p.add_argument("-o", "--output", required=True,
                    help="output folder: new, empty or an earlier reproduce folder (replaced only when the run completes)")
-    p.add_argument("--sensors", default="1,3,5,7,9,11,13,15", help="sensor numbers (default 1,3,…,15)")
+    p.add_argument("--sensors", default="1,3,5,7,9,11,13,15",
+                   help="comma-separated sensor numbers, each " + SENSOR_RULE + " (default 1,3,…,15)")
     p.add_argument("--positions", help=f"peak positions START:END:STEP in nm (default {POSITIONS_DEFAULT})")
     p.add_argument("--camera", default="Nikon 5100 (NPL)",
                    help="Stage 2 camera for Figs. 3–7 (the paper's Sony is not public); " + HELP_CAMERA)
@@ -59,6 +63,7 @@ def add_parsers(commands) -> None:
                    "quick look)")
     p.add_argument("--sweep-combine", type=int, default=None,
                    help="how many unknowns the sweep combines, the most telling first (default 3)")
+    add_max_minutes(p, "the sensors × the triplets of --positions (--sweep: of each setting)")
     p.add_argument("--sweep-values", type=int, default=None,
                    help="how many best values of each combined unknown are combined, beside the default (default 1)")
     add_search(p)
@@ -68,13 +73,19 @@ def add_parsers(commands) -> None:
     p.add_argument("--camera", default="gbell:9@450,540,610", help=HELP_CAMERA)
     p.add_argument("--spp", type=int, default=256, help="samples per pixel (default 256)")
     p.add_argument("--seed", type=int, default=0, help="sampler seed (default 0)")
+    p.add_argument("--tolerance", metavar="NCC", help="the verdict's tolerance: an absolute NCC difference in (0, 1) "
+                   "every kept patch's rendered NCC must be shown within of Eq. 4's, at family-wise 95 %% confidence "
+                   "(default 0.001); exit status 0 pass, 1 fail, 3 inconclusive")
     add_common(p)
 
-    p = commands.add_parser("bench", help="speed and accuracy figures")
-    p.add_argument("what", choices=["analytic", "search", "sweep", "render"], help="which benchmark")
+    p = commands.add_parser("bench", help="speed and accuracy figures; calibration: the validation's false-alarm "
+                            "rates over seeds; validate: seconds, bound and false alarms per spp")
+    p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate"],
+                   help="which benchmark")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant); search: "
                    "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep (~8 s)")
-    p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG")
+    p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG; calibration: the "
+                   "observed false-alarm rates with their 95 %% intervals against the nominal α")
     p.add_argument("--repeat", type=int, help="analytic: timed repetitions, best kept (default 3)")
     p.add_argument("--sensor", type=float, help="search: sensor number (default 9)")
     p.add_argument("--sample", type=int, help="search: triplets timed per method (default 20)")
@@ -82,16 +93,23 @@ def add_parsers(commands) -> None:
     p.add_argument("--positions",
                    help="sweep: peak positions START:END:STEP nm of the timed sweep (default 400:700:20)")
     p.add_argument("--scene", help="render: a face scene (face or a .toml with [camera] and [mesh]) to time the "
-                   "face at each level of physics instead of the charts")
+                   "face at each level of physics instead of the charts; calibration, validate: the chart (default "
+                   "macbeth; a face is refused until its checks' calibration is registered)")
     p.add_argument("--size", metavar="PX", help="render --scene: image side, pixels (default 256; --quick 64)")
     from ..studies.bench_face import LEVELS_BENCH
 
     p.add_argument("--levels", help="render --scene: comma-separated levels of physics (default "
                    + ",".join(LEVELS_BENCH) + ")")
     p.add_argument("--spp-list", metavar="N,N,…",
-                   help="render --scene: samples per pixel of the curve (default 4,16,64,256; --quick 4,16,64)")
+                   help="render --scene: samples per pixel of the curve (default 4,16,64,256; --quick 4,16,64); "
+                   "validate: the spp of the rows (default 4,16,64,256)")
     p.add_argument("--reference-spp", metavar="N",
                    help="render --scene: spp of each level's reference render (default 4 × the largest of --spp-list)")
+    add_max_minutes(p, "analytic: --repeat; search: --sample; sweep: the triplets of --positions; calibration: "
+                    "--seeds × --spp; validate: --seeds × --spp-list")
+    from .calibration import add_bench_arguments
+
+    add_bench_arguments(p)
     add_common(p)
 
 
@@ -127,7 +145,8 @@ def command_reproduce(args: argparse.Namespace) -> None:
         result = reproduce_sweep(args.output, args.sensors, positions, base, positions_flag=named,
                                  combine=_or_default(args, "sweep_combine", SWEEP_FLAGS),
                                  values_per_unknown=_or_default(args, "sweep_values", SWEEP_FLAGS),
-                                 workers=args.workers, dask=args.dask, progress=progress)
+                                 workers=args.workers, dask=args.dask, progress=progress,
+                                 max_minutes=args.max_minutes)
         rows = [[r["setting"], r["unknown"], f"{r['exact']}/{r['total']}", str(r["within_step"]), f"{r['seconds']:.1f}"]
                 for r in result["sweep"]]
         text = (table(rows, ["setting", "changed", "exact", "within 10 nm", "s"])
@@ -142,6 +161,7 @@ def command_reproduce(args: argparse.Namespace) -> None:
         args.skin, args.munsell, args.slope, args.grid,
         workers=args.workers, dask=args.dask, progress=progress, illuminants=args.illuminants,
         stage1_camera=args.stage1_camera, extrapolation=args.extrapolation, figures=not args.no_figures,
+        max_minutes=args.max_minutes,
     )
     emit(args, result, summary_text(result))
 
@@ -151,24 +171,43 @@ def command_table1(args: argparse.Namespace) -> None:
     from ..studies.tables import table1
     from .common import SPP_MAX, check_seed
 
+    from ..evaluation.verdict import EXIT_STATUS
+    from ..studies.tables import TABLE1_TOLERANCE
+
     integer_in(args.spp, "--spp", 1, SPP_MAX)  # each flag checked on its own, so that its error names it
     check_seed(args.seed)
+    tolerance = TABLE1_TOLERANCE if args.tolerance is None else positive_number(args.tolerance, "--tolerance", "NCC")
+    if tolerance >= 1:
+        raise SkinrenderError(f"--tolerance must be an NCC difference in (0, 1), got {args.tolerance!r}")
     flag("--camera", camera, args.camera)
-    result = flag("--camera", table1, args.camera, spp=args.spp, seed=args.seed)
+    result = flag({"spp": "--spp", None: "--camera"}, table1, args.camera, spp=args.spp, seed=args.seed,
+                  tolerance=tolerance)
     rows = [[r["model"], r["case"], f"{r['mean']:.5f}", f"{r['std']:.5f}"] for r in result["rows"]]
+    verdict = result["verdict"]
+    result["exit_status"] = EXIT_STATUS[verdict["verdict"]]
     text = (f"Table 1 for {result['camera']} ({len(result['patches'])} Macbeth patches with 90 % of values in "
             f"10–245; render at {result['spp']} spp as the real camera):\n"
-            + table(rows, ["model", "case", "mean |ΔNCC|", "std"]))
+            + table(rows, ["model", "case", "mean |ΔNCC|", "std"])
+            + f"\nverdict (Eq. 4 against the render, NCC within {tolerance:g}): "
+            f"{verdict['verdict'].upper().replace('_', ' ')} — {verdict['reason']}; bound {result['bound']:.2g}"
+            f"\n  test: {verdict['test']}"
+            f"\ndifference, Eq. 4: {result['difference']['verdict']} — {result['difference']['reason']}"
+            f"\ndifference, Eq. 1 with WP: {result['difference_eq1']['verdict']} — {result['difference_eq1']['reason']}"
+            f"\nexit status {result['exit_status']}")
     emit(args, result, text)
+    if result["exit_status"]:
+        raise SystemExit(result["exit_status"])
 
 
 FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
 """``bench`` flags that go with ``render --scene``."""
 
 BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
-               "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render",), "scene": ("render",)}
+               "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render", "calibration"),
+               "scene": ("render", "calibration", "validate"),
+               "max_minutes": ("analytic", "search", "sweep", "calibration", "validate")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
-:data:`FACE_BENCH_FLAGS`."""
+:data:`FACE_BENCH_FLAGS`, the verdict benchmarks' :data:`skinrender.cli.calibration.VERDICT_BENCH_FLAGS`."""
 
 BENCH_DEFAULTS = {"repeat": 3, "sensor": 9.0, "sample": 20, "positions": "400:700:20"}
 """Defaults of the benchmarks' own flags (left ``None`` by the parser so that a given flag is seen)."""
@@ -179,8 +218,10 @@ def refuse_foreign_flags(args: argparse.Namespace) -> None:
     Refuse (one line naming it) the first ``bench`` flag given that the benchmark ``args.what`` does not take
     (``--plot`` with ``--scene``: refused by :func:`face_bench_options`).
     """
+    from .calibration import VERDICT_BENCH_FLAGS
+
     face = getattr(args, "scene", None) is not None and args.what == "render"
-    for dest, benches in BENCH_FLAGS.items():
+    for dest, benches in {**BENCH_FLAGS, **VERDICT_BENCH_FLAGS}.items():
         value = getattr(args, dest, None)
         if value is None or value is False or dest == "scene":
             continue
@@ -214,7 +255,8 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     """
     given = [name for name in FACE_BENCH_FLAGS if getattr(args, name, None) is not None]
     if args.scene is not None and args.what != "render":
-        raise SkinrenderError(f"--scene goes with 'bench render', not 'bench {args.what}'")
+        raise SkinrenderError(f"--scene goes with 'bench render', 'bench calibration' or 'bench validate', not "
+                              f"'bench {args.what}'")
     refuse_foreign_flags(args)
     if args.scene is None:
         if given:
@@ -253,20 +295,60 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     return {"scene": scene, "size": size, "spps": spps, "reference_spp": reference, "levels": levels}
 
 
+BENCH_ANALYTIC_SECONDS = 4.0
+"""One ``bench analytic`` repetition (both routes), s: --repeat 1 vs 4 took 8.3 and 20.2 s (2-core AMD EPYC VM
+shared with other jobs)."""
+
+BENCH_SEARCH_SECONDS_PER_SAMPLE = 0.33
+"""What each ``bench search --sample`` triplet adds, s: --quick --sample 20 vs 200 took 12 and 72 s (same
+machine, --workers 1)."""
+
+
+def _bench_camera(args: argparse.Namespace) -> str:
+    """``bench render --camera`` checked (its curves on the default grid), or the default gbell:9@450,540,610."""
+    if args.camera is None:
+        return "gbell:9@450,540,610"
+    return flag("--camera", _camera_spec, args.camera)
+
+
+def _camera_spec(spec: str) -> str:
+    """``spec`` when it names a camera whose curves cover the default grid (else the camera's own error)."""
+    from ..model.camera import camera
+    from ..spectra import GRID_DEFAULT
+
+    camera(spec).sensitivities(GRID_DEFAULT)
+    return spec
+
+
 def command_bench(args: argparse.Namespace) -> None:
     from ..studies.bench import bench_analytic, bench_search, bench_sweep
 
+    if args.what in ("calibration", "validate"):
+        from .calibration import command_bench_verdicts
+        from .common import SPP_MAX
+
+        refuse_foreign_flags(args)
+        for name in FACE_BENCH_FLAGS:
+            if getattr(args, name, None) is not None and not (name == "spp_list" and args.what == "validate"):
+                raise SkinrenderError(f"--{name.replace('_', '-')} goes with 'bench render --scene SCENE' (a face)"
+                                      + (" or 'bench validate'" if name == "spp_list" else ""))
+        spps = None if args.spp_list is None else _integers(args.spp_list, "--spp-list", SPP_MAX)
+        if spps is not None and len(set(spps)) < len(spps):
+            raise SkinrenderError(f"--spp-list: each spp once, got {args.spp_list!r}")
+        return command_bench_verdicts(args, spps)
     face = face_bench_options(args)
     if face is not None:
         from ..studies.bench_face import bench_face
 
-        result = bench_face(levels=face["levels"], spps=face["spps"], size=face["size"],
-                            reference_spp=face["reference_spp"], scene=face["scene"],
+        result = bench_face(camera_spec=_bench_camera(args), levels=face["levels"], spps=face["spps"],
+                            size=face["size"], reference_spp=face["reference_spp"], scene=face["scene"],
                             progress=lambda line: print(line, file=sys.stderr))
         rows = [[r["level"], r["spp"], f"{r['seconds']:.3f}", _g(r["skin_ncc_error"]), _g(r["skin_ncc_rms"])]
                 for r in result["curve"]]
-        presets = [[level, *(_spp(p.get(name)) for name in ("draft", "standard", "reference")), _g(p.get("floor")),
+        presets = [[level, *(_spp(p.get(name)) + ("*" if name in p.get("extrapolated", ()) else "")
+                             for name in ("draft", "standard", "reference")), _g(p.get("floor")),
                     _spp(p.get("spp_at_floor"))] for level, p in result["presets"].items()]
+        extrapolated = any(p.get("extrapolated") for p in result["presets"].values())
         undefined = [f"\nnote: {level} {key}: {reason}" for level, p in result["presets"].items()
                      for key, reason in p.get("undefined", {}).items()]
         text = (f"the face ({result['scene']}) through {result['camera']}, {size_text(result['size'])}, reference "
@@ -274,7 +356,8 @@ def command_bench(args: argparse.Namespace) -> None:
                 + table(rows, ["level", "spp", "s", "mean NCC error", "RMS NCC error"])
                 + "\npresets (spp reaching RMS " + ", ".join(f"{k} {v:g}" for k, v in result["thresholds"].items())
                 + "):\n" + table(presets, ["level", "draft", "standard", "reference", "floor", "spp at floor"])
-                + "".join(undefined))
+                + ("\n* extrapolated beyond the measured spp by the error model's fit (not measured)"
+                   if extrapolated else "") + "".join(undefined))
         emit(args, result, text)
         return
     if args.workers is not None:  # before any timing starts
@@ -282,24 +365,36 @@ def command_bench(args: argparse.Namespace) -> None:
 
         check_workers(args.workers)
     if args.what == "sweep":
-        from ..design.bank import positions_grid
+        from ..design.bank import SENSORS_PAPER, positions_grid
+        from ..studies.unknowns import check_search_work
 
-        flag("--positions", positions_grid, _or_default(args, "positions"))
+        where = flag("--positions", positions_grid, _or_default(args, "positions"))
+        check_search_work(len(SENSORS_PAPER), where, "--positions", args.max_minutes, args.workers,
+                          "each setting's ")
     if args.what == "render":
         from ..studies.bench import bench_render
 
-        check_output(args.plot, "--plot", (".png",))  # before the ~30 s of timing
-        result = bench_render(quick=args.quick)
+        plot = check_output(args.plot, "--plot", (".png",))  # before the ~30 s of timing
+        result = bench_render(camera_spec=_bench_camera(args), quick=args.quick)
         if args.plot:
             from ..studies.figures import figure_render_curve
 
-            result["plot"] = str(figure_render_curve(result, args.plot))
+            write_output(plot, lambda stream: figure_render_curve(result, stream), "--plot")
+            result["plot"] = str(plot)
     elif args.what == "search":
         quick = {"full_steps": (20.0,), "sweep_positions": None} if args.quick else {}
+        sample = _or_default(args, "sample")
+        if isinstance(sample, int) and sample >= 1:
+            check_work(sample * BENCH_SEARCH_SECONDS_PER_SAMPLE, "--sample", f"{sample} sampled triplets per method",
+                       args.max_minutes, fewer="ask for a smaller --sample")
         result = bench_search(_or_default(args, "sensor"), _or_default(args, "sample"), workers=args.workers, **quick)
     elif args.what == "sweep":
         result = bench_sweep(_or_default(args, "positions"), workers=args.workers)
     else:
-        result = bench_analytic(repeat=_or_default(args, "repeat"))
+        repeat = _or_default(args, "repeat")
+        if isinstance(repeat, int) and repeat >= 1:  # a bad count is refused by the benchmark, naming the flag
+            check_work(repeat * BENCH_ANALYTIC_SECONDS, "--repeat", f"{repeat} repetitions", args.max_minutes,
+                       fewer="ask for fewer --repeat")
+        result = bench_analytic(repeat=repeat)
     text = "\n".join(f"{key}: {value}" for key, value in result.items())
     emit(args, result, text)

@@ -17,6 +17,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import SkinrenderError
+from ..files import exists
 from ..methods import validate_method
 from ..spectra import EXTRAPOLATIONS
 from ..spectral_csv import read_spectra_csv
@@ -43,7 +44,7 @@ def looks_like_path(spec: str) -> bool:
     text = str(spec)
     if text.lower().endswith(".csv"):
         return True
-    if not Path(text).is_file():
+    if not exists(text):  # a pipe, a device or a folder too: the CSV reader says what it is
         return False
     return lookup(REGISTRY_REFLECTANCES, text) is None and lookup(REGISTRY_CAMERAS, text) is None
 

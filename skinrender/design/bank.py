@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
+from ..constants import CONSTANT_OUTPUT_SCALE, SENSOR_RULE, TEMPERATURES_PAPER
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import parse_range, validate_method
@@ -137,7 +137,7 @@ def sensor_bank(
     ----------
     sensor
         The paper's sensor number: 1 (impulse, a unit-area delta on the grid
-        sample of its peak) or N > 1 (gbell, FWHM = N·10 nm).
+        sample of its peak) or any other N > 0 (gbell, FWHM = N·10 nm).
     reflectance
         Reflectances on ``grid``, shape ``(N, grid.size)``, fractions.
     positions
@@ -156,7 +156,7 @@ def sensor_bank(
 
     validate_method(normalization, NORMALISATIONS, "normalization")
     if not (np.isfinite(sensor) and sensor > 0):
-        raise SkinrenderError(f"sensor must be 1 (impulse) or a gbell number N > 1 (FWHM N·10 nm), got {sensor}")
+        raise SkinrenderError(f"sensor must be {SENSOR_RULE}, got {sensor}")
     positions = np.asarray(positions, dtype=np.float64)
     if positions.min() < grid.start or positions.max() > grid.end:
         raise SkinrenderError(

@@ -27,28 +27,33 @@ import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
 from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError
 from ..extras import require
+from ..files import write_output
 from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..workload import duration_text
 from .bank import SensorBank, positions_grid, sensor_bank, triplets
 from .criteria import triplet_false_positive_rates, triplet_volumes_many, triplet_volumes_naive
 from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, exposure_capped, triplet_noisy_rates
 
-__all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "WORKERS_MAX", "SearchResult", "search", "progress_bar", "stop_pool",
+__all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "WORKERS_MAX", "SECONDS_PER_TRIPLET", "SearchResult", "search", "progress_bar", "announce", "stop_pool",
            "dask_client", "check_workers"]
 
 DASK_TIMEOUT_S = 10.0
 """Seconds to wait for a Dask scheduler before giving up."""
 
 WORKERS_MAX = max(64, 4 * (os.cpu_count() or 1))
+
+SECONDS_PER_TRIPLET = 2.2e-3
+"""One triplet's volumes (skin and Munsell, every calibration) on one core, s: the estimates' rate (measured ~2 ms
+on a 2-core AMD EPYC VM)."""
 """Most worker processes a search may start (each holds the sensor banks)."""
 
 TOLERANCE_TIE = 1e-9
@@ -226,8 +231,9 @@ class SearchResult:
         """False-positive rates per calibration and their mean over calibrations, ``(T, Q + 1)``."""
         return np.hstack([self.fpr, np.nanmean(self.fpr, axis=1, keepdims=True)])
 
-    def to_csv(self, path) -> None:
-        """Every triplet's volumes (output units³) and ratios as CSV."""
+    def to_csv(self, path, flag: str | None = None) -> None:
+        """Every triplet's volumes (output units³) and ratios as CSV, whole or not at all (``flag``: the option
+        that named ``path``, for the message when it cannot be written)."""
         labels = [f"{t:g}K" for t in self.temperatures] + ["all"]
         header = ["p1_nm", "p2_nm", "p3_nm"]
         header += [f"skin_{label}" for label in labels] + [f"munsell_{label}" for label in labels]
@@ -240,14 +246,9 @@ class SearchResult:
             header += ["noisy_tpr", "noisy_fpr"]
             blocks.append(self.noisy)
         data = np.hstack(blocks)
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        partial = path.with_name(path.name + ".partial")
         row_format = ",".join(["%.17g"] * data.shape[1]) + "\n"  # one format per row: a third faster than per value
-        with open(partial, "w", encoding="utf-8", newline="\n") as handle:  # complete or absent, never half
-            handle.write(",".join(header) + "\n")
-            handle.writelines(row_format % tuple(row) for row in data.tolist())
-        os.replace(partial, path)
+        text = ",".join(header) + "\n" + "".join(row_format % tuple(row) for row in data.tolist())
+        write_output(path, text, flag)  # complete or absent, never half
 
 
 def stop_pool(pool: ProcessPoolExecutor) -> None:
@@ -263,12 +264,25 @@ def stop_pool(pool: ProcessPoolExecutor) -> None:
 def progress_bar(total: int, label: str, stream):
     """
     A tqdm progress bar on ``stream``, disabled when ``stream`` is ``None``
-    (``--quiet``) or not a terminal (a log file, a pipe, CI).
+    (``--quiet``) or not a terminal (a log file, a pipe, CI: there :func:`announce` says the work started).
     """
     from tqdm import tqdm
 
     enabled = stream is not None and getattr(stream, "isatty", lambda: False)()
     return tqdm(total=total, desc=label, file=stream, disable=not enabled, unit="triplet", leave=True)
+
+
+def announce(stream, label: str, total: int, unit: str = "triplet") -> None:
+    """
+    One line on a progress ``stream`` that is not a terminal (where no bar is drawn) saying the work started:
+    ``label: total units …`` (nothing on a terminal, or without a stream).
+
+    >>> import io
+    >>> log = io.StringIO(); announce(log, "sensor 9", 4495); log.getvalue().strip()
+    'sensor 9: 4495 triplets …'
+    """
+    if stream is not None and not getattr(stream, "isatty", lambda: False)():
+        print(f"{label}: {total} {unit}{'s' * (total != 1)} …", file=stream, flush=True)
 
 
 def search(
@@ -343,8 +357,9 @@ def search(
     count = where.size * (where.size - 1) * (where.size - 2) // 6
     if count > max_triplets:
         raise SkinrenderError(f"{count} triplets ({where.size} positions) is more than max_triplets = {max_triplets} "
-                              f"(about {count * 2.2e-3 / 3600:.2g} h on 2 cores at the measured ~2 ms per triplet "
-                              "per core); raise the limit (--max-triplets) or use fewer positions")
+                              f"(about {duration_text(count * SECONDS_PER_TRIPLET / 2)} on 2 cores at the measured ~2 ms per "
+                              "triplet per core); raise the limit (--max-triplets) or use fewer positions",
+                              role="positions")
     workers = check_workers(workers, "workers")
     banks = tuple(
         sensor_bank(sensor, values, where, illuminants, slope, normalization, knee, grid) for values in (skin, munsell)
@@ -373,6 +388,7 @@ def search(
     bar = progress_bar(len(index), label, progress)
     if dask is not None:
         client, own = dask_client(dask)
+        announce(progress, label, len(index))
         try:
             remote_banks = client.scatter(banks, broadcast=True)
             futures = [client.submit(_volumes_chunk, index[c], method, remote_banks, detection, pack, c, pure=False)
@@ -384,6 +400,7 @@ def search(
             if own:
                 client.close()
     elif workers == 1:
+        announce(progress, label, len(index))
         for chunk in chunks:
             store(chunk, _volumes_chunk(index[chunk], method, banks, detection, pack, chunk))
             bar.update(len(chunk))
@@ -391,6 +408,7 @@ def search(
         pool = ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(banks, pack))
         try:
             futures = [pool.submit(_volumes_chunk, index[c], method, None, detection, None, c) for c in chunks]
+            announce(progress, label, len(index))  # the workers are forked and busy
             for chunk, future in zip(chunks, futures):
                 store(chunk, future.result())
                 bar.update(len(chunk))

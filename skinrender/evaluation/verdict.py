@@ -336,25 +336,34 @@ def difference(deviation: ArrayLike, standard_error: ArrayLike, alpha: float = A
 
 
 def samples_needed(samples: int, error: ArrayLike, standard_error: ArrayLike, tolerance: ArrayLike,
-                   alpha: float = ALPHA_EQUIVALENCE, dof: float | None = None) -> int | None:
+                   alpha: float = ALPHA_EQUIVALENCE, dof: float | None = None, shrinking: bool = False) -> int | None:
     """
     The samples (e.g. spp) at which :func:`equivalence` is expected to pass, from a run at ``samples``:
     standard errors shrinking as ``1/√samples``, the measured errors taken as they are (a Monte Carlo
     error shrinks too, so this is conservative). ``None`` when no count can pass (some ``|error|`` is at
     or beyond its tolerance).
 
+    ``shrinking``: the errors are themselves the noise of an unbiased estimator (a Monte Carlo render's),
+    so they shrink with the standard errors and every bound ``|error| + c·SE`` falls as ``1/√samples``:
+    ``samples · max((|error| + c·SE) / tolerance)²``, never ``None`` (an error beyond the tolerance is
+    then taken for noise; a render with a real bias stays short of a pass at the count given).
+
     >>> samples_needed(16, [0.0], [0.1], 0.1)
     44
     >>> samples_needed(16, [0.2], [0.1], 0.1) is None
     True
+    >>> samples_needed(16, [0.2], [0.1], 0.1, shrinking=True)
+    213
     """
 
     e = np.abs(np.asarray(error, dtype=np.float64))
     se = np.broadcast_to(np.asarray(standard_error, dtype=np.float64), e.shape)
     tol = np.broadcast_to(np.asarray(tolerance, dtype=np.float64), e.shape)
+    c = critical_z(alpha, e.size, sides=1, dof=dof)
+    if shrinking:
+        return max(1, int(math.ceil(samples * np.max(((e + c * se) / tol) ** 2))))
     if np.any(e >= tol):
         return None
-    c = critical_z(alpha, e.size, sides=1, dof=dof)
     factor = np.max((c * se / (tol - e)) ** 2)
     return max(1, int(math.ceil(samples * factor)))
 

@@ -21,6 +21,7 @@ import numpy as np
 
 from ..constants import TEMPERATURE_A, TEMPERATURE_HORIZON, TEMPERATURE_MAX
 from ..errors import SkinrenderError
+from ..files import exists
 from ..hints import ArrayLike, NDArrayFloat
 from ..spectra import planck, resample
 from ..spectral_csv import read_spectra_csv
@@ -112,7 +113,7 @@ def illuminant(spec: Illuminant | float | str) -> Illuminant:
         value = None
     if value is not None:
         return _planckian(value)
-    if text.lower().endswith(".csv") or Path(text).is_file():
+    if text.lower().endswith(".csv") or exists(text):
         table = read_spectra_csv(text, kind="spd", expected_columns=1)
         return Illuminant(Path(text).name, None, tuple(table.wavelengths), tuple(table.values[0]))
     raise SkinrenderError(

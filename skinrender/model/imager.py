@@ -47,6 +47,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SkinrenderError
+from ..files import TOML_BYTES_MAX, exists, read_input
 from ..hints import ArrayLike, NDArrayFloat
 from ..spectra import WavelengthGrid
 
@@ -149,10 +150,9 @@ class Imager:
 def _read_imager_toml(path: Path) -> Imager:
     """One imager file; every problem names the file and the field."""
     try:
-        with open(path, "rb") as handle:
-            data = tomllib.load(handle)
-    except OSError as error:
-        raise SkinrenderError(f"imager file {path}: cannot be read ({error.strerror})") from None
+        data = tomllib.loads(read_input(path, TOML_BYTES_MAX, "an imager TOML").decode("utf-8"))
+    except SkinrenderError as error:
+        raise SkinrenderError(f"imager file {error}") from None
     except tomllib.TOMLDecodeError as error:
         raise SkinrenderError(f"imager file {path}: not valid TOML ({error})") from None
     except UnicodeDecodeError:
@@ -210,7 +210,7 @@ def imager(spec: str | Path | Imager) -> Imager:
     presets = _presets()
     if isinstance(spec, str) and spec.strip().lower() in presets:
         return presets[spec.strip().lower()]
-    if Path(spec).is_file():
+    if exists(spec):  # a file: read if it is a regular one of a sensible size, else refused saying what it is
         return _read_imager_toml(Path(spec))
     names = ", ".join(item.name for item in presets.values())
     raise SkinrenderError(f"imager {str(spec)!r} is neither a preset ({names}) nor an existing TOML file")

@@ -131,12 +131,19 @@ def check_light(cam: Camera, items: list[Illuminant], spds: NDArrayFloat, grid: 
     x = cam.sensitivities(grid)
     for channel, row in zip(cam.channels, x):
         if not np.any(row > 0):
-            raise SkinrenderError(f"camera {cam.name}: channel {channel} is zero at every wavelength of the grid {grid}")
+            raise SkinrenderError(f"camera {cam.name}: channel {channel} is zero at every wavelength of the grid "
+                                  f"{grid}", role="camera")
     white = spds @ x.T
-    for item, row in zip(items, white):
+    with np.errstate(over="ignore", invalid="ignore"):  # the camera's curves scaled to a peak of 1
+        scaled = spds @ (x / x.max(axis=1, keepdims=True)).T
+    for item, row, seen in zip(items, white, scaled):
         if not np.all(np.isfinite(row) & (row > 1e-300)):
+            if np.all(np.isfinite(seen) & (seen > 1e-300)):  # scaled up, the camera sees the light: its values
+                raise SkinrenderError(f"camera {cam.name}: its sensitivities (largest {x.max():.3g}) are too small: "
+                                      f"the responses to {role} {item} underflow to 0 (every one would be 0/0); "
+                                      "scale them up", role="camera")
             raise SkinrenderError(f"{role} {item} gives no light in the sensors' range ({grid}) of camera "
-                                  f"{cam.name}: every response would be 0/0")
+                                  f"{cam.name}: every response would be 0/0", role="illuminant")
 
 
 def gain(

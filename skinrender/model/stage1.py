@@ -187,7 +187,7 @@ def illuminant_selection(
     m = track.measures
     if not np.all(np.isfinite(m)) or abs(m[-1] - m[0]) <= 1e-12 * max(1.0, abs(m[0])):
         raise SkinrenderError(f"the Stage 1 measure (NCC {pair}) does not change from {start:g} K to {end:g} K for "
-                              f"this camera (coincident sensors?): no temperatures can be spaced in it")
+                              f"this camera (coincident sensors?): no temperatures can be spaced in it", role="camera")
     targets = np.linspace(m[0], m[-1], int(count))
     index = np.argmin(np.abs(m[None, :] - targets[:, None]), axis=1)
     if np.unique(index).size < index.size:

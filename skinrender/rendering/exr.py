@@ -21,25 +21,38 @@ import numpy as np
 from ..constants import CONSTANT_OUTPUT_SCALE
 from ..errors import SkinrenderError
 from ..extras import require
+from ..files import write_output
 from ..hints import NDArrayFloat
 
 __all__ = ["write_exr", "read_exr", "read_exr_attributes", "camera_attributes", "write_preview", "write_png"]
 
 
-def write_exr(path: str | Path, image: NDArrayFloat, names: tuple[str, ...], attributes: dict | None = None) -> Path:
-    """Write a float32 EXR with one named channel per last-axis slice."""
+def write_exr(path, image: NDArrayFloat, names: tuple[str, ...], attributes: dict | None = None):
+    """
+    Write a float32 EXR with one named channel per last-axis slice, whole or not at all
+    (:func:`skinrender.files.write_output`); ``path`` may also be a binary stream (returned as it is).
+    """
     require("render", "writing EXR files")
     import OpenEXR
 
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     header = {"compression": OpenEXR.ZIP_COMPRESSION, "type": OpenEXR.scanlineimage}
     for key, value in (attributes or {}).items():
         header[key] = str(value)
     data = {name: np.ascontiguousarray(image[..., k], dtype=np.float32) for k, name in enumerate(names)}
-    with OpenEXR.File(header, data) as handle:
-        handle.write(str(path))
-    return path
+
+    def write(stream) -> None:
+        with OpenEXR.File(header, data) as handle:
+            handle.write(stream)
+
+    return _written(path, write)
+
+
+def _written(path, write):
+    """``write(stream)`` into ``path``: a binary stream as it is, a file whole or not at all; returns ``path``."""
+    if hasattr(path, "write"):
+        write(path)
+        return path
+    return write_output(path, write)
 
 
 def read_exr(path: str | Path, names: tuple[str, ...]) -> NDArrayFloat:
@@ -90,18 +103,19 @@ def camera_attributes(cam, grid=None) -> dict:
 
 
 
-def write_png(path: str | Path, image: NDArrayFloat) -> Path:
-    """Write an 8-bit PNG of ``image`` in [0, 1] (grey ``(h, w)`` or colour ``(h, w, 3)``), rounded to 0–255."""
+def write_png(path, image: NDArrayFloat):
+    """
+    Write an 8-bit PNG of ``image`` in [0, 1] (grey ``(h, w)`` or colour ``(h, w, 3)``), rounded to 0–255,
+    whole or not at all; ``path`` may also be a binary stream.
+    """
     from PIL import Image
 
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     values = np.clip(np.asarray(image, dtype=np.float64), 0.0, 1.0)
-    Image.fromarray(np.round(values * 255.0).astype(np.uint8)).save(path, format="PNG")
-    return path
+    picture = Image.fromarray(np.round(values * 255.0).astype(np.uint8))
+    return _written(path, lambda stream: picture.save(stream, format="PNG"))
 
 
-def write_preview(path: str | Path, image: NDArrayFloat, scale: float = CONSTANT_OUTPUT_SCALE) -> Path:
+def write_preview(path, image: NDArrayFloat, scale: float = CONSTANT_OUTPUT_SCALE) -> Path:
     """A tone-mapped PNG preview: output units / ``scale``, clipped to [0, 1], sRGB transfer curve."""
     linear = np.clip(np.asarray(image, dtype=np.float64) / scale, 0.0, 1.0)
     encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)

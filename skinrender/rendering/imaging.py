@@ -13,10 +13,11 @@ stated illuminance and exposure, then Eq. 4 as always.
     (prevailing, calibration) pair, seeded (the same seed, the same image),
     with what it clipped (:func:`~skinrender.model.noise.clipping_counts`) and
     a note where the ``auto`` exposure's cap binds.
--   :func:`predicted_patches`: each patch's analytic mean and variance, DN.
--   :func:`validate_imaged`, :class:`ImagedValidation`: every patch's mean and
-    pixel variance tested against the sensor model (exact on the code lattice
-    where the noise spans a few codes, else z and χ²), Šidák-corrected.
+-   :func:`predicted_electrons`, :func:`predicted_patches`: each patch's
+    analytic electrons, e⁻, and its mean and variance, DN.
+
+Its validation against the sensor model is
+:mod:`skinrender.rendering.sensor_validation`.
 
 Units: illuminance in lx, exposure in s, electrons e⁻, digital numbers DN;
 the balanced image in output units (255 for white at p = c).
@@ -43,7 +44,7 @@ References
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -53,15 +54,15 @@ from ..model.camera import Camera
 from ..model.exposure import (AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S, auto_exposure,
                               auto_exposure_note, electrons_mean, irradiance_planck)
 from ..model.imager import Imager, imager
-from ..model.noise import clipping_counts, clipping_note, code_probabilities, simulate_dn_clipped, statistics_dn
+from ..model.noise import clipping_counts, clipping_note, simulate_dn_clipped, statistics_dn
 from ..model.response import gain
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .balance import Rendering, patch_statistics
 from .renderer import RawRender, emitter_grid, render_raw
 from .scene import ChartScene, load_scene
 
-__all__ = ["AUTO_EXPOSURE_FRACTION", "ALPHA_FAMILY", "ImagedRendering", "ImagedValidation", "electrons_per_radiance",
-           "exposure_for", "exposure_note", "render_imaged", "predicted_patches", "validate_imaged"]
+__all__ = ["AUTO_EXPOSURE_FRACTION", "ImagedRendering", "electrons_per_radiance", "exposure_for", "exposure_note",
+           "render_imaged", "predicted_electrons", "predicted_patches"]
 
 
 def _white_radiance(cam: Camera, temperature: float, grid: WavelengthGrid) -> NDArrayFloat:
@@ -206,180 +207,19 @@ def render_imaged(
     return ImagedRendering(rendering, dn, electrons, im, float(illuminance_lux), t, int(seed), gains, clipping, notes)
 
 
-def predicted_patches(imaged: ImagedRendering, reference_ratio: NDArrayFloat,
-                      grid: WavelengthGrid = GRID_DEFAULT) -> tuple[NDArrayFloat, NDArrayFloat]:
+def predicted_electrons(imaged: ImagedRendering, reference_ratio: NDArrayFloat,
+                        grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
     """
-    Each patch's analytic mean, DN, and pixel variance, DN², from ``reference_ratio`` — the patch's
+    Each patch's analytic electrons per pixel, e⁻ (photo plus dark), from ``reference_ratio`` — the patch's
     render value over a perfect white's, ``(patches, 3)`` (the Eq. 4 reference at p = c over 255).
     """
     im, r = imaged.imager, imaged.rendering
     photo = reference_ratio * (_white_rate(im, r.camera, r.prevailing, imaged.illuminance_lux, grid)
                                - im.dark_current_e_per_s)
-    return statistics_dn(im, (photo + im.dark_current_e_per_s) * imaged.exposure_s)
+    return (photo + im.dark_current_e_per_s) * imaged.exposure_s
 
 
-def _patch_laws(imaged: ImagedRendering, reference_ratio: NDArrayFloat,
-                grid: WavelengthGrid = GRID_DEFAULT) -> tuple[NDArrayFloat, NDArrayFloat]:
-    """Each patch's code law (:func:`~skinrender.model.noise.code_probabilities`): first code, DN, ``(patches, 3)``,
-    and the probabilities, ``(patches, 3, w)``; NaN where the model has none (σ ≥ 4 DN, a filling well)."""
-    im, r = imaged.imager, imaged.rendering
-    photo = reference_ratio * (_white_rate(im, r.camera, r.prevailing, imaged.illuminance_lux, grid)
-                               - im.dark_current_e_per_s)
-    electrons = (photo + im.dark_current_e_per_s) * imaged.exposure_s
-    first, pmf = code_probabilities(im, electrons.ravel())
-    return first.reshape(electrons.shape), pmf.reshape(*electrons.shape, -1)
-
-ALPHA_FAMILY = 0.01
-"""Family-wise false-alarm rate of the noisy validation: each of the m tests (patch × channel × mean and
-variance) runs at the Šidák level ``1 − (1 − α)^(1/m)``, as Mitsuba's render tests do."""
-
-
-@dataclass(frozen=True)
-class ImagedValidation:
-    """
-    A noisy render's patches against the analytic sensor model, per patch and channel.
-
-    ``rendered_mean``/``predicted_mean`` (DN), ``rendered_std``/``predicted_std`` (DN), the z statistic of the
-    mean, the χ² p-value of the variance, the Šidák level and ``passed``.
-    """
-
-    imaged: ImagedRendering
-    rendered_mean: NDArrayFloat
-    predicted_mean: NDArrayFloat
-    rendered_std: NDArrayFloat
-    predicted_std: NDArrayFloat
-    z: NDArrayFloat
-    p_mean: NDArrayFloat
-    p_variance: NDArrayFloat
-    level: float
-    exact: NDArrayFloat | None = None
-
-    @property
-    def passed(self) -> bool:
-        """No test rejects at the Šidák level."""
-        return bool(np.all(self.p_mean >= self.level) and np.all(self.p_variance >= self.level))
-
-    def patches(self) -> list[dict]:
-        """Per patch, in output units (DN above black × the Eq. 4 gain): CONTRACT.md's rows."""
-        gains, names = self.imaged.gains, [p.name for p in self.imaged.rendering.scene.patches]
-        black = self.imaged.imager.black_level_dn
-        return [{"name": name,
-                 "rendered": ((self.rendered_mean[i] - black) * gains).tolist(),
-                 "analytic": ((self.predicted_mean[i] - black) * gains).tolist(),
-                 "rendered_std": (self.rendered_std[i] * gains).tolist(),
-                 "predicted_std": (self.predicted_std[i] * gains).tolist(),
-                 "z_mean": self.z[i].tolist(), "p_mean": self.p_mean[i].tolist(),
-                 "p_variance": self.p_variance[i].tolist(),
-                 "test": ["exact" if self.exact is not None and self.exact[i, k] else "normal" for k in range(3)],
-                 "passed": bool(np.all(self.p_mean[i] >= self.level) and np.all(self.p_variance[i] >= self.level))}
-                for i, name in enumerate(names)]
-
-
-_EXACT_CELLS = 1 << 20
-"""The largest (sum, sum of squares) lattice, cells, on which a patch's statistics are summed exactly."""
-
-_NEGLIGIBLE = 1e-15
-"""Codes less likely than this per pixel are left out of the exact law (their total over a patch is < 1e-11)."""
-
-
-def _two_sided(law: NDArrayFloat, below: NDArrayFloat, above: NDArrayFloat) -> float:
-    """2 · min(P(T ≤ t), P(T ≥ t)) of a discrete law (both tails keep the observed value), at most 1."""
-    return float(min(1.0, 2.0 * min(law[below].sum(), law[above].sum())))
-
-
-def _exact_p_values(pmf: NDArrayFloat, first: float, codes: NDArrayFloat) -> tuple[float, float] | None:
-    """
-    Exact two-sided p-values of a patch's pixel mean and sample variance, n pixels of the code law ``pmf``.
-
-    The n codes are independent draws of P(DN = first + j) = ``pmf[j]``: the joint law of (Σ d, Σ d²) is the
-    n-fold convolution of one pixel's, summed on its integer lattice (by FFT; codes counted from the most likely
-    one, d = 0). The patch mean is Σ d / n and the sample variance (Σ d² − (Σ d)² / n) / (n − 1): both lattice
-    laws, never normal where the noise spans a few codes (every pixel one code has probability Σ_j pmf_j^n).
-    ``None`` where the lattice exceeds :data:`_EXACT_CELLS`.
-    """
-    n = codes.size
-    keep = np.flatnonzero(pmf > _NEGLIGIBLE)
-    probs = pmf[keep[0]:keep[-1] + 1] / pmf[keep[0]:keep[-1] + 1].sum()
-    offsets = np.arange(probs.size) - int(np.argmax(probs))  # d, from the most likely code
-    width, depth = n * (probs.size - 1) + 1, n * int((offsets**2).max()) + 1
-    if n < 2 or width * depth > _EXACT_CELLS:
-        return None
-    observed = codes - (first + keep[0]) + offsets[0]  # each pixel's d
-    if observed.min() < offsets[0] or observed.max() > offsets[-1]:
-        return 0.0, 0.0  # a code the model gives < 1e-15 per pixel
-    from scipy import fft
-
-    shape = (fft.next_fast_len(width, real=True), fft.next_fast_len(depth, real=True))  # ≥ the sums: no wrap
-    one = np.zeros(shape)
-    one[offsets - offsets[0], offsets**2] = probs
-    spectrum = fft.rfft2(one)
-    power = np.abs(spectrum) ** n * np.exp(1j * n * np.angle(spectrum))  # the n-fold convolution
-    joint = np.maximum(fft.irfft2(power, s=shape)[:width, :depth], 0.0)
-    marginal = joint.sum(axis=1)
-    row = int(observed.sum() - n * offsets[0])
-    index = np.arange(width)
-    p_mean = _two_sided(marginal, index <= row, index >= row)
-    cells = np.nonzero(joint > 1e-300)  # (Σ d − n d_min, Σ d²) reachable
-    total = cells[0] + float(n * offsets[0])
-    variance = (cells[1] - total**2 / n) / (n - 1)
-    seen = (np.sum(observed**2) - observed.sum() ** 2 / n) / (n - 1)
-    slack = 1e-9 * max(1.0, abs(seen))
-    return p_mean, _two_sided(joint[cells], variance <= seen + slack, variance >= seen - slack)
-
-
-def _variance_dof(pmf: NDArrayFloat, first: float, mean: float, variance: float, n: int) -> float:
-    """
-    Degrees of freedom ν of the scaled χ² matching the sample variance's two moments (Satterthwaite).
-
-    Var(s²) = μ₄ / n − σ⁴ (n − 3) / (n (n − 1)), with μ₄ from the code law; ν = 2 σ⁴ / Var(s²), which is n − 1 for a
-    normal law (μ₄ = 3 σ⁴, the plain χ² test, used where no code law is known).
-    """
-    if not np.all(np.isfinite(pmf)) or variance <= 0:
-        return float(n - 1)
-    fourth = float(np.sum(pmf * (first + np.arange(pmf.size) - mean) ** 4))
-    spread = fourth / n - variance**2 * (n - 3) / (n * (n - 1))
-    return float(2.0 * variance**2 / spread) if spread > 0 else float(n - 1)
-
-
-def validate_imaged(imaged: ImagedRendering, reference_ratio: NDArrayFloat, model: Imager | None = None,
-                    alpha: float = ALPHA_FAMILY, grid: WavelengthGrid = GRID_DEFAULT) -> ImagedValidation:
-    """
-    Check every patch's pixel mean and variance against the analytic model of ``model`` (default: the imager
-    that recorded it), with a Šidák correction over all tests.
-
-    ``reference_ratio``: each patch's render value over a perfect white's, ``(patches, 3)``. Where the noise
-    spans a few codes (σ < 4 DN and a small patch), both tests are exact on the code lattice
-    (:func:`_exact_p_values`): a patch of one code passes when that code is likely enough. Elsewhere the mean
-    takes a z-test and the variance a χ² test whose degrees of freedom match the law's fourth moment
-    (:func:`_variance_dof`; n − 1 for a normal law). The render's own Monte Carlo noise is left out of the
-    prediction: at the spp the command line uses it is far below the sensor's (tests/rendering/test_imaging.py
-    shows a correct model passing).
-    """
-    from scipy.stats import chi2, norm
-
-    if model is not None:
-        imaged = replace(imaged, imager=imager(model))
-    mean, variance = predicted_patches(imaged, reference_ratio, grid)
-    first, pmf = _patch_laws(imaged, reference_ratio, grid)
-    scene = imaged.rendering.scene
-    stats = [imaged.dn[rows, columns].reshape(-1, 3) for rows, columns in map(scene.patch_pixels,
-                                                                               range(len(scene.patches)))]
-    count = np.array([len(pixels) for pixels in stats])[:, None]
-    rendered_mean = np.array([pixels.mean(axis=0) for pixels in stats])
-    rendered_var = np.array([pixels.var(axis=0, ddof=1) for pixels in stats])
-    constant = variance <= 0  # a clipped, noiseless pixel: it must equal its prediction exactly
-    z = np.divide(rendered_mean - mean, np.sqrt(variance / count), out=np.zeros_like(mean), where=~constant)
-    p_mean = np.where(constant, (np.abs(rendered_mean - mean) < 1e-9).astype(float), 2 * norm.sf(np.abs(z)))
-    dof = np.array([[_variance_dof(pmf[i, k], first[i, k], mean[i, k], variance[i, k], len(pixels))
-                     for k in range(3)] for i, pixels in enumerate(stats)])
-    statistic = np.divide(dof * rendered_var, variance, out=np.zeros_like(mean), where=~constant)
-    tail = np.minimum(chi2.cdf(statistic, dof), chi2.sf(statistic, dof))
-    p_variance = np.where(constant, (rendered_var < 1e-9).astype(float), np.minimum(1.0, 2 * tail))
-    exact = np.zeros(mean.shape, dtype=bool)
-    for i, k in np.ndindex(mean.shape):
-        found = None if np.isnan(first[i, k]) else _exact_p_values(pmf[i, k], first[i, k], stats[i][:, k])
-        if found is not None:
-            (p_mean[i, k], p_variance[i, k]), exact[i, k] = found, True
-    level = 1.0 - (1.0 - alpha) ** (1.0 / (2 * mean.size))
-    return ImagedValidation(imaged, rendered_mean, mean, np.sqrt(rendered_var), np.sqrt(variance), z, p_mean,
-                            p_variance, level, exact)
+def predicted_patches(imaged: ImagedRendering, reference_ratio: NDArrayFloat,
+                      grid: WavelengthGrid = GRID_DEFAULT) -> tuple[NDArrayFloat, NDArrayFloat]:
+    """Each patch's analytic mean, DN, and pixel variance, DN², at :func:`predicted_electrons`."""
+    return statistics_dn(imaged.imager, predicted_electrons(imaged, reference_ratio, grid))

@@ -26,6 +26,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import SkinrenderError
+from ..files import Output, write_outputs
 from .exr import camera_attributes, write_exr, write_preview
 from .renderer import channel_names
 
@@ -74,24 +75,31 @@ def output_paths(exr: str | Path, png: bool | str | Path | None = True,
 
 
 def save_result(result, kind: str, exr: str | Path, png: bool | str | Path | None, figure: str | Path | None,
-                write: Callable[[Path], Path]) -> dict:
+                write: Callable) -> dict:
     """
-    Save a render: its figure first (the step most likely to fail), then the EXR (``write(path)``) and the PNG
-    preview (tone-mapped from the output units). ``{"exr": path, "png": path or None, "figure": path or None}``.
+    Save a render: the EXR (``write(stream)``), the PNG preview (tone-mapped from the output units) and the
+    figure, all made first and written whole or none of them (:func:`skinrender.files.write_outputs`).
+    ``{"exr": path, "png": path or None, "figure": path or None}``.
     """
     exr, png, figure = output_paths(exr, png, figure)
-    drawn = draw_figure(kind, result, figure) if figure is not None else None
-    written = write(exr)
-    preview = write_preview(png, result.image) if png is not None else None
-    return {"exr": written, "png": preview, "figure": drawn}
+    if figure is not None and kind not in FIGURE_DRAWERS:
+        draw_figure(kind, result, figure)  # its refusal: no drawer registered
+    outputs = [Output(exr, "exr", write)]
+    if png is not None:
+        outputs.append(Output(png, "png", lambda stream: write_preview(stream, result.image)))
+    if figure is not None:
+        outputs.append(Output(figure, "figure", lambda stream: FIGURE_DRAWERS[kind](result, stream)))
+    written = iter(write_outputs(*outputs))
+    return {"exr": next(written), "png": next(written) if png is not None else None,
+            "figure": next(written) if figure is not None else None}
 
 
-def write_chart_exr(path: str | Path, rendering, seed=None, grid=None) -> Path:
+def write_chart_exr(path, rendering, seed=None, grid=None):
     """
     A chart render's float32 EXR: its image in output units, channels named by the camera, and the render's
     settings as attributes (``seed``: as given to the render, default the prevailing render's), with the
     camera's curves' hash on ``grid`` (:func:`~skinrender.rendering.exr.camera_attributes`; default the
-    default grid).
+    default grid); ``path`` a file (written whole or not at all) or a binary stream.
     """
     raw = rendering.raw[0]
     return write_exr(path, rendering.image, channel_names(rendering.camera), {

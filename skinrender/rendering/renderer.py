@@ -71,6 +71,7 @@ __all__ = [
     "QUALITY_PRESETS",
     "EMITTERS",
     "channel_names",
+    "render_passes",
     "scene_dict",
     "RawRender",
     "render_raw",
@@ -265,6 +266,16 @@ def _separate(cam: Camera, grid: WavelengthGrid, channels: str) -> bool:
     return bool(areas.max() > CHANNEL_AREA_RATIO_SEPARATE * areas.min())
 
 
+def render_passes(cam: Camera, grid: WavelengthGrid = GRID_DEFAULT, channels: str = "auto") -> int:
+    """
+    Passes a chart render of ``cam`` takes: 3 where its channels are rendered separately, else 1.
+
+    >>> render_passes(camera("gbell:9@450,540,610")), render_passes(camera("impulse@450,550,650"))
+    (1, 3)
+    """
+    return 3 if _separate(camera(cam), grid, channels) else 1
+
+
 class ChartRenderer:
     """
     A chart and camera loaded into Mitsuba once, rendered at any temperature.
@@ -282,12 +293,12 @@ class ChartRenderer:
         self.camera = camera(camera_)
         validate_method(sampler, SAMPLERS, "sampler")
         if not (isinstance(spp, (int, np.integer)) and not isinstance(spp, bool) and spp >= 1):
-            raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
+            raise SkinrenderError(f"spp must be a positive integer, got {spp!r}", role="spp")
         width, height = self.scene.size
         if spp * width * height > SAMPLES_MAX:
             raise SkinrenderError(f"spp {spp} × {width * height} pixels = {spp * width * height:.3g} samples per pass, "
                                   f"more than {SAMPLES_MAX:.3g} (Mitsuba's 32-bit wavefront); at most "
-                                  f"{SAMPLES_MAX // (width * height)} spp for this chart")
+                                  f"{SAMPLES_MAX // (width * height)} spp for this chart", role="spp")
         validate_method(emitter, EMITTERS, "emitter")
         self.sampler, self.grid, self.emitter = sampler, grid, emitter
         self.variant = choose_variant(variant)

@@ -39,6 +39,7 @@ import numpy as np
 
 from ..datasets import reflectances
 from ..errors import SkinrenderError
+from ..files import MESH_BYTES_MAX, TOML_BYTES_MAX, exists, read_input
 from ..hints import NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
@@ -158,20 +159,19 @@ def read_scene_toml(spec, root: Path, kind: str, bundled: str) -> tuple[Path, di
         raise SkinrenderError(f"expected a {kind} name ({bundled}) or a .toml path, got an empty one")
     path = Path(text)
     named = root / f"{text}.toml"
-    if path.suffix != ".toml" and len(path.parts) == 1 and named.is_file():
+    if path.suffix != ".toml" and len(path.parts) == 1 and "\0" not in text and len(text) < 200 and named.is_file():
         path = named
-    elif path.is_dir():
+    elif exists(path) and path.is_dir():
         raise SkinrenderError(f"{kind} {text} is a folder, expected a .toml file or a bundled name")
-    elif not (path.suffix == ".toml" or path.exists()):
+    elif not (path.suffix == ".toml" or exists(path)):
         raise SkinrenderError(f"unknown {kind} {text!r}; {bundled}, or a .toml path")
-    elif not path.exists():
+    elif not exists(path):
         raise SkinrenderError(f"{kind} file {text} does not exist")
+    data = read_input(path, TOML_BYTES_MAX, f"a {kind} TOML")  # a pipe, a device, a huge file: refused unread
     try:
-        return path, tomllib.loads(path.read_text(encoding="utf-8"))
+        return path, tomllib.loads(data.decode("utf-8"))
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
         raise SkinrenderError(f"{path}: not valid TOML: {' '.join(str(error).split())}") from None
-    except OSError as error:
-        raise SkinrenderError(f"{path}: cannot be read ({error.strerror})") from None
 
 
 def list_scenes() -> list[str]:
@@ -223,9 +223,8 @@ def _obj_line(words: list[str], counts: dict, top: dict) -> bool:
     return len(corners) >= 3 and min(sum(given.values(), [])) >= 1
 
 
-def _check_obj(path: Path, where: str) -> None:
+def _check_obj(data: bytes, where: str) -> None:
     """Refuse an OBJ Mitsuba cannot render: empty, binary, a bad line or index, no face."""
-    data = path.read_bytes()
     if not data.strip() or b"\0" in data:
         raise SkinrenderError(f"{where} is {'binary' if data.strip() else 'empty'}; {_OBJ}")
     counts, top = {"v": 0, "vt": 0, "vn": 0, "f": 0}, {"v": 0, "vt": 0, "vn": 0}
@@ -239,9 +238,8 @@ def _check_obj(path: Path, where: str) -> None:
                                              f"has {counts['v']} vertices but no face ('f' line)") + f"; {_OBJ}")
 
 
-def _check_ply(path: Path, where: str) -> None:
+def _check_ply(data: bytes, where: str) -> None:
     """Refuse a PLY Mitsuba cannot render: a bad header, no vertex or face element, a body shorter than it says."""
-    data = path.read_bytes()
     end = data.find(b"end_header", 0, 1 << 16)
     lines = [line.split() for line in data[:max(end, 0)].decode("ascii", "replace").splitlines()]
     kind = lines[1][1] if len(lines) > 1 and len(lines[1]) == 3 and lines[1][0] == "format" else ""
@@ -291,7 +289,11 @@ def check_mesh_file(path: str | Path, where: str = "mesh") -> None:
     skinrender.errors.SkinrenderError: --mesh has 3 vertices but no face ('f' line); expected a Wavefront OBJ: text, 'v x y z' vertex and 'f i j k' face lines, indices from 1
     """
     path = Path(path)
-    (_check_ply if path.suffix.lower() == ".ply" else _check_obj)(path, where)
+    try:
+        data = read_input(path, MESH_BYTES_MAX, "a mesh (OBJ or PLY)")
+    except SkinrenderError as error:  # the file's own problem (a pipe, too large) after the caller's words
+        raise SkinrenderError(f"{where}: {error.message.removeprefix(f'{path}: ')}") from None
+    (_check_ply if path.suffix.lower() == ".ply" else _check_obj)(data, where)
 
 
 def load_scene(spec: str | Path | ChartScene) -> ChartScene:

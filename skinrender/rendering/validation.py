@@ -7,18 +7,23 @@ Render validation against the analytic model
     exactly, integrated on a refined grid (the paper's Σ differs from this by
     a quadrature term that :func:`quadrature_difference` reports).
 -   :func:`validate`, :class:`Validation`: every patch's rendered mean against
-    the reference, with a tolerance derived from the measured noise.
+    the reference: shown within a relative tolerance (equivalence, the verdict)
+    and no difference detected (a calibrated difference test), both from the
+    measured noise (:mod:`skinrender.rendering.agreement`).
 -   :func:`validate_gamut`: gamut volumes of a rendered chart against the
-    analytic ones.
+    analytic ones, with the same two verdicts.
 
-The tolerance of a patch channel is ``k σ`` with ``k =`` :data:`SIGMAS` and
-``σ² = SE_patch² + X² (e_c,k² + Σ_j w_j² (e_p,j² + e_c,j²))``: the patch's
-standard error plus the white reference's relative standard errors under the
-calibration (``e_c``, which divides every patch) and, through WP (Eq. 8), of
-both whites with weights ``w_j = r_j / Σ r`` (``r_j`` the white ratios); plus
-a float32 floor (:func:`float32_floor`). At p = c the whites are one render and
-WP is exactly 1. Renders of p and c use different seeds, so their noise is
-independent.
+The standard error of a patch channel
+(:func:`~skinrender.rendering.patch_errors.error_law`) is the patch's standard
+error together with the white references' errors carried through the white
+balance and WP (Eq. 8), linearised with their channel covariances; a value
+whose error is too skewed for the normal law is held to distribution-free
+(Cantelli, Chebyshev) bounds instead. The pixels of a
+patch are independent (a box filter), so the standard errors have
+``pixels − 1`` degrees of freedom (Student t). The difference test allows a
+float32 floor (:func:`float32_floor`) beyond the noise. At p = c the whites
+are one render and WP is exactly 1. Renders of p and c use different seeds, so
+their noise is independent.
 """
 
 from __future__ import annotations
@@ -29,20 +34,20 @@ import numpy as np
 
 from ..constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
 from ..evaluation.gamut import gamut
+from ..evaluation.verdict import ALPHA_DIFFERENCE, ALPHA_EQUIVALENCE, Verdict
 from ..hints import NDArrayFloat
 from ..model.camera import Camera, camera
 from ..model.response import gain, knee as apply_knee, response
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
+from .agreement import TOLERANCE_DEFAULT, agreement, check_tolerance, tolerance_scale
 from .balance import Rendering, pair_gain, patch_statistics, render
+from .patch_errors import SKEW_MAX, error_law
 from .renderer import chart_renderer
 from .scene import ChartScene, load_scene
+from .spp_choice import square_spp
 
-__all__ = ["SIGMAS", "FLOAT32_FLOOR", "REFINE", "analytic_reference", "quadrature_difference", "Validation",
-           "validate", "validate_gamut"]
-
-SIGMAS = 5.0
-"""Tolerance in standard errors. With ~100 patch channels per chart a correct
-render exceeds 5σ with probability ~6e-5."""
+__all__ = ["FLOAT32_FLOOR", "REFINE", "analytic_reference", "quadrature_difference", "Validation", "validate",
+           "validate_gamut"]
 
 FLOAT32_FLOOR = 2e-6
 """Relative floor for float32 accumulation in the renderer (≈ 16 ulp)."""
@@ -109,21 +114,55 @@ def quadrature_difference(
 @dataclass(frozen=True)
 class Validation:
     """
-    Rendered patches against the analytic reference.
+    Rendered patches against the analytic reference, with their verdicts.
 
     Attributes
     ----------
-    rendered, analytic, tolerance
+    rendered, analytic
         Per patch and channel, output units.
-    passed
-        Every patch channel within its tolerance.
+    sigma
+        Each patch channel's standard error (module docstring), output units.
+    floor
+        The float32 floor of each patch channel, output units (the difference test's allowance).
+    tolerance
+        The allowed ``|rendered − analytic|`` per patch and channel, output units: ``tolerance_relative ×
+        max(|analytic|, DARK_LEVEL × 255)`` (:mod:`~skinrender.rendering.agreement`).
+    tolerance_relative
+        The relative tolerance asked for.
+    verdict
+        The equivalence verdict: ``pass`` only when every patch channel is shown within its tolerance at
+        family-wise 95 % confidence; ``bound`` the smallest relative tolerance that would pass.
+    difference
+        The difference test (no difference beyond the noise, family-wise α = 0.01): information beside the
+        verdict, and the check whose false-alarm rate ``skinrender bench calibration`` measures.
+    upper
+        The upper confidence bound of each ``|rendered − analytic|``, output units.
+    spp_needed
+        The samples per pixel at which the verdict is expected to pass (``None`` after a fail).
+    skewness
+        The skewness of each patch channel's error (:func:`~skinrender.rendering.patch_errors.error_law`): beyond
+        :data:`~skinrender.rendering.patch_errors.SKEW_MAX` its normal law is not trusted and the value is held to
+        distribution-free bounds (:func:`~skinrender.rendering.agreement.agreement`).
     """
 
     rendering: Rendering
     rendered: NDArrayFloat
     analytic: NDArrayFloat
-    tolerance: NDArrayFloat
+    sigma: NDArrayFloat
+    floor: NDArrayFloat
     quadrature: float
+    tolerance: NDArrayFloat
+    tolerance_relative: float
+    verdict: Verdict
+    difference: Verdict
+    upper: NDArrayFloat
+    spp_needed: int | None
+    skewness: NDArrayFloat | None = None
+
+    @property
+    def error(self) -> NDArrayFloat:
+        """``rendered − analytic``, output units."""
+        return self.rendered - self.analytic
 
     @property
     def rel_error(self) -> NDArrayFloat:
@@ -133,19 +172,22 @@ class Validation:
 
     @property
     def z(self) -> NDArrayFloat:
-        """Difference in units of the noise σ (tolerance / :data:`SIGMAS`)."""
-        sigma = self.tolerance / SIGMAS
+        """Difference in standard errors (0 where the standard error is 0: a black patch renders exactly 0)."""
         difference = self.rendered - self.analytic
-        # a black patch renders exactly 0 with no noise: 0 σ off, not 0/0
-        return np.divide(difference, sigma, out=np.zeros_like(difference), where=sigma > 0)
+        return np.divide(difference, self.sigma, out=np.zeros_like(difference), where=self.sigma > 0)
+
+    @property
+    def bound(self) -> float | None:
+        """The smallest relative tolerance that would pass (:attr:`verdict`'s bound)."""
+        return self.verdict.bound
 
     @property
     def passed(self) -> bool:
-        """Every patch channel within tolerance."""
-        return bool(np.all(np.abs(self.rendered - self.analytic) <= self.tolerance))
+        """The verdict is a pass: every patch channel shown within its tolerance."""
+        return self.verdict.outcome == "pass"
 
     def worst(self) -> list[dict]:
-        """The worst patch per channel (largest |z|)."""
+        """The worst patch per channel (largest ``|z|``)."""
         names = self.rendering.camera.channels
         out = []
         for k, channel in enumerate(names):
@@ -155,16 +197,31 @@ class Validation:
         return out
 
     def patches(self) -> list[dict]:
-        """CONTRACT.md's per-patch rows."""
+        """
+        CONTRACT.md's per-patch rows, extended: per channel the ``error`` (output units), its upper confidence
+        bound ``bound`` (output units), ``relative_bound``, ``sigma`` and ``z``; ``tolerance`` is the allowed
+        ``|error|``, output units; ``shown`` says per channel ``within``, ``outside`` or ``undecided``.
+        """
         rows = []
+        scale = tolerance_scale(self.analytic)
         for i, patch in enumerate(self.rendering.scene.patches):
+            within = self.upper[i] <= self.tolerance[i]
+            lower = np.abs(self.error[i]) - (self.upper[i] - np.abs(self.error[i]))
+            outside = lower > self.tolerance[i]
             rows.append({
                 "name": patch.name,
                 "rendered": self.rendered[i].tolist(),
                 "analytic": self.analytic[i].tolist(),
                 "rel_error": self.rel_error[i].tolist(),
                 "tolerance": self.tolerance[i].tolist(),
-                "passed": bool(np.all(np.abs(self.rendered[i] - self.analytic[i]) <= self.tolerance[i])),
+                "error": self.error[i].tolist(),
+                "bound": self.upper[i].tolist(),
+                "relative_bound": (self.upper[i] / scale[i]).tolist(),
+                "sigma": self.sigma[i].tolist(),
+                "z": self.z[i].tolist(),
+                "skewness": (np.zeros(3) if self.skewness is None else self.skewness[i]).tolist(),
+                "shown": ["within" if w else "outside" if o else "undecided" for w, o in zip(within, outside)],
+                "passed": bool(np.all(within)),
             })
         return rows
 
@@ -180,19 +237,6 @@ def float32_floor(cam: Camera, grid: WavelengthGrid) -> NDArrayFloat:
     return np.full(3, max(FLOAT32_FLOOR, EPS_FLOAT32 * grid.end / width))
 
 
-def tolerance_of(rendering: Rendering, reference: NDArrayFloat, grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
-    """The noise-derived tolerance of every patch channel (module docstring)."""
-    e_p, e_c = rendering.white_relative_error
-    relative_white = e_c**2  # the calibration white divides each channel
-    if rendering.normalization == "white" and rendering.prevailing != rendering.calibration:
-        # WP = 3 / Σ r_k, r_k = white_p,k / white_c,k: δWP/WP = −Σ (r_k / Σ r) (δp_k − δc_k)
-        ratio = rendering.info["white_ratio"]
-        weights = ratio / ratio.sum()
-        relative_white = relative_white + np.sum(weights**2 * (e_p**2 + e_c**2))
-    sigma2 = rendering.patches.standard_error**2 + reference**2 * relative_white[None, :]
-    return SIGMAS * np.sqrt(sigma2) + float32_floor(rendering.camera, grid)[None, :] * np.abs(reference)
-
-
 def validate(
     scene: ChartScene | str,
     camera_: Camera | str,
@@ -202,17 +246,45 @@ def validate(
     knee: bool = False,
     grid: WavelengthGrid = GRID_DEFAULT,
     rendering: Rendering | None = None,
+    tolerance: float = TOLERANCE_DEFAULT,
+    alpha: float = ALPHA_EQUIVALENCE,
+    alpha_difference: float = ALPHA_DIFFERENCE,
     **render_options,
 ) -> Validation:
     """
-    Render a chart (or take ``rendering``) and check every patch against the
-    analytic reference within its noise-derived tolerance.
+    Render a chart (or take ``rendering``) and check every patch against the analytic reference.
 
-    ``render_options`` go to :func:`skinrender.render.render` (``spp``,
-    ``seed``, ``sampler``, ``variant``, ``channels``, ``cache``). A given
-    ``rendering`` is checked with its own normalisation and knee.
+    Parameters
+    ----------
+    scene, camera_, prevailing, calibration, normalization, knee, grid
+        As :func:`skinrender.rendering.balance.render` (temperatures K, grid nm).
+    rendering
+        A render to check instead (with its own normalisation and knee).
+    tolerance
+        Relative tolerance in (0, 1) on each lit channel (dark channels: an absolute floor,
+        :data:`~skinrender.rendering.agreement.DARK_LEVEL`); default
+        :data:`~skinrender.rendering.agreement.TOLERANCE_DEFAULT`.
+    alpha, alpha_difference
+        Family-wise error rates of the equivalence verdict (its bounds hold together at ``1 − alpha``) and
+        of the difference test (its false-alarm rate).
+    render_options
+        To :func:`skinrender.rendering.balance.render` (``spp``, ``seed``, ``sampler``, ``variant``,
+        ``channels``, ``cache``).
+
+    Returns
+    -------
+    :class:`Validation`
+        ``.verdict`` (pass / fail / inconclusive), ``.bound``, ``.spp_needed``, ``.difference``.
+
+    Examples
+    --------
+    >>> v = validate("macbeth", "gbell:9@450,540,610", 2856, 2300, spp=16, seed=1,
+    ...              tolerance=0.002)  # doctest: +SKIP
+    >>> v.verdict.outcome, v.spp_needed  # doctest: +SKIP
+    ('inconclusive', 118)
     """
 
+    tolerance = check_tolerance(tolerance, "tolerance")
     chart = load_scene(scene)
     if rendering is None:
         rendering = render(chart, camera_, prevailing, calibration, normalization, knee, grid=grid, **render_options)
@@ -221,7 +293,14 @@ def validate(
     reference = analytic_reference(r.camera, reflectance, r.prevailing, r.calibration, r.normalization, r.knee, grid)
     quadrature = quadrature_difference(r.camera, reflectance, r.prevailing, r.calibration, r.normalization, grid,
                                        exact=None if r.knee else reference)
-    return Validation(rendering, rendering.patches.mean, reference, tolerance_of(rendering, reference, grid), quadrature)
+    sigma, skewness = error_law(rendering, reference)
+    floor = float32_floor(rendering.camera, grid)[None, :] * np.abs(reference)
+    dof = float(np.min(rendering.patches.count) - 1)
+    out = agreement(rendering.patches.mean, reference, sigma, tolerance, r.raw[0].spp, dof, floor, alpha,
+                    alpha_difference, skewness=skewness, skew_max=SKEW_MAX)
+    needed = None if out["spp_needed"] is None else square_spp(out["spp_needed"], r.raw[0].sampler)
+    return Validation(rendering, rendering.patches.mean, reference, sigma, floor, quadrature, out["tolerance"],
+                      tolerance, out["equivalence"], out["difference"], out["upper"], needed, skewness)
 
 
 def validate_gamut(
@@ -234,6 +313,9 @@ def validate_gamut(
     sampler: str = "multijitter",
     variant: str | None = None,
     grid: WavelengthGrid = GRID_DEFAULT,
+    tolerance: float = TOLERANCE_DEFAULT,
+    alpha: float = ALPHA_EQUIVALENCE,
+    alpha_difference: float = ALPHA_DIFFERENCE,
 ) -> dict:
     """
     Gamut volumes of a chart's rendered patches against the analytic ones.
@@ -243,17 +325,24 @@ def validate_gamut(
     applied to the rendered patch means (white reference left out of the
     cloud), and the one-calibration-case and all-calibration volumes are
     compared with the same volumes of :func:`analytic_reference`. The noise of
-    a volume is estimated by redrawing every patch mean ``draws`` times from
-    its measured standard error; the check is ``|V_render − V_analytic| ≤``
-    :data:`SIGMAS` σ_V.
+    a volume σ_V is estimated by redrawing every patch mean ``draws`` times
+    from its measured standard error (Student t with ``draws − 1`` degrees of
+    freedom). The verdict is the equivalence of the volumes within the
+    relative ``tolerance`` (family-wise ``1 − alpha``); the difference test
+    (``|V_render − V_analytic| / σ_V``, Šidák at ``alpha_difference``) is
+    reported beside it.
 
     Returns
     -------
     dict
         ``illuminants_K``, ``rendered``, ``analytic``, ``sigma`` (each: the
         ``Q`` one-calibration volumes then the all-calibration volume,
-        output units³), ``rel_difference``, ``passed``, ``seconds``.
+        output units³), ``rel_difference``, ``bound`` (relative, per volume),
+        ``verdict`` and ``difference`` (verdict documents), ``passed`` (the
+        verdict is a pass), ``spp_needed``, ``seconds``.
     """
+
+    tolerance = check_tolerance(tolerance, "tolerance")
 
     chart = load_scene(scene)
     cam = camera(camera_)
@@ -281,6 +370,9 @@ def validate_gamut(
                                 for p in temperatures])
     analytic = np.array([gamut(analytic_points[:, q]).volume for q in range(len(temperatures))]
                         + [gamut(analytic_points).volume])
+    # volumes are no output values: their tolerance is relative throughout (scale 0: no dark floor)
+    out = agreement(rendered, analytic, sigma, tolerance, renderer.spp, draws - 1, 0.0, alpha, alpha_difference,
+                    "gamut volumes", scale=0.0)
     return {
         "scene": chart.name,
         "camera": cam.name,
@@ -289,7 +381,11 @@ def validate_gamut(
         "analytic": analytic.tolist(),
         "sigma": sigma.tolist(),
         "rel_difference": (np.abs(rendered - analytic) / analytic).tolist(),
-        "passed": bool(np.all(np.abs(rendered - analytic) <= SIGMAS * sigma)),
+        "bound": out["relative_bound"].tolist(),
+        "verdict": out["equivalence"].document(),
+        "difference": out["difference"].document(),
+        "passed": out["equivalence"].outcome == "pass",
+        "spp_needed": out["spp_needed"],
         "spp": renderer.spp,
         "seconds": seconds,
     }

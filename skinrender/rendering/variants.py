@@ -29,7 +29,12 @@ import sys
 from ..errors import SkinrenderError
 from ..extras import require
 
-__all__ = ["VARIANTS_SPECTRAL", "LIBLLVM_MINIMUM", "libllvm_path", "variant_works", "choose_variant", "mitsuba"]
+__all__ = ["VARIANTS_SPECTRAL", "LIBLLVM_MINIMUM", "ROUNDED", "libllvm_path", "variant_works", "choose_variant",
+           "mitsuba", "rounded_note"]
+
+ROUNDED: list[int] = []
+"""Sample counts a Mitsuba sampler rounded a render's spp up to in this process (its "Sample count rounded up"
+warnings, captured rather than printed: :func:`rounded_note` says it once)."""
 
 VARIANTS_SPECTRAL = ("cuda_ad_spectral", "llvm_ad_spectral", "scalar_spectral")
 """Spectral variants, fastest first."""
@@ -169,7 +174,11 @@ def _log_to_stderr(mi) -> None:
 
     class StderrAppender(mi.Appender):
         def append(self, level, text):
-            print(text, file=sys.stderr)
+            rounded = re.search(r"Sample count rounded up to (\d+)", text)
+            if rounded:  # one per render pass: summarised once at the end (rounded_note)
+                ROUNDED.append(int(rounded[1]))
+            else:
+                print(text, file=sys.stderr)
 
         def log_progress(self, progress, name, formatted, eta, ptr=None):
             pass
@@ -179,3 +188,20 @@ def _log_to_stderr(mi) -> None:
     appender = StderrAppender()
     logger.add_appender(appender)
     _LOGGING.append(appender)  # kept alive: the logger holds it by reference
+
+
+def rounded_note() -> str | None:
+    """
+    One line for every "Sample count rounded up" of this process (:data:`ROUNDED`), or ``None``.
+
+    >>> ROUNDED[:] = [8, 8, 36]
+    >>> rounded_note()
+    "the sampler rounded the samples per pixel up to 8, 36 (3 render passes; multijitter takes a product of two integers): each JSON's 'spp' is the count used"
+    >>> ROUNDED.clear()
+    """
+    if not ROUNDED:
+        return None
+    counts = ", ".join(str(n) for n in sorted(set(ROUNDED)))
+    passes = f"{len(ROUNDED)} render pass{'es' * (len(ROUNDED) > 1)}"
+    return (f"the sampler rounded the samples per pixel up to {counts} ({passes}; multijitter takes a product of two "
+            "integers): each JSON's 'spp' is the count used")

@@ -36,7 +36,7 @@ import sys
 from collections.abc import Callable, Sequence
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
-from ..design.search import DASK_TIMEOUT_S
+from ..design.search import DASK_TIMEOUT_S, announce
 from ..errors import SkinrenderError
 from ..extras import require
 from ..rendering.variants import choose_variant, libllvm_path, mitsuba
@@ -84,7 +84,8 @@ def _threaded(function: Callable, task):
 
 
 def _progress_bar(total: int, stream, label: str):
-    """A tqdm bar of renders on ``stream``; off when ``stream`` is ``None`` (``--quiet``) or not a terminal."""
+    """A tqdm bar of renders on ``stream``; off when ``stream`` is ``None`` (``--quiet``) or not a terminal (there
+    :func:`~skinrender.design.search.announce` says the renders started)."""
     from tqdm import tqdm
 
     enabled = stream is not None and getattr(stream, "isatty", lambda: False)()
@@ -131,8 +132,9 @@ def run_renders(function: Callable, tasks: Sequence, variant: str, workers: int 
     bar = _progress_bar(len(tasks), progress, label)
     try:
         if dask is not None:
-            _run_dask(dask, function, tasks, results, bar)
+            _run_dask(dask, function, tasks, results, bar, lambda: announce(progress, label, len(tasks), "render"))
         elif workers == 1:
+            announce(progress, label, len(tasks), "render")
             before = set_threads(RENDER_THREADS)
             try:
                 for i, task in enumerate(tasks):
@@ -141,17 +143,19 @@ def run_renders(function: Callable, tasks: Sequence, variant: str, workers: int 
             finally:
                 set_threads(before)
         else:
-            _run_pool(workers, function, tasks, variant, results, bar)
+            _run_pool(workers, function, tasks, variant, results, bar, lambda: announce(progress, label, len(tasks),
+                                                                                         "render"))
     finally:
         bar.close()
     return results
 
 
-def _run_pool(workers: int, function: Callable, tasks: Sequence, variant: str, results: list, bar) -> None:
+def _run_pool(workers: int, function: Callable, tasks: Sequence, variant: str, results: list, bar, started=lambda: None) -> None:
     pool = ProcessPoolExecutor(min(workers, len(tasks)), mp_context=multiprocessing.get_context("spawn"),
                                initializer=_init_worker, initargs=(variant,))
     try:
         futures = {pool.submit(function, task): i for i, task in enumerate(tasks)}
+        started()  # the workers are spawned and busy
         pending = set(futures)
         while pending:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
@@ -168,7 +172,7 @@ def _run_pool(workers: int, function: Callable, tasks: Sequence, variant: str, r
     pool.shutdown()
 
 
-def _run_dask(dask, function: Callable, tasks: Sequence, results: list, bar) -> None:
+def _run_dask(dask, function: Callable, tasks: Sequence, results: list, bar, started=lambda: None) -> None:
     require("dask", "--dask")
     from distributed import Client, as_completed
 
@@ -181,6 +185,7 @@ def _run_dask(dask, function: Callable, tasks: Sequence, results: list, bar) -> 
                                   f"({type(error).__name__}: {' '.join(str(error).split())[:120]})") from None
     else:
         client = dask
+    started()  # the scheduler answered: the renders start
     try:
         futures = [client.submit(_threaded, function, task, pure=False) for task in tasks]
         index = {future.key: i for i, future in enumerate(futures)}

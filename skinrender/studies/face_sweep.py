@@ -28,6 +28,7 @@ Units: temperatures K, times s, image sides pixels, NCC and rates fractions.
 from __future__ import annotations
 
 import csv
+import io
 import itertools
 import os
 import time
@@ -40,6 +41,7 @@ import numpy as np
 from ..design.search import WORKERS_MAX
 from ..errors import SkinrenderError
 from ..evaluation.locus import skin_locus
+from ..files import write_output
 from ..model.camera import camera
 from ..model.chromaticity import ncc
 from ..rendering.face import planckian_temperature, render_face
@@ -50,6 +52,7 @@ from ..rendering.scene import PIXELS_MAX
 from ..rendering.validation import analytic_reference
 from ..rendering.variants import choose_variant
 from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..workload import duration_text
 from .face_pool import dask_name, run_renders
 from .ladder import score_rendering
 
@@ -169,27 +172,20 @@ class FaceSweep:
                 "variant": self.variant, "workers": self.workers, "dask": self.dask, "elapsed_s": self.elapsed_s,
                 "renders": len(self.combinations), "combinations": self.combinations}
 
-    def to_csv(self, path) -> Path:
-        """Every combination as a CSV row (:data:`CSV_COLUMNS`), written whole or not at all."""
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        partial = path.with_name(path.name + ".partial")
-        try:
-            with open(partial, "w", encoding="utf-8", newline="") as handle:
-                writer = csv.writer(handle, lineterminator="\n")
-                writer.writerow(CSV_COLUMNS)
-                for row in self.combinations:
-                    triples = [v for key in ("skin_ncc_mean", "skin_ncc_std")
-                               for v in (row[key] if row[key] is not None else [None] * 3)]
-                    cells = [row["camera"], row["prevailing_K"], row["calibration_K"], row["skin"], row["level"],
-                             row["seconds"], row["spp"], *triples, row["tpr"], row["fpr"], row["skin_pixels"],
-                             row["prop_pixels"], *row["skin_ncc_analytic"]]
-                    writer.writerow(["" if v is None else f"{v:.17g}" if isinstance(v, float) else v
-                                     for v in cells])
-            os.replace(partial, path)
-        finally:
-            partial.unlink(missing_ok=True)
-        return path
+    def to_csv(self, path, flag: str | None = None) -> Path:
+        """Every combination as a CSV row (:data:`CSV_COLUMNS`), written whole or not at all (``flag``: the
+        option that named ``path``, for the message when it cannot be written)."""
+        handle = io.StringIO(newline="")
+        writer = csv.writer(handle, lineterminator="\n")
+        writer.writerow(CSV_COLUMNS)
+        for row in self.combinations:
+            triples = [v for key in ("skin_ncc_mean", "skin_ncc_std")
+                       for v in (row[key] if row[key] is not None else [None] * 3)]
+            cells = [row["camera"], row["prevailing_K"], row["calibration_K"], row["skin"], row["level"],
+                     row["seconds"], row["spp"], *triples, row["tpr"], row["fpr"], row["skin_pixels"],
+                     row["prop_pixels"], *row["skin_ncc_analytic"]]
+            writer.writerow(["" if v is None else f"{v:.17g}" if isinstance(v, float) else v for v in cells])
+        return write_output(path, handle.getvalue(), flag)
 
 
 def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples: float, cores: int) -> None:
@@ -200,7 +196,7 @@ def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples
         raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
                               f"most {SAMPLES_MAX // pixels} spp at this size")
     seconds, on = estimate_seconds(renders, pixels, spp, cores), f"on {cores} core{'s' * (cores > 1)}"
-    about = f"about {seconds / 3600:.3g} h {on}" if seconds >= 3600 else f"about {seconds / 60:.2g} min {on}"
+    about = f"about {duration_text(seconds)} {on}"
     if renders > max_renders:
         raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} ({about}); raise "
                               "the limit (--max-renders) or sweep fewer combinations")

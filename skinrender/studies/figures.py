@@ -36,10 +36,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..files import write_output
 from ..hints import NDArrayFloat
 
 __all__ = ["figure_pairs", "figure_gamuts", "figure_cases", "figure_render_curve", "figure_locus", "figure_ptc",
-           "figure_chart", "figure_face", "figure_ladder", "display_srgb", "figure_skin_model"]
+           "figure_chart", "figure_face", "figure_ladder", "figure_calibration", "display_srgb", "figure_skin_model"]
 
 DPI = 110
 """Resolution of every figure, dots per inch."""
@@ -55,22 +56,27 @@ def _pyplot():
     return plt
 
 
-def _save(figure, path: str | Path, legend: dict | None = None, layout: bool = True) -> Path:
+def _save(figure, path, legend: dict | None = None, layout: bool = True):
     """
     Lay out (``layout``: tight layout; ``False`` where the caller placed the
     panels), write and close a figure; ``legend``: a figure legend's
-    keywords, put below the panels.
+    keywords, put below the panels. ``path``: a PNG written whole or not at
+    all (:func:`skinrender.files.write_output`), or a binary stream (PNG).
     """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if layout:
-        figure.tight_layout()
-    if legend is not None:
-        figure.legend(**{"loc": "upper center", "bbox_to_anchor": (0.5, 0.0), "fontsize": 8, "frameon": False,
-                         **legend})
-    figure.savefig(path, dpi=DPI, **({} if legend is None else {"bbox_inches": "tight"}))
-    _pyplot().close(figure)
-    return path
+    try:
+        if layout:
+            figure.tight_layout()
+        if legend is not None:
+            figure.legend(**{"loc": "upper center", "bbox_to_anchor": (0.5, 0.0), "fontsize": 8, "frameon": False,
+                             **legend})
+        options = {"dpi": DPI, **({} if legend is None else {"bbox_inches": "tight"})}
+        if hasattr(path, "write"):
+            figure.savefig(path, format="png", **options)
+            return path
+        form = Path(path).suffix.lstrip(".").lower() or "png"
+        return write_output(path, lambda stream: figure.savefig(stream, format=form, **options))
+    finally:
+        _pyplot().close(figure)
 
 
 def figure_pairs(volumes: NDArrayFloat, temperatures: NDArrayFloat, title: str, path: str | Path) -> Path:
@@ -142,6 +148,27 @@ def figure_render_curve(result: dict, path: str | Path) -> Path:
     axis.set(xlabel="render time per Macbeth image (s)", ylabel="RMS relative error of patch means",
              title="Render error against time (labels: spp)")
     axis.legend(fontsize=7)
+    return _save(figure, path)
+
+
+def figure_calibration(result: dict, path: str | Path) -> Path:
+    """``bench calibration``: per check the observed false-alarm rate with its 95 % interval, and the nominal α."""
+    plt = _pyplot()
+    checks = result["checks"]
+    figure, axis = plt.subplots(figsize=(6.4, 1.9 + 0.45 * max(len(checks), 1)))
+    for y, check in enumerate(checks):
+        lo, hi = check["interval"]
+        axis.plot([lo, hi], [y, y], "-", color="tab:blue", lw=2, label="observed, 95 % interval" if y == 0 else None)
+        axis.plot(check["rate"], y, "o", color="tab:blue")
+        marker = "|" if check["nominal"] == "equal to" else "<"
+        axis.plot(check["nominal_alpha"], y, marker, color="tab:red", ms=14 if marker == "|" else 8, mew=2,
+                  label="nominal α (| equal to, < at most)" if y == 0 else None)
+    axis.set_yticks(range(len(checks)), [f"{c['name']} ({c['failures']}/{c['seeds']})" for c in checks])
+    axis.set_ylim(-0.6, len(checks) - 0.4)
+    axis.set_xlim(0, max([0.1] + [c["interval"][1] * 1.05 for c in checks]))
+    sensor = f", {result['imager']} at {result['illuminance_lux']:g} lx" if result.get("imager") else ""
+    axis.set(xlabel="false-alarm rate", title=f"{result['scene']}, {result['spp']} spp, {result['seeds']} seeds{sensor}")
+    axis.legend(fontsize=7, loc="lower right")
     return _save(figure, path)
 
 

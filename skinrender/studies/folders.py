@@ -17,6 +17,7 @@ end: an interrupted or refused run leaves nothing that looks complete.
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 import shutil
@@ -25,11 +26,15 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import SkinrenderError
+from ..files import OutputError, read_input, reason_of, shown
 
 __all__ = ["MANIFEST", "check_output", "foreign_files", "output_folder"]
 
 MANIFEST = "reproduce.json"
 """Written last into every ``reproduce`` folder: an existing folder holding it may be replaced."""
+
+MANIFEST_BYTES_MAX = 64_000_000
+"""Largest earlier :data:`MANIFEST` read, bytes (a sweep's is ~1 MB): a larger one lists nothing."""
 
 
 def check_output(directory, flag: str = "-o") -> Path:
@@ -42,6 +47,20 @@ def check_output(directory, flag: str = "-o") -> Path:
     if directory is None or not str(directory).strip():
         raise SkinrenderError(f"{flag} must name an output folder, got {'' if directory is None else directory!r}")
     target = Path(str(directory)).expanduser().absolute()
+    try:
+        return _checked(target, directory, flag)
+    except OSError as error:  # a name too long, no permission to look
+        raise OutputError(f"{flag} {shown(directory)}: cannot be written ({reason_of(error)})", flag, error) from None
+
+
+def _checked(target: Path, directory, flag: str) -> Path:
+    if len(target.name.encode()) > 255:
+        raise OSError(errno.ENAMETOOLONG, os.strerror(errno.ENAMETOOLONG))
+    if target.is_symlink():  # the folder it names is the output; a link to nothing names none
+        if not target.exists():
+            raise SkinrenderError(f"{flag} {directory}: a symbolic link to nothing ({os.readlink(target)}); name a "
+                                  "folder")
+        target = Path(os.path.realpath(target))
     if target.exists() and not target.is_dir():
         raise SkinrenderError(f"{flag} {directory}: an existing file, not a folder")
     if target.is_dir() and any(target.iterdir()) and not (target / MANIFEST).is_file():
@@ -50,9 +69,9 @@ def check_output(directory, flag: str = "-o") -> Path:
     if (target / MANIFEST).is_file():
         foreign = foreign_files(target)
         if foreign:
-            shown = ", ".join(foreign[:3]) + (f" and {len(foreign) - 3} more" if len(foreign) > 3 else "")
+            listed = ", ".join(foreign[:3]) + (f" and {len(foreign) - 3} more" if len(foreign) > 3 else "")
             raise SkinrenderError(f"{flag} {directory}: an earlier reproduce folder that also holds files it did not "
-                                  f"write ({shown}); they would be deleted with it: move them or name another folder")
+                                  f"write ({listed}); they would be deleted with it: move them or name another folder")
     for ancestor in target.parents:
         if ancestor.exists():
             if not ancestor.is_dir():
@@ -68,10 +87,11 @@ def foreign_files(folder: Path) -> list[str]:
     listed file. Replacing the folder would delete them. Everything is foreign when the manifest cannot be read.
     """
     try:
-        artifacts = [Path(p) for p in json.loads((folder / MANIFEST).read_text(encoding="utf-8"))["artifacts"]]
+        manifest = read_input(folder / MANIFEST, MANIFEST_BYTES_MAX, f"a {MANIFEST}").decode("utf-8")
+        artifacts = [Path(p) for p in json.loads(manifest)["artifacts"]]
         written = next(p.parent for p in artifacts if p.name == MANIFEST)  # the folder as it was named then
         listed = {p.relative_to(written).as_posix() for p in artifacts}
-    except (OSError, ValueError, KeyError, TypeError, StopIteration):
+    except (OSError, ValueError, KeyError, TypeError, StopIteration):  # SkinrenderError is a ValueError
         listed = set()
     foreign = []
     for root, folders, files in os.walk(folder):  # links to folders are listed among folders, not entered
@@ -101,19 +121,25 @@ def output_folder(target: Path, flag: str = "-o"):
     try:
         for folder in created:
             folder.mkdir()
-        temporary = Path(tempfile.mkdtemp(prefix=f".{target.name}.partial-", dir=target.parent))
+        temporary = Path(tempfile.mkdtemp(prefix=f".{target.name[:100]}.partial-", dir=target.parent))
         mask = os.umask(0)
         os.umask(mask)
         os.chmod(temporary, 0o777 & ~mask)  # mkdtemp's 0700 would outlive the move
     except OSError as error:
         _remove_created(created)
-        raise SkinrenderError(f"{flag} {target}: cannot write there ({error.strerror or error})") from None
+        raise OutputError(f"{flag} {target}: cannot write there ({reason_of(error)})", flag, error) from None
     try:
         yield temporary
         _move_into_place(temporary, target)
-    except BaseException:
+    except BaseException as error:
         shutil.rmtree(temporary, ignore_errors=True)
         _remove_created(created)
+        if isinstance(error, OutputError) and error.flag is None:  # a file of the folder could not be written
+            raise OutputError(f"{flag} {target}: cannot be written ({error.reason}); nothing was left there", flag,
+                              error.oserror) from None
+        if isinstance(error, OSError) and str(error.filename or "").startswith(str(temporary)):
+            raise OutputError(f"{flag} {target}: cannot be written ({reason_of(error)}); nothing was left there",
+                              flag, error) from None
         raise
 
 
@@ -135,7 +161,7 @@ def _move_into_place(temporary: Path, target: Path) -> None:
         os.rename(temporary, target)
         return
     keep = (target / MANIFEST).is_file() and bool(foreign_files(target))
-    old = Path(tempfile.mkdtemp(prefix=f"{target.name}.previous-" if keep else f".{target.name}.old-",
+    old = Path(tempfile.mkdtemp(prefix=f"{target.name[:100]}.previous-" if keep else f".{target.name[:100]}.old-",
                                 dir=target.parent))
     os.rename(target, old / target.name)
     os.rename(temporary, target)

@@ -31,6 +31,7 @@ from scipy.spatial import ConvexHull
 from ..constants import TEMPERATURES_PAPER
 from ..datasets import reflectances
 from ..evaluation.gamut import gamut_calibration, gamut_hull
+from ..files import write_output
 from ..evaluation.hull import hull_volume_vertices
 from ..hints import ArrayLike, NDArrayFloat
 from ..model.camera import camera
@@ -170,9 +171,9 @@ def stage2_write(
                      f"Fig. {number}: Munsell gamut per pair, {normalization}{' with knee' if knee else ''} "
                      f"({camera_spec})", path)
         csv = directory / f"fig{number}_{normalization}.csv"
-        np.savetxt(csv, volumes, delimiter=",",
-                   header=f"rows: prevailing, columns: calibration (illuminants {', '.join(f'{t:g}' for t in temperatures)} K)"
-                   "; output units^3")
+        header = (f"rows: prevailing, columns: calibration (illuminants {', '.join(f'{t:g}' for t in temperatures)} "
+                  "K); output units^3")
+        write_output(csv, lambda stream, volumes=volumes: np.savetxt(stream, volumes, delimiter=",", header=header))
         artifacts += [path, csv]
     path = directory / "fig6_gamuts.png"
     figure_gamuts(stage2_gamut_panels(camera_spec, munsell, temperatures, grid),

@@ -33,6 +33,7 @@ import numpy as np
 
 from ..constants import TEMPERATURES_PAPER
 from ..datasets import list_cameras
+from ..files import write_output
 from ..model.stage1 import illuminant_track, select_illuminants
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .normalisation import STAGE2_NORMALISATIONS, stage2_observation, stage2_pairs
@@ -83,7 +84,8 @@ def sony_dxc930_csv(directory: str | Path, shared: str | Path | None = None) -> 
     rows = np.column_stack([data["wavelength_nm"], np.maximum(data["R"] - SONY_DXC930_FLOORS["R"], 0.0), data["G"],
                             np.maximum(data["B"] - SONY_DXC930_FLOORS["B"], 0.0)])
     out = Path(directory) / "sony_dxc930.csv"
-    np.savetxt(out, rows, delimiter=",", header="wavelength_nm,R,G,B", comments="", fmt="%.6g")
+    write_output(out, lambda stream: np.savetxt(stream, rows, delimiter=",", header="wavelength_nm,R,G,B",
+                                                comments="", fmt="%.6g"))
     return out
 
 

@@ -27,6 +27,7 @@ import time
 from pathlib import Path
 
 from ..design.bank import SENSORS_PAPER
+from ..files import write_output
 from ..hints import ArrayLike
 from ..spectra import WavelengthGrid
 from .folders import MANIFEST, check_output, output_folder
@@ -35,7 +36,7 @@ from .normalisation import (STAGE2_CAMERA, STAGE2_NORMALISATIONS, stage2_cases, 
                             stage2_observation, stage2_pairs, stage2_write)
 from .observations import paper_cameras, stage1_text, stage2_by_camera
 from .tables import write_tables
-from .unknowns import (Setting, check_camera, check_positions, check_sensors, resolve_setting,
+from .unknowns import (Setting, check_camera, check_positions, check_search_work, check_sensors, resolve_setting,
                        setting_tables)
 from .volumes import VolumeCache, check_workers
 
@@ -69,6 +70,7 @@ def reproduce(
     observations: bool = True,
     shared: str | Path | None = None,
     figures: bool = True,
+    max_minutes: float | None = None,
 ) -> dict:
     """
     Write the paper's Figs. 3–7 (PNG) and Tables 2–5 (Markdown, CSV) to ``directory``.
@@ -114,6 +116,9 @@ def reproduce(
         The reference data folder (default ``../shared/data`` beside the checkout).
     figures
         Draw Figs. 3–7 (``False``: the tables only, ``stage2`` empty).
+    max_minutes
+        Refuse searches estimated to take longer, minutes (:func:`~skinrender.studies.unknowns.check_search_work`;
+        ``None``: :data:`skinrender.workload.MINUTES_MAX`).
 
     Returns
     -------
@@ -136,6 +141,7 @@ def reproduce(
     chosen = check_sensors(sensors)
     where = check_positions(positions, resolved.grid)
     workers = check_workers(workers)
+    check_search_work(len(chosen), where, "--positions", max_minutes, workers)
     if dask is not None:
         from ..extras import require
 
@@ -196,7 +202,7 @@ def reproduce(
                if observations else {}),
         }
         document["elapsed_s"] = time.perf_counter() - start
-        (folder / MANIFEST).write_text(json.dumps(document, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+        write_output(folder / MANIFEST, json.dumps(document, indent=2, allow_nan=False) + "\n")
     return document
 
 

@@ -23,6 +23,7 @@ Units: wavelength in nm.
 from __future__ import annotations
 
 import csv
+import io
 import itertools
 import json
 import tempfile
@@ -31,13 +32,14 @@ from pathlib import Path
 
 from ..design.bank import SENSORS_PAPER
 from ..errors import SkinrenderError
+from ..files import write_output
 from ..hints import ArrayLike
 from .folders import MANIFEST, check_output, output_folder
 from .matching import unmatched_sensors
 from .observations import paper_cameras, shared_file
 from .tables import TABLES
-from .unknowns import (SETTING_DEFAULT, Setting, check_positions, check_sensors, resolve_setting, setting_tables,
-                       with_unknown)
+from .unknowns import (SETTING_DEFAULT, Setting, check_positions, check_search_work, check_sensors, resolve_setting,
+                       setting_tables, with_unknown)
 from .volumes import VolumeCache, check_workers
 
 __all__ = ["SWEEP_SLOPES", "SWEEP_GRIDS", "SWEEP_MUNSELL", "SWEEP_SKIN", "UNKNOWNS", "sweep_candidates", "sweep",
@@ -237,15 +239,16 @@ def write_sweep(result: dict, directory: str | Path) -> list[Path]:
     directory = Path(directory)
     keys = [key for _, key in TABLES]
     path_csv = directory / "sweep.csv"
-    with open(path_csv, "w", encoding="utf-8", newline="") as handle:
-        writer = csv.writer(handle, lineterminator="\n")
-        writer.writerow(["setting", "unknown", "exact", "within_step", "total"]
-                        + [f"{k}_{n}" for k in keys for n in ("exact", "within_step")]
-                        + ["temperatures_shared", "temperatures_total", "seconds"])
-        for row in result["sweep"]:
-            writer.writerow([row["setting"], row["unknown"], row["exact"], row["within_step"], row["total"]]
-                            + [row["matches_by_table"][k][n] for k in keys for n in ("exact", "within_step")]
-                            + [row["temperatures"]["shared"], row["temperatures"]["total"], f"{row['seconds']:.2f}"])
+    handle = io.StringIO(newline="")
+    writer = csv.writer(handle, lineterminator="\n")
+    writer.writerow(["setting", "unknown", "exact", "within_step", "total"]
+                    + [f"{k}_{n}" for k in keys for n in ("exact", "within_step")]
+                    + ["temperatures_shared", "temperatures_total", "seconds"])
+    for row in result["sweep"]:
+        writer.writerow([row["setting"], row["unknown"], row["exact"], row["within_step"], row["total"]]
+                        + [row["matches_by_table"][k][n] for k in keys for n in ("exact", "within_step")]
+                        + [row["temperatures"]["shared"], row["temperatures"]["total"], f"{row['seconds']:.2f}"])
+    write_output(path_csv, handle.getvalue())
     best = max((r["exact"], r["within_step"]) for r in result["sweep"])
     intro = (f"Sensors {', '.join(f'{s:g}' for s in result['sensors'])}, peak positions {result['positions']} nm. "
              "A cell matches exactly when one of our (tied) triplets equals one of the paper's; within one step "
@@ -264,7 +267,7 @@ def write_sweep(result: dict, directory: str | Path) -> list[Path]:
     lines += ["", f"Per table: exact/within 10 nm of its {len(result['sensors'])} cells (one per sensor).", ""]
     lines += [f"- combined: {', '.join(result['combined']) or 'none'}"] + [f"- {note}" for note in result["notes"]]
     path_md = directory / "sweep.md"
-    path_md.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    write_output(path_md, "\n".join(lines) + "\n")
     return [path_csv, path_md]
 
 
@@ -280,8 +283,9 @@ def reproduce_sweep(directory: str | Path, sensors: ArrayLike | str = SENSORS_PA
     """
     start = time.perf_counter()
     target = check_output(directory)
-    check_sensors(sensors)
-    check_positions(positions, resolve_setting(base).grid, positions_flag)
+    where = check_positions(positions, resolve_setting(base).grid, positions_flag)
+    check_search_work(len(check_sensors(sensors)), where, positions_flag, options.pop("max_minutes", None),
+                      options.get("workers"), "each setting's ")
     check_workers(options.get("workers"))
     _check_combine(options.get("combine", 3), options.get("values_per_unknown", 1))
     with output_folder(target) as folder:
@@ -289,5 +293,5 @@ def reproduce_sweep(directory: str | Path, sensors: ArrayLike | str = SENSORS_PA
         artifacts = write_sweep(result, folder)
         result["artifacts"] = [str(target / p.name) for p in artifacts] + [str(target / MANIFEST)]
         result["elapsed_s"] = time.perf_counter() - start
-        (folder / MANIFEST).write_text(json.dumps(result, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+        write_output(folder / MANIFEST, json.dumps(result, indent=2, allow_nan=False) + "\n")
     return result

@@ -9,9 +9,10 @@ the rows of Tables 2–5 from a Stage 3 search, and the paper's printed Tables
 -   :data:`PAPER_TABLES`: the paper's printed Tables 2–5.
 -   :func:`table_rows`: one sensor's entries of Tables 2–5.
 -   :func:`write_tables`: Tables 2–5 as Markdown and CSV, ours beside the paper's.
--   :data:`TABLE1_CASES`, :func:`table1`: Table 1.
+-   :data:`TABLE1_CASES`, :data:`TABLE1_TOLERANCE`, :func:`table1`: Table 1,
+    with the verdict that the render agrees with Eq. 4 in NCC.
 
-Units: peaks in nm, temperatures in K.
+Units: peaks in nm, temperatures in K, NCC unitless.
 
 References
 ----------
@@ -21,21 +22,25 @@ References
 from __future__ import annotations
 
 import csv
+import io
 from pathlib import Path
 
 import numpy as np
 
 from ..design.search import TOLERANCE_TIE, SearchResult
 from ..errors import SkinrenderError
+from ..files import write_output
 from ..model.camera import Camera, camera
 from ..model.chromaticity import ncc
 from ..model.response import response_raw, white_coefficient
 from ..rendering.balance import render
 from ..rendering.scene import load_scene
+from ..rendering.patch_errors import noise_of
 from ..rendering.validation import analytic_reference
+from ..hints import NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["PAPER_TABLES", "TABLES", "table_rows", "write_tables", "TABLE1_CASES", "table1"]
+__all__ = ["PAPER_TABLES", "TABLES", "table_rows", "write_tables", "TABLE1_CASES", "TABLE1_TOLERANCE", "table1"]
 
 # The paper's Tables 2–5 as printed (triplets in nm, temperatures in K).
 PAPER_TABLES = {
@@ -108,22 +113,34 @@ def write_tables(rows: dict[float, dict], directory: Path) -> list[Path]:
     for title, key in TABLES:
         markdown += [f"## {title}", "", "| sensor | skinrender | paper |", "|---|---|---|"]
         path = directory / f"{key}.csv"
-        with open(path, "w", encoding="utf-8", newline="") as handle:
-            writer = csv.writer(handle, lineterminator="\n")
-            writer.writerow(["sensor", "skinrender", "paper"])
-            for sensor, entries in rows.items():
-                paper = PAPER_TABLES[key].get(int(sensor), "")
-                writer.writerow([f"{sensor:g}", entries[key], paper])
-                markdown.append(f"| {sensor:g} | {entries[key]} | {paper} |")
+        handle = io.StringIO(newline="")
+        writer = csv.writer(handle, lineterminator="\n")
+        writer.writerow(["sensor", "skinrender", "paper"])
+        for sensor, entries in rows.items():
+            paper = PAPER_TABLES[key].get(int(sensor), "")
+            writer.writerow([f"{sensor:g}", entries[key], paper])
+            markdown.append(f"| {sensor:g} | {entries[key]} | {paper} |")
         markdown.append("")
-        paths.append(path)
-    md = directory / "tables.md"
-    md.write_text("\n".join(markdown), encoding="utf-8")
+        paths.append(write_output(path, handle.getvalue()))
+    md = write_output(directory / "tables.md", "\n".join(markdown))
     return [md, *paths]
 
 
 TABLE1_CASES = (("AA", "A", "A"), ("AH", "A", "H"), ("HH", "H", "H"), ("HA", "H", "A"))
 """Table 1's (prevailing, calibration) pairs: A = 2856 K, H (Horizon) = 2300 K."""
+
+
+TABLE1_TOLERANCE = 0.001
+"""Default tolerance of Table 1's verdict: an absolute NCC difference (the paper's Eq. 4 rows are ~1e-4 at 256 spp)."""
+
+
+def _ncc_standard_error(mean: NDArrayFloat, sigma: NDArrayFloat) -> NDArrayFloat:
+    """First-order standard errors of the NCC of channel means ``(N, 3)`` with independent errors ``sigma``."""
+    total = mean.sum(axis=-1, keepdims=True)
+    c = mean / total
+    # ∂c_i/∂x_j = (δ_ij − c_i) / S: Var c_i = Σ_j (δ_ij − c_i)² σ_j² / S²
+    jacobian = (np.eye(3)[None, :, :] - c[:, :, None]) / total[:, :, None]
+    return np.sqrt(np.einsum("nij,nj->ni", jacobian**2, sigma**2))
 
 
 def table1(
@@ -134,10 +151,11 @@ def table1(
     low: float = 10.0,
     high: float = 245.0,
     fraction: float = 0.9,
+    tolerance: float = TABLE1_TOLERANCE,
     **render_options,
 ) -> dict:
     """
-    The paper's Table 1 with the render as the "real camera".
+    The paper's Table 1 with the render as the "real camera", and its verdict.
 
     Patches are kept when at least ``fraction`` of their pixel values (all
     channels) lie in ``[low, high]`` in all four cases (the paper's rule).
@@ -146,12 +164,28 @@ def table1(
     model: Eq. 1 with WP (no white balance), and Eq. 4 with each
     normalisation.
 
+    The verdict (:func:`~skinrender.evaluation.verdict.equivalence`): every
+    kept patch's rendered NCC (r, g, b, all four cases) shown within
+    ``tolerance`` (absolute NCC) of Eq. 4's at family-wise 95 % confidence,
+    the NCC standard errors propagated to first order from the patch
+    channels' (:func:`~skinrender.rendering.validation.noise_of`). A
+    difference test of the same values (family-wise α = 0.01) is reported
+    beside it, and one of Eq. 1 with WP, which the paper's Table 1 shows to
+    differ.
+
     Returns
     -------
     dict
-        ``patches`` (kept names) and ``rows``: ``[{model, case, mean, std}]``.
+        ``patches`` (kept names), ``rows``: ``[{model, case, mean, std}]``,
+        ``verdict`` and ``difference`` (Eq. 4) and ``difference_eq1`` (verdict
+        documents), ``bound`` (the smallest NCC tolerance that would pass),
+        ``passed`` (the verdict is a pass), ``spp``, ``spp_requested``.
     """
 
+    from ..evaluation.verdict import ALPHA_DIFFERENCE, difference, equivalence
+
+    if not (isinstance(tolerance, (int, float)) and 0 < tolerance < 1):
+        raise SkinrenderError(f"tolerance must be an NCC difference in (0, 1), got {tolerance!r}")
     chart = load_scene("macbeth")
     cam = camera(camera_)
     cache: dict = {}
@@ -171,6 +205,7 @@ def table1(
     reflectance = chart.reflectances(grid)[keep]
     rows = []
     models = [("Eq. 1, WP", None)] + [(f"Eq. 4, {n}", n) for n in ("none", "560nm", "euclidean", "white")]
+    errors, errors_eq1, standard_errors = [], [], []
     for label, normalization in models:
         for case, p, q in TABLE1_CASES:
             r = renders[case]
@@ -180,11 +215,26 @@ def table1(
                     cam, r.prevailing, r.calibration, grid)
             else:
                 model = analytic_reference(cam, reflectance, r.prevailing, r.calibration, normalization, False, grid)
-            difference = np.abs(rendered - ncc(model)).ravel()
-            rows.append({"model": label, "case": case, "mean": float(difference.mean()),
-                         "std": float(difference.std(ddof=1))})
+            difference_ncc = rendered - ncc(model)
+            if normalization in (None, "white"):
+                full = analytic_reference(cam, chart.reflectances(grid), r.prevailing, r.calibration, "white", False,
+                                          grid)
+                se = _ncc_standard_error(r.patches.mean[keep], noise_of(r, full)[keep])
+                (errors if normalization else errors_eq1).append(difference_ncc)
+                if normalization:
+                    standard_errors.append(se)
+                else:
+                    se_eq1 = se
+            difference_ncc = np.abs(difference_ncc).ravel()
+            rows.append({"model": label, "case": case, "mean": float(difference_ncc.mean()),
+                         "std": float(difference_ncc.std(ddof=1))})
+    error, se = np.concatenate(errors), np.concatenate(standard_errors)
+    dof = float(np.min(next(iter(renders.values())).patches.count) - 1)
+    verdict, _ = equivalence(error, se, tolerance, dof=dof, name="table1", scale=np.ones_like(error))
+    test = difference(error, se, ALPHA_DIFFERENCE, dof, "difference")
+    eq1 = difference(np.concatenate(errors_eq1), np.concatenate([se_eq1] * len(errors_eq1)), ALPHA_DIFFERENCE, dof,
+                     "difference_eq1")
     used = next(iter(renders.values())).raw[0].spp  # multijitter rounds the count up
     return {"camera": cam.name, "patches": [chart.patches[i].name for i in keep], "rows": rows, "spp": used,
-            "spp_requested": spp}
-
-
+            "spp_requested": spp, "tolerance": tolerance, "bound": verdict.bound, "verdict": verdict.document(),
+            "difference": test.document(), "difference_eq1": eq1.document(), "passed": verdict.outcome == "pass"}

@@ -23,26 +23,30 @@ References
 
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
 
+from ..constants import SENSOR_RULE
 from ..datasets import looks_like_path, reflectances
 from ..design.bank import positions_grid, sensor_bank
+from ..design.search import SECONDS_PER_TRIPLET
 from ..errors import SkinrenderError, naming
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from ..model.camera import Camera, camera
 from ..model.stage1 import illuminant_set
 from ..spectra import EXTRAPOLATIONS, WavelengthGrid
+from ..workload import check_work
 from .matching import count_matches
 from .tables import table_rows
 from .volumes import VolumeCache, bank_key, check_workers, search_result
 
 __all__ = ["STAGE1_CAMERA", "Setting", "SETTING_DEFAULT", "ResolvedSetting", "resolve_setting", "check_sensors",
-           "check_positions", "check_camera", "setting_tables", "with_unknown"]
+           "check_positions", "check_search_work", "check_camera", "setting_tables", "with_unknown"]
 
 STAGE1_CAMERA = "Nikon 5100 (NPL)"
 """The camera of ``--illuminants auto`` unless ``--stage1-camera`` names another (the Stage 2 camera)."""
@@ -164,7 +168,7 @@ def resolve_setting(setting: Setting) -> ResolvedSetting:
 
 
 def check_sensors(sensors: str | ArrayLike) -> list[float]:
-    """The paper's sensor numbers (``1,3,…,15``; 1 = impulse, N > 1 a gbell of FWHM N·10 nm), checked."""
+    """The paper's sensor numbers (``1,3,…,15``; :data:`~skinrender.design.bank.SENSOR_RULE`), checked."""
     try:
         items = [float(v) for v in sensors.split(",")] if isinstance(sensors, str) else [float(v) for v in sensors]
     except (TypeError, ValueError):
@@ -172,12 +176,29 @@ def check_sensors(sensors: str | ArrayLike) -> list[float]:
                               f"got {sensors!r}") from None
     if not items:
         raise SkinrenderError("--sensors names no sensor")
-    bad = [v for v in items if not (np.isfinite(v) and (v == 1 or v > 1))]
+    bad = [v for v in items if not (np.isfinite(v) and v > 0)]
     if bad:
-        raise SkinrenderError(f"--sensors: {bad[0]:g} is not a sensor (1 = impulse, or a gbell number N > 1)")
+        raise SkinrenderError(f"--sensors: {bad[0]:g} is not a sensor: each must be {SENSOR_RULE}")
     if len(set(items)) != len(items):
         raise SkinrenderError(f"--sensors lists a sensor twice: {sensors!r}")
     return items
+
+
+def check_search_work(sensors: int, where: NDArrayFloat, flag: str = "--positions", max_minutes: float | None = None,
+                      workers: int | None = None, each: str = "") -> None:
+    """
+    Refuse searches of ``sensors`` sensors over the peaks ``where`` (nm) whose estimated time (every triplet at
+    :data:`~skinrender.design.search.SECONDS_PER_TRIPLET` per core) exceeds ``max_minutes``
+    (:func:`skinrender.workload.check_work`), naming ``flag``; ``each``: a prefix such as ``"each setting's "``.
+
+    >>> check_search_work(8, np.arange(400.0, 701.0, 10.0))
+    """
+    n = int(np.size(where))
+    count = n * (n - 1) * (n - 2) // 6
+    cores = workers or os.cpu_count() or 1
+    check_work(sensors * count * SECONDS_PER_TRIPLET / cores, flag,
+               f"{each}{sensors} search{'es' * (sensors != 1)} of {count} triplets ({n} positions) on {cores} "
+               f"core{'s' * (cores != 1)}", max_minutes, fewer=f"use fewer positions (a larger {flag} step)")
 
 
 def check_positions(positions: str | ArrayLike, grid: WavelengthGrid, flag: str = "--positions") -> NDArrayFloat:

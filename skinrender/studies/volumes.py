@@ -32,7 +32,7 @@ import numpy as np
 
 from ..design.bank import SensorBank, triplets
 from ..design.criteria import triplet_gains, triplet_volumes_many
-from ..design.search import SearchResult, check_workers, dask_client, progress_bar, stop_pool
+from ..design.search import SearchResult, announce, check_workers, dask_client, progress_bar, stop_pool
 from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import NDArrayFloat
 
@@ -139,6 +139,7 @@ def compute_volumes(
 
     if dask is not None:
         client, own = dask_client(dask)
+        announce(progress, label, len(index) * len(items))
         try:
             remote = client.scatter(list(items), broadcast=True)
             futures = [client.submit(_dask_chunk, remote[b], index[part], pure=False) for b, part in jobs]
@@ -150,6 +151,7 @@ def compute_volumes(
             if own:
                 client.close()
     elif workers == 1:
+        announce(progress, label, len(index) * len(items))
         if on_start is not None:
             on_start()
         for job in jobs:
@@ -158,6 +160,7 @@ def compute_volumes(
         pool = ProcessPoolExecutor(workers, initializer=_init, initargs=(items,))
         try:
             futures = [pool.submit(_chunk, b, index[part]) for b, part in jobs]
+            announce(progress, label, len(index) * len(items))  # the workers are forked and busy
             if on_start is not None:
                 on_start()  # the workers are forked at the first submit: a thread may start now
             for job, future in zip(jobs, futures):

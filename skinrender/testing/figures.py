@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from ..constants import CONSTANT_OUTPUT_SCALE
+from ..files import write_output
 from ..hints import NDArrayFloat
 
 __all__ = ["region_z", "difference_figure"]
@@ -111,8 +112,7 @@ def difference_figure(path: str | Path, reference: NDArrayFloat, new: NDArrayFlo
         axis.set_xticks([])
         axis.set_yticks([])
     figure.suptitle(title, fontsize=9)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path)
-    plt.close(figure)
-    return path
+    try:
+        return write_output(path, lambda stream: figure.savefig(stream, format="png"))  # whole or not at all
+    finally:
+        plt.close(figure)

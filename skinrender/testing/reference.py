@@ -19,15 +19,16 @@ Units: output units (Eq. 4) for images and means, NCC fractions.
 from __future__ import annotations
 
 import hashlib
+import io
 import json
 import math
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import SkinrenderError
+from ..files import Output, write_outputs
 from ..hints import NDArrayFloat
 from .regression import Measurement, values_of
 
@@ -117,22 +118,14 @@ def _json_number(value: float) -> float | None:
     return float(value) if math.isfinite(value) else None
 
 
-def _replace(path: Path, write) -> None:
-    """``write(temporary)`` then rename it onto ``path``: no half-written reference is ever left."""
-    temporary = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
-    try:
-        write(temporary)
-        os.replace(temporary, path)
-    finally:
-        temporary.unlink(missing_ok=True)
-
-
 def write_reference(path: Path, measurement: Measurement, alpha: float) -> tuple[Path, Path]:
-    """Write ``measurement`` as the reference ``path`` (EXR) and its sidecar; returns both paths."""
+    """
+    Write ``measurement`` as the reference ``path`` (EXR) and its sidecar, both whole or neither
+    (:func:`skinrender.files.write_outputs`: no half-written reference is ever left); returns both paths.
+    """
     from ..rendering.exr import write_exr
 
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     settings = measurement.settings
     header = {key: json.dumps(value) if not isinstance(value, str) else value for key, value in settings.items()}
     header["skinrender_reference"] = str(FORMAT)
@@ -141,12 +134,13 @@ def write_reference(path: Path, measurement: Measurement, alpha: float) -> tuple
     if measurement.labels is not None:
         names, image = (*names, "label"), np.concatenate([image, measurement.labels[..., None].astype(np.float32)],
                                                          axis=-1)
-    _replace(path, lambda temporary: write_exr(temporary, image, names, header))
+    exr = io.BytesIO()
+    write_exr(exr, image, names, header)
     regions = measurement.regions if isinstance(measurement.regions, dict) else list(measurement.regions)
     document = {
         "skinrender_reference": FORMAT,
         "exr": path.name,
-        "exr_sha256": _sha256(path),
+        "exr_sha256": hashlib.sha256(exr.getvalue()).hexdigest(),
         "settings": settings,
         "channels": list(measurement.channels),
         "regions": regions,
@@ -160,8 +154,8 @@ def write_reference(path: Path, measurement: Measurement, alpha: float) -> tuple
         },
     }
     sidecar = sidecar_of(path)
-    _replace(sidecar, lambda temporary: temporary.write_text(json.dumps(document, indent=1, ensure_ascii=False)
-                                                             + "\n", encoding="utf-8"))
+    write_outputs(Output(path, None, exr.getvalue()),
+                  Output(sidecar, None, json.dumps(document, indent=1, ensure_ascii=False) + "\n"))
     return path, sidecar
 
 

@@ -7,6 +7,12 @@ left behind in the output folder.
 
 from __future__ import annotations
 
+import errno
+import os
+import signal
+import subprocess
+import sys
+import threading
 from pathlib import Path
 
 import pytest
@@ -74,3 +80,52 @@ def bad_files(tmp_path_factory) -> dict[str, Path]:
     paths["a_file"] = folder / "a_file"
     paths["a_file"].write_text("not a folder")
     return paths
+
+
+def child_command(argv: list) -> list[str]:
+    """The command line of a child Python process running ``skinrender argv`` (this checkout's package)."""
+    argv = [str(a) for a in argv]
+    return [sys.executable, "-c", f"import sys; from skinrender.cli import main; sys.exit(main({argv!r}))"]
+
+
+def interrupt_after(argv: list, marker: str, timeout: float = 600.0) -> tuple[int, str, str]:
+    """
+    Run ``skinrender argv`` in a child process, read its stderr until a line holding ``marker`` (the command's
+    own progress line) appears, then send it SIGINT (Ctrl-C); returns (status, stdout, stderr). No sleep: the
+    interrupt follows the progress line at once, so a command whose work outlasts that instant on any machine
+    is interrupted during it. Fails when the command ends before the line, or prints nothing for ``timeout`` s.
+    """
+    child = subprocess.Popen(child_command(argv), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    watchdog = threading.Timer(timeout, child.kill)  # a guard against a hang, not a speed assertion
+    watchdog.start()
+    seen = []
+    try:
+        while not any(marker in line for line in seen[-1:]):
+            line = child.stderr.readline()
+            assert line, f"the command ended before its progress line {marker!r}: {''.join(seen)[-800:]}"
+            seen.append(line)
+        child.send_signal(signal.SIGINT)
+        out, err = child.communicate()  # the pipes close only when every worker is gone
+    finally:
+        watchdog.cancel()
+        if child.poll() is None:
+            child.kill()
+    return child.returncode, out, "".join(seen) + err
+
+
+def full_disk(monkeypatch, after: int = 0, code: int = errno.ENOSPC) -> None:
+    """``os.write`` in :mod:`skinrender.files` (every output's writes) fails with ``code`` (a full disk) after
+    ``after`` successful calls: the disk fills while the outputs are written."""
+    from skinrender import files
+
+    calls = {"n": 0}
+    real = os.write
+
+    def write(handle, data):
+        calls["n"] += 1
+        if calls["n"] > after:
+            raise OSError(code, os.strerror(code))
+        return real(handle, data)
+
+    monkeypatch.setattr(files.os, "write", write)

@@ -137,22 +137,15 @@ def test_design_refuses(extra, names, capsys):
 
 @pytest.mark.skipif(not hasattr(__import__("signal"), "SIGINT") or __import__("os").name != "posix", reason="POSIX")
 def test_ctrl_c_stops_a_search_with_one_line_and_no_worker_left(tmp_path):
-    """Ctrl-C during a parallel search: exit 130, one line, no traceback from the parent or its workers."""
-    import signal
-    import subprocess
-    import sys
-    import time
+    """Ctrl-C during a parallel search: exit 130, one line, no traceback from the parent or its workers. The
+    interrupt follows the search's own progress line (it slept 5 s before); 35 990 triplets cannot finish first."""
+    from .refusal import interrupt_after
 
-    script = ("import sys; from skinrender.cli import main; "
-              "sys.exit(main(['search', '--sensor', '9', '--positions', '400:700:5', '--workers', '2']))")
-    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    time.sleep(5)  # the banks are built and the workers busy (the whole search takes over a minute)
-    child.send_signal(signal.SIGINT)
-    out, err = child.communicate(timeout=60)  # pipes close only when every worker is gone
-    assert child.returncode == 130
-    assert err.decode().strip().splitlines()[-1] == "skinrender search: interrupted"
-    assert "Traceback" not in err.decode() and out == b""
+    status, out, err = interrupt_after(["search", "--sensor", "9", "--positions", "400:700:5", "--workers", "2"],
+                                       "sensor 9: ")
+    assert status == 130, err[-800:]
+    assert err.strip().splitlines()[-1] == "skinrender search: interrupted"
+    assert "Traceback" not in err and out == ""
 
 
 def test_a_noisy_design_says_what_its_value_stands_for(capsys):
@@ -170,3 +163,38 @@ def test_a_noisy_design_says_what_its_value_stands_for(capsys):
     else:
         assert document["value"] == pytest.approx(document["noisy"]["fpr"])
     assert any(note.startswith("auto exposure capped") for note in document["notes"])  # icx418 at 500 lx: 0.49
+
+
+def test_a_full_disk_leaves_no_partial_csv(tmp_path, capsys, monkeypatch):
+    """Seen: ``search --csv`` on a full disk left ``*.partial`` and named no argument."""
+    from .refusal import full_disk
+
+    full_disk(monkeypatch)
+    status, out, err = run([*SEARCH, "--positions", "400:700:50", "--csv", tmp_path / "rows.csv", "--json"], capsys)
+    assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
+    assert err.strip() == (f"skinrender search: error: --csv {tmp_path / 'rows.csv'}: cannot be written (no space "
+                           "left on the device (the disk is full)); nothing was written")
+
+
+@pytest.mark.parametrize("extra, names", [
+    (["--evaluations", "100000"], ("--evaluations", "13 h", "--max-minutes")),
+    (["--evaluations", "400", "--max-minutes", "1"], ("--evaluations", "--max-minutes")),
+    (["--max-minutes", "0"], "--max-minutes"),
+])
+def test_design_work_is_capped_by_its_estimated_time(extra, names, capsys):
+    assert_refused(["design", *extra], names, capsys)
+
+
+def test_search_and_reproduce_take_one_sensor_rule(capsys):
+    """Seen: reproduce said a gbell sensor needs N > 1, search N > 0; the model takes any N > 0."""
+    from skinrender.constants import SENSOR_RULE
+
+    for argv, name in ((["search", "--sensor", "-1"], "--sensor"),
+                       (["reproduce", "-o", "unused", "--sensors", "1,-1"], "--sensors")):
+        assert SENSOR_RULE in assert_refused(argv, name, capsys)
+
+
+def test_a_noisy_search_is_capped_by_its_estimated_time(capsys):
+    """--noise-samples 1000 on the 10 nm grid was ~14 h with no estimate."""
+    assert_refused(["search", "--sensor", "9", "--imager", "sony-imx174", "--noise-samples", "1000"],
+                   ("--noise-samples", "--max-minutes"), capsys)

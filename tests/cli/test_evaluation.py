@@ -71,3 +71,12 @@ def test_locus_takes_the_munsell_set(capsys):
     assert nickerson["false_positive_rate"]["macbeth"] == default["false_positive_rate"]["macbeth"]
     assert nickerson["polygon"] == default["polygon"]  # the locus is the skin set's alone
     assert nickerson["false_positive_rate"]["munsell"] != default["false_positive_rate"]["munsell"]
+
+
+def test_the_nonskin_help_says_a_set_named_twice_is_refused(capsys):
+    """Seen: the help said duplicates were "counted once" while they are refused."""
+    from skinrender.cli import build_parser
+
+    commands = next(a for a in build_parser()._actions if a.dest == "command").choices
+    assert "a set named twice is refused" in " ".join(commands["locus"].format_help().split())
+    assert_refused(["locus", "--camera", "gbell:9@450,540,610", "--nonskin", "macbeth,macbeth"], "--nonskin", capsys)

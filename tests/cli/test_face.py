@@ -301,3 +301,11 @@ def test_a_skin_model_out_of_range_is_refused(capsys):
     from .refusal import assert_refused
 
     assert_refused(["render", "face", *FACE, "--skin", "skin-model:melanin=5"], ("--skin", "melanin"), capsys)
+
+
+def test_ladder_work_is_capped_by_its_estimated_time(capsys):
+    from .refusal import assert_refused
+
+    line = assert_refused(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--size", "1000",
+                           "--spp", "100000"], ("--spp", "--max-minutes"), capsys)
+    assert "6 levels of 1000×1000 px at 100000 spp would take about" in line

@@ -12,11 +12,10 @@ import os
 import signal
 import subprocess
 import sys
-import time
 
 import pytest
 
-from .refusal import assert_refused, run
+from .refusal import assert_refused, interrupt_after, run
 
 pytest.importorskip("mitsuba")
 
@@ -113,31 +112,46 @@ def test_unreachable_dask(capsys):
 
 @pytest.mark.skipif(not hasattr(signal, "SIGINT") or os.name != "posix", reason="POSIX")
 def test_ctrl_c_stops_a_sweep_with_one_line(tmp_path):
-    """Ctrl-C during a parallel sweep: exit 130, one line, nothing on stdout, no CSV."""
+    """Ctrl-C during a parallel sweep: exit 130, one line, nothing on stdout, no CSV. The interrupt follows the
+    sweep's own progress line; the sweep (96 renders of 256 px at 1024 spp) cannot finish first on any machine."""
     target = tmp_path / "sweep.csv"
-    argv = ["face-sweep", "--camera", CAM, "--lights", "2300/5900,2856/5900,5900/5900,10000/5900", "--size", "32",
-            "--spp", "8", "--workers", "2", "--csv", str(target), "--json"]
-    child = subprocess.Popen(command(argv), stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    time.sleep(8)  # the workers started and rendering (the 96 renders take minutes)
-    child.send_signal(signal.SIGINT)
-    out, err = child.communicate(timeout=60)  # the pipes close only when every worker is gone
-    assert child.returncode == 130, err.decode()[-800:]
-    assert err.decode().strip().splitlines()[-1] == "skinrender face-sweep: interrupted"
-    assert "Traceback" not in err.decode() and out == b""
+    argv = ["face-sweep", "--camera", CAM, "--lights", "2300/5900,2856/5900,5900/5900,10000/5900", "--size", "256",
+            "--spp", "1024", "--workers", "2", "--csv", str(target), "--json"]
+    status, out, err = interrupt_after(argv, "face sweep: ")
+    assert status == 130, err[-800:]
+    assert err.strip().splitlines()[-1] == "skinrender face-sweep: interrupted"
+    assert "Traceback" not in err and out == ""
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.parametrize("name, extra", [("face-sweep", ["--lights", "2856/5900", "--skin", "skin-model:melanin=0.02",
-                                                        "--workers", "1"]),
-                                         ("ladder", ["--prevailing", "A", "--calibration", "H"])])
-def test_ctrl_c_stops_an_in_process_render_at_once(name, extra, tmp_path):
-    """Seen by a user: Ctrl-C inside Mitsuba's native render (one process) gave an internal error ~20 s later."""
+@pytest.mark.skipif(not hasattr(signal, "SIGINT") or os.name != "posix", reason="POSIX")
+@pytest.mark.parametrize("name, extra, marker", [
+    ("face-sweep", ["--lights", "2856/5900", "--skin", "skin-model:melanin=0.02", "--workers", "1"], "face sweep: "),
+    ("ladder", ["--prevailing", "A", "--calibration", "H"], "rendering the face"),
+])
+def test_ctrl_c_stops_an_in_process_render_at_once(name, extra, marker):
+    """Seen by a user: Ctrl-C inside Mitsuba's native render (one process) gave an internal error ~20 s later.
+    The interrupt follows the command's own progress line (it slept 8 s before, assuming a 30 s render, and
+    failed on a faster machine where the render finished first)."""
     argv = [name, "--camera", CAM, *extra, "--levels", "direct", "--size", "160", "--spp", "2048", "--json"]
-    child = subprocess.Popen(command(argv), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    time.sleep(8)  # the scene loaded and rendering (the render takes ~30 s)
-    child.send_signal(signal.SIGINT)
-    out, err = child.communicate(timeout=60)
-    assert child.returncode == 130, err.decode()[-800:]  # it was 1, an internal error from drjit
-    assert err.decode().strip().splitlines()[-1] == f"skinrender {name}: interrupted" and out == b""
+    status, out, err = interrupt_after(argv, marker)
+    assert status == 130, err[-800:]  # it was 1, an internal error from drjit
+    assert err.strip().splitlines()[-1] == f"skinrender {name}: interrupted" and out == ""
+
+
+def test_rounded_spp_is_said_once_and_the_json_reports_the_count_used(capsys):
+    """Seen: Mitsuba's "Sample count rounded up" warnings reached the terminal (54 in the README's example) while
+    the JSON reported the requested spp."""
+    status, out, err = run([*SWEEP, "--spp", "7", "--workers", "1", "--json"], capsys)
+    document = json.loads(out)
+    assert status == 0 and document["spp"] == 8 and document["spp_requested"] == 7
+    assert "WARN" not in err and err.count("rounded") == 1
+
+
+def test_a_full_disk_leaves_no_csv(tmp_path, capsys, monkeypatch):
+    from .refusal import full_disk
+
+    full_disk(monkeypatch)
+    status, out, err = run([*SWEEP, "--workers", "1", "--csv", tmp_path / "s.csv", "--json"], capsys)
+    assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
+    assert f"error: --csv {tmp_path / 's.csv'}: cannot be written (no space left" in err

@@ -109,3 +109,15 @@ def test_score_json_notes_the_capped_exposure_and_clipping(capsys):
     long = run_json(capsys, "score", "--camera", CAMERA, *FAST, "--imager", "sony-icx418", "--illuminance", "500",
                     "--exposure", "1", "--samples", "2")["noisy"]
     assert max(long["clipping"]["skin"]["well_full"]) > 0 and any("full well" in note for note in long["notes"])
+
+
+def test_score_samples_are_capped_by_their_estimated_time(capsys):
+    """Seen: ``score --samples 100000000`` ran on without an estimate (1000 samples take ~44 s)."""
+    line = assert_refused(["score", "--camera", CAMERA, "--imager", "sony-imx174", "--illuminance", "500",
+                           "--samples", "100000000"], ("--samples", "--max-minutes"), capsys)
+    assert "would take about" in line and "days" in line
+    assert_refused(["score", "--camera", CAMERA, "--max-minutes", "5"], ("--max-minutes", "--imager"), capsys)
+
+
+def test_ptc_points_are_refused_before_the_render(capsys):
+    assert_refused(["ptc", "--camera", CAMERA, "--imager", "sony-imx174", "--points", "1000000"], "--points", capsys)

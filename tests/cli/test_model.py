@@ -135,3 +135,47 @@ def test_coincident_sensors_give_a_zero_volume_not_an_error(capsys):
                             "--calibration", "3300", "--json"], capsys)
     document = json.loads(out)
     assert status == 0 and document["volume"] == 0.0 and document["degenerate"] is True
+
+
+@pytest.fixture
+def underflowing_camera(tmp_path):
+    path = tmp_path / "tiny.csv"
+    path.write_text("nm,R,G,B\n400,1e-320,1e-320,1e-320\n700,1e-320,1e-320,1e-320\n")
+    return path
+
+
+@pytest.mark.parametrize("argv, name", [
+    (["illuminants", "--camera", CAM, "--range", "1", "1e9", "--step", "1e5"], "--range"),
+    (["illuminants", "--camera", "gbell:9@550,550,550"], "--camera"),
+    (["illuminants", "--count", "1000"], "--count"),
+])
+def test_stage1_refusals_name_the_argument_at_fault(argv, name, capsys):
+    """Seen: a range starting at 1 K and coincident sensors were blamed on --count."""
+    argv = argv if "--camera" in argv else [*argv, "--camera", CAM]
+    assert assert_refused(argv, name, capsys).startswith(f"skinrender illuminants: error: {name}: ")
+
+
+@pytest.mark.parametrize("command", [["illuminants"], ["response", "--reflectances", "skin", "--prevailing", "A",
+                                                       "--calibration", "A"]])
+def test_a_camera_whose_responses_underflow_is_blamed_on_the_camera(command, underflowing_camera, capsys):
+    """Seen: a camera CSV of 1e-320 values was blamed on --count (its responses to every light underflow)."""
+    line = assert_refused([*command, "--camera", underflowing_camera], "--camera", capsys)
+    assert line.startswith(f"skinrender {command[0]}: error: --camera: ") and "too small" in line
+
+
+def test_an_extrapolation_that_does_not_apply_is_not_advised(capsys):
+    """Seen: with a bundled set, ``--extrapolation constant`` was refused with the advice to give --extrapolation."""
+    line = assert_refused(["response", "--camera", CAM, "--reflectances", "skin", "--prevailing", "A",
+                           "--calibration", "A", "--grid", "300:900:1", "--extrapolation", "constant"],
+                          "--reflectances", capsys)
+    assert line.endswith("choose a --grid inside the data (--extrapolation constant applies to CSV files, not to "
+                         "these spectra)")
+
+
+def test_both_spellings_of_the_normalisation_are_refused_together(capsys):
+    """Seen: ``--normalisation none --normalization white``: the last won silently."""
+    argv = ["response", "--camera", CAM, "--reflectances", "skin", "--prevailing", "A", "--calibration", "A",
+            "--normalisation", "none", "--normalization", "white"]
+    assert_refused(argv, ("--normalization", "--normalisation"), capsys)
+    status, out, _ = run([*argv[:-2], "--json"], capsys)
+    assert status == 0 and json.loads(out)["normalization"] == "none"

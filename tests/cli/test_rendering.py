@@ -6,10 +6,13 @@ anything renders; Mitsuba's own warnings stay off stdout; undefined rates are nu
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 
 import pytest
 
-from .refusal import assert_refused, bad_files, run  # noqa: F401  (fixture)
+from .refusal import assert_refused, bad_files, interrupt_after, run  # noqa: F401  (fixture)
+from skinrender.files import shown  # long paths are cut in messages (tmp_path under xdist is long)
 
 pytest.importorskip("mitsuba")
 
@@ -92,6 +95,10 @@ def test_rounded_spp_is_reported_and_the_json_stays_one_document(tmp_path, capsy
                             "--json"], capsys)
     document = json.loads(out)
     assert status == 0 and document["spp"] == 8 and document["spp_requested"] == 7
+    assert "WARN" not in err and err.count("rounded") == 1  # Mitsuba's warnings said once, by the command line
+    assert err.strip().splitlines()[-1] == ("skinrender render: note: the sampler rounded the samples per pixel up "
+                                            "to 8 (1 render pass; multijitter takes a product of two integers): "
+                                            "each JSON's 'spp' is the count used")
 
 
 def test_the_exr_header_traces_the_camera(tmp_path, capsys):
@@ -113,10 +120,12 @@ def test_a_black_patch_renders_and_validates(tmp_path, capsys):
     scene = tmp_path / "black.toml"
     scene.write_text("columns = 2\n[[patch]]\nname = 'black'\nreflectance = 'grey:0'\n"
                      "[[patch]]\nreflectance = 'grey:0.5'\n")
-    status, out, err = run(["validate", scene, "--camera", CAM, *LIGHTS, "--spp", "4", "--json"], capsys)
+    status, out, err = run(["validate", scene, "--camera", CAM, *LIGHTS, "--spp", "4", "--tolerance", "0.2",
+                            "--json"], capsys)
     document = json.loads(out)
     assert status == 0, err
     assert document["patches"][0]["rendered"] == [0.0, 0.0, 0.0] and document["passed"]
+    assert document["patches"][0]["shown"] == ["within"] * 3 and document["verdict"] == "pass"
 
 
 def test_detect_on_a_chart_without_non_skin_says_the_rate_is_undefined(tmp_path, capsys):
@@ -131,11 +140,13 @@ def test_detect_on_a_chart_without_non_skin_says_the_rate_is_undefined(tmp_path,
 def test_validate_through_an_imager_reports_the_noise(capsys):
     """``validate --imager``: per patch rendered and predicted standard deviations, the sensor's settings."""
     status, out, err = run(["validate", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "64", "--imager", "sony-imx174",
-                            "--illuminance", "300", "--json"], capsys)
+                            "--illuminance", "300", "--tolerance", "0.05", "--json"], capsys)
     document = json.loads(out)
     assert status == 0, err
     assert document["imager"] == "sony-imx174" and document["illuminance_lux"] == 300.0 and document["exposure_s"] > 0
     assert document["passed"] and all(len(p["rendered_std"]) == 3 for p in document["patches"])
+    assert set(document["checks"]) == {"mean", "variance", "equivalence", "difference"}
+    assert document["mc_variance"] == "frames" and document["bound"] < 0.05
 
 
 def test_render_through_an_imager_says_what_it_clipped_and_capped(tmp_path, capsys):
@@ -253,28 +264,73 @@ def test_interruptible_passes_the_commands_result_and_errors_on():
 
 
 def test_ctrl_c_stops_a_render_at_once_with_no_output(tmp_path):
-    """Seen by a user: Ctrl-C waited for the whole Mitsuba render (~30 s at 160 px, 2048 spp)."""
-    import signal
-    import subprocess
-    import sys
-    import time
-
+    """Seen by a user: Ctrl-C waited for the whole Mitsuba render (~30 s at 160 px, 2048 spp). The interrupt
+    follows the command's own progress line at once; the render (5.3e8 samples, ~3 min here) cannot finish in
+    that instant on any machine."""
     output = tmp_path / "r.exr"
-    command = [sys.executable, "-c", "import sys; from skinrender.cli import main; sys.exit(main())", "render", "macbeth",
-               "--camera", CAM, *LIGHTS, "--spp", "65536", "-o", str(output)]
-    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                               preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    deadline = time.monotonic() + 120
-    while "rendering macbeth" not in (line := process.stderr.readline()) and time.monotonic() < deadline:
-        assert line, "the render ended before it could be interrupted"
-    time.sleep(2.0)  # inside Mitsuba's native render
-    process.send_signal(signal.SIGINT)
-    sent = time.monotonic()
-    try:
-        _, err = process.communicate(timeout=20)
-    except subprocess.TimeoutExpired:
-        process.kill()
-        pytest.fail("Ctrl-C did not stop the render within 20 s")
-    assert process.returncode == 130 and "interrupted" in err
-    assert time.monotonic() - sent < 5.0
+    status, _, err = interrupt_after(["render", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "65536", "-o", output],
+                                     "rendering macbeth")
+    assert status == 130 and err.strip().splitlines()[-1] == "skinrender render: interrupted", err[-800:]
     assert not output.exists() and not output.with_suffix(".png").exists()
+
+
+def test_a_full_disk_leaves_no_render_behind(tmp_path):
+    """Seen: ``render -o`` on a full disk left a truncated EXR and said "internal error … please report". Here a
+    file-size limit (RLIMIT_FSIZE: writes past it fail with EFBIG, as on a full disk) stops the EXR: exit 1 (the
+    machine's error), one line naming --output and the reason, and nothing left, the folder it made included."""
+    script = ("import resource, signal, sys; signal.signal(signal.SIGXFSZ, signal.SIG_IGN); "
+              "resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096)); "
+              "from skinrender.cli import main; sys.exit(main(sys.argv[1:]))")
+    target = tmp_path / "new" / "r.exr"
+    done = subprocess.run([sys.executable, "-c", script, "render", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "1",
+                           "-o", str(target), "--json"], capture_output=True, text=True, timeout=600)
+    lines = [line for line in done.stderr.splitlines() if line.startswith("skinrender render: error")]  # (drjit
+    # says it could not cache a kernel under the same limit)
+    assert done.returncode == 1 and done.stdout == "" and len(lines) == 1, done.stderr[-800:]
+    assert lines[0].startswith(f"skinrender render: error: --output {shown(target)}: cannot be written (the file would "
+                               "be larger than this system allows)")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_detect_writes_its_mask_preview_and_figure_all_or_none(tmp_path, capsys, monkeypatch):
+    """Seen: ``detect -o m.png --figure f.png`` failing on the figure left m.png and m_preview.png. The disk fills
+    on the third file: none of the three is left, and the line names --figure and the reason."""
+    from .refusal import full_disk
+
+    full_disk(monkeypatch, after=2)
+    status, out, err = run(["detect", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "1", "-o", tmp_path / "m.png",
+                            "--figure", tmp_path / "f.png", "--json"], capsys)
+    lines = [line for line in err.splitlines() if "error" in line]
+    assert status == 1 and out == "" and len(lines) == 1, err
+    assert lines[0].startswith(f"skinrender detect: error: --figure {shown(tmp_path / 'f.png')}: cannot be written (no "
+                               "space left on the device (the disk is full)); nothing was written")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_help_says_where_the_output_goes_without_o():
+    from skinrender.cli import build_parser
+
+    commands = next(a for a in build_parser()._actions if a.dest == "command").choices
+    for name, default in (("render", "render.exr (and render.png) in the current folder"),
+                          ("detect", "detect.png (and detect_preview.png) in the current folder")):
+        assert default in " ".join(commands[name].format_help().split())
+
+
+@pytest.mark.parametrize("scene, reason", [("/dev/zero", "a device"), ("/dev/null", "a device")])
+def test_a_device_as_the_scene_is_refused_unread(scene, reason, capsys):
+    """Seen: ``render /dev/zero …`` read 12.8 GB in 15 s."""
+    line = assert_refused(["render", scene, "--camera", CAM, *LIGHTS], "SCENE", capsys)
+    assert reason in line
+
+
+@pytest.mark.parametrize("extra, names", [
+    (["--spp", "1048576"], ("--spp", "at most 267232 spp")),
+    (["--imager", "sony-imx174", "--illuminance", "1e308"], "--illuminance"),
+    (["--imager", "sony-imx174", "--exposure", "1e308"], "--exposure"),
+    (["--spp", "200000", "--max-minutes", "1"], ("--spp", "--max-minutes")),
+])
+def test_a_render_out_of_bounds_is_refused_before_its_progress_line(extra, names, tmp_path, capsys):
+    """Seen: a render of too many samples was refused after "rendering … at N spp", unflagged; an illuminance
+    or exposure of 1e308 overflowed into a warning and an unflagged error."""
+    assert_refused(["render", "macbeth", "--camera", CAM, *LIGHTS, "-o", tmp_path / "r.exr", *extra], names, capsys,
+                   output=tmp_path)

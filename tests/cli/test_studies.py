@@ -146,3 +146,76 @@ def test_quick_search_bench_times_the_20nm_search_and_estimates_the_rest(capsys)
     assert all(g["measured"].startswith("estimated from 2 triplets") for g in document["growth"][1:])
     assert document["full_search_s"] is None and document["sweep_s_per_setting"] is None
     assert np.isfinite(document["fast_ms_per_triplet"]) and document["max_rel_difference"] < 1e-9
+
+
+def test_face_bench_marks_extrapolated_presets(monkeypatch, capsys):
+    """A preset the curve did not reach is the error model's extrapolation: starred, with a footnote."""
+    pytest.importorskip("mitsuba")
+    import skinrender.studies.bench_face as bench_face_module
+    from skinrender.studies.bench_face import PRESET_THRESHOLDS, presets_of
+
+    curve = [4, 16]
+    presets = presets_of(curve, list(0.1 * (1 / np.array(curve)) ** 0.5), 4096)
+    assert presets["extrapolated"]  # the reference threshold lies beyond 16 spp
+    seen = {}
+    result = {"scene": "face", "camera": "impulse@450,550,650", "size": [16, 16], "reference_spp": 64,
+              "elapsed_s": 1.0, "thresholds": dict(PRESET_THRESHOLDS), "presets": {"direct": presets},
+              "curve": [{"level": "direct", "spp": 4, "seconds": 0.1, "skin_ncc_error": 0.01, "skin_ncc_rms": 0.01}]}
+    monkeypatch.setattr(bench_face_module, "bench_face", lambda **kwargs: seen.update(kwargs) or result)
+    status, out, err = run(["bench", "render", "--scene", "face", "--size", "16", "--spp-list", "4,16",
+                            "--levels", "direct", "--camera", "impulse@450,550,650"], capsys)
+    assert status in (0, None), err[-500:]
+    assert seen["camera_spec"] == "impulse@450,550,650"
+    assert f"{presets[presets['extrapolated'][0]]}*" in out and "* extrapolated beyond the measured spp" in out
+
+
+@pytest.mark.parametrize("argv, names", [(["--tolerance", "0"], "--tolerance"), (["--tolerance", "2"], "--tolerance"),
+                                         (["--tolerance", "x"], "--tolerance")])
+def test_table1_tolerance_refused(argv, names, capsys):
+    assert_refused(["table1", *argv], names, capsys)
+
+
+def test_table1_exit_status_says_its_verdict(capsys):
+    pytest.importorskip("mitsuba")
+    status, out, err = run(["table1", "--spp", "16", "--tolerance", "0.0001", "--json"], capsys)
+    document = json.loads(out)
+    assert document["verdict"]["verdict"] in ("inconclusive", "fail") and status == document["exit_status"] != 0
+    assert document["difference_eq1"]["verdict"] == "fail"  # Eq. 1 with WP differs, as the paper's Table 1 shows
+
+
+@pytest.mark.parametrize("argv, names", [
+    (["bench", "analytic", "--repeat", "1000000"], ("--repeat", "days", "--max-minutes")),
+    (["bench", "search", "--sample", "100000"], ("--sample", "--max-minutes")),
+    (["bench", "render", "--max-minutes", "5"], ("--max-minutes", "bench analytic")),
+    (["table1", "--spp", "1048576"], ("--spp", "at most 267232 spp")),
+])
+def test_work_and_its_flag_are_named(argv, names, capsys):
+    """Seen: ``bench analytic --repeat 1000000`` ran on without an estimate; ``table1 --spp 1048576`` was blamed on
+    --camera."""
+    assert_refused(argv, names, capsys)
+
+
+def test_reproduce_on_a_full_disk_leaves_no_folder_and_names_o(tmp_path, capsys, monkeypatch):
+    """A file of the reproduce folder cannot be written: the folder (made in a temporary beside it) is removed,
+    and the one line names -o and the reason, exit 1 (the machine's error)."""
+    from .refusal import full_disk
+
+    full_disk(monkeypatch, after=2)
+    target = tmp_path / "out"
+    status, out, err = run(["reproduce", "-o", target, "--sensors", "9", "--positions", "400:700:50", "--no-figures",
+                            "--quiet", "--json"], capsys)
+    assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
+    assert err.strip().splitlines()[-1] == (f"skinrender reproduce: error: -o {target}: cannot be written (no space "
+                                            "left on the device (the disk is full)); nothing was left there")
+
+
+@pytest.mark.parametrize("argv, name", [
+    (["reproduce", "-o", "{out}", "--positions", "400:700:1"], "--positions"),
+    (["reproduce", "-o", "{out}", "--sweep", "--sweep-positions", "400:700:1"], "--sweep-positions"),
+    (["bench", "sweep", "--positions", "400:700:1"], "--positions"),
+])
+def test_searches_of_the_studies_are_capped_by_their_estimated_time(argv, name, tmp_path, capsys):
+    """1 nm positions ran the paper's eight searches (4.5 million triplets each) for hours, unannounced."""
+    line = assert_refused([a.format(out=tmp_path / "out") for a in argv], (name, "--max-minutes"), capsys,
+                          output=tmp_path)
+    assert "4499950 triplets" in line and "would take about" in line

@@ -1,4 +1,5 @@
-"""Tests for :mod:`skinrender.render` and :mod:`skinrender.validate`: renders agree with Eq. 4 within their noise.
+"""Tests for :mod:`skinrender.render` and :mod:`skinrender.validate`: renders agree with Eq. 4 within their noise
+(the validation's difference test detects no difference; its verdicts are tests/rendering/test_validation.py).
 
 These render with the fastest Mitsuba variant on the machine (llvm_ad_spectral where libLLVM ≥ 16
 is installed, which CI does) at small spp; one test covers the scalar fallback.
@@ -64,7 +65,7 @@ class TestVariants:
     def test_scalar_variant_renders_and_validates(self, tiny):
         result = validate(tiny, CAMERA, 3300, 5000, spp=16, seed=3, variant="scalar_spectral")
         assert result.rendering.variant == "scalar_spectral"
-        assert result.passed, result.worst()
+        assert result.difference.outcome == "pass", result.worst()
 
 
 class TestRender:
@@ -88,23 +89,26 @@ class TestRender:
 
     @pytest.mark.parametrize("scene", ["macbeth", "skin_patches", "face_chart"])
     def test_bundled_charts_agree_with_eq4(self, scene):
-        """Regression: every patch within its noise-derived tolerance of the analytic Eq. 4 value."""
-        result = validate(scene, CAMERA, 2300, 5900, spp=64, seed=11)
-        assert result.passed, result.worst()
+        """Regression: every patch shown within 1 % of the analytic Eq. 4 value (the difference test, with its 1 %
+        false-alarm rate per run, is calibrated in tests/rendering/test_validation.py)."""
+        result = validate(scene, CAMERA, 2300, 5900, spp=64, seed=11, tolerance=0.01)
+        assert result.verdict.outcome == "pass", (result.bound, result.worst())
+        assert np.all(np.isfinite(result.rendered))
         assert np.all(np.isfinite(result.rendered))
 
     def test_a_broken_model_fails_validation(self):
         """The check can fail: the paper's Σ on a 10 nm grid is not what the renderer integrates."""
+        from skinrender.evaluation.verdict import difference
+
         result = validate("macbeth", "gbell:3@400,550,700", 2856, 2856, spp=256, seed=2)
         coarse = sr.response("gbell:3@400,550,700", sr.load_scene("macbeth").reflectances(sr.GRID_DEFAULT),
                              2856, 2856)
-        assert result.passed
-        assert np.any(np.abs(result.rendered - coarse) > result.tolerance)
+        assert result.difference.outcome == "pass"
+        assert difference(result.rendered - coarse, result.sigma).outcome == "fail"
 
     @pytest.mark.parametrize(
         "camera, prevailing, calibration",
         [
-            ("gbell:3@400,550,700", 25000, 1000),
             ("gbell:3,b=6@400,410,700", 1000, 1000),
             ("impulse@450,550,650", 25000, 1000),
         ],
@@ -112,7 +116,18 @@ class TestRender:
     def test_extremes_finite_and_within_tolerance(self, tiny, camera, prevailing, calibration):
         result = validate(tiny, camera, prevailing, calibration, spp=64, seed=5)
         assert np.all(np.isfinite(result.rendered)) and np.all(np.isfinite(result.analytic))
-        assert result.passed, result.worst()
+        assert result.difference.outcome == "pass", result.worst()
+
+    def test_a_heavy_tailed_extreme_says_it_cannot_trust_its_law(self, tiny):
+        """A gbell:3 channel at 400 nm under 1000 K: the light's red tail, where the channel's sampling density is
+        ~1e-5 of its peak's, carries most of the integral, and the calibration white's pixels have a kurtosis of
+        ~90 — no longer normal at 64 spp (measured over 40 seeds: 10 difference-test failures at α = 0.01 even with
+        the skewed values held to distribution-free bounds). The numbers stay finite, and the verdict does not
+        pass: the errors' skewness is flagged."""
+        result = validate(tiny, "gbell:3@400,550,700", 25000, 1000, spp=64, seed=5)
+        assert np.all(np.isfinite(result.rendered)) and np.all(np.isfinite(result.analytic))
+        assert result.verdict.details["skewed"] > 0 and result.verdict.outcome != "pass"
+        assert "too skewed" in result.verdict.reason
 
     @pytest.mark.parametrize("prevailing, calibration", [(300, 300), (300, 50000), (50000, 1000)])
     def test_300K_and_50000K_give_finite_correct_numbers(self, tiny, prevailing, calibration):
@@ -120,7 +135,7 @@ class TestRender:
         out of its denormals, and Eq. 4 still agrees with the analytic model."""
         result = validate(tiny, CAMERA, prevailing, calibration, spp=16, seed=9)
         assert np.all(np.isfinite(result.rendered))
-        assert result.passed, result.worst()
+        assert result.difference.outcome == "pass", result.worst()
 
     def test_impulse_at_the_range_end_under_1000K_has_a_stated_bias(self, tiny):
         """An impulse at 400 nm under 1000 K: Planck changes ~9 % per nm there, and the render of the
@@ -136,12 +151,12 @@ class TestRender:
         result = validate(tiny, "impulse@450,550,650", 3300, 3300, spp=16, seed=1)
         reflectance = sr.load_scene(tiny).reflectances(sr.GRID_DEFAULT)
         exact = sr.response("impulse@450,550,650", reflectance, 3300, 3300)
-        assert result.passed
+        assert result.difference.outcome == "pass"
         assert np.max(np.abs(result.rendered / exact - 1)) < 3e-3
 
     def test_knee_and_normalisation(self, tiny):
         result = validate(tiny, CAMERA, 2000, 10000, normalization="560nm", knee=True, spp=32, seed=2)
-        assert result.passed and result.rendered.max() <= 255
+        assert result.difference.outcome == "pass" and result.rendered.max() <= 255
 
     def test_data_ending_before_the_range_is_refused(self, tmp_path, tiny):
         csv = tmp_path / "short.csv"
@@ -153,7 +168,7 @@ class TestRender:
             render(tiny, str(csv), 3000, 3000, spp=4)
         zero = sr.camera(str(csv), extrapolation="zero")
         result = validate(tiny, zero, 3000, 3000, spp=16)
-        assert result.passed and np.all(np.isfinite(result.rendered))
+        assert result.difference.outcome == "pass" and np.all(np.isfinite(result.rendered))
 
     def test_bad_arguments(self, tiny, tmp_path):
         with pytest.raises(SkinrenderError, match="sampler"):
@@ -197,7 +212,8 @@ def test_rendered_gamuts_equal_analytic_within_noise(scene):
     from skinrender.rendering.validation import validate_gamut
 
     result = validate_gamut(scene, CAMERA, illuminants=[2000, 3300, 5900, 10000], spp=64, seed=4)
-    assert result["passed"], result
+    assert result["difference"]["verdict"] == "pass", result
+    assert result["verdict"]["verdict"] == "pass" and result["passed"] and max(result["bound"]) < 0.01
     assert len(result["rendered"]) == 5 and min(result["analytic"]) > 0
 
 

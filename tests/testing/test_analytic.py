@@ -11,7 +11,6 @@ from skinrender.evaluation.verdict import Verdict
 from skinrender.testing import assert_matches_analytic
 
 CAMERA = "gbell:9@450,540,610"
-NEEDS_TOLERANCE = pytest.mark.xfail(strict=False, reason="needs validate(tolerance=…) from the verdicts track")
 
 
 def fake_validate(outcome: str, bound: float | None = 0.004, spp_needed: int | None = 2900):
@@ -42,7 +41,6 @@ def test_pass_returns_the_validation(monkeypatch):
     assert result.verdict.outcome == "pass" and result.tolerance == 0.01
 
 
-@NEEDS_TOLERANCE
 def test_passes_at_1024_spp_within_one_percent():
     pytest.importorskip("mitsuba")
     result = assert_matches_analytic("macbeth", camera=CAMERA, prevailing="A", calibration=5000, spp=1024,
@@ -50,7 +48,6 @@ def test_passes_at_1024_spp_within_one_percent():
     assert result.verdict.outcome == "pass"
 
 
-@NEEDS_TOLERANCE
 def test_raises_at_4_spp_within_two_per_mille():
     pytest.importorskip("mitsuba")
     with pytest.raises(AssertionError, match="tolerance 0.002"):

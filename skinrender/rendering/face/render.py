@@ -47,6 +47,7 @@ import numpy as np
 
 from ...constants import CONSTANT_OUTPUT_SCALE
 from ...errors import SkinrenderError
+from ...files import Output, write_outputs
 from ...hints import NDArrayFloat
 from ...methods import validate_method
 from ...model.camera import Camera, camera
@@ -62,7 +63,8 @@ from .effects import Frame, Level, physics_level
 from .labels import label_names, render_labels, shape_labels
 from .scene import MESH_HEAD, FaceScene, load_face_scene, prevailing_name, skin_reflectance_of
 
-__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "write_face_exr"]
+__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "face_exr",
+           "write_face_exr"]
 
 _LOADED: dict = {}
 _LOADED_MAX = 6
@@ -133,7 +135,7 @@ class FaceRendering:
         (``True``: beside the EXR; a path; ``False``: none) and a labelled figure (a PNG path; ``None``:
         none). Returns ``{"exr": path, "png": path or None, "figure": path or None}``.
         """
-        return save_result(self, "face", exr, png, figure, lambda path: write_face_exr(path, self, False)[0])
+        return save_result(self, "face", exr, png, figure, lambda stream: write_exr(stream, *face_exr(self)))
 
     def figure(self, path: str | Path, **options) -> Path:
         """
@@ -314,19 +316,29 @@ def render_face(
                          time.perf_counter() - start, len(groups), white_p, white_c, applied, frame.info)
 
 
-def write_face_exr(path: str | Path, rendering: FaceRendering,
-                   preview: bool = True) -> tuple[Path, Path | None]:
+def face_exr(rendering: FaceRendering) -> tuple[NDArrayFloat, tuple[str, ...], dict]:
     """
-    Write the image (output units, channels named by the camera) and its
-    ``label`` channel as a float32 EXR, and a tone-mapped PNG beside it.
+    The EXR of a face render: the image (output units, channels named by the camera) with its ``label``
+    channel, the channel names and the header attributes.
     """
-    path = Path(path)
     stack = np.concatenate([rendering.image, rendering.labels[..., None].astype(np.float32)], axis=-1)
     attributes = {**camera_attributes(rendering.camera), "prevailing_K": rendering.prevailing,
                   "calibration_K": rendering.calibration, "spp": rendering.spp, "seed": rendering.seed,
                   "variant": rendering.variant, "physics": rendering.physics, "skin": rendering.skin,
                   "labels": ", ".join(f"{k}={v}" for k, v in rendering.label_names.items()),
                   "units": "Eq. 4 output units; label: 0 background, 1 skin, 2... props"}
-    write_exr(path, stack, (*rendering.channels, "label"), attributes)
-    png = write_preview(path.with_suffix(".png"), rendering.image) if preview else None
-    return path, png
+    return stack, (*rendering.channels, "label"), attributes
+
+
+def write_face_exr(path: str | Path, rendering: FaceRendering,
+                   preview: bool = True) -> tuple[Path, Path | None]:
+    """
+    Write the image and its ``label`` channel as a float32 EXR (:func:`face_exr`), and a tone-mapped PNG
+    beside it: both whole or neither (:func:`skinrender.files.write_outputs`).
+    """
+    path = Path(path)
+    outputs = [Output(path, None, lambda stream: write_exr(stream, *face_exr(rendering)))]
+    if preview:
+        outputs.append(Output(path.with_suffix(".png"), None, lambda stream: write_preview(stream, rendering.image)))
+    write_outputs(*outputs)
+    return path, path.with_suffix(".png") if preview else None

@@ -58,6 +58,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import SkinrenderError
+from ...files import TOML_BYTES_MAX, exists, read_input
 from ...hints import NDArrayFloat
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 from ..scene import PIXELS_MAX, ROOT_SCENES, check_mesh_file, read_scene_toml, reflectance_of
@@ -225,11 +226,11 @@ def is_face_scene(spec) -> bool:
     if text in list_face_scenes():
         return True
     path = Path(text)
-    if path.suffix != ".toml" or not path.is_file():
-        return False
-    try:
-        table = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+    try:  # anything but a readable face TOML is left to the chart's loader, which says what is wrong
+        if path.suffix != ".toml" or not exists(path):
+            return False
+        table = tomllib.loads(read_input(path, TOML_BYTES_MAX, "a scene TOML").decode("utf-8"))
+    except (SkinrenderError, UnicodeDecodeError, tomllib.TOMLDecodeError):
         return False
     return "camera" in table and "mesh" in table
 
@@ -350,7 +351,7 @@ def _mesh(table: dict, where: str, folder: Path) -> str:
     path = Path(name) if Path(name).is_absolute() else folder / name
     if path.suffix.lower() not in MESH_SUFFIXES:
         raise SkinrenderError(f"{where}: field 'file' must be {MESH_HEAD!r} or an .obj or .ply path, got {name!r}")
-    if not path.is_file():
+    if not exists(path):  # anything else than a regular file: refused by check_mesh_file, saying what it is
         raise SkinrenderError(f"{where}: field 'file': mesh {path} does not exist")
     check_mesh_file(path, f"{where}: field 'file': mesh {path}")
     return str(path.resolve())

@@ -222,6 +222,28 @@ class TestMeshFiles:
         message = str(caught.value)
         assert message.startswith(f"{path}: [mesh]: field 'file': mesh {tmp_path / name}") and "\n" not in message
 
+    @pytest.mark.parametrize("kind, match", [("pipe", "a named pipe, not a regular file"),
+                                             ("device", "a device, not a regular file"),
+                                             ("big", "is larger than a mesh")])
+    def test_a_mesh_that_is_no_regular_file_is_refused_unread(self, tmp_path, kind, match):
+        """A named pipe would block the check and Mitsuba; /dev/zero would be read without end."""
+        import os
+
+        from skinrender.files import MESH_BYTES_MAX
+
+        mesh = tmp_path / "head.obj"
+        if kind == "pipe":
+            os.mkfifo(mesh)
+        elif kind == "device":
+            mesh.symlink_to("/dev/zero")
+        else:
+            with open(mesh, "wb") as handle:
+                handle.truncate(MESH_BYTES_MAX + 1)
+        path = write(tmp_path, BUNDLED.replace('file = "head"', 'file = "head.obj"'))
+        with pytest.raises(SkinrenderError, match=match) as caught:
+            load_face_scene(path)
+        assert str(caught.value).startswith(f"{path}: [mesh]: field 'file': mesh {mesh}: ")
+
     @pytest.mark.parametrize("name, content", [
         ("tri.obj", GOOD_OBJ.encode()),
         ("quad.obj", b"# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 4/1\n"),

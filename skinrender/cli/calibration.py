@@ -1,0 +1,183 @@
+"""
+``skinrender bench calibration`` and ``bench validate``: how often the
+validation's checks fail where their null holds, and what a validation costs
+and shows as spp grows (:mod:`skinrender.studies.calibration`). The flags are
+added to ``bench``'s parser (:mod:`skinrender.cli.studies`), which refuses
+the ones another benchmark takes before calling :func:`command_bench_verdicts`.
+
+Units: temperatures K, illuminance lx, times s, rates fractions.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..errors import SkinrenderError
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, check_output, emit, flag, imaging_options,
+                     integer_in, interruptible, table)
+
+__all__ = ["VERDICT_BENCH_FLAGS", "add_bench_arguments", "command_bench_verdicts"]
+
+VERDICT_BENCH_FLAGS = {"camera": ("render", "calibration", "validate"), "prevailing": ("calibration", "validate"),
+                       "calibration": ("calibration", "validate"), "spp": ("calibration",),
+                       "seeds": ("calibration", "validate"), "seed": ("calibration", "validate"),
+                       "imager": ("calibration", "validate"), "illuminance": ("calibration", "validate"),
+                       "exposure": ("calibration", "validate"), "level": ("calibration",),
+                       "mc_variance": ("calibration", "validate")}
+"""``bench`` flags of the verdict benchmarks (``dest``: the benchmarks they go with)."""
+
+SEEDS_DEFAULT = {"calibration": 40, "validate": 5}
+"""``--seeds`` unless given."""
+
+SPP_LIST_DEFAULT = (4, 16, 64, 256)
+"""``bench validate --spp-list`` unless given."""
+
+
+def add_bench_arguments(p: argparse.ArgumentParser) -> None:
+    """The verdict benchmarks' flags (each ``None`` unless given, so that a flag given elsewhere is refused)."""
+    from ..rendering.sensor_validation import MC_VARIANCE
+    from .common import choices_help
+
+    p.add_argument("--camera", help="render, calibration, validate: the camera (default gbell:9@450,540,610); "
+                   + HELP_CAMERA)
+    p.add_argument("--prevailing", help="calibration, validate: prevailing light (default 3300); " + HELP_PLANCKIAN)
+    p.add_argument("--calibration", help="calibration, validate: calibration light (default 4800); " + HELP_PLANCKIAN)
+    p.add_argument("--spp", metavar="N", help="calibration: samples per pixel (default 16; 64 with --imager)")
+    p.add_argument("--seeds", metavar="N", help="calibration: independent validations (default 40); validate: "
+                   "validations per spp (default 5)")
+    p.add_argument("--seed", metavar="S", help="calibration, validate: the first seed (default 0); the runs use S, "
+                   "S + 2, … (each validation takes its seed and the next)")
+    p.add_argument("--imager", help="calibration, validate: through an image sensor (a preset or a TOML)")
+    p.add_argument("--illuminance", type=float, help="calibration, validate with --imager: lux at the chart "
+                   "(default 500)")
+    p.add_argument("--exposure", help="calibration, validate with --imager: seconds or auto (default)")
+    p.add_argument("--level", help="calibration: a face's level of physics (faces only: refused for charts)")
+    p.add_argument("--mc-variance", choices=list(MC_VARIANCE),
+                   help="calibration, validate with --imager: how the render's own variance enters the sensor's "
+                   "predictions: " + choices_help(MC_VARIANCE))
+    # --max-minutes (the cap on the estimated time) is bench's own (skinrender.workload)
+
+
+def _or(value, default):
+    return default if value is None else value
+
+
+def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
+    """Every flag of ``bench calibration`` / ``bench validate`` checked before anything renders (``spp_list``:
+    ``--spp-list`` as parsed by ``bench``, ``None`` when not given)."""
+    from ..model.camera import camera
+    from ..model.illuminant import illuminant
+    from ..rendering.renderer import SAMPLES_MAX, render_passes
+    from ..rendering.scene import load_scene
+    from ..studies.calibration import calibration_path, estimate_seconds, renders_of
+    from ..workload import check_work
+    from .face import is_face_scene
+
+    scene_spec = _or(args.scene, "macbeth")
+    kind = "face" if is_face_scene(scene_spec) else "chart"
+    run = calibration_path(kind, args.level)
+    scene = flag("--scene", load_scene, scene_spec)
+    cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))
+    lights = {}
+    for name, default in (("prevailing", "3300"), ("calibration", "4800")):
+        light = flag(f"--{name}", illuminant, _or(getattr(args, name), default))
+        if light.temperature is None:
+            raise SkinrenderError(f"--{name}: rendering needs a Planckian illuminant (kelvin, A or H), got {light}")
+        lights[name] = light.temperature
+    imaging = imaging_options(args)
+    if args.mc_variance is not None and imaging is None:
+        raise SkinrenderError("--mc-variance sets how the render's variance enters a sensor's predictions: it goes "
+                              "with --imager")
+    seeds = integer_in(_or(args.seeds, SEEDS_DEFAULT[args.what]), "--seeds", 1, 100_000)
+    first = integer_in(_or(args.seed, 0), "--seed", 0, SEED_MAX)
+    if first + 2 * seeds - 1 > SEED_MAX:
+        raise SkinrenderError(f"--seed: the runs use seeds {first} to {first + 2 * seeds - 1}, beyond {SEED_MAX}")
+    if args.what == "calibration":
+        spps = [integer_in(_or(args.spp, 64 if imaging else 16), "--spp", 1, SPP_MAX)]
+    else:
+        spps = list(SPP_LIST_DEFAULT) if spp_list is None else list(spp_list)
+    plot = check_output(args.plot, "--plot", (".png",))
+    width, height = scene.size
+    for spp in spps:
+        if spp * width * height > SAMPLES_MAX:
+            raise SkinrenderError(f"--spp: {spp} spp × {width * height} pixels is more than {SAMPLES_MAX} samples a "
+                                  "render may take")
+    passes = render_passes(cam)
+    renders = 1 if imaging else renders_of(lights["prevailing"], lights["calibration"])
+    startup = estimate_seconds(0, width * height, 1)  # the first compilation, once
+    seconds = startup + sum(estimate_seconds(seeds, width * height, spp, renders, passes, imaging is not None)
+                            - startup for spp in spps)
+    what = (f"{seeds} seeds at {spps[0]} spp" if args.what == "calibration"
+            else f"{seeds} seeds at each of {', '.join(map(str, spps))} spp")
+    check_work(seconds, "--seeds", what, args.max_minutes, fewer="run fewer --seeds")
+    return {"run": run, "scene": scene, "camera_": cam, **lights, "spps": spps, "seeds": seeds, "first_seed": first,
+            "imaging": imaging, "mc_variance": _or(args.mc_variance, "frames"), "plot": plot, "estimate_s": seconds,
+            "level": args.level}
+
+
+@interruptible
+def _run(wrapped: argparse.Namespace) -> None:
+    from ..studies.calibration import bench_calibration, bench_validate
+
+    args = wrapped.args
+    options = _checked(args, wrapped.spp_list)
+    print(f"bench {args.what}: about {options['estimate_s']:.0f} s (estimated) …", file=sys.stderr)
+    progress = lambda line: print(line, file=sys.stderr)  # noqa: E731
+    common = {"scene": options["scene"], "camera_": options["camera_"], "prevailing": options["prevailing"],
+              "calibration": options["calibration"], "first_seed": options["first_seed"],
+              "imaging": options["imaging"], "mc_variance": options["mc_variance"], "progress": progress}
+    if args.what == "calibration":
+        result = bench_calibration(options["run"], spp=options["spps"][0], seeds=options["seeds"],
+                                   level=options["level"], **common)
+        result["estimate_s"] = options["estimate_s"]
+        if options["plot"] is not None:  # written whole or not at all
+            from ..studies.figures import figure_calibration
+
+            result["plot"] = str(figure_calibration(result, options["plot"]))
+        text = _calibration_text(result)
+    else:
+        result = bench_validate(options["run"], spps=options["spps"], seeds=options["seeds"], **common)
+        result["estimate_s"] = options["estimate_s"]
+        text = _validate_text(result)
+    emit(args, result, text)
+
+
+def command_bench_verdicts(args: argparse.Namespace, spp_list: list[int] | None = None) -> None:
+    """``bench calibration`` or ``bench validate`` (``spp_list``: the parsed ``--spp-list``); Ctrl-C stops it at
+    once (exit 130) and the plot is written whole or not at all."""
+    _run(argparse.Namespace(args=args, spp_list=spp_list))
+
+
+def _settings_text(result: dict) -> str:
+    sensor = f" and {result['imager']} at {result['illuminance_lux']:g} lx" if result.get("imager") else ""
+    return (f"{result['scene']} through {result['camera']}{sensor}, {result['prevailing_K']:g} K / "
+            f"{result['calibration_K']:g} K")
+
+
+def _calibration_text(result: dict) -> str:
+    rows = [[c["name"], f"{'=' if c['nominal'] == 'equal to' else '≤'} {c['nominal_alpha']:.3g}",
+             f"{c['failures']}/{c['seeds']}", f"{c['rate']:.3g}", f"[{c['interval'][0]:.3g}, {c['interval'][1]:.3g}]",
+             "yes" if c["consistent"] else "NO"] for c in result["checks"]]
+    seeds = result["seeds"]
+    lines = [f"calibration of validate: {_settings_text(result)}, {result['spp']} spp, {seeds} seeds "
+             f"({result['first_seed']}, {result['first_seed'] + 2}, …), {result['elapsed_s']:.1f} s "
+             f"(estimated {result['estimate_s']:.0f} s); every failure is a false alarm (the null holds):",
+             table(rows, ["check", "nominal α", "failures", "rate", "95 % interval", "consistent"]), "tests:"]
+    lines += [f"  {name}: {test}" for name, test in result["tests"].items()]
+    if result.get("plot"):
+        lines.append(f"plot: {result['plot']}")
+    return "\n".join(lines)
+
+
+def _validate_text(result: dict) -> str:
+    rows = [[r["spp"], r["spp_used"], f"{r['seconds']:.3g}", f"{r['bound']:.3g}", f"{r['false_alarms']}/{r['seeds']}",
+             f"[{r['interval'][0]:.3g}, {r['interval'][1]:.3g}]"] for r in result["rows"]]
+    exponent = result["bound_exponent"]
+    return "\n".join([
+        f"validate {_settings_text(result)}, {result['seeds']} seeds per spp, {result['elapsed_s']:.1f} s; bound: "
+        "the smallest relative tolerance that would pass (median over the seeds); false alarms: difference-test "
+        f"failures at α = {result['alpha']:g} (the null holds)",
+        table(rows, ["spp", "used", "s per validation", "bound", "false alarms", "95 % interval"]),
+        "" if exponent is None else f"the bound falls as spp^-{exponent:.2f} (least squares over the rows; 0.5 for "
+        "independent samples)"]).rstrip()

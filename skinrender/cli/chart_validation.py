@@ -1,0 +1,273 @@
+"""
+``skinrender validate`` on a chart: every patch's rendered mean against Eq. 4
+(:func:`skinrender.rendering.validation.validate`), through an image sensor
+with ``--imager`` (:func:`skinrender.rendering.sensor_validation.validate_imaged`),
+and the chart's gamut volumes with ``--gamut``.
+
+The verdict is three-way (:mod:`skinrender.evaluation.verdict`): ``pass`` when
+every patch channel is shown within ``--tolerance`` at family-wise 95 %
+confidence, ``fail`` when one is shown outside it, ``inconclusive`` when the
+samples cannot tell (with ``spp_needed``). Exit status 0 pass, 1 fail,
+3 inconclusive, 2 a refused input, 130 an interrupt. ``--spp auto`` picks the
+smallest spp expected to pass (:mod:`skinrender.rendering.spp_choice`).
+
+Units: output units (255 for white at p = c), temperatures K, times s.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..errors import SkinrenderError
+from .common import emit, grid_of, imaging_options, interruptible, render_options, table
+
+__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_parsers", "tolerance_of", "spp_of", "command_validate",
+           "command_validate_chart"]
+
+HELP_TOLERANCE = (
+    "relative tolerance REL in (0, 1) on each lit patch channel (default 0.01, 1 %%); a channel darker than 1 %% of "
+    "white is held to the absolute floor REL × 2.55 output units. pass: every patch channel shown within it at "
+    "family-wise 95 %% confidence; fail: one shown outside it; inconclusive: the samples cannot tell (spp_needed "
+    "says how many would)")
+
+EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the verdict of --tolerance; a face: its "
+                   "checks' verdicts combined, eq4_shift held to the detection budget), 2 a refused input, 130 "
+                   "interrupted")
+
+
+def add_parsers(commands) -> None:
+    """``validate``'s verdict flags, added to the parser :mod:`skinrender.cli.rendering` built."""
+    p = commands.choices["validate"]
+    p.add_argument("--tolerance", metavar="REL", help=HELP_TOLERANCE)
+    p.epilog = EPILOG_VALIDATE
+
+
+@interruptible
+def command_validate(args: argparse.Namespace) -> None:
+    """``validate``: a face (:mod:`skinrender.cli.face_validation`) or a chart (:func:`command_validate_chart`)."""
+    from .face import is_face_scene
+
+    if is_face_scene(args.scene):  # the face: the analytic limits that hold at its level of physics
+        from .face_validation import command_validate_face
+
+        for name, given in (("--spp auto", str(args.spp).strip().lower() == "auto"),
+                            ("--tolerance", args.tolerance is not None)):
+            if given:
+                raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts")
+        return command_validate_face(args)
+    return command_validate_chart(args)
+
+
+def tolerance_of(args: argparse.Namespace) -> float:
+    """``--tolerance`` checked (in (0, 1)), or the default."""
+    from ..rendering.agreement import TOLERANCE_DEFAULT, check_tolerance
+
+    return TOLERANCE_DEFAULT if args.tolerance is None else check_tolerance(args.tolerance, "--tolerance")
+
+
+def spp_of(args: argparse.Namespace) -> bool:
+    """
+    Whether ``--spp`` is ``auto`` (then ``--tolerance`` must be given); otherwise ``args.spp`` is made an integer
+    (checked, naming ``--spp``).
+    """
+    from .common import SPP_MAX, integer_in
+
+    if args.spp is None:
+        return False
+    if str(args.spp).strip().lower() == "auto":
+        if args.tolerance is None:
+            raise SkinrenderError("--spp auto picks the smallest spp expected to pass --tolerance: give --tolerance "
+                                  "REL as well")
+        return True
+    args.spp = integer_in(args.spp, "--spp", 1, SPP_MAX)
+    return False
+
+
+def _number(value: float) -> str:
+    return f"{value:.5g}"
+
+
+def _summary(name: str, verdict) -> list[str]:
+    """A check's lines: its outcome and reason, then its test in words."""
+    return [f"{name}: {verdict.outcome.upper().replace('_', ' ')} — {verdict.reason}", f"  test: {verdict.test}"]
+
+
+def _auto_spp(args, inputs, options, imaging, tolerance) -> dict:
+    """``--spp auto``: the pilots and the spp chosen (:func:`~skinrender.rendering.spp_choice.spp_for_tolerance`)."""
+    from ..rendering.renderer import SAMPLES_MAX
+    from ..rendering.spp_choice import spp_for_tolerance
+    from ..rendering.validation import validate
+
+    grid = grid_of(args)
+    width, height = inputs["scene"].size
+
+    def at(spp, seed):
+        settings = {**options, "spp": spp, "seed": seed}
+        if imaging is None:
+            return validate(**inputs, normalization=args.normalization, knee=args.knee, grid=grid,
+                            tolerance=tolerance, **settings)
+        return _imaged(args, inputs, settings, imaging, tolerance)[0]
+
+    print(f"spp auto: pilot renders of {inputs['scene'].name} …", file=sys.stderr)
+    choice = spp_for_tolerance(at, tolerance, options["seed"], spp_max=SAMPLES_MAX // (width * height),
+                               sampler=options["sampler"])
+    print(f"spp auto: {choice['spp']} spp ({choice['why']})", file=sys.stderr)
+    return choice
+
+
+def command_validate_chart(args: argparse.Namespace) -> None:
+    """``validate`` on a chart (the face is :mod:`skinrender.cli.face_validation`)."""
+    from ..evaluation.verdict import EXIT_STATUS
+    from ..rendering.spp_choice import PILOT_SPP
+    from ..rendering.validation import validate
+    from .common import check_render_work
+    from .rendering import chart_only, pixels_of, render_inputs
+
+    tolerance = tolerance_of(args)
+    auto = spp_of(args)
+    chart_only(args)
+    if args.limits is not None:
+        raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart")
+    if args.gamut and args.imager is not None:
+        raise SkinrenderError("--gamut compares the noise-free render's gamut volumes: it goes without --imager")
+    options = render_options(argparse.Namespace(**{**vars(args), "spp": None}) if auto else args)
+    requested = "auto" if auto else options["spp"]
+    inputs = render_inputs(args)
+    imaging = imaging_options(args)
+    renders = 11 if args.gamut else 1  # --gamut: ten more, one per paper illuminant
+    choice = None
+    if auto:
+        check_render_work(args, pixels_of(inputs["scene"]), max(PILOT_SPP), len(PILOT_SPP))
+        choice = _auto_spp(args, inputs, options, imaging, tolerance)
+        options["spp"] = choice["spp"]
+    check_render_work(args, pixels_of(inputs["scene"]), options["spp"], renders)
+    print(f"rendering {inputs['scene'].name} at {options['spp']} spp and validating …", file=sys.stderr)
+    if imaging is not None:
+        result, imaged = _imaged(args, inputs, options, imaging, tolerance)
+        document, text = _imaged_report(args, result, imaged, requested)
+        verdict = result.verdict
+    else:
+        result = validate(**inputs, normalization=args.normalization, knee=args.knee, grid=grid_of(args),
+                          tolerance=tolerance, **options)
+        document, lines = _chart_report(args, result, options, requested, tolerance)
+        verdict = result.verdict
+        if args.gamut:
+            verdict = _gamut(args, options, tolerance, document, lines, verdict)
+        text = "\n".join(lines)
+        document["verdict"] = verdict.outcome
+        document["passed"] = verdict.outcome == "pass"
+    if choice is not None:
+        document["spp_auto"] = choice
+        text = f"spp auto: {choice['spp']} spp — {choice['why']}\n" + text
+    document["exit_status"] = EXIT_STATUS[verdict.outcome]
+    text += f"\nverdict: {verdict.outcome.upper().replace('_', ' ')} (exit status {document['exit_status']})"
+    emit(args, document, text)
+    if document["exit_status"]:
+        raise SystemExit(document["exit_status"])
+
+
+def _chart_report(args, result, options, requested, tolerance) -> tuple[dict, list[str]]:
+    """A chart validation's document and text lines: per patch and channel the values, error, bound, tolerance."""
+    from ..constants import CONSTANT_OUTPUT_SCALE
+    from ..rendering.agreement import DARK_LEVEL
+    from ..rendering.renderer import channel_names
+    from .common import SPP_MAX
+
+    r = result.rendering
+    checks = {"equivalence": result.verdict, "difference": result.difference}
+    document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
+                "calibration_K": r.calibration, "normalization": args.normalization, "knee": args.knee,
+                "spp": r.raw[0].spp, "spp_requested": requested, "sampler": options["sampler"],
+                "seed": args.seed, "variant": r.variant, "elapsed_s": r.seconds, "tolerance": tolerance,
+                "dark_floor_output": tolerance * DARK_LEVEL * CONSTANT_OUTPUT_SCALE,
+                "bound": result.bound, "spp_needed": result.spp_needed,
+                "checks": {name: v.document() for name, v in checks.items()}, "patches": result.patches(),
+                "worst": result.worst(), "max_rel_error": float(result.rel_error.max()),
+                "quadrature_rel_difference": result.quadrature}
+    names = channel_names(r.camera)
+    rows = [[p["name"], names[k], _number(p["analytic"][k]), _number(p["rendered"][k]), f"{p['error'][k]:+.3g}",
+             f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", p["shown"][k]]
+            for p in document["patches"] for k in range(3)]
+    lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
+             f"{r.raw[0].spp} spp {options['sampler']}, {r.variant}, {r.seconds:.2f} s; output units "
+             "(white = 255 at p = c); bound: the upper 95 % (family-wise) confidence bound of |error|",
+             table(rows, ["patch", "channel", "analytic", "rendered", "error", "bound", "tolerance", "shown"])]
+    lines += _summary("equivalence", result.verdict)
+    needed = "—" if result.spp_needed is None else (result.spp_needed if result.spp_needed <= SPP_MAX
+                                                    else f"{result.spp_needed:.3g} (more than a render may take)")
+    lines.append(f"  bound {result.bound:.3g} (the smallest relative tolerance that would pass; asked {tolerance:g}); "
+                 f"spp needed ≈ {needed} (bounds taken to fall as 1/√spp: an upper estimate for multijitter)")
+    lines += _summary("difference", result.difference)
+    lines.append(f"paper Σ vs rendered integral (quadrature): {result.quadrature:.1e} relative")
+    return document, lines
+
+
+def _gamut(args, options, tolerance, document, lines, verdict):
+    """``--gamut``: the volumes' verdicts added to the document and the text; the combined verdict."""
+    from ..evaluation.verdict import Verdict, combine
+    from ..rendering.validation import validate_gamut
+
+    gamuts = validate_gamut(args.scene, args.camera, spp=options["spp"], seed=args.seed, sampler=options["sampler"],
+                            variant=args.variant, grid=grid_of(args), tolerance=tolerance)
+    document["gamut"] = gamuts
+    labels = [f"calibration {t:g} K" for t in gamuts["illuminants_K"]] + ["all calibrations"]
+    rows = [[label, f"{a:.6g}", f"{r:.6g}", f"{s:.2g}", f"{b:.3g}"]
+            for label, r, a, s, b in zip(labels, gamuts["rendered"], gamuts["analytic"], gamuts["sigma"],
+                                         gamuts["bound"])]
+    lines.append(f"gamut volumes (output units³), {len(gamuts['illuminants_K'])} illuminants:")
+    lines.append(table(rows, ["volume", "analytic", "rendered", "σ", "relative bound"]))
+    doc = gamuts["verdict"]
+    lines.append(f"gamut equivalence: {doc['verdict'].upper().replace('_', ' ')} — {doc['reason']}")
+    lines.append(f"gamut difference: {gamuts['difference']['verdict']} — {gamuts['difference']['reason']}")
+    gamut_verdict = Verdict("gamut", doc["verdict"], doc["alpha"], doc["test"], reason=doc["reason"])
+    return combine([verdict, gamut_verdict], "validation")
+
+
+def _imaged(args, inputs, options, imaging, tolerance):
+    """The render through the sensor and its validation: (validation, imaged)."""
+    from ..rendering.sensor_validation import validate_imaged
+    from ..rendering.validation import analytic_reference
+    from .rendering import render_with
+
+    rendering, imaged = render_with(args, inputs, options, imaging)
+    grid = grid_of(args)
+    ratio = analytic_reference(rendering.camera, rendering.scene.reflectances(grid), rendering.prevailing,
+                               rendering.prevailing, grid=grid) / 255.0
+    return validate_imaged(imaged, ratio, grid=grid, tolerance=tolerance), imaged
+
+
+def _imaged_report(args, result, imaged, requested) -> tuple[dict, str]:
+    """``validate --imager``'s document and text."""
+    from ..rendering.renderer import channel_names
+    from .rendering import imaging_document, imaging_notes
+
+    rendering = imaged.rendering
+    patches = result.patches()
+    checks = {**result.checks, "difference": result.difference}
+    document = {"scene": rendering.scene.name, "camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
+                "calibration_K": rendering.calibration, "normalization": args.normalization,
+                "spp": rendering.raw[0].spp, "spp_requested": requested, "seed": args.seed,
+                "variant": rendering.variant, "elapsed_s": rendering.seconds, **imaging_document(imaged),
+                "tolerance": result.checks["equivalence"].tolerance, "bound": result.bound,
+                "spp_needed": result.spp_needed, "spp_needed_reason": result.spp_reason or None,
+                "mc_variance": result.mc_variance,
+                "test": result.difference.test, "alpha_per_test": result.level,
+                "checks": {name: v.document() for name, v in checks.items()}, "patches": patches,
+                "verdict": result.verdict.outcome, "passed": result.passed}
+    names = channel_names(rendering.camera)
+    rows = [[p["name"], names[k], _number(p["analytic"][k]), _number(p["rendered"][k]), f"{p['error'][k]:+.3g}",
+             f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", f"{p['rendered_std'][k]:.3g}",
+             f"{p['predicted_std'][k]:.3g}", f"{p['p_mean'][k]:.2g}", f"{p['p_variance'][k]:.2g}"]
+            for p in patches for k in range(3)]
+    lines = [f"{rendering.scene.name} through {rendering.camera.name} and {imaged.imager.name}, "
+             f"{imaged.illuminance_lux:g} lx, {imaged.exposure_s * 1e3:.3g} ms, {rendering.raw[0].spp} spp; output "
+             "units; predicted std: the sensor's and the render's together",
+             table(rows, ["patch", "channel", "analytic", "rendered", "error", "bound", "tolerance", "std",
+                          "predicted std", "p mean", "p variance"])]
+    for name in ("equivalence", "variance", "mean"):
+        lines += _summary(name, result.checks[name])
+    needed = result.spp_needed if result.spp_needed is not None else f"— ({result.spp_reason})"
+    lines.append(f"bound {result.bound:.3g} (the smallest relative tolerance the means would pass); spp needed ≈ "
+                 f"{needed}")
+    return document, "\n".join(lines) + imaging_notes(imaged)

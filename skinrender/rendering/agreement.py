@@ -1,0 +1,189 @@
+"""
+Agreement of rendered values with analytic ones
+===============================================
+
+The two questions a validation asks of every rendered value (a patch channel's
+mean, a gamut volume), each answered with a :class:`~skinrender.evaluation.verdict.Verdict`:
+
+-   **within a tolerance?** (:func:`agreement`'s ``equivalence``): the error
+    ``rendered − analytic`` gets a simultaneous upper confidence bound
+    ``|error| + c·SE`` (one-sided Šidák over every value, Student t, family-wise
+    confidence ``1 − α``, α = :data:`~skinrender.evaluation.verdict.ALPHA_EQUIVALENCE`).
+    The check passes when every bound is at most the value's tolerance, fails
+    when some value's lower bound is beyond it, and is inconclusive otherwise,
+    with the samples per pixel expected to pass (``spp_needed``). A noisy
+    render cannot pass by being noisy: its bounds are wide.
+-   **any difference at all?** (``difference``): the largest
+    ``|error beyond the float32 floor| / SE`` against the two-sided Šidák
+    critical value of a family-wise false-alarm rate α
+    (:data:`~skinrender.evaluation.verdict.ALPHA_DIFFERENCE`). Its pass only
+    says no difference was detected; its false-alarm rate is measured by
+    ``skinrender bench calibration``.
+
+Both take each error as normal (Student t). Where an error is too skewed for
+that (a heavy-tailed Monte Carlo estimate: the skewness of its mean beyond a
+stated limit), its bound is distribution-free instead — Cantelli's one-sided
+inequality ``P(X − μ ≥ kσ) ≤ 1 / (1 + k²)`` for the equivalence, Chebyshev's
+``P(|X − μ| ≥ kσ) ≤ 1 / k²`` for the difference test, at the same Šidák level
+— which needs the standard error alone.
+
+A tolerance is relative: each channel's allowed ``|error|`` is ``tolerance ×
+max(|analytic|, DARK_LEVEL × v)`` with ``v`` = :data:`~skinrender.constants.CONSTANT_OUTPUT_SCALE`
+(255, white at p = c), so a channel darker than :data:`DARK_LEVEL` of white is
+held to the absolute floor ``tolerance × DARK_LEVEL × v`` output units rather
+than to a relative error of a near-zero value.
+
+-   :data:`TOLERANCE_DEFAULT`, :data:`DARK_LEVEL`, :func:`check_tolerance`,
+    :func:`tolerance_scale`, :func:`agreement`.
+
+Units: output units (255 for white at p = c) unless said; tolerances and
+bounds relative (fractions).
+
+References
+----------
+-   :cite:`Schuirmann1987`, :cite:`Sidak1967` : see :mod:`skinrender.evaluation.verdict`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from ..constants import CONSTANT_OUTPUT_SCALE
+from ..errors import SkinrenderError
+from ..evaluation.verdict import (ALPHA_DIFFERENCE, ALPHA_EQUIVALENCE, critical_z, difference, equivalence,
+                                  samples_needed, sidak)
+from ..hints import ArrayLike, NDArrayFloat
+
+__all__ = ["TOLERANCE_DEFAULT", "DARK_LEVEL", "check_tolerance", "tolerance_scale", "agreement"]
+
+TOLERANCE_DEFAULT = 0.01
+"""Default relative tolerance of ``validate``: 1 % of each lit channel. At the default 256 spp a Macbeth
+chart's bound is ~0.05 % (measured, docs/verdicts.md), so a correct render passes with room; at 4 spp (bound
+~6 %) it is inconclusive."""
+
+DARK_LEVEL = 0.01
+"""A channel below this fraction of white (``v`` = 255 output units) is dark: its tolerance is absolute,
+``tolerance × DARK_LEVEL × v`` output units (2.55 × tolerance)."""
+
+
+def check_tolerance(value, name: str = "tolerance") -> float:
+    """
+    A relative tolerance in (0, 1), else a one-line :class:`SkinrenderError` naming ``name``.
+
+    >>> check_tolerance("0.01")
+    0.01
+    """
+    try:
+        tolerance = float(value)
+    except (TypeError, ValueError):
+        tolerance = math.nan
+    if isinstance(value, bool) or not (0 < tolerance < 1):
+        raise SkinrenderError(f"{name} must be a relative error in (0, 1), e.g. 0.01 for 1 %, got {value!r}")
+    return tolerance
+
+
+def tolerance_scale(analytic: ArrayLike, scale: float = CONSTANT_OUTPUT_SCALE) -> NDArrayFloat:
+    """
+    What a relative tolerance multiplies: ``max(|analytic|, DARK_LEVEL × scale)``, output units.
+
+    >>> tolerance_scale([100.0, 0.5]).tolist()
+    [100.0, 2.55]
+    """
+    return np.maximum(np.abs(np.asarray(analytic, dtype=np.float64)), DARK_LEVEL * scale)
+
+
+def agreement(rendered: ArrayLike, analytic: ArrayLike, sigma: ArrayLike, tolerance: float, spp: int,
+              dof: float | None = None, floor: ArrayLike = 0.0, alpha: float = ALPHA_EQUIVALENCE,
+              alpha_difference: float = ALPHA_DIFFERENCE, what: str = "patch channel means",
+              scale: float = CONSTANT_OUTPUT_SCALE, skewness: ArrayLike | None = None,
+              skew_max: float | None = None) -> dict:
+    """
+    The equivalence and difference verdicts of rendered values against analytic ones.
+
+    Parameters
+    ----------
+    rendered, analytic
+        The values, any shape (output units, or any unit with ``scale`` in it).
+    sigma
+        Each rendered value's standard error (≥ 0), broadcast to ``rendered``.
+    tolerance
+        Relative tolerance in (0, 1) (module docstring: dark values get an absolute floor).
+    spp
+        Samples per pixel the values were rendered with (for ``spp_needed``).
+    dof
+        Degrees of freedom of the standard errors (Student t), ``None`` for normal.
+    floor
+        A known systematic allowance (the float32 floor), left out of the difference test only.
+    what
+        The values, in words, for the tests' statements.
+    skewness, skew_max
+        Each error's skewness and the largest at which its normal law is trusted: a value beyond is held to
+        distribution-free bounds (Cantelli's one-sided for the equivalence, Chebyshev's two-sided for the
+        difference test, at the same Šidák level), which need only its standard error.
+
+    Returns
+    -------
+    dict
+        ``equivalence`` and ``difference`` (:class:`~skinrender.evaluation.verdict.Verdict`; the
+        equivalence's ``bound`` is the smallest relative tolerance that would pass and its details hold
+        ``spp_needed``), ``error``, ``upper`` (the bound on ``|error|``), ``tolerance`` (allowed ``|error|``),
+        ``relative_bound`` (``upper / scale``), ``z`` (``error / sigma``, 0 where σ = 0), ``shown_within``,
+        ``shown_outside``, ``trusted`` (the normal law trusted), arrays shaped as ``rendered``; ``spp_needed``
+        (``None`` after a fail).
+
+    Examples
+    --------
+    >>> out = agreement([100.5, 50.0], [100.0, 50.0], [0.1, 0.1], 0.01, spp=64)
+    >>> out["equivalence"].outcome, out["difference"].outcome, round(out["equivalence"].bound, 4)
+    ('pass', 'fail', 0.007)
+    """
+
+    tolerance = check_tolerance(tolerance)
+    r, a = np.asarray(rendered, dtype=np.float64), np.asarray(analytic, dtype=np.float64)
+    s = np.broadcast_to(np.asarray(sigma, dtype=np.float64), r.shape)
+    error = r - a
+    width = tolerance_scale(a, scale)
+    allowed = tolerance * width
+    trusted = np.ones(r.shape, dtype=bool)
+    if skewness is not None and skew_max is not None:
+        trusted = np.abs(np.broadcast_to(np.asarray(skewness, dtype=np.float64), r.shape)) <= skew_max
+    # a value too skewed for the normal law gets a distribution-free bound instead: its standard error widened
+    # so that the normal critical value gives Cantelli's (one-sided) and Chebyshev's (two-sided) at the same level
+    widened = ~trusted
+    m = max(r.size, 1)
+    cantelli = math.sqrt(1 / sidak(alpha, m) - 1) / critical_z(alpha, m, sides=1, dof=dof)
+    chebyshev = math.sqrt(1 / sidak(alpha_difference, m)) / critical_z(alpha_difference, m, sides=2, dof=dof)
+    verdict, rows = equivalence(error, np.where(widened, s * cantelli, s), allowed, alpha, dof, "equivalence",
+                                scale=width)
+    statement = (f"{what}: |rendered − analytic| + c·SE ≤ {tolerance:g} × max(|analytic|, "
+                 f"{DARK_LEVEL * scale:g}) for every value; {verdict.test}")
+    note = ""
+    if np.any(widened):
+        count = int(np.sum(widened))
+        note = (f"{count} value{'s' * (count > 1)} too skewed for the normal law (skewness > {skew_max:g}) held to "
+                "distribution-free bounds")
+        statement += (f"; a value whose error's skewness exceeds {skew_max:g} is held to Cantelli's bound "
+                      f"(c × {cantelli:.3g})")
+        verdict = replace(verdict, reason=f"{verdict.reason}; {note}")
+    needed = None
+    if verdict.outcome in ("pass", "inconclusive"):
+        needed = samples_needed(spp, error, s, allowed, alpha, dof, shrinking=True)
+    verdict = replace(verdict, test=statement, tolerance=tolerance,
+                      details={**verdict.details, "spp_needed": needed, "tolerance_relative": tolerance,
+                               "dark_level": DARK_LEVEL * scale, "skewed": int(np.sum(widened))})
+    beyond = np.sign(error) * np.maximum(np.abs(error) - np.broadcast_to(np.asarray(floor, dtype=np.float64),
+                                                                          r.shape), 0.0)
+    test = difference(beyond, np.where(widened, s * chebyshev, s), alpha_difference, dof, "difference")
+    test = replace(test, test=f"{what}: rendered − analytic beyond the float32 floor, over its SE; {test.test}"
+                   + (f"; a value too skewed for the normal law is held to Chebyshev's bound (c × {chebyshev:.3g})"
+                      if np.any(widened) else ""),
+                   reason=test.reason + (f"; {note}" if note else ""))
+    z = np.divide(error, s, out=np.zeros_like(error), where=s > 0)
+    return {"equivalence": verdict, "difference": test, "error": error, "upper": rows.get("upper", error),
+            "tolerance": allowed, "relative_bound": rows.get("upper", error) / width, "z": z,
+            "shown_within": rows.get("shown_within"), "shown_outside": rows.get("shown_outside"),
+            "trusted": trusted, "spp_needed": needed}
+

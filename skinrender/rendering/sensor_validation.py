@@ -1,0 +1,407 @@
+"""
+Validation of renders recorded through an image sensor
+======================================================
+
+A noisy render's patches (:func:`~skinrender.rendering.imaging.render_imaged`)
+against the analytic sensor model (:mod:`skinrender.model.noise`) and Eq. 4:
+
+-   **mean** (difference test): each patch channel's pixel mean against the
+    analytic mean, DN; its standard error from the model's sensor variance
+    plus the render's own Monte Carlo variance.
+-   **variance** (difference test): the sensor's temporal variance against the
+    model's. The render's Monte Carlo variance is removed as
+    :data:`MC_VARIANCE` says (by default with a second frame of the same
+    render, as EMVA 1288 measures a camera: half the variance of the two
+    frames' difference holds the sensor's noise alone).
+-   **equivalence**: each patch channel's mean, in output units, shown within
+    the relative tolerance (:mod:`skinrender.rendering.agreement`).
+
+Where the noise spans a few codes (σ < 4 DN and a small lattice) the mean and
+variance tests are exact on the code lattice (:func:`_exact_p_values`), the
+pixel's law the mixture of the patch pixels' code laws (the render's spread
+included); elsewhere the mean takes a z-test and the variance a scaled χ²
+whose degrees of freedom match its law's fourth moment (Satterthwaite). Every
+mean and variance test runs at the Šidák level of a family-wise false-alarm
+rate :data:`ALPHA_FAMILY`, measured by ``skinrender bench calibration``.
+
+The verdict combines the equivalence of the means (they have a tolerance)
+with the variance tests (the noise model has none: a difference test is all
+there is); the mean's difference test is reported beside it.
+
+-   :data:`ALPHA_FAMILY`, :data:`MC_VARIANCE`, :class:`ImagedValidation`,
+    :func:`validate_imaged`.
+
+Units: DN and DN² unless said; output units (255 for white at p = c) for
+the equivalence.
+
+References
+----------
+-   :cite:`EMVA1288` : two frames per exposure for the temporal variance (docs/references.md).
+-   :cite:`Satterthwaite1946` : F. E. Satterthwaite (1946). An approximate distribution of estimates of
+    variance components. Biometrics Bulletin 2(6), 110–114.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from ..evaluation.verdict import ALPHA_EQUIVALENCE, Verdict, combine
+from ..hints import NDArrayFloat
+from ..methods import validate_method
+from ..model.imager import Imager, imager
+from ..model.noise import code_probabilities, simulate_dn_clipped, statistics_dn
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+from .agreement import TOLERANCE_DEFAULT, agreement, check_tolerance
+from .imaging import ImagedRendering, electrons_per_radiance, predicted_electrons, predicted_patches
+
+__all__ = ["ALPHA_FAMILY", "MC_VARIANCE", "ImagedValidation", "validate_imaged"]
+
+ALPHA_FAMILY = 0.01
+"""Family-wise false-alarm rate of the mean and variance tests: each of the m tests (patch × channel × mean and
+variance) runs at the Šidák level ``1 − (1 − α)^(1/m)``, as Mitsuba's render tests do."""
+
+MC_VARIANCE = {
+    "frames": "a second sensor frame of the same render: the variance test on half the variance of the frames' "
+              "difference (the render's noise cancels); the mean's standard error adds the render's pixel variance "
+              "(default)",
+    "pixels": "the render's own pixel variance subtracted from the frame's, the test's degrees of freedom reduced "
+              "for the cross term the two share",
+    "none": "left out (the model's sensor variance alone; too many false alarms at a few tens of spp)",
+}
+"""How the render's own Monte Carlo variance enters the noisy predictions, name → meaning."""
+
+_EXACT_CELLS = 1 << 20
+"""The largest (sum, sum of squares) lattice, cells, on which a patch's statistics are summed exactly."""
+
+_NEGLIGIBLE = 1e-15
+"""Codes less likely than this per pixel are left out of the exact law (their total over a patch is < 1e-11)."""
+
+
+@dataclass(frozen=True)
+class ImagedValidation:
+    """
+    A noisy render's patches against the analytic sensor model, per patch and channel.
+
+    ``rendered_mean``/``predicted_mean`` (DN), ``rendered_std``/``predicted_std`` (DN; predicted: the sensor's and
+    the render's variances together), ``sensor_std`` (the model's, DN) and ``render_std`` (the render's Monte
+    Carlo spread as the sensor sees it, DN), the z statistic of the mean, the p-values of the mean and variance
+    tests, the Šidák ``level``, which tests were ``exact``; ``difference`` (every mean and variance test),
+    ``checks`` (``mean``, ``variance``, ``equivalence``), ``verdict`` (equivalence and variance combined),
+    the equivalence's ``upper`` bounds and ``tolerance`` (output units), ``spp_needed``.
+    """
+
+    imaged: ImagedRendering
+    rendered_mean: NDArrayFloat
+    predicted_mean: NDArrayFloat
+    rendered_std: NDArrayFloat
+    predicted_std: NDArrayFloat
+    z: NDArrayFloat
+    p_mean: NDArrayFloat
+    p_variance: NDArrayFloat
+    level: float
+    exact: NDArrayFloat | None = None
+    sensor_std: NDArrayFloat | None = None
+    render_std: NDArrayFloat | None = None
+    difference: Verdict | None = None
+    checks: dict = field(default_factory=dict)
+    verdict: Verdict | None = None
+    upper: NDArrayFloat | None = None
+    tolerance: NDArrayFloat | None = None
+    spp_needed: int | None = None
+    mc_variance: str = "frames"
+    spp_reason: str = ""
+
+    @property
+    def passed(self) -> bool:
+        """The verdict is a pass (means shown within the tolerance, no variance test rejects)."""
+        return self.verdict is not None and self.verdict.outcome == "pass"
+
+    @property
+    def bound(self) -> float | None:
+        """The smallest relative tolerance the means would pass at."""
+        return self.checks["equivalence"].bound if "equivalence" in self.checks else None
+
+    def patches(self) -> list[dict]:
+        """Per patch, in output units (DN above black × the Eq. 4 gain): CONTRACT.md's rows, and the verdicts'."""
+        gains, names = self.imaged.gains, [p.name for p in self.imaged.rendering.scene.patches]
+        black = self.imaged.imager.black_level_dn
+        rows = []
+        for i, name in enumerate(names):
+            error = (self.rendered_mean[i] - self.predicted_mean[i]) * gains
+            rows.append({
+                "name": name,
+                "rendered": ((self.rendered_mean[i] - black) * gains).tolist(),
+                "analytic": ((self.predicted_mean[i] - black) * gains).tolist(),
+                "rendered_std": (self.rendered_std[i] * gains).tolist(),
+                "predicted_std": (self.predicted_std[i] * gains).tolist(),
+                "sensor_std": (self.sensor_std[i] * gains).tolist(),
+                "render_std": (self.render_std[i] * gains).tolist(),
+                "error": error.tolist(), "bound": self.upper[i].tolist(), "tolerance": self.tolerance[i].tolist(),
+                "z_mean": self.z[i].tolist(), "p_mean": self.p_mean[i].tolist(),
+                "p_variance": self.p_variance[i].tolist(),
+                "test": ["exact" if self.exact is not None and self.exact[i, k] else "normal" for k in range(3)],
+                "passed": bool(np.all(self.upper[i] <= self.tolerance[i]) and np.all(self.p_variance[i] >= self.level)),
+            })
+        return rows
+
+
+def _two_sided(law: NDArrayFloat, below: NDArrayFloat, above: NDArrayFloat) -> float:
+    """2 · min(P(T ≤ t), P(T ≥ t)) of a discrete law (both tails keep the observed value), at most 1."""
+    return float(min(1.0, 2.0 * min(law[below].sum(), law[above].sum())))
+
+
+def _exact_p_values(pmf: NDArrayFloat, first: float, codes: NDArrayFloat) -> tuple[float, float] | None:
+    """
+    Exact two-sided p-values of a patch's pixel mean and sample variance, n pixels of the code law ``pmf``.
+
+    The n codes are independent draws of P(DN = first + j) = ``pmf[j]``: the joint law of (Σ d, Σ d²) is the
+    n-fold convolution of one pixel's, summed on its integer lattice (by FFT; codes counted from the most likely
+    one, d = 0). The patch mean is Σ d / n and the sample variance (Σ d² − (Σ d)² / n) / (n − 1): both lattice
+    laws, never normal where the noise spans a few codes (every pixel one code has probability Σ_j pmf_j^n).
+    ``None`` where the lattice exceeds :data:`_EXACT_CELLS`.
+    """
+    n = codes.size
+    keep = np.flatnonzero(pmf > _NEGLIGIBLE)
+    probs = pmf[keep[0]:keep[-1] + 1] / pmf[keep[0]:keep[-1] + 1].sum()
+    offsets = np.arange(probs.size) - int(np.argmax(probs))  # d, from the most likely code
+    width, depth = n * (probs.size - 1) + 1, n * int((offsets**2).max()) + 1
+    if n < 2 or width * depth > _EXACT_CELLS:
+        return None
+    observed = codes - (first + keep[0]) + offsets[0]  # each pixel's d
+    if observed.min() < offsets[0] or observed.max() > offsets[-1]:
+        return 0.0, 0.0  # a code the model gives < 1e-15 per pixel
+    from scipy import fft
+
+    shape = (fft.next_fast_len(width, real=True), fft.next_fast_len(depth, real=True))  # ≥ the sums: no wrap
+    one = np.zeros(shape)
+    one[offsets - offsets[0], offsets**2] = probs
+    spectrum = fft.rfft2(one)
+    power = np.abs(spectrum) ** n * np.exp(1j * n * np.angle(spectrum))  # the n-fold convolution
+    joint = np.maximum(fft.irfft2(power, s=shape)[:width, :depth], 0.0)
+    marginal = joint.sum(axis=1)
+    row = int(observed.sum() - n * offsets[0])
+    index = np.arange(width)
+    p_mean = _two_sided(marginal, index <= row, index >= row)
+    cells = np.nonzero(joint > 1e-300)  # (Σ d − n d_min, Σ d²) reachable
+    total = cells[0] + float(n * offsets[0])
+    variance = (cells[1] - total**2 / n) / (n - 1)
+    seen = (np.sum(observed**2) - observed.sum() ** 2 / n) / (n - 1)
+    slack = 1e-9 * max(1.0, abs(seen))
+    return p_mean, _two_sided(joint[cells], variance <= seen + slack, variance >= seen - slack)
+
+
+def _spread_of_variance(pmf: NDArrayFloat | None, first: float, mean: float, variance: float, n: int) -> float:
+    """
+    Var(s²) of the sample variance of n draws: μ₄ / n − σ⁴ (n − 3) / (n (n − 1)), μ₄ from the code law ``pmf``
+    (first code ``first``), or 3 σ⁴ (a normal law) where none is known.
+    """
+    fourth = 3.0 * variance**2
+    if pmf is not None and np.all(np.isfinite(pmf)):
+        fourth = float(np.sum(pmf * (first + np.arange(pmf.size) - mean) ** 4))
+    spread = fourth / n - variance**2 * (n - 3) / (n * (n - 1))
+    return spread if spread > 0 else 2.0 * variance**2 / (n - 1)
+
+
+def _mixture(firsts: NDArrayFloat, pmfs: NDArrayFloat) -> tuple[float, NDArrayFloat] | None:
+    """The average of code laws (rows of ``pmfs`` from codes ``firsts``) on one window: (first, pmf); ``None`` if
+    any row has no law (NaN)."""
+    if np.any(np.isnan(firsts)) or np.any(np.isnan(pmfs)):
+        return None
+    start = firsts.astype(np.int64) - int(firsts.min())
+    out = np.zeros(int(start.max()) + pmfs.shape[1])
+    for offset in np.unique(start):
+        out[offset:offset + pmfs.shape[1]] += pmfs[start == offset].sum(axis=0)
+    return float(firsts.min()), out / len(pmfs)
+
+
+def _difference_law(pmfs: NDArrayFloat) -> tuple[float, NDArrayFloat]:
+    """The law of A − B, two frames of one pixel, averaged over the rows' code laws: (first, pmf)."""
+    width = pmfs.shape[1]
+    law = np.mean([np.convolve(p, p[::-1]) for p in pmfs], axis=0)
+    return float(-(width - 1)), law
+
+
+def _p_variance(statistic: float, dof: float) -> float:
+    """Two-sided p-value of a scaled χ² statistic with ``dof`` degrees of freedom."""
+    from scipy.stats import chi2
+
+    return float(min(1.0, 2 * min(chi2.cdf(statistic, dof), chi2.sf(statistic, dof))))
+
+
+def _model_electrons(imaged: ImagedRendering, model: Imager, grid: WavelengthGrid) -> NDArrayFloat:
+    """Each pixel's expected electrons, e⁻, under ``model`` (its quantum efficiency and dark current) from the
+    render's radiance, as :func:`~skinrender.rendering.imaging.render_imaged` computes them for its own imager."""
+    if model == imaged.imager:
+        return imaged.electrons
+    r = imaged.rendering
+    rate = electrons_per_radiance(model, r.camera, r.prevailing, imaged.illuminance_lux, grid)
+    return (r.raw[0].radiance * rate + model.dark_current_e_per_s) * imaged.exposure_s
+
+
+def _verdict(name: str, p_values: NDArrayFloat, level: float, alpha: float, tests: int, what: str) -> Verdict:
+    """A difference verdict of p-values at the Šidák ``level`` (statistic: the smallest p-value)."""
+    smallest = float(np.min(p_values))
+    rejected = int(np.sum(p_values < level))
+    test = (f"{what}: every p-value ≥ {level:.3g}, the Šidák level of {tests} tests at family-wise α = {alpha:g} "
+            "(exact on the code lattice where the noise spans a few codes, else z-test and scaled chi-square)")
+    if rejected:
+        return Verdict(name, "fail", alpha, test, smallest, level,
+                       reason=f"{rejected} test{'s' * (rejected > 1)} reject (smallest p {smallest:.2g})",
+                       details={"rejected": rejected, "tests": int(p_values.size)})
+    return Verdict(name, "pass", alpha, test, smallest, level, reason="no difference detected",
+                   details={"rejected": 0, "tests": int(p_values.size)})
+
+
+def _channel_tests(codes: NDArrayFloat, other: NDArrayFloat | None, electrons: NDArrayFloat, means: NDArrayFloat,
+                   variances: NDArrayFloat, mean: float, variance: float, expected: float, model: Imager,
+                   method: str) -> tuple[float, float, float, bool, float]:
+    """
+    One patch channel's tests: ``(z, p_mean, p_variance, exact, mc)``.
+
+    ``codes``: the frame's n codes, DN; ``other``: the second frame's (``frames``); ``electrons``, ``means``,
+    ``variances``: each pixel's expected electrons (e⁻) and its code mean and variance under the model (DN, DN²);
+    ``mean``, ``variance``: the analytic patch's (DN, DN²) at ``expected`` electrons; ``mc``: the render's Monte
+    Carlo variance as the sensor sees it, DN² (the variance of the pixels' code means).
+    """
+    n = codes.size
+    sample_var = float(np.var(codes, ddof=1))
+    mc = 0.0 if method == "none" else float(np.var(means, ddof=1))
+    sensor = float(np.mean(variances))  # the sensor's own variance at these pixels' electrons
+    total = variance + mc
+    if total <= 0:  # a clipped, noiseless patch: it must equal its prediction exactly
+        return 0.0, float(abs(codes.mean() - mean) < 1e-9), float(sample_var < 1e-9), False, mc
+    z = (codes.mean() - mean) / np.sqrt(total / n)
+    p_mean = float(2 * _normal_sf(abs(z)))
+    first, own = code_probabilities(model, np.full(1, expected))  # the sensor's own law at the analytic electrons
+    own = (float(first[0]), own[0]) if np.all(np.isfinite(own)) else (0.0, None)
+    # the pixels' law: the sensor's mixed over the render's spread, centred on the analytic electrons
+    law = _mixture(*code_probabilities(model, electrons - electrons.mean() + expected)) if method != "none" else (
+        own if own[1] is not None else None)
+    if method == "frames":
+        difference = codes - other
+        laws = code_probabilities(model, electrons)[1]
+        found = None
+        if not np.any(np.isnan(laws)):
+            first_d, law_d = _difference_law(laws)
+            found = _exact_p_values(law_d, first_d, difference)
+        else:
+            first_d, law_d = 0.0, None
+        if found is not None:
+            p_variance = found[1]
+        else:
+            var_d = 2 * sensor
+            dof = 2 * var_d**2 / _spread_of_variance(law_d, first_d, 0.0, var_d, n)
+            p_variance = _p_variance(dof * np.var(difference, ddof=1) / var_d, dof)
+    elif method == "pixels":  # S² − mc estimates the sensor's variance; the cross term widens its law
+        spread = _spread_of_variance(own[1], own[0], mean, sensor, n) + 4 * mc * sensor / (n - 1)
+        dof = 2 * sensor**2 / spread
+        p_variance = _p_variance(dof * (sample_var - mc) / sensor, dof)
+    else:
+        dof = 2 * variance**2 / _spread_of_variance(own[1], own[0], mean, variance, n)
+        p_variance = _p_variance(dof * sample_var / variance, dof)
+    exact = False
+    if law is not None:
+        found = _exact_p_values(law[1], law[0], codes)
+        if found is not None:
+            exact, p_mean = True, found[0]
+            if method != "frames":
+                p_variance = found[1]
+    return float(z), p_mean, p_variance, exact, mc
+
+
+def validate_imaged(imaged: ImagedRendering, reference_ratio: NDArrayFloat, model: Imager | str | None = None,
+                    alpha: float = ALPHA_FAMILY, grid: WavelengthGrid = GRID_DEFAULT,
+                    tolerance: float = TOLERANCE_DEFAULT, alpha_equivalence: float = ALPHA_EQUIVALENCE,
+                    mc_variance: str = "frames") -> ImagedValidation:
+    """
+    Check every patch's pixel mean and variance against the analytic model of ``model`` (default: the imager
+    that recorded it), and the means within ``tolerance`` of Eq. 4 (module docstring).
+
+    Parameters
+    ----------
+    imaged
+        The render through the sensor.
+    reference_ratio
+        Each patch's render value over a perfect white's, ``(patches, 3)`` (the Eq. 4 reference at p = c over 255).
+    model
+        The imager whose model is tested (an imager, preset name or TOML path).
+    alpha
+        Family-wise false-alarm rate of the mean and variance tests together.
+    tolerance, alpha_equivalence
+        Relative tolerance in (0, 1) of the means and the family-wise error rate of their equivalence.
+    mc_variance
+        How the render's Monte Carlo variance enters (:data:`MC_VARIANCE`).
+    """
+
+    validate_method(mc_variance, MC_VARIANCE, "mc_variance")
+    tolerance = check_tolerance(tolerance)
+    recording = imaged.imager
+    model_im = recording if model is None else imager(model)
+    second = None
+    if mc_variance == "frames":  # the same render, the sensor's noise drawn again (another stream of the seed)
+        second = simulate_dn_clipped(recording, imaged.electrons, np.random.default_rng([imaged.seed, 0x5EED, 1]))[0]
+    imaged = replace(imaged, imager=model_im)
+    mean, variance = predicted_patches(imaged, reference_ratio, grid)
+    expected = predicted_electrons(imaged, reference_ratio, grid)
+    electrons = _model_electrons(imaged, model_im, grid)
+    pixel_mean, pixel_variance = statistics_dn(model_im, electrons)
+    scene = imaged.rendering.scene
+    rendered_mean, rendered_var, mc, count = (np.zeros(mean.shape) for _ in range(4))
+    z, p_mean, p_var = (np.zeros(mean.shape) for _ in range(3))
+    exact = np.zeros(mean.shape, dtype=bool)
+    for i in range(mean.shape[0]):
+        rows, columns = scene.patch_pixels(i)
+        codes = imaged.dn[rows, columns].reshape(-1, 3)
+        count[i] = len(codes)
+        rendered_mean[i], rendered_var[i] = codes.mean(axis=0), codes.var(axis=0, ddof=1)
+        for k in range(3):
+            z[i, k], p_mean[i, k], p_var[i, k], exact[i, k], mc[i, k] = _channel_tests(
+                codes[:, k], None if second is None else second[rows, columns, k].ravel(),
+                electrons[rows, columns, k].ravel(), pixel_mean[rows, columns, k].ravel(),
+                pixel_variance[rows, columns, k].ravel(), mean[i, k], variance[i, k], expected[i, k], model_im,
+                mc_variance)
+    tests = 2 * mean.size
+    level = 1.0 - (1.0 - alpha) ** (1.0 / tests)
+    checks = {"mean": _verdict("mean", p_mean, level, alpha, tests, "each patch channel's pixel mean, DN"),
+              "variance": _verdict("variance", p_var, level, alpha, tests,
+                                   "each patch channel's temporal pixel variance, DN²")}
+    difference_all = _verdict("difference", np.concatenate([p_mean.ravel(), p_var.ravel()]), level, alpha, tests,
+                              "every patch channel's pixel mean and variance")
+    gains, black = imaged.gains, model_im.black_level_dn
+    out = agreement((rendered_mean - black) * gains, (mean - black) * gains, np.sqrt((variance + mc) / count) * gains,
+                    tolerance, imaged.rendering.raw[0].spp, None, 0.0, alpha_equivalence, alpha,
+                    "patch channel means through the sensor")
+    spp = imaged.rendering.raw[0].spp
+    needed, reason = _spp_needed(out, spp, variance, mc)
+    checks["equivalence"] = replace(out["equivalence"], details={**out["equivalence"].details, "spp_needed": needed})
+    verdict = combine([checks["equivalence"], checks["variance"]], "validation")
+    return ImagedValidation(imaged, rendered_mean, mean, np.sqrt(rendered_var), np.sqrt(variance + mc), z, p_mean,
+                            p_var, level, exact, np.sqrt(variance), np.sqrt(mc), difference_all, checks, verdict,
+                            out["upper"], out["tolerance"], needed, mc_variance, reason)
+
+
+def _spp_needed(out: dict, spp: int, sensor: NDArrayFloat, mc: NDArrayFloat) -> tuple[int | None, str]:
+    """
+    The spp at which the means' equivalence is expected to pass, and why none where there is none.
+
+    Each bound ``|error| + c·SE`` is taken to scale with its standard error, whose square is the sensor's
+    variance (which more spp leaves as it is) plus the render's (falling as 1/spp), over the pixels: at N spp
+    ``(s + m · spp / N) ≤ (s + m) (tolerance / bound)²`` for every value. None after a fail, or where the
+    sensor's variance alone keeps some bound above its tolerance.
+    """
+    verdict = out["equivalence"]
+    if verdict.outcome not in ("pass", "inconclusive"):
+        return None, f"the equivalence is {verdict.outcome.replace('_', ' ')}: more samples do not change it"
+    room = (sensor + mc) * (out["tolerance"] / np.maximum(out["upper"], 1e-300)) ** 2 - sensor
+    if np.any(room <= 0):
+        return None, ("the sensor's noise alone keeps a bound above its tolerance: more spp cannot pass; more light "
+                      "(--illuminance), a longer exposure or larger patches can")
+    return max(1, int(np.ceil(np.max(mc * spp / room)))), ""
+
+
+def _normal_sf(x: float) -> float:
+    from scipy.stats import norm
+
+    return float(norm.sf(x))

@@ -1,0 +1,136 @@
+"""
+The samples a tolerance takes
+=============================
+
+``validate --spp auto --tolerance T``: the smallest samples per pixel at which a
+chart's validation is expected to pass, from two cheap pilot renders.
+
+-   :data:`PILOT_SPP`, :data:`SPP_AUTO_MARGIN`, :data:`EXPONENT_RANGE`.
+-   :func:`bound_exponent`: how fast the bound falls between two spp.
+-   :func:`spp_for_tolerance`: the pilots, the fit and the spp chosen.
+
+Notes
+-----
+The equivalence bound (the smallest tolerance that would pass,
+:mod:`skinrender.rendering.agreement`) of a Monte Carlo render falls as
+``spp^-a``: ``a = ½`` for independent samples, more for the stratified
+``multijitter`` sampler (measured 1.2–1.4 on the Macbeth chart between 16 and
+1024 spp, docs/verdicts.md). The exponent is fitted to the two pilots and held
+within :data:`EXPONENT_RANGE`; the spp where the fitted bound meets the
+tolerance is multiplied by :data:`SPP_AUTO_MARGIN` (the bound of one render
+scatters about its expectation). ``multijitter`` (which Mitsuba rounds to a
+product of two integers) stratifies a count that is a multiple of 4 far better
+(measured on the Macbeth chart, gbell:9, 3300 K / 4800 K, two seeds each:
+bounds 0.8–1.4e-3 at 132, 144, 156, 168, 196 spp, against 3–6e-3 at 121, 143,
+169, 182, 195, 225 spp; why is not established — Mitsuba's spectral variants
+draw four wavelengths per sample), so its counts are rounded up to the square
+of an even number (:func:`square_spp`), as the pilots' are. Through an image
+sensor the bound has a floor
+(the sensor's noise, which spp leaves alone): there the pilot's own
+``spp_needed`` (:func:`~skinrender.rendering.sensor_validation.validate_imaged`)
+is used, and a tolerance below the floor is refused.
+
+Units: spp (samples per pixel), tolerances and bounds relative, seconds s.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..errors import SkinrenderError
+
+__all__ = ["PILOT_SPP", "SPP_AUTO_MARGIN", "EXPONENT_RANGE", "square_spp", "bound_exponent", "spp_for_tolerance"]
+
+PILOT_SPP = (16, 64)
+"""The pilot renders' samples per pixel (the draft preset and 4 × it: ~0.2 and ~0.5 s on the Macbeth chart)."""
+
+SPP_AUTO_MARGIN = 1.25
+"""The spp where the fitted bound meets the tolerance is multiplied by this (the bound scatters by ~10–20 %
+between seeds)."""
+
+EXPONENT_RANGE = (0.5, 1.5)
+"""The fitted exponent ``a`` of ``bound ∝ spp^-a`` is held within this range (½: independent samples)."""
+
+
+def square_spp(spp: float, sampler: str = "multijitter") -> int:
+    """
+    ``spp`` rounded up to an integer, and for ``multijitter`` up to the square of an even number (module notes).
+
+    >>> square_spp(127.3), square_spp(127.3, "independent"), square_spp(0.2), square_spp(200)
+    (144, 128, 4, 256)
+    """
+    count = max(1, math.ceil(spp))
+    if sampler != "multijitter":
+        return count
+    side = math.isqrt(count - 1) + 1  # the smallest side with side² ≥ count
+    side += side % 2
+    return side * side
+
+
+def bound_exponent(spps: tuple[int, int], bounds: tuple[float, float]) -> float:
+    """
+    The exponent ``a`` of ``bound ∝ spp^-a`` through two points, held within :data:`EXPONENT_RANGE`.
+
+    >>> bound_exponent((16, 64), (0.017, 0.0031))
+    1.2...
+    >>> bound_exponent((16, 64), (0.01, 0.02))  # the bound rose: noise; taken as ½
+    0.5
+    """
+    (s1, s2), (b1, b2) = spps, bounds
+    if not (b1 > 0 and b2 > 0 and s2 > s1):
+        return EXPONENT_RANGE[0]
+    a = math.log(b1 / b2) / math.log(s2 / s1)
+    return min(max(a, EXPONENT_RANGE[0]), EXPONENT_RANGE[1])
+
+
+def spp_for_tolerance(validate_at, tolerance: float, seed: int = 0, pilots: tuple[int, int] = PILOT_SPP,
+                      spp_max: int | None = None, sampler: str = "multijitter") -> dict:
+    """
+    The smallest spp expected to pass ``tolerance``.
+
+    Parameters
+    ----------
+    validate_at
+        ``validate_at(spp, seed)`` → a validation (``.bound``, ``.verdict``, ``.rendering.raw[0].spp`` and
+        ``.rendering.seconds``; with ``.spp_reason`` and ``.spp_needed``, a validation through a sensor).
+    tolerance
+        The relative tolerance.
+    seed
+        The pilots use ``seed + 2`` and ``seed + 4`` (the validation itself ``seed`` and ``seed + 1``), so the
+        choice does not pick the validation's own noise.
+    spp_max
+        Refuse (naming ``--tolerance``) a choice above this.
+    sampler
+        The sampler (``multijitter``: the count rounded up to a square, :func:`square_spp`).
+
+    Returns
+    -------
+    dict
+        ``spp`` (chosen), ``pilots`` (``[{spp, bound, seconds}]``), ``exponent``, ``margin``, ``why`` (one line).
+    """
+
+    rows, runs = [], []
+    for j, spp in enumerate(pilots):
+        run = validate_at(spp, (seed + 2 + 2 * j) % (2**31))
+        runs.append(run)
+        rows.append({"spp": int(run.rendering.raw[0].spp), "bound": run.bound, "seconds": run.rendering.seconds})
+    last = runs[-1]
+    if hasattr(last, "spp_reason"):  # through a sensor: the bound has the sensor's floor
+        if last.spp_needed is None:
+            raise SkinrenderError(f"--tolerance {tolerance:g}: no spp is expected to pass it: {last.spp_reason} "
+                                  f"(the {rows[-1]['spp']}-spp pilot's bound is {last.bound:.3g})")
+        chosen = square_spp(last.spp_needed * SPP_AUTO_MARGIN, sampler)
+        exponent = None
+        why = (f"the {rows[-1]['spp']}-spp pilot's bound {last.bound:.3g} (sensor and render noise) is expected to "
+               f"meet {tolerance:g} at {last.spp_needed} spp; × {SPP_AUTO_MARGIN:g} margin")
+    else:
+        exponent = bound_exponent((rows[0]["spp"], rows[1]["spp"]), (rows[0]["bound"], rows[1]["bound"]))
+        at = rows[1]["spp"] * (rows[1]["bound"] / tolerance) ** (1 / exponent)
+        chosen = square_spp(at * SPP_AUTO_MARGIN, sampler)
+        why = (f"pilots at {rows[0]['spp']} and {rows[1]['spp']} spp gave bounds {rows[0]['bound']:.3g} and "
+               f"{rows[1]['bound']:.3g} (falling as spp^-{exponent:.2f}); the bound is expected to meet {tolerance:g} "
+               f"at {at:.0f} spp; × {SPP_AUTO_MARGIN:g} margin" + (", up to an even square" if sampler == "multijitter" else ""))
+    if spp_max is not None and chosen > spp_max:
+        raise SkinrenderError(f"--tolerance {tolerance:g}: about {chosen} spp would be needed ({why}), more than "
+                              f"{spp_max} a render may take; ask for a larger tolerance")
+    return {"spp": int(chosen), "pilots": rows, "exponent": exponent, "margin": SPP_AUTO_MARGIN, "why": why}

@@ -1,0 +1,99 @@
+"""
+``skinrender bench calibration`` and ``bench validate`` (:mod:`skinrender.cli.calibration`): one JSON document with
+the rates and their intervals, the plot written whole; refusals name the flag (a seeds count over the cap with its
+estimate, a face, a chart's --level, the other benchmarks' flags); Ctrl-C exits 130 and leaves nothing behind.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from .refusal import assert_refused, run
+
+pytest.importorskip("mitsuba")
+
+
+def test_calibration_document_and_plot(small_chart, tmp_path, capsys):
+    plot = tmp_path / "rates.png"
+    status, out, err = run(["bench", "calibration", "--scene", small_chart, "--seeds", "3", "--spp", "4", "--plot", plot,
+                            "--json"], capsys)
+    assert status == 0, err[-500:]
+    document = json.loads(out)
+    names = [row["name"] for row in document["checks"]]
+    assert names == ["difference", "equivalence"] and document["seeds"] == 3 and document["spp"] == 4
+    row = document["checks"][0]
+    assert row["nominal_alpha"] == 0.01 and len(row["interval"]) == 2 and row["seeds"] == 3
+    assert document["plot"] == str(plot) and plot.stat().st_size > 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rates.png"]  # no temporary file left
+
+
+def test_calibration_through_a_sensor_reports_each_check(small_chart, capsys):
+    status, out, err = run(["bench", "calibration", "--scene", small_chart, "--seeds", "2", "--spp", "4", "--imager",
+                            "sony-imx174", "--mc-variance", "pixels", "--json"], capsys)
+    assert status == 0, err[-500:]
+    document = json.loads(out)
+    assert [row["name"] for row in document["checks"]] == ["mean", "variance", "equivalence", "difference"]
+    assert document["mc_variance"] == "pixels" and document["imager"] == "sony-imx174"
+
+
+def test_validate_rows_in_text(small_chart, capsys):
+    status, out, err = run(["bench", "validate", "--scene", small_chart, "--seeds", "2", "--spp-list", "4,16"], capsys)
+    assert status == 0, err[-500:]
+    header = next(line for line in out.splitlines() if line.startswith("spp"))
+    assert header.split()[:4] == ["spp", "used", "s", "per"] and "2 seeds per spp" in out
+    assert "the bound falls as spp^-" in out
+
+
+@pytest.mark.parametrize("argv, names", [
+    (["calibration", "--seeds", "100000"], ("--seeds", "estimated", "--max-minutes")),
+    (["calibration", "--seeds", "50", "--max-minutes", "0.01"], ("--seeds", "--max-minutes")),
+    (["calibration", "--seeds", "0"], "--seeds"),
+    (["calibration", "--spp", "0"], "--spp"),
+    (["calibration", "--level", "direct"], ("--level", "face")),
+    (["calibration", "--scene", "face"], ("--scene", "face")),
+    (["validate", "--scene", "face"], "--scene"),
+    (["calibration", "--mc-variance", "frames"], ("--mc-variance", "--imager")),
+    (["calibration", "--illuminance", "200"], ("--illuminance", "--imager")),
+    (["calibration", "--plot", "rates.txt"], "--plot"),
+    (["calibration", "--camera", "nope"], "--camera"),
+    (["calibration", "--prevailing", "x"], "--prevailing"),
+    (["calibration", "--seed", "-1"], "--seed"),
+    (["validate", "--spp", "16"], ("--spp", "'bench calibration'")),
+    (["validate", "--plot", "x.png"], "--plot"),
+    (["validate", "--spp-list", "4,4"], "--spp-list"),
+    (["validate", "--level", "direct"], "--level"),
+    (["calibration", "--repeat", "2"], "--repeat"),
+    (["calibration", "--size", "16"], "--size"),
+    (["analytic", "--seeds", "3"], "--seeds"),
+    (["render", "--imager", "sony-imx174"], "--imager"),
+])
+def test_refusals_name_the_flag(argv, names, tmp_path, capsys):
+    assert_refused(["bench", *argv], names, capsys, output=tmp_path)
+
+
+def test_render_bench_checks_its_camera_first(capsys):
+    assert_refused(["bench", "render", "--quick", "--camera", "gbell:9@450,540"], "--camera", capsys)
+
+
+@pytest.mark.skipif(not hasattr(signal, "SIGINT") or os.name != "posix", reason="POSIX")
+def test_ctrl_c_exits_130_and_leaves_nothing(tmp_path):
+    plot = tmp_path / "rates.png"
+    argv = [sys.executable, "-c", "import sys; from skinrender.cli import main; sys.exit(main())", "bench",
+            "calibration", "--seeds", "5000", "--spp", "64", "--max-minutes", "10000", "--plot", str(plot), "--json"]
+    child = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    deadline = time.monotonic() + 120
+    while "seed 0:" not in (line := child.stderr.readline()) and time.monotonic() < deadline:
+        assert line, "the bench ended before it could be interrupted"
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=60)
+    assert child.returncode == 130, err[-800:]
+    assert err.strip().splitlines()[-1] == "skinrender bench: interrupted" and out == ""
+    assert list(tmp_path.iterdir()) == []

@@ -1,0 +1,113 @@
+"""
+``skinrender validate`` on a chart (:mod:`skinrender.cli.chart_validation`): the exit status says the verdict
+(0 pass, 1 fail, 3 inconclusive), the text has headed columns with full patch names, the JSON one document with the
+contract's keys and the verdict's; ``--spp auto`` says what it chose and why; bad tolerances and flags that go
+elsewhere are refused naming the flag.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from .refusal import assert_refused, run
+
+pytest.importorskip("mitsuba")
+
+CAM = "gbell:9@450,540,610"
+LIGHTS = ["--prevailing", "3300", "--calibration", "4800"]
+
+
+@pytest.mark.parametrize("extra, verdict, status", [
+    (["--spp", "256", "--tolerance", "0.05"], "pass", 0),
+    (["--spp", "4", "--tolerance", "0.002"], "inconclusive", 3),
+])
+def test_exit_status_says_the_verdict(small_chart, extra, verdict, status, capsys):
+    code, out, err = run(["validate", small_chart, "--camera", CAM, *LIGHTS, *extra, "--json"], capsys)
+    document = json.loads(out)
+    assert code == status == document["exit_status"], err
+    assert document["verdict"] == verdict and document["passed"] is (verdict == "pass")
+    assert set(document["checks"]) == {"equivalence", "difference"}
+    assert document["checks"]["equivalence"]["tolerance"] == float(extra[-1])
+    row = document["patches"][0]
+    assert {"name", "rendered", "analytic", "rel_error", "tolerance", "error", "bound", "shown"} <= set(row)
+    if verdict == "inconclusive":
+        assert document["spp_needed"] > 4
+
+
+def test_30_kelvin_at_4_spp_does_not_pass(capsys):
+    """The issue's case: at 30 K the pixels are so skewed that their means are no longer normal: the verdict says
+    so instead of passing (exit status 3)."""
+    code, out, err = run(["validate", "macbeth", "--camera", CAM, "--prevailing", "30", "--calibration", "5900",
+                          "--spp", "4", "--tolerance", "0.002", "--json"], capsys)
+    document = json.loads(out)
+    assert code == 3 and document["verdict"] == "inconclusive" and not document["passed"]
+    assert "too skewed" in document["checks"]["equivalence"]["reason"]
+
+
+def test_a_shown_bias_fails_with_exit_status_1(small_chart, capsys):
+    """The impulse at the grid's end under 1000 K: the render's known bias (~1e-4, Planck changing ~9 % per nm)
+    is shown beyond a 3e-5 tolerance."""
+    code, out, err = run(["validate", small_chart, "--camera", "impulse@400,550,700", "--prevailing", "1000",
+                          "--calibration", "25000", "--spp", "64", "--tolerance", "0.00003", "--json"], capsys)
+    document = json.loads(out)
+    assert code == 1 and document["verdict"] == "fail" and document["spp_needed"] is None
+    assert document["checks"]["difference"]["verdict"] == "fail"
+
+
+def test_text_has_headed_columns_and_full_names(capsys):
+    code, out, err = run(["validate", "macbeth", "--camera", CAM, *LIGHTS, "--spp", "16", "--tolerance", "0.05"],
+                         capsys)
+    assert code == 0, err
+    header = next(line for line in out.splitlines() if line.startswith("patch"))
+    assert header.split() == ["patch", "channel", "analytic", "rendered", "error", "bound", "tolerance", "shown"]
+    assert "neutral 3.5 (1.05 D)" in out and "purplish blue" in out  # full names, not cut at 28 characters
+    assert "equivalence: PASS" in out and "difference:" in out and "verdict: PASS (exit status 0)" in out
+
+
+def test_spp_auto_says_what_it_chose_and_why(small_chart, capsys):
+    code, out, err = run(["validate", small_chart, "--camera", CAM, *LIGHTS, "--spp", "auto", "--tolerance", "0.01",
+                          "--json"], capsys)
+    document = json.loads(out)
+    choice = document["spp_auto"]
+    assert [p["spp"] for p in choice["pilots"]] == [16, 64] and choice["spp"] == document["spp"]
+    assert "pilots at 16 and 64 spp" in choice["why"] and document["spp_requested"] == "auto"
+    assert code == document["exit_status"]
+
+
+@pytest.mark.parametrize("extra, names", [
+    (["--tolerance", "0"], "--tolerance"),
+    (["--tolerance", "1"], "--tolerance"),
+    (["--tolerance", "-0.01"], "--tolerance"),
+    (["--tolerance", "1%"], "--tolerance"),
+    (["--spp", "auto"], ("--spp auto", "--tolerance")),
+    (["--spp", "many"], "--spp"),
+    (["--gamut", "--imager", "sony-imx174"], ("--gamut", "--imager")),
+])
+def test_bad_input_refused(extra, names, capsys):
+    assert_refused(["validate", "macbeth", "--camera", CAM, *LIGHTS, *extra], names, capsys)
+
+
+@pytest.mark.parametrize("extra, name", [(["--tolerance", "0.01"], "--tolerance"),
+                                         (["--spp", "auto", "--tolerance", "0.01"], "--spp auto")])
+def test_the_face_refuses_the_chart_flags(extra, name, capsys):
+    assert_refused(["validate", "face", "--camera", CAM, *LIGHTS, *extra], name, capsys)
+
+
+def test_help_documents_the_exit_statuses_and_the_default(capsys):
+    code, out, _ = run(["validate", "--help"], capsys)
+    assert code == 0 and "0 pass, 1 fail, 3 inconclusive" in out and "default 0.01" in out
+
+
+def test_gamut_verdict_joins_the_patches(small_chart, capsys):
+    code, out, err = run(["validate", small_chart, "--camera", CAM, *LIGHTS, "--spp", "64", "--tolerance", "0.05",
+                          "--gamut", "--json"], capsys)
+    document = json.loads(out)
+    gamut = document["gamut"]
+    assert len(gamut["bound"]) == len(gamut["illuminants_K"]) + 1 and gamut["verdict"]["tolerance"] == 0.05
+    parts = {document["checks"]["equivalence"]["verdict"], gamut["verdict"]["verdict"]}
+    expected = next(outcome for outcome in ("fail", "inconclusive", "pass") if outcome in parts)
+    assert document["verdict"] == expected and code == document["exit_status"]
+    assert "gamut equivalence:" in run(["validate", small_chart, "--camera", CAM, *LIGHTS, "--spp", "64",
+                                        "--tolerance", "0.05", "--gamut"], capsys)[1]
