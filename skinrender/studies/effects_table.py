@@ -9,7 +9,7 @@ level: how far the effect moves the skin's mean NCC from Eq. 4 (``eq4_shift``,
 with its 95 % upper bound) against the detection budget, how it changes the
 true- and false-positive rates from ``direct``'s, what a shift of the budget
 would do to them, and the seconds the level took. ``skinrender ladder
---effects`` prints it (``--plot``: :func:`skinrender.studies.figures.figure_effects`).
+--effects`` prints it (``--plot``: :func:`skinrender.studies.effect_figures.figure_effects`).
 
 -   :data:`SKIN_TONES`: the default skins (the skin model at three melanin
     fractions).
@@ -76,8 +76,8 @@ class EffectsTable:
                 "rows": self.rows, "verdict": verdict.outcome, "exit_status": EXIT_STATUS[verdict.outcome]}
 
     def figure(self, path) -> Path:
-        """Draw the table (:func:`skinrender.studies.figures.figure_effects`) to a PNG; returns ``path``."""
-        from .figures import figure_effects
+        """Draw the table (:func:`skinrender.studies.effect_figures.figure_effects`) to a PNG; returns ``path``."""
+        from .effect_figures import figure_effects
 
         title = (f"What each effect does to skin detection: {self.camera}, {self.prevailing:g} K balanced to "
                  f"{self.calibration:g} K, {self.size[0]}×{self.size[1]} px, {self.spp} spp per level")

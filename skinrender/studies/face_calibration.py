@@ -21,6 +21,10 @@ and its row says so.
     ``skinrender bench calibration --scene face`` to register.
 -   :data:`SEED_STEP`: the seeds of two independent validations are this far
     apart (each renders ``seed … seed + K − 1``).
+-   :func:`estimate_face_seconds`: the time a run of validations takes.
+
+``skinrender bench calibration --scene face [--level L]`` runs
+:func:`face_calibration` (:mod:`skinrender.cli.calibration`).
 
 Units: seconds s, spp samples per pixel, rates fractions, temperatures K.
 
@@ -41,10 +45,29 @@ from ..rendering.face.limits import REPLICATES
 from ..rendering.face.validation import LIMITS_SCENE_FREE, validate_face
 from .bench import machine
 
-__all__ = ["SEED_STEP", "face_run", "face_calibration"]
+__all__ = ["SEED_STEP", "SECONDS_LIMITS", "face_run", "face_calibration", "estimate_face_seconds"]
 
 SEED_STEP = REPLICATES
 """Seeds between two independent validations: each renders its seed and the next ``K − 1``."""
+
+SECONDS_LIMITS = 3.0
+"""The white furnace and the closed sphere of one validation, s (measured 1.5–5 on 2 cores)."""
+
+
+def estimate_face_seconds(seeds: int, pixels: int, spp: int) -> float:
+    """
+    Wall time of ``seeds`` validations of a face of ``pixels`` pixels at ``spp`` (split over the replicates, each at
+    least :data:`~skinrender.rendering.face.limits.SPP_REPLICATE_MIN`), s: the replicates
+    (:func:`skinrender.studies.face_sweep.estimate_seconds` on one core) and the scene-free limits.
+
+    >>> round(estimate_face_seconds(10, 256 * 256, 256))  # measured: 70 s (6.8 s a validation, lightly loaded)
+    97
+    """
+    from ..rendering.face.limits import SPP_REPLICATE_MIN
+    from .face_sweep import estimate_seconds
+
+    each = max(SPP_REPLICATE_MIN, -(-int(spp) // REPLICATES))
+    return seeds * (estimate_seconds(REPLICATES, pixels, each, 1) + SECONDS_LIMITS)
 
 
 def _eq4_exact(level) -> bool:
@@ -98,9 +121,9 @@ def face_calibration(level: str = PHYSICS_BASE, seeds: int = 10, camera_="gbell:
     dict
         ``machine``, the settings, ``checks``: per check ``{name, nominal_alpha, nominal ("equal to" for a
         difference test, "at most" for eq4_shift where Eq. 4 holds, None where its null does not hold), failures,
-        trials, rate, interval (95 %), consistent (α inside the interval, or below its top for "at most"; None
+        trials (and ``seeds``, the same, as the chart's calibration names it), rate, interval (95 %), consistent (α inside the interval, or below its top for "at most"; None
         without a null), outcomes ({outcome: count}), test}``, ``runs`` (``[{seed, seconds, outcomes,
-        statistics}]``) and ``elapsed_s``.
+        statistics}]``), ``tests`` (each check's test in words) and ``elapsed_s``.
     """
     if isinstance(seeds, bool) or not isinstance(seeds, int) or seeds < 1:
         raise SkinrenderError(f"seeds must be an integer ≥ 1, got {seeds!r}")
@@ -132,7 +155,7 @@ def face_calibration(level: str = PHYSICS_BASE, seeds: int = 10, camera_="gbell:
         else:
             nominal, consistent = None, None
         rows.append({"name": name, "nominal_alpha": alpha if nominal else None, "nominal": nominal,
-                     "failures": failures, "trials": trials, "rate": failures / trials, "interval": [low, high],
+                     "failures": failures, "trials": trials, "seeds": trials, "rate": failures / trials, "interval": [low, high],
                      "consistent": consistent, "outcomes": {o: outcomes.count(o) for o in sorted(set(outcomes))},
                      "test": found[0].test,
                      **({} if nominal else {"undefined": "Eq. 4 does not hold at this level: a fail is a finding "
@@ -141,4 +164,7 @@ def face_calibration(level: str = PHYSICS_BASE, seeds: int = 10, camera_="gbell:
             "camera": getattr(camera_, "name", str(camera_)), "prevailing_K": prevailing,
             "calibration_K": calibration, "spp_requested": spp, "spp": runs[0]["spp"], "size": size,
             "seeds": seeds, "first_seed": first_seed, "seed_step": SEED_STEP, "checks": rows, "runs": runs,
+            "tests": {row["name"]: row["test"] for row in rows},
+            "imager": None if not imaging else getattr(imaging.get("imager_"), "name", imaging.get("imager_")),
+            "illuminance_lux": None if not imaging else imaging.get("illuminance_lux"),
             "elapsed_s": time.perf_counter() - begun}

@@ -161,8 +161,9 @@ def figure_calibration(result: dict, path: str | Path) -> Path:
         axis.plot([lo, hi], [y, y], "-", color="tab:blue", lw=2, label="observed, 95 % interval" if y == 0 else None)
         axis.plot(check["rate"], y, "o", color="tab:blue")
         marker = "|" if check["nominal"] == "equal to" else "<"
-        axis.plot(check["nominal_alpha"], y, marker, color="tab:red", ms=14 if marker == "|" else 8, mew=2,
-                  label="nominal α (| equal to, < at most)" if y == 0 else None)
+        if check["nominal_alpha"] is not None:  # None: no null (a face's eq4_shift where Eq. 4 does not hold)
+            axis.plot(check["nominal_alpha"], y, marker, color="tab:red", ms=14 if marker == "|" else 8, mew=2,
+                      label="nominal α (| equal to, < at most)" if y == 0 else None)
     axis.set_yticks(range(len(checks)), [f"{c['name']} ({c['failures']}/{c['seeds']})" for c in checks])
     axis.set_ylim(-0.6, len(checks) - 0.4)
     axis.set_xlim(0, max([0.1] + [c["interval"][1] * 1.05 for c in checks]))
@@ -432,43 +433,4 @@ def figure_skin_model(wavelength: NDArrayFloat, reflectance: NDArrayFloat, label
     axis.set(xlabel="wavelength (nm)", ylabel="reflectance", xlim=(wavelength[0], wavelength[-1]), ylim=(0, None),
              title="Skin model against measured skin")
     axis.legend(fontsize=7)
-    return _save(figure, path)
-
-
-def figure_effects(rows: list[dict], title: str, path: str | Path) -> Path:
-    """
-    The effects table (:mod:`skinrender.studies.effects_table`): per level and skin tone the skin's NCC shift from
-    Eq. 4 (to its 95 % upper bound; the tone's budget a dash), the TPR and FPR change from ``direct``, the seconds.
-    ``rows``: ``{"tone", "level", "eq4_shift", "eq4_shift_bound", "budget", "tpr_change", "fpr_change",
-    "seconds"}`` (``None`` left out).
-    """
-    plt = _pyplot()
-    tones = list(dict.fromkeys(row["tone"] for row in rows))
-    levels = list(dict.fromkeys(row["level"] for row in rows))
-    width = 0.8 / max(len(tones), 1)
-    figure, axes = plt.subplots(1, 4, figsize=(16, 4.2))
-    colours = ["#e8b88a", "#b07848", "#5a3820", *_LABEL_COLOURS]
-    value = lambda row, key: np.nan if row.get(key) is None else row[key]  # noqa: E731
-    for t, tone in enumerate(tones):
-        mine = {row["level"]: row for row in rows if row["tone"] == tone}
-        x = np.arange(len(levels)) + (t - (len(tones) - 1) / 2) * width
-        get = lambda key: np.array([value(mine.get(level, {}), key) for level in levels], dtype=float)  # noqa: E731
-        shift, bound, budget = get("eq4_shift"), get("eq4_shift_bound"), get("budget")
-        axes[0].bar(x, shift, width, color=colours[t % len(colours)], label=f"{tone} skin")
-        axes[0].errorbar(x, shift, yerr=[np.zeros_like(shift), np.maximum(bound - shift, 0)], fmt="none",
-                         ecolor="k", lw=0.8)
-        axes[0].plot(x, budget, "_", color="k", ms=14, mew=2)
-        axes[1].bar(x, get("tpr_change"), width, color=colours[t % len(colours)])
-        axes[2].bar(x, get("fpr_change"), width, color=colours[t % len(colours)])
-        axes[3].bar(x, get("seconds"), width, color=colours[t % len(colours)])
-    for axis, name in zip(axes, ("skin's NCC shift from Eq. 4 (— budget)", "TPR change from direct",
-                                 "FPR change from direct", "seconds per level")):
-        axis.set_xticks(np.arange(len(levels)), [level.replace("+", "+\n") for level in levels], fontsize=8)
-        axis.set_title(name, fontsize=10)
-        axis.tick_params(labelsize=8)
-    for axis in axes[1:3]:
-        axis.axhline(0, color="k", lw=0.6)
-    axes[0].set_yscale("symlog", linthresh=1e-3)
-    axes[0].legend(fontsize=8)
-    figure.suptitle(title, fontsize=11)
     return _save(figure, path)
