@@ -60,8 +60,8 @@ def estimate_face_seconds(seeds: int, pixels: int, spp: int) -> float:
     least :data:`~skinrender.rendering.face.limits.SPP_REPLICATE_MIN`), s: the replicates
     (:func:`skinrender.studies.face_sweep.estimate_seconds` on one core) and the scene-free limits.
 
-    >>> round(estimate_face_seconds(10, 256 * 256, 256))  # measured: 70 s (6.8 s a validation, lightly loaded)
-    97
+    >>> round(estimate_face_seconds(10, 256 * 256, 256))  # measured: 68–140 s (6.8–14 s a validation, 2 cores)
+    240
     """
     from ..rendering.face.limits import SPP_REPLICATE_MIN
     from .face_sweep import estimate_seconds
