@@ -308,4 +308,4 @@ def test_ladder_work_is_capped_by_its_estimated_time(capsys):
 
     line = assert_refused(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--size", "1000",
                            "--spp", "100000"], ("--spp", "--max-minutes"), capsys)
-    assert "6 levels of 1000×1000 px at 100000 spp would take about" in line
+    assert "6 levels of 12 × 1000×1000 px at 8334 spp would take about" in line  # 12 replicates each
