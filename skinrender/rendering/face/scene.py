@@ -27,12 +27,17 @@ Scene file fields
 (horizontal, degrees), ``width``, ``height`` (pixels); ``[mesh]`` ``file``
 (``head``: :func:`skinrender.datasets.head.mesh_head`; or an ``.obj`` or
 ``.ply`` path, relative to the scene file), ``translate`` (m), ``rotate``
-(degrees about x, then y, then z), ``scale``, ``smooth`` (shading normals;
-default false: flat, which conserves energy — shading normals lose ~0.5 % in
-the white furnace, measured); ``[key]`` (required), ``[fill]`` and
-``[environment]`` lights: ``temperature`` (K), ``illuminance`` (lx, at the
-camera target facing a point light; on a surface open to the whole
-environment) and a point light's ``position`` (m); ``[[prop]]``: ``name``,
+(degrees about x, then y, then z), ``scale``, ``smooth`` (interpolated
+shading normals, default true: no facets in the pictures; ``false``: flat,
+each triangle's own normal, which conserves energy — shading normals lose
+energy in the white furnace, measured in ``docs/face-verdicts.md``);
+``[key]`` (required), ``[fill]`` and ``[environment]`` lights:
+``temperature`` (K), ``illuminance`` (lx, at the camera target facing a
+point light; on a surface open to the whole environment) and a point
+light's ``position`` (m); the key light's ``ambient`` (default 0): the share
+of its illuminance added, at its temperature, as a uniform sky (the base
+level's fill light: no pure-black shadow, and still one spectrum, so the
+base's limit holds); ``[[prop]]``: ``name``,
 ``reflectance``, ``shape`` (``rectangle``, the square [−1, 1]² facing +z, or
 ``cube``, [−1, 1]³), ``size`` (m: x, y and a cube's z), ``position`` (m, its
 centre), ``rotate`` (degrees about x, y, z).
@@ -136,7 +141,17 @@ class FaceScene:
     environment: Light | None = None
     props: tuple[Prop, ...] = ()
     source: str = ""
-    mesh_smooth: bool = False
+    mesh_smooth: bool = True
+    ambient: float = 0.0
+    """The share of the key light's illuminance added at its temperature as a uniform sky (the base's fill)."""
+
+    @property
+    def ambient_light(self) -> Light | None:
+        """The key light's ambient sky: a uniform environment at the key's temperature and ``ambient`` times its
+        illuminance (``None`` without a key light or an ambient share)."""
+        if self.key is None or not self.ambient > 0:
+            return None
+        return Light(self.key.temperature, self.key.illuminance * self.ambient)
 
     def resized(self, width: int, height: int | None = None) -> FaceScene:
         """The scene at another image size, pixels (the field of view kept)."""
@@ -346,6 +361,7 @@ _TOP = {"name", "description", "skin", "camera", "mesh", "key", "fill", "environ
 _CAMERA = {"position", "target", "up", "fov", "width", "height"}
 _MESH = {"file", "translate", "rotate", "scale", "smooth"}
 _POINT = {"position", "temperature", "illuminance"}
+_KEY = _POINT | {"ambient"}
 _PROP = {"name", "reflectance", "shape", "size", "position", "rotate"}
 
 
@@ -385,9 +401,10 @@ def load_face_scene(spec: str | Path | FaceScene) -> FaceScene:
     mesh = (_mesh(mesh_table, at, path.parent), _vector(mesh_table, "translate", at, (0.0, 0.0, 0.0)),
             _vector(mesh_table, "rotate", at, (0.0, 0.0, 0.0)),
             _number(mesh_table, "scale", at, 0.0, 1e6, default=1.0, open_low=True))
-    lights = [_light(_table(table, name, where, _POINT if name != "environment" else _POINT - {"position"},
-                            required=name == "key"), f"{where}: [{name}]", name != "environment")
-              for name in ("key", "fill", "environment")]
+    known = {"key": _KEY, "fill": _POINT, "environment": _POINT - {"position"}}
+    tables = {name: _table(table, name, where, known[name], required=name == "key") for name in known}
+    lights = [_light(tables[name], f"{where}: [{name}]", name != "environment") for name in known]
+    ambient = _number(tables["key"], "ambient", f"{where}: [key]", 0.0, 10.0, default=0.0)
     skin = _string(table, "skin", where)
     skin_reflectance_of(skin, GRID_DEFAULT, f"{where}: field 'skin'")
     entries = table.get("prop", [])
@@ -418,9 +435,9 @@ def load_face_scene(spec: str | Path | FaceScene) -> FaceScene:
         names = ", ".join(repr(n) for n in duplicated)
         raise SkinrenderError(f"{where}: prop names must be unique and not 'skin' or 'background' (they "
                               f"name labels), got {names} more than once or reserved")
-    smooth = mesh_table.get("smooth", False)
+    smooth = mesh_table.get("smooth", True)
     if not isinstance(smooth, bool):
         raise SkinrenderError(f"{where}: [mesh]: field 'smooth' must be true or false, got {smooth!r}")
     return FaceScene(_string(table, "name", where, default=path.stem),
                      _string(table, "description", where, ""), camera, *mesh, skin, *lights, tuple(props),
-                     where, smooth)
+                     where, smooth, ambient)
