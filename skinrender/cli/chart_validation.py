@@ -31,8 +31,9 @@ HELP_TOLERANCE = (
     "family-wise 95 %% confidence; fail: one shown outside it; inconclusive: the samples cannot tell (spp_needed "
     "says how many would)")
 
-EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the verdict of --tolerance; a face: 1 when "
-                   "a check fails), 2 a refused input, 130 interrupted")
+EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the verdict of --tolerance; a face: its "
+                   "checks' verdicts combined, eq4_shift held to the detection budget), 2 a refused input, 130 "
+                   "interrupted")
 
 
 def add_check_arguments(p) -> None:

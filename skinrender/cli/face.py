@@ -63,23 +63,30 @@ def add_face_arguments(parser: argparse.ArgumentParser) -> None:
 
 def add_parsers(commands) -> None:
     """Add the parser of ladder."""
-    from ..studies.ladder import LEVELS_DEFAULT
+    from ..studies.ladder import LEVELS_DEFAULT, REPLICATES_LADDER
 
     p = commands.add_parser("ladder", run=command_ladder,
                             help=f"the face rendered at each level of physics ({level_names(True)}, "
-                            "all), with the skin's NCC and the skin locus's detection rates at each")
+                            "all), with the skin's NCC against Eq. 4's within the detection budget and the skin "
+                            "locus's detection rates at each (exit 0 every level within its budget, 1 one beyond, "
+                            "3 one undecided)")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--prevailing", required=True, help="the key light: " + HELP_PLANCKIAN)
     p.add_argument("--calibration", required=True, help="the white balance: " + HELP_PLANCKIAN)
-    p.add_argument("--skin", help=HELP_SKIN)
+    p.add_argument("--skin", action="append", help=HELP_SKIN + "; repeat it with --effects")
+    p.add_argument("--effects", action="store_true",
+                   help="the effects table instead: the base and each effect alone (or --levels, with direct) for "
+                   "each --skin (default light, medium and dark: the skin model at melanin 0.02, 0.13, 0.3): the "
+                   "skin's shift from Eq. 4 against the budget, the TPR/FPR change from direct, the seconds")
     p.add_argument("--scene", default="face", help="face scene: a bundled name (face) or a .toml path")
-    p.add_argument("--levels", default=",".join(LEVELS_DEFAULT),
+    p.add_argument("--levels",
                    help="comma-separated levels (" + _physics_help() + "); default "
-                   + ",".join(LEVELS_DEFAULT))
+                   + ",".join(LEVELS_DEFAULT) + " (with --effects: direct and each effect alone)")
     p.add_argument("--size", metavar="PX", default=str(LADDER_SIZE_DEFAULT),
                    help=f"image side in pixels (default {LADDER_SIZE_DEFAULT})")
     p.add_argument("--spp", metavar="N", default=str(LADDER_SPP_DEFAULT),
-                   help=f"samples per pixel (default {LADDER_SPP_DEFAULT})")
+                   help=f"samples per pixel of a level in all, split over {REPLICATES_LADDER} replicates whose "
+                   f"spread is the shift's noise (default {LADDER_SPP_DEFAULT})")
     p.add_argument("--seed", metavar="S", default="0", help="sampler seed, every level the same (default 0)")
     p.add_argument("--imager",
                    help="image sensor of the noise level: a preset or a TOML (default sony-icx418)")
@@ -90,8 +97,9 @@ def add_parsers(commands) -> None:
                    help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral)")
     p.add_argument("--plot", metavar="PNG",
                    help="write the ladder's figure to this PNG: per level the render, the label mask, the "
-                   "detected mask and the skin pixels' NCC over the analytic skin locus")
-    add_max_minutes(p, "the levels × --size² × --spp")
+                   "detected mask and the skin pixels' NCC over the analytic skin locus with the budget; with "
+                   "--effects, the table's bars")
+    add_max_minutes(p, "the levels × --size² × --spp (with --effects, × the skins)")
     add_common(p)
 
 
@@ -220,12 +228,13 @@ def is_face_scene(spec: str) -> bool:
     return face_scene(spec)
 
 
-@interruptible
-def command_ladder(args: argparse.Namespace) -> None:
+def _ladder_inputs(args: argparse.Namespace) -> dict:
+    """The ladder's flags, each checked with a one-line error naming it (``--skin`` repeats only with
+    ``--effects``; ``--levels`` defaults to the base and each effect alone there)."""
+    from ..rendering.face.effects import LEVELS_EACH
     from ..rendering.face.scene import load_face_scene, skin_reflectance_of
-    from ..studies.ladder import ladder
+    from ..spectra import GRID_DEFAULT
 
-    plot = check_output(getattr(args, "plot", None), "--plot", (".png",))
     cam = camera_of(args)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
     _check_light(cam, temperatures)
@@ -233,41 +242,83 @@ def command_ladder(args: argparse.Namespace) -> None:
     spp = integer_in(args.spp, "--spp", 1, SPP_MAX)
     seed = check_seed(integer_in(args.seed, "--seed", 0, SEED_MAX))
     scene = flag("--scene", load_face_scene, args.scene)
-    if args.skin is not None:
-        from ..spectra import GRID_DEFAULT
+    skins = list(args.skin or [])
+    if len(skins) > 1 and not args.effects:
+        raise SkinrenderError(f"--skin: one skin for the ladder (several go with --effects), got {len(skins)}")
+    for skin in skins:
+        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
+    from ..studies.ladder import LEVELS_DEFAULT
 
-        skin_reflectance_of(args.skin, GRID_DEFAULT, "--skin")
-    levels = levels_of(args.levels)
+    default = ",".join(LEVELS_EACH if args.effects else LEVELS_DEFAULT)
+    levels = levels_of(default if args.levels is None else args.levels)
+    if args.effects and "direct" not in levels:
+        raise SkinrenderError(f"--levels: the effects table compares each effect with direct; add it, got "
+                              f"{','.join(levels)!r}")
     variant_of(args.variant)
     lux = noise_sensor(args, levels)
+    from ..studies.effects_table import SKIN_TONES
     from ..studies.face_sweep import estimate_seconds
+    from ..studies.ladder import REPLICATES_LADDER
     from ..workload import check_work
 
-    check_work(estimate_seconds(len(levels), size * size, spp, os.cpu_count() or 1), "--spp",
-               f"{len(levels)} levels of {size}×{size} px at {spp} spp", args.max_minutes,
+    renders = len(levels) * REPLICATES_LADDER * (len(skins or SKIN_TONES) if args.effects else 1)
+    each = -(-spp // REPLICATES_LADDER)
+    check_work(estimate_seconds(renders, size * size, each, 1), "--spp",
+               f"{len(levels)} levels of {REPLICATES_LADDER} × {size}×{size} px at {each} spp"
+               + (f" for {len(skins or SKIN_TONES)} skins" if args.effects else ""), args.max_minutes,
                fewer="lower --spp or --size, or name fewer --levels")
-    result = ladder(cam, temperatures["prevailing"], temperatures["calibration"], args.skin, levels, spp,
-                    seed, size, scene, args.variant, imager=args.imager, illuminance=lux,
-                    progress=lambda line: print(line, file=sys.stderr))
-    document = result.document()
+    return {"camera_": cam, "prevailing": temperatures["prevailing"], "calibration": temperatures["calibration"],
+            "levels": levels, "spp": spp, "seed": seed, "size": size, "scene": scene, "variant": args.variant,
+            "imager": args.imager, "illuminance": lux, "skins": skins}
+
+
+def _shown(value, digits: str = ".4f") -> str:
+    return "—" if value is None else format(value, digits)
+
+
+@interruptible
+def command_ladder(args: argparse.Namespace) -> None:
+    from ..studies.effects_table import effects_table
+    from ..studies.ladder import ladder
+
+    plot = check_output(getattr(args, "plot", None), "--plot", (".png",))
+    inputs = _ladder_inputs(args)
+    skins = inputs.pop("skins")
+    say = lambda line: print(line, file=sys.stderr)  # noqa: E731
+    if args.effects:
+        result = effects_table(**inputs, skins=None if not skins else {skin: skin for skin in skins}, progress=say)
+        document = result.document()
+        rows = [[row["tone"], row["level"], _shown(row["eq4_shift"], ".3g"), _shown(row["budget"], ".3g"),
+                 {True: "yes", False: "NO", None: "—"}[row["within_budget"]], _shown(row["tpr"], ".3f"),
+                 _shown(row["tpr_change"], "+.3f"), _shown(row["fpr"], ".3f"), _shown(row["fpr_change"], "+.3f"),
+                 f"{row['seconds']:.1f}"] for row in document["rows"]]
+        text = (f"what each effect does to skin detection: {result.camera}, {result.prevailing:g} K balanced to "
+                f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px, {result.spp} spp per level\n"
+                + table(rows, ["skin", "level", "shift", "budget", "within", "TPR", "ΔTPR", "FPR", "ΔFPR", "s"]))
+    else:
+        result = ladder(**inputs, skin=skins[0] if skins else None, progress=say)
+        document = result.document()
+
+        def triple(values) -> str:
+            return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
+
+        rows = [[row["name"], f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]),
+                 _shown(row["eq4_shift"], ".3g"), {True: "yes", False: "NO", None: "—"}[row["within_budget"]],
+                 _shown(row["tpr"], ".3f"), _shown(row["fpr"], ".3f")] for row in document["levels"]]
+        budget = document["budget"]
+        text = (f"the face ({result.skin}) through {result.camera}, {result.prevailing:g} K balanced to "
+                f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px; Eq. 4's skin NCC "
+                f"{triple(result.skin_ncc_analytic)}; detection budget {_shown(budget['budget'])} "
+                f"({budget['reason']}):\n"
+                + table(rows, ["level", "s", "spp", "skin NCC r g b", "shift", "within", "TPR", "FPR"]))
     if plot is not None:
         write_output(plot, result.figure, "--plot")
         document["plot"] = str(plot)
-
-    def triple(values) -> str:
-        return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
-
-    def rate(value) -> str:
-        return "—" if value is None else f"{value:.3f}"
-
-    rows = [[row["name"], f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]),
-             triple(row["skin_ncc_std"]), rate(row["tpr"]), rate(row["fpr"])] for row in document["levels"]]
-    text = (f"the face ({result.skin}) through {result.camera}, {result.prevailing:g} K balanced to "
-            f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px; Eq. 4's skin NCC "
-            f"{triple(result.skin_ncc_analytic)}:\n"
-            + table(rows, ["level", "s", "spp", "skin NCC r g b", "std r g b", "TPR", "FPR"])
-            + (f"\nfigure: {plot}" if plot is not None else ""))
+        text += f"\nfigure: {plot}"
+    text += f"\nverdict: {document['verdict'].upper().replace('_', ' ')} (exit status {document['exit_status']})"
     emit(args, document, text)
+    if document["exit_status"]:
+        raise SystemExit(document["exit_status"])
 
 
 def command_render_face(args: argparse.Namespace, scene) -> None:

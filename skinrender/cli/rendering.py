@@ -29,7 +29,7 @@ def add_parsers(commands) -> None:
                                   "preview)"),
                        ("validate", "render a chart and check every patch against Eq. 4: pass, fail or "
                                     "inconclusive within --tolerance; a face: the analytic limits that hold at its "
-                                    "level of physics")):
+                                    "level of physics and Eq. 4's error against the detection budget")):
         p = commands.add_parser(name, run=command_validate if name == "validate" else command_render, help=text)
         p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path "
                        "(see scenes/)")

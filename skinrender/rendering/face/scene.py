@@ -27,12 +27,17 @@ Scene file fields
 (horizontal, degrees), ``width``, ``height`` (pixels); ``[mesh]`` ``file``
 (``head``: :func:`skinrender.datasets.head.mesh_head`; or an ``.obj`` or
 ``.ply`` path, relative to the scene file), ``translate`` (m), ``rotate``
-(degrees about x, then y, then z), ``scale``, ``smooth`` (shading normals;
-default false: flat, which conserves energy — shading normals lose ~0.5 % in
-the white furnace, measured); ``[key]`` (required), ``[fill]`` and
-``[environment]`` lights: ``temperature`` (K), ``illuminance`` (lx, at the
-camera target facing a point light; on a surface open to the whole
-environment) and a point light's ``position`` (m); ``[[prop]]``: ``name``,
+(degrees about x, then y, then z), ``scale``, ``smooth`` (interpolated
+shading normals, default true: no facets in the pictures; ``false``: flat,
+each triangle's own normal, which conserves energy — shading normals lose
+energy in the white furnace, measured in ``docs/face-verdicts.md``);
+``[key]`` (required), ``[fill]`` and ``[environment]`` lights:
+``temperature`` (K), ``illuminance`` (lx, at the camera target facing a
+point light; on a surface open to the whole environment) and a point
+light's ``position`` (m); the key light's ``ambient`` (default 0): the share
+of its illuminance added, at its temperature, as a uniform sky (the base
+level's fill light: no pure-black shadow, and still one spectrum, so the
+base's limit holds); ``[[prop]]``: ``name``,
 ``reflectance``, ``shape`` (``rectangle``, the square [−1, 1]² facing +z, or
 ``cube``, [−1, 1]³), ``size`` (m: x, y and a cube's z), ``position`` (m, its
 centre), ``rotate`` (degrees about x, y, z).
@@ -138,7 +143,17 @@ class FaceScene:
     environment: Light | None = None
     props: tuple[Prop, ...] = ()
     source: str = ""
-    mesh_smooth: bool = False
+    mesh_smooth: bool = True
+    ambient: float = 0.0
+    """The share of the key light's illuminance added at its temperature as a uniform sky (the base's fill)."""
+
+    @property
+    def ambient_light(self) -> Light | None:
+        """The key light's ambient sky: a uniform environment at the key's temperature and ``ambient`` times its
+        illuminance (``None`` without a key light or an ambient share)."""
+        if self.key is None or not self.ambient > 0:
+            return None
+        return Light(self.key.temperature, self.key.illuminance * self.ambient)
 
     def resized(self, width: int, height: int | None = None) -> FaceScene:
         """The scene at another image size, pixels (the field of view kept)."""
@@ -289,7 +304,7 @@ class _MeshTable:
     translate: Vector = field(default=_ZERO, metadata=_XYZ)
     rotate: Vector = field(default=_ZERO, metadata=_XYZ)
     scale: float = field(default=1.0, metadata=entry("number", low=0.0, high=1e6, open_low=True))
-    smooth: bool = field(default=False, metadata=entry("boolean"))
+    smooth: bool = field(default=True, metadata=entry("boolean"))
 
 
 _KELVIN = entry("number", low=0.0, high=1e12, open_low=True)
@@ -312,6 +327,13 @@ class _PointTable(_SkyTable):
 
 
 @dataclass(frozen=True, kw_only=True)
+class _KeyTable(_PointTable):
+    """``[key]``: the key light, and the share of its illuminance added at its temperature as a uniform sky."""
+
+    ambient: float = field(default=0.0, metadata=entry("number", low=0.0, high=10.0))
+
+
+@dataclass(frozen=True, kw_only=True)
 class _PropTable:
     """A ``[[prop]]`` (its size is checked against its shape once both are read)."""
 
@@ -329,7 +351,7 @@ class _FaceTable:
 
     camera: _CameraTable = field(metadata=entry("table", schema=_CameraTable))
     mesh: _MeshTable = field(metadata=entry("table", schema=_MeshTable))
-    key: _PointTable = field(metadata=entry("table", schema=_PointTable))
+    key: _KeyTable = field(metadata=entry("table", schema=_KeyTable))
     fill: _PointTable | None = field(default=None, metadata=entry("table", schema=_PointTable))
     environment: _SkyTable | None = field(default=None, metadata=entry("table", schema=_SkyTable))
     skin: str = field(metadata=entry("text"))
@@ -391,4 +413,4 @@ def load_face_scene(spec: str | Path | FaceScene) -> FaceScene:
                               f"name labels), got {names} more than once or reserved")
     return FaceScene(path.stem if face.name is None else face.name, face.description, camera, mesh_file,
                      mesh.translate, mesh.rotate, mesh.scale, face.skin, _light(face.key), _light(face.fill),
-                     _light(face.environment), tuple(props), where, mesh.smooth)
+                     _light(face.environment), tuple(props), where, mesh.smooth, face.key.ambient)
