@@ -73,7 +73,7 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     from ..model.camera import camera
     from ..model.illuminant import illuminant
     from ..rendering.renderer import SAMPLES_MAX, render_passes
-    from ..rendering.scene import load_scene
+    from ..rendering.scene import load_chart_scene
     from ..studies.calibration import calibration_path, estimate_seconds, renders_of
     from ..workload import check_work
     from .face import is_face_scene
@@ -83,7 +83,7 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     run = calibration_path(kind, args.level)
     if kind == "face":
         return _checked_face(args, run, scene_spec)
-    scene = flag("--scene", load_scene, scene_spec)
+    scene = flag("--scene", load_chart_scene, scene_spec)
     cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))
     lights = {}
     for name, default in (("prevailing", "3300"), ("calibration", "4800")):
@@ -94,11 +94,12 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     imaging = imaging_options(args)
     if args.mc_variance is not None and imaging is None:
         raise SkinrenderError("--mc-variance sets how the render's variance enters a sensor's predictions: it goes "
-                              "with --imager")
+                              "with --imager", flag="--mc-variance")
     seeds = integer_in(_or(args.seeds, SEEDS_DEFAULT[args.what]), "--seeds", 1, 100_000)
     first = integer_in(_or(args.seed, 0), "--seed", 0, SEED_MAX)
     if first + 2 * seeds - 1 > SEED_MAX:
-        raise SkinrenderError(f"--seed: the runs use seeds {first} to {first + 2 * seeds - 1}, beyond {SEED_MAX}")
+        raise SkinrenderError(f"--seed: the runs use seeds {first} to {first + 2 * seeds - 1}, beyond {SEED_MAX}",
+                              flag="--seed")
     if args.what == "calibration":
         spps = [integer_in(_or(args.spp, 64 if imaging else 16), "--spp", 1, SPP_MAX)]
     else:
@@ -108,7 +109,7 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     for spp in spps:
         if spp * width * height > SAMPLES_MAX:
             raise SkinrenderError(f"--spp: {spp} spp × {width * height} pixels is more than {SAMPLES_MAX} samples a "
-                                  "render may take")
+                                  "render may take", flag="--spp")
     passes = render_passes(cam)
     renders = 1 if imaging else renders_of(lights["prevailing"], lights["calibration"])
     startup = estimate_seconds(0, width * height, 1)  # the first compilation, once

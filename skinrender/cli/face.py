@@ -18,7 +18,7 @@ from ..errors import SkinrenderError
 from ..files import TOML_BYTES_MAX, Output, exists, read_input, write_output, write_outputs
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_of,
                      check_output, check_render_work, check_seed, choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
-                     render_options, sensor_settings, table, variant_of)
+                     sensor_settings, settings_of, table, variant_of)
 
 __all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
@@ -65,7 +65,8 @@ def add_parsers(commands) -> None:
     """Add the parser of ladder."""
     from ..studies.ladder import LEVELS_DEFAULT, REPLICATES_LADDER
 
-    p = commands.add_parser("ladder", help=f"the face rendered at each level of physics ({level_names(True)}, "
+    p = commands.add_parser("ladder", run=command_ladder,
+                            help=f"the face rendered at each level of physics ({level_names(True)}, "
                             "all), with the skin's NCC against Eq. 4's within the detection budget and the skin "
                             "locus's detection rates at each (exit 0 every level within its budget, 1 one beyond, "
                             "3 one undecided)")
@@ -131,33 +132,34 @@ def check_figure(args: argparse.Namespace, *taken) -> Path | None:
     """
     figure = check_output(getattr(args, "figure", None), "--figure", (".png",))
     if figure is not None and any(figure.resolve() == Path(other).resolve() for other in taken):
-        raise SkinrenderError(f"--figure: {figure} is also another output of the command; name another PNG")
+        raise SkinrenderError(f"--figure: {figure} is also another output of the command; name another PNG",
+                              flag="--figure")
     return figure
 
 
-def face_inputs(args: argparse.Namespace) -> tuple:
+def face_inputs(args: argparse.Namespace, scene) -> tuple:
     """
     The inputs of a face render from the flags of ``render``/``validate``, each checked with a one-line error
     naming its flag: ``(scene, camera, temperatures {prevailing, calibration} K, physics, skin, size px or None,
-    imager, exposure, illuminance lx)``; with ``--imager`` the level gains ``noise``.
+    imager, exposure, illuminance lx)``; with ``--imager`` the level gains ``noise``. ``scene``: the face scene
+    the command loaded (:func:`~skinrender.cli.inputs.scene_of`).
     """
     from ..rendering.face.effects import parse_physics
-    from ..rendering.face.scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face.scene import skin_reflectance_of
     from ..spectra import GRID_DEFAULT
 
-    scene = flag("SCENE", load_face_scene, args.scene)
     cam = camera_of(args)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
     _check_light(cam, temperatures)
     if getattr(args, "normalization", "white") != "white":
         raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
-                              f"got {args.normalization!r}")
+                              f"got {args.normalization!r}", flag="--normalization")
     if str(getattr(args, "grid", "400:700:1")).strip() != "400:700:1":
-        raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}")
+        raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}", flag="--grid")
     physics = getattr(args, "physics", None)
     physics = "direct" if physics is None else physics
     if not str(physics).strip():
-        raise SkinrenderError(f"--physics: name a level ({level_names()}; '+' combines them), got ''")
+        raise SkinrenderError(f"--physics: name a level ({level_names()}; '+' combines them), got ''", flag="--physics")
     flag("--physics", parse_physics, physics)
     skin = getattr(args, "skin", None)
     if skin is not None:
@@ -191,10 +193,10 @@ def levels_of(text: str) -> list[str]:
 
     levels = [level.strip() for level in str(text).split(",")]
     if not any(levels) or not all(levels):
-        raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {text!r}")
+        raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {text!r}", flag="--levels")
     effects = [flag("--levels", parse_physics, level) for level in levels]
     if len(set(effects)) < len(effects):
-        raise SkinrenderError(f"--levels: a level is named twice in {text!r}; name each once")
+        raise SkinrenderError(f"--levels: a level is named twice in {text!r}; name each once", flag="--levels")
     return levels
 
 
@@ -214,7 +216,8 @@ def noise_sensor(args: argparse.Namespace, levels: list[str]) -> float | None:
         for name in ("imager", "illuminance"):
             if getattr(args, name) is not None:
                 raise SkinrenderError(f"--{name} is the noise level's: add a level with noise to --levels "
-                                      f"(e.g. noise or interreflection+noise), got {','.join(levels)!r}")
+                                      f"(e.g. noise or interreflection+noise), got {','.join(levels)!r}",
+                                      flag=f"--{name}")
     return lux
 
 
@@ -318,7 +321,7 @@ def command_ladder(args: argparse.Namespace) -> None:
         raise SystemExit(document["exit_status"])
 
 
-def command_render_face(args: argparse.Namespace) -> None:
+def command_render_face(args: argparse.Namespace, scene) -> None:
     """
     ``render SCENE …`` for a face scene: the ``render`` flags (``--camera``,
     ``--prevailing``, ``--calibration``, the render options, ``-o``) and the
@@ -328,16 +331,16 @@ def command_render_face(args: argparse.Namespace) -> None:
     from ..rendering.exr import write_exr, write_preview
     from ..rendering.face.render import face_exr, render_face
 
-    options = render_options(args)
+    settings = settings_of(args)
     output = check_output(getattr(args, "output", "render.exr"), "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
-    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
-    check_render_work(args, face_pixels(scene, size), options["spp"])
-    print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
+    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
+    check_render_work(args, face_pixels(scene, size), settings.spp)
+    print(f"rendering the face ({physics}) at {settings.spp} spp …", file=sys.stderr)
     result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], skin, physics,
-                         options["spp"], options["seed"], size, options["sampler"], options["variant"],
-                         channels=options["channels"], imager=imager, exposure=exposure, illuminance=lux)
+                         settings.spp, settings.seed, size, settings.sampler, settings.variant,
+                         channels=settings.channels, imager=imager, exposure=exposure, illuminance=lux)
     if getattr(args, "knee", False):
         import dataclasses
 
@@ -367,7 +370,7 @@ def command_render_face(args: argparse.Namespace) -> None:
     emit(args, document, text)
 
 
-def command_detect_face(args: argparse.Namespace) -> None:
+def command_detect_face(args: argparse.Namespace, scene) -> None:
     """
     ``detect SCENE …`` for a face scene: render it (``--physics`` from the scene's default, ``direct``), classify
     every pixel by the camera's analytic skin locus for the calibration's white balance (trained on ``--skin``'s
@@ -380,18 +383,18 @@ def command_detect_face(args: argparse.Namespace) -> None:
     from ..rendering.face import render_face
     from ..studies.ladder import score_frame
 
-    options = render_options(args)
+    settings = settings_of(args)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
-    scene, cam, temperatures, physics, face_skin, size, imager, exposure, lux = face_inputs(args)
+    scene, cam, temperatures, physics, face_skin, size, imager, exposure, lux = face_inputs(args, scene)
     locus_skin = getattr(args, "locus_skin", None) or "skin"
     skin = flag("--locus-skin", reflectances, locus_skin)
-    check_render_work(args, face_pixels(scene, size), options["spp"])
-    print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
+    check_render_work(args, face_pixels(scene, size), settings.spp)
+    print(f"rendering the face ({physics}) at {settings.spp} spp …", file=sys.stderr)
     result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], face_skin, physics,
-                         options["spp"], options["seed"], size, options["sampler"], options["variant"],
-                         channels=options["channels"], imager=imager, exposure=exposure, illuminance=lux)
+                         settings.spp, settings.seed, size, settings.sampler, settings.variant,
+                         channels=settings.channels, imager=imager, exposure=exposure, illuminance=lux)
     locus = skin_locus(cam, skin, calibration=temperatures["calibration"], boundary=args.boundary)
     scores, frame = score_frame(result, locus, clip_negative=True)  # scored as the ladder: too dark has no chromaticity
     mask, scored = frame["inside"], frame["scored"]
@@ -413,7 +416,7 @@ def command_detect_face(args: argparse.Namespace) -> None:
                 "locus_degenerate": locus.degenerate, "mask_png": str(output), "preview_png": str(preview),
                 "per_patch": per_label, "labels": result.label_names, "physics": result.physics,
                 "skin": result.skin, "locus_skin": locus_skin,
-                "scored_min_output": SCORED_MIN_OUTPUT, "boundary": args.boundary, "spp": result.spp, "spp_requested": options["spp"],
+                "scored_min_output": SCORED_MIN_OUTPUT, "boundary": args.boundary, "spp": result.spp, "spp_requested": settings.spp,
                 "variant": result.variant}
     shown = lambda value: "undefined" if value is None else f"{value:.3f}"  # noqa: E731
     if figure is not None:

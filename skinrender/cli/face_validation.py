@@ -43,7 +43,7 @@ def limits_of(text: str | None) -> tuple[str, ...]:
     unknown = [name for name in names if name not in LIMITS_SCENE_FREE]
     if unknown or not names:
         raise SkinrenderError(f"--limits must be 'none' or a comma-separated list of {', '.join(LIMITS_SCENE_FREE)}, "
-                              f"got {text!r}")
+                              f"got {text!r}", flag="--limits")
     return tuple(dict.fromkeys(names))
 
 
@@ -68,33 +68,35 @@ def check_samples(spp: int, pixels: int) -> None:
         most = REPLICATES * (SAMPLES_MAX // (REPLICATES * int(pixels)))
         if most < REPLICATES * SPP_REPLICATE_MIN:
             raise SkinrenderError(f"--size: {pixels} pixels is too many for {REPLICATES} replicates of at least "
-                                  f"{SPP_REPLICATE_MIN} spp; use a smaller --size")
+                                  f"{SPP_REPLICATE_MIN} spp; use a smaller --size", flag="--size")
         raise SkinrenderError(f"--spp: {REPLICATES} replicates × {each} spp × {pixels} pixels is {total:.3g} "
                               f"samples, more than one render may take ({SAMPLES_MAX}, ~{SAMPLES_MAX / SAMPLES_PER_S / 60:.0f} "
-                              f"min on one core at {SAMPLES_PER_S:.1e} samples/s); at most {most} spp at this size")
+                              f"min on one core at {SAMPLES_PER_S:.1e} samples/s); at most {most} spp at this size",
+                              flag="--spp")
 
 
-def command_validate_face(args: argparse.Namespace) -> None:
+def command_validate_face(args: argparse.Namespace, scene) -> None:
     """
     ``validate SCENE …`` for a face scene: the ``validate`` flags (``--camera``, ``--prevailing``,
     ``--calibration``, the render options) and the face's (``--physics``, ``--skin``, ``--size``);
-    every flag is checked before anything renders.
+    every flag is checked before anything renders; ``scene``: the face scene loaded.
     """
     from ..rendering.face.validation import validate_face
-    from .common import emit, flag, render_options, table
+    from .common import emit, flag, settings_of, table
     from .face import face_inputs
 
-    options = render_options(args)
+    settings = settings_of(args)
     if getattr(args, "knee", False):
-        raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee")
+        raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee", flag="--knee")
     if getattr(args, "gamut", False):
-        raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene")
-    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
-    check_samples(options["spp"], scene.camera.width * scene.camera.height if size is None else size * size)
+        raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene",
+                              flag="--gamut")
+    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
+    check_samples(settings.spp, scene.camera.width * scene.camera.height if size is None else size * size)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
-                  skin, physics, options["spp"], options["seed"], size, options["sampler"], options["variant"],
-                  options["channels"], imager, exposure, lux, limits=limits,
+                  skin, physics, settings.spp, settings.seed, size, settings.sampler, settings.variant,
+                  settings.channels, imager, exposure, lux, limits=limits,
                   progress=lambda line: print(line, file=sys.stderr))
     document = result.document()
     rows = [[c.name, c.outcome.replace("_", " "), _number(c.statistic), _number(c.tolerance), _number(c.bound),

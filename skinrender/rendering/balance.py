@@ -36,7 +36,8 @@ from ..model.illuminant import illuminant
 from ..model.response import NORMALISATIONS, gain, knee as apply_knee, normalisation_factor
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .renderer import RawRender, render_raw
-from .scene import ChartScene, load_scene
+from .scene import ChartScene, load_chart_scene
+from .settings import RenderSettings
 
 __all__ = ["PatchStatistics", "patch_statistics", "Rendering", "pair_gain", "balance", "render"]
 
@@ -184,14 +185,11 @@ def render(
     calibration,
     normalization: str = "white",
     knee: bool = False,
-    spp: int = 256,
-    seed: int = 0,
-    sampler: str = "multijitter",
-    variant: str | None = None,
+    settings: RenderSettings | None = None,
     grid: WavelengthGrid = GRID_DEFAULT,
-    channels: str = "auto",
     cache: dict | None = None,
     emitter: str = "tabulated",
+    **options,
 ) -> Rendering:
     """
     Render a chart through a camera under ``prevailing`` light, white balanced
@@ -203,18 +201,25 @@ def render(
         Planckian illuminants: kelvin, ``A`` (2856 K) or ``H`` (2300 K).
     normalization, knee
         As :func:`skinrender.response`.
-    spp, seed, sampler, variant, grid, channels
-        As :func:`render_raw`. The calibration render uses ``seed + 1`` so
-        that its noise is independent of the prevailing render's.
+    settings
+        How it samples (:class:`~skinrender.rendering.settings.RenderSettings`: spp, seed, sampler, variant,
+        channels; the defaults where ``None``). The calibration render uses ``seed + 1`` so that its noise is
+        independent of the prevailing render's.
+    grid, emitter
+        As :func:`~skinrender.rendering.renderer.render_raw`.
     cache
         A dict to reuse raw renders across calls, keyed by temperature.
+    **options
+        ``spp``, ``seed``, ``sampler``, ``variant``, ``channels``: the settings one by one
+        (:meth:`~skinrender.rendering.settings.RenderSettings.of`).
 
     Returns
     -------
     :class:`Rendering`
     """
 
-    chart = load_scene(scene)
+    settings = RenderSettings.of(settings, **options)
+    chart = load_chart_scene(scene)
     cam = camera(camera_)
     validate_method(normalization, NORMALISATIONS, "normalization")
     p, c = _temperature(prevailing), _temperature(calibration)
@@ -223,7 +228,7 @@ def render(
     def raw(temperature: float, offset: int) -> RawRender:
         key = (temperature, offset)
         if key not in cache:
-            cache[key] = render_raw(chart, cam, temperature, spp, seed + offset, sampler, variant, grid, channels,
+            cache[key] = render_raw(chart, cam, temperature, settings.replace(seed=settings.seed + offset), grid,
                                     emitter)
         return cache[key]
 
@@ -232,4 +237,3 @@ def render(
     image, white_error, white_ratio = balance(raw_p, raw_c, chart, cam, normalization, knee, grid)
     return Rendering(chart, cam, p, c, normalization, knee, image, patch_statistics(image, chart), white_error,
                      (raw_p,) if raw_c is raw_p else (raw_p, raw_c), {"white_ratio": white_ratio})
-

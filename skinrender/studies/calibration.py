@@ -104,10 +104,10 @@ def calibration_path(kind: str, level: str | None = None) -> Callable[..., dict]
     a chart, and a kind with no run registered with a one-line reason naming ``--scene``."""
     if kind not in CALIBRATION_PATHS:
         raise SkinrenderError(f"--scene: no calibration of a {kind} scene's checks is registered; known: "
-                              f"{', '.join(CALIBRATION_PATHS)}")
+                              f"{', '.join(CALIBRATION_PATHS)}", flag="--scene")
     if kind == "chart" and level is not None:
         raise SkinrenderError(f"--level {level}: levels of physics go with a face scene; a chart has none (its "
-                              "renders are direct lighting only)")
+                              "renders are direct lighting only)", flag="--level")
     return CALIBRATION_PATHS[kind]
 
 

@@ -12,6 +12,7 @@ import pytest
 
 from skinrender.cli import face
 from skinrender.cli.common import Parser, add_common, add_grid, add_model, add_render
+from skinrender.cli.inputs import scene_of
 from skinrender.errors import SkinrenderError
 
 pytest.importorskip("mitsuba")
@@ -42,7 +43,10 @@ def run(argv, capsys, status: list | None = None) -> dict:
     """The command's JSON document; its exit status (0, or the verdict's 1 or 3) appended to ``status``."""
     args = parser().parse_args([str(a) for a in argv])
     try:
-        (face.command_ladder if args.command == "ladder" else face.command_render_face)(args)
+        if args.command == "ladder":
+            face.command_ladder(args)
+        else:  # the render command loads the scene once and hands the face its scene
+            face.command_render_face(args, scene_of(args))
         code = 0
     except SystemExit as exit_:
         code = exit_.code

@@ -12,6 +12,7 @@ import json
 import pytest
 
 from skinrender.cli.face_validation import command_validate_face, limits_of
+from skinrender.cli.inputs import scene_of
 from skinrender.errors import SkinrenderError
 from skinrender.rendering.face.limits import LimitCheck
 
@@ -62,7 +63,7 @@ def test_interreflection_is_held_to_the_budget_and_the_sensor_is_named(capsys):
                               grid="400:700:1", extrapolation="refuse", gamut=False, physics="interreflection",
                               skin=None, size="16", limits="none", json=True)
     try:
-        command_validate_face(args)
+        command_validate_face(args, scene_of(args))
         status = 0
     except SystemExit as exit_:
         status = exit_.code

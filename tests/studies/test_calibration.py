@@ -18,9 +18,9 @@ CAMERA = "gbell:9@450,540,610"
 
 @pytest.fixture(scope="module")
 def tiny(small_chart):
-    from skinrender.rendering.scene import load_scene
+    from skinrender.rendering.scene import load_chart_scene
 
-    return load_scene(small_chart)
+    return load_chart_scene(small_chart)
 
 
 class TestPaths:
