@@ -39,5 +39,7 @@ echo
     -o out/face_mask.png --figure out/face_detect.png
 echo
 # the ladder of physics, small (64 x 64 px, 16 spp: about 20 s on 2 cores; the README's table is the full size)
+# (exit 1 or 3: some level's Eq. 4 error beyond, or not shown within, its detection budget; the figure is
+# written either way: that is the ladder's finding, not a failure of the job)
 .venv/bin/skinrender ladder --camera "$CAMERA" --prevailing 2856 --calibration 5900 --size 64 --spp 16 \
-    --plot out/ladder.png
+    --plot out/ladder.png || [ $? -ne 2 ]

@@ -68,8 +68,9 @@ from .model.response import (
 )
 from .model.stage1 import illuminant_selection, illuminant_set, illuminant_track, select_illuminants
 from .rendering.balance import Rendering
-from .rendering.dispatch import render
-from .rendering.scene import ChartScene, load_scene
+from .rendering.dispatch import load_scene, render
+from .rendering.scene import ChartScene
+from .rendering.settings import RenderSettings
 from .rendering.validation import Validation, validate, validate_gamut
 from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse, planck, resample
 from .studies import labelled as _labelled  # noqa: F401 (registers the figures of Rendering and FaceRendering)
@@ -88,6 +89,7 @@ __all__ = [
     "Detection",
     "Gamut",
     "Illuminant",
+    "RenderSettings",
     "Rendering",
     "SearchResult",
     "SkinLocus",

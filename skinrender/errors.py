@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import copy
 
-__all__ = ["SkinrenderError", "naming"]
+__all__ = ["SkinrenderError", "naming", "flag_of"]
 
 
 class SkinrenderError(ValueError):
@@ -60,10 +60,21 @@ class SkinrenderError(ValueError):
         return new
 
 
+def flag_of(name: str) -> str | None:
+    """
+    ``name`` where it is a command-line flag (``--spp``), else ``None``: the ``flag`` of an error worded with a
+    name its caller gave, which is a flag from the command line and an argument's name from Python.
+
+    >>> flag_of("--tolerance"), flag_of("tolerance")
+    ('--tolerance', None)
+    """
+    return name if str(name).startswith("--") else None
+
+
 def naming(name: str | dict, function, *args, **kwargs):
     """
     ``function(*args, **kwargs)``, its :class:`SkinrenderError` reworded to start with the flag it came from,
-    unless the message already starts with a flag (``--…``: the one at fault was named where it was found).
+    unless the error names its flag already (its ``flag`` field: the one at fault was named where it was found).
 
     ``name`` is a flag, or a mapping from the error's ``role`` to a flag with the key ``None`` for any other
     role: ``{"camera": "--camera", None: "--count"}`` blames the camera's errors on ``--camera``.
@@ -81,6 +92,6 @@ def naming(name: str | dict, function, *args, **kwargs):
         return function(*args, **kwargs)
     except SkinrenderError as error:
         flag = name.get(error.role, name.get(None)) if isinstance(name, dict) else name
-        if error.flag is not None or error.message.startswith("--") or flag is None:
+        if error.flag is not None or flag is None:
             raise
         raise error.reworded(f"{flag}: {error.message}", flag=flag) from None

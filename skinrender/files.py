@@ -98,7 +98,7 @@ def _kind(mode: int) -> str:
     return "not a regular file"
 
 
-def read_input(path: str | Path, limit: int, what: str = "a file") -> bytes:
+def read_input(path: str | Path, limit: int, what: str = "a file", where: str | None = None) -> bytes:
     """
     The bytes of the input file ``path``, refused unless it is a regular file of at most ``limit`` bytes.
 
@@ -114,11 +114,13 @@ def read_input(path: str | Path, limit: int, what: str = "a file") -> bytes:
         Largest size read, bytes.
     what
         What the file should be, for the messages (``a spectral CSV``, ``a scene TOML``).
+    where
+        What the messages start with instead of the path (``--mesh``, a scene's field).
 
     Raises
     ------
     SkinrenderError
-        ``PATH: …`` naming what is wrong: missing, a folder, a named pipe, a device, larger than ``limit``,
+        ``PATH: …`` (or ``WHERE: …``) naming what is wrong: missing, a folder, a named pipe, a device, larger than ``limit``,
         a name too long, no permission.
 
     Examples
@@ -131,16 +133,16 @@ def read_input(path: str | Path, limit: int, what: str = "a file") -> bytes:
     try:
         handle = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
     except OSError as error:
-        raise SkinrenderError(f"{shown(path)}: {'no such file' if error.errno == errno.ENOENT else reason_of(error)}") \
-            from None
+        raise SkinrenderError(f"{where or shown(path)}: "
+                              f"{'no such file' if error.errno == errno.ENOENT else reason_of(error)}") from None
     except ValueError:  # an embedded NUL byte
-        raise SkinrenderError(f"{str(path)!r}: not a file name (it holds a NUL byte)") from None
+        raise SkinrenderError(f"{where or repr(str(path))}: not a file name (it holds a NUL byte)") from None
     try:
         info = os.fstat(handle)
         if not stat.S_ISREG(info.st_mode):
-            raise SkinrenderError(f"{path}: {_kind(info.st_mode)}, not a regular file; expected {what}")
+            raise SkinrenderError(f"{where or path}: {_kind(info.st_mode)}, not a regular file; expected {what}")
         if info.st_size > limit:
-            raise SkinrenderError(f"{path}: {info.st_size / 1e6:.3g} MB is larger than {what} may be "
+            raise SkinrenderError(f"{where or path}: {info.st_size / 1e6:.3g} MB is larger than {what} may be "
                                   f"({limit / 1e6:.3g} MB)")
         chunks, size = [], 0
         while size <= limit:
@@ -150,10 +152,10 @@ def read_input(path: str | Path, limit: int, what: str = "a file") -> bytes:
             chunks.append(chunk)
             size += len(chunk)
         if size > limit:  # it grew while read
-            raise SkinrenderError(f"{path}: larger than {what} may be ({limit / 1e6:.3g} MB)")
+            raise SkinrenderError(f"{where or path}: larger than {what} may be ({limit / 1e6:.3g} MB)")
         return b"".join(chunks)
     except OSError as error:
-        raise SkinrenderError(f"{path}: cannot be read ({reason_of(error)})") from None
+        raise SkinrenderError(f"{where or path}: cannot be read ({reason_of(error)})") from None
     finally:
         os.close(handle)
 
@@ -207,23 +209,23 @@ def check_output_path(path: str | Path, flag: str | None = None) -> Path:
     where = _named(flag, path)
     text = str(path)
     if not text.strip() or "\0" in text:
-        raise SkinrenderError(f"{flag or 'output'}: expected a file path, got {text!r}")
+        raise SkinrenderError(f"{flag or 'output'}: expected a file path, got {text!r}", flag=flag)
     try:
         if os.path.islink(text):
             if not os.path.exists(text):
-                raise SkinrenderError(f"{where}: a symbolic link to nothing ({os.readlink(text)}); name a file")
+                raise SkinrenderError(f"{where}: a symbolic link to nothing ({os.readlink(text)}); name a file", flag=flag)
             text = os.path.realpath(text)
         target = Path(text)
         if target.is_dir():
-            raise SkinrenderError(f"{where}: is a folder, expected a file")
+            raise SkinrenderError(f"{where}: is a folder, expected a file", flag=flag)
         if target.exists() and not target.is_file():
-            raise SkinrenderError(f"{where}: {_kind(os.stat(target).st_mode)}, expected a regular file")
+            raise SkinrenderError(f"{where}: {_kind(os.stat(target).st_mode)}, expected a regular file", flag=flag)
         existing = target.parent
         while not existing.exists() and existing != existing.parent:
             existing = existing.parent
         if not existing.is_dir():
             raise SkinrenderError(f"{where}: {existing} is {'a file' if existing.is_file() else 'not a folder'}, so no "
-                                  "file can be made under it")
+                                  "file can be made under it", flag=flag)
         probe = existing / f".{secrets.token_hex(6)}.probe"
         os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
         os.unlink(probe)

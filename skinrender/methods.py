@@ -7,26 +7,33 @@ boundaries, design objectives, emitters, samplers, …) is a mapping from the
 name a user types to what it means; :func:`validate_method` checks a name
 against its table and words the error the same way everywhere, and the
 command line takes its choices from the same tables. :func:`parse_range`
-reads the ``START:END:STEP`` ranges (nm) of grids and sensor positions.
+reads the ``START:END:STEP`` ranges (nm) of grids and sensor positions, and
+:func:`range_steps` checks every such range (wavelength grids, sensor
+positions, Stage 1's candidate temperatures) in one place.
 
 -   :func:`validate_method`: a name of a method table, or a one-line error.
 -   :func:`parse_range`: ``START:END:STEP`` as three finite numbers.
+-   :func:`range_steps`, :class:`RangeWords`, :class:`Steps`: the steps of a
+    range, END included, or a refusal worded for its kind of range.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import NamedTuple
 
 from .errors import SkinrenderError
 
-__all__ = ["validate_method", "parse_range"]
+__all__ = ["validate_method", "parse_range", "Steps", "RangeWords", "range_steps"]
 
 
-def validate_method(name: object, methods: Mapping[str, object], what: str) -> str:
+def validate_method(name: object, methods: Mapping[str, object], what: str, role: str | None = None) -> str:
     """
     ``name`` if it is a key of ``methods``, else a :class:`SkinrenderError`
-    naming ``what`` and listing the choices.
+    naming ``what`` and listing the choices (its ``role``: ``role``, the
+    argument at fault, for the command line to name its flag).
 
     Examples
     --------
@@ -39,7 +46,7 @@ def validate_method(name: object, methods: Mapping[str, object], what: str) -> s
     """
 
     if not isinstance(name, str) or name not in methods:
-        raise SkinrenderError(f"{what} must be one of {', '.join(methods)}, got {name!r}")
+        raise SkinrenderError(f"{what} must be one of {', '.join(methods)}, got {name!r}", role=role)
     return name
 
 
@@ -66,3 +73,63 @@ def parse_range(text: str, what: str, example: str = "400:700:10") -> tuple[floa
     if not all(math.isfinite(value) for value in values):
         raise SkinrenderError(f"{what} must be finite numbers of nm, got {text!r}")
     return values  # type: ignore[return-value]
+
+
+class Steps(NamedTuple):
+    """A range being checked: ``start``, ``end``, ``step``, the ``values`` it holds (END included; a fraction
+    where END is not a whole number of steps away) and ``text``, the range as the user gave it."""
+
+    start: float
+    end: float
+    step: float
+    values: float
+    text: str
+
+
+@dataclass(frozen=True)
+class RangeWords:
+    """
+    How a kind of range words its three refusals: each a function of the :class:`Steps` checked.
+
+    Attributes
+    ----------
+    order
+        END not above START (or STEP not > 0, where the caller has not refused it already).
+    count
+        More values than the most the range may hold.
+    whole
+        END not START plus a whole number of STEPs.
+    """
+
+    order: Callable[[Steps], str]
+    count: Callable[[Steps], str]
+    whole: Callable[[Steps], str]
+
+
+def range_steps(start: float, end: float, step: float, most: int, words: RangeWords, text: str = "") -> int:
+    """
+    The number of steps of the range ``start, start + step, …, end`` (``end`` included): ``end`` above
+    ``start``, ``step`` > 0, at most ``most`` values and ``end`` a whole number of steps from ``start`` (to
+    1e-9 relative); otherwise a :class:`SkinrenderError` worded by ``words``.
+
+    Examples
+    --------
+    >>> words = RangeWords(lambda r: f"{r.text}: END must be above START",
+    ...                    lambda r: f"{r.text}: {r.values:.3g} values, too many",
+    ...                    lambda r: f"{r.text}: {r.end:g} is not START + whole steps")
+    >>> range_steps(400.0, 700.0, 10.0, 1000, words, "400:700:10")
+    30
+    >>> range_steps(400.0, 690.0, 50.0, 1000, words, "400:690:50")
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: 400:690:50: 690 is not START + whole steps
+    """
+    if not (step > 0 and end > start):
+        raise SkinrenderError(words.order(Steps(start, end, step, math.nan, text)))
+    count = (end - start) / step
+    steps = Steps(start, end, step, count + 1, text)
+    if count + 1 > most:
+        raise SkinrenderError(words.count(steps))
+    if abs(count - round(count)) > 1e-9 * max(1.0, count):
+        raise SkinrenderError(words.whole(steps))
+    return int(round(count))

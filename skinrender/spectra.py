@@ -31,7 +31,7 @@ import numpy as np
 from .constants import CONSTANT_C, CONSTANT_H, CONSTANT_K_B, TEMPERATURE_MAX
 from .errors import SkinrenderError
 from .hints import ArrayLike, Literal, NDArrayFloat
-from .methods import parse_range, validate_method
+from .methods import RangeWords, parse_range, range_steps, validate_method
 
 __all__ = [
     "WavelengthGrid",
@@ -54,6 +54,14 @@ EXTRAPOLATIONS = {
     "constant": "the nearest measured value is held",
 }
 """Rules for wavelengths of the grid outside the measured range, name → meaning."""
+
+
+_GRID_WORDS = RangeWords(
+    lambda r: f"grid end ({r.end:g} nm) must be above grid start ({r.start:g} nm): a grid needs two samples",
+    lambda r: (f"grid {r.start:g}:{r.end:g}:{r.step:g} nm has {r.values:.3g} samples, more than {GRID_SIZE_MAX} "
+               f"(every spectrum would need {8 * r.values / 1e6:.3g} MB); use a larger step"),
+    lambda r: f"grid {r.start}–{r.end} nm is not a whole number of {r.step} nm steps",
+)
 
 
 @dataclass(frozen=True)
@@ -92,20 +100,7 @@ class WavelengthGrid:
             raise SkinrenderError(f"grid start must be > 0 nm, got {self.start}")
         if self.step <= 0:
             raise SkinrenderError(f"grid step must be > 0 nm, got {self.step}")
-        if not self.end > self.start:
-            raise SkinrenderError(
-                f"grid end ({self.end:g} nm) must be above grid start ({self.start:g} nm): a grid needs two samples"
-            )
-        count = (self.end - self.start) / self.step
-        if count + 1 > GRID_SIZE_MAX:
-            raise SkinrenderError(
-                f"grid {self.start:g}:{self.end:g}:{self.step:g} nm has {count + 1:.3g} samples, more than "
-                f"{GRID_SIZE_MAX} (every spectrum would need {8 * (count + 1) / 1e6:.3g} MB); use a larger step"
-            )
-        if abs(count - round(count)) > 1e-9 * max(1.0, count):
-            raise SkinrenderError(
-                f"grid {self.start}–{self.end} nm is not a whole number of {self.step} nm steps"
-            )
+        range_steps(self.start, self.end, self.step, GRID_SIZE_MAX, _GRID_WORDS)
 
     @property
     def size(self) -> int:

@@ -12,6 +12,8 @@ the pattern of ``search --max-triplets`` and ``face-sweep --max-renders``.
 -   :func:`duration_text`: seconds as a person reads them (``3.2 s``, ``14 min``,
     ``2.1 h``, ``3.5 days``).
 -   :func:`check_work`: the refusal.
+-   :func:`progress_bar`, :func:`announce`: the progress of long work on
+    stderr, a bar on a terminal and one line elsewhere.
 
 The rates behind the estimates are measured on the development machine (a
 2-core AMD EPYC VM shared with other jobs) and stated where each is defined;
@@ -24,7 +26,7 @@ import math
 
 from .errors import SkinrenderError
 
-__all__ = ["MINUTES_MAX", "duration_text", "check_work"]
+__all__ = ["MINUTES_MAX", "duration_text", "check_work", "progress_bar", "announce"]
 
 MINUTES_MAX = 60.0
 """Longest estimated run a command starts unless ``--max-minutes`` raises it, minutes."""
@@ -87,3 +89,27 @@ def check_work(seconds: float, flag: str, what: str, limit_minutes: float | None
         raise SkinrenderError(f"{flag}: {what} would take about {duration_text(seconds)} (estimated), more than the "
                               f"cap of {limit_minutes:g} min; raise {override}" + (f" or {fewer}" if fewer else ""),
                               flag=flag, role="work")
+
+
+def progress_bar(total: int, label: str, stream, unit: str = "triplet"):
+    """
+    A tqdm progress bar of ``total`` units (``unit``) on ``stream``, disabled when ``stream`` is ``None`` (``--quiet``)
+    or not a terminal (a log file, a pipe, CI: there :func:`announce` says the work started).
+    """
+    from tqdm import tqdm
+
+    enabled = stream is not None and getattr(stream, "isatty", lambda: False)()
+    return tqdm(total=total, desc=label, file=stream, disable=not enabled, unit=unit, leave=True)
+
+
+def announce(stream, label: str, total: int, unit: str = "triplet") -> None:
+    """
+    One line on a progress ``stream`` that is not a terminal (where no bar is drawn) saying the work started:
+    ``label: total units …`` (nothing on a terminal, or without a stream).
+
+    >>> import io
+    >>> log = io.StringIO(); announce(log, "sensor 9", 4495); log.getvalue().strip()
+    'sensor 9: 4495 triplets …'
+    """
+    if stream is not None and not getattr(stream, "isatty", lambda: False)():
+        print(f"{label}: {total} {unit}{'s' * (total != 1)} …", file=stream, flush=True)

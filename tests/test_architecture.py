@@ -8,6 +8,7 @@ own, and a core that runs without the optional extras.
 from __future__ import annotations
 
 import importlib
+import json
 import pkgutil
 import subprocess
 import sys
@@ -19,8 +20,8 @@ import skinrender
 
 ROOT = Path(skinrender.__file__).parent
 REPOSITORY = ROOT.parent
-LAYER_MODULES = {"constants", "errors", "files", "hints", "workload", "spectra", "spectral_csv", "methods", "extras",
-                 "datasets", "model", "evaluation", "design", "rendering", "studies", "cli", "testing"}
+LAYER_MODULES = {"constants", "errors", "files", "hints", "workload", "toml_tables", "spectra", "spectral_csv", "methods",
+                 "extras", "datasets", "model", "evaluation", "design", "rendering", "studies", "cli", "testing"}
 """What ``skinrender.<name>`` may be when it is a module."""
 MODULE_LINES_MAX = 450
 """'None over ~400 lines': the largest module may exceed 400 by little."""
@@ -117,11 +118,57 @@ def test_tests_mirror_the_package():
 DOCTESTED = sorted(m for m in ["skinrender", *modules()] if ">>>" in source_of(m).read_text(encoding="utf-8"))
 
 
+DOCTEST_ALONE = Path(__file__).with_name("doctest_alone.py")
+"""Runs modules' doctests each in a fresh interpreter state with the project's flags (no pytest start-up)."""
+
+
+def doctests_alone(module: str, cwd: Path = REPOSITORY, path: str | None = None) -> subprocess.CompletedProcess:
+    """``tests/doctest_alone.py MODULE`` in a fresh interpreter (``path`` prepended to its import path)."""
+    env = None
+    if path is not None:
+        import os
+
+        env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [path, os.environ.get("PYTHONPATH")]))}
+    return subprocess.run([sys.executable, str(DOCTEST_ALONE), module], capture_output=True, text=True, cwd=cwd,
+                          env=env)
+
+
+@pytest.fixture(scope="module")
+def doctest_server():
+    """``doctest_alone.py --serve``: each module's doctests in a child forked from an interpreter holding no
+    skinrender module (this test worker's own)."""
+    server = subprocess.Popen([sys.executable, str(DOCTEST_ALONE), "--serve"], stdin=subprocess.PIPE,
+                              stdout=subprocess.PIPE, text=True, cwd=REPOSITORY)
+
+    def run(module: str) -> dict:
+        server.stdin.write(module + "\n")
+        server.stdin.flush()
+        line = server.stdout.readline()
+        assert line, f"the doctest server ended (exit {server.poll()})"
+        return json.loads(line)
+
+    yield run
+    server.stdin.close()
+    server.wait(timeout=60)
+
+
 @pytest.mark.parametrize("module", DOCTESTED)
-def test_doctests_pass_on_their_own(module):
-    """Each module's doctests in a fresh interpreter: no reliance on another import changing numpy's printing."""
-    path = source_of(module)
-    run = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "--doctest-modules",
-                          "-o", "addopts=", "-o", "doctest_optionflags=ELLIPSIS NORMALIZE_WHITESPACE NUMBER",
-                          str(path)], capture_output=True, text=True, cwd=REPOSITORY)
-    assert run.returncode == 0, run.stdout[-3000:]
+def test_doctests_pass_on_their_own(module, doctest_server):
+    """Each module's doctests in a fresh interpreter state: no reliance on another import changing numpy's
+    printing."""
+    result = doctest_server(module)
+    assert result["failed"] == 0, result["output"]
+
+
+def test_a_failing_doctest_fails_on_its_own(tmp_path):
+    """The runner above fails a module whose example prints something else; NUMBER compares as pytest does."""
+    (tmp_path / "wrong_example.py").write_text('"""\n>>> 1 + 1\n3\n"""\n', encoding="utf-8")
+    (tmp_path / "number_example.py").write_text('"""\n>>> 1 / 3\n0.333\n"""\n', encoding="utf-8")
+    assert doctests_alone("wrong_example", tmp_path, str(tmp_path)).returncode == 1
+    assert doctests_alone("number_example", tmp_path, str(tmp_path)).returncode == 0  # NUMBER, as pytest's
+
+
+def test_the_doctest_server_reports_a_failure(doctest_server):
+    """The server's children pass a good module and fail one that cannot be imported."""
+    assert doctest_server("skinrender.errors")["failed"] == 0
+    assert doctest_server("no_such_module_here")["failed"] == 1

@@ -90,11 +90,12 @@ def test_no_link_leaves_the_repository():
 
 def parser_commands() -> tuple[set[str], set[str]]:
     """The command line's commands and ``bench``'s benchmarks, from the parser itself."""
-    from skinrender.cli import COMMANDS, build_parser
+    from skinrender.cli import build_parser
+    from skinrender.cli import commands as registry
 
     parser = build_parser()
     commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices
-    assert set(commands) == set(COMMANDS)
+    assert set(commands) == set(registry(parser)) and all(callable(run) for run in registry(parser).values())
     bench = commands["bench"]
     benchmarks = next(a.choices for a in bench._actions if not a.option_strings and a.choices)
     return set(commands), set(benchmarks)

@@ -9,7 +9,7 @@ import pickle
 
 import pytest
 
-from skinrender.errors import SkinrenderError, naming
+from skinrender.errors import SkinrenderError, flag_of, naming
 
 
 def refuse(**fields):
@@ -48,3 +48,21 @@ def test_an_error_crosses_a_process_boundary_whole():
     error = pickle.loads(pickle.dumps(SkinrenderError("m", role="spp", flag="--spp", cause="c", hint="h")))
     assert (error.message, error.role, error.flag, error.cause, error.hint, str(error)) == (
         "m", "spp", "--spp", "c", "h", "m; h")
+
+
+def test_naming_reads_the_flag_field_never_the_words():
+    """An error is named by its fields: one that carries its flag is kept as it is; one whose words merely start
+    with a flag's spelling is not taken for named (its text is never matched)."""
+    def named(**fields):
+        raise SkinrenderError("--spp must be an integer", **fields)
+
+    with pytest.raises(SkinrenderError) as caught:
+        naming("--quality", named, flag="--spp")
+    assert str(caught.value) == "--spp must be an integer" and caught.value.flag == "--spp"
+    with pytest.raises(SkinrenderError) as caught:
+        naming("--quality", named)
+    assert str(caught.value) == "--quality: --spp must be an integer" and caught.value.flag == "--quality"
+
+
+def test_flag_of_tells_a_flag_from_an_argument_name():
+    assert flag_of("--tolerance") == "--tolerance" and flag_of("tolerance") is None

@@ -5,10 +5,12 @@ naming the flag, the estimate and the flag that raises the cap.
 
 from __future__ import annotations
 
+import io
+
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.workload import MINUTES_MAX, check_work, duration_text
+from skinrender.workload import MINUTES_MAX, announce, check_work, duration_text, progress_bar
 
 
 @pytest.mark.parametrize("seconds, text", [(0.5, "0.5 s"), (42, "42 s"), (90, "1.5 min"), (3600, "1 h"),
@@ -30,3 +32,22 @@ def test_raising_the_cap_lets_longer_work_run():
     check_work(7200, "--repeat", "repetitions", limit_minutes=121)
     with pytest.raises(SkinrenderError, match="--max-minutes must be a finite number of minutes > 0"):
         check_work(1, "--repeat", "repetitions", limit_minutes=0)
+
+
+class Terminal(io.StringIO):
+    def isatty(self) -> bool:
+        return True
+
+
+@pytest.mark.parametrize("stream, drawn, announced", [(Terminal(), True, False), (io.StringIO(), False, True),
+                                                      (None, False, False)])
+def test_progress_is_a_bar_on_a_terminal_and_one_line_elsewhere(stream, drawn, announced):
+    """The one progress bar of the package (the search's triplets, the face renders): drawn on a terminal only; a
+    log or a pipe gets one line saying the work started; --quiet (no stream) gets nothing."""
+    bar = progress_bar(3, "renders", stream, "render")
+    announce(stream, "renders", 3, "render")
+    bar.update(3)
+    bar.close()
+    text = "" if stream is None else stream.getvalue()
+    assert ("3/3" in text) is drawn and ("render/s" in text) is drawn
+    assert ("renders: 3 renders …" in text) is announced

@@ -8,12 +8,17 @@ line only parses, calls the package and prints: every command takes
 errors go to stderr. A bad input exits with status 2 and a one-line message,
 never a traceback.
 
-One module per command group: :mod:`~skinrender.cli.data`,
+One module per command group (:data:`GROUPS`): :mod:`~skinrender.cli.data`,
 :mod:`~skinrender.cli.model`, :mod:`~skinrender.cli.evaluation`,
-:mod:`~skinrender.cli.design`, :mod:`~skinrender.cli.rendering`,
-:mod:`~skinrender.cli.chart_validation`, :mod:`~skinrender.cli.studies`, :mod:`~skinrender.cli.face`,
+:mod:`~skinrender.cli.design`, :mod:`~skinrender.cli.rendering` (with
+:mod:`~skinrender.cli.chart_validation`), :mod:`~skinrender.cli.studies`, :mod:`~skinrender.cli.face`,
 :mod:`~skinrender.cli.face_sweep`, :mod:`~skinrender.cli.skin`; :mod:`~skinrender.cli.common` holds what
-they share.
+they share, :mod:`~skinrender.cli.inputs` the objects a render command parses its flags into.
+
+The command registry is the parser: a group's ``add_parsers(commands)`` registers each of its commands in one
+call, ``commands.add_parser(NAME, run=FUNCTION, help=…)``, which builds the command's parser and ties the
+function that runs it to it (:class:`~skinrender.cli.common.Parser`'s ``run``); :func:`main` runs the parsed
+command's ``run``, and :func:`commands` lists them.
 """
 
 from __future__ import annotations
@@ -26,60 +31,51 @@ from collections.abc import Sequence
 
 from .. import files
 from ..errors import SkinrenderError
-from . import chart_validation, data, design, evaluation, face, face_sweep, imaging, model, rendering, skin, studies
+from . import data, design, evaluation, face, face_sweep, imaging, model, rendering, skin, studies
 from .common import Parser, coverage_hint
 
-__all__ = ["main", "build_parser", "COMMANDS"]
+__all__ = ["main", "build_parser", "commands", "GROUPS"]
 
-COMMANDS = {
-    "cameras": data.command_cameras,
-    "datasets": data.command_datasets,
-    "illuminants": model.command_illuminants,
-    "response": model.command_response,
-    "gamut": model.command_gamut,
-    "search": design.command_search,
-    "reproduce": studies.command_reproduce,
-    "render": rendering.command_render,
-    "validate": chart_validation.command_validate,
-    "table1": studies.command_table1,
-    "locus": evaluation.command_locus,
-    "design": design.command_design,
-    "detect": rendering.command_detect,
-    "bench": studies.command_bench,
-    "imagers": imaging.command_imagers,
-    "score": imaging.command_score,
-    "ptc": imaging.command_ptc,
-    "ladder": face.command_ladder,
-    "face-sweep": face_sweep.command_face_sweep,
-    "skin": skin.command_skin,
-}
-"""Command name → the function that runs it."""
+GROUPS = (data, model, design, studies, rendering, evaluation, imaging, face, face_sweep, skin)
+"""The command groups, in the order of ``skinrender --help``: each registers its commands (``add_parsers``)."""
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of every command."""
+    """The argument parser of every command: the command registry (each command's parser carries its ``run``)."""
     parser = Parser(
         prog="skinrender",
         description="Design and validate three-channel cameras for skin detection "
         "(wavelengths in nm, temperatures in K, radiance in W·m⁻²·sr⁻¹·nm⁻¹).",
     )
-    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser)
-    for group in (data, model, design, studies, rendering, chart_validation, evaluation, imaging, face, face_sweep,
-                  skin):
-        group.add_parsers(commands)
+    subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser)
+    for group in GROUPS:
+        group.add_parsers(subparsers)
+    unrun = sorted(name for name, command in subparsers.choices.items() if command.run is None)
+    if unrun:  # a command registered without the function that runs it: the package's own error
+        raise RuntimeError(f"commands without a run function: {', '.join(unrun)}")
     return parser
+
+
+def _subparsers(parser: argparse.ArgumentParser) -> dict[str, Parser]:
+    return next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices
+
+
+def commands(parser: argparse.ArgumentParser | None = None) -> dict:
+    """The registry: every command's name → the function that runs it, read from ``parser`` (:func:`build_parser`'s
+    where ``None``)."""
+    return {name: command.run for name, command in _subparsers(parser or build_parser()).items()}
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     parser = build_parser()
     args, extra = parser.parse_known_args(argv)
+    command = _subparsers(parser)[args.command]
     if extra:  # argparse's own message would name the top-level program: name the command and its help
-        commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-        commands.choices[args.command].error(f"unrecognized arguments: {' '.join(extra)}")
+        command.error(f"unrecognized arguments: {' '.join(extra)}")
     try:
         _sampler_note(None)  # forget an earlier command's (main may run several in one process)
-        COMMANDS[args.command](args)
+        command.run(args)
         sys.stdout.flush()  # here, so that a failing standard output is reported below, not at exit
         _sampler_note(args.command)
     except SkinrenderError as error:

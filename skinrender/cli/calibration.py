@@ -41,18 +41,22 @@ def add_bench_arguments(p: argparse.ArgumentParser) -> None:
 
     p.add_argument("--camera", help="render, calibration, validate: the camera (default gbell:9@450,540,610); "
                    + HELP_CAMERA)
-    p.add_argument("--prevailing", help="calibration, validate: prevailing light (default 3300); " + HELP_PLANCKIAN)
-    p.add_argument("--calibration", help="calibration, validate: calibration light (default 4800); " + HELP_PLANCKIAN)
-    p.add_argument("--spp", metavar="N", help="calibration: samples per pixel (default 16; 64 with --imager)")
+    p.add_argument("--prevailing", help="calibration, validate: prevailing light (default 3300; a face 2856); "
+                   + HELP_PLANCKIAN)
+    p.add_argument("--calibration", help="calibration, validate: calibration light (default 4800; a face 5900); "
+                   + HELP_PLANCKIAN)
+    p.add_argument("--spp", metavar="N", help="calibration: samples per pixel (default 16; 64 with --imager; a face "
+                   "256, split over its 12 replicates)")
     p.add_argument("--seeds", metavar="N", help="calibration: independent validations (default 40); validate: "
                    "validations per spp (default 5)")
     p.add_argument("--seed", metavar="S", help="calibration, validate: the first seed (default 0); the runs use S, "
-                   "S + 2, … (each validation takes its seed and the next)")
+                   "S + 2, … (each validation takes its seed and the next; a face's S, S + 12, …: its 12 replicates)")
     p.add_argument("--imager", help="calibration, validate: through an image sensor (a preset or a TOML)")
     p.add_argument("--illuminance", type=float, help="calibration, validate with --imager: lux at the chart "
                    "(default 500)")
     p.add_argument("--exposure", help="calibration, validate with --imager: seconds or auto (default)")
-    p.add_argument("--level", help="calibration: a face's level of physics (faces only: refused for charts)")
+    p.add_argument("--level", help="calibration: a face's level of physics (default direct; faces only: refused for "
+                   "charts); eq4_shift's failures count as false alarms only where Eq. 4 holds (direct, noise)")
     p.add_argument("--mc-variance", choices=list(MC_VARIANCE),
                    help="calibration, validate with --imager: how the render's own variance enters the sensor's "
                    "predictions: " + choices_help(MC_VARIANCE))
@@ -69,7 +73,7 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     from ..model.camera import camera
     from ..model.illuminant import illuminant
     from ..rendering.renderer import SAMPLES_MAX, render_passes
-    from ..rendering.scene import load_scene
+    from ..rendering.scene import load_chart_scene
     from ..studies.calibration import calibration_path, estimate_seconds, renders_of
     from ..workload import check_work
     from .face import is_face_scene
@@ -77,7 +81,9 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     scene_spec = _or(args.scene, "macbeth")
     kind = "face" if is_face_scene(scene_spec) else "chart"
     run = calibration_path(kind, args.level)
-    scene = flag("--scene", load_scene, scene_spec)
+    if kind == "face":
+        return _checked_face(args, run, scene_spec)
+    scene = flag("--scene", load_chart_scene, scene_spec)
     cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))
     lights = {}
     for name, default in (("prevailing", "3300"), ("calibration", "4800")):
@@ -88,11 +94,12 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     imaging = imaging_options(args)
     if args.mc_variance is not None and imaging is None:
         raise SkinrenderError("--mc-variance sets how the render's variance enters a sensor's predictions: it goes "
-                              "with --imager")
+                              "with --imager", flag="--mc-variance")
     seeds = integer_in(_or(args.seeds, SEEDS_DEFAULT[args.what]), "--seeds", 1, 100_000)
     first = integer_in(_or(args.seed, 0), "--seed", 0, SEED_MAX)
     if first + 2 * seeds - 1 > SEED_MAX:
-        raise SkinrenderError(f"--seed: the runs use seeds {first} to {first + 2 * seeds - 1}, beyond {SEED_MAX}")
+        raise SkinrenderError(f"--seed: the runs use seeds {first} to {first + 2 * seeds - 1}, beyond {SEED_MAX}",
+                              flag="--seed")
     if args.what == "calibration":
         spps = [integer_in(_or(args.spp, 64 if imaging else 16), "--spp", 1, SPP_MAX)]
     else:
@@ -102,7 +109,7 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     for spp in spps:
         if spp * width * height > SAMPLES_MAX:
             raise SkinrenderError(f"--spp: {spp} spp × {width * height} pixels is more than {SAMPLES_MAX} samples a "
-                                  "render may take")
+                                  "render may take", flag="--spp")
     passes = render_passes(cam)
     renders = 1 if imaging else renders_of(lights["prevailing"], lights["calibration"])
     startup = estimate_seconds(0, width * height, 1)  # the first compilation, once
@@ -116,6 +123,45 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
             "level": args.level}
 
 
+def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
+    """``bench calibration --scene FACE [--level L]``'s flags checked (``bench validate`` and ``--mc-variance``
+    refused: the face's checks have no tolerance, and no sensor prediction to correct)."""
+    from ..model.camera import camera
+    from ..rendering.face.effects import PHYSICS_BASE, physics_level
+    from ..rendering.face.scene import load_face_scene
+    from ..studies.face_calibration import SEED_STEP, estimate_face_seconds
+    from ..workload import check_work
+    from .face import planckian_flag
+
+    if args.what != "calibration":
+        raise SkinrenderError("--scene: bench validate runs a chart's tolerance against spp; a face's checks: bench "
+                              "calibration --scene face [--level L]")
+    if args.mc_variance is not None:
+        raise SkinrenderError("--mc-variance corrects a chart's sensor predictions; a face's checks through a sensor "
+                              "take their noise from the replicates")
+    scene = flag("--scene", load_face_scene, scene_spec)
+    level = flag("--level", physics_level, _or(args.level, PHYSICS_BASE)).name
+    cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))
+    lights = {name: planckian_flag(_or(getattr(args, name), default), f"--{name}")
+              for name, default in (("prevailing", "2856"), ("calibration", "5900"))}
+    imaging = imaging_options(args)
+    if imaging is not None and args.illuminance is None:
+        imaging["illuminance_lux"] = None  # the scene's
+    seeds = integer_in(_or(args.seeds, SEEDS_DEFAULT["calibration"]), "--seeds", 1, 100_000)
+    first = integer_in(_or(args.seed, 0), "--seed", 0, SEED_MAX)
+    if first + SEED_STEP * seeds - 1 > SEED_MAX:
+        raise SkinrenderError(f"--seed: the runs use seeds {first} to {first + SEED_STEP * seeds - 1}, beyond "
+                              f"{SEED_MAX}")
+    spp = integer_in(_or(args.spp, 256), "--spp", 1, SPP_MAX)
+    plot = check_output(args.plot, "--plot", (".png",))
+    seconds = estimate_face_seconds(seeds, scene.camera.width * scene.camera.height, spp, level)
+    check_work(seconds, "--seeds", f"{seeds} validations of the face at {spp} spp", args.max_minutes,
+               fewer="run fewer --seeds")
+    return {"run": run, "kind": "face", "scene": scene, "camera_": cam, **lights, "spps": [spp], "seeds": seeds,
+            "first_seed": first, "imaging": imaging, "mc_variance": None, "plot": plot, "estimate_s": seconds,
+            "level": level}
+
+
 @interruptible
 def _run(wrapped: argparse.Namespace) -> None:
     from ..studies.calibration import bench_calibration, bench_validate
@@ -127,7 +173,19 @@ def _run(wrapped: argparse.Namespace) -> None:
     common = {"scene": options["scene"], "camera_": options["camera_"], "prevailing": options["prevailing"],
               "calibration": options["calibration"], "first_seed": options["first_seed"],
               "imaging": options["imaging"], "mc_variance": options["mc_variance"], "progress": progress}
-    if args.what == "calibration":
+    if options.get("kind") == "face":  # the face's own study: it knows where Eq. 4's null holds
+        from ..studies.face_calibration import face_calibration
+
+        result = face_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
+                                  options["prevailing"], options["calibration"], options["spps"][0],
+                                  first_seed=options["first_seed"], imaging=options["imaging"], progress=progress)
+        result["estimate_s"] = options["estimate_s"]
+        if options["plot"] is not None:
+            from ..studies.figures import figure_calibration
+
+            result["plot"] = str(figure_calibration(result, options["plot"]))
+        text = _calibration_text(result)
+    elif args.what == "calibration":
         result = bench_calibration(options["run"], spp=options["spps"][0], seeds=options["seeds"],
                                    level=options["level"], **common)
         result["estimate_s"] = options["estimate_s"]
@@ -156,13 +214,18 @@ def _settings_text(result: dict) -> str:
 
 
 def _calibration_text(result: dict) -> str:
-    rows = [[c["name"], f"{'=' if c['nominal'] == 'equal to' else '≤'} {c['nominal_alpha']:.3g}",
-             f"{c['failures']}/{c['seeds']}", f"{c['rate']:.3g}", f"[{c['interval'][0]:.3g}, {c['interval'][1]:.3g}]",
-             "yes" if c["consistent"] else "NO"] for c in result["checks"]]
-    seeds = result["seeds"]
-    lines = [f"calibration of validate: {_settings_text(result)}, {result['spp']} spp, {seeds} seeds "
-             f"({result['first_seed']}, {result['first_seed'] + 2}, …), {result['elapsed_s']:.1f} s "
-             f"(estimated {result['estimate_s']:.0f} s); every failure is a false alarm (the null holds):",
+    def nominal(c) -> str:  # a face's eq4_shift where Eq. 4 does not hold has no null: its failures are findings
+        return "— (no null)" if c["nominal"] is None else f"{'=' if c['nominal'] == 'equal to' else '≤'} " \
+                                                         f"{c['nominal_alpha']:.3g}"
+
+    rows = [[c["name"], nominal(c), f"{c['failures']}/{c['seeds']}", f"{c['rate']:.3g}",
+             f"[{c['interval'][0]:.3g}, {c['interval'][1]:.3g}]",
+             {True: "yes", False: "NO", None: "—"}[c["consistent"]]] for c in result["checks"]]
+    seeds, step = result["seeds"], result.get("seed_step", 2)
+    level = f", level {result['level']}" if result.get("level") else ""
+    lines = [f"calibration of validate: {_settings_text(result)}{level}, {result['spp']} spp, {seeds} seeds "
+             f"({result['first_seed']}, {result['first_seed'] + step}, …), {result['elapsed_s']:.1f} s "
+             f"(estimated {result['estimate_s']:.0f} s); every failure is a false alarm where the null holds:",
              table(rows, ["check", "nominal α", "failures", "rate", "95 % interval", "consistent"]), "tests:"]
     lines += [f"  {name}: {test}" for name, test in result["tests"].items()]
     if result.get("plot"):

@@ -20,9 +20,9 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
-from .common import emit, grid_of, imaging_options, interruptible, render_options, table
+from .common import emit, imaging_options, interruptible, settings_of, table
 
-__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_parsers", "tolerance_of", "spp_of", "command_validate",
+__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_check_arguments", "add_verdict_arguments", "tolerance_of", "spp_of", "command_validate",
            "command_validate_chart"]
 
 HELP_TOLERANCE = (
@@ -31,31 +31,47 @@ HELP_TOLERANCE = (
     "family-wise 95 %% confidence; fail: one shown outside it; inconclusive: the samples cannot tell (spp_needed "
     "says how many would)")
 
-EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the verdict of --tolerance; a face: 1 when "
-                   "a check fails), 2 a refused input, 130 interrupted")
+EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the verdict of --tolerance; a face: its "
+                   "checks' verdicts combined, eq4_shift held to the detection budget), 2 a refused input, 130 "
+                   "interrupted")
 
 
-def add_parsers(commands) -> None:
-    """``validate``'s verdict flags, added to the parser :mod:`skinrender.cli.rendering` built."""
-    p = commands.choices["validate"]
+def add_check_arguments(p) -> None:
+    """``validate``'s ``--gamut`` (charts) and ``--limits`` (faces), added to the parser
+    :mod:`skinrender.cli.rendering` builds."""
+    p.add_argument("--gamut", action="store_true",
+                   help="also render the chart under every paper illuminant and compare its gamut volumes "
+                   "(one calibration case each, and all calibrations) with the analytic ones, within "
+                   "--tolerance (relative to each volume)")
+    p.add_argument("--limits", metavar="LIST",
+                   help="face scenes: the scene-free limits run beside the level's own: furnace, sphere "
+                   "(comma-separated) or none (default: both)")
+
+
+def add_verdict_arguments(p) -> None:
+    """``validate``'s verdict flags and epilog, added to the parser :mod:`skinrender.cli.rendering` builds."""
     p.add_argument("--tolerance", metavar="REL", help=HELP_TOLERANCE)
     p.epilog = EPILOG_VALIDATE
 
 
 @interruptible
 def command_validate(args: argparse.Namespace) -> None:
-    """``validate``: a face (:mod:`skinrender.cli.face_validation`) or a chart (:func:`command_validate_chart`)."""
-    from .face import is_face_scene
+    """``validate``: a face (:mod:`skinrender.cli.face_validation`) or a chart (:func:`command_validate_chart`),
+    the scene loaded once."""
+    from ..rendering.face.scene import FaceScene
+    from .inputs import scene_of
 
-    if is_face_scene(args.scene):  # the face: the analytic limits that hold at its level of physics
+    scene = scene_of(args)
+    if isinstance(scene, FaceScene):  # the face: the analytic limits that hold at its level of physics
         from .face_validation import command_validate_face
 
-        for name, given in (("--spp auto", str(args.spp).strip().lower() == "auto"),
-                            ("--tolerance", args.tolerance is not None)):
+        for name, option, given in (("--spp auto", "--spp", str(args.spp).strip().lower() == "auto"),
+                                    ("--tolerance", "--tolerance", args.tolerance is not None)):
             if given:
-                raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts")
-        return command_validate_face(args)
-    return command_validate_chart(args)
+                raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts",
+                                      flag=option)
+        return command_validate_face(args, scene)
+    return command_validate_chart(args, scene)
 
 
 def tolerance_of(args: argparse.Namespace) -> float:
@@ -67,20 +83,15 @@ def tolerance_of(args: argparse.Namespace) -> float:
 
 def spp_of(args: argparse.Namespace) -> bool:
     """
-    Whether ``--spp`` is ``auto`` (then ``--tolerance`` must be given); otherwise ``args.spp`` is made an integer
-    (checked, naming ``--spp``).
+    Whether ``--spp`` is ``auto`` (then ``--tolerance`` must be given); any other ``--spp`` is
+    :func:`~skinrender.cli.common.settings_of`'s.
     """
-    from .common import SPP_MAX, integer_in
-
-    if args.spp is None:
+    if args.spp is None or str(args.spp).strip().lower() != "auto":
         return False
-    if str(args.spp).strip().lower() == "auto":
-        if args.tolerance is None:
-            raise SkinrenderError("--spp auto picks the smallest spp expected to pass --tolerance: give --tolerance "
-                                  "REL as well")
-        return True
-    args.spp = integer_in(args.spp, "--spp", 1, SPP_MAX)
-    return False
+    if args.tolerance is None:
+        raise SkinrenderError("--spp auto picks the smallest spp expected to pass --tolerance: give --tolerance "
+                              "REL as well", flag="--spp")
+    return True
 
 
 def _number(value: float) -> str:
@@ -92,67 +103,68 @@ def _summary(name: str, verdict) -> list[str]:
     return [f"{name}: {verdict.outcome.upper().replace('_', ' ')} — {verdict.reason}", f"  test: {verdict.test}"]
 
 
-def _auto_spp(args, inputs, options, imaging, tolerance) -> dict:
+def _auto_spp(inputs, settings, imaging, tolerance) -> dict:
     """``--spp auto``: the pilots and the spp chosen (:func:`~skinrender.rendering.spp_choice.spp_for_tolerance`)."""
     from ..rendering.renderer import SAMPLES_MAX
     from ..rendering.spp_choice import spp_for_tolerance
     from ..rendering.validation import validate
 
-    grid = grid_of(args)
-    width, height = inputs["scene"].size
+    width, height = inputs.scene.size
 
     def at(spp, seed):
-        settings = {**options, "spp": spp, "seed": seed}
+        pilot = settings.replace(spp=spp, seed=seed)
         if imaging is None:
-            return validate(**inputs, normalization=args.normalization, knee=args.knee, grid=grid,
-                            tolerance=tolerance, **settings)
-        return _imaged(args, inputs, settings, imaging, tolerance)[0]
+            return validate(**inputs.keywords(), tolerance=tolerance, settings=pilot)
+        return _imaged(inputs, pilot, imaging, tolerance)[0]
 
-    print(f"spp auto: pilot renders of {inputs['scene'].name} …", file=sys.stderr)
-    choice = spp_for_tolerance(at, tolerance, options["seed"], spp_max=SAMPLES_MAX // (width * height),
-                               sampler=options["sampler"])
+    print(f"spp auto: pilot renders of {inputs.scene.name} …", file=sys.stderr)
+    choice = spp_for_tolerance(at, tolerance, settings.seed, spp_max=SAMPLES_MAX // (width * height),
+                               sampler=settings.sampler)
     print(f"spp auto: {choice['spp']} spp ({choice['why']})", file=sys.stderr)
     return choice
 
 
-def command_validate_chart(args: argparse.Namespace) -> None:
-    """``validate`` on a chart (the face is :mod:`skinrender.cli.face_validation`)."""
+def command_validate_chart(args: argparse.Namespace, scene) -> None:
+    """``validate`` on a chart ``scene`` (loaded by :func:`command_validate`; the face is
+    :mod:`skinrender.cli.face_validation`)."""
     from ..evaluation.verdict import EXIT_STATUS
     from ..rendering.spp_choice import PILOT_SPP
     from ..rendering.validation import validate
     from .common import check_render_work
-    from .rendering import chart_only, pixels_of, render_inputs
+    from .inputs import chart_inputs, chart_only
+    from .subsurface import check_chart_subsurface
 
     tolerance = tolerance_of(args)
     auto = spp_of(args)
     chart_only(args)
     if args.limits is not None:
-        raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart")
+        raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart", flag="--limits")
     if args.gamut and args.imager is not None:
-        raise SkinrenderError("--gamut compares the noise-free render's gamut volumes: it goes without --imager")
-    options = render_options(argparse.Namespace(**{**vars(args), "spp": None}) if auto else args)
-    requested = "auto" if auto else options["spp"]
-    inputs = render_inputs(args)
+        raise SkinrenderError("--gamut compares the noise-free render's gamut volumes: it goes without --imager",
+                              flag="--gamut")
+    settings = settings_of(args, auto)
+    requested = "auto" if auto else settings.spp
+    inputs = chart_inputs(args, scene)
+    settings = check_chart_subsurface(args, inputs, settings)
     imaging = imaging_options(args)
     renders = 11 if args.gamut else 1  # --gamut: ten more, one per paper illuminant
     choice = None
     if auto:
-        check_render_work(args, pixels_of(inputs["scene"]), max(PILOT_SPP), len(PILOT_SPP))
-        choice = _auto_spp(args, inputs, options, imaging, tolerance)
-        options["spp"] = choice["spp"]
-    check_render_work(args, pixels_of(inputs["scene"]), options["spp"], renders)
-    print(f"rendering {inputs['scene'].name} at {options['spp']} spp and validating …", file=sys.stderr)
+        check_render_work(args, inputs.pixels, max(PILOT_SPP), len(PILOT_SPP))
+        choice = _auto_spp(inputs, settings, imaging, tolerance)
+        settings = settings.replace(spp=choice["spp"])
+    check_render_work(args, inputs.pixels, settings.spp, renders)
+    print(f"rendering {inputs.scene.name} at {settings.spp} spp and validating …", file=sys.stderr)
     if imaging is not None:
-        result, imaged = _imaged(args, inputs, options, imaging, tolerance)
-        document, text = _imaged_report(args, result, imaged, requested)
+        result, imaged = _imaged(inputs, settings, imaging, tolerance)
+        document, text = _imaged_report(result, imaged, requested)
         verdict = result.verdict
     else:
-        result = validate(**inputs, normalization=args.normalization, knee=args.knee, grid=grid_of(args),
-                          tolerance=tolerance, physics=str(args.physics).strip(), **options)
-        document, lines = _chart_report(args, result, options, requested, tolerance)
+        result = validate(**inputs.keywords(), tolerance=tolerance, settings=settings)
+        document, lines = _chart_report(inputs, result, settings, requested, tolerance)
         verdict = result.verdict
         if args.gamut:
-            verdict = _gamut(args, options, tolerance, document, lines, verdict)
+            verdict = _gamut(inputs, settings, tolerance, document, lines, verdict)
         text = "\n".join(lines)
         document["verdict"] = verdict.outcome
         document["passed"] = verdict.outcome == "pass"
@@ -166,7 +178,7 @@ def command_validate_chart(args: argparse.Namespace) -> None:
         raise SystemExit(document["exit_status"])
 
 
-def _chart_report(args, result, options, requested, tolerance) -> tuple[dict, list[str]]:
+def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict, list[str]]:
     """A chart validation's document and text lines: per patch and channel the values, error, bound, tolerance."""
     from ..constants import CONSTANT_OUTPUT_SCALE
     from ..rendering.agreement import DARK_LEVEL
@@ -177,9 +189,9 @@ def _chart_report(args, result, options, requested, tolerance) -> tuple[dict, li
     r = result.rendering
     checks = {"equivalence": result.verdict, "difference": result.difference}
     document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
-                "calibration_K": r.calibration, "normalization": args.normalization, "knee": args.knee,
-                "spp": r.raw[0].spp, "spp_requested": requested, "sampler": options["sampler"],
-                "seed": args.seed, "variant": r.variant, "elapsed_s": r.seconds, "tolerance": tolerance,
+                "calibration_K": r.calibration, "normalization": inputs.normalization, "knee": inputs.knee,
+                "spp": r.raw[0].spp, "spp_requested": requested, "sampler": settings.sampler,
+                "seed": settings.seed, "variant": r.variant, "elapsed_s": r.seconds, "tolerance": tolerance,
                 "dark_floor_output": tolerance * DARK_LEVEL * CONSTANT_OUTPUT_SCALE,
                 "bound": result.bound, "spp_needed": result.spp_needed,
                 "checks": {name: v.document() for name, v in checks.items()}, "patches": result.patches(),
@@ -191,7 +203,7 @@ def _chart_report(args, result, options, requested, tolerance) -> tuple[dict, li
              f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", p["shown"][k]]
             for p in document["patches"] for k in range(3)]
     lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
-             f"{r.raw[0].spp} spp {options['sampler']}, {r.variant}, {r.seconds:.2f} s; output units "
+             f"{r.raw[0].spp} spp {settings.sampler}, {r.variant}, {r.seconds:.2f} s; output units "
              "(white = 255 at p = c); bound: the upper 95 % (family-wise) confidence bound of |error|",
              *subsurface_lines(r), table(rows, ["patch", "channel", "analytic", "rendered", "error", "bound", "tolerance", "shown"])]
     lines += _summary("equivalence", result.verdict)
@@ -204,13 +216,13 @@ def _chart_report(args, result, options, requested, tolerance) -> tuple[dict, li
     return document, lines
 
 
-def _gamut(args, options, tolerance, document, lines, verdict):
-    """``--gamut``: the volumes' verdicts added to the document and the text; the combined verdict."""
+def _gamut(inputs, settings, tolerance, document, lines, verdict):
+    """``--gamut``: the volumes' verdicts added to the document and the text; the combined verdict. The chart and
+    the camera are the objects the command parsed (a CSV camera keeps its ``--extrapolation``)."""
     from ..evaluation.verdict import Verdict, combine
     from ..rendering.validation import validate_gamut
 
-    gamuts = validate_gamut(args.scene, args.camera, spp=options["spp"], seed=args.seed, sampler=options["sampler"],
-                            variant=args.variant, grid=grid_of(args), tolerance=tolerance)
+    gamuts = validate_gamut(inputs.scene, inputs.camera, settings=settings, grid=inputs.grid, tolerance=tolerance)
     document["gamut"] = gamuts
     labels = [f"calibration {t:g} K" for t in gamuts["illuminants_K"]] + ["all calibrations"]
     rows = [[label, f"{a:.6g}", f"{r:.6g}", f"{s:.2g}", f"{b:.3g}"]
@@ -225,30 +237,28 @@ def _gamut(args, options, tolerance, document, lines, verdict):
     return combine([verdict, gamut_verdict], "validation")
 
 
-def _imaged(args, inputs, options, imaging, tolerance):
+def _imaged(inputs, settings, imaging, tolerance):
     """The render through the sensor and its validation: (validation, imaged)."""
     from ..rendering.sensor_validation import validate_imaged
     from ..rendering.validation import analytic_reference
-    from .rendering import render_with
-
-    rendering, imaged = render_with(args, inputs, options, imaging)
-    grid = grid_of(args)
+    rendering, imaged = inputs.render(settings, imaging)
+    grid = inputs.grid
     ratio = analytic_reference(rendering.camera, rendering.scene.reflectances(grid), rendering.prevailing,
                                rendering.prevailing, grid=grid) / 255.0
     return validate_imaged(imaged, ratio, grid=grid, tolerance=tolerance), imaged
 
 
-def _imaged_report(args, result, imaged, requested) -> tuple[dict, str]:
+def _imaged_report(result, imaged, requested) -> tuple[dict, str]:
     """``validate --imager``'s document and text."""
     from ..rendering.renderer import channel_names
-    from .rendering import imaging_document, imaging_notes
+    from .inputs import imaging_document, imaging_notes
 
     rendering = imaged.rendering
     patches = result.patches()
     checks = {**result.checks, "difference": result.difference}
     document = {"scene": rendering.scene.name, "camera": rendering.camera.name, "prevailing_K": rendering.prevailing,
-                "calibration_K": rendering.calibration, "normalization": args.normalization,
-                "spp": rendering.raw[0].spp, "spp_requested": requested, "seed": args.seed,
+                "calibration_K": rendering.calibration, "normalization": rendering.normalization,
+                "spp": rendering.raw[0].spp, "spp_requested": requested, "seed": rendering.raw[0].seed,
                 "variant": rendering.variant, "elapsed_s": rendering.seconds, **imaging_document(imaged),
                 "tolerance": result.checks["equivalence"].tolerance, "bound": result.bound,
                 "spp_needed": result.spp_needed, "spp_needed_reason": result.spp_reason or None,

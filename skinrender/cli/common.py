@@ -22,7 +22,7 @@ from ..files import check_output_path, shown
 __all__ = [
     "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
-    "add_render", "emit", "table", "range_text", "grid_of", "render_options", "choices_help", "coverage_hint",
+    "add_render", "emit", "table", "range_text", "grid_of", "settings_of", "choices_help", "coverage_hint",
     "interruptible", "check_render_work", "add_max_minutes",
 ]
 
@@ -90,7 +90,7 @@ def add_search(parser: argparse.ArgumentParser) -> None:
 
 def add_render(parser: argparse.ArgumentParser, spp_auto: bool = False) -> None:
     """The Mitsuba options: quality, spp (``spp_auto``: also ``auto``), sampler, seed, variant, channels."""
-    from ..rendering.renderer import CHANNEL_GROUPINGS, QUALITY_PRESETS, SAMPLERS
+    from ..rendering.settings import CHANNEL_GROUPINGS, QUALITY_PRESETS, SAMPLERS
 
     parser.add_argument("--quality", choices=list(QUALITY_PRESETS), default="standard",
                         help="preset: " + ", ".join(f"{k} ({v['spp']} spp)" for k, v in QUALITY_PRESETS.items())
@@ -177,26 +177,34 @@ def range_text(values: list) -> str:
 
 
 def grid_of(args: argparse.Namespace):
-    """The :class:`~skinrender.spectra.WavelengthGrid` of ``--grid``."""
-    from ..spectra import WavelengthGrid
+    """The :class:`~skinrender.spectra.WavelengthGrid` of ``--grid`` (the default grid for a command without it),
+    parsed once per command: the commands pass the object on."""
+    from ..spectra import GRID_DEFAULT, WavelengthGrid
 
+    if getattr(args, "grid", None) is None:
+        return GRID_DEFAULT
     return flag("--grid", WavelengthGrid.parse, args.grid)
 
 
-def render_options(args: argparse.Namespace) -> dict:
-    """``spp``, ``sampler``, ``seed``, ``variant``, ``channels`` from the render flags."""
-    from ..rendering.renderer import QUALITY_PRESETS
+def settings_of(args: argparse.Namespace, auto: bool = False):
+    """
+    The :class:`~skinrender.rendering.settings.RenderSettings` of the render flags, made once per command:
+    ``--quality``'s spp and sampler unless ``--spp`` or ``--sampler`` is given, ``--seed``, ``--variant`` (checked to
+    run here before anything renders) and ``--channels``; each refusal names its flag. ``auto``: ``--spp auto``,
+    which the command resolves itself (``validate``), the quality's spp standing in until it has.
+    """
+    from ..rendering.settings import QUALITY_PRESETS, RenderSettings
 
     preset = QUALITY_PRESETS[args.quality]
-    spp = args.spp if args.spp is not None else preset["spp"]
+    spp = args.spp if args.spp is not None and not auto else preset["spp"]
     if isinstance(spp, str):  # a command whose --spp also takes auto (validate), which it resolves itself
         if spp.strip().lower() == "auto":
-            raise SkinrenderError("--spp auto goes with a chart's 'validate --tolerance T'")
+            raise SkinrenderError("--spp auto goes with a chart's 'validate --tolerance T'", flag="--spp")
         spp = integer_in(spp, "--spp", 1, SPP_MAX)
     if not 1 <= spp <= SPP_MAX:
-        raise SkinrenderError(f"--spp must be an integer in [1, {SPP_MAX}], got {spp}")
-    return {"spp": spp, "sampler": args.sampler or preset["sampler"], "seed": check_seed(args.seed),
-            "variant": variant_of(args.variant), "channels": args.channels}
+        raise SkinrenderError(f"--spp must be an integer in [1, {SPP_MAX}], got {spp}", flag="--spp")
+    return RenderSettings(spp, check_seed(args.seed), args.sampler or preset["sampler"], variant_of(args.variant),
+                          args.channels)
 
 
 SPP_MAX = 1 << 20
@@ -204,7 +212,15 @@ SPP_MAX = 1 << 20
 
 
 class Parser(argparse.ArgumentParser):
-    """An argument parser whose errors are one line, ``skinrender COMMAND: error: …``, exit status 2."""
+    """
+    An argument parser whose errors are one line, ``skinrender COMMAND: error: …``, exit status 2; a command's
+    parser carries ``run``, the function of the parsed arguments that runs the command (the command registry:
+    ``commands.add_parser(NAME, run=FUNCTION, help=…)``, :func:`skinrender.cli.commands`).
+    """
+
+    def __init__(self, *args, run=None, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.run = run
 
     def error(self, message: str):  # noqa: D102 - argparse's hook
         self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
@@ -228,7 +244,7 @@ def integer_in(text, name: str, low: int, high: int | None = None) -> int:
         value = None
     if value is None or value < low or (high is not None and value > high):
         bounds = f"≥ {low}" if high is None else f"in [{low}, {high}]"
-        raise SkinrenderError(f"{name} must be an integer {bounds}, got {text!r}")
+        raise SkinrenderError(f"{name} must be an integer {bounds}, got {text!r}", flag=name)
     return value
 
 
@@ -247,7 +263,7 @@ def positive_number(text, name: str, unit: str, high: float | None = None) -> fl
     high = ILLUMINANCE_MAX if high is None and name == "--illuminance" else high
     if not math.isfinite(value) or value <= 0 or (high is not None and value > high):
         bound = "" if high is None else f" and ≤ {high:g}"
-        raise SkinrenderError(f"{name} must be a finite number > 0{bound} ({unit}), got {text!r}")
+        raise SkinrenderError(f"{name} must be a finite number > 0{bound} ({unit}), got {text!r}", flag=name)
     return value
 
 
@@ -266,7 +282,8 @@ def variant_of(name: str | None) -> str | None:
     from ..rendering.variants import VARIANTS_SPECTRAL, choose_variant
 
     if name not in VARIANTS_SPECTRAL:
-        raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, got {name!r}")
+        raise SkinrenderError(f"--variant must be one of {', '.join(VARIANTS_SPECTRAL)}, got {name!r}",
+                              flag="--variant")
     flag("--variant", choose_variant, name)
     return name
 
@@ -310,7 +327,7 @@ def check_seed(seed: int, name: str = "--seed") -> int:
     """A seed in ``[0, SEED_MAX]``, else a one-line error naming the flag."""
     if not 0 <= seed <= SEED_MAX:
         raise SkinrenderError(f"{name} must be an integer in [0, {SEED_MAX}] (32-bit, and the calibration render "
-                              f"uses seed + 1), got {seed}")
+                              f"uses seed + 1), got {seed}", flag=name)
     return seed
 
 
@@ -367,16 +384,17 @@ def sensor_settings(args: argparse.Namespace, default_lux: float | None = ILLUMI
     lux = default_lux if args.illuminance is None else args.illuminance
     if lux is not None and not (math.isfinite(lux) and 0 < lux <= ILLUMINANCE_MAX):
         raise SkinrenderError(f"--illuminance must be a finite number of lux > 0 and ≤ {ILLUMINANCE_MAX:g}, got "
-                              f"{args.illuminance}")
+                              f"{args.illuminance}", flag="--illuminance")
     exposure = "auto" if args.exposure is None else str(args.exposure).strip().lower()
     if exposure != "auto":
         try:
             exposure = float(exposure)
         except ValueError:
-            raise SkinrenderError(f"--exposure must be auto or seconds > 0, got {args.exposure!r}") from None
+            raise SkinrenderError(f"--exposure must be auto or seconds > 0, got {args.exposure!r}",
+                                  flag="--exposure") from None
         if not (math.isfinite(exposure) and 0 < exposure <= EXPOSURE_MAX):
             raise SkinrenderError(f"--exposure must be auto or a finite number of seconds > 0 and ≤ {EXPOSURE_MAX:g}, "
-                                  f"got {args.exposure!r}")
+                                  f"got {args.exposure!r}", flag="--exposure")
     return lux, exposure
 
 
@@ -384,7 +402,7 @@ def refuse_sensor_settings(args: argparse.Namespace, instead: str = "--imager") 
     """``--illuminance`` and ``--exposure`` set the image sensor: refused (one line) where there is none."""
     for name in ("illuminance", "exposure"):
         if getattr(args, name, None) is not None:
-            raise SkinrenderError(f"--{name} sets the image sensor's exposure: it goes with {instead}")
+            raise SkinrenderError(f"--{name} sets the image sensor's exposure: it goes with {instead}", flag=f"--{name}")
 
 
 def imaging_options(args: argparse.Namespace) -> dict | None:

@@ -11,10 +11,11 @@ from .common import (add_common, emit, range_text, table)
 
 def add_parsers(commands) -> None:
     """Add the parsers of cameras, datasets."""
-    p = commands.add_parser("cameras", help="list bundled cameras")
+    p = commands.add_parser("cameras", run=command_cameras, help="list bundled cameras")
     add_common(p)
 
-    p = commands.add_parser("datasets", help="list reflectance sets with source, licence, count, range")
+    p = commands.add_parser("datasets", run=command_datasets,
+                            help="list reflectance sets with source, licence, count, range")
     add_common(p)
 
 

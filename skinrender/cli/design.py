@@ -48,7 +48,8 @@ def noisy_of(args: argparse.Namespace, temperatures=None):
     if imaging is None:
         given = [name for name in NOISE_FLAGS if getattr(args, name, None) is not None]
         if given:
-            raise SkinrenderError(f"--{given[0].replace('_', '-')} goes with --imager (the noisy criterion)")
+            option = f"--{given[0].replace('_', '-')}"
+            raise SkinrenderError(f"{option} goes with --imager (the noisy criterion)", flag=option)
         return None
     samples = 4 if args.noise_samples is None else integer_in(args.noise_samples, "--noise-samples", 1,
                                                               NOISE_SAMPLES_MAX)
@@ -59,7 +60,7 @@ def noisy_of(args: argparse.Namespace, temperatures=None):
         calibration = NOISE_CALIBRATION_K
         if NOISE_CALIBRATION_K not in list(temperatures):
             raise SkinrenderError(f"--noise-calibration: the default {NOISE_CALIBRATION_K:g} K is not one of the "
-                                  "illuminants; give one of them")
+                                  "illuminants; give one of them", flag="--noise-calibration")
     flag("--noise-calibration", calibration_index, temperatures, calibration)
     return flag("--imager", noisy_setting, imaging["imager_"], imaging["illuminance_lux"], imaging["exposure"],
                 calibration, samples, seed)
@@ -67,7 +68,8 @@ def noisy_of(args: argparse.Namespace, temperatures=None):
 
 def add_parsers(commands) -> None:
     """Add the parsers of search, design."""
-    p = commands.add_parser("search", help="Stage 3: gamut volumes of every sensor triplet (Tables 2–5)")
+    p = commands.add_parser("search", run=command_search,
+                            help="Stage 3: gamut volumes of every sensor triplet (Tables 2–5)")
     p.add_argument("--sensor", required=True, type=float,
                    help="the paper's sensor: " + SENSOR_RULE)
     p.add_argument("--slope", type=float, default=None,
@@ -96,7 +98,8 @@ def add_parsers(commands) -> None:
     add_grid(p)
     add_common(p)
 
-    p = commands.add_parser("design", help="optimise a gbell camera's peaks off the grid (derivative-free, several starts)")
+    p = commands.add_parser("design", run=command_design,
+                            help="optimise a gbell camera's peaks off the grid (derivative-free, several starts)")
     add_noisy(p)
     p.add_argument("--objective", choices=list(OBJECTIVES), default="detection",
                    help="detection: Munsell false-positive rate in the skin locus (default); ratio: skin/Munsell "
@@ -128,7 +131,8 @@ def command_search(args: argparse.Namespace) -> None:
 
     check_output(args.csv, "--csv", (".csv",))
     if not (math.isfinite(args.tie_tolerance) and args.tie_tolerance >= 0):
-        raise SkinrenderError(f"--tie-tolerance must be a finite relative difference ≥ 0, got {args.tie_tolerance}")
+        raise SkinrenderError(f"--tie-tolerance must be a finite relative difference ≥ 0, got {args.tie_tolerance}",
+                              flag="--tie-tolerance")
     max_triplets = integer_in(args.max_triplets, "--max-triplets", 1)
     grid = grid_of(args)
     skin = flag("--skin", reflectances, args.skin, extrapolation=args.extrapolation)
@@ -138,20 +142,20 @@ def command_search(args: argparse.Namespace) -> None:
     munsell_values = flag("--munsell", munsell.on, grid, rule)
     if isinstance(args.illuminants, str) and args.illuminants.strip().lower() == "auto":
         raise SkinrenderError("--illuminants: 'auto' (Stage 1 for a camera) is for reproduce and stage1; "
-                              "search takes 'paper' or comma-separated kelvin")
+                              "search takes 'paper' or comma-separated kelvin", flag="--illuminants")
     temperatures = flag("--illuminants", illuminant_set, args.illuminants)
     positions = flag("--positions", positions_grid, args.positions)
     if not (math.isfinite(args.sensor) and args.sensor > 0):
-        raise SkinrenderError(f"--sensor must be {SENSOR_RULE}, got {args.sensor}")
+        raise SkinrenderError(f"--sensor must be {SENSOR_RULE}, got {args.sensor}", flag="--sensor")
     slope = 2.0 if args.slope is None else args.slope
     if not (math.isfinite(slope) and slope > 0):
-        raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope}")
+        raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope}", flag="--slope")
     if args.workers is not None:
         from ..studies.volumes import check_workers
 
         check_workers(args.workers)
     flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, slope)
-    check_positions(args.positions, grid)  # inside the grid, as reproduce checks them
+    check_positions(positions, grid)  # inside the grid, as reproduce checks them
     flag("--illuminants", sensor_bank, args.sensor, skin_values[:1], positions[:3], temperatures, slope,
          grid=grid)
     noisy = noisy_of(args, temperatures)
@@ -259,29 +263,25 @@ def command_design(args: argparse.Namespace) -> None:
     except ValueError:
         starts = []
     if not starts or any(len(s) != 3 for s in starts):
-        raise SkinrenderError("--starts must be triplets of nm separated by ';', e.g. 450,540,610;420,550,680")
+        raise SkinrenderError("--starts must be triplets of nm separated by ';', e.g. 450,540,610;420,550,680",
+                              flag="--starts")
     grid = GRID_DEFAULT
 
     skin, munsell = flag("--skin", reflectances, args.skin), flag("--munsell", reflectances, args.munsell)
     if not (math.isfinite(args.sensor) and args.sensor > 0):
-        raise SkinrenderError(f"--sensor must be a gbell number N > 0 (FWHM N·10 nm), got {args.sensor}")
+        raise SkinrenderError(f"--sensor must be a gbell number N > 0 (FWHM N·10 nm), got {args.sensor}",
+                              flag="--sensor")
     noisy = noisy_of(args)
     if noisy is not None and args.objective != "detection":
-        raise SkinrenderError("--imager goes with --objective detection (noisy pixels), not ratio")
+        raise SkinrenderError("--imager goes with --objective detection (noisy pixels), not ratio", flag="--imager")
     evaluations = len(starts) * max(int(args.evaluations), 0)
     each = DESIGN_SECONDS_PER_EVALUATION + (0 if noisy is None else noisy.samples * DESIGN_SECONDS_PER_NOISE_SAMPLE)
     check_work(evaluations * each, "--evaluations", f"{len(starts)} starts × {args.evaluations} evaluations",
                args.max_minutes, fewer="ask for fewer --evaluations or --starts")
-    try:
-        result = optimise_camera(args.objective, skin.on(grid), munsell.on(grid), starts, args.sensor * 10.0,
-                                 args.slope, args.free_shape, args.evaluations, noisy=noisy)
-    except SkinrenderError as error:  # the argument at fault, by the flag the user gave it
-        text = str(error)
-        named = next((f for word, f in (("starts", "--starts"), ("evaluations", "--evaluations"),
-                                        ("slope", "--slope"), ("sensor width", "--sensor")) if text.startswith(word)),
-                     None)
-        text = text[len("starts: "):] if text.startswith("starts: ") else text
-        raise SkinrenderError(f"{named}: {text}" if named else text) from None
+    # the argument at fault by the flag the user gave it (its error's role)
+    result = flag({"starts": "--starts", "evaluations": "--evaluations", "slope": "--slope", "fwhm": "--sensor"},
+                  optimise_camera, args.objective, skin.on(grid), munsell.on(grid), starts, args.sensor * 10.0,
+                  args.slope, args.free_shape, args.evaluations, noisy=noisy)
     document = {"objective": args.objective, "camera": result.camera_spec, "peaks": result.peaks.tolist(),
                 "fwhm_nm": result.fwhm, "slope": result.slope, "value": result.value, "starts": result.starts,
                 "method": "Nelder-Mead (derivative-free)",

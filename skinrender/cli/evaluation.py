@@ -15,7 +15,8 @@ from .common import HELP_CAMERA, camera_of, check_lights, add_common, check_outp
 
 def add_parsers(commands) -> None:
     """Add the parsers of locus."""
-    p = commands.add_parser("locus", help="skin locus in NCC (r, g) over the illuminant set, and its false positives")
+    p = commands.add_parser("locus", run=command_locus,
+                            help="skin locus in NCC (r, g) over the illuminant set, and its false positives")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--illuminants", default="paper",
                    help="illuminant set: 'paper' (the ten, default), 'auto' (Stage 1) or comma-separated kelvin")
@@ -44,16 +45,19 @@ def nonskin_sets(spec: str, munsell: str = "munsell") -> dict[str, str]:
     """
     items = [name.strip() for name in spec.split(",")]
     if not spec.strip() or any(not name for name in items):
-        raise SkinrenderError(f"--nonskin: expected comma-separated reflectance sets without empty items, got {spec!r}")
+        raise SkinrenderError(f"--nonskin: expected comma-separated reflectance sets without empty items, got {spec!r}",
+                              flag="--nonskin")
     names = [munsell if name == "munsell" else name for name in items]
     repeated = sorted({name for name in names if names.count(name) > 1})
     if munsell in repeated and munsell != "munsell":
         raise SkinrenderError(f"--munsell {munsell} is already in --nonskin {spec!r} (whose item 'munsell' is the "
-                              "--munsell set): name another set, or list the non-skin sets without it")
+                              "--munsell set): name another set, or list the non-skin sets without it",
+                              flag="--munsell")
     if repeated:
-        raise SkinrenderError(f"--nonskin: each set once, got {', '.join(repeated)} more than once")
+        raise SkinrenderError(f"--nonskin: each set once, got {', '.join(repeated)} more than once", flag="--nonskin")
     if munsell != "munsell" and munsell not in names:
-        raise SkinrenderError(f"--munsell {munsell} is not used: --nonskin {spec!r} has no item 'munsell'")
+        raise SkinrenderError(f"--munsell {munsell} is not used: --nonskin {spec!r} has no item 'munsell'",
+                              flag="--munsell")
     return dict(zip(items, names))
 
 
@@ -75,7 +79,7 @@ def command_locus(args: argparse.Namespace) -> None:
     if args.calibration is not None:
         calibration = flag("--calibration", illuminant, args.calibration).temperature
         if calibration is None:
-            raise SkinrenderError("--calibration must be Planckian (kelvin, A or H)")
+            raise SkinrenderError("--calibration must be Planckian (kelvin, A or H)", flag="--calibration")
     skin = flag("--skin", reflectances, args.skin)
     flag("--skin", skin.on)  # its coverage of the grid, checked here to name the flag
     locus = skin_locus(cam, skin, temperatures, calibration, args.boundary)

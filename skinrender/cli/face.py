@@ -18,7 +18,7 @@ from ..errors import SkinrenderError
 from ..files import TOML_BYTES_MAX, Output, exists, read_input, write_output, write_outputs
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_of,
                      check_output, check_render_work, check_seed, choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
-                     render_options, sensor_settings, table, variant_of)
+                     sensor_settings, settings_of, table, variant_of)
 
 __all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
@@ -63,22 +63,30 @@ def add_face_arguments(parser: argparse.ArgumentParser) -> None:
 
 def add_parsers(commands) -> None:
     """Add the parser of ladder."""
-    from ..studies.ladder import LEVELS_DEFAULT
+    from ..studies.ladder import LEVELS_DEFAULT, REPLICATES_LADDER
 
-    p = commands.add_parser("ladder", help=f"the face rendered at each level of physics ({level_names(True)}, "
-                            "all), with the skin's NCC and the skin locus's detection rates at each")
+    p = commands.add_parser("ladder", run=command_ladder,
+                            help=f"the face rendered at each level of physics ({level_names(True)}, "
+                            "all), with the skin's NCC against Eq. 4's within the detection budget and the skin "
+                            "locus's detection rates at each (exit 0 every level within its budget, 1 one beyond, "
+                            "3 one undecided)")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--prevailing", required=True, help="the key light: " + HELP_PLANCKIAN)
     p.add_argument("--calibration", required=True, help="the white balance: " + HELP_PLANCKIAN)
-    p.add_argument("--skin", help=HELP_SKIN)
+    p.add_argument("--skin", action="append", help=HELP_SKIN + "; repeat it with --effects")
+    p.add_argument("--effects", action="store_true",
+                   help="the effects table instead: the base and each effect alone (or --levels, with direct) for "
+                   "each --skin (default light, medium and dark: the skin model at melanin 0.02, 0.13, 0.3): the "
+                   "skin's shift from Eq. 4 against the budget, the TPR/FPR change from direct, the seconds")
     p.add_argument("--scene", default="face", help="face scene: a bundled name (face) or a .toml path")
-    p.add_argument("--levels", default=",".join(LEVELS_DEFAULT),
+    p.add_argument("--levels",
                    help="comma-separated levels (" + _physics_help() + "); default "
-                   + ",".join(LEVELS_DEFAULT))
+                   + ",".join(LEVELS_DEFAULT) + " (with --effects: direct and each effect alone)")
     p.add_argument("--size", metavar="PX", default=str(LADDER_SIZE_DEFAULT),
                    help=f"image side in pixels (default {LADDER_SIZE_DEFAULT})")
     p.add_argument("--spp", metavar="N", default=str(LADDER_SPP_DEFAULT),
-                   help=f"samples per pixel (default {LADDER_SPP_DEFAULT})")
+                   help=f"samples per pixel of a level in all, split over {REPLICATES_LADDER} replicates whose "
+                   f"spread is the shift's noise (default {LADDER_SPP_DEFAULT})")
     p.add_argument("--seed", metavar="S", default="0", help="sampler seed, every level the same (default 0)")
     p.add_argument("--imager",
                    help="image sensor of the noise level: a preset or a TOML (default sony-icx418)")
@@ -89,8 +97,9 @@ def add_parsers(commands) -> None:
                    help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral)")
     p.add_argument("--plot", metavar="PNG",
                    help="write the ladder's figure to this PNG: per level the render, the label mask, the "
-                   "detected mask and the skin pixels' NCC over the analytic skin locus")
-    add_max_minutes(p, "the levels × --size² × --spp")
+                   "detected mask and the skin pixels' NCC over the analytic skin locus with the budget; with "
+                   "--effects, the table's bars")
+    add_max_minutes(p, "the levels × --size² × --spp (with --effects, × the skins)")
     add_common(p)
 
 
@@ -123,33 +132,34 @@ def check_figure(args: argparse.Namespace, *taken) -> Path | None:
     """
     figure = check_output(getattr(args, "figure", None), "--figure", (".png",))
     if figure is not None and any(figure.resolve() == Path(other).resolve() for other in taken):
-        raise SkinrenderError(f"--figure: {figure} is also another output of the command; name another PNG")
+        raise SkinrenderError(f"--figure: {figure} is also another output of the command; name another PNG",
+                              flag="--figure")
     return figure
 
 
-def face_inputs(args: argparse.Namespace) -> tuple:
+def face_inputs(args: argparse.Namespace, scene) -> tuple:
     """
     The inputs of a face render from the flags of ``render``/``validate``, each checked with a one-line error
     naming its flag: ``(scene, camera, temperatures {prevailing, calibration} K, physics, skin, size px or None,
-    imager, exposure, illuminance lx)``; with ``--imager`` the level gains ``noise``.
+    imager, exposure, illuminance lx)``; with ``--imager`` the level gains ``noise``. ``scene``: the face scene
+    the command loaded (:func:`~skinrender.cli.inputs.scene_of`).
     """
     from ..rendering.face.effects import parse_physics
-    from ..rendering.face.scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face.scene import skin_reflectance_of
     from ..spectra import GRID_DEFAULT
 
-    scene = flag("SCENE", load_face_scene, args.scene)
     cam = camera_of(args)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
     _check_light(cam, temperatures)
     if getattr(args, "normalization", "white") != "white":
         raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
-                              f"got {args.normalization!r}")
+                              f"got {args.normalization!r}", flag="--normalization")
     if str(getattr(args, "grid", "400:700:1")).strip() != "400:700:1":
-        raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}")
+        raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}", flag="--grid")
     physics = getattr(args, "physics", None)
     physics = "direct" if physics is None else physics
     if not str(physics).strip():
-        raise SkinrenderError(f"--physics: name a level ({level_names()}; '+' combines them), got ''")
+        raise SkinrenderError(f"--physics: name a level ({level_names()}; '+' combines them), got ''", flag="--physics")
     flag("--physics", parse_physics, physics)
     skin = getattr(args, "skin", None)
     if skin is not None:
@@ -183,10 +193,10 @@ def levels_of(text: str) -> list[str]:
 
     levels = [level.strip() for level in str(text).split(",")]
     if not any(levels) or not all(levels):
-        raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {text!r}")
+        raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {text!r}", flag="--levels")
     effects = [flag("--levels", parse_physics, level) for level in levels]
     if len(set(effects)) < len(effects):
-        raise SkinrenderError(f"--levels: a level is named twice in {text!r}; name each once")
+        raise SkinrenderError(f"--levels: a level is named twice in {text!r}; name each once", flag="--levels")
     return levels
 
 
@@ -206,7 +216,8 @@ def noise_sensor(args: argparse.Namespace, levels: list[str]) -> float | None:
         for name in ("imager", "illuminance"):
             if getattr(args, name) is not None:
                 raise SkinrenderError(f"--{name} is the noise level's: add a level with noise to --levels "
-                                      f"(e.g. noise or interreflection+noise), got {','.join(levels)!r}")
+                                      f"(e.g. noise or interreflection+noise), got {','.join(levels)!r}",
+                                      flag=f"--{name}")
     return lux
 
 
@@ -217,12 +228,13 @@ def is_face_scene(spec: str) -> bool:
     return face_scene(spec)
 
 
-@interruptible
-def command_ladder(args: argparse.Namespace) -> None:
+def _ladder_inputs(args: argparse.Namespace) -> dict:
+    """The ladder's flags, each checked with a one-line error naming it (``--skin`` repeats only with
+    ``--effects``; ``--levels`` defaults to the base and each effect alone there)."""
+    from ..rendering.face.effects import LEVELS_EACH
     from ..rendering.face.scene import load_face_scene, skin_reflectance_of
-    from ..studies.ladder import ladder
+    from ..spectra import GRID_DEFAULT
 
-    plot = check_output(getattr(args, "plot", None), "--plot", (".png",))
     cam = camera_of(args)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
     _check_light(cam, temperatures)
@@ -230,44 +242,87 @@ def command_ladder(args: argparse.Namespace) -> None:
     spp = integer_in(args.spp, "--spp", 1, SPP_MAX)
     seed = check_seed(integer_in(args.seed, "--seed", 0, SEED_MAX))
     scene = flag("--scene", load_face_scene, args.scene)
-    if args.skin is not None:
-        from ..spectra import GRID_DEFAULT
+    skins = list(args.skin or [])
+    if len(skins) > 1 and not args.effects:
+        raise SkinrenderError(f"--skin: one skin for the ladder (several go with --effects), got {len(skins)}")
+    for skin in skins:
+        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
+    from ..studies.ladder import LEVELS_DEFAULT
 
-        skin_reflectance_of(args.skin, GRID_DEFAULT, "--skin")
-    levels = levels_of(args.levels)
+    default = ",".join(LEVELS_EACH if args.effects else LEVELS_DEFAULT)
+    levels = levels_of(default if args.levels is None else args.levels)
+    if args.effects and "direct" not in levels:
+        raise SkinrenderError(f"--levels: the effects table compares each effect with direct; add it, got "
+                              f"{','.join(levels)!r}")
     variant_of(args.variant)
     lux = noise_sensor(args, levels)
+    from ..studies.effects_table import SKIN_TONES
     from ..studies.face_sweep import estimate_seconds
+    from ..studies.ladder import REPLICATES_LADDER
     from ..workload import check_work
 
-    check_work(estimate_seconds(len(levels), size * size, spp, os.cpu_count() or 1, levels), "--spp",
-               f"{len(levels)} levels of {size}×{size} px at {spp} spp", args.max_minutes,
+    renders = len(levels) * REPLICATES_LADDER * (len(skins or SKIN_TONES) if args.effects else 1)
+    each = -(-spp // REPLICATES_LADDER)
+    check_work(estimate_seconds(renders, size * size, each, 1, [level for level in levels
+                                                                for _ in range(renders // len(levels))]), "--spp",
+               f"{len(levels)} levels of {REPLICATES_LADDER} × {size}×{size} px at {each} spp"
+               + (f" for {len(skins or SKIN_TONES)} skins" if args.effects else ""), args.max_minutes,
                fewer="lower --spp or --size, or name fewer --levels")
-    result = ladder(cam, temperatures["prevailing"], temperatures["calibration"], args.skin, levels, spp,
-                    seed, size, scene, args.variant, imager=args.imager, illuminance=lux,
-                    progress=lambda line: print(line, file=sys.stderr))
-    document = result.document()
+    return {"camera_": cam, "prevailing": temperatures["prevailing"], "calibration": temperatures["calibration"],
+            "levels": levels, "spp": spp, "seed": seed, "size": size, "scene": scene, "variant": args.variant,
+            "imager": args.imager, "illuminance": lux, "skins": skins}
+
+
+def _shown(value, digits: str = ".4f") -> str:
+    return "—" if value is None else format(value, digits)
+
+
+@interruptible
+def command_ladder(args: argparse.Namespace) -> None:
+    from ..studies.effects_table import effects_table
+    from ..studies.ladder import ladder
+
+    plot = check_output(getattr(args, "plot", None), "--plot", (".png",))
+    inputs = _ladder_inputs(args)
+    skins = inputs.pop("skins")
+    say = lambda line: print(line, file=sys.stderr)  # noqa: E731
+    if args.effects:
+        result = effects_table(**inputs, skins=None if not skins else {skin: skin for skin in skins}, progress=say)
+        document = result.document()
+        rows = [[row["tone"], row["level"], _shown(row["eq4_shift"], ".3g"), _shown(row["budget"], ".3g"),
+                 {True: "yes", False: "NO", None: "—"}[row["within_budget"]], _shown(row["tpr"], ".3f"),
+                 _shown(row["tpr_change"], "+.3f"), _shown(row["fpr"], ".3f"), _shown(row["fpr_change"], "+.3f"),
+                 f"{row['seconds']:.1f}"] for row in document["rows"]]
+        text = (f"what each effect does to skin detection: {result.camera}, {result.prevailing:g} K balanced to "
+                f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px, {result.spp} spp per level\n"
+                + table(rows, ["skin", "level", "shift", "budget", "within", "TPR", "ΔTPR", "FPR", "ΔFPR", "s"]))
+    else:
+        result = ladder(**inputs, skin=skins[0] if skins else None, progress=say)
+        document = result.document()
+
+        def triple(values) -> str:
+            return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
+
+        rows = [[row["name"], f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]),
+                 _shown(row["eq4_shift"], ".3g"), {True: "yes", False: "NO", None: "—"}[row["within_budget"]],
+                 _shown(row["tpr"], ".3f"), _shown(row["fpr"], ".3f")] for row in document["levels"]]
+        budget = document["budget"]
+        text = (f"the face ({result.skin}) through {result.camera}, {result.prevailing:g} K balanced to "
+                f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px; Eq. 4's skin NCC "
+                f"{triple(result.skin_ncc_analytic)}; detection budget {_shown(budget['budget'])} "
+                f"({budget['reason']}):\n"
+                + table(rows, ["level", "s", "spp", "skin NCC r g b", "shift", "within", "TPR", "FPR"]))
     if plot is not None:
         write_output(plot, result.figure, "--plot")
         document["plot"] = str(plot)
-
-    def triple(values) -> str:
-        return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
-
-    def rate(value) -> str:
-        return "—" if value is None else f"{value:.3f}"
-
-    rows = [[row["name"], f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]),
-             triple(row["skin_ncc_std"]), rate(row["tpr"]), rate(row["fpr"])] for row in document["levels"]]
-    text = (f"the face ({result.skin}) through {result.camera}, {result.prevailing:g} K balanced to "
-            f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px; Eq. 4's skin NCC "
-            f"{triple(result.skin_ncc_analytic)}:\n"
-            + table(rows, ["level", "s", "spp", "skin NCC r g b", "std r g b", "TPR", "FPR"])
-            + (f"\nfigure: {plot}" if plot is not None else ""))
+        text += f"\nfigure: {plot}"
+    text += f"\nverdict: {document['verdict'].upper().replace('_', ' ')} (exit status {document['exit_status']})"
     emit(args, document, text)
+    if document["exit_status"]:
+        raise SystemExit(document["exit_status"])
 
 
-def command_render_face(args: argparse.Namespace) -> None:
+def command_render_face(args: argparse.Namespace, scene) -> None:
     """
     ``render SCENE …`` for a face scene: the ``render`` flags (``--camera``,
     ``--prevailing``, ``--calibration``, the render options, ``-o``) and the
@@ -277,16 +332,16 @@ def command_render_face(args: argparse.Namespace) -> None:
     from ..rendering.exr import write_exr, write_preview
     from ..rendering.face.render import face_exr, render_face
 
-    options = render_options(args)
+    settings = settings_of(args)
     output = check_output(getattr(args, "output", "render.exr"), "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
-    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
-    check_render_work(args, face_pixels(scene, size), options["spp"], levels=[physics])
-    print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
+    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
+    check_render_work(args, face_pixels(scene, size), settings.spp, levels=[physics])
+    print(f"rendering the face ({physics}) at {settings.spp} spp …", file=sys.stderr)
     result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], skin, physics,
-                         options["spp"], options["seed"], size, options["sampler"], options["variant"],
-                         channels=options["channels"], imager=imager, exposure=exposure, illuminance=lux)
+                         settings.spp, settings.seed, size, settings.sampler, settings.variant,
+                         channels=settings.channels, imager=imager, exposure=exposure, illuminance=lux)
     if getattr(args, "knee", False):
         import dataclasses
 
@@ -316,7 +371,7 @@ def command_render_face(args: argparse.Namespace) -> None:
     emit(args, document, text)
 
 
-def command_detect_face(args: argparse.Namespace) -> None:
+def command_detect_face(args: argparse.Namespace, scene) -> None:
     """
     ``detect SCENE …`` for a face scene: render it (``--physics`` from the scene's default, ``direct``), classify
     every pixel by the camera's analytic skin locus for the calibration's white balance (trained on ``--skin``'s
@@ -329,18 +384,18 @@ def command_detect_face(args: argparse.Namespace) -> None:
     from ..rendering.face import render_face
     from ..studies.ladder import score_frame
 
-    options = render_options(args)
+    settings = settings_of(args)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
-    scene, cam, temperatures, physics, face_skin, size, imager, exposure, lux = face_inputs(args)
+    scene, cam, temperatures, physics, face_skin, size, imager, exposure, lux = face_inputs(args, scene)
     locus_skin = getattr(args, "locus_skin", None) or "skin"
     skin = flag("--locus-skin", reflectances, locus_skin)
-    check_render_work(args, face_pixels(scene, size), options["spp"], levels=[physics])
-    print(f"rendering the face ({physics}) at {options['spp']} spp …", file=sys.stderr)
+    check_render_work(args, face_pixels(scene, size), settings.spp, levels=[physics])
+    print(f"rendering the face ({physics}) at {settings.spp} spp …", file=sys.stderr)
     result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], face_skin, physics,
-                         options["spp"], options["seed"], size, options["sampler"], options["variant"],
-                         channels=options["channels"], imager=imager, exposure=exposure, illuminance=lux)
+                         settings.spp, settings.seed, size, settings.sampler, settings.variant,
+                         channels=settings.channels, imager=imager, exposure=exposure, illuminance=lux)
     locus = skin_locus(cam, skin, calibration=temperatures["calibration"], boundary=args.boundary)
     scores, frame = score_frame(result, locus, clip_negative=True)  # scored as the ladder: too dark has no chromaticity
     mask, scored = frame["inside"], frame["scored"]
@@ -362,7 +417,7 @@ def command_detect_face(args: argparse.Namespace) -> None:
                 "locus_degenerate": locus.degenerate, "mask_png": str(output), "preview_png": str(preview),
                 "per_patch": per_label, "labels": result.label_names, "physics": result.physics,
                 "skin": result.skin, "locus_skin": locus_skin,
-                "scored_min_output": SCORED_MIN_OUTPUT, "boundary": args.boundary, "spp": result.spp, "spp_requested": options["spp"],
+                "scored_min_output": SCORED_MIN_OUTPUT, "boundary": args.boundary, "spp": result.spp, "spp_requested": settings.spp,
                 "variant": result.variant}
     shown = lambda value: "undefined" if value is None else f"{value:.3f}"  # noqa: E731
     if figure is not None:

@@ -39,7 +39,8 @@ def add_parsers(commands) -> None:
     from ..studies.face_sweep import RENDERS_MAX, SWEEP_SAMPLES_MAX
     from ..studies.ladder import LEVELS_DEFAULT
 
-    p = commands.add_parser("face-sweep", help="the face rendered for every camera × light pair × skin × level of "
+    p = commands.add_parser("face-sweep", run=command_face_sweep,
+                            help="the face rendered for every camera × light pair × skin × level of "
                             "physics, on every core or a Dask cluster, with the skin's NCC and the skin locus's "
                             "detection rates for each")
     p.add_argument("--camera", action="append", required=True,
@@ -82,14 +83,14 @@ def _lights(values: list[str]) -> list[tuple[float, float]]:
         for item in str(value).split(","):
             if not item.strip():
                 raise SkinrenderError(f"--lights: comma-separated PREVAILING/CALIBRATION pairs, none empty, got "
-                                      f"{value!r}")
+                                      f"{value!r}", flag="--lights")
             parts = item.split("/")
             if len(parts) != 2 or not all(part.strip() for part in parts):
                 raise SkinrenderError(f"--lights: expected PREVAILING/CALIBRATION pairs such as 2856/5900, got "
-                                      f"{item.strip()!r}")
+                                      f"{item.strip()!r}", flag="--lights")
             pairs.append((planckian_flag(parts[0].strip(), "--lights"), planckian_flag(parts[1].strip(), "--lights")))
     if not pairs:
-        raise SkinrenderError("--lights: name at least one PREVAILING/CALIBRATION pair")
+        raise SkinrenderError("--lights: name at least one PREVAILING/CALIBRATION pair", flag="--lights")
     _once("--lights", [f"{p:g}/{c:g} K" for p, c in pairs])
     return pairs
 
@@ -98,7 +99,7 @@ def _once(name: str, items: list[str]) -> None:
     """Refuse a sweep that names one camera, light pair or skin twice (it would render it twice), naming ``name``."""
     twice = sorted({item for item in items if items.count(item) > 1})
     if twice:
-        raise SkinrenderError(f"{name}: each once, got {', '.join(twice)} more than once")
+        raise SkinrenderError(f"{name}: each once, got {', '.join(twice)} more than once", flag=name)
 
 
 def _checked(args: argparse.Namespace) -> dict:
@@ -126,7 +127,7 @@ def _checked(args: argparse.Namespace) -> dict:
     skins = [s.strip() for s in (args.skin or SKIN_TONES)]
     for skin in skins:
         if not skin:
-            raise SkinrenderError("--skin: expected a skin spec, got an empty one")
+            raise SkinrenderError("--skin: expected a skin spec, got an empty one", flag="--skin")
         skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
     _once("--skin", skins)
     levels = levels_of(args.levels)
@@ -135,7 +136,7 @@ def _checked(args: argparse.Namespace) -> dict:
     lux = noise_sensor(args, levels)
     max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
     if args.dask is not None and not str(args.dask).strip():
-        raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one")
+        raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one", flag="--dask")
     return {
         "cameras": cams, "lights": pairs, "skins": skins, "levels": levels, "scene": args.scene,
         "size": integer_in(args.size, "--size", 1, SIZE_MAX), "spp": integer_in(args.spp, "--spp", 1, SPP_MAX),

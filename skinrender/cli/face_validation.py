@@ -4,12 +4,12 @@ level in replicates and checked against the analytic limits that hold there
 (:mod:`skinrender.rendering.face.validation`): ``shading_cancels`` at
 ``direct``, ``dichromatic_plane`` at ``sheen`` (both through the sensor too,
 with ``noise`` or ``--imager``), the white furnace and the closed sphere at
-every level, and ``eq4_shift`` (how far skin moves from Eq. 4: information,
-never a failure). ``passed`` is true only when every check that applies
-passed; a check that applies but could not be decided (e.g. no lit skin pixel
-at a tiny ``--size``) makes it null, with the reason under ``undefined``
-(exit status 0, as other undefined results). Exit status 1 when a check that
-applies fails, 2 on bad input.
+every level, and ``eq4_shift`` (Eq. 4's error against the detection budget)
+at every level. Each check is a verdict — pass, fail, inconclusive or not
+applicable — with its test and α; the validation's verdict is their
+combination, and the exit status is the verdict's
+(:data:`~skinrender.evaluation.verdict.EXIT_STATUS`): 0 pass (or nothing
+applicable), 1 fail, 3 inconclusive, 2 bad input.
 
 Units: temperatures K, times s, NCC fractions.
 """
@@ -43,7 +43,7 @@ def limits_of(text: str | None) -> tuple[str, ...]:
     unknown = [name for name in names if name not in LIMITS_SCENE_FREE]
     if unknown or not names:
         raise SkinrenderError(f"--limits must be 'none' or a comma-separated list of {', '.join(LIMITS_SCENE_FREE)}, "
-                              f"got {text!r}")
+                              f"got {text!r}", flag="--limits")
     return tuple(dict.fromkeys(names))
 
 
@@ -58,63 +58,66 @@ def check_samples(spp: int, pixels: int) -> None:
 
     >>> check_samples(48, 256 * 256)
     """
-    from ..rendering.face.limits import REPLICATES
+    from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
     from ..rendering.renderer import SAMPLES_MAX
     from ..studies.face_sweep import SAMPLES_PER_S
 
-    each = -(-int(spp) // REPLICATES)
+    each = max(-(-int(spp) // REPLICATES), SPP_REPLICATE_MIN)
     total = each * REPLICATES * int(pixels)
     if total > SAMPLES_MAX:
         most = REPLICATES * (SAMPLES_MAX // (REPLICATES * int(pixels)))
-        if not most:
-            raise SkinrenderError(f"--size: {pixels} pixels is too many for {REPLICATES} replicates; use a smaller "
-                                  "--size")
+        if most < REPLICATES * SPP_REPLICATE_MIN:
+            raise SkinrenderError(f"--size: {pixels} pixels is too many for {REPLICATES} replicates of at least "
+                                  f"{SPP_REPLICATE_MIN} spp; use a smaller --size", flag="--size")
         raise SkinrenderError(f"--spp: {REPLICATES} replicates × {each} spp × {pixels} pixels is {total:.3g} "
                               f"samples, more than one render may take ({SAMPLES_MAX}, ~{SAMPLES_MAX / SAMPLES_PER_S / 60:.0f} "
-                              f"min on one core at {SAMPLES_PER_S:.1e} samples/s); at most {most} spp at this size")
+                              f"min on one core at {SAMPLES_PER_S:.1e} samples/s); at most {most} spp at this size",
+                              flag="--spp")
 
 
-def command_validate_face(args: argparse.Namespace) -> None:
+def command_validate_face(args: argparse.Namespace, scene) -> None:
     """
     ``validate SCENE …`` for a face scene: the ``validate`` flags (``--camera``, ``--prevailing``,
     ``--calibration``, the render options) and the face's (``--physics``, ``--skin``, ``--size``);
-    every flag is checked before anything renders.
+    every flag is checked before anything renders; ``scene``: the face scene loaded.
     """
     from ..rendering.face.validation import validate_face
-    from .common import check_render_work, emit, flag, render_options, table
+    from .common import check_render_work, emit, flag, settings_of, table
     from .face import face_inputs
 
-    options = render_options(args)
+    settings = settings_of(args)
     if getattr(args, "knee", False):
-        raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee")
+        raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee", flag="--knee")
     if getattr(args, "gamut", False):
-        raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene")
-    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args)
+        raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene",
+                              flag="--gamut")
+    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
     pixels = scene.camera.width * scene.camera.height if size is None else size * size
-    check_samples(options["spp"], pixels)
-    check_render_work(args, pixels, options["spp"], levels=[physics])  # subsurface: its own rate
+    check_samples(settings.spp, pixels)
+    from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
+
+    each = max(-(-settings.spp // REPLICATES), SPP_REPLICATE_MIN)  # the replicates' spp, as validate_face renders
+    check_render_work(args, pixels, each, REPLICATES, levels=[physics] * REPLICATES)  # subsurface: its own rate
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
-                  skin, physics, options["spp"], options["seed"], size, options["sampler"], options["variant"],
-                  options["channels"], imager, exposure, lux, limits=limits,
+                  skin, physics, settings.spp, settings.seed, size, settings.sampler, settings.variant,
+                  settings.channels, imager, exposure, lux, limits=limits,
                   progress=lambda line: print(line, file=sys.stderr))
     document = result.document()
-    rows = [[c.name, "yes" if c.applies else "info",
-             {True: "ok", False: "FAIL", None: "—"}[c.passed], _number(c.statistic), _number(c.tolerance),
-             c.pixels] for c in result.checks]
-    r = result.rendering
-    undecided = [c for c in result.checks if c.applies and c.passed is None]
-    verdict = {True: "PASSED", False: "FAILED", None: "no limit applies at this level"}[result.passed]
-    if result.passed is None and undecided:  # a limit applies but could not be decided (e.g. too few pixels)
-        verdict = "UNDECIDED: " + "; ".join(f"{c.name}: {c.reason}" for c in undecided)
-    if result.passed is None:
-        document["undefined"] = {"passed": verdict if undecided else "no analytic limit holds at this level"}
+    rows = [[c.name, c.outcome.replace("_", " "), _number(c.statistic), _number(c.tolerance), _number(c.bound),
+             f"{c.alpha:g}", c.pixels] for c in result.checks]
+    r, verdict = result.rendering, result.verdict
+    if verdict.outcome in ("inconclusive", "not_applicable"):
+        document["undefined"] = {"passed": f"{verdict.outcome.upper().replace('_', ' ')}: {verdict.reason}"}
     text = (f"{r.scene.name} ({r.skin}, {r.physics}) through {r.camera.name}, {r.prevailing:g} K balanced to "
             f"{r.calibration:g} K, {r.scene.camera.width}×{r.scene.camera.height} px, {result.replicates} "
-            f"replicates, {result.spp} spp in all, {r.variant}, {result.seconds:.1f} s\n"
-            + table(rows, ["check", "applies", "", "statistic", "tolerance", "pixels"])
-            + "".join(f"\n{c.name}: {c.reason}" for c in result.checks)
-            + f"\n{verdict} (each check's false-alarm rate 0.01, Šidák over its pixels)")
+            f"replicates × {result.info['spp_per_replicate']} spp, {result.spp} spp in all, {r.variant}, "
+            f"{result.seconds:.1f} s\n"
+            + table(rows, ["check", "verdict", "statistic", "tolerance", "bound", "α", "pixels"])
+            + "".join(f"\n{c.name}: {c.reason}\n  test: {c.test}" for c in result.checks)
+            + f"\nverdict: {verdict.outcome.upper().replace('_', ' ')} (exit status {document['exit_status']}); "
+            "difference tests: statistic = the largest |t| / critical value (≤ 1 passes); eq4_shift: the shift "
+            "of the skin's mean NCC against the detection budget, bound its 95 % upper bound")
     emit(args, document, text)
-    if result.passed is False:
-        raise SystemExit(1)
+    if document["exit_status"]:
+        raise SystemExit(document["exit_status"])

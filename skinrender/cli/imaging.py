@@ -34,7 +34,8 @@ SEED_LIMIT = 2**32
 
 def add_parsers(commands) -> None:
     """Add the parsers of imagers, score, ptc."""
-    p = commands.add_parser("ptc", help="EMVA 1288-style photon transfer of the simulated camera, measured from "
+    p = commands.add_parser("ptc", run=command_ptc,
+                            help="EMVA 1288-style photon transfer of the simulated camera, measured from "
                             "rendered pixels: gain DN/e⁻, read noise e⁻, full well e⁻, linearity, SNR")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--imager", required=True, help="image sensor: a preset (see 'skinrender imagers') or a TOML file")
@@ -46,11 +47,13 @@ def add_parsers(commands) -> None:
     p.add_argument("--plot", help="write the photon transfer curve to this PNG")
     add_common(p)
 
-    p = commands.add_parser("imagers", help="list the imager presets (pixel µm, full well e⁻, read noise e⁻, "
+    p = commands.add_parser("imagers", run=command_imagers,
+                            help="list the imager presets (pixel µm, full well e⁻, read noise e⁻, "
                             "gain DN/e⁻, ADC bits)")
     add_common(p)
 
-    p = commands.add_parser("score", help="the criteria for one camera: skin/Munsell gamut ratio, Munsell false "
+    p = commands.add_parser("score", run=command_score,
+                            help="the criteria for one camera: skin/Munsell gamut ratio, Munsell false "
                             "positives in the skin locus, and with --imager the rates on noisy pixels")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--illuminants", default="paper",
@@ -86,12 +89,13 @@ def _noise_options(args: argparse.Namespace) -> dict | None:
              if getattr(args, name) is not None]
     if args.imager is None:
         if given:
-            raise SkinrenderError(f"--{given[0].replace('_', '-')} applies to the noisy rates: give --imager S too")
+            option = f"--{given[0].replace('_', '-')}"
+            raise SkinrenderError(f"{option} applies to the noisy rates: give --imager S too", flag=option)
         return None
     from ..model.imager import imager
 
     if args.illuminance is None:
-        raise SkinrenderError("--imager needs --illuminance LUX (the chart's illuminance, lx > 0)")
+        raise SkinrenderError("--imager needs --illuminance LUX (the chart's illuminance, lx > 0)", flag="--imager")
     exposure = args.exposure if args.exposure is not None else "auto"
     if exposure.strip().lower() == "auto":
         exposure = "auto"
@@ -175,6 +179,7 @@ def command_ptc(args: argparse.Namespace) -> None:
     from ..model.illuminant import illuminant
     from ..model.imager import imager
     from ..studies.figures import figure_ptc
+    from ..rendering.settings import RenderSettings
     from ..studies.ptc import photon_transfer
 
     plot = check_output(args.plot, "--plot", (".png",))
@@ -183,16 +188,16 @@ def command_ptc(args: argparse.Namespace) -> None:
     positive_number(args.illuminance, "--illuminance", "lx")
     for name, value in (("--temperature", args.temperature),):
         if not (math.isfinite(value) and value > 0):
-            raise SkinrenderError(f"{name} must be a finite number > 0, got {value}")
+            raise SkinrenderError(f"{name} must be a finite number > 0, got {value}", flag=name)
     flag("--temperature", illuminant, args.temperature)
     check_lights(args, cam, [args.temperature], None, "--temperature")  # a light the camera sees at all
     if not 1 <= args.spp <= 65536:
-        raise SkinrenderError(f"--spp must be an integer in [1, 65536], got {args.spp}")
+        raise SkinrenderError(f"--spp must be an integer in [1, 65536], got {args.spp}", flag="--spp")
     check_seed(args.seed)
     integer_in(args.points, "--points", 4, 1000)  # before the progress line, so a refusal is its one line
     print(f"rendering the grey chart at {args.spp} spp …", file=sys.stderr)
     result = flag("--points", photon_transfer, cam, sensor, args.temperature, args.illuminance, args.points,
-                  args.spp, args.seed)
+                  RenderSettings(spp=args.spp, seed=args.seed))
     if args.plot:
         write_output(plot, lambda stream: figure_ptc(result, stream), "--plot")
         result["plot"] = str(plot)

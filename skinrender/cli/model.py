@@ -14,7 +14,8 @@ from .common import (HELP_CAMERA, camera_of, check_lights, HELP_ILLUMINANT, add_
 
 def add_parsers(commands) -> None:
     """Add the parsers of illuminants, response, gamut."""
-    p = commands.add_parser("illuminants", help="Stage 1: illuminants equally spaced in the NCC measure")
+    p = commands.add_parser("illuminants", run=command_illuminants,
+                            help="Stage 1: illuminants equally spaced in the NCC measure")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--range", nargs=2, type=float, default=[2000.0, 10000.0], metavar=("START_K", "END_K"),
                    help="candidate temperatures, K (default 2000 10000)")
@@ -24,7 +25,8 @@ def add_parsers(commands) -> None:
     add_grid(p)
     add_common(p)
 
-    p = commands.add_parser("response", help="Eq. 4 white-balanced responses and NCC of a reflectance set")
+    p = commands.add_parser("response", run=command_response,
+                            help="Eq. 4 white-balanced responses and NCC of a reflectance set")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--reflectances", required=True,
                    help="reflectance set: a name (see 'skinrender datasets') or a CSV path "
@@ -35,7 +37,8 @@ def add_parsers(commands) -> None:
     add_grid(p)
     add_common(p)
 
-    p = commands.add_parser("gamut", help="convex-hull gamut volume of Eq. 4 responses (output units³)")
+    p = commands.add_parser("gamut", run=command_gamut,
+                            help="convex-hull gamut volume of Eq. 4 responses (output units³)")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--reflectances", help="reflectance set (name or CSV path); not with --ratio")
     case = p.add_mutually_exclusive_group(required=True)
@@ -61,12 +64,13 @@ def command_illuminants(args: argparse.Namespace) -> None:
 
     integer_in(args.count, "--count", 2)  # each flag checked on its own, so that its error names it
     if not (math.isfinite(args.step) and args.step > 0):
-        raise SkinrenderError(f"--step must be a finite number of kelvin > 0, got {args.step}")
+        raise SkinrenderError(f"--step must be a finite number of kelvin > 0, got {args.step}", flag="--step")
     flag("--range", temperature_range, args.range[0], args.range[1], args.step)
     flag("--pair", measure, np.full((1, 3), 1.0 / 3.0), args.pair)
-    cam = camera_of(args, grid_of(args))
+    grid = grid_of(args)
+    cam = camera_of(args, grid)
     selection = flag({"camera": "--camera", "illuminant": "--range", None: "--count"}, illuminant_selection,
-                     cam, args.count, args.range[0], args.range[1], args.step, grid_of(args), args.pair)
+                     cam, args.count, args.range[0], args.range[1], args.step, grid, args.pair)
     document = {
         "camera": cam.name,
         "pair": args.pair,
@@ -135,7 +139,7 @@ def command_gamut(args: argparse.Namespace) -> None:
     from ..model.stage1 import illuminant_set
 
     grid = grid_of(args)
-    cam = camera_of(args, grid_of(args))
+    cam = camera_of(args, grid)
     temperatures = flag({"camera": "--camera", None: "--illuminants"}, illuminant_set, args.illuminants, cam)
     check_lights(args, cam, temperatures, grid)
     if args.ratio == bool(args.reflectances):
@@ -143,11 +147,13 @@ def command_gamut(args: argparse.Namespace) -> None:
     if not args.ratio:
         for name, default in (("skin", "skin"), ("munsell", "munsell")):
             if getattr(args, name) != default:
-                raise SkinrenderError(f"--{name} goes with --ratio; with --reflectances it would be ignored")
+                raise SkinrenderError(f"--{name} goes with --ratio; with --reflectances it would be ignored",
+                                      flag=f"--{name}")
     if args.calibration is not None:
         calibration = flag("--calibration", illuminant, args.calibration)
         if calibration.temperature is None:
-            raise SkinrenderError("--calibration must be a Planckian illuminant (kelvin, A or H) for a gamut case")
+            raise SkinrenderError("--calibration must be a Planckian illuminant (kelvin, A or H) for a gamut case",
+                                  flag="--calibration")
 
     def volume_of(spec: str, name: str):
         refl = flag(name, reflectances, spec, extrapolation=args.extrapolation)

@@ -13,11 +13,13 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..files import Output, write_outputs
 from ..studies.labelled import chart_figure
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, camera_of, add_grid,
-                     add_model, add_render, check_output, check_render_work, choices_help, emit, flag, grid_of,
-                     render_options, table)
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, add_grid, add_model,
+                     add_render, check_output, check_render_work, choices_help, emit, flag, settings_of, table)
 from .face import check_figure
-from .subsurface import subsurface_keys, subsurface_lines
+from .chart_validation import add_check_arguments, add_verdict_arguments, command_validate
+from .inputs import chart_inputs, chart_only, imaging_document, imaging_notes, scene_of
+from .subsurface import check_chart_subsurface, subsurface_keys
+
 
 
 def add_parsers(commands) -> None:
@@ -28,8 +30,8 @@ def add_parsers(commands) -> None:
                                   "preview)"),
                        ("validate", "render a chart and check every patch against Eq. 4: pass, fail or "
                                     "inconclusive within --tolerance; a face: the analytic limits that hold at its "
-                                    "level of physics")):
-        p = commands.add_parser(name, help=text)
+                                    "level of physics and Eq. 4's error against the detection budget")):
+        p = commands.add_parser(name, run=command_validate if name == "validate" else command_render, help=text)
         p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path "
                        "(see scenes/)")
         p.add_argument("--camera", required=True, help=HELP_CAMERA)
@@ -38,14 +40,8 @@ def add_parsers(commands) -> None:
         add_render(p, spp_auto=name == "validate")
         add_model(p)
         add_grid(p)
-        if name == "validate":  # its verdict's flags (--tolerance): skinrender.cli.chart_validation
-            p.add_argument("--gamut", action="store_true",
-                           help="also render the chart under every paper illuminant and compare its gamut volumes "
-                           "(one calibration case each, and all calibrations) with the analytic ones, within "
-                           "--tolerance (relative to each volume)")
-            p.add_argument("--limits", metavar="LIST",
-                           help="face scenes: the scene-free limits run beside the level's own: furnace, sphere "
-                           "(comma-separated) or none (default: both)")
+        if name == "validate":  # what it checks (--gamut, --limits) and its verdict's flags (--tolerance, below)
+            add_check_arguments(p)
         from .face import add_face_arguments
 
         add_face_arguments(p)
@@ -58,8 +54,11 @@ def add_parsers(commands) -> None:
                            help="also write a labelled figure: a chart upscaled with each patch's name on it "
                            "(skin patches outlined), a face with its labels outlined")
         add_common(p)
+        if name == "validate":
+            add_verdict_arguments(p)
 
-    p = commands.add_parser("detect", help="skin detection on a rendered chart or face with the camera's skin locus")
+    p = commands.add_parser("detect", run=command_detect,
+                            help="skin detection on a rendered chart or face with the camera's skin locus")
     p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--prevailing", required=True, help="prevailing illuminant: " + HELP_PLANCKIAN)
@@ -83,126 +82,29 @@ def add_parsers(commands) -> None:
     add_common(p)
 
 
-def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
-    """
-    A chart command's scene loaded first (its own error for an unknown or broken scene), then the face-only
-    flags refused: ``--physics``, ``--size`` and (but for ``detect``) ``--skin``.
-    """
-    from ..rendering.scene import load_scene
-
-    from ..rendering.balance import CHART_PHYSICS
-
-    flag("SCENE", load_scene, args.scene)
-    physics = str(args.physics).strip()
-    given = [name for name, on in (("--physics", physics not in CHART_PHYSICS),
-                                   ("--skin", skin and args.skin is not None), ("--size", args.size is not None)) if on]
-    if given:
-        raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
-                              f"(e.g. 'face'), not a chart" + (f" (a chart takes --physics {' or '.join(CHART_PHYSICS)})"
-                                                                if "--physics" in given else ""))
-    if physics == "subsurface":
-        from .subsurface import check_chart_subsurface
-
-        check_chart_subsurface(args)
-
-
-def render_inputs(args: argparse.Namespace) -> dict:
-    """
-    The scene, camera and the two Planckian temperatures (K) of a render
-    command, each parsed once here with its flag named in any error, and
-    checked to give the camera light on the grid before anything renders.
-    """
-    import numpy as np
-
-    from ..model.illuminant import illuminant
-    from ..model.response import response
-    from ..rendering.scene import load_scene
-
-    scene = flag("SCENE", load_scene, args.scene)
-    grid = grid_of(args) if hasattr(args, "grid") else None
-    cam = camera_of(args, grid)
-    temperatures = {}
-    for name in ("prevailing", "calibration"):
-        light = flag(f"--{name}", illuminant, getattr(args, name))
-        if light.temperature is None:
-            raise SkinrenderError(f"--{name}: rendering needs a Planckian illuminant (kelvin, A or H), got {light}")
-        temperatures[name] = light.temperature
-    from ..spectra import GRID_DEFAULT
-
-    grid = grid or GRID_DEFAULT
-    for name, kelvin in temperatures.items():  # each light seen by the camera, the one at fault named
-        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, grid.size)), kelvin, kelvin,
-             grid=grid)
-    try:  # every patch's data covers the grid, before the render needs it
-        scene.reflectances(grid)
-    except SkinrenderError as error:  # the chart's own data: --extrapolation (CSV cameras') does not apply
-        if error.cause != "coverage":
-            raise error.reworded(f"SCENE: {error.message}", flag="SCENE") from None
-        raise error.reworded(f"--grid: {error.message}", flag="--grid", cause=None,
-                             hint="choose a --grid inside the chart's data") from None
-    return {"scene": scene, "camera_": cam, "prevailing": temperatures["prevailing"],
-            "calibration": temperatures["calibration"]}
-
-
-def pixels_of(scene) -> int:
-    """The pixels of a chart scene's image."""
-    width, height = scene.size
-    return int(width) * int(height)
-
-
-def render_with(args: argparse.Namespace, inputs: dict, options: dict, imaging: dict | None, knee: bool = False):
-    """The render of a command: plain (Eq. 4 on the radiance) or through ``--imager``; returns (rendering, imaged)."""
-    from ..rendering.balance import render
-
-    normalization = getattr(args, "normalization", "white")
-    grid = grid_of(args) if hasattr(args, "grid") else None
-    extra = {} if grid is None else {"grid": grid}
-    if imaging is None:
-        physics = str(getattr(args, "physics", "direct")).strip()
-        return render(**inputs, normalization=normalization, knee=knee, physics=physics, **extra, **options), None
-    from ..rendering.imaging import render_imaged
-
-    imaged = render_imaged(inputs["scene"], inputs["camera_"], inputs["prevailing"], inputs["calibration"],
-                           **imaging, normalization=normalization, **extra, **options)
-    return imaged.rendering, imaged
-
-
-def imaging_document(imaged) -> dict:
-    """
-    The JSON keys a render through an imager adds: imager, illuminance_lux, exposure_s, ``clipping`` (pixels at the
-    full well and at the ADC range, per channel) and ``notes`` (a capped ``auto`` exposure, clipped pixels).
-    """
-    if imaged is None:
-        return {}
-    return {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux, "exposure_s": imaged.exposure_s,
-            "clipping": imaged.clipping, "notes": list(imaged.notes)}
-
-
-def imaging_notes(imaged) -> str:
-    """The text lines of a render's imaging notes (a capped exposure, clipped pixels), or nothing."""
-    return "".join(f"\nnote: {note}" for note in (imaged.notes if imaged is not None else ()))
-
-
 @interruptible
 def command_render(args: argparse.Namespace) -> None:
-    from .face import command_render_face, is_face_scene
+    from ..rendering.face.scene import FaceScene
+    from .face import command_render_face
 
-    if is_face_scene(args.scene):  # a face (perspective camera, mesh, lights): its own renderer
-        return command_render_face(args)
+    scene = scene_of(args)  # loaded once: a face (perspective camera, mesh, lights) takes its own renderer
+    if isinstance(scene, FaceScene):
+        return command_render_face(args, scene)
     chart_only(args)
     from ..rendering.exr import write_preview
     from ..rendering.outputs import write_chart_exr
     from ..rendering.renderer import channel_names
 
-    options = render_options(args)
+    settings = settings_of(args)
     output = check_output(args.output, "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
-    inputs = render_inputs(args)
+    inputs = chart_inputs(args, scene)
+    settings = check_chart_subsurface(args, inputs, settings)
     imaging = imaging_options(args)
-    check_render_work(args, pixels_of(inputs["scene"]), options["spp"])
-    print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
-    result, imaged = render_with(args, inputs, options, imaging, args.knee)
+    check_render_work(args, inputs.pixels, settings.spp)
+    print(f"rendering {inputs.scene.name} at {settings.spp} spp …", file=sys.stderr)
+    result, imaged = inputs.render(settings, imaging, args.knee)
     if imaged is not None and args.knee:
         from dataclasses import replace
 
@@ -212,14 +114,14 @@ def command_render(args: argparse.Namespace) -> None:
     spp = result.raw[0].spp
     names = channel_names(result.camera)
     preview = output.with_suffix(".png")
-    outputs = [Output(output, "--output", lambda stream: write_chart_exr(stream, result, args.seed, grid_of(args))),
+    outputs = [Output(output, "--output", lambda stream: write_chart_exr(stream, result, settings.seed, inputs.grid)),
                Output(preview, "--output (its PNG preview)", lambda stream: write_preview(stream, result.image))]
     if figure is not None:
         outputs.append(Output(figure, "--figure", lambda stream: chart_figure(result, stream)))
     write_outputs(*outputs)  # every file whole, or none of them
     document = {"image": str(output), "preview_png": str(preview), "channels": list(names), "spp": spp,
-                "spp_requested": options["spp"],
-                "sampler": options["sampler"], "seed": args.seed, "variant": result.variant,
+                "spp_requested": settings.spp,
+                "sampler": settings.sampler, "seed": settings.seed, "variant": result.variant,
                 "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
                 "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged),
@@ -240,7 +142,8 @@ def locus_skin_of(args: argparse.Namespace, chart: bool) -> str:
     locus_skin = getattr(args, "locus_skin", None)
     if chart and args.skin is not None:
         if locus_skin is not None:
-            raise SkinrenderError("--skin: on a chart it is the deprecated name of --locus-skin; give one of them")
+            raise SkinrenderError("--skin: on a chart it is the deprecated name of --locus-skin; give one of them",
+                                  flag="--skin")
         print("skinrender detect: notice: --skin on a chart names the locus's training set; it is deprecated, "
               "use --locus-skin (on a face --skin is the face's skin)", file=sys.stderr)
         return args.skin
@@ -249,10 +152,12 @@ def locus_skin_of(args: argparse.Namespace, chart: bool) -> str:
 
 @interruptible
 def command_detect(args: argparse.Namespace) -> None:
-    from .face import command_detect_face, is_face_scene
+    from ..rendering.face.scene import FaceScene
+    from .face import command_detect_face
 
-    if is_face_scene(args.scene):  # the label channel is the ground truth
-        return command_detect_face(args)
+    scene = scene_of(args)
+    if isinstance(scene, FaceScene):  # the label channel is the ground truth
+        return command_detect_face(args, scene)
 
     from ..evaluation.detection import SCORED_MIN_OUTPUT, detect
     from ..datasets import reflectances
@@ -261,16 +166,17 @@ def command_detect(args: argparse.Namespace) -> None:
 
     chart_only(args, skin=False)
     locus_skin = locus_skin_of(args, chart=True)
-    options = render_options(args)
+    settings = settings_of(args)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
-    inputs = render_inputs(args)
+    inputs = chart_inputs(args, scene)
+    settings = check_chart_subsurface(args, inputs, settings)
     imaging = imaging_options(args)
     skin = flag("--locus-skin" if args.skin is None else "--skin", reflectances, locus_skin)
-    check_render_work(args, pixels_of(inputs["scene"]), options["spp"])
-    print(f"rendering {inputs['scene'].name} at {options['spp']} spp …", file=sys.stderr)
-    rendering, imaged = render_with(args, inputs, options, imaging)
+    check_render_work(args, inputs.pixels, settings.spp)
+    print(f"rendering {inputs.scene.name} at {settings.spp} spp …", file=sys.stderr)
+    rendering, imaged = inputs.render(settings, imaging)
     # the camera is white-balanced to the calibration light: the locus of that one balancing
     locus = skin_locus(rendering.camera, skin, calibration=rendering.calibration, boundary=args.boundary)
     result = detect(rendering, locus, scored_min=SCORED_MIN_OUTPUT)  # scored as on a face: too dark has no colour
@@ -287,7 +193,7 @@ def command_detect(args: argparse.Namespace) -> None:
                 "undefined": result.undefined, "locus_degenerate": locus.degenerate,
                 "mask_png": str(output), "preview_png": str(preview), "per_patch": result.per_patch,
                 "scored_min_output": SCORED_MIN_OUTPUT,
-                "boundary": args.boundary, "spp": rendering.raw[0].spp, "spp_requested": options["spp"],
+                "boundary": args.boundary, "spp": rendering.raw[0].spp, "spp_requested": settings.spp,
                 "variant": rendering.variant, **imaging_document(imaged), **subsurface_keys(rendering)}
     rows = [[p["name"][:30], "skin" if p["is_skin"] else "",
              "undefined" if p["detected_fraction"] is None else f"{p['detected_fraction']:.2f}"]

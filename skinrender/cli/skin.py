@@ -42,7 +42,8 @@ def add_parsers(commands) -> None:
     from ..datasets.skin_model import SkinParameters
 
     defaults = SkinParameters()
-    p = commands.add_parser("skin", help="the skin model's reflectance and layers, or its fit to measured spectra")
+    p = commands.add_parser("skin", run=command_skin,
+                            help="the skin model's reflectance and layers, or its fit to measured spectra")
     for name, (option, text) in PARAMETER_FLAGS.items():
         default = getattr(defaults, name)
         p.add_argument(option, dest=name, metavar="X",
@@ -82,7 +83,7 @@ def parameters_of(args: argparse.Namespace, names=tuple(PARAMETER_FLAGS)):
         try:
             values[name] = float(text)
         except ValueError:
-            raise SkinrenderError(f"{option} must be a number, got {text!r}") from None
+            raise SkinrenderError(f"{option} must be a number, got {text!r}", flag=option) from None
         one = replace(SkinParameters(), **{name: values[name]})
         flag(option, check_parameters, one)
     return SkinParameters(**values)
@@ -100,18 +101,19 @@ def command_skin(args: argparse.Namespace) -> None:
         return _command_fit(args)
     for option, default in (("fit_range", "400:700"), ("workers", None), ("max_spectra", str(SPECTRA_MAX))):
         if getattr(args, option) != default:
-            raise SkinrenderError(f"--{option.replace('_', '-')} goes with --fit")
+            raise SkinrenderError(f"--{option.replace('_', '-')} goes with --fit", flag=f"--{option.replace('_', '-')}")
     from ..datasets.skin_model import skin_layers, skin_reflectance
 
     method = _method(args)
     check_output(args.plot, "--plot", (".png",))
     if args.plot is None and args.compare != "skin":
-        raise SkinrenderError("--compare names the measured sets drawn with --plot: give --plot FILE.png")
+        raise SkinrenderError("--compare names the measured sets drawn with --plot: give --plot FILE.png",
+                              flag="--compare")
     compare = _compare_sets(args) if args.plot else []
     parameters = parameters_of(args)
     if parameters.surface is not None and method != "kubelka-munk":
         raise SkinrenderError("--surface is the kubelka-munk method's flat surface reflectance; adding-doubling's "
-                              "surface is its Fresnel boundary (--n)")
+                              "surface is its Fresnel boundary (--n)", flag="--surface")
     from .common import grid_of
 
     grid = grid_of(args)
@@ -138,7 +140,8 @@ def _compare_sets(args: argparse.Namespace) -> list[tuple]:
 
     items = [item.strip() for item in str(args.compare).split(",")]
     if not all(items):
-        raise SkinrenderError(f"--compare: expected comma-separated reflectance sets, got {args.compare!r}")
+        raise SkinrenderError(f"--compare: expected comma-separated reflectance sets, got {args.compare!r}",
+                              flag="--compare")
     sets = [flag("--compare", reflectances, item) for item in items]
     return [(s.name, s.wavelengths, s.values) for s in sets]
 
@@ -170,12 +173,12 @@ def _command_fit(args: argparse.Namespace) -> None:
 
     for name, (option, _) in PARAMETER_FLAGS.items():
         if name not in HELD_IN_FIT and getattr(args, name) is not None:
-            raise SkinrenderError(f"{option} is fitted with --fit; only --epidermis-mm and --n are held")
+            raise SkinrenderError(f"{option} is fitted with --fit; only --epidermis-mm and --n are held", flag=option)
     if args.plot is not None or args.compare != "skin":
-        raise SkinrenderError("--plot and --compare draw the forward model; they do not go with --fit")
+        raise SkinrenderError("--plot and --compare draw the forward model; they do not go with --fit", flag="--plot")
     if args.grid != "400:700:1":
         raise SkinrenderError("--grid sets the forward model's wavelengths; --fit uses the table's own "
-                              "wavelengths in --fit-range")
+                              "wavelengths in --fit-range", flag="--grid")
     method = _method(args)
     held = parameters_of(args, HELD_IN_FIT)
     start, end = _fit_range(args.fit_range)
@@ -187,12 +190,13 @@ def _command_fit(args: argparse.Namespace) -> None:
     if lam.size < 8:
         raise SkinrenderError(f"--fit: {measured.name} has {lam.size} wavelengths in --fit-range "
                               f"{start:g}–{end:g} nm; "
-                              "a fit needs at least 8")
+                              "a fit needs at least 8", flag="--fit")
     if measured.count > limit:
         seconds = fit_seconds(measured.count, lam.size, method, workers)
         raise SkinrenderError(f"--fit: {measured.count} spectra is more than --max-spectra {limit} (about "
                               f"{seconds / 60:.2g} min on {workers} cores at the measured "
-                              f"~{fit_seconds(1, lam.size, method):.2g} s per spectrum); raise the limit or fit fewer")
+                              f"~{fit_seconds(1, lam.size, method):.2g} s per spectrum); raise the limit or fit fewer",
+                              flag="--fit")
     fits = flag("--fit", fit_skin_spectra, lam, measured.values[:, keep], measured.names, method, workers,
                 None if args.quiet else sys.stderr, held)
     rms = np.array([f.rms for f in fits if f.converged])
@@ -224,7 +228,8 @@ def _fit_range(text: str) -> tuple[float, float]:
     try:
         start, end = (float(part) for part in parts)
     except ValueError:
-        raise SkinrenderError(f"--fit-range must be START:END in nm (e.g. 400:700), got {text!r}") from None
+        raise SkinrenderError(f"--fit-range must be START:END in nm (e.g. 400:700), got {text!r}",
+                              flag="--fit-range") from None
     if not (math.isfinite(start) and math.isfinite(end) and 0 < start < end):
-        raise SkinrenderError(f"--fit-range must be finite nm with 0 < START < END, got {text!r}")
+        raise SkinrenderError(f"--fit-range must be finite nm with 0 < START < END, got {text!r}", flag="--fit-range")
     return start, end

@@ -39,7 +39,8 @@ POSITIONS_DEFAULT = "400:700:10"
 
 def add_parsers(commands) -> None:
     """Add the parsers of reproduce, table1, bench."""
-    p = commands.add_parser("reproduce", help="the paper's Figs. 3–7 (PNG) and Tables 2–5 (Markdown, CSV), with "
+    p = commands.add_parser("reproduce", run=command_reproduce,
+                            help="the paper's Figs. 3–7 (PNG) and Tables 2–5 (Markdown, CSV), with "
                             "their matches with the paper; --sweep: the tables under each choice of the paper's unknowns")
     p.add_argument("-o", "--output", required=True,
                    help="output folder: new, empty or an earlier reproduce folder (replaced only when the run completes)")
@@ -69,7 +70,8 @@ def add_parsers(commands) -> None:
     add_search(p)
     add_common(p)
 
-    p = commands.add_parser("table1", help="the paper's Table 1: NCC differences, render vs model, Macbeth under A and H")
+    p = commands.add_parser("table1", run=command_table1,
+                            help="the paper's Table 1: NCC differences, render vs model, Macbeth under A and H")
     p.add_argument("--camera", default="gbell:9@450,540,610", help=HELP_CAMERA)
     p.add_argument("--spp", type=int, default=256, help="samples per pixel (default 256)")
     p.add_argument("--seed", type=int, default=0, help="sampler seed (default 0)")
@@ -78,7 +80,8 @@ def add_parsers(commands) -> None:
                    "(default 0.001); exit status 0 pass, 1 fail, 3 inconclusive")
     add_common(p)
 
-    p = commands.add_parser("bench", help="speed and accuracy figures; calibration: the validation's false-alarm "
+    p = commands.add_parser("bench", run=command_bench,
+                            help="speed and accuracy figures; calibration: the validation's false-alarm "
                             "rates over seeds; validate: seconds, bound and false alarms per spp")
     p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate"],
                    help="which benchmark")
@@ -124,15 +127,18 @@ def check_sweep_flags(args: argparse.Namespace) -> None:
     """
     given = [dest for dest in SWEEP_FLAGS if getattr(args, dest) is not None]
     if not args.sweep and given:
-        raise SkinrenderError(f"--{given[0].replace('_', '-')} goes with --sweep")
+        option = f"--{given[0].replace('_', '-')}"
+        raise SkinrenderError(f"{option} goes with --sweep", flag=option)
     if args.sweep and args.sweep_positions is not None and args.positions is not None:
-        raise SkinrenderError("--positions: the sweep takes its peaks from --sweep-positions; give one of the two")
+        raise SkinrenderError("--positions: the sweep takes its peaks from --sweep-positions; give one of the two",
+                              flag="--positions")
 
 
 def command_reproduce(args: argparse.Namespace) -> None:
     progress = None if args.quiet else sys.stderr
     if args.stage1_camera is not None and args.illuminants.strip().lower() != "auto":
-        raise SkinrenderError(f"--stage1-camera is the camera of --illuminants auto; got --illuminants {args.illuminants!r}")
+        raise SkinrenderError(f"--stage1-camera is the camera of --illuminants auto; got --illuminants {args.illuminants!r}",
+                              flag="--stage1-camera")
     check_sweep_flags(args)
     if args.sweep:
         from ..studies.sweep import reproduce_sweep
@@ -174,14 +180,16 @@ def command_table1(args: argparse.Namespace) -> None:
     from ..evaluation.verdict import EXIT_STATUS
     from ..studies.tables import TABLE1_TOLERANCE
 
-    integer_in(args.spp, "--spp", 1, SPP_MAX)  # each flag checked on its own, so that its error names it
-    check_seed(args.seed)
+    from ..rendering.settings import RenderSettings
+
+    spp = integer_in(args.spp, "--spp", 1, SPP_MAX)  # each flag checked on its own, so that its error names it
+    settings = RenderSettings(spp=spp, seed=check_seed(args.seed))
     tolerance = TABLE1_TOLERANCE if args.tolerance is None else positive_number(args.tolerance, "--tolerance", "NCC")
     if tolerance >= 1:
-        raise SkinrenderError(f"--tolerance must be an NCC difference in (0, 1), got {args.tolerance!r}")
-    flag("--camera", camera, args.camera)
-    result = flag({"spp": "--spp", None: "--camera"}, table1, args.camera, spp=args.spp, seed=args.seed,
-                  tolerance=tolerance)
+        raise SkinrenderError(f"--tolerance must be an NCC difference in (0, 1), got {args.tolerance!r}",
+                              flag="--tolerance")
+    cam = flag("--camera", camera, args.camera)
+    result = flag({"spp": "--spp", None: "--camera"}, table1, cam, settings, tolerance=tolerance)
     rows = [[r["model"], r["case"], f"{r['mean']:.5f}", f"{r['std']:.5f}"] for r in result["rows"]]
     verdict = result["verdict"]
     result["exit_status"] = EXIT_STATUS[verdict["verdict"]]
@@ -229,7 +237,7 @@ def refuse_foreign_flags(args: argparse.Namespace) -> None:
         if args.what not in benches:
             goes = " or ".join(f"'bench {b}'" for b in benches)
             raise SkinrenderError(f"{name} goes with {goes}, not 'bench {args.what}"
-                                  + (" --scene'" if face else "'"))
+                                  + (" --scene'" if face else "'"), flag=name)
 
 
 def _integers(text: str, name: str, high: int, many: bool = True) -> list[int]:
@@ -243,7 +251,7 @@ def _integers(text: str, name: str, high: int, many: bool = True) -> list[int]:
             value = 0
         if not 1 <= value <= high or (len(parts) > 1 and not many):
             what = "comma-separated integers" if many else "an integer"
-            raise SkinrenderError(f"{name} must be {what} in [1, {high}], got {text!r}")
+            raise SkinrenderError(f"{name} must be {what} in [1, {high}], got {text!r}", flag=name)
         values.append(value)
     return values
 
@@ -256,11 +264,12 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     given = [name for name in FACE_BENCH_FLAGS if getattr(args, name, None) is not None]
     if args.scene is not None and args.what != "render":
         raise SkinrenderError(f"--scene goes with 'bench render', 'bench calibration' or 'bench validate', not "
-                              f"'bench {args.what}'")
+                              f"'bench {args.what}'", flag="--scene")
     refuse_foreign_flags(args)
     if args.scene is None:
         if given:
-            raise SkinrenderError(f"--{given[0].replace('_', '-')} goes with 'bench render --scene SCENE' (a face)")
+            option = f"--{given[0].replace('_', '-')}"
+            raise SkinrenderError(f"{option} goes with 'bench render --scene SCENE' (a face)", flag=option)
         return None
     from ..rendering.face.effects import active_lights, parse_physics
     from ..rendering.face.scene import load_face_scene
@@ -271,24 +280,27 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
 
     if not is_face_scene(args.scene):
         raise SkinrenderError(f"--scene: the render bench times a face scene (face or a .toml with [camera] and "
-                              f"[mesh]); the charts' bench runs without --scene, got {args.scene!r}")
+                              f"[mesh]); the charts' bench runs without --scene, got {args.scene!r}", flag="--scene")
     if args.plot:
-        raise SkinrenderError("--plot draws the charts' curve; the face bench (--scene) prints its table only")
+        raise SkinrenderError("--plot draws the charts' curve; the face bench (--scene) prints its table only",
+                              flag="--plot")
     scene = flag("--scene", load_face_scene, args.scene)
     size = (_integers(args.size, "--size", SIZE_MAX, many=False)[0] if args.size is not None
             else 64 if args.quick else SIZE_BENCH)
     spps = (_integers(args.spp_list, "--spp-list", SPP_MAX) if args.spp_list is not None
             else [s for s in SPPS_BENCH if not args.quick or s <= 64])
     if len(set(spps)) < len(spps):
-        raise SkinrenderError(f"--spp-list: each spp once, got {args.spp_list!r}")
+        raise SkinrenderError(f"--spp-list: each spp once, got {args.spp_list!r}", flag="--spp-list")
     reference = (_integers(args.reference_spp, "--reference-spp", SPP_MAX, many=False)[0]
                  if args.reference_spp is not None else 4 * max(spps))
     if reference <= max(spps):
         raise SkinrenderError(f"--reference-spp must be more than the largest of --spp-list ({max(spps)}: the "
-                              f"reference must converge further than the curve), got {reference}")
+                              f"reference must converge further than the curve), got {reference}",
+                              flag="--reference-spp")
     for name, spp in (("--reference-spp", reference), ("--spp-list", max(spps))):
         if spp * size * size > SAMPLES_MAX:
-            raise SkinrenderError(f"{name}: {spp} spp × {size}² pixels is more than {SAMPLES_MAX} samples a pass")
+            raise SkinrenderError(f"{name}: {spp} spp × {size}² pixels is more than {SAMPLES_MAX} samples a pass",
+                                  flag=name)
     levels = levels_of(args.levels if args.levels is not None else ",".join(LEVELS_BENCH))
     for level in levels:
         flag("--levels", active_lights, scene, flag("--levels", parse_physics, level))
@@ -331,10 +343,11 @@ def command_bench(args: argparse.Namespace) -> None:
         for name in FACE_BENCH_FLAGS:
             if getattr(args, name, None) is not None and not (name == "spp_list" and args.what == "validate"):
                 raise SkinrenderError(f"--{name.replace('_', '-')} goes with 'bench render --scene SCENE' (a face)"
-                                      + (" or 'bench validate'" if name == "spp_list" else ""))
+                                      + (" or 'bench validate'" if name == "spp_list" else ""),
+                                      flag=f"--{name.replace('_', '-')}")
         spps = None if args.spp_list is None else _integers(args.spp_list, "--spp-list", SPP_MAX)
         if spps is not None and len(set(spps)) < len(spps):
-            raise SkinrenderError(f"--spp-list: each spp once, got {args.spp_list!r}")
+            raise SkinrenderError(f"--spp-list: each spp once, got {args.spp_list!r}", flag="--spp-list")
         return command_bench_verdicts(args, spps)
     face = face_bench_options(args)
     if face is not None:

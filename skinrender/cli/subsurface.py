@@ -19,46 +19,50 @@ from __future__ import annotations
 import argparse
 
 from ..errors import SkinrenderError
-from .common import flag, render_options
 
 __all__ = ["check_chart_subsurface", "subsurface_keys", "subsurface_lines"]
 
 
-def check_chart_subsurface(args: argparse.Namespace) -> None:
+def check_chart_subsurface(args: argparse.Namespace, inputs, settings):
     """
-    Take :data:`~skinrender.rendering.subsurface_chart.SAMPLER_SUBSURFACE` unless ``--sampler`` is given; refuse,
-    naming the flag, what a subsurface chart does not take (``--imager`` and its settings, ``--gamut``), and
-    a render whose estimate (:func:`~skinrender.rendering.subsurface_chart.estimate_seconds` on every core) exceeds
-    ``--max-minutes`` (:func:`skinrender.workload.check_work`, naming ``--spp``).
+    The render settings of a chart command (``render``, ``validate``, ``detect``) at its ``--physics``
+    (``inputs``: its :class:`~skinrender.cli.inputs.ChartInputs`; ``settings``: the
+    :class:`~skinrender.rendering.settings.RenderSettings` of the flags). At ``direct``, ``settings``. At
+    ``subsurface``, ``settings`` with :data:`~skinrender.rendering.subsurface_chart.SAMPLER_SUBSURFACE` unless
+    ``--sampler`` is given, after refusing, naming the flag, what a subsurface chart does not take (``--imager``
+    and its settings, ``--gamut``, ``--spp auto``), a chart without a skin patch, and a render whose estimate
+    (:func:`~skinrender.rendering.subsurface_chart.estimate_seconds` on every core) exceeds ``--max-minutes``
+    (:func:`skinrender.workload.check_work`, naming ``--spp``).
     """
+    if inputs.physics != "subsurface":
+        return settings
     import os
 
-    from ..rendering.scene import load_scene
     from ..rendering.subsurface_chart import SAMPLER_SUBSURFACE, SAMPLES_PER_S_SLAB, estimate_seconds
     from ..workload import check_work
 
     for name in ("imager", "illuminance", "exposure"):
         if getattr(args, name, None) is not None:
             raise SkinrenderError(f"--{name}: a chart at --physics subsurface is rendered without an image sensor; "
-                                  "drop it (or use --physics direct)")
+                                  "drop it (or use --physics direct)", flag=f"--{name}")
     if getattr(args, "gamut", False):
         raise SkinrenderError("--gamut compares the Lambertian chart's gamut volumes; it does not go with --physics "
-                              "subsurface")
-    scene = flag("SCENE", load_scene, args.scene)
+                              "subsurface", flag="--gamut")
+    scene = inputs.scene
     if not any(patch.skin for patch in scene.patches):
         raise SkinrenderError(f"--physics subsurface renders a chart's skin patches (skin = true) as the skin "
-                              f"model's layers; {scene.name} has none")
-    if getattr(args, "sampler", None) is None:  # the pixels' errors honest (SAMPLER_SUBSURFACE's measurement)
-        args.sampler = SAMPLER_SUBSURFACE
+                              f"model's layers; {scene.name} has none", flag="--physics")
     if str(getattr(args, "spp", None)).strip().lower() == "auto":
         raise SkinrenderError("--spp auto picks spp from the Lambertian chart's pilot renders; give --spp N with "
-                              "--physics subsurface")
-    spp = render_options(args)["spp"]
+                              "--physics subsurface", flag="--spp")
+    if getattr(args, "sampler", None) is None:  # the pixels' errors honest (SAMPLER_SUBSURFACE's measurement)
+        settings = settings.replace(sampler=SAMPLER_SUBSURFACE)
     cores = os.cpu_count() or 1
-    check_work(estimate_seconds(scene, int(spp)) / cores, "--spp",
-               f"the {sum(p.skin for p in scene.patches)} skin patches of {scene.name} as media at {spp} spp "
-               f"({SAMPLES_PER_S_SLAB:g} samples/s per core, {cores} core{'s' * (cores > 1)})",
+    check_work(estimate_seconds(scene, settings.spp) / cores, "--spp",
+               f"the {sum(p.skin for p in scene.patches)} skin patches of {scene.name} as media at {settings.spp} "
+               f"spp ({SAMPLES_PER_S_SLAB:g} samples/s per core, {cores} core{'s' * (cores > 1)})",
                getattr(args, "max_minutes", None), fewer="lower --spp")
+    return settings
 
 
 def subsurface_keys(rendering, rows: list[dict] | None = None) -> dict:

@@ -31,7 +31,7 @@ import numpy as np
 from ..constants import CONSTANT_OUTPUT_SCALE, SENSOR_RULE, TEMPERATURES_PAPER
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
-from ..methods import parse_range, validate_method
+from ..methods import RangeWords, parse_range, range_steps, validate_method
 from ..model.camera import sensor_curves
 from ..model.illuminant import illuminants_array
 from ..model.response import NORMALISATIONS, gain, normalisation_factor, spds_on
@@ -47,20 +47,20 @@ POSITIONS_MAX = 3001
 """Most sensor positions of a search (every 0.1 nm over 400–700 nm; 4.5e9 triplets)."""
 
 
+_POSITIONS_WORDS = RangeWords(
+    lambda r: f"positions {r.text!r}: need END > START and STEP > 0 (nm)",
+    lambda r: (f"positions {r.text!r}: {r.values:.3g} positions, more than {POSITIONS_MAX} ({r.values ** 3 / 6:.3g} "
+               "triplets); use a larger step"),
+    lambda r: (f"positions {r.text!r}: {r.end:g} nm is not START + a whole number of {r.step:g} nm steps (the end "
+               "is included, never dropped)"),
+)
+
+
 def positions_grid(spec: str | ArrayLike = "400:700:10") -> NDArrayFloat:
     """Sensor peak positions in nm from ``start:end:step`` (end included) or a sequence."""
     if isinstance(spec, str):
         start, end, step = parse_range(spec, "positions")
-        if not (step > 0 and end > start):
-            raise SkinrenderError(f"positions {spec!r}: need END > START and STEP > 0 (nm)")
-        steps = (end - start) / step
-        if steps + 1 > POSITIONS_MAX:
-            raise SkinrenderError(f"positions {spec!r}: {steps + 1:.3g} positions, more than {POSITIONS_MAX} "
-                                  f"({(steps + 1) ** 3 / 6:.3g} triplets); use a larger step")
-        if abs(steps - round(steps)) > 1e-9 * max(1.0, steps):
-            raise SkinrenderError(f"positions {spec!r}: {end:g} nm is not START + a whole number of {step:g} nm "
-                                  "steps (the end is included, never dropped)")
-        values = start + step * np.arange(int(round(steps)) + 1)
+        values = start + step * np.arange(range_steps(start, end, step, POSITIONS_MAX, _POSITIONS_WORDS, spec) + 1)
     else:
         values = np.asarray(spec, dtype=np.float64).ravel()
     if values.size < 3 or not np.all(np.isfinite(values)) or np.any(np.diff(values) <= 0):

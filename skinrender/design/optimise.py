@@ -151,20 +151,21 @@ def optimise_camera(
     if noisy is not None:
         calibration_index(np.asarray(illuminants, dtype=np.float64), noisy.calibration)
     if not (isinstance(max_evaluations, (int, np.integer)) and max_evaluations >= 1):
-        raise SkinrenderError(f"evaluations must be an integer ≥ 1 per start, got {max_evaluations!r}")
+        raise SkinrenderError(f"evaluations must be an integer ≥ 1 per start, got {max_evaluations!r}",
+                              role="evaluations")
     if not (np.isfinite(fwhm) and fwhm > 0):
-        raise SkinrenderError(f"sensor width must be a finite FWHM > 0 nm (sensor N > 0), got {fwhm!r}")
+        raise SkinrenderError(f"sensor width must be a finite FWHM > 0 nm (sensor N > 0), got {fwhm!r}", role="fwhm")
     if not (np.isfinite(slope) and slope > 0):
-        raise SkinrenderError(f"slope must be a finite number > 0, got {slope!r}")
+        raise SkinrenderError(f"slope must be a finite number > 0, got {slope!r}", role="slope")
     starts = np.atleast_2d(np.asarray(starts, dtype=np.float64))
     if starts.ndim != 2 or starts.shape[1] != 3 or len(starts) == 0:
-        raise SkinrenderError(f"starts must be triplets of peaks in nm, got shape {starts.shape}")
+        raise SkinrenderError(f"starts must be triplets of peaks in nm, got shape {starts.shape}", role="starts")
     for start in starts:
         ordered = np.sort(start)
         if not (np.all(np.isfinite(start)) and ordered[0] >= BOUNDS_NM[0] and ordered[-1] <= BOUNDS_NM[1]
                 and np.all(np.diff(ordered) > 0)):
-            raise SkinrenderError(f"starts: each start must be three distinct peaks in {BOUNDS_NM[0]:g}–"
-                                  f"{BOUNDS_NM[1]:g} nm, got {start.tolist()}")
+            raise SkinrenderError(f"each start must be three distinct peaks in {BOUNDS_NM[0]:g}–{BOUNDS_NM[1]:g} nm, "
+                                  f"got {start.tolist()}", role="starts")
 
     def unpack(x):
         if free_shape:

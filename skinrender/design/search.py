@@ -38,12 +38,12 @@ from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
-from ..workload import duration_text
+from ..workload import announce, duration_text, progress_bar
 from .bank import SensorBank, positions_grid, sensor_bank, triplets
 from .criteria import triplet_false_positive_rates, triplet_volumes_many, triplet_volumes_naive
 from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, exposure_capped, triplet_noisy_rates
 
-__all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "WORKERS_MAX", "SECONDS_PER_TRIPLET", "SearchResult", "search", "progress_bar", "announce", "stop_pool",
+__all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "WORKERS_MAX", "SECONDS_PER_TRIPLET", "SearchResult", "search", "stop_pool",
            "dask_client", "check_workers"]
 
 DASK_TIMEOUT_S = 10.0
@@ -117,7 +117,8 @@ def check_workers(workers: int | None, flag: str = "--workers") -> int:
     if workers is None:
         return os.cpu_count() or 1
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or not 1 <= workers <= WORKERS_MAX:
-        raise SkinrenderError(f"{flag} must be an integer in [1, {WORKERS_MAX}] (processes), got {workers!r}")
+        raise SkinrenderError(f"{flag} must be an integer in [1, {WORKERS_MAX}] (processes), got {workers!r}",
+                              flag=flag)
     return int(workers)
 
 
@@ -259,30 +260,6 @@ def stop_pool(pool: ProcessPoolExecutor) -> None:
     for process in processes:
         process.join(timeout=5.0)
     pool.shutdown(wait=False, cancel_futures=True)
-
-
-def progress_bar(total: int, label: str, stream):
-    """
-    A tqdm progress bar on ``stream``, disabled when ``stream`` is ``None``
-    (``--quiet``) or not a terminal (a log file, a pipe, CI: there :func:`announce` says the work started).
-    """
-    from tqdm import tqdm
-
-    enabled = stream is not None and getattr(stream, "isatty", lambda: False)()
-    return tqdm(total=total, desc=label, file=stream, disable=not enabled, unit="triplet", leave=True)
-
-
-def announce(stream, label: str, total: int, unit: str = "triplet") -> None:
-    """
-    One line on a progress ``stream`` that is not a terminal (where no bar is drawn) saying the work started:
-    ``label: total units …`` (nothing on a terminal, or without a stream).
-
-    >>> import io
-    >>> log = io.StringIO(); announce(log, "sensor 9", 4495); log.getvalue().strip()
-    'sensor 9: 4495 triplets …'
-    """
-    if stream is not None and not getattr(stream, "isatty", lambda: False)():
-        print(f"{label}: {total} {unit}{'s' * (total != 1)} …", file=stream, flush=True)
 
 
 def search(
@@ -445,6 +422,7 @@ def dask_client(dask):
             return Client(dask, timeout=DASK_TIMEOUT_S), True
         except (OSError, ValueError, TypeError, TimeoutError) as error:
             raise SkinrenderError(f"--dask: cannot reach a Dask scheduler at {dask!r} within {DASK_TIMEOUT_S:g} s "
-                                  f"({type(error).__name__}: {' '.join(str(error).split())[:120]})") from None
+                                  f"({type(error).__name__}: {' '.join(str(error).split())[:120]})",
+                                  flag="--dask") from None
     return dask, False
 

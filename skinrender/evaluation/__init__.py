@@ -2,13 +2,13 @@
 Evaluation
 ==========
 
-Layer 4: gamut volumes (Qhull and the compiled Quickhull behind one function), the skin locus and detection rates; arrays in, numbers out, whichever road (analytic or rendered) fed them.
+Layer 4: arrays in, numbers out, whichever road (analytic or rendered) fed them.
 
--   :mod:`skinrender.evaluation.gamut`
--   :mod:`skinrender.evaluation.hull`
--   :mod:`skinrender.evaluation.locus`
--   :mod:`skinrender.evaluation.detection`
-
-A name under ``skinrender.evaluation`` is always a module; the public functions
-and classes are imported from their modules, or from ``skinrender`` itself.
+Gamut volumes come from :mod:`~skinrender.evaluation.gamut` (Qhull and the compiled Quickhull of
+:mod:`~skinrender.evaluation.hull` behind one function); the skin locus from
+:mod:`~skinrender.evaluation.locus`, and the detection budget an error of Eq. 4 may use from
+:mod:`~skinrender.evaluation.budget`; detection rates from :mod:`~skinrender.evaluation.detection` and, through
+an image sensor, :mod:`~skinrender.evaluation.noisy_detection`; the verdicts every statistical check gives
+(pass, fail, inconclusive) from :mod:`~skinrender.evaluation.verdict`. The package exposes modules only; the
+public names are re-exported by ``skinrender``.
 """

@@ -2,13 +2,10 @@
 The paper's analytic camera model
 =================================
 
-Layer 3: one light from a spec, the camera and its sensors, Eqs. 1–11 with the one Eq. 4 gain, and Stage 1.
-
--   :mod:`skinrender.model.illuminant`
--   :mod:`skinrender.model.camera`
--   :mod:`skinrender.model.response`
--   :mod:`skinrender.model.stage1`
-
-A name under ``skinrender.model`` is always a module; the public functions
-and classes are imported from their modules, or from ``skinrender`` itself.
+Layer 3. A light from a spec (:mod:`~skinrender.model.illuminant`); the camera and its sensors
+(:mod:`~skinrender.model.camera`); Eqs. 1–11 with the one Eq. 4 gain (:mod:`~skinrender.model.response`) and
+the normalised colour coordinates (:mod:`~skinrender.model.chromaticity`); Stage 1's illuminant selection
+(:mod:`~skinrender.model.stage1`); and the image sensor — presets (:mod:`~skinrender.model.imager`), photons to
+electrons and exposure (:mod:`~skinrender.model.exposure`), noise to digital numbers
+(:mod:`~skinrender.model.noise`). Modules only here; functions come from them or from ``skinrender``.
 """

@@ -77,6 +77,17 @@ class Camera:
         """Channel names, ``("R", "G", "B")``."""
         return CHANNELS
 
+    @property
+    def extrapolation(self) -> str | None:
+        """
+        How measured curves extend beyond their data onto a wider grid (``refuse``, ``zero``, ``constant``: the
+        ``extrapolation`` the camera was made with), ``None`` for a model camera (gbell, impulse).
+
+        >>> camera("gbell:9@450,540,610").extrapolation is None
+        True
+        """
+        return None if self.measured is None else self.measured.extrapolation
+
     def sensitivities(self, grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
         """
         Sensitivities on ``grid``, shape ``(3, grid.size)``, rows R, G, B.
@@ -116,7 +127,8 @@ def _check_peaks(cam: "Camera", grid: WavelengthGrid) -> None:
         hint = " (peaks are in nm, not µm)" if max(outside) < 10 else ""
         which = "peak " + ", ".join(f"{p:g}" for p in outside) + (" nm lies" if len(outside) == 1 else " nm lie")
         raise SkinrenderError(f"camera {cam.name!r}: {which} outside "
-                              f"the grid {start:g}–{end:g} nm{hint}: give peaks inside it, or a wider grid")
+                              f"the grid {start:g}–{end:g} nm{hint}: give peaks inside it, or a wider grid",
+                              role="camera")
 
 
 def _parse_peaks(text: str, spec: str) -> tuple[float, float, float]:
@@ -126,7 +138,7 @@ def _parse_peaks(text: str, spec: str) -> tuple[float, float, float]:
         peaks = ()
     if len(peaks) != 3 or not all(np.isfinite(p) and p > 0 for p in peaks):
         raise SkinrenderError(
-            f"camera {spec!r}: expected three peak wavelengths in nm after '@', e.g. @450,540,610"
+            f"camera {spec!r}: expected three peak wavelengths in nm after '@', e.g. @450,540,610", role="camera"
         )
     # channel order R, G, B: longest wavelength first
     return tuple(sorted(peaks, reverse=True))  # type: ignore[return-value]
@@ -172,18 +184,20 @@ def camera(spec: str | Camera, extrapolation: str = "refuse") -> Camera:
             n = float(match["n"])
             slope = float(match["b"]) if match["b"] else GBELL_SLOPE_DEFAULT
         except ValueError:
-            raise SkinrenderError(f"camera {text!r}: sensor number and slope must be numbers") from None
+            raise SkinrenderError(f"camera {text!r}: sensor number and slope must be numbers",
+                                  role="camera") from None
         if not (np.isfinite(n * 10.0) and n > 0):
-            raise SkinrenderError(f"camera {text!r}: sensor number N must be > 0 (FWHM = N·10 nm)")
+            raise SkinrenderError(f"camera {text!r}: sensor number N must be > 0 (FWHM = N·10 nm)", role="camera")
         if not (np.isfinite(slope) and slope > 0):
-            raise SkinrenderError(f"camera {text!r}: slope b must be > 0")
+            raise SkinrenderError(f"camera {text!r}: slope b must be > 0", role="camera")
         return Camera(text, "gbell", _parse_peaks(match["peaks"], text), n * 10.0, slope)
     match = _PATTERN_IMPULSE.match(text)
     if match:
         return Camera(text, "impulse", _parse_peaks(match["peaks"], text))
     if text.lower().startswith(("gbell", "impulse")):
         raise SkinrenderError(
-            f"camera {text!r}: expected 'gbell:N@P1,P2,P3', 'gbell:N,b=B@P1,P2,P3' or 'impulse@P1,P2,P3'"
+            f"camera {text!r}: expected 'gbell:N@P1,P2,P3', 'gbell:N,b=B@P1,P2,P3' or 'impulse@P1,P2,P3'",
+            role="camera",
         )
     if looks_like_path(text):
         validate_method(extrapolation, EXTRAPOLATIONS, "extrapolation")

@@ -40,7 +40,7 @@ from __future__ import annotations
 import math
 import numbers
 import tomllib
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 
@@ -50,6 +50,7 @@ from ..errors import SkinrenderError
 from ..files import TOML_BYTES_MAX, exists, read_input
 from ..hints import ArrayLike, NDArrayFloat
 from ..spectra import WavelengthGrid
+from ..toml_tables import entry, from_table
 
 __all__ = ["ROOT_RESOURCES_IMAGERS", "Imager", "checked_array", "checked_grid", "imager", "is_integer", "list_imagers"]
 
@@ -71,6 +72,10 @@ LIST_KEYS = ("name", "source", "pixel_um", "full_well_e", "read_noise_e", "gain_
 def is_integer(value: object) -> bool:
     """Whether ``value`` is an integer (Python or numpy), not a bool."""
     return isinstance(value, numbers.Integral) and not isinstance(value, bool)
+
+
+_IN_FILE = entry("any", required=True)
+"""An imager file gives every field (the :class:`Imager` checks their values)."""
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -107,32 +112,32 @@ class Imager:
     4095
     """
 
-    name: str = "custom"
-    source: str = "user-defined"
-    pixel_um: float
-    f_number: float
-    transmittance: float
-    qe_peak: float
-    full_well_e: float
-    read_noise_e: float
-    dark_current_e_per_s: float
-    gain_dn_per_e: float
-    bits: int
-    black_level_dn: float
+    name: str = field(default="custom", metadata=_IN_FILE)
+    source: str = field(default="user-defined", metadata=_IN_FILE)
+    pixel_um: float = field(metadata=_IN_FILE)
+    f_number: float = field(metadata=_IN_FILE)
+    transmittance: float = field(metadata=_IN_FILE)
+    qe_peak: float = field(metadata=_IN_FILE)
+    full_well_e: float = field(metadata=_IN_FILE)
+    read_noise_e: float = field(metadata=_IN_FILE)
+    dark_current_e_per_s: float = field(metadata=_IN_FILE)
+    gain_dn_per_e: float = field(metadata=_IN_FILE)
+    bits: int = field(metadata=_IN_FILE)
+    black_level_dn: float = field(metadata=_IN_FILE)
 
     def __post_init__(self) -> None:
-        for field in ("name", "source"):
-            if not isinstance(getattr(self, field), str) or not getattr(self, field).strip():
-                raise SkinrenderError(f"{field} must be a non-empty string, got {getattr(self, field)!r}")
-        for field, (unit, low, closed, high) in _NUMBER_FIELDS.items():
-            value = getattr(self, field)
+        for key in ("name", "source"):
+            if not isinstance(getattr(self, key), str) or not getattr(self, key).strip():
+                raise SkinrenderError(f"{key} must be a non-empty string, got {getattr(self, key)!r}")
+        for key, (unit, low, closed, high) in _NUMBER_FIELDS.items():
+            value = getattr(self, key)
             if isinstance(value, bool) or not isinstance(value, numbers.Real):
-                raise SkinrenderError(f"{field} must be a number, {unit}, got {value!r}")
+                raise SkinrenderError(f"{key} must be a number, {unit}, got {value!r}")
             value = float(value)
             if not (math.isfinite(value) and (value >= low if closed else value > low) and value <= high):
                 bounds = f"{'[' if closed else '('}{low:g}, {'∞)' if math.isinf(high) else f'{high:g}]'}"
-                raise SkinrenderError(f"{field} must be a finite number in {bounds} {unit}, got {value!r}")
-            object.__setattr__(self, field, value)
+                raise SkinrenderError(f"{key} must be a finite number in {bounds} {unit}, got {value!r}")
+            object.__setattr__(self, key, value)
         if not is_integer(self.bits) or not 1 <= self.bits <= 32:
             raise SkinrenderError(f"bits must be an integer from 1 to 32, got {self.bits!r}")
         object.__setattr__(self, "bits", int(self.bits))
@@ -152,22 +157,12 @@ def _read_imager_toml(path: Path) -> Imager:
     try:
         data = tomllib.loads(read_input(path, TOML_BYTES_MAX, "an imager TOML").decode("utf-8"))
     except SkinrenderError as error:
-        raise SkinrenderError(f"imager file {error}") from None
+        raise SkinrenderError(f"imager file {error}", role="imager") from None
     except tomllib.TOMLDecodeError as error:
-        raise SkinrenderError(f"imager file {path}: not valid TOML ({error})") from None
+        raise SkinrenderError(f"imager file {path}: not valid TOML ({error})", role="imager") from None
     except UnicodeDecodeError:
-        raise SkinrenderError(f"imager file {path}: not a UTF-8 text file (TOML is text)") from None
-    names = [field.name for field in fields(Imager)]
-    for key in data:
-        if key not in names:
-            raise SkinrenderError(f"imager file {path}: unknown field {key!r} (expected {', '.join(names)})")
-    for key in names:
-        if key not in data:
-            raise SkinrenderError(f"imager file {path}: missing field {key!r}")
-    try:
-        return Imager(**data)
-    except SkinrenderError as error:
-        raise SkinrenderError(f"imager file {path}: {error}") from None
+        raise SkinrenderError(f"imager file {path}: not a UTF-8 text file (TOML is text)", role="imager") from None
+    return from_table(Imager, data, f"imager file {path}", unknown="first", role="imager")
 
 
 @lru_cache(maxsize=1)
@@ -206,14 +201,15 @@ def imager(spec: str | Path | Imager) -> Imager:
     if isinstance(spec, Imager):
         return spec
     if not isinstance(spec, (str, Path)):
-        raise SkinrenderError(f"imager must be a preset name, a TOML path or an Imager, got {spec!r}")
+        raise SkinrenderError(f"imager must be a preset name, a TOML path or an Imager, got {spec!r}", role="imager")
     presets = _presets()
     if isinstance(spec, str) and spec.strip().lower() in presets:
         return presets[spec.strip().lower()]
     if exists(spec):  # a file: read if it is a regular one of a sensible size, else refused saying what it is
         return _read_imager_toml(Path(spec))
     names = ", ".join(item.name for item in presets.values())
-    raise SkinrenderError(f"imager {str(spec)!r} is neither a preset ({names}) nor an existing TOML file")
+    raise SkinrenderError(f"imager {str(spec)!r} is neither a preset ({names}) nor an existing TOML file",
+                          role="imager")
 
 
 def list_imagers() -> list[dict]:

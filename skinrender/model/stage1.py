@@ -25,6 +25,7 @@ import numpy as np
 from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
+from ..methods import RangeWords, range_steps
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .camera import Camera, camera
 from .illuminant import illuminant
@@ -47,20 +48,20 @@ CANDIDATES_MAX = 100_001
 """Most Stage 1 candidate temperatures (2000–10000 K every 0.08 K)."""
 
 
+_CANDIDATES_WORDS = RangeWords(
+    lambda r: f"temperature range end {r.end:g} K must be above its start {r.start:g} K",
+    lambda r: (f"temperature range {r.start:g}–{r.end:g} K every {r.step:g} K has {r.values:.3g} candidates, more "
+               f"than {CANDIDATES_MAX}; use a larger step"),
+    lambda r: f"temperature range {r.start:g}–{r.end:g} K is not a whole number of {r.step:g} K steps",
+)
+
+
 def temperature_range(start: float = 2000.0, end: float = 10000.0, step: float = 100.0) -> NDArrayFloat:
     """Temperatures ``start, start + step, …, end`` in K (``end`` included)."""
     for name, value in (("start", start), ("end", end), ("step", step)):
         if not (np.isfinite(value) and value > 0):
             raise SkinrenderError(f"temperature {name} must be a finite number of kelvin > 0, got {value}")
-    if not end > start:
-        raise SkinrenderError(f"temperature range end {end:g} K must be above its start {start:g} K")
-    steps = (end - start) / step
-    if steps + 1 > CANDIDATES_MAX:
-        raise SkinrenderError(f"temperature range {start:g}–{end:g} K every {step:g} K has {steps + 1:.3g} candidates, "
-                              f"more than {CANDIDATES_MAX}; use a larger step")
-    if abs(steps - round(steps)) > 1e-9 * max(1.0, steps):
-        raise SkinrenderError(f"temperature range {start:g}–{end:g} K is not a whole number of {step:g} K steps")
-    return start + step * np.arange(int(round(steps)) + 1)
+    return start + step * np.arange(range_steps(start, end, step, CANDIDATES_MAX, _CANDIDATES_WORDS) + 1)
 
 
 @dataclass(frozen=True)
@@ -231,7 +232,7 @@ def illuminant_set(spec: str | ArrayLike | None = None, camera_: Camera | str | 
         text = spec.strip()
         if text.lower() == "auto":
             if camera_ is None:
-                raise SkinrenderError("--illuminants auto needs a camera (--camera)")
+                raise SkinrenderError("--illuminants auto needs a camera (--camera)", flag="--illuminants")
             return select_illuminants(camera_)
 
         parts = text.split(",")

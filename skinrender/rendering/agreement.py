@@ -52,7 +52,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..constants import CONSTANT_OUTPUT_SCALE
-from ..errors import SkinrenderError
+from ..errors import SkinrenderError, flag_of
 from ..evaluation.verdict import (ALPHA_DIFFERENCE, ALPHA_EQUIVALENCE, critical_z, difference, equivalence,
                                   samples_needed, sidak)
 from ..hints import ArrayLike, NDArrayFloat
@@ -81,7 +81,8 @@ def check_tolerance(value, name: str = "tolerance") -> float:
     except (TypeError, ValueError):
         tolerance = math.nan
     if isinstance(value, bool) or not (0 < tolerance < 1):
-        raise SkinrenderError(f"{name} must be a relative error in (0, 1), e.g. 0.01 for 1 %, got {value!r}")
+        raise SkinrenderError(f"{name} must be a relative error in (0, 1), e.g. 0.01 for 1 %, got {value!r}",
+                              role="tolerance", flag=flag_of(name))
     return tolerance
 
 

@@ -36,7 +36,8 @@ from ..model.illuminant import illuminant
 from ..model.response import NORMALISATIONS, gain, knee as apply_knee, normalisation_factor
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .renderer import RawRender, render_raw
-from .scene import ChartScene, load_scene
+from .scene import ChartScene, load_chart_scene
+from .settings import RenderSettings
 
 __all__ = ["PatchStatistics", "patch_statistics", "Rendering", "pair_gain", "balance", "render", "CHART_PHYSICS"]
 
@@ -191,15 +192,12 @@ def render(
     calibration,
     normalization: str = "white",
     knee: bool = False,
-    spp: int = 256,
-    seed: int = 0,
-    sampler: str = "multijitter",
-    variant: str | None = None,
+    settings: RenderSettings | None = None,
     grid: WavelengthGrid = GRID_DEFAULT,
-    channels: str = "auto",
     cache: dict | None = None,
     emitter: str = "tabulated",
     physics: str = "direct",
+    **options,
 ) -> Rendering:
     """
     Render a chart through a camera under ``prevailing`` light, white balanced
@@ -211,41 +209,55 @@ def render(
         Planckian illuminants: kelvin, ``A`` (2856 K) or ``H`` (2300 K).
     normalization, knee
         As :func:`skinrender.response`.
-    spp, seed, sampler, variant, grid, channels
-        As :func:`render_raw`. The calibration render uses ``seed + 1`` so
-        that its noise is independent of the prevailing render's.
+    settings
+        How it samples (:class:`~skinrender.rendering.settings.RenderSettings`: spp, seed, sampler, variant,
+        channels; the defaults where ``None``). The calibration render uses ``seed + 1`` so that its noise is
+        independent of the prevailing render's.
+    grid, emitter
+        As :func:`~skinrender.rendering.renderer.render_raw`.
     cache
         A dict to reuse raw renders across calls, keyed by temperature.
     physics
         ``direct`` (Lambertian patches under the directional light) or ``subsurface``: the skin patches as the
         skin model's layers under a sky (:mod:`skinrender.rendering.subsurface_chart`; the calibration render
-        renders the Lambertian patches only, the white balance reading the white alone). ``info`` then has
-        ``physics``, ``reflectances`` (per patch, what Eq. 4 is checked with: the slab's adding-doubling
-        reflectance for a skin patch) and ``skin_model`` (per patch its layers' source, or ``None``).
+        renders the Lambertian patches only, the white balance reading the white alone; the sampler
+        :data:`~skinrender.rendering.subsurface_chart.SAMPLER_SUBSURFACE` unless ``settings`` or ``options``
+        name one). ``info`` then has ``physics``, ``reflectances`` (per patch, what Eq. 4 is checked with: the
+        slab's adding-doubling reflectance for a skin patch) and ``skin_model`` (per patch its layers' source, or
+        ``None``).
+    **options
+        ``spp``, ``seed``, ``sampler``, ``variant``, ``channels``: the settings one by one
+        (:meth:`~skinrender.rendering.settings.RenderSettings.of`).
 
     Returns
     -------
     :class:`Rendering`
     """
 
-    chart = load_scene(scene)
+    validate_method(physics, CHART_PHYSICS, "physics (of a chart)", role="physics")
+    if physics == "subsurface" and settings is None:
+        from .subsurface_chart import SAMPLER_SUBSURFACE
+
+        options = {"sampler": SAMPLER_SUBSURFACE, **options}
+    settings = RenderSettings.of(settings, **options)
+    chart = load_chart_scene(scene)
     cam = camera(camera_)
     validate_method(normalization, NORMALISATIONS, "normalization")
     p, c = _temperature(prevailing), _temperature(calibration)
     cache = {} if cache is None else cache
-    validate_method(physics, CHART_PHYSICS, "physics (of a chart)")
     info = {}
     if physics == "subsurface":
         from .subsurface_chart import subsurface_renderer
 
-        renderer = subsurface_renderer(chart, cam, spp, sampler, variant, grid, channels)
+        renderer = subsurface_renderer(chart, cam, settings, grid)
         info = {"physics": physics, "reflectances": renderer.chart.reflectances, "skin_model": renderer.chart.rows()}
 
     def raw(temperature: float, offset: int, skins: bool = True) -> RawRender:
         key = (temperature, offset) if physics == "direct" else (temperature, offset, physics, skins)
         if key not in cache:
-            cache[key] = (render_raw(chart, cam, temperature, spp, seed + offset, sampler, variant, grid, channels,
-                                     emitter) if physics == "direct" else renderer.raw(temperature, seed + offset, skins))
+            seed = settings.seed + offset
+            cache[key] = (render_raw(chart, cam, temperature, settings.replace(seed=seed), grid, emitter)
+                          if physics == "direct" else renderer.raw(temperature, seed, skins))
         return cache[key]
 
     raw_p = raw(p, 0)
@@ -253,4 +265,3 @@ def render(
     image, white_error, white_ratio = balance(raw_p, raw_c, chart, cam, normalization, knee, grid)
     return Rendering(chart, cam, p, c, normalization, knee, image, patch_statistics(image, chart), white_error,
                      (raw_p,) if raw_c is raw_p else (raw_p, raw_c), {"white_ratio": white_ratio, **info})
-

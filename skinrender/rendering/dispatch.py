@@ -2,6 +2,11 @@
 One render for charts and faces
 ===============================
 
+:func:`load_scene` (``skinrender.load_scene``) makes any scene the command
+line takes an object, once: a :class:`~skinrender.rendering.scene.ChartScene`
+or a :class:`~skinrender.rendering.face.scene.FaceScene`; the commands and
+the renderers below them pass that object on.
+
 :func:`render` (``skinrender.render``) renders any scene the command line's
 ``render`` takes: a chart (``macbeth``, ``skin_patches``, ``face_chart``, a
 chart TOML, a :class:`~skinrender.rendering.scene.ChartScene`) through
@@ -20,7 +25,50 @@ import inspect
 
 from ..errors import SkinrenderError
 
-__all__ = ["render"]
+__all__ = ["load_scene", "render"]
+
+
+def load_scene(spec):
+    """
+    A chart or a face scene, parsed and checked once: a bundled name (``macbeth``, ``skin_patches``,
+    ``face_chart``, ``face``), a TOML path (a face's has ``[camera]`` and ``[mesh]``), or a scene object (returned
+    as it is).
+
+    Returns
+    -------
+    :class:`~skinrender.rendering.scene.ChartScene` or :class:`~skinrender.rendering.face.scene.FaceScene`
+
+    Raises
+    ------
+    SkinrenderError
+        An unknown name (every bundled scene listed), a file that is not valid TOML, a missing or bad field
+        (the file and the field named).
+
+    Examples
+    --------
+    >>> type(load_scene("macbeth")).__name__, type(load_scene("face")).__name__
+    ('ChartScene', 'FaceScene')
+    """
+    from .face.scene import is_face_scene, load_face_scene  # here: importing skinrender need not load the face
+    from .scene import load_chart_scene
+
+    return load_face_scene(spec) if is_face_scene(spec) else load_chart_scene(spec)
+
+
+def _options(function) -> list[str]:
+    """The names a renderer takes: its parameters, ``settings`` led by the render settings' fields (which its
+    ``**options`` take one by one)."""
+    from dataclasses import fields
+
+    from .settings import RenderSettings
+
+    names = []
+    for name, parameter in inspect.signature(function).parameters.items():
+        if name == "settings":
+            names += [field.name for field in fields(RenderSettings)]
+        if parameter.kind is not parameter.VAR_KEYWORD:
+            names.append(name)
+    return names
 
 
 def render(scene, camera=None, prevailing=None, calibration=None, **options):
@@ -39,7 +87,8 @@ def render(scene, camera=None, prevailing=None, calibration=None, **options):
         ``calibration`` is ``None``.
     **options
         A chart's: ``normalization``, ``knee``, ``spp`` (default 256), ``seed``, ``sampler``, ``variant``,
-        ``grid``, ``channels``, ``cache``, ``emitter`` (:func:`skinrender.rendering.balance.render`).
+        ``channels`` (or all five as ``settings``, a :class:`~skinrender.rendering.settings.RenderSettings`),
+        ``grid``, ``cache``, ``emitter`` (:func:`skinrender.rendering.balance.render`).
         A face's: ``skin``, ``physics`` (``direct``, effects joined by ``+``), ``spp`` (default 64), ``seed``,
         ``size`` (pixels), ``sampler``, ``variant``, ``grid``, ``channels``, ``imager``, ``exposure`` (s or
         ``auto``), ``illuminance`` (lx) (:func:`skinrender.rendering.face.render.render_face`).
@@ -69,9 +118,10 @@ def render(scene, camera=None, prevailing=None, calibration=None, **options):
         camera = options.pop("camera_")
     if camera is None:
         raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)")
-    from .face.scene import is_face_scene  # here: importing skinrender need not load the face's modules
+    from .face.scene import FaceScene
 
-    if is_face_scene(scene):
+    scene = load_scene(scene)
+    if isinstance(scene, FaceScene):
         from .face.render import render_face
 
         kind, function = "face", render_face
@@ -84,7 +134,7 @@ def render(scene, camera=None, prevailing=None, calibration=None, **options):
                 raise SkinrenderError(f"{name}: a chart render needs the {name} light (kelvin, A or H)")
         kind, function = "chart", render_chart
         arguments = {"scene": scene, "camera_": camera, "prevailing": prevailing, "calibration": calibration}
-    known = [name for name in inspect.signature(function).parameters if name not in arguments]
+    known = [name for name in _options(function) if name not in arguments]
     unknown = sorted(set(options) - set(known))
     if unknown:
         verb = "is not an option" if len(unknown) == 1 else "are not options"

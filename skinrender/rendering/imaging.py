@@ -59,7 +59,8 @@ from ..model.response import gain
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .balance import Rendering, patch_statistics
 from .renderer import RawRender, emitter_grid, render_raw
-from .scene import ChartScene, load_scene
+from .scene import ChartScene, load_chart_scene
+from .settings import RenderSettings
 
 __all__ = ["AUTO_EXPOSURE_FRACTION", "ImagedRendering", "electrons_per_radiance", "exposure_for", "exposure_note",
            "render_imaged", "predicted_electrons", "predicted_patches"]
@@ -164,26 +165,28 @@ def render_imaged(
     illuminance_lux: float,
     exposure: float | str = "auto",
     normalization: str = "white",
-    spp: int = 256,
-    seed: int = 0,
+    settings: RenderSettings | None = None,
     grid: WavelengthGrid = GRID_DEFAULT,
-    **render_options,
+    **options,
 ) -> ImagedRendering:
     """
     Render ``scene`` lit at ``illuminance_lux`` by the prevailing Planckian light (K) and record it with an
     image sensor; white balance to ``calibration`` (K) from the noise-free whites (Eq. 4).
 
-    The render's noise is Monte Carlo (seed ``seed``); the sensor's noise is drawn per pixel from
-    ``seed`` too (another stream), so the same seed gives the same image. ``normalization`` other than
-    ``white`` needs no whites: the gain then uses ``F_p / F_c`` as for renders without a sensor.
+    The render's noise is Monte Carlo (``settings``, :class:`~skinrender.rendering.settings.RenderSettings`,
+    or its fields ``spp``, ``seed`` … as ``options``); the sensor's noise is drawn per pixel from the seed too
+    (another stream), so the same seed gives the same image. ``normalization`` other than ``white`` needs no
+    whites: the gain then uses ``F_p / F_c`` as for renders without a sensor.
     """
 
-    chart = load_scene(scene)
+    settings = RenderSettings.of(settings, **options)
+    seed = settings.seed
+    chart = load_chart_scene(scene)
     im = imager(imager_)
     if not (np.isfinite(illuminance_lux) and illuminance_lux > 0):
         raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance_lux!r}")
     t = exposure_for(im, camera_, calibration, illuminance_lux, exposure, grid)
-    raw: RawRender = render_raw(chart, camera_, prevailing, spp, seed, grid=grid, **render_options)
+    raw: RawRender = render_raw(chart, camera_, prevailing, settings, grid)
     electrons = (raw.radiance * electrons_per_radiance(im, camera_, prevailing, illuminance_lux, grid)
                  + im.dark_current_e_per_s) * t
     dn, well_full, adc_clipped = simulate_dn_clipped(im, electrons, np.random.default_rng([seed, 0x5EED]))

@@ -47,10 +47,9 @@ Modelling choices
 
 from __future__ import annotations
 
-from __future__ import annotations
-
+import functools
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -59,7 +58,8 @@ from ..hints import NDArrayFloat
 from ..methods import validate_method
 from ..model.camera import Camera, camera
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
-from .scene import ChartScene, load_scene
+from .scene import ChartScene, load_chart_scene
+from .settings import CHANNEL_GROUPINGS, QUALITY_PRESETS, SAMPLERS, RenderSettings
 from .variants import choose_variant, mitsuba
 
 __all__ = [
@@ -77,26 +77,11 @@ __all__ = [
     "render_raw",
     "ChartRenderer",
     "chart_renderer",
+    "CameraKey",
 ]
-
-SAMPLERS = {
-    "independent": "independent uniform samples",
-    "stratified": "stratified samples",
-    "multijitter": "correlated multi-jittered samples (default; far better on flat patches)",
-    "orthogonal": "orthogonal-array samples",
-    "ldsampler": "low-discrepancy (Sobol-type) samples",
-}
-"""Mitsuba samplers, name → meaning."""
 
 SAMPLES_MAX = 2**31 - 1
 """Most samples one render pass may take (pixels × spp): drjit sizes its wavefront with 32-bit integers."""
-
-CHANNEL_GROUPINGS = {
-    "auto": "separate passes for the impulse, narrow gbell or very unequal channels, else one",
-    "together": "the three channels in one pass",
-    "separate": "one pass per channel",
-}
-"""How the three channels are rendered, name → meaning."""
 
 CHANNEL_AREA_RATIO_SEPARATE = 4.0
 """With ``channels="auto"``, render channels separately when the largest
@@ -107,14 +92,6 @@ FWHM_SEPARATE = 50.0
 separately: three narrow, disjoint channels in one pass share the wavelength
 samples three ways and their patch means get heavy-tailed at low spp
 (measured: 5σ excursions at 64 spp for sensor 3)."""
-
-QUALITY_PRESETS = {
-    "draft": {"spp": 16, "sampler": "multijitter"},
-    "standard": {"spp": 256, "sampler": "multijitter"},
-    "reference": {"spp": 4096, "sampler": "multijitter"},
-}
-"""Named settings; their expected error and time are measured by
-``skinrender bench render`` (docs/speed.md)."""
 
 
 def channel_names(cam: Camera) -> tuple[str, str, str]:
@@ -284,28 +261,28 @@ class ChartRenderer:
     emitter's values (a kernel input), so the compiled kernels are reused:
     measured ~0.55 s per 256-spp Macbeth render after a ~1.5 s first one,
     against ~1.4 s for every render with Mitsuba's ``blackbody``, whose
-    temperature is compiled in.
+    temperature is compiled in. ``settings`` (:class:`~skinrender.rendering.settings.RenderSettings`)
+    gives the spp, sampler, variant and channel passes; each render takes its own seed.
     """
 
-    def __init__(self, scene, camera_, spp: int = 256, sampler: str = "multijitter", variant: str | None = None,
-                 grid: WavelengthGrid = GRID_DEFAULT, channels: str = "auto", emitter: str = "tabulated"):
-        self.scene = load_scene(scene)
+    def __init__(self, scene, camera_, settings: RenderSettings | None = None, grid: WavelengthGrid = GRID_DEFAULT,
+                 emitter: str = "tabulated"):
+        self.scene = load_chart_scene(scene)
         self.camera = camera(camera_)
-        validate_method(sampler, SAMPLERS, "sampler")
-        if not (isinstance(spp, (int, np.integer)) and not isinstance(spp, bool) and spp >= 1):
-            raise SkinrenderError(f"spp must be a positive integer, got {spp!r}", role="spp")
+        settings = RenderSettings.of(settings)
+        spp = settings.spp
         width, height = self.scene.size
         if spp * width * height > SAMPLES_MAX:
             raise SkinrenderError(f"spp {spp} × {width * height} pixels = {spp * width * height:.3g} samples per pass, "
                                   f"more than {SAMPLES_MAX:.3g} (Mitsuba's 32-bit wavefront); at most "
                                   f"{SAMPLES_MAX // (width * height)} spp for this chart", role="spp")
         validate_method(emitter, EMITTERS, "emitter")
-        self.sampler, self.grid, self.emitter = sampler, grid, emitter
-        self.variant = choose_variant(variant)
-        self.groups = [(0,), (1,), (2,)] if _separate(self.camera, grid, channels) else [(0, 1, 2)]
-        self.requested_spp = int(spp)
+        self.sampler, self.grid, self.emitter = settings.sampler, grid, emitter
+        self.variant = choose_variant(settings.variant)
+        self.groups = [(0,), (1,), (2,)] if _separate(self.camera, grid, settings.channels) else [(0, 1, 2)]
+        self.requested_spp = spp
         self._loaded: list = []
-        self.spp = int(spp)
+        self.spp = spp
 
     def _load(self, temperature: float) -> None:
         mi = mitsuba(self.variant)
@@ -348,34 +325,54 @@ class ChartRenderer:
                          len(self.groups), scale)
 
 
-_RENDERERS: dict = {}
+@dataclass(frozen=True)
+class CameraKey:
+    """
+    A camera as a cache key: its name, kind and curves on ``grid`` (bytes), so that a CSV camera rewritten
+    under the same path is another camera; ``camera`` rides along, outside the key.
+    """
+
+    name: str
+    kind: str
+    curves: bytes
+    grid: WavelengthGrid
+    camera: Camera = field(compare=False, hash=False, repr=False)
+
+    @classmethod
+    def of(cls, cam: Camera, grid: WavelengthGrid) -> CameraKey:
+        """The key of ``cam`` with its curves on ``grid``."""
+        return cls(cam.name, cam.kind, cam.sensitivities(grid).tobytes(), grid, cam)
 
 
-def chart_renderer(scene, camera_, spp=256, sampler="multijitter", variant=None, grid=GRID_DEFAULT,
-                   channels="auto", emitter="tabulated") -> ChartRenderer:
-    """A :class:`ChartRenderer`, reused across calls with the same settings (a few kept)."""
-    chart, cam = load_scene(scene), camera(camera_)
-    # the curves too: a CSV camera rewritten under the same path must not reuse the old curves' renderer
-    key = (chart, cam.name, cam.kind, cam.sensitivities(grid).tobytes(), spp, sampler, variant, grid, channels,
-           emitter)
-    if key not in _RENDERERS:
-        if len(_RENDERERS) >= 8:
-            _RENDERERS.pop(next(iter(_RENDERERS)))
-        _RENDERERS[key] = ChartRenderer(chart, cam, spp, sampler, variant, grid, channels, emitter)
-    return _RENDERERS[key]
+RENDERERS_KEPT = 8
+"""Chart renderers kept loaded (the least recently used goes first)."""
+
+
+@functools.lru_cache(maxsize=RENDERERS_KEPT)
+def _renderer(chart: ChartScene, key: CameraKey, settings: RenderSettings, emitter: str) -> ChartRenderer:
+    return ChartRenderer(chart, key.camera, settings, key.grid, emitter)
+
+
+def chart_renderer(scene, camera_, settings: RenderSettings | None = None, grid: WavelengthGrid = GRID_DEFAULT,
+                   emitter: str = "tabulated", **options) -> ChartRenderer:
+    """
+    A :class:`ChartRenderer`, reused across calls with the same chart, camera curves, settings (but the seed),
+    grid and emitter (:data:`RENDERERS_KEPT` kept); ``options``: the fields of ``settings``
+    (:meth:`~skinrender.rendering.settings.RenderSettings.of`).
+    """
+    chart, cam = load_chart_scene(scene), camera(camera_)
+    settings = RenderSettings.of(settings, **options).replace(seed=0)  # the seed is each render's
+    return _renderer(chart, CameraKey.of(cam, grid), settings, emitter)
 
 
 def render_raw(
     scene: ChartScene | str,
     camera_: Camera | str,
     temperature: float,
-    spp: int = 256,
-    seed: int = 0,
-    sampler: str = "multijitter",
-    variant: str | None = None,
+    settings: RenderSettings | None = None,
     grid: WavelengthGrid = GRID_DEFAULT,
-    channels: str = "auto",
     emitter: str = "tabulated",
+    **options,
 ) -> RawRender:
     """
     Render a chart under a Planck emitter at ``temperature`` (K).
@@ -388,22 +385,19 @@ def render_raw(
         Camera or spec.
     temperature
         Emitter temperature, K (any finite value > 0).
-    spp
-        Samples per pixel (multijitter rounds it to a product of two
-        integers; the count used is reported).
-    seed
-        Sampler seed: the same seed gives the same image.
-    sampler
-        One of :data:`SAMPLERS`.
-    variant
-        Mitsuba variant, or ``None`` for the fastest that works.
+    settings
+        :class:`~skinrender.rendering.settings.RenderSettings`: spp (multijitter rounds it to a product of two
+        integers; the count used is reported), seed (the same seed gives the same image), sampler (one of
+        :data:`SAMPLERS`), variant (``None``: the fastest that works) and channels (``auto``, ``together``: one
+        pass, ``separate``: one pass per channel); the defaults where ``None``.
     grid
         Wavelength grid of the sensor curves and reflectances, nm.
-    channels
-        ``auto``, ``together`` (one pass) or ``separate`` (one pass per channel).
     emitter
         ``tabulated`` (default) or ``blackbody``; see :func:`scene_dict`.
+    **options
+        ``spp``, ``seed``, ``sampler``, ``variant``, ``channels``: settings given one by one
+        (:meth:`~skinrender.rendering.settings.RenderSettings.of`).
     """
 
-    return chart_renderer(scene, camera_, spp, sampler, variant, grid, channels, emitter).raw(temperature, seed)
-
+    settings = RenderSettings.of(settings, **options)
+    return chart_renderer(scene, camera_, settings, grid, emitter).raw(temperature, settings.seed)

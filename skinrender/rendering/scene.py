@@ -9,8 +9,9 @@ directional emitter. The renderer models only that: direct lighting, no
 interreflection (a flat chart has none), no polarisation, no depth of field.
 
 -   :class:`Patch`, :class:`ChartScene`: a parsed scene.
--   :func:`load_scene`: a scene from a name in ``scenes/`` or a path; a bad
-    file gets an error naming the file and the field.
+-   :func:`load_chart_scene`: a chart scene from a name in ``scenes/`` or a
+    path; a bad file gets an error naming the file and the field (charts and
+    faces alike: :func:`skinrender.rendering.dispatch.load_scene`).
 -   :func:`list_scenes`: the bundled scene names.
 -   :func:`check_mesh_file`: a face scene's ``.obj``/``.ply`` mesh checked before any render.
 
@@ -35,19 +36,19 @@ under ``--physics subsurface`` its layers.
 from __future__ import annotations
 
 import math
-import tomllib
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 import numpy as np
 
 from ..datasets import reflectances
-from ..errors import SkinrenderError
-from ..files import MESH_BYTES_MAX, TOML_BYTES_MAX, exists, read_input
+from ..errors import SkinrenderError, flag_of
+from ..files import MESH_BYTES_MAX, exists, read_input
 from ..hints import NDArrayFloat
 from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..toml_tables import entry, from_table, read_toml
 
-__all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_scene", "list_scenes", "read_scene_toml", "reflectance_of",
+__all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_chart_scene", "list_scenes", "read_scene_toml", "reflectance_of",
            "skin_parameters_of", "check_mesh_file"]
 
 ROOT_SCENES = Path(__file__).resolve().parent / "scenes"
@@ -141,22 +142,23 @@ def skin_parameters_of(spec: str, where: str = "reflectance"):
         key = key.strip()
         if key not in known:
             raise SkinrenderError(f"{where}: {text!r}: unknown skin-model parameter {key!r}; known: "
-                                  f"{', '.join(sorted(known))}")
+                                  f"{', '.join(sorted(known))}", flag=flag_of(where))
         if key in values:
-            raise SkinrenderError(f"{where}: {text!r}: {key} is given twice; give each parameter once")
+            raise SkinrenderError(f"{where}: {text!r}: {key} is given twice; give each parameter once",
+                                  flag=flag_of(where))
         try:
             values[key] = float(value)
         except ValueError:
             raise SkinrenderError(f"{where}: {text!r}: {key} must be a number, "
-                                  f"got {value.strip()!r}") from None
+                                  f"got {value.strip()!r}", flag=flag_of(where)) from None
         if not math.isfinite(values[key]) or values[key] < 0:
             raise SkinrenderError(f"{where}: {text!r}: {key} must be a finite number ≥ 0, "
-                                  f"got {value.strip()!r}")
+                                  f"got {value.strip()!r}", flag=flag_of(where))
     parameters = SkinParameters(**values)
     try:
         check_parameters(parameters)
     except SkinrenderError as error:
-        raise SkinrenderError(f"{where}: {text!r}: {error}") from None
+        raise SkinrenderError(f"{where}: {text!r}: {error}", flag=flag_of(where)) from None
     return parameters
 
 
@@ -170,7 +172,7 @@ def reflectance_of(spec: str, grid: WavelengthGrid, where: str = "reflectance") 
         with np.errstate(all="ignore"):  # a non-finite result is refused below, with no warning on stderr
             reflectance = skin_reflectance(grid.wavelengths, parameters)
         if not np.all(np.isfinite(reflectance)):
-            raise SkinrenderError(f"{where}: {text!r} gives no finite reflectance")
+            raise SkinrenderError(f"{where}: {text!r} gives no finite reflectance", flag=flag_of(where))
         return reflectance
     if text == "perfect":
         return np.ones(grid.size)
@@ -180,26 +182,29 @@ def reflectance_of(spec: str, grid: WavelengthGrid, where: str = "reflectance") 
         except ValueError:
             value = np.nan
         if not 0 <= value <= 1:
-            raise SkinrenderError(f"{where}: grey reflectance must be grey:F with F in [0, 1], got {text!r}")
+            raise SkinrenderError(f"{where}: grey reflectance must be grey:F with F in [0, 1], got {text!r}",
+                                  flag=flag_of(where))
         return np.full(grid.size, value)
     if ":" not in text:
         raise SkinrenderError(f"{where}: reflectance must be SET:SAMPLE, SET:#N, perfect, grey:F or "
-                              f"skin-model:NAME=VALUE,…, got {text!r}")
+                              f"skin-model:NAME=VALUE,…, got {text!r}", flag=flag_of(where))
     set_name, sample = text.split(":", 1)
     try:
         dataset = reflectances(set_name)
     except SkinrenderError as error:
-        raise SkinrenderError(f"{where}: {error}") from None
+        raise SkinrenderError(f"{where}: {error}", flag=flag_of(where)) from None
     if sample.startswith("#"):
         try:
             index = int(sample[1:])
         except ValueError:
             index = -1
         if not 0 <= index < dataset.count:
-            raise SkinrenderError(f"{where}: {text!r}: index must be #0 … #{dataset.count - 1}")
+            raise SkinrenderError(f"{where}: {text!r}: index must be #0 … #{dataset.count - 1}",
+                                  flag=flag_of(where))
     else:
         if sample not in dataset.names:
-            raise SkinrenderError(f"{where}: {text!r}: no sample {sample!r} in set {set_name!r}")
+            raise SkinrenderError(f"{where}: {text!r}: no sample {sample!r} in set {set_name!r}",
+                                  flag=flag_of(where))
         index = dataset.names.index(sample)
     return dataset.on(grid)[index]
 
@@ -218,16 +223,12 @@ def read_scene_toml(spec, root: Path, kind: str, bundled: str) -> tuple[Path, di
     if path.suffix != ".toml" and len(path.parts) == 1 and "\0" not in text and len(text) < 200 and named.is_file():
         path = named
     elif exists(path) and path.is_dir():
-        raise SkinrenderError(f"{kind} {text} is a folder, expected a .toml file or a bundled name")
+        raise SkinrenderError(f"{kind} {text} is a folder, expected a .toml file or a bundled name", role="scene")
     elif not (path.suffix == ".toml" or exists(path)):
         raise SkinrenderError(f"unknown {kind} {text!r}; {bundled}, or a .toml path")
     elif not exists(path):
-        raise SkinrenderError(f"{kind} file {text} does not exist")
-    data = read_input(path, TOML_BYTES_MAX, f"a {kind} TOML")  # a pipe, a device, a huge file: refused unread
-    try:
-        return path, tomllib.loads(data.decode("utf-8"))
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
-        raise SkinrenderError(f"{path}: not valid TOML: {' '.join(str(error).split())}") from None
+        raise SkinrenderError(f"{kind} file {text} does not exist", role="scene")
+    return path, read_toml(path, f"a {kind} TOML")  # a pipe, a device, a huge file: refused unread
 
 
 def list_scenes() -> list[str]:
@@ -235,24 +236,27 @@ def list_scenes() -> list[str]:
     return sorted(p.stem for p in ROOT_SCENES.glob("*.toml"))
 
 
-def _field(table: dict, key: str, kind, where: str, default=None, minimum: int | None = None):
-    if key not in table:
-        if default is None:
-            raise SkinrenderError(f"{where}: missing field {key!r}")
-        return default
-    value = table[key]
-    if kind is int and (isinstance(value, bool) or not isinstance(value, int)):
-        raise SkinrenderError(f"{where}: field {key!r} must be an integer, got {value!r}")
-    if kind is str and not isinstance(value, str):
-        raise SkinrenderError(f"{where}: field {key!r} must be a string, got {value!r}")
-    if kind is bool and not isinstance(value, bool):
-        raise SkinrenderError(f"{where}: field {key!r} must be true or false, got {value!r}")
-    if minimum is not None and value < minimum:
-        raise SkinrenderError(f"{where}: field {key!r} must be ≥ {minimum}, got {value}")
-    return value
+@dataclass(frozen=True, kw_only=True)
+class _PatchTable:
+    """A ``[[patch]]`` table of a chart scene file (the module docstring)."""
+
+    reflectance: str = field(metadata=entry("string"))
+    name: str | None = field(default=None, metadata=entry("string"))
+    skin: bool = field(default=False, metadata=entry("boolean"))
 
 
-_KNOWN_FIELDS = {"name", "description", "columns", "patch_px", "gap_px", "border_px", "white", "patch"}
+@dataclass(frozen=True, kw_only=True)
+class _ChartTable:
+    """A chart scene file's table (the module docstring), in the order its fields are checked."""
+
+    patch: tuple[_PatchTable, ...] = field(metadata=entry("tables", schema=_PatchTable, nonempty=True))
+    white: str = field(default="perfect", metadata=entry("string"))
+    name: str | None = field(default=None, metadata=entry("string"))
+    description: str = field(default="", metadata=entry("string"))
+    columns: int = field(metadata=entry("integer", low=1))
+    patch_px: int = field(default=14, metadata=entry("integer", low=3))
+    gap_px: int = field(default=2, metadata=entry("integer", low=0))
+    border_px: int = field(default=0, metadata=entry("integer", low=0))
 
 
 PIXELS_MAX = 4_000_000
@@ -345,17 +349,17 @@ def check_mesh_file(path: str | Path, where: str = "mesh") -> None:
     skinrender.errors.SkinrenderError: --mesh has 3 vertices but no face ('f' line); expected a Wavefront OBJ: text, 'v x y z' vertex and 'f i j k' face lines, indices from 1
     """
     path = Path(path)
-    try:
-        data = read_input(path, MESH_BYTES_MAX, "a mesh (OBJ or PLY)")
-    except SkinrenderError as error:  # the file's own problem (a pipe, too large) after the caller's words
-        raise SkinrenderError(f"{where}: {error.message.removeprefix(f'{path}: ')}") from None
+    data = read_input(path, MESH_BYTES_MAX, "a mesh (OBJ or PLY)", where)  # a pipe, too large: after where
     (_check_ply if path.suffix.lower() == ".ply" else _check_obj)(data, where)
 
 
-def load_scene(spec: str | Path | ChartScene) -> ChartScene:
+def load_chart_scene(spec: str | Path | ChartScene) -> ChartScene:
     """
     A chart scene from a bundled name (``macbeth``, ``skin_patches``,
-    ``face_chart``) or a path to a TOML file of the same format.
+    ``face_chart``) or a path to a TOML file of the same format; a
+    :class:`ChartScene` is returned as it is. A face scene is
+    :func:`~skinrender.rendering.face.scene.load_face_scene`'s, either kind
+    :func:`~skinrender.rendering.dispatch.load_scene`'s.
 
     Raises
     ------
@@ -370,35 +374,13 @@ def load_scene(spec: str | Path | ChartScene) -> ChartScene:
     path, table = read_scene_toml(spec, ROOT_SCENES, "scene", f"bundled scenes: {', '.join(list_scenes())} "
                                   f"(charts), {', '.join(faces)} (faces)")
     where = str(path)
-    unknown = set(table) - _KNOWN_FIELDS
-    if unknown:
-        raise SkinrenderError(f"{where}: unknown field(s) {', '.join(sorted(unknown))}; known: {', '.join(sorted(_KNOWN_FIELDS))}")
-    patches_table = table.get("patch")
-    if not isinstance(patches_table, list) or not patches_table:
-        raise SkinrenderError(f"{where}: needs at least one [[patch]] table with a 'reflectance' field")
-    patches = []
-    for number, entry in enumerate(patches_table):
-        at = f"{where}: patch {number + 1}"
-        if not isinstance(entry, dict):
-            raise SkinrenderError(f"{at}: must be a table")
-        extra = set(entry) - {"name", "reflectance", "skin"}
-        if extra:
-            raise SkinrenderError(f"{at}: unknown field(s) {', '.join(sorted(extra))}; known: name, reflectance, skin")
-        reflectance = _field(entry, "reflectance", str, at)
-        name = _field(entry, "name", str, at, default=reflectance.split(":", 1)[-1])
-        patches.append(Patch(name, reflectance, _field(entry, "skin", bool, at, default=False)))
-    white = _field(table, "white", str, where, default="perfect")
-    patches.append(Patch("white reference", white, False))
-    scene = ChartScene(
-        name=_field(table, "name", str, where, default=path.stem),
-        description=_field(table, "description", str, where, default=""),
-        columns=_field(table, "columns", int, where, minimum=1),
-        patch_px=_field(table, "patch_px", int, where, default=14, minimum=3),
-        gap_px=_field(table, "gap_px", int, where, default=2, minimum=0),
-        border_px=_field(table, "border_px", int, where, default=0, minimum=0),
-        patches=tuple(patches),
-        source=where,
-    )
+    chart = from_table(_ChartTable, table, where)
+    patches = [Patch(p.reflectance.split(":", 1)[-1] if p.name is None else p.name, p.reflectance, p.skin)
+               for p in chart.patch]
+    patches.append(Patch("white reference", chart.white, False))
+    scene = ChartScene(name=path.stem if chart.name is None else chart.name, description=chart.description,
+                       columns=chart.columns, patch_px=chart.patch_px, gap_px=chart.gap_px,
+                       border_px=chart.border_px, patches=tuple(patches), source=where)
     if 2 * scene.border_px >= scene.patch_px:
         raise SkinrenderError(f"{where}: field 'border_px' ({scene.border_px}) leaves no pixel of a "
                               f"{scene.patch_px}-pixel patch")
@@ -412,6 +394,6 @@ def load_scene(spec: str | Path | ChartScene) -> ChartScene:
         raise SkinrenderError(f"{where}: a patch keeps {inner * inner} inner pixel(s); patch statistics need at least 2")
     values = scene.reflectances(GRID_DEFAULT)  # every reflectance resolves, or the error names the patch
     if not np.any(values[-1] > 0):
-        raise SkinrenderError(f"{where}: field 'white' ({white}) reflects no light: the white reference balances "
+        raise SkinrenderError(f"{where}: field 'white' ({chart.white}) reflects no light: the white reference balances "
                               "every channel and must not be black")
     return scene

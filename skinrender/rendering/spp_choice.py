@@ -118,7 +118,7 @@ def spp_for_tolerance(validate_at, tolerance: float, seed: int = 0, pilots: tupl
     if hasattr(last, "spp_reason"):  # through a sensor: the bound has the sensor's floor
         if last.spp_needed is None:
             raise SkinrenderError(f"--tolerance {tolerance:g}: no spp is expected to pass it: {last.spp_reason} "
-                                  f"(the {rows[-1]['spp']}-spp pilot's bound is {last.bound:.3g})")
+                                  f"(the {rows[-1]['spp']}-spp pilot's bound is {last.bound:.3g})", flag="--tolerance")
         chosen = square_spp(last.spp_needed * SPP_AUTO_MARGIN, sampler)
         exponent = None
         why = (f"the {rows[-1]['spp']}-spp pilot's bound {last.bound:.3g} (sensor and render noise) is expected to "
@@ -132,5 +132,5 @@ def spp_for_tolerance(validate_at, tolerance: float, seed: int = 0, pilots: tupl
                f"at {at:.0f} spp; × {SPP_AUTO_MARGIN:g} margin" + (", up to an even square" if sampler == "multijitter" else ""))
     if spp_max is not None and chosen > spp_max:
         raise SkinrenderError(f"--tolerance {tolerance:g}: about {chosen} spp would be needed ({why}), more than "
-                              f"{spp_max} a render may take; ask for a larger tolerance")
+                              f"{spp_max} a render may take; ask for a larger tolerance", flag="--tolerance")
     return {"spp": int(chosen), "pilots": rows, "exponent": exponent, "margin": SPP_AUTO_MARGIN, "why": why}

@@ -74,11 +74,12 @@ import numpy as np
 
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
-from ..methods import validate_method
 from ..model.camera import Camera, camera
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
-from .renderer import SAMPLERS, SAMPLES_MAX, RawRender, _peak, _separate, _spectrum, channel_names, emitter_grid
-from .scene import ChartScene, load_scene
+from .renderer import (SAMPLES_MAX, CameraKey, RawRender, _peak, _separate, _spectrum, channel_names,
+                       emitter_grid)
+from .scene import ChartScene, load_chart_scene
+from .settings import RenderSettings
 from .subsurface import (INTEGRATOR_SUBSURFACE, SLAB_DERMIS_MM, SkinMedia, check_truncation, medium_dict,
                          skin_media_of, slab_reflectance, subsurface_variant)
 from .variants import mitsuba
@@ -98,11 +99,12 @@ SAMPLES_PER_S_SLAB = 500.0
 (``docs/subsurface.md``) on this shared 2-core machine."""
 
 SAMPLER_SUBSURFACE = "independent"
-"""The sampler of a subsurface chart unless one is named (``validate``, ``render``, ``detect``): over 150 seeds of
-a slab (8 × 8 px, 16 spp, the skin fitted to Vrhel 095), the patch means' spread over their pixels' standard errors
-was 1.08, 1.05, 0.99 (R, G, B) with ``independent`` and 1.01, 1.09, 1.11 with ``multijitter``, whose strata the
-pixels share: its errors are understated where the walks are long, for no gain in precision in G and B
-(``tools/measure_subsurface.py samplers``)."""
+"""The sampler of a subsurface chart unless one is named (``validate``, ``render``, ``detect``; Python: where no
+settings are given): its pixels are independent samples by construction, so a patch's standard error from its
+pixels' spread holds whatever the paths, and validate's difference test was calibrated with it (2 false alarms in
+100 seeds at α 0.01, ``docs/subsurface.md``). Over 150 seeds of a slab (8 × 8 px, 16 spp, the skin fitted to Vrhel
+095) the patch means' spread over their standard errors was 0.98, 1.02, 0.98 (R, G, B) with it and 0.96, 0.95, 0.94
+with ``multijitter`` (``tools/measure_subsurface.py samplers``): both honest, within the ratio's ±6 % noise."""
 
 SECONDS_PER_FIT = 1.3
 """Seconds to fit the skin model to one measured skin patch (one core, ~101 wavelengths), the estimates'."""
@@ -143,7 +145,7 @@ def subsurface_chart(scene, grid: WavelengthGrid = GRID_DEFAULT) -> SubsurfaceCh
     SkinrenderError
         A chart without a skin patch, or a skin patch the skin model does not fit (the patch named).
     """
-    return _subsurface_chart(load_scene(scene), grid)
+    return _subsurface_chart(load_chart_scene(scene), grid)
 
 
 @lru_cache(maxsize=8)
@@ -171,7 +173,7 @@ def estimate_seconds(scene: ChartScene, spp: int, fits: int = 0) -> float:
     Seconds one subsurface render of ``scene`` should take on one core: its skin patches' paths at
     :data:`SAMPLES_PER_S_SLAB` and ``fits`` fits at :data:`SECONDS_PER_FIT` (the Lambertian patches are free).
 
-    >>> round(estimate_seconds(load_scene("skin_patches"), 16))
+    >>> round(estimate_seconds(load_chart_scene("skin_patches"), 16))
     188
     """
     skins = sum(p.skin for p in scene.patches)
@@ -237,32 +239,34 @@ class SubsurfaceChartRenderer:
     """
     A chart at ``subsurface`` through a camera (:class:`SubsurfaceChart`), rendered at any temperature.
 
-    Each patch is its own Mitsuba scene (module docstring). ``raw(temperature, seed, skins=False)`` renders only
-    the Lambertian patches (what a white balance reads; the skin patches stay 0): the calibration render.
+    Each patch is its own Mitsuba scene (module docstring). ``settings``
+    (:class:`~skinrender.rendering.settings.RenderSettings`) gives the spp, sampler, variant and channel passes
+    (the defaults where ``None``, with :data:`SAMPLER_SUBSURFACE`); each render takes its own seed.
+    ``raw(temperature, seed, skins=False)`` renders only the Lambertian patches (what a white balance reads; the
+    skin patches stay 0): the calibration render.
     """
 
-    def __init__(self, scene, camera_, spp: int = 16, sampler: str = SAMPLER_SUBSURFACE, variant: str | None = None,
-                 grid: WavelengthGrid = GRID_DEFAULT, channels: str = "auto"):
-        self.scene = load_scene(scene)
+    def __init__(self, scene, camera_, settings: RenderSettings | None = None, grid: WavelengthGrid = GRID_DEFAULT):
+        self.scene = load_chart_scene(scene)
         self.camera = camera(camera_)
-        validate_method(sampler, SAMPLERS, "sampler")
-        if not (isinstance(spp, (int, np.integer)) and not isinstance(spp, bool) and spp >= 1):
-            raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
+        settings = RenderSettings(sampler=SAMPLER_SUBSURFACE) if settings is None else RenderSettings.of(settings)
+        spp = settings.spp
         if spp * self.scene.patch_px**2 > SAMPLES_MAX:
             raise SkinrenderError(f"spp {spp} × {self.scene.patch_px**2} pixels is more than {SAMPLES_MAX:.3g} "
-                                  "samples per pass")
+                                  "samples per pass", role="spp")
         self.chart = subsurface_chart(self.scene, grid)
-        self.sampler, self.grid, self.requested_spp = sampler, grid, int(spp)
-        self.variant = subsurface_variant(variant)
-        self.groups = [(0,), (1,), (2,)] if _separate(self.camera, grid, channels) else [(0, 1, 2)]
-        self.spp = int(spp)
+        self.sampler, self.grid, self.requested_spp = settings.sampler, grid, spp
+        self.variant = subsurface_variant(settings.variant)
+        self.groups = [(0,), (1,), (2,)] if _separate(self.camera, grid, settings.channels) else [(0, 1, 2)]
+        self.spp = spp
 
     def raw(self, temperature: float, seed: int = 0, skins: bool = True) -> RawRender:
         """Render at ``temperature`` (K) with ``seed`` (an integer in [0, 2³²)); ``skins``: the skin patches too."""
         if not (np.isfinite(temperature) and temperature > 0):
             raise SkinrenderError(f"temperature must be a finite number of kelvin > 0, got {temperature}")
         if not (isinstance(seed, (int, np.integer)) and 0 <= seed < 2**32):
-            raise SkinrenderError(f"seed must be an integer in [0, 2^32) (Mitsuba's seeds are 32-bit), got {seed!r}")
+            raise SkinrenderError(f"seed must be an integer in [0, 2^32) (Mitsuba's seeds are 32-bit), got {seed!r}",
+                                  role="seed")
         mi = mitsuba(self.variant)
         start = time.perf_counter()
         radiance = planck(emitter_grid(self.grid), temperature)
@@ -285,16 +289,21 @@ class SubsurfaceChartRenderer:
                          time.perf_counter() - start, len(self.groups), peak / np.pi)
 
 
-_RENDERERS: dict = {}
+@lru_cache(maxsize=4)
+def _renderer(chart: ChartScene, key: CameraKey, settings: RenderSettings) -> SubsurfaceChartRenderer:
+    return SubsurfaceChartRenderer(chart, key.camera, settings, key.grid)
 
 
-def subsurface_renderer(scene, camera_, spp=16, sampler=SAMPLER_SUBSURFACE, variant=None, grid=GRID_DEFAULT,
-                        channels="auto") -> SubsurfaceChartRenderer:
-    """A :class:`SubsurfaceChartRenderer`, reused across calls with the same settings (a few kept)."""
-    chart, cam = load_scene(scene), camera(camera_)
-    key = (chart, cam.name, cam.kind, cam.sensitivities(grid).tobytes(), spp, sampler, variant, grid, channels)
-    if key not in _RENDERERS:
-        if len(_RENDERERS) >= 4:
-            _RENDERERS.pop(next(iter(_RENDERERS)))
-        _RENDERERS[key] = SubsurfaceChartRenderer(chart, cam, spp, sampler, variant, grid, channels)
-    return _RENDERERS[key]
+def subsurface_renderer(scene, camera_, settings: RenderSettings | None = None, grid: WavelengthGrid = GRID_DEFAULT,
+                        **options) -> SubsurfaceChartRenderer:
+    """
+    A :class:`SubsurfaceChartRenderer`, reused across calls with the same chart, camera curves, settings (but the
+    seed) and grid (a few kept); ``options``: the fields of ``settings``
+    (:meth:`~skinrender.rendering.settings.RenderSettings.of`), the sampler :data:`SAMPLER_SUBSURFACE` unless
+    ``settings`` or ``options`` name one.
+    """
+    chart, cam = load_chart_scene(scene), camera(camera_)
+    if settings is None:
+        options = {"sampler": SAMPLER_SUBSURFACE, **options}
+    settings = RenderSettings.of(settings, **options).replace(seed=0)  # the seed is each render's
+    return _renderer(chart, CameraKey.of(cam, grid), settings)

@@ -43,7 +43,8 @@ from .agreement import TOLERANCE_DEFAULT, agreement, check_tolerance, tolerance_
 from .balance import Rendering, pair_gain, patch_statistics, render
 from .patch_errors import SKEW_MAX, error_law
 from .renderer import chart_renderer
-from .scene import ChartScene, load_scene
+from .scene import ChartScene, load_chart_scene
+from .settings import RenderSettings
 from .spp_choice import square_spp
 
 __all__ = ["FLOAT32_FLOOR", "REFINE", "analytic_reference", "quadrature_difference", "Validation", "validate",
@@ -268,8 +269,9 @@ def validate(
         Family-wise error rates of the equivalence verdict (its bounds hold together at ``1 − alpha``) and
         of the difference test (its false-alarm rate).
     render_options
-        To :func:`skinrender.rendering.balance.render` (``spp``, ``seed``, ``sampler``, ``variant``,
-        ``channels``, ``cache``).
+        To :func:`skinrender.rendering.balance.render`: ``settings`` (a
+        :class:`~skinrender.rendering.settings.RenderSettings`) or its fields ``spp``, ``seed``, ``sampler``,
+        ``variant``, ``channels``; ``cache``, ``emitter``.
 
     Returns
     -------
@@ -285,7 +287,7 @@ def validate(
     """
 
     tolerance = check_tolerance(tolerance, "tolerance")
-    chart = load_scene(scene)
+    chart = load_chart_scene(scene)
     if rendering is None:
         rendering = render(chart, camera_, prevailing, calibration, normalization, knee, grid=grid, **render_options)
     reflectance = rendering.info.get("reflectances")  # subsurface: a skin patch's slab (its adding-doubling R)
@@ -308,20 +310,20 @@ def validate_gamut(
     scene: ChartScene | str,
     camera_: Camera | str,
     illuminants=None,
-    spp: int = 256,
-    seed: int = 0,
+    settings: RenderSettings | None = None,
     draws: int = 64,
-    sampler: str = "multijitter",
-    variant: str | None = None,
     grid: WavelengthGrid = GRID_DEFAULT,
     tolerance: float = TOLERANCE_DEFAULT,
     alpha: float = ALPHA_EQUIVALENCE,
     alpha_difference: float = ALPHA_DIFFERENCE,
+    **options,
 ) -> dict:
     """
     Gamut volumes of a chart's rendered patches against the analytic ones.
 
-    The chart is rendered once per illuminant of the set (seed ``seed + i``);
+    The chart is rendered once per illuminant of the set (``settings``, a
+    :class:`~skinrender.rendering.settings.RenderSettings`, or its fields
+    ``spp``, ``seed`` … as ``options``; seed ``seed + i``);
     Eq. 4 (white normalisation) for every (prevailing, calibration) pair is
     applied to the rendered patch means (white reference left out of the
     cloud), and the one-calibration-case and all-calibration volumes are
@@ -344,11 +346,12 @@ def validate_gamut(
     """
 
     tolerance = check_tolerance(tolerance, "tolerance")
-
-    chart = load_scene(scene)
+    settings = RenderSettings.of(settings, **options)
+    seed = settings.seed
+    chart = load_chart_scene(scene)
     cam = camera(camera_)
     temperatures = np.asarray(TEMPERATURES_PAPER if illuminants is None else illuminants, dtype=np.float64)
-    renderer = chart_renderer(chart, cam, spp, sampler, variant, grid)
+    renderer = chart_renderer(chart, cam, settings, grid)
     means, errors, seconds = [], [], 0.0
     for i, t in enumerate(temperatures):
         raw = renderer.raw(float(t), seed + i)

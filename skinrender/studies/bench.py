@@ -35,7 +35,7 @@ __all__ = ["machine", "bench_analytic", "bench_search", "bench_sweep", "bench_re
 def _at_least_one(value, flag: str) -> int:
     """An integer ≥ 1, or a one-line :class:`SkinrenderError` naming ``flag``."""
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
-        raise SkinrenderError(f"{flag} must be an integer ≥ 1, got {value!r}")
+        raise SkinrenderError(f"{flag} must be an integer ≥ 1, got {value!r}", flag=flag)
     return int(value)
 
 
@@ -313,11 +313,12 @@ def bench_render(
     begun = time.perf_counter()
     from ..rendering.balance import render
     from ..rendering.renderer import render_raw
-    from ..rendering.scene import load_scene
+    from ..rendering.scene import load_chart_scene
+    from ..rendering.settings import RenderSettings
     from ..rendering.validation import analytic_reference, validate
     from ..rendering.variants import VARIANTS_SPECTRAL, variant_works, choose_variant
 
-    chart = load_scene("macbeth")
+    chart = load_chart_scene("macbeth")
     cam = camera(camera_spec)
     reference = analytic_reference(cam, chart.reflectances(GRID_DEFAULT), 2856.0, 2856.0)
     if variants is None:
@@ -327,11 +328,11 @@ def bench_render(
         top = 256 if quick or variant.startswith("scalar") else 4096
         for sampler in samplers:
             for spp in spps or tuple(s for s in (4, 16, 64, 256, 1024, 4096) if s <= top):
-                render_raw(chart, cam, 2856.0, spp, seed, sampler, variant)  # warm-up: compile kernels
+                settings = RenderSettings(spp, seed, sampler, variant)
+                render_raw(chart, cam, 2856.0, settings)  # warm-up: compile kernels
                 best, rendering = np.inf, None
                 for repeat in range(2):
-                    rendering = render(chart, cam, 2856.0, 2856.0, spp=spp, seed=seed + repeat, sampler=sampler,
-                                       variant=variant)
+                    rendering = render(chart, cam, 2856.0, 2856.0, settings=settings.replace(seed=seed + repeat))
                     best = min(best, rendering.seconds)
                 error = float(np.sqrt(np.mean((rendering.patches.mean / reference - 1) ** 2)))
                 curve.append({"variant": variant, "sampler": sampler, "spp": spp, "seconds": best, "rel_error": error})

@@ -210,22 +210,22 @@ def bench_face(
     start = time.perf_counter()
     spps = [_at_least_one(s, "--spp-list") for s in spps]
     if not spps:
-        raise SkinrenderError("--spp-list: name at least one spp")
+        raise SkinrenderError("--spp-list: name at least one spp", flag="--spp-list")
     size = _at_least_one(size, "--size")
     if len(set(spps)) < len(spps):
-        raise SkinrenderError(f"--spp-list: each spp once, got {list(spps)}")
+        raise SkinrenderError(f"--spp-list: each spp once, got {list(spps)}", flag="--spp-list")
     reference_spp = _at_least_one(reference_spp or 4 * max(spps), "--reference-spp")
     if reference_spp <= max(spps):
         raise SkinrenderError(f"--reference-spp must be more than the largest of --spp-list ({max(spps)}), got "
-                              f"{reference_spp}")
+                              f"{reference_spp}", flag="--reference-spp")
     levels = list(levels)
     if not levels:
-        raise SkinrenderError("--levels: name at least one level of physics")
+        raise SkinrenderError("--levels: name at least one level of physics", flag="--levels")
     for level in levels:
         try:
             parse_physics(level)
         except SkinrenderError as error:
-            raise SkinrenderError(f"--levels: {error}") from None
+            raise SkinrenderError(f"--levels: {error}", flag="--levels") from None
     cam = camera(camera_spec)
     face = load_face_scene(scene)
     from ..workload import check_work

@@ -7,8 +7,10 @@ How often a check fails where its null holds, measured over independent seeds
 the samples per pixel grow (``skinrender bench validate``).
 
 -   :data:`CALIBRATION_PATHS`, :func:`calibration_path`: the validate paths a
-    calibration runs, by kind of scene (``chart``; ``face`` is left for the
-    face's own validation to register).
+    calibration runs, by kind of scene (``chart``, ``face``: the face's is
+    :func:`skinrender.studies.face_calibration.face_run`, whose validations
+    are :data:`~skinrender.studies.face_calibration.SEED_STEP` seeds apart;
+    its calibration, :func:`~skinrender.studies.face_calibration.face_calibration`).
 -   :func:`estimate_seconds`: the time a run of validations takes (the
     command line refuses one above ``--max-minutes``, :mod:`skinrender.workload`).
 -   :func:`bench_calibration`: per check, the observed false-alarm rate with
@@ -82,22 +84,30 @@ def _chart_run(scene, camera_, prevailing: float, calibration: float, spp: int, 
             "seconds": time.perf_counter() - start, "spp": imaged.rendering.raw[0].spp}
 
 
-CALIBRATION_PATHS: dict[str, Callable[..., dict]] = {"chart": _chart_run}
+def _face_run(*arguments, **options) -> dict:
+    """One ``validate face`` (:func:`skinrender.studies.face_calibration.face_run`)."""
+    from .face_calibration import face_run
+
+    return face_run(*arguments, **options)
+
+
+_face_run.seed_step = 12  # each validation renders its seed and the next 11 (face_calibration.SEED_STEP)
+
+CALIBRATION_PATHS: dict[str, Callable[..., dict]] = {"chart": _chart_run, "face": _face_run}
 """The validate path a calibration runs, by kind of scene (``chart``, ``face``): ``run(scene, camera, prevailing,
 calibration, spp, seed, imaging, mc_variance, tolerance, level)`` → ``{checks: {name: Verdict}, bound, seconds,
-spp}``. ``face`` is absent until the face's validation registers its run here."""
+spp}``; a run's ``seed_step`` (2 unless it says) is how far apart two independent runs' seeds are."""
 
 
 def calibration_path(kind: str, level: str | None = None) -> Callable[..., dict]:
     """The run of a kind of scene (:data:`CALIBRATION_PATHS`); ``level`` (a face's level of physics) is refused for
-    a chart, and a kind with no run registered (the face, for now) with a one-line reason naming ``--scene``."""
+    a chart, and a kind with no run registered with a one-line reason naming ``--scene``."""
     if kind not in CALIBRATION_PATHS:
-        raise SkinrenderError(f"--scene: no calibration of a {kind} scene's checks is registered yet (the face's come "
-                              "with its validation's registry of physics effects); bench calibration and bench "
-                              "validate run charts: macbeth, skin_patches, face_chart or a chart .toml")
+        raise SkinrenderError(f"--scene: no calibration of a {kind} scene's checks is registered; known: "
+                              f"{', '.join(CALIBRATION_PATHS)}", flag="--scene")
     if kind == "chart" and level is not None:
         raise SkinrenderError(f"--level {level}: levels of physics go with a face scene; a chart has none (its "
-                              "renders are direct lighting only)")
+                              "renders are direct lighting only)", flag="--level")
     return CALIBRATION_PATHS[kind]
 
 
@@ -152,7 +162,9 @@ def bench_calibration(run: Callable[..., dict], scene, camera_, prevailing: floa
                       progress: Callable[[str], None] | None = None) -> dict:
     """
     ``seeds`` independent validations (seeds ``first_seed``, ``first_seed + 2``, …: each uses its seed and the
-    next) where the null holds; per check the observed false-alarm rate against its nominal α.
+    next; a run's ``seed_step`` apart where it says, the face's 12) where the null holds; per check the observed
+    false-alarm rate against its nominal α (a face's: :func:`~skinrender.studies.face_calibration.face_calibration`,
+    which knows where Eq. 4's null holds).
 
     Returns
     -------
@@ -163,8 +175,9 @@ def bench_calibration(run: Callable[..., dict], scene, camera_, prevailing: floa
     """
     begun = time.perf_counter()
     runs, nominal, tests = [], {}, {}
+    step = getattr(run, "seed_step", 2)
     for j in range(seeds):
-        seed = first_seed + 2 * j
+        seed = first_seed + step * j
         out = run(scene, camera_, prevailing, calibration, spp, seed, imaging, mc_variance, tolerance, level)
         nominal = nominal or _nominal(out["checks"])
         tests = tests or {name: v.test for name, v in out["checks"].items()}

@@ -36,10 +36,11 @@ import sys
 from collections.abc import Callable, Sequence
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
-from ..design.search import DASK_TIMEOUT_S, announce
+from ..design.search import DASK_TIMEOUT_S
 from ..errors import SkinrenderError
 from ..extras import require
 from ..rendering.variants import choose_variant, libllvm_path, mitsuba
+from ..workload import announce, progress_bar
 
 __all__ = ["RENDER_THREADS", "run_renders", "set_threads", "dask_name"]
 
@@ -83,15 +84,6 @@ def _threaded(function: Callable, task):
     return function(task)
 
 
-def _progress_bar(total: int, stream, label: str):
-    """A tqdm bar of renders on ``stream``; off when ``stream`` is ``None`` (``--quiet``) or not a terminal (there
-    :func:`~skinrender.design.search.announce` says the renders started)."""
-    from tqdm import tqdm
-
-    enabled = stream is not None and getattr(stream, "isatty", lambda: False)()
-    return tqdm(total=total, desc=label, file=stream, disable=not enabled, unit="render", leave=True)
-
-
 def dask_name(dask) -> str | None:
     """The scheduler address of ``dask`` (an address or a ``distributed.Client``), ``None`` without one."""
     if dask is None or isinstance(dask, str):
@@ -129,7 +121,7 @@ def run_renders(function: Callable, tasks: Sequence, variant: str, workers: int 
         One result per task.
     """
     results: list = [None] * len(tasks)
-    bar = _progress_bar(len(tasks), progress, label)
+    bar = progress_bar(len(tasks), label, progress, "render")
     try:
         if dask is not None:
             _run_dask(dask, function, tasks, results, bar, lambda: announce(progress, label, len(tasks), "render"))
@@ -182,7 +174,8 @@ def _run_dask(dask, function: Callable, tasks: Sequence, results: list, bar, sta
             client = Client(dask, timeout=DASK_TIMEOUT_S)
         except (OSError, ValueError, TypeError, TimeoutError) as error:
             raise SkinrenderError(f"--dask: cannot reach a Dask scheduler at {dask!r} within {DASK_TIMEOUT_S:g} s "
-                                  f"({type(error).__name__}: {' '.join(str(error).split())[:120]})") from None
+                                  f"({type(error).__name__}: {' '.join(str(error).split())[:120]})",
+                                  flag="--dask") from None
     else:
         client = dask
     started()  # the scheduler answered: the renders start

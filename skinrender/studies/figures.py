@@ -161,8 +161,9 @@ def figure_calibration(result: dict, path: str | Path) -> Path:
         axis.plot([lo, hi], [y, y], "-", color="tab:blue", lw=2, label="observed, 95 % interval" if y == 0 else None)
         axis.plot(check["rate"], y, "o", color="tab:blue")
         marker = "|" if check["nominal"] == "equal to" else "<"
-        axis.plot(check["nominal_alpha"], y, marker, color="tab:red", ms=14 if marker == "|" else 8, mew=2,
-                  label="nominal α (| equal to, < at most)" if y == 0 else None)
+        if check["nominal_alpha"] is not None:  # None: no null (a face's eq4_shift where Eq. 4 does not hold)
+            axis.plot(check["nominal_alpha"], y, marker, color="tab:red", ms=14 if marker == "|" else 8, mew=2,
+                      label="nominal α (| equal to, < at most)" if y == 0 else None)
     axis.set_yticks(range(len(checks)), [f"{c['name']} ({c['failures']}/{c['seeds']})" for c in checks])
     axis.set_ylim(-0.6, len(checks) - 0.4)
     axis.set_xlim(0, max([0.1] + [c["interval"][1] * 1.05 for c in checks]))
@@ -342,16 +343,19 @@ def figure_face(image: NDArrayFloat, labels: NDArrayFloat, label_names: dict, ti
 
 
 def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFloat, title: str,
-                  path: str | Path, label_names: dict | None = None) -> Path:
+                  path: str | Path, label_names: dict | None = None, budget: float | None = None) -> Path:
     """
     The physics ladder: one row per level with the render, its label mask, the detected mask and the skin
-    pixels' NCC (r, g) over the analytic skin locus.
+    pixels' NCC (r, g) over the analytic skin locus, with the detection budget around Eq. 4's skin and, in
+    each row's title, how far the level moves the skin (against the budget), the rates and the seconds.
 
     ``levels``: ``{"name", "image" (h, w, 3) output units, "labels" (h, w) ints, "detected" (h, w) bools
     (scored pixels inside the locus), "skin_rg" (N, 2) and "prop_rg" (M, 2) NCC of the scored skin and prop
-    pixels, "tpr", "fpr" (fractions or None), "seconds", "spp"}``; ``polygon``: the locus, closed or not,
-    ``(K, 2)``; ``analytic``: Eq. 4's skin NCC ``(r, g, …)``; ``label_names``: ``{name: id}`` for the labels'
-    legend.
+    pixels, "tpr", "fpr" (fractions or None), "seconds", "spp"}`` and optionally ``"eq4_shift"``,
+    ``"within_budget"``, ``"tpr_change"``, ``"fpr_change"`` and ``"eq4_ncc_mean"`` (the skin's mean (r, g));
+    ``polygon``: the locus, closed or not, ``(K, 2)``; ``analytic``: Eq. 4's skin NCC ``(r, g, …)``;
+    ``label_names``: ``{name: id}`` for the labels' legend; ``budget``: the detection budget (NCC), drawn as a
+    circle around Eq. 4's skin.
     """
     plt = _pyplot()
     from matplotlib.colors import ListedColormap
@@ -377,7 +381,11 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
         row[1].imshow(labels, cmap=cmap, vmin=-0.5, vmax=cmap.N - 0.5, interpolation="nearest")
         row[1].set_title("labels (the ground truth)", fontsize=9)
         row[2].imshow(np.asarray(level["detected"]), cmap="gray", vmin=0, vmax=1, interpolation="nearest")
-        row[2].set_title(f"detected: TPR {shown(level['tpr'])}, FPR {shown(level['fpr'])}", fontsize=9)
+        changes = ""
+        if level.get("tpr_change") is not None and level["name"] != "direct":
+            changes = f" (Δ {level['tpr_change']:+.3f}, {level['fpr_change']:+.3f})" if level.get(
+                "fpr_change") is not None else f" (Δ {level['tpr_change']:+.3f})"
+        row[2].set_title(f"detected: TPR {shown(level['tpr'])}, FPR {shown(level['fpr'])}{changes}", fontsize=9)
         for axis in row[:3]:
             axis.set_xticks([])
             axis.set_yticks([])
@@ -387,6 +395,16 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
                     label="skin pixels")
         row[3].plot(*closed.T, "-", color="tab:red", lw=1.2, label="analytic skin locus")
         row[3].plot(analytic[0], analytic[1], "k+", ms=10, mew=2, label="Eq. 4's skin")
+        if budget is not None:
+            angle = np.linspace(0, 2 * np.pi, 90)
+            row[3].plot(analytic[0] + budget * np.cos(angle), analytic[1] + budget * np.sin(angle), "k:", lw=1,
+                        label="detection budget")
+        if level.get("eq4_ncc_mean") is not None:
+            row[3].plot(*level["eq4_ncc_mean"][:2], "kx", ms=8, mew=1.5, label="skin's mean")
+        if level.get("eq4_shift") is not None:
+            said = {True: "within", False: "beyond", None: "undecided:"}[level.get("within_budget")]
+            row[3].set_title(f"shift {level['eq4_shift']:.4f} {said} budget"
+                             + ("" if budget is None else f" {budget:.4f}"), fontsize=9)
         row[3].set(xlim=(low[0] - pad, high[0] + pad), ylim=(low[1] - pad, high[1] + pad))
         row[3].set_xlabel("NCC r", fontsize=8)
         row[3].set_ylabel("NCC g", fontsize=8)

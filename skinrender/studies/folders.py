@@ -45,7 +45,8 @@ def check_output(directory, flag: str = "-o") -> Path:
     Whether its place is writable is tried by :func:`output_folder`.
     """
     if directory is None or not str(directory).strip():
-        raise SkinrenderError(f"{flag} must name an output folder, got {'' if directory is None else directory!r}")
+        raise SkinrenderError(f"{flag} must name an output folder, got {'' if directory is None else directory!r}",
+                              flag=flag)
     target = Path(str(directory)).expanduser().absolute()
     try:
         return _checked(target, directory, flag)
@@ -59,23 +60,24 @@ def _checked(target: Path, directory, flag: str) -> Path:
     if target.is_symlink():  # the folder it names is the output; a link to nothing names none
         if not target.exists():
             raise SkinrenderError(f"{flag} {directory}: a symbolic link to nothing ({os.readlink(target)}); name a "
-                                  "folder")
+                                  "folder", flag=flag)
         target = Path(os.path.realpath(target))
     if target.exists() and not target.is_dir():
-        raise SkinrenderError(f"{flag} {directory}: an existing file, not a folder")
+        raise SkinrenderError(f"{flag} {directory}: an existing file, not a folder", flag=flag)
     if target.is_dir() and any(target.iterdir()) and not (target / MANIFEST).is_file():
         raise SkinrenderError(f"{flag} {directory}: a folder that holds other files (no {MANIFEST} of an earlier "
-                              "reproduce); name a new or empty folder")
+                              "reproduce); name a new or empty folder", flag=flag)
     if (target / MANIFEST).is_file():
         foreign = foreign_files(target)
         if foreign:
             listed = ", ".join(foreign[:3]) + (f" and {len(foreign) - 3} more" if len(foreign) > 3 else "")
             raise SkinrenderError(f"{flag} {directory}: an earlier reproduce folder that also holds files it did not "
-                                  f"write ({listed}); they would be deleted with it: move them or name another folder")
+                                  f"write ({listed}); they would be deleted with it: move them or name another folder",
+                                  flag=flag)
     for ancestor in target.parents:
         if ancestor.exists():
             if not ancestor.is_dir():
-                raise SkinrenderError(f"{flag} {directory}: {ancestor} is a file, not a folder")
+                raise SkinrenderError(f"{flag} {directory}: {ancestor} is a file, not a folder", flag=flag)
             break
     return target
 

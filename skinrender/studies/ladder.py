@@ -4,13 +4,19 @@ The physics ladder
 
 The face rendered at each level of physics
 (:data:`skinrender.rendering.face.PHYSICS`), and what each level does to skin
-detection: the skin pixels' NCC against Eq. 4's, and the true- and
-false-positive rates of the camera's analytic skin locus on the rendered
-pixels.
+detection: the skin pixels' NCC against Eq. 4's — tested against the
+detection budget (:mod:`skinrender.rendering.face.shift`: ``eq4_shift``,
+``budget``, ``within_budget``) — and the true- and false-positive rates of the
+camera's analytic skin locus on the rendered pixels, and how far each level
+moves them from ``direct``'s.
 
 -   :func:`ladder`, :class:`Ladder`: the study; :meth:`Ladder.figure` draws it
-    (renders, label masks, detected masks, NCC over the locus).
+    (renders, label masks, detected masks, NCC over the locus with the budget).
 -   :data:`LEVELS_DEFAULT`: ``direct``, each effect alone, then all together.
+-   :data:`REPLICATES_LADDER`: each level is rendered as this many replicates
+    (independent seeds) of ``⌈spp / K⌉`` spp: their spread is ``eq4_shift``'s
+    noise, and their mean (one frame of their mean radiance through a sensor)
+    is what is scored, as one render at ``spp``.
 
 Scoring: a pixel is scored when its brightest channel reaches
 :data:`SCORED_MIN_OUTPUT` (too dark a pixel has no chromaticity worth the
@@ -28,30 +34,38 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import SkinrenderError
+from ..evaluation.budget import BUDGET_FRACTION
 from ..evaluation.detection import SCORED_MIN_OUTPUT
-from ..evaluation.locus import skin_locus
+from ..evaluation.verdict import EXIT_STATUS, combine
 from ..hints import NDArrayFloat
 from ..model.camera import camera
 from ..model.chromaticity import ncc
-from ..rendering.face import planckian_temperature, render_face
+from ..rendering.face import planckian_temperature
 from ..rendering.face.effects import LEVELS_LADDER, parse_physics, physics_level
 from ..rendering.face.labels import LABEL_SKIN
+from ..rendering.face.limits import REPLICATES
 from ..rendering.face.scene import load_face_scene, skin_reflectance_of
+from ..rendering.face.shift import face_budget
+from ..rendering.face.validation import mean_rendering, render_replicates, shift_against
 from ..rendering.validation import analytic_reference
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from ..workload import duration_text
 
-__all__ = ["LEVELS_DEFAULT", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "score_rendering", "score_frame"]
+__all__ = ["LEVELS_DEFAULT", "REPLICATES_LADDER", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "score_rendering",
+           "score_frame"]
 
 LEVELS_DEFAULT = LEVELS_LADDER
 """The levels of :func:`ladder`: the analytic model's world, each effect alone, then all of them (read from the
 registry of effects, :data:`skinrender.rendering.face.effects.LEVELS_LADDER`)."""
+
+REPLICATES_LADDER = REPLICATES
+"""Replicates per level (:data:`~skinrender.rendering.face.limits.REPLICATES`, as ``validate face``)."""
 
 
 @dataclass(frozen=True)
@@ -65,8 +79,18 @@ class Ladder:
         One dict per level: ``name``, ``seconds``, ``spp``,
         ``skin_ncc_mean`` and ``skin_ncc_std`` (``[r, g, b]`` over the scored
         skin pixels), ``tpr``, ``fpr``, ``skin_pixels`` and ``prop_pixels``
-        (scored), ``undefined`` (``{key: reason}`` for each ``None``),
-        ``variant``, and ``imager``/``exposure_s`` with ``noise``.
+        (scored), ``eq4_shift`` (the skin's mean NCC from Eq. 4's,
+        Euclidean), ``eq4_shift_bound`` (its 95 % upper bound),
+        ``eq4_verdict``, ``budget`` (the detection budget, NCC),
+        ``within_budget`` (true, false or null), ``tpr_change`` and
+        ``fpr_change`` (from ``direct``'s, when ``direct`` is a level),
+        ``budget_tpr_change`` and ``budget_fpr_change`` (what a shift of the
+        budget towards the locus's boundary does to this level's pixels),
+        ``replicates``, ``spp_per_replicate``, ``undefined`` (``{key:
+        reason}`` for each ``None``), ``variant``, and
+        ``imager``/``exposure_s`` with ``noise``.
+    budget
+        The detection budget (:meth:`~skinrender.evaluation.budget.DetectionBudget.document`).
     skin_ncc_analytic
         Eq. 4's NCC of the skin (prevailing = the key light, white balanced to
         the calibration), ``[r, g, b]``.
@@ -93,13 +117,21 @@ class Ladder:
     frames: list = field(default_factory=list, repr=False, compare=False)
     locus_polygon: NDArrayFloat | None = field(default=None, repr=False, compare=False)
     label_names: dict = field(default_factory=dict)
+    budget: dict = field(default_factory=dict)
+    verdicts: list = field(default_factory=list, repr=False, compare=False)
+
+    @property
+    def verdict(self):
+        """Every level's ``eq4_shift`` verdict combined (:func:`~skinrender.evaluation.verdict.combine`)."""
+        return combine(self.verdicts, "ladder")
 
     def document(self) -> dict:
-        """The JSON document (``levels`` and the settings)."""
+        """The JSON document (``levels``, the budget, the verdict and the settings)."""
+        verdict = self.verdict
         return {"camera": self.camera, "scene": self.scene, "skin": self.skin,
                 "prevailing_K": self.prevailing, "calibration_K": self.calibration, "size": list(self.size),
-                "skin_ncc_analytic": self.skin_ncc_analytic, "locus_area": self.locus_area,
-                "levels": self.levels}
+                "skin_ncc_analytic": self.skin_ncc_analytic, "locus_area": self.locus_area, "budget": self.budget,
+                "levels": self.levels, "verdict": verdict.outcome, "exit_status": EXIT_STATUS[verdict.outcome]}
 
     def figure(self, path) -> Path:
         """
@@ -116,7 +148,8 @@ class Ladder:
         rows = []
         for row, frame in zip(self.levels, self.frames):
             labels, scored = frame["labels"], frame["scored"]
-            rows.append({**{k: row[k] for k in ("name", "tpr", "fpr", "seconds", "spp")},
+            rows.append({**{k: row.get(k) for k in ("name", "tpr", "fpr", "seconds", "spp", "eq4_shift", "budget",
+                                                   "within_budget", "tpr_change", "fpr_change", "eq4_ncc_mean")},
                          "image": frame["image"], "labels": labels, "detected": frame["detected"],
                          "skin_rg": frame["ncc"][scored & (labels == LABEL_SKIN), :2],
                          "prop_rg": frame["ncc"][scored & (labels > LABEL_SKIN), :2]})
@@ -125,7 +158,7 @@ class Ladder:
                  "sRGB; TPR, FPR and NCC over scored pixels, brightest channel ≥ "
                  f"{SCORED_MIN_OUTPUT:g})")
         return figure_ladder(rows, self.locus_polygon, np.asarray(self.skin_ncc_analytic), title, path,
-                             self.label_names)
+                             self.label_names, self.budget.get("budget"))
 
 
 def _rate(hits: np.ndarray) -> float | None:
@@ -192,6 +225,40 @@ def score_rendering(result, locus) -> dict:
     return score_frame(result, locus)[0]
 
 
+def _level_row(level: str, replicated, mean, scores: dict, shift, rates: dict | None) -> dict:
+    """One level's row: its scores, ``eq4_shift`` against the budget, and what the budget does to its pixels."""
+    undefined = dict(scores.pop("undefined"))
+    within = shift.details.get("within_budget")
+    if within is None:
+        undefined["within_budget"] = f"{shift.outcome.replace('_', ' ')}: {shift.reason}"
+    if shift.statistic is None:
+        undefined["eq4_shift"] = shift.reason
+    if rates is None:
+        undefined.update({key: "no detection budget" for key in ("budget_tpr_change", "budget_fpr_change")})
+    row = {"name": mean.physics if level != "direct" else "direct", "seconds": replicated.seconds,
+           "spp": mean.spp, "replicates": len(replicated.renders), "spp_per_replicate": replicated.first.spp,
+           **scores, "eq4_shift": shift.statistic, "eq4_shift_bound": shift.bound, "eq4_verdict": shift.outcome,
+           "eq4_ncc_mean": shift.details.get("ncc_mean"), "budget": shift.tolerance, "within_budget": within,
+           "budget_tpr_change": None if rates is None else rates["tpr_change"],
+           "budget_fpr_change": None if rates is None else rates["fpr_change"], "undefined": undefined,
+           "variant": mean.variant}
+    row.update({k: v for k, v in mean.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
+    return row
+
+
+def _changes(rows: list[dict]) -> None:
+    """Each row's ``tpr_change`` and ``fpr_change`` from the ``direct`` row's (``None`` with a reason without one)."""
+    base = next((row for row in rows if row["name"] == "direct"), None)
+    for row in rows:
+        for key in ("tpr", "fpr"):
+            if base is None or base[key] is None or row[key] is None:
+                row[f"{key}_change"] = None
+                row["undefined"][f"{key}_change"] = ("no direct level to compare with" if base is None else
+                                                     f"no {key.upper()} at this level or at direct")
+            else:
+                row[f"{key}_change"] = row[key] - base[key]
+
+
 def ladder(
     camera_,
     prevailing,
@@ -207,9 +274,11 @@ def ladder(
     imager: str | None = None,
     illuminance: float | None = None,
     progress: Callable[[str], None] | None = None,
+    replicates: int = REPLICATES_LADDER,
+    budget_fraction: float = BUDGET_FRACTION,
 ) -> Ladder:
     """
-    Render the face at each level of physics and score skin detection there.
+    Render the face at each level of physics, score skin detection there and test Eq. 4's error.
 
     Parameters
     ----------
@@ -221,8 +290,11 @@ def ladder(
         The skin spec (``SET:SAMPLE``, ``SET:#N``, ``skin-model:…``); ``None``: the scene's.
     levels
         Physics levels (:data:`skinrender.rendering.face.PHYSICS`, effects joined by ``+``).
-    spp, seed, variant, grid
-        As :func:`skinrender.rendering.face.render_face`; every level uses the same seed.
+    spp
+        Samples per pixel of a level in all, split over ``replicates`` renders (each ``⌈spp / K⌉``).
+    seed, variant, grid
+        As :func:`skinrender.rendering.face.render_face`; the replicates' seeds are ``seed, seed + 1, …``, the
+        same at every level.
     size
         Image side, pixels (``None``: the scene's).
     scene
@@ -232,6 +304,11 @@ def ladder(
         key light's illuminance, lx (``None``: the scene's; only ``noise`` sees it).
     progress
         Called with a line before each level (e.g. to print it on stderr).
+    replicates
+        Renders per level, ≥ 3.
+    budget_fraction
+        The share of the margin to the locus's boundary Eq. 4's error may use
+        (:data:`~skinrender.evaluation.budget.BUDGET_FRACTION`).
 
     Returns
     -------
@@ -248,25 +325,30 @@ def ladder(
         raise SkinrenderError("levels: name at least one level of physics")
     for level in levels:
         parse_physics(level)
+    if isinstance(replicates, bool) or not isinstance(replicates, int) or replicates < 3:
+        raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}")
     side = (face.camera.width, face.camera.height) if size is None else (size, size)
-    seconds = sum(physics_level(level).seconds(side[0] * side[1] * spp) for level in levels)
+    each = max(1, -(-int(spp) // replicates))
+    seconds = sum(physics_level(level).seconds(side[0] * side[1] * each * replicates) for level in levels)
     if progress is not None and seconds > 60:  # subsurface: minutes (the command line refuses beyond --max-minutes)
         progress(f"the {len(levels)} levels should take about {duration_text(seconds)} on one core")
-    locus = skin_locus(cam, "skin", calibration=c, grid=grid)
     analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
-    rows, frames, shape = [], [], None
+    budget, locus = face_budget(cam, analytic, c, budget_fraction, grid)
+    seeds = [(int(seed) + k) % 2**32 for k in range(replicates)]
+    rows, frames, verdicts, shape, mean = [], [], [], None, None
     for level in levels:
         if progress is not None:
-            progress(f"rendering the face: {level} …")
-        start = time.perf_counter()
-        result = render_face(cam, face, p, c, skin, level, spp, seed, size, variant=variant, grid=grid,
-                             imager=imager, illuminance=illuminance)
-        scores, frame = score_frame(result, locus)
-        row = {"name": result.physics if level != "direct" else "direct", "seconds": time.perf_counter() - start,
-               "spp": result.spp, **scores, "variant": result.variant}
-        row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
-        rows.append(row)
+            progress(f"rendering the face: {level} ({replicates} × {each} spp) …")
+        effects = physics_level(level)
+        replicated = render_replicates(cam, face, p, c, skin, effects, each, seeds, size, variant=variant,
+                                       imager=imager, illuminance=illuminance, grid=grid)
+        mean = mean_rendering(replicated, imager)
+        scores, frame = score_frame(mean, locus)
+        shift = shift_against(replicated, budget, locus, mean.image)
+        rows.append(_level_row(level, replicated, mean, scores, shift, shift.details["budget_rates"]))
         frames.append(frame)
-        shape = (result.scene.camera.width, result.scene.camera.height)
+        verdicts.append(replace(shift.verdict, name=f"eq4_shift at {rows[-1]['name']}"))
+        shape = (mean.scene.camera.width, mean.scene.camera.height)
+    _changes(rows)
     return Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), rows, frames,
-                  np.asarray(locus.polygon), dict(result.label_names))
+                  np.asarray(locus.polygon), dict(mean.label_names), budget.document(), verdicts)

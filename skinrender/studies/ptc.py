@@ -48,14 +48,18 @@ from ..model.noise import simulate_dn
 from ..rendering.imaging import electrons_per_radiance
 from ..rendering.renderer import render_raw
 from ..rendering.scene import ChartScene, Patch
+from ..rendering.settings import RenderSettings
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["GREY_CHART", "photon_transfer"]
+__all__ = ["GREY_CHART", "PTC_SETTINGS", "photon_transfer"]
 
 GREY_CHART = ChartScene(name="ptc grey", description="one flat grey patch (reflectance 0.5) for photon transfer",
                         columns=1, patch_px=64, gap_px=0, border_px=0,
                         patches=(Patch("grey 0.5", "grey:0.5", False),), source="skinrender.studies.ptc")
 """The flat chart: 64 × 64 pixels of a grey of reflectance 0.5."""
+
+PTC_SETTINGS = RenderSettings(spp=64)
+"""The render of the grey chart unless given: 64 spp, seed 0."""
 
 DARK_NOISE_MIN_DN = 0.5
 """Below this temporal dark noise, DN, the ADC's quantisation hides the read noise: it is reported as undefined
@@ -122,10 +126,9 @@ def photon_transfer(
     temperature: float = 5900.0,
     illuminance_lux: float = 500.0,
     points: int = 24,
-    spp: int = 64,
-    seed: int = 0,
+    settings: RenderSettings = PTC_SETTINGS,
     grid: WavelengthGrid = GRID_DEFAULT,
-    **render_options,
+    **options,
 ) -> dict:
     """
     Measure the photon transfer of ``camera_`` recorded by ``imager_`` under a Planckian light (K, lx).
@@ -136,13 +139,16 @@ def photon_transfer(
     variance at that exposure, DN², read noise plus the dark current's shot noise plus quantisation),
     ``gain_dn_per_e``, ``read_noise_e`` (the dark variance's intercept at t = 0: no dark current),
     ``dark_current_e_per_s`` (measured from the dark means), ``full_well_e``, ``linearity_error`` (percent), each
-    per channel, and ``stated`` (the imager's own figures).
+    per channel, and ``stated`` (the imager's own figures). ``settings``: the render's, and its seed the
+    sensor noise's (or its fields ``spp``, ``seed`` … as ``options``).
     """
 
     im = imager(imager_)
     if not (isinstance(points, (int, np.integer)) and 4 <= points <= 1000):
         raise SkinrenderError(f"points must be an integer in [4, 1000] exposures, got {points!r}")
-    raw = render_raw(GREY_CHART, camera_, temperature, spp, seed, grid=grid, **render_options)
+    settings = RenderSettings.of(settings, **options)
+    seed = settings.seed
+    raw = render_raw(GREY_CHART, camera_, temperature, settings, grid)
     rate = raw.radiance * electrons_per_radiance(im, camera_, temperature, illuminance_lux, grid)  # e⁻/s per pixel
     brightest = float(rate.mean(axis=(0, 1)).max())  # e⁻/s
     if not brightest > DARK_SHARE_MAX * im.dark_current_e_per_s:
@@ -150,7 +156,7 @@ def photon_transfer(
             f"--illuminance: {illuminance_lux:g} lx at {temperature:g} K gives the brightest channel {brightest:.3g} "
             f"e⁻/s, not above {DARK_SHARE_MAX:g}× the dark current ({im.dark_current_e_per_s:g} e⁻/s): the dark "
             "current would fill the well before the light does, and no transfer curve can be measured; raise the "
-            "illuminance")
+            "illuminance", flag="--illuminance")
     fill = im.full_well_e / brightest
     exposures = np.linspace(0.0, 1.3 * fill, points)
     rows, dark_noise, dark_means = [], [], []

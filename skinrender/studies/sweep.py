@@ -210,7 +210,7 @@ def _check_combine(combine, values_per_unknown) -> None:
                                    ("--sweep-values", values_per_unknown, 1, None)):
         if isinstance(value, bool) or not isinstance(value, int) or value < low or (high is not None and value > high):
             bounds = f"≥ {low}" if high is None else f"in [{low}, {high}] (the unknowns: {', '.join(UNKNOWNS)})"
-            raise SkinrenderError(f"{flag} must be an integer {bounds}, got {value!r}")
+            raise SkinrenderError(f"{flag} must be an integer {bounds}, got {value!r}", flag=flag)
 
 
 def _rank(rows: list[dict], default: dict) -> list[str]:

@@ -34,7 +34,8 @@ from ..model.camera import Camera, camera
 from ..model.chromaticity import ncc
 from ..model.response import response_raw, white_coefficient
 from ..rendering.balance import render
-from ..rendering.scene import load_scene
+from ..rendering.scene import load_chart_scene
+from ..rendering.settings import RenderSettings
 from ..rendering.patch_errors import noise_of
 from ..rendering.validation import analytic_reference
 from ..hints import NDArrayFloat
@@ -145,14 +146,13 @@ def _ncc_standard_error(mean: NDArrayFloat, sigma: NDArrayFloat) -> NDArrayFloat
 
 def table1(
     camera_: Camera | str = "gbell:9@450,540,610",
-    spp: int = 256,
-    seed: int = 0,
+    settings: RenderSettings | None = None,
     grid: WavelengthGrid = GRID_DEFAULT,
     low: float = 10.0,
     high: float = 245.0,
     fraction: float = 0.9,
     tolerance: float = TABLE1_TOLERANCE,
-    **render_options,
+    **options,
 ) -> dict:
     """
     The paper's Table 1 with the render as the "real camera", and its verdict.
@@ -186,11 +186,11 @@ def table1(
 
     if not (isinstance(tolerance, (int, float)) and 0 < tolerance < 1):
         raise SkinrenderError(f"tolerance must be an NCC difference in (0, 1), got {tolerance!r}")
-    chart = load_scene("macbeth")
+    chart = load_chart_scene("macbeth")
     cam = camera(camera_)
     cache: dict = {}
-    renders = {case: render(chart, cam, p, q, "white", False, spp=spp, seed=seed, grid=grid, cache=cache,
-                            **render_options) for case, p, q in TABLE1_CASES}
+    settings = RenderSettings.of(settings, **options)
+    renders = {case: render(chart, cam, p, q, "white", False, settings, grid, cache) for case, p, q in TABLE1_CASES}
     keep = []
     for i in range(len(chart.patches) - 1):  # not the white reference
         ok = True
@@ -236,5 +236,5 @@ def table1(
                      "difference_eq1")
     used = next(iter(renders.values())).raw[0].spp  # multijitter rounds the count up
     return {"camera": cam.name, "patches": [chart.patches[i].name for i in keep], "rows": rows, "spp": used,
-            "spp_requested": spp, "tolerance": tolerance, "bound": verdict.bound, "verdict": verdict.document(),
+            "spp_requested": settings.spp, "tolerance": tolerance, "bound": verdict.bound, "verdict": verdict.document(),
             "difference": test.document(), "difference_eq1": eq1.document(), "passed": verdict.outcome == "pass"}

@@ -150,7 +150,7 @@ def resolve_setting(setting: Setting) -> ResolvedSetting:
     slope = setting.slope
     if isinstance(slope, bool) or not isinstance(slope, (int, float, np.floating)) or not (
             np.isfinite(slope) and slope > 0):
-        raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope!r}")
+        raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope!r}", flag="--slope")
     grid = _flagged("--grid", WavelengthGrid.parse, setting.grid)
     _flagged("--extrapolation", validate_method, setting.extrapolation, EXTRAPOLATIONS, "extrapolation")
     values = {}
@@ -158,11 +158,12 @@ def resolve_setting(setting: Setting) -> ResolvedSetting:
         spectra = _flagged(flag, reflectances, spec, setting.extrapolation)
         values[flag] = _flagged(flag, spectra.on, grid, None if setting.extrapolation == "refuse" else setting.extrapolation)
         if values[flag].shape[0] < 4:
-            raise SkinrenderError(f"{flag}: a gamut needs at least 4 reflectances, {spec!r} has {values[flag].shape[0]}")
+            raise SkinrenderError(f"{flag}: a gamut needs at least 4 reflectances, {spec!r} has {values[flag].shape[0]}",
+                                  flag=flag)
     stage1 = check_camera(setting.stage1_camera, grid, "--stage1-camera") if setting._auto() else None
     temperatures = _flagged("--illuminants", illuminant_set, setting.illuminants, stage1)
     if temperatures.size < 1:
-        raise SkinrenderError(f"--illuminants names no illuminant: {setting.illuminants!r}")
+        raise SkinrenderError(f"--illuminants names no illuminant: {setting.illuminants!r}", flag="--illuminants")
     return ResolvedSetting(setting, grid, np.asarray(temperatures, dtype=np.float64), values["--skin"],
                            values["--munsell"])
 
@@ -173,14 +174,14 @@ def check_sensors(sensors: str | ArrayLike) -> list[float]:
         items = [float(v) for v in sensors.split(",")] if isinstance(sensors, str) else [float(v) for v in sensors]
     except (TypeError, ValueError):
         raise SkinrenderError(f"--sensors must be comma-separated numbers (1 = impulse, 3, 5, … = gbell), "
-                              f"got {sensors!r}") from None
+                              f"got {sensors!r}", flag="--sensors") from None
     if not items:
-        raise SkinrenderError("--sensors names no sensor")
+        raise SkinrenderError("--sensors names no sensor", flag="--sensors")
     bad = [v for v in items if not (np.isfinite(v) and v > 0)]
     if bad:
-        raise SkinrenderError(f"--sensors: {bad[0]:g} is not a sensor: each must be {SENSOR_RULE}")
+        raise SkinrenderError(f"--sensors: {bad[0]:g} is not a sensor: each must be {SENSOR_RULE}", flag="--sensors")
     if len(set(items)) != len(items):
-        raise SkinrenderError(f"--sensors lists a sensor twice: {sensors!r}")
+        raise SkinrenderError(f"--sensors lists a sensor twice: {sensors!r}", flag="--sensors")
     return items
 
 
@@ -206,7 +207,7 @@ def check_positions(positions: str | ArrayLike, grid: WavelengthGrid, flag: str 
     where = _flagged(flag, positions_grid, positions)
     if where.min() < grid.start or where.max() > grid.end:
         raise SkinrenderError(f"{flag} {where.min():g}–{where.max():g} nm leave the integration grid {grid} "
-                              "(peaks are in nm; or widen --grid)")
+                              "(peaks are in nm; or widen --grid)", flag=flag)
     return where
 
 

@@ -32,7 +32,8 @@ import numpy as np
 
 from ..design.bank import SensorBank, triplets
 from ..design.criteria import triplet_gains, triplet_volumes_many
-from ..design.search import SearchResult, announce, check_workers, dask_client, progress_bar, stop_pool
+from ..design.search import SearchResult, check_workers, dask_client, stop_pool
+from ..workload import announce, progress_bar
 from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import NDArrayFloat
 

@@ -140,12 +140,14 @@ def scene_kind(spec) -> str:
 
 
 def _named(name: str, function, *args, **kwargs):
-    """``function(*args)``, its :class:`SkinrenderError` prefixed with the argument ``name``."""
+    """``function(*args)``, its :class:`SkinrenderError` prefixed with the argument ``name`` unless it names it
+    already (its ``role`` is ``name``: ``camera 'x': …``)."""
     try:
         return function(*args, **kwargs)
     except SkinrenderError as error:
-        text = str(error)
-        raise SkinrenderError(text if text.startswith(f"{name}") else f"{name}: {text}") from None
+        if error.role == name:
+            raise
+        raise error.reworded(f"{name}: {error.message}", role=name) from None
 
 
 def _planckian(spec, name: str) -> float:
@@ -236,11 +238,11 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     """
     from ..model.camera import camera as camera_of
     from ..rendering.exr import camera_attributes
-    from ..rendering.scene import load_scene
+    from ..rendering.scene import load_chart_scene
 
     kind = scene_kind(scene)
     if kind == "chart":
-        chart = _named("scene", load_scene, scene)
+        chart = _named("scene", load_chart_scene, scene)
         given = [n for n, v in (("physics", physics not in (None, "direct")), ("skin", skin is not None),
                                 ("size", size is not None)) if v]
         if given:

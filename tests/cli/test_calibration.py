@@ -1,7 +1,8 @@
 """
 ``skinrender bench calibration`` and ``bench validate`` (:mod:`skinrender.cli.calibration`): one JSON document with
 the rates and their intervals, the plot written whole; refusals name the flag (a seeds count over the cap with its
-estimate, a face, a chart's --level, the other benchmarks' flags); Ctrl-C exits 130 and leaves nothing behind.
+estimate, a face's bench validate, a chart's --level, the other benchmarks' flags); a face's calibration (each check's
+rate, eq4_shift's without a null where Eq. 4 does not hold); Ctrl-C exits 130 and leaves nothing behind.
 """
 
 from __future__ import annotations
@@ -43,6 +44,21 @@ def test_calibration_through_a_sensor_reports_each_check(small_chart, capsys):
     assert document["mc_variance"] == "pixels" and document["imager"] == "sony-imx174"
 
 
+def test_a_faces_calibration_per_check(tmp_path, capsys):
+    """``--scene face --level sheen``: the face's checks, seeds 12 apart, eq4_shift's failures findings (no null)."""
+    plot = tmp_path / "face.png"
+    status, out, err = run(["bench", "calibration", "--scene", "face", "--level", "sheen", "--seeds", "2", "--spp", "192",
+                            "--plot", plot, "--json"], capsys)
+    assert status == 0, err[-500:]
+    document = json.loads(out)
+    rows = {row["name"]: row for row in document["checks"]}
+    assert list(rows) == ["dichromatic_plane", "eq4_shift", "white_furnace", "closed_sphere"]
+    assert [r["seed"] for r in document["runs"]] == [0, 12] and document["level"] == "sheen"
+    assert rows["dichromatic_plane"]["nominal_alpha"] == 0.01 and rows["dichromatic_plane"]["seeds"] == 2
+    assert rows["eq4_shift"]["nominal"] is None and rows["eq4_shift"]["consistent"] is None
+    assert plot.stat().st_size > 0 and document["estimate_s"] > 0
+
+
 def test_validate_rows_in_text(small_chart, capsys):
     status, out, err = run(["bench", "validate", "--scene", small_chart, "--seeds", "2", "--spp-list", "4,16"], capsys)
     assert status == 0, err[-500:]
@@ -57,8 +73,10 @@ def test_validate_rows_in_text(small_chart, capsys):
     (["calibration", "--seeds", "0"], "--seeds"),
     (["calibration", "--spp", "0"], "--spp"),
     (["calibration", "--level", "direct"], ("--level", "face")),
-    (["calibration", "--scene", "face"], ("--scene", "face")),
-    (["validate", "--scene", "face"], "--scene"),
+    (["validate", "--scene", "face"], ("--scene", "bench calibration --scene face")),
+    (["calibration", "--scene", "face", "--level", "glossy"], "--level"),
+    (["calibration", "--scene", "face", "--imager", "sony-icx418", "--mc-variance", "frames"], "--mc-variance"),
+    (["calibration", "--scene", "face", "--seeds", "100000"], ("--seeds", "--max-minutes")),
     (["calibration", "--mc-variance", "frames"], ("--mc-variance", "--imager")),
     (["calibration", "--illuminance", "200"], ("--illuminance", "--imager")),
     (["calibration", "--plot", "rates.txt"], "--plot"),

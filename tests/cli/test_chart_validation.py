@@ -111,3 +111,25 @@ def test_gamut_verdict_joins_the_patches(small_chart, capsys):
     assert document["verdict"] == expected and code == document["exit_status"]
     assert "gamut equivalence:" in run(["validate", small_chart, "--camera", CAM, *LIGHTS, "--spp", "64",
                                         "--tolerance", "0.05", "--gamut"], capsys)[1]
+
+
+def test_gamut_keeps_the_csv_cameras_extrapolation(small_chart, tmp_path, capsys):
+    """Issue 26: ``--gamut`` with a CSV camera measured over 420–680 nm and ``--extrapolation zero`` renders the
+    chart and its gamut through the one camera parsed from the flags (the gamut step parsed ``--camera`` again
+    without ``--extrapolation`` and refused the camera after the chart had rendered)."""
+    import numpy as np
+
+    from skinrender.model.camera import camera
+    from skinrender.spectra import WavelengthGrid
+
+    wavelengths = np.arange(420.0, 681.0, 5.0)
+    curves = camera(CAM).sensitivities(WavelengthGrid(420, 680, 5))
+    path = tmp_path / "short.csv"
+    np.savetxt(path, np.column_stack([wavelengths, curves.T]), delimiter=",", header="wavelength_nm,R,G,B",
+               comments="", fmt="%.6g")
+    code, out, err = run(["validate", small_chart, "--camera", path, "--extrapolation", "zero", *LIGHTS, "--spp",
+                          "16", "--tolerance", "0.05", "--gamut", "--json"], capsys)
+    assert code in (0, 1, 3), err
+    document = json.loads(out)
+    assert document["camera"] == str(path) and document["gamut"]["camera"] == str(path)
+    assert len(document["gamut"]["rendered"]) == len(document["gamut"]["illuminants_K"]) + 1

@@ -43,8 +43,9 @@ def test_a_chart_as_before_positionally_and_by_name():
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    ({"scene": "macbeth", "physics": "sheen"}, "render: physics is not an option of a chart scene; its options: "
-                                                "normalization, knee, spp"),
+    ({"scene": "macbeth", "skin": "skin:#0"}, "render: skin is not an option of a chart scene; its options: "
+                                               "normalization, knee, spp"),
+    ({"scene": "macbeth", "physics": "sheen"}, "physics (of a chart) must be one of direct, subsurface, got 'sheen'"),
     ({"scene": "face", "normalization": "white", "knee": True}, "render: knee, normalization are not options of a "
                                                                  "face scene; its options: skin, physics"),
     ({"scene": "macbeth", "prevailing": None}, "prevailing: a chart render needs the prevailing light"),

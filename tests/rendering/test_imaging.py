@@ -11,14 +11,14 @@ import pytest
 
 from skinrender.model.camera import camera
 from skinrender.rendering.imaging import predicted_electrons, predicted_patches, render_imaged
-from skinrender.rendering.scene import load_scene
+from skinrender.rendering.scene import load_chart_scene
 from skinrender.rendering.validation import analytic_reference
 from skinrender.spectra import GRID_DEFAULT
 
 pytest.importorskip("mitsuba")
 
 CAM = camera("gbell:9@450,540,610")
-CHART = load_scene("macbeth")
+CHART = load_chart_scene("macbeth")
 
 
 @pytest.fixture(scope="module")

@@ -223,3 +223,27 @@ def test_tabulated_emitter_matches_mitsubas_blackbody(tiny):
     lit = b.image > 0
     np.testing.assert_allclose(a.radiance[lit], b.radiance[lit], rtol=1e-4)
     assert a.emitter_scale > 1 and b.emitter_scale == 1.0  # tabulated: peak-normalised for float32
+
+
+def test_chart_renderers_are_reused_by_settings_and_keyed_by_the_curves(tiny, tmp_path):
+    """One loaded renderer per chart, camera curves and settings (the seed is each render's own); a CSV camera
+    rewritten under the same path is another camera, never the old curves' renderer; the least recently used
+    goes first once :data:`RENDERERS_KEPT` are kept."""
+    from skinrender.rendering.renderer import RENDERERS_KEPT, chart_renderer
+    from skinrender.rendering.settings import RenderSettings
+
+    first = chart_renderer(tiny, CAMERA, RenderSettings(spp=4, seed=1))
+    assert chart_renderer(tiny, CAMERA, spp=4, seed=2) is first
+    assert chart_renderer(tiny, CAMERA, spp=8) is not first
+    wavelengths = np.arange(400.0, 701.0)
+    path = tmp_path / "cam.csv"
+    curves = sr.camera(CAMERA).sensitivities(sr.GRID_DEFAULT)
+    np.savetxt(path, np.column_stack([wavelengths, curves.T]), delimiter=",", header="nm,R,G,B", comments="")
+    old = chart_renderer(tiny, str(path), spp=4)
+    np.savetxt(path, np.column_stack([wavelengths, curves[::-1].T]), delimiter=",", header="nm,R,G,B", comments="")
+    new = chart_renderer(tiny, str(path), spp=4)
+    assert new is not old and np.array_equal(new.camera.sensitivities(sr.GRID_DEFAULT), curves[::-1])
+    assert chart_renderer(tiny, CAMERA, spp=4) is first  # recently used: kept
+    for spp in range(20, 20 + RENDERERS_KEPT):
+        chart_renderer(tiny, CAMERA, spp=spp)
+    assert chart_renderer(tiny, CAMERA, spp=4) is not first

@@ -19,7 +19,7 @@ from skinrender.model.camera import camera
 from skinrender.model.imager import imager
 from skinrender.model.noise import simulate_dn, statistics_dn
 from skinrender.rendering.imaging import render_imaged
-from skinrender.rendering.scene import load_scene
+from skinrender.rendering.scene import load_chart_scene
 from skinrender.rendering.sensor_validation import _channel_tests, _exact_p_values, validate_imaged
 from skinrender.rendering.validation import analytic_reference
 from skinrender.spectra import GRID_DEFAULT
@@ -27,7 +27,7 @@ from skinrender.spectra import GRID_DEFAULT
 pytest.importorskip("mitsuba")
 
 CAM = camera("gbell:9@450,540,610")
-CHART = load_scene("macbeth")
+CHART = load_chart_scene("macbeth")
 RATIO = analytic_reference(CAM, CHART.reflectances(GRID_DEFAULT), 2856.0, 2856.0) / 255.0
 """Each patch's render value over a perfect white's (Eq. 4 at p = c, over v = 255)."""
 
@@ -44,7 +44,7 @@ def greys(tmp_path_factory):
     path = tmp_path_factory.mktemp("scene") / "greys.toml"
     path.write_text("columns = 2\npatch_px = 64\nborder_px = 2\n" + "".join(
         f"[[patch]]\nname = 'grey {g}'\nreflectance = 'grey:{g}'\n" for g in (0.05, 0.2, 0.8)))
-    return load_scene(path)
+    return load_chart_scene(path)
 
 
 @pytest.fixture(scope="module")

@@ -1,6 +1,6 @@
 """
-Tests for :mod:`skinrender.studies.calibration`: the paths by kind of scene (the face's refused until registered, a
-chart's level refused), the time estimate, the false-alarm bookkeeping on a simulated run, and small-N
+Tests for :mod:`skinrender.studies.calibration`: the paths by kind of scene (the face's registered with its seed
+step, a chart's level refused), the time estimate, the false-alarm bookkeeping on a simulated run, and small-N
 calibrations of real renders (12 seeds on a chart of 8 × 8-pixel patches, where the expected failures are ~0.1).
 """
 
@@ -18,16 +18,33 @@ CAMERA = "gbell:9@450,540,610"
 
 @pytest.fixture(scope="module")
 def tiny(small_chart):
-    from skinrender.rendering.scene import load_scene
+    from skinrender.rendering.scene import load_chart_scene
 
-    return load_scene(small_chart)
+    return load_chart_scene(small_chart)
 
 
 class TestPaths:
-    def test_the_face_is_refused_until_registered(self):
-        assert "face" not in CALIBRATION_PATHS
-        with pytest.raises(SkinrenderError, match="--scene: no calibration of a face scene"):
-            calibration_path("face")
+    def test_the_face_is_registered_with_its_seed_step(self):
+        """The face's run (studies.face_calibration.face_run) is registered; its validations take 12 seeds each, so
+        two independent runs' seeds are 12 apart; an unknown kind is refused."""
+        from skinrender.studies.face_calibration import SEED_STEP
+
+        run = calibration_path("face", "sheen")
+        assert run is CALIBRATION_PATHS["face"] and run.seed_step == SEED_STEP == 12
+        with pytest.raises(SkinrenderError, match="--scene: no calibration of a moon scene"):
+            calibration_path("moon")
+
+    def test_runs_are_a_runs_seed_step_apart(self):
+        seen = []
+
+        def run(scene, camera_, prevailing, calibration, spp, seed, *rest):
+            seen.append(seed)
+            return {"checks": {"difference": Verdict("difference", "pass", 0.01, "z")}, "bound": None,
+                    "seconds": 0.0, "spp": spp}
+
+        run.seed_step = 12
+        bench_calibration(run, "s", CAMERA, 2856, 5900, 16, seeds=3, first_seed=5)
+        assert seen == [5, 17, 29]
 
     def test_a_level_is_refused_for_a_chart(self):
         with pytest.raises(SkinrenderError, match="--level direct: levels of physics go with a face scene"):

@@ -82,13 +82,19 @@ class TestFaceSweep:
         assert numbers(remote.combinations) == numbers(split_work.combinations[:1])
 
     def test_the_ladders_scores(self, one_worker):
-        """The sweep scores a render exactly as the ladder scores the same level."""
+        """The sweep scores a render exactly as the ladder scores a level (score_frame, the ladder's locus); the
+        ladder's level is the mean of its replicates, the sweep's one render at the same settings."""
+        from skinrender.evaluation.locus import skin_locus
+        from skinrender.rendering.face import render_face
         from skinrender.studies.ladder import ladder
 
-        result = ladder(CAMERA, 2856, 5900, SKINS[1], levels=LEVELS[:1], **TINY)
-        mine, theirs = one_worker.combinations[2], result.levels[0]
-        for key in ("spp", "skin_ncc_mean", "skin_ncc_std", "tpr", "fpr", "skin_pixels", "prop_pixels"):
+        render = render_face(CAMERA, "face", 2856, 5900, SKINS[1], LEVELS[0], TINY["spp"], TINY["seed"], TINY["size"])
+        theirs = score_rendering(render, skin_locus(CAMERA, "skin", calibration=5900))
+        mine = one_worker.combinations[2]
+        for key in ("skin_ncc_mean", "skin_ncc_std", "tpr", "fpr", "skin_pixels", "prop_pixels"):
             assert mine[key] == theirs[key], key
+        assert mine["spp"] == render.spp
+        result = ladder(CAMERA, 2856, 5900, SKINS[1], levels=LEVELS[:1], **TINY)
         assert mine["skin_ncc_analytic"] == pytest.approx(result.skin_ncc_analytic, abs=1e-15)
 
     def test_csv_whole(self, one_worker, tmp_path):

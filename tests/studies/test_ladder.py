@@ -17,24 +17,29 @@ CAMERA = "gbell:9@450,540,610"
 
 class TestLadder:
     def test_two_levels(self):
-        result = ladder(CAMERA, "A", 5900, levels=("direct", "mixed"), spp=4, size=24)
+        result = ladder(CAMERA, "A", 5900, levels=("direct", "mixed"), spp=96, size=32)
         document = json.loads(json.dumps(result.document(), allow_nan=False))
         assert [row["name"] for row in document["levels"]] == ["direct", "mixed"]
-        assert document["size"] == [24, 24] and document["prevailing_K"] == 2856
+        assert document["size"] == [32, 32] and document["prevailing_K"] == 2856
         for row in document["levels"]:
-            assert set(row) >= {"name", "seconds", "spp", "skin_ncc_mean", "skin_ncc_std", "tpr", "fpr"}
-            assert row["spp"] == 4 and row["seconds"] > 0
+            assert set(row) >= {"name", "seconds", "spp", "skin_ncc_mean", "skin_ncc_std", "tpr", "fpr", "eq4_shift",
+                                "budget", "within_budget", "tpr_change", "fpr_change", "budget_tpr_change"}
+            assert row["spp"] == 96 and row["replicates"] == 12 and row["spp_per_replicate"] == 8
+            assert row["seconds"] > 0 and row["budget"] == document["budget"]["budget"] > 0
             assert row["skin_pixels"] > 0 and row["prop_pixels"] > 0
             assert abs(sum(row["skin_ncc_mean"]) - 1) < 1e-9 and 0 <= row["tpr"] <= 1 and 0 <= row["fpr"] <= 1
         direct, mixed = document["levels"]
-        # direct light keeps the skin's NCC at Eq. 4's; the bluer window and sky pull it off
+        # direct light keeps the skin's NCC at Eq. 4's; the bluer window and sky pull it off, beyond the budget
         analytic = np.array(document["skin_ncc_analytic"])
         assert np.abs(np.array(direct["skin_ncc_mean"]) - analytic).max() < 3 * max(direct["skin_ncc_std"])
         assert mixed["skin_ncc_mean"][2] > direct["skin_ncc_mean"][2] + max(direct["skin_ncc_std"])
+        assert direct["within_budget"] is True and mixed["within_budget"] is False
+        assert direct["tpr_change"] == 0 and mixed["fpr_change"] == mixed["fpr"] - direct["fpr"]
+        assert document["verdict"] == "fail" and document["exit_status"] == 1
 
     def test_frames_carry_the_masks_and_draw(self, tmp_path):
         """The arrays behind the figure: per level the image and masks, the counts those of the JSON rows."""
-        result = ladder(CAMERA, "A", 5900, levels=("direct", "sheen"), spp=4, size=20)
+        result = ladder(CAMERA, "A", 5900, levels=("direct", "sheen"), spp=12, size=20)
         assert "frames" not in result.document() and len(result.frames) == 2
         for row, frame in zip(result.levels, result.frames):
             labels, scored, detected = frame["labels"], frame["scored"], frame["detected"]
@@ -49,16 +54,18 @@ class TestLadder:
 
     def test_a_none_comes_with_its_reason(self):
         """At 2 px no skin pixel is scored: each None score has its reason in the level's ``undefined``."""
-        result = ladder(CAMERA, "A", 5900, levels=("direct",), spp=1, size=2)
+        result = ladder(CAMERA, "A", 5900, levels=("direct",), spp=12, size=2)
         for row in json.loads(json.dumps(result.document(), allow_nan=False))["levels"]:
-            nones = {key for key in ("skin_ncc_mean", "skin_ncc_std", "tpr", "fpr") if row[key] is None}
+            keys = ("skin_ncc_mean", "skin_ncc_std", "tpr", "fpr", "eq4_shift", "within_budget", "tpr_change",
+                    "fpr_change")
+            nones = {key for key in keys if row[key] is None}
             assert nones and set(row["undefined"]) == nones
             if "tpr" in nones:
                 assert row["undefined"]["tpr"] == "no scored skin pixel (brightest channel ≥ 10)"
 
     @pytest.mark.parametrize("kwargs, match", [
         ({"levels": ()}, "levels"), ({"levels": ("glossy",)}, "physics"), ({"prevailing": "x"}, "illuminant"),
-        ({"skin": "skin:nobody"}, "skin"),
+        ({"skin": "skin:nobody"}, "skin"), ({"replicates": 2}, "replicates"),
     ])
     def test_refusals(self, kwargs, match):
         arguments = {"camera_": CAMERA, "prevailing": 2856, "calibration": 5900, "size": 8, "spp": 1,

@@ -20,7 +20,9 @@ analytic limits that hold there. One module per concept:
     each pixel sees).
 -   :mod:`~skinrender.rendering.face.limits`,
     :mod:`~skinrender.rendering.face.limit_scenes`: the analytic limits'
-    statistics and the furnace and sphere scenes.
+    statistics and checks, the furnace and sphere scenes.
+-   :mod:`~skinrender.rendering.face.shift`: Eq. 4's error on the face
+    against a detection budget (``eq4_shift``).
 -   :mod:`~skinrender.rendering.face.validation`: ``validate`` on a face
     (:func:`validate_face`).
 

@@ -2,17 +2,35 @@
 Scenes of the scene-free limits
 ===============================
 
-The renders that :func:`~skinrender.rendering.face.limits.check_furnace` and
-:func:`~skinrender.rendering.face.limits.check_sphere` check: a face scene's
-mesh as a white furnace, and a closed emitting Lambertian sphere seen from
-inside.
+The renders of the limits that hold whatever the level, and their checks: a
+face scene's mesh as a white furnace, and a closed emitting Lambertian sphere
+seen from inside.
 
--   :func:`furnace_radiance`, :data:`FURNACE_SKY`: the white furnace.
+-   :func:`furnace_radiance`, :data:`FURNACE_SKY`: the white furnace;
+    :func:`check_furnace`, its check.
 -   :func:`sphere_channels`: the closed sphere (its emission:
-    :func:`~skinrender.rendering.face.limits.sphere_emission`).
+    :func:`~skinrender.rendering.face.limits.sphere_emission`);
+    :func:`check_sphere`, its check.
+
+The checks are difference tests as
+:mod:`~skinrender.rendering.face.limits` describes: the furnace per pixel
+and on the head's mean (two parts, each at
+:data:`~skinrender.rendering.face.limits.ALPHA_PART`), the sphere on its
+four NCC values at :data:`~skinrender.rendering.face.limits.ALPHA`.
+
+The white furnace is rendered with flat shading (each triangle's own
+normal) whatever the scene asks: interpolated shading normals are not energy
+conserving :cite:`Veach1996`, so the limit holds for the geometry only;
+``smooth=True`` renders the scene's smooth shading, whose loss it measures
+(the head's mean 0.35 % below the sky's radiance, ``docs/face-verdicts.md``).
 
 Units: radiance in the specfilm's units (W·m⁻²·sr⁻¹ times the sensitivity's
 unit), wavelengths nm, temperatures K, illuminance lx.
+
+References
+----------
+-   :cite:`Veach1996` : E. Veach (1996). Non-symmetric scattering in light
+    transport algorithms. Rendering Techniques '96, 81–90 (shading normals).
 """
 
 from __future__ import annotations
@@ -24,11 +42,14 @@ import numpy as np
 from ...hints import NDArrayFloat
 from ...model.camera import Camera, camera
 from ...spectra import GRID_DEFAULT
+from ..validation import FLOAT32_FLOOR
 from .document import channel_groups, channel_integral, film_dict, light_irradiance
-from .limits import sphere_emission
+from .labels import LABEL_SKIN
+from .limits import ALPHA, LimitCheck, _ratio, critical_t, jackknife, rg, sphere_emission, two_part
 from .scene import FaceScene, Light, load_face_scene
 
-__all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "furnace_radiance", "sphere_channels"]
+__all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "furnace_radiance", "sphere_channels", "check_furnace",
+           "check_sphere"]
 
 FURNACE_SKY = Light(temperature=5000.0, illuminance=500.0)
 """The white furnace's uniform environment: a 5000 K Planckian, 500 lx on a surface open to it."""
@@ -40,9 +61,10 @@ REPLICATES_DEFAULT = 12
 def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=range(REPLICATES_DEFAULT),
                      size: int = 32,
                      spp: int = 16, physics: str = "interreflection", variant: str | None = None,
-                     sky: Light = FURNACE_SKY) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat]:
+                     sky: Light = FURNACE_SKY, smooth: bool = False) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat]:
     """
-    The white furnace rendered: the scene's mesh alone, reflectance 1, inside a uniform sky.
+    The white furnace rendered: the scene's mesh alone, reflectance 1, inside a uniform sky, flat shading
+    (``smooth``: the interpolated shading normals, which lose energy).
 
     Returns
     -------
@@ -53,7 +75,8 @@ def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=r
     """
     from .render import render_face
 
-    furnace = replace(load_face_scene(scene), props=(), key=None, fill=None, environment=sky)
+    furnace = replace(load_face_scene(scene), props=(), key=None, fill=None, environment=sky,
+                      mesh_smooth=bool(smooth))
     renders = [render_face(cam, furnace, skin="perfect", physics=physics, size=size, spp=spp, seed=int(s),
                            variant=variant) for s in seeds]
     lam, irradiance = light_irradiance(sky, GRID_DEFAULT)
@@ -90,3 +113,70 @@ def sphere_channels(cam: Camera | str, rho: NDArrayFloat, depth: int, seeds=rang
             image = np.array(mi.render(scene, seed=int(seed)), dtype=np.float64)
             out[row, list(group)] = image.reshape(-1, len(group)).mean(axis=0)
     return out
+
+
+def check_furnace(radiance: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayFloat) -> LimitCheck:
+    """
+    White furnace: a head of reflectance 1 (both sides) in a uniform sky of radiance ``L`` returns ``L``.
+
+    The radiance leaving every surface is ``L`` (the fixed point of
+    ``L_o = ∫ ρ/π L_i cos`` with ``ρ = 1`` and ``L_i = L`` from every
+    direction), so with every bounce every pixel, the concavities included,
+    reads ``∫ L x_k dλ``. Tested per pixel and channel, and on the head's mean.
+    """
+    radiance = np.asarray(radiance, dtype=np.float64)
+    k = radiance.shape[0]
+    head = labels == LABEL_SKIN
+    mean = radiance.mean(axis=0)
+    error = radiance.std(axis=0, ddof=1) / np.sqrt(k)
+    t_pixel = _ratio(np.abs(mean - expected), np.hypot(error, FLOAT32_FLOOR * expected))
+    pooled = radiance[:, head].mean(axis=1) if head.any() else radiance.reshape(k, -1, 3).mean(axis=1)
+    pooled_error = pooled.std(axis=0, ddof=1) / np.sqrt(k)
+    t_pooled = _ratio(np.abs(pooled.mean(axis=0) - expected), np.hypot(pooled_error, FLOAT32_FLOOR * expected))
+    outcome, statistic, test, details = two_part("white_furnace", t_pixel, t_pooled, k,
+                                                 "each pixel's channels against the sky's",
+                                                 "the head's mean channels")
+    return LimitCheck("white_furnace", True, outcome == "pass", statistic, 1.0, int(mean.shape[0] * mean.shape[1]),
+                      "every pixel of a white head (reflectance 1, every bounce, flat shading) in a uniform sky "
+                      f"against the sky's radiance; the head covers {int(head.sum())} pixels",
+                      {**details, "head_rel_error": (pooled.mean(axis=0) / expected - 1).tolist()},
+                      outcome=outcome, test=test)
+
+
+def check_sphere(cam: Camera | str, rho: NDArrayFloat, every: NDArrayFloat, one: NDArrayFloat) -> LimitCheck:
+    """
+    Closed sphere: interreflection's closed form, and how it saturates colour.
+
+    A closed Lambertian sphere of reflectance ρ(λ) emitting E(λ) uniformly,
+    seen from inside: by symmetry the radiance is the same everywhere and
+    ``L = E + (ρ/π) ∫ L cos θ dω = E + ρ L``, so ``L = E / (1 − ρ)`` with every
+    bounce (``every``: :func:`sphere_channels` at depth −1), ``E (1 + ρ)`` with
+    one (``one``: depth 2). Both rendered NCCs (r, g) are tested against these
+    (four values, Šidák at :data:`~skinrender.rendering.face.limits.ALPHA` with
+    the saturation's test); and the higher terms ρⁿ being ever more coloured,
+    every bounce must move the chromaticity further from the light's than one
+    bounce does (``saturation_t``, one-sided, must exceed the critical value).
+    """
+    cam = camera(cam)
+    lam, emission = sphere_emission()
+    rho_fine = np.interp(lam, GRID_DEFAULT.wavelengths, rho)
+    light = rg(channel_integral(cam, GRID_DEFAULT, lam, emission))
+    k = np.asarray(every).shape[0]
+    critical = critical_t(2 * 2 + 1, k)
+    worst, distances = 0.0, []
+    for samples, radiance in ((every, emission / (1 - rho_fine)), (one, emission * (1 + rho_fine))):
+        expected = rg(channel_integral(cam, GRID_DEFAULT, lam, radiance))
+        value, se = jackknife(samples, rg)
+        worst = max(worst, float((np.abs(value - expected) / np.hypot(se, FLOAT32_FLOOR)).max()))
+        distances.append(jackknife(samples, lambda m: np.linalg.norm(rg(m) - light, axis=-1)))
+    (far, se_far), (near, se_near) = distances
+    saturation_t = float((far - near) / np.hypot(se_far, se_near))
+    passed = worst <= critical and saturation_t > critical
+    test = (f"difference: max |t| ≤ {critical:.3g} over the 4 NCC values, and the saturation's t above it; Student t, "
+            f"{k - 1} dof, Šidák over 5 at α {ALPHA:g}")
+    return LimitCheck("closed_sphere", True, passed, worst / critical, 1.0, 0,
+                      "the NCC (r, g) of a closed emitting sphere of the skin's reflectance, every bounce "
+                      "(E / (1 − ρ)) and one (E (1 + ρ)); every bounce must saturate the colour more",
+                      {"worst_t": worst, "critical": critical, "saturation_t": saturation_t,
+                       "distance_from_light": [float(far), float(near)]}, outcome="pass" if passed else "fail",
+                      test=test)

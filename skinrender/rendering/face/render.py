@@ -39,6 +39,7 @@ specfilm's ``∫ L x_k dλ``); balanced images in output units; illuminance lx.
 
 from __future__ import annotations
 
+import functools
 import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -46,7 +47,7 @@ from pathlib import Path
 import numpy as np
 
 from ...constants import CONSTANT_OUTPUT_SCALE
-from ...errors import SkinrenderError
+from ...errors import SkinrenderError, flag_of
 from ...files import Output, write_outputs
 from ...hints import NDArrayFloat
 from ...methods import validate_method
@@ -56,7 +57,7 @@ from ...model.response import gain
 from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
 from ..exr import camera_attributes, write_exr, write_preview
 from ..outputs import draw_figure, save_result
-from ..renderer import SAMPLERS, SAMPLES_MAX, channel_names
+from ..renderer import SAMPLERS, SAMPLES_MAX, CameraKey, channel_names
 from ..variants import mitsuba
 from .document import channel_groups, channel_integral, face_document, light_irradiance
 from .effects import Frame, Level, physics_level
@@ -66,8 +67,8 @@ from .scene import MESH_HEAD, FaceScene, load_face_scene, prevailing_name, skin_
 __all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "face_exr",
            "write_face_exr"]
 
-_LOADED: dict = {}
-_LOADED_MAX = 6
+LOADED_KEPT = 6
+"""Face documents kept loaded in Mitsuba (the least recently used goes first)."""
 
 
 @dataclass(frozen=True)
@@ -156,7 +157,8 @@ def planckian_temperature(spec, name: str) -> float:
     """
     item = illuminant(spec)
     if item.temperature is None:
-        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}")
+        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}",
+                              flag=flag_of(name))
     return float(item.temperature)
 
 
@@ -180,23 +182,48 @@ def white_references(scene: FaceScene, cam: Camera, calibration: float,
     return white_p, white_c
 
 
+@dataclass(frozen=True)
+class _Document:
+    """
+    A face's Mitsuba document as a cache key: what it depends on (the camera by its curves, the level by the
+    effects that change the document, the lights by name); the level and the lights themselves ride along,
+    outside the key.
+    """
+
+    scene: FaceScene
+    camera: CameraKey
+    effects: tuple[str, ...]
+    skin: str | None
+    group: tuple[int, ...]
+    spp: int
+    sampler: str
+    variant: str
+    light_key: tuple
+    scale: float
+    level: Level = field(compare=False, hash=False)
+    lights: dict = field(compare=False, hash=False)
+
+
+@functools.lru_cache(maxsize=LOADED_KEPT)
+def _load(document: _Document):
+    mi = mitsuba(document.variant)
+    scene = document.scene
+    built = face_document(mi, scene, document.camera.camera, document.camera.grid, document.level, document.skin,
+                          document.group, document.spp, 0, document.sampler, document.lights, document.scale)
+    try:
+        return mi.load_dict(built)
+    except RuntimeError as error:  # the checks of load_face_scene passed, yet Mitsuba refused the user's mesh
+        if scene.mesh == MESH_HEAD or Path(scene.mesh).name not in str(error):
+            raise
+        reason = " ".join(str(error).split())[-300:]
+        raise SkinrenderError(f"{scene.source}: [mesh]: field 'file': Mitsuba could not load {scene.mesh}: "
+                              f"{reason}") from None
+
+
 def _loaded(scene, cam, grid, level: Level, skin, group, spp, sampler, variant, lights, scale):
-    key = (scene, cam.name, cam.kind, cam.sensitivities(grid).tobytes(), grid, level.document_key, skin, group, spp,
-           sampler, variant, tuple(sorted(lights.items())), scale)
-    if key not in _LOADED:
-        if len(_LOADED) >= _LOADED_MAX:
-            _LOADED.pop(next(iter(_LOADED)))
-        mi = mitsuba(variant)
-        document = face_document(mi, scene, cam, grid, level, skin, group, spp, 0, sampler, lights, scale)
-        try:
-            _LOADED[key] = mi.load_dict(document)
-        except RuntimeError as error:  # the checks of load_face_scene passed, yet Mitsuba refused the user's mesh
-            if scene.mesh == MESH_HEAD or Path(scene.mesh).name not in str(error):
-                raise
-            reason = " ".join(str(error).split())[-300:]
-            raise SkinrenderError(f"{scene.source}: [mesh]: field 'file': Mitsuba could not load {scene.mesh}: "
-                                  f"{reason}") from None
-    return _LOADED[key]
+    """The face's document loaded into Mitsuba, reused across renders that share it (:data:`LOADED_KEPT` kept)."""
+    return _load(_Document(scene, CameraKey.of(cam, grid), level.document_key, skin, group, spp, sampler, variant,
+                           tuple(sorted(lights.items())), scale, level, lights))
 
 
 def render_face(

@@ -27,12 +27,17 @@ Scene file fields
 (horizontal, degrees), ``width``, ``height`` (pixels); ``[mesh]`` ``file``
 (``head``: :func:`skinrender.datasets.head.mesh_head`; or an ``.obj`` or
 ``.ply`` path, relative to the scene file), ``translate`` (m), ``rotate``
-(degrees about x, then y, then z), ``scale``, ``smooth`` (shading normals;
-default false: flat, which conserves energy — shading normals lose ~0.5 % in
-the white furnace, measured); ``[key]`` (required), ``[fill]`` and
-``[environment]`` lights: ``temperature`` (K), ``illuminance`` (lx, at the
-camera target facing a point light; on a surface open to the whole
-environment) and a point light's ``position`` (m); ``[[prop]]``: ``name``,
+(degrees about x, then y, then z), ``scale``, ``smooth`` (interpolated
+shading normals, default true: no facets in the pictures; ``false``: flat,
+each triangle's own normal, which conserves energy — shading normals lose
+energy in the white furnace, measured in ``docs/face-verdicts.md``);
+``[key]`` (required), ``[fill]`` and ``[environment]`` lights:
+``temperature`` (K), ``illuminance`` (lx, at the camera target facing a
+point light; on a surface open to the whole environment) and a point
+light's ``position`` (m); the key light's ``ambient`` (default 0): the share
+of its illuminance added, at its temperature, as a uniform sky (the base
+level's fill light: no pure-black shadow, and still one spectrum, so the
+base's limit holds); ``[[prop]]``: ``name``,
 ``reflectance``, ``shape`` (``rectangle``, the square [−1, 1]² facing +z, or
 ``cube``, [−1, 1]³), ``size`` (m: x, y and a cube's z), ``position`` (m, its
 centre), ``rotate`` (degrees about x, y, z).
@@ -47,7 +52,8 @@ their defaults).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+import dataclasses
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -56,6 +62,7 @@ from ...errors import SkinrenderError
 from ...files import TOML_BYTES_MAX, exists, read_input
 from ...hints import NDArrayFloat
 from ...spectra import GRID_DEFAULT, WavelengthGrid
+from ...toml_tables import entry, from_table
 from ..scene import PIXELS_MAX, ROOT_SCENES, check_mesh_file, read_scene_toml, reflectance_of
 
 __all__ = ["ROOT_FACE_SCENES", "MESH_HEAD", "PROP_SHAPES", "FaceCamera", "Light", "Prop", "FaceScene",
@@ -136,7 +143,17 @@ class FaceScene:
     environment: Light | None = None
     props: tuple[Prop, ...] = ()
     source: str = ""
-    mesh_smooth: bool = False
+    mesh_smooth: bool = True
+    ambient: float = 0.0
+    """The share of the key light's illuminance added at its temperature as a uniform sky (the base's fill)."""
+
+    @property
+    def ambient_light(self) -> Light | None:
+        """The key light's ambient sky: a uniform environment at the key's temperature and ``ambient`` times its
+        illuminance (``None`` without a key light or an ambient share)."""
+        if self.key is None or not self.ambient > 0:
+            return None
+        return Light(self.key.temperature, self.key.illuminance * self.ambient)
 
     def resized(self, width: int, height: int | None = None) -> FaceScene:
         """The scene at another image size, pixels (the field of view kept)."""
@@ -192,39 +209,8 @@ def prevailing_name(scene: FaceScene) -> str:
     return "key" if scene.key is not None else "environment"
 
 
-def _number(table: dict, key: str, where: str, low: float = -math.inf, high: float = math.inf,
-            default: float | None = None, open_low: bool = False) -> float:
-    if key not in table:
-        if default is None:
-            raise SkinrenderError(f"{where}: missing field {key!r}")
-        return float(default)
-    value = table[key]
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise SkinrenderError(f"{where}: field {key!r} must be a finite number, got {value!r}")
-    if value < low or (open_low and value == low) or value > high:
-        bounds = f"{'(' if open_low else '['}{low:g}, {high:g}]".replace("inf]", "∞)")
-        raise SkinrenderError(f"{where}: field {key!r} must be in {bounds}, got {value!r}")
-    return float(value)
-
-
-def _vector(table: dict, key: str, where: str, default: Vector | None = None,
-            positive: bool = False) -> Vector:
-    if key not in table:
-        if default is None:
-            raise SkinrenderError(f"{where}: missing field {key!r}")
-        return default
-    value = table[key]
-    ok = isinstance(value, list) and len(value) == 3 and all(
-        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value)
-    if not ok or (positive and min(value) <= 0):
-        kind = "three finite numbers > 0" if positive else "three finite numbers [x, y, z]"
-        raise SkinrenderError(f"{where}: field {key!r} must be {kind}, got {value!r}")
-    return tuple(float(v) for v in value)
-
-
-def _size(table: dict, shape: str, where: str) -> Vector:
+def _size(value, shape: str, where: str) -> Vector:
     count = 2 if shape == "rectangle" else 3
-    value = table.get("size")
     ok = isinstance(value, list) and len(value) == count and all(
         isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0 for v in value)
     if not ok:
@@ -233,55 +219,8 @@ def _size(table: dict, shape: str, where: str) -> Vector:
     return (*(float(v) for v in value), 0.0)[:3]
 
 
-def _integer(table: dict, key: str, where: str, low: int, high: int) -> int:
-    if key not in table:
-        raise SkinrenderError(f"{where}: missing field {key!r}")
-    value = table[key]
-    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
-        raise SkinrenderError(f"{where}: field {key!r} must be an integer in [{low}, {high}], got {value!r}")
-    return value
-
-
-def _string(table: dict, key: str, where: str, default: str | None = None) -> str:
-    if key not in table:
-        if default is None:
-            raise SkinrenderError(f"{where}: missing field {key!r}")
-        return default
-    value = table[key]
-    if not isinstance(value, str) or not value.strip():
-        raise SkinrenderError(f"{where}: field {key!r} must be a non-empty string, got {value!r}")
-    return value.strip()
-
-
-def _table(parent: dict, key: str, where: str, known: set[str], required: bool = True) -> dict | None:
-    if key not in parent:
-        if required:
-            raise SkinrenderError(f"{where}: missing table [{key}]")
-        return None
-    value = parent[key]
-    if not isinstance(value, dict):
-        raise SkinrenderError(f"{where}: field {key!r} must be a table [{key}]")
-    unknown = set(value) - known
-    if unknown:
-        raise SkinrenderError(f"{where}: [{key}]: unknown field(s) {', '.join(sorted(unknown))}; known: "
-                              f"{', '.join(sorted(known))}")
-    return value
-
-
-def _light(table: dict | None, where: str, point: bool) -> Light | None:
-    if table is None:
-        return None
-    return Light(_number(table, "temperature", where, 0.0, 1e12, open_low=True),
-                 _number(table, "illuminance", where, 0.0, 1e9, open_low=True),
-                 _vector(table, "position", where) if point else None)
-
-
-def _camera(table: dict, where: str) -> FaceCamera:
-    camera = FaceCamera(_vector(table, "position", where), _vector(table, "target", where),
-                        _vector(table, "up", where, default=(0.0, 1.0, 0.0)),
-                        _number(table, "fov", where, 0.0, 180.0, open_low=True),
-                        _integer(table, "width", where, 1, 1 << 16),
-                        _integer(table, "height", where, 1, 1 << 16))
+def _checked_camera(camera: FaceCamera, where: str) -> FaceCamera:
+    """A camera's fields together: a field of view below 180°, a view direction, an up not along it, pixels."""
     if camera.fov == 180.0:
         raise SkinrenderError(f"{where}: field 'fov' must be below 180 degrees, got 180")
     view = np.subtract(camera.target, camera.position)
@@ -296,8 +235,7 @@ def _camera(table: dict, where: str) -> FaceCamera:
     return camera
 
 
-def _mesh(table: dict, where: str, folder: Path) -> str:
-    name = _string(table, "file", where)
+def _mesh(name: str, where: str, folder: Path) -> str:
     if name == MESH_HEAD:
         return MESH_HEAD
     path = Path(name) if Path(name).is_absolute() else folder / name
@@ -309,11 +247,97 @@ def _mesh(table: dict, where: str, folder: Path) -> str:
     return str(path.resolve())
 
 
-_TOP = {"name", "description", "skin", "camera", "mesh", "key", "fill", "environment", "prop"}
-_CAMERA = {"position", "target", "up", "fov", "width", "height"}
-_MESH = {"file", "translate", "rotate", "scale", "smooth"}
-_POINT = {"position", "temperature", "illuminance"}
-_PROP = {"name", "reflectance", "shape", "size", "position", "rotate"}
+_XYZ = entry("vector")
+_ZERO = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class _CameraTable:
+    """``[camera]`` (the module docstring)."""
+
+    position: Vector = field(metadata=_XYZ)
+    target: Vector = field(metadata=_XYZ)
+    up: Vector = field(default=(0.0, 1.0, 0.0), metadata=_XYZ)
+    fov: float = field(metadata=entry("number", low=0.0, high=180.0, open_low=True))
+    width: int = field(metadata=entry("integer", low=1, high=1 << 16))
+    height: int = field(metadata=entry("integer", low=1, high=1 << 16))
+
+
+@dataclass(frozen=True, kw_only=True)
+class _MeshTable:
+    """``[mesh]``."""
+
+    file: str = field(metadata=entry("text"))
+    translate: Vector = field(default=_ZERO, metadata=_XYZ)
+    rotate: Vector = field(default=_ZERO, metadata=_XYZ)
+    scale: float = field(default=1.0, metadata=entry("number", low=0.0, high=1e6, open_low=True))
+    smooth: bool = field(default=True, metadata=entry("boolean"))
+
+
+_KELVIN = entry("number", low=0.0, high=1e12, open_low=True)
+_LUX = entry("number", low=0.0, high=1e9, open_low=True)
+
+
+@dataclass(frozen=True, kw_only=True)
+class _SkyTable:
+    """``[environment]``: a uniform sky."""
+
+    temperature: float = field(metadata=_KELVIN)
+    illuminance: float = field(metadata=_LUX)
+
+
+@dataclass(frozen=True, kw_only=True)
+class _PointTable(_SkyTable):
+    """``[key]``, ``[fill]``: a point light."""
+
+    position: Vector = field(metadata=_XYZ)
+
+
+@dataclass(frozen=True, kw_only=True)
+class _KeyTable(_PointTable):
+    """``[key]``: the key light, and the share of its illuminance added at its temperature as a uniform sky."""
+
+    ambient: float = field(default=0.0, metadata=entry("number", low=0.0, high=10.0))
+
+
+@dataclass(frozen=True, kw_only=True)
+class _PropTable:
+    """A ``[[prop]]`` (its size is checked against its shape once both are read)."""
+
+    reflectance: str = field(metadata=entry("text"))
+    shape: str = field(default="rectangle", metadata=entry("text"))
+    size: object = field(default=None, metadata=entry("any"))
+    name: str | None = field(default=None, metadata=entry("text"))
+    position: Vector = field(metadata=_XYZ)
+    rotate: Vector = field(default=_ZERO, metadata=_XYZ)
+
+
+@dataclass(frozen=True, kw_only=True)
+class _FaceTable:
+    """A face scene file's table, in the order its fields are checked."""
+
+    camera: _CameraTable = field(metadata=entry("table", schema=_CameraTable))
+    mesh: _MeshTable = field(metadata=entry("table", schema=_MeshTable))
+    key: _KeyTable = field(metadata=entry("table", schema=_KeyTable))
+    fill: _PointTable | None = field(default=None, metadata=entry("table", schema=_PointTable))
+    environment: _SkyTable | None = field(default=None, metadata=entry("table", schema=_SkyTable))
+    skin: str = field(metadata=entry("text"))
+    prop: tuple[_PropTable, ...] = field(default=(), metadata=entry("tables", schema=_PropTable))
+    name: str | None = field(default=None, metadata=entry("text"))
+    description: str = field(default="", metadata=entry("text"))
+
+
+def _light(table: _SkyTable | None) -> Light | None:
+    return None if table is None else Light(table.temperature, table.illuminance, getattr(table, "position", None))
+
+
+def _prop(table: _PropTable, where: str) -> Prop:
+    reflectance_of(table.reflectance, GRID_DEFAULT, f"{where}: field 'reflectance'")
+    if table.shape not in PROP_SHAPES:
+        raise SkinrenderError(f"{where}: field 'shape' must be one of {', '.join(PROP_SHAPES)}, got {table.shape!r}")
+    size = _size(table.size, table.shape, where)
+    name = table.reflectance.split(":", 1)[-1] if table.name is None else table.name
+    return Prop(name, table.reflectance, table.shape, size, table.position, table.rotate)
 
 
 def _read(spec: str) -> tuple[Path, dict]:
@@ -342,52 +366,18 @@ def load_face_scene(spec: str | Path | FaceScene) -> FaceScene:
         return spec
     path, table = _read(str(spec))
     where = str(path)
-    unknown = set(table) - _TOP
-    if unknown:
-        raise SkinrenderError(f"{where}: unknown field(s) {', '.join(sorted(unknown))}; known: "
-                              f"{', '.join(sorted(_TOP))}")
-    camera = _camera(_table(table, "camera", where, _CAMERA), f"{where}: [camera]")
-    mesh_table = _table(table, "mesh", where, _MESH)
-    at = f"{where}: [mesh]"
-    mesh = (_mesh(mesh_table, at, path.parent), _vector(mesh_table, "translate", at, (0.0, 0.0, 0.0)),
-            _vector(mesh_table, "rotate", at, (0.0, 0.0, 0.0)),
-            _number(mesh_table, "scale", at, 0.0, 1e6, default=1.0, open_low=True))
-    lights = [_light(_table(table, name, where, _POINT if name != "environment" else _POINT - {"position"},
-                            required=name == "key"), f"{where}: [{name}]", name != "environment")
-              for name in ("key", "fill", "environment")]
-    skin = _string(table, "skin", where)
-    skin_reflectance_of(skin, GRID_DEFAULT, f"{where}: field 'skin'")
-    entries = table.get("prop", [])
-    if not isinstance(entries, list):
-        raise SkinrenderError(f"{where}: field 'prop' must be [[prop]] tables")
-    props = []
-    for number, entry in enumerate(entries, start=1):
-        at = f"{where}: prop {number}"
-        if not isinstance(entry, dict):
-            raise SkinrenderError(f"{at}: must be a table")
-        extra = set(entry) - _PROP
-        if extra:
-            raise SkinrenderError(f"{at}: unknown field(s) {', '.join(sorted(extra))}; "
-                                  f"known: {', '.join(sorted(_PROP))}")
-        reflectance = _string(entry, "reflectance", at)
-        reflectance_of(reflectance, GRID_DEFAULT, f"{at}: field 'reflectance'")
-        shape = _string(entry, "shape", at, default="rectangle")
-        if shape not in PROP_SHAPES:
-            raise SkinrenderError(f"{at}: field 'shape' must be one of {', '.join(PROP_SHAPES)}, "
-                                  f"got {shape!r}")
-        size = _size(entry, shape, at)
-        name = _string(entry, "name", at, default=reflectance.split(":", 1)[-1])
-        props.append(Prop(name, reflectance, shape, size, _vector(entry, "position", at),
-                          _vector(entry, "rotate", at, (0.0, 0.0, 0.0))))
+    face = from_table(_FaceTable, table, where)
+    camera = _checked_camera(FaceCamera(**dataclasses.asdict(face.camera)), f"{where}: [camera]")
+    mesh = face.mesh
+    mesh_file = _mesh(mesh.file, f"{where}: [mesh]", path.parent)
+    skin_reflectance_of(face.skin, GRID_DEFAULT, f"{where}: field 'skin'")
+    props = [_prop(table, f"{where}: prop {number}") for number, table in enumerate(face.prop, start=1)]
     names = [p.name for p in props]
     duplicated = sorted({n for n in names if names.count(n) > 1} | ({"skin", "background"} & set(names)))
     if duplicated:
         names = ", ".join(repr(n) for n in duplicated)
         raise SkinrenderError(f"{where}: prop names must be unique and not 'skin' or 'background' (they "
                               f"name labels), got {names} more than once or reserved")
-    smooth = mesh_table.get("smooth", False)
-    if not isinstance(smooth, bool):
-        raise SkinrenderError(f"{where}: [mesh]: field 'smooth' must be true or false, got {smooth!r}")
-    return FaceScene(_string(table, "name", where, default=path.stem),
-                     _string(table, "description", where, ""), camera, *mesh, skin, *lights, tuple(props),
-                     where, smooth)
+    return FaceScene(path.stem if face.name is None else face.name, face.description, camera, mesh_file,
+                     mesh.translate, mesh.rotate, mesh.scale, face.skin, _light(face.key), _light(face.fill),
+                     _light(face.environment), tuple(props), where, mesh.smooth, face.key.ambient)

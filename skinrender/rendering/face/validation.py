@@ -7,6 +7,10 @@ that hold at that level (:mod:`skinrender.rendering.face.limits`), and told
 how far its skin moves from Eq. 4 where none holds.
 
 -   :func:`validate_face`, :class:`FaceValidation`: the checks of one face scene.
+-   :func:`render_replicates`, :class:`Replicated`: the replicate renders a
+    validation (and the ladder) measures; :func:`mean_rendering`, their mean
+    as one render; :func:`shift_against`, their ``eq4_shift`` against the
+    detection budget.
 -   :data:`LIMITS_SCENE_FREE`: the limits that hold whatever the level.
 
 What holds where
@@ -23,16 +27,24 @@ level (effects)         checks
 ``sheen``               ``dichromatic_plane``
 ``noise`` (+ above)     the same, on the frames' mean, dark signal removed,
                         clipped pixels left out, quantisation bounded
-``interreflection``,    none: ``eq4_shift`` only (information)
+``interreflection``,    none of the exact limits
 ``mixed``
-every level             ``white_furnace`` (the scene's mesh, its camera),
-                        ``closed_sphere`` (the skin's reflectance), and
-                        ``eq4_shift``
+every level             ``eq4_shift`` (Eq. 4's error against the detection
+                        budget, :mod:`~skinrender.rendering.face.shift`),
+                        ``white_furnace`` (the scene's mesh, its camera),
+                        ``closed_sphere`` (the skin's reflectance)
 ======================  ====================================================
 
+Each check is a verdict (:class:`~skinrender.evaluation.verdict.Verdict`:
+``pass``, ``fail``, ``inconclusive``, ``not_applicable``); the validation's
+is their combination (:func:`~skinrender.evaluation.verdict.combine`), and
+the command line's exit status :data:`~skinrender.evaluation.verdict.EXIT_STATUS`'s.
+
 The requested ``spp`` is split over :data:`~skinrender.rendering.face.limits.REPLICATES`
-renders with seeds ``seed, seed + 1, …`` (mod 2³²), each at ``⌈spp / K⌉``; their
-spread is each statistic's noise. Through an image sensor (``noise``) each
+renders with seeds ``seed, seed + 1, …`` (mod 2³²), each at ``⌈spp / K⌉`` but at
+least :data:`~skinrender.rendering.face.limits.SPP_REPLICATE_MIN`; their
+spread is each statistic's noise. Two validations are independent when their
+seeds are ``K`` or more apart. Through an image sensor (``noise``) each
 replicate is a frame of its own (the sensor's stream is seeded from the
 render's seed), so the spread holds the sensor's noise too; the sensor is
 linear in the mean except for its dark signal (subtracted: dark current ×
@@ -58,18 +70,22 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ...constants import CONSTANT_OUTPUT_SCALE
 from ...errors import SkinrenderError
+from ...evaluation.verdict import EXIT_STATUS, Verdict, combine
 from ...model.chromaticity import ncc
+from ...model.response import gain
 from ...spectra import GRID_DEFAULT
 from ..validation import analytic_reference
-from .effects import Level, Replicates, physics_level
-from .limit_scenes import furnace_radiance, sphere_channels
-from .limits import REPLICATES, LimitCheck, check_furnace, check_sphere, eq4_shift
+from .effects import Frame, Level, Measured, Replicates, physics_level
+from .limit_scenes import check_furnace, check_sphere, furnace_radiance, sphere_channels
+from .limits import REPLICATES, SPP_REPLICATE_MIN, LimitCheck
 from .render import FaceRendering, render_face
 from .scene import skin_reflectance_of
+from .shift import budget_rates, eq4_shift, face_budget
 
 __all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "FaceValidation",
-           "validate_face"]
+           "Replicated", "render_replicates", "mean_rendering", "shift_against", "validate_face"]
 
 LIMITS_SCENE_FREE = {
     "furnace": "white furnace: the scene's mesh, reflectance 1, every bounce, in a uniform sky",
@@ -91,22 +107,116 @@ SPHERE_SPP = 16
 
 
 @dataclass(frozen=True)
+class Replicated:
+    """
+    Replicate renders of a face at one level, as the checks see them.
+
+    Attributes
+    ----------
+    renders
+        The :class:`~skinrender.rendering.face.render.FaceRendering` of each seed.
+    level
+        The :class:`~skinrender.rendering.face.effects.Level`.
+    measured
+        The replicate images after the level's ``measure`` (a sensor's dark signal removed, its usable pixels,
+        bias bound and standard-error floor): :class:`~skinrender.rendering.face.effects.Measured`.
+    expected
+        Eq. 4's NCC of the skin, ``[r, g, b]``.
+    seconds
+        Wall time of the renders, s.
+    """
+
+    renders: list
+    level: Level
+    measured: Measured
+    expected: np.ndarray
+    seconds: float
+    grid: object = GRID_DEFAULT
+
+    @property
+    def first(self) -> FaceRendering:
+        """The first replicate (scene, camera, labels, lights)."""
+        return self.renders[0]
+
+    def replicates(self) -> Replicates:
+        """What a level's check reads (:class:`~skinrender.rendering.face.effects.Replicates`)."""
+        m, first = self.measured, self.first
+        return Replicates(m.images, first.labels, self.expected, first, self.level.lights(first.scene), m.usable,
+                          m.bias, m.floor)
+
+
+def render_replicates(camera_, scene, prevailing, calibration, skin, level: Level, spp: int, seeds, size=None,
+                      sampler: str = "multijitter", variant: str | None = None, channels: str = "auto", imager=None,
+                      exposure="auto", illuminance: float | None = None, grid=GRID_DEFAULT) -> Replicated:
+    """
+    The face rendered once per seed of ``seeds`` at ``spp`` each (arguments as
+    :func:`~skinrender.rendering.face.render_face`), measured as the level's checks see it.
+    """
+    start = time.perf_counter()
+    renders = [render_face(camera_, scene, prevailing, calibration, skin, level, spp, s, size, sampler, variant,
+                           grid=grid, channels=channels, imager=imager, exposure=exposure, illuminance=illuminance)
+               for s in seeds]
+    first = renders[0]
+    images = np.array([r.image for r in renders], dtype=np.float64)
+    rho = skin_reflectance_of(first.skin, grid, "skin")
+    expected = ncc(analytic_reference(first.camera, rho[None], first.prevailing, first.calibration, grid=grid))[0]
+    measured = level.measure(images, first, imager)  # through a sensor: its dark signal, clipping, codes
+    return Replicated(renders, level, measured, expected, time.perf_counter() - start, grid)
+
+
+def mean_rendering(replicated: Replicated, imager=None, exposure="auto") -> FaceRendering:
+    """
+    The replicates as one render of all their samples: the mean radiance, through the level's ``post`` (one
+    frame through a sensor, the first seed's) and Eq. 4's gain; what one render at the replicates' total spp
+    would give.
+    """
+    renders, level, first = replicated.renders, replicated.level, replicated.first
+    radiance = np.mean([r.radiance for r in renders], axis=0)
+    setup = level.setup(first.scene, first.camera, replicated.grid, level.lights(first.scene),
+                        calibration=first.calibration, seed=first.seed, imager=imager, exposure=exposure)
+    frame = level.post(Frame(radiance, first.white_prevailing, first.white_calibration,
+                             {"lights": first.info.get("lights", {})}), setup)
+    applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
+    return replace(first, image=(applied * frame.signal).astype(np.float32), radiance=radiance, gain=applied,
+                   spp=int(sum(r.spp for r in renders)), spp_requested=int(sum(r.spp_requested for r in renders)),
+                   seconds=replicated.seconds, info=frame.info)
+
+
+def shift_against(replicated: Replicated, budget, locus, mean=None) -> LimitCheck:
+    """
+    ``eq4_shift`` of the replicates against the detection ``budget``
+    (:func:`~skinrender.rendering.face.shift.eq4_shift`), with ``budget_rates`` (what a shift of the budget does
+    to the pixels of ``mean``, an image ``(h, w, 3)``; ``None``: the replicates' mean) in its details and, where
+    a sensor left too few pixels to decide, which it left out in its reason.
+    """
+    measured, first = replicated.measured, replicated.first
+    shift = eq4_shift(measured.images, first.labels, replicated.expected, replicated.level.why, budget,
+                      measured.usable)
+    mean = measured.images.mean(axis=0) if mean is None else mean
+    reason = f"{shift.reason}; {measured.note}" if shift.outcome == "inconclusive" and measured.note else shift.reason
+    return replace(shift, reason=reason, details={**shift.details, "budget_rates": budget_rates(mean, first.labels,
+                                                                                                locus, budget)})
+
+
+@dataclass(frozen=True)
 class FaceValidation:
     """
-    A face render checked against its level's analytic limits.
+    A face render checked against its level's analytic limits and Eq. 4's detection budget.
 
     Attributes
     ----------
     rendering
         The first replicate (scene, camera, physics, labels, lights).
     checks
-        :class:`~skinrender.rendering.face.limits.LimitCheck` rows.
+        :class:`~skinrender.rendering.face.limits.LimitCheck` rows (each a verdict).
     spp, spp_requested
         Samples per pixel of all replicates together, and as asked.
     replicates, seed
         How many renders, the first's seed.
     seconds
         Wall time of everything, s.
+    info
+        Further JSON-ready keys (the lights, the sensor's settings, ``budget``, ``spp_per_replicate``).
     """
 
     rendering: FaceRendering
@@ -119,25 +229,26 @@ class FaceValidation:
     info: dict = field(default_factory=dict)
 
     @property
+    def verdict(self) -> Verdict:
+        """The checks' verdicts combined: ``fail`` if one failed, else ``inconclusive`` if one was, else ``pass``
+        if one passed, else ``not_applicable``."""
+        return combine([c.verdict for c in self.checks], "validate face")
+
+    @property
     def passed(self) -> bool | None:
-        """
-        False when a check that applies fails; else None when one that applies is undecided (its ``reason``
-        says why) or none applies; True only when every check that applies passed.
-        """
-        verdicts = [c.passed for c in self.checks if c.applies]
-        if False in verdicts:
-            return False
-        return None if not verdicts or None in verdicts else True
+        """True when the verdict is ``pass``, False for ``fail``, else None (inconclusive or nothing tested)."""
+        return self.verdict.passed
 
     def document(self) -> dict:
         """The JSON document of ``skinrender validate face``."""
-        r = self.rendering
+        r, verdict = self.rendering, self.verdict
         return {"scene": r.scene.name, "camera": r.camera.name, "physics": r.physics, "skin": r.skin,
                 "prevailing_K": r.prevailing, "calibration_K": r.calibration, "spp": self.spp,
                 "spp_requested": self.spp_requested, "replicates": self.replicates, "seed": self.seed,
                 "sampler": r.sampler, "variant": r.variant, "elapsed_s": self.seconds,
                 "size": [r.scene.camera.width, r.scene.camera.height], "labels": r.label_names, **self.info,
-                "checks": [c.document() for c in self.checks], "passed": self.passed}
+                "checks": [c.document() for c in self.checks], "passed": self.passed, "verdict": verdict.outcome,
+                "exit_status": EXIT_STATUS[verdict.outcome]}
 
 
 def validate_face(
@@ -159,9 +270,10 @@ def validate_face(
     replicates: int = REPLICATES,
     limits=tuple(LIMITS_SCENE_FREE),
     progress: Callable[[str], None] | None = None,
+    budget_fraction: float | None = None,
 ) -> FaceValidation:
     """
-    Render a face scene ``replicates`` times and check the analytic limits of its level.
+    Render a face scene ``replicates`` times and check the analytic limits of its level and Eq. 4's error.
 
     Parameters
     ----------
@@ -169,22 +281,28 @@ def validate_face(
         As :func:`skinrender.rendering.face.render_face` (temperatures K,
         illuminance lx, exposure s or ``auto``).
     spp
-        Samples per pixel in all, split over the replicates (each ``⌈spp / replicates⌉``).
+        Samples per pixel in all, split over the replicates (each ``⌈spp / replicates⌉``, at least
+        :data:`~skinrender.rendering.face.limits.SPP_REPLICATE_MIN`).
     seed
         The first replicate's seed; the others follow.
     size
         Image side, pixels; ``None``: the scene's.
     replicates
-        Renders, ≥ 3 (the jackknife's t has ``replicates − 1`` degrees of freedom).
+        Renders, ≥ 3 (Student's t has ``replicates − 1`` degrees of freedom).
     limits
         Which of :data:`LIMITS_SCENE_FREE` to run beside the level's own.
     progress
         Called with a line of text before each stage.
+    budget_fraction
+        The share of the margin to the skin locus's boundary that Eq. 4's error may use
+        (:data:`~skinrender.evaluation.budget.BUDGET_FRACTION` unless given).
 
     Returns
     -------
     :class:`FaceValidation`
     """
+
+    from ...evaluation.budget import BUDGET_FRACTION
 
     start = time.perf_counter()
     say = progress or (lambda line: None)
@@ -197,40 +315,42 @@ def validate_face(
                               + ", ".join(LIMITS_SCENE_FREE))
     if isinstance(spp, bool) or not isinstance(spp, (int, np.integer)) or spp < 1:
         raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
-    each = max(1, math.ceil(int(spp) / replicates))
+    each = max(SPP_REPLICATE_MIN, math.ceil(int(spp) / replicates))
     seeds = [(int(seed) + k) % 2**32 for k in range(replicates)]
     say(f"rendering the face ({level.name}) {replicates} times at {each} spp …")
-    renders = [render_face(camera_, scene, prevailing, calibration, skin, level, each, s, size, sampler, variant,
-                           channels=channels, imager=imager, exposure=exposure, illuminance=illuminance)
-               for s in seeds]
-    first = renders[0]
-    cam, labels = first.camera, first.labels
-    images = np.array([r.image for r in renders], dtype=np.float64)
-    rho = skin_reflectance_of(first.skin, GRID_DEFAULT, "skin")
-    expected = ncc(analytic_reference(cam, rho[None], first.prevailing, first.calibration))[0]
-    measured = level.measure(images, first, imager)  # through a sensor: its dark signal, clipping, codes
-    images, usable = measured.images, measured.usable
+    replicated = render_replicates(camera_, scene, prevailing, calibration, skin, level, each, seeds, size, sampler,
+                                   variant, channels, imager, exposure, illuminance)
+    first, measured = replicated.first, replicated.measured
     checks: list[LimitCheck] = []
     check = level.check  # the level's analytic limit (the last effect's that has one), or none
     if check is not None:
-        checks.append(check(Replicates(images, labels, expected, first, level.lights(first.scene), usable,
-                                       measured.bias, measured.floor)))
+        checks.append(check(replicated.replicates()))
     if measured.excluded:  # say which pixels the measurement left out, and why a check may have none
         row = checks[0] if checks else None
-        if row is not None and row.passed is None:
+        if row is not None and row.outcome == "inconclusive":
             checks[0] = replace(row, reason=f"{row.reason}; {measured.note}")
         checks = [replace(c, details={**c.details, **measured.excluded}) for c in checks]
-    checks.append(eq4_shift(images, labels, expected, level.why, usable))
+    fraction = BUDGET_FRACTION if budget_fraction is None else budget_fraction
+    budget, locus = face_budget(first.camera, replicated.expected, first.calibration, fraction)
+    checks.append(shift_against(replicated, budget, locus))
+    cam = first.camera
     if "furnace" in limits:
         say(f"white furnace ({FURNACE_SIZE}² px, {replicates} × {FURNACE_SPP} spp) …")
         checks.append(check_furnace(*furnace_radiance(cam, first.scene, seeds, FURNACE_SIZE, FURNACE_SPP,
                                                       variant=variant)))
     if "sphere" in limits:
         say(f"closed sphere ({SPHERE_SIZE}² px, {replicates} × {SPHERE_SPP} spp, two depths) …")
+        rho = skin_reflectance_of(first.skin, GRID_DEFAULT, "skin")
         every = sphere_channels(cam, rho, -1, seeds, SPHERE_SPP, SPHERE_SIZE, variant)
         one = sphere_channels(cam, rho, 2, seeds, SPHERE_SPP, SPHERE_SIZE, variant)
         checks.append(check_sphere(cam, rho, every, one))
     info = {key: value for key, value in first.info.items() if key != "lights"}
     info["lights"] = first.info.get("lights", {})
+    info["spp_per_replicate"] = int(first.spp)
+    if each > math.ceil(int(spp) / replicates):
+        info["spp_note"] = (f"each replicate rendered at {each} spp, the least a replicate takes "
+                            f"(SPP_REPLICATE_MIN); {spp} spp over {replicates} would give fewer")
+    info["budget"] = budget.document()
+    renders = replicated.renders
     return FaceValidation(first, checks, int(sum(r.spp for r in renders)), int(spp), int(replicates), int(seed),
                           time.perf_counter() - start, info)

@@ -23,14 +23,8 @@ from skinrender.model.chromaticity import ncc
 from skinrender.rendering.exr import read_exr
 from skinrender.rendering.face import render_face, white_references, write_face_exr
 from skinrender.rendering.face.document import channel_integral, light_irradiance
-from skinrender.rendering.face.limit_scenes import furnace_radiance, sphere_channels
-from skinrender.rendering.face.limits import (
-    REPLICATES,
-    check_dichromatic,
-    check_furnace,
-    check_shading,
-    check_sphere,
-)
+from skinrender.rendering.face.limit_scenes import check_furnace, check_sphere, furnace_radiance, sphere_channels
+from skinrender.rendering.face.limits import REPLICATES, check_dichromatic, check_shading
 from skinrender.rendering.face.scene import load_face_scene, skin_reflectance_of
 from skinrender.rendering.face.effects.sheen import dichromatic_colours
 from skinrender.rendering.validation import analytic_reference
@@ -55,17 +49,21 @@ def eq4_ncc(skin: str, prevailing: float, calibration: float) -> np.ndarray:
 
 
 class TestShadingCancels:
-    def test_every_lit_skin_pixel_has_the_ncc_of_eq4(self):
+    def test_every_skin_pixel_has_the_ncc_of_eq4(self):
         """
-        Direct light from one Planckian: a skin pixel's radiance is ``ρ(λ) E(λ) G`` with ``G`` the
-        shading (cosine, distance, shadowing, the pixel's coverage) independent of λ, so its channels
-        are ``G ∫ ρ E x_k`` and its NCC is Eq. 4's, whatever ``G`` (per pixel and pooled).
+        Direct light of one Planckian spectrum (the key and its ambient sky): a skin pixel's radiance is
+        ``ρ(λ) E(λ) G`` with ``G`` the shading (cosine, distance, shadowing, the pixel's coverage, the two
+        lights' shares) independent of λ, so its channels are ``G ∫ ρ E x_k`` and its NCC is Eq. 4's,
+        whatever ``G`` (per pixel and pooled).
         """
         renders, images = replicates(size=SIZE, spp=16, skin=SKIN, prevailing=2856, calibration=5900)
         check = check_shading(images, renders[0].labels, eq4_ncc(SKIN, 2856, 5900))
         assert check.pixels > 100, check
         assert check.details["shading_range"] > 3, "the tested pixels' shading varies more than threefold"
         assert check.passed, check
+        assert renders[0].scene.mesh_smooth and list(renders[0].info["lights"]) == ["key", "ambient"]
+        skin = renders[0].labels == 1
+        assert (images.mean(axis=0)[skin].max(axis=-1) > 0).all(), "the ambient sky leaves no skin pixel black"
 
 
 class TestWhiteFurnace:
@@ -181,3 +179,25 @@ class TestRefusals:
         scene = replace(load_face_scene("face"), fill=None, environment=None)
         with pytest.raises(SkinrenderError, match="mixed"):
             render_face(CAMERA, scene, physics="mixed", size=8, spp=1)
+
+
+def test_loaded_documents_are_reused_and_keyed_by_the_curves(tmp_path):
+    """A face's Mitsuba document is loaded once per scene, camera curves and settings; a CSV camera rewritten under
+    the same path is another camera, so its render sees the new curves (a hand-made cache keyed by the path alone
+    would render the old ones)."""
+    from skinrender.rendering.face.render import _load
+
+    wavelengths = GRID_DEFAULT.wavelengths
+    curves = camera("gbell:9@450,540,610").sensitivities(GRID_DEFAULT)
+    path = tmp_path / "cam.csv"
+    np.savetxt(path, np.column_stack([wavelengths, curves.T]), delimiter=",", header="nm,R,G,B", comments="")
+    before = _load.cache_info()
+    first = render_face(str(path), "face", 2856, 2856, spp=1, size=8, seed=1)
+    again = render_face(str(path), "face", 2856, 2856, spp=1, size=8, seed=1)
+    middle = _load.cache_info()
+    assert middle.hits - before.hits >= middle.misses - before.misses > 0  # the second render reused the first's
+    assert np.array_equal(first.image, again.image)
+    np.savetxt(path, np.column_stack([wavelengths, curves[::-1].T]), delimiter=",", header="nm,R,G,B", comments="")
+    swapped = render_face(str(path), "face", 2856, 2856, spp=1, size=8, seed=1)
+    assert _load.cache_info().misses > middle.misses
+    assert not np.allclose(swapped.radiance, first.radiance)

@@ -43,6 +43,18 @@ class TestLoadFaceScene:
         assert replace(load_face_scene(path), source="") == replace(load_face_scene("face"), source="")
         assert load_face_scene(load_face_scene("face")) == load_face_scene("face")
 
+    def test_smooth_shading_and_an_ambient_sky_by_default(self, tmp_path):
+        """The bundled face: smooth shading normals, and a sky of the key's spectrum at a fifth of its lux. A scene
+        without the fields: smooth, and no ambient sky."""
+        scene = load_face_scene("face")
+        assert scene.mesh_smooth is True and scene.ambient == 0.2
+        sky = scene.ambient_light
+        assert sky.position is None and sky.temperature == scene.key.temperature
+        assert sky.illuminance == pytest.approx(0.2 * scene.key.illuminance)
+        text = BUNDLED.replace("smooth = true", "").replace("ambient = 0.2", "")
+        bare = load_face_scene(write(tmp_path, text))
+        assert bare.mesh_smooth is True and bare.ambient == 0.0 and bare.ambient_light is None
+
     def test_resized(self):
         scene = load_face_scene("face").resized(32, 24)
         assert (scene.camera.width, scene.camera.height, scene.camera.fov) == (32, 24, 36.0)
@@ -71,7 +83,10 @@ REPLACEMENTS = [
     ('file = "head"', 'file = "head.stl"', "file"),
     ('file = "head"', 'file = "missing.obj"', "file"),
     ("scale = 1.0", "scale = 0", "scale"),
-    ("smooth = false", 'smooth = "yes"', "smooth"),
+    ("smooth = true", 'smooth = "yes"', "smooth"),
+    ("ambient = 0.2", "ambient = -0.1", "ambient"),
+    ("ambient = 0.2", 'ambient = "some"', "ambient"),
+    ("[fill]", "[fill]\nambient = 0.2", "ambient"),
     ("temperature = 2856", "temperature = 0", "temperature"),
     ("illuminance = 1000", "illuminance = -5", "illuminance"),
     ('skin = "skin:089 skin -- caucasian (light)"', 'skin = "skin:nobody"', "skin"),

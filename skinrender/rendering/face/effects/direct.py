@@ -2,15 +2,18 @@
 The base level: direct
 ======================
 
-Lambertian skin and props under the key light alone (or, in a scene without
-one, the uniform environment), direct lighting only: the analytic model's
-world, shading aside. Every level starts from it.
+Lambertian skin and props under the key light and its ambient sky (a uniform
+environment of the key's own spectrum, the scene's ``[key] ambient`` share of
+its illuminance: no pure-black shadow), or, in a scene without a key light,
+the uniform environment; direct lighting only: the analytic model's world,
+shading aside. Every level starts from it.
 
 -   :data:`DIRECT`: the effect.
 
-Its limit: under one Planckian with direct light only a skin pixel's
-radiance is ``ρ(λ) E(λ) G``, the shading ``G`` independent of λ, so its NCC
-is Eq. 4's (:func:`~skinrender.rendering.face.limits.check_shading`).
+Its limit: under light of one Planckian spectrum with direct light only a
+skin pixel's radiance is ``ρ(λ) E(λ) G``, the shading ``G`` (the key's and
+the sky's shares included) independent of λ, so its NCC is Eq. 4's
+(:func:`~skinrender.rendering.face.limits.check_shading`).
 """
 
 from __future__ import annotations
@@ -28,9 +31,15 @@ AMD EPYC VM, llvm_ad_spectral)."""
 
 
 def _integrator(integrator: dict | None, setup: Setup) -> dict:
-    """One light sample per hit; a BSDF sample only where it can meet a light (the environment)."""
+    """
+    One light sample per hit; a BSDF sample only where it can meet a light (the environment). In a lamp-lit
+    scene (one with a key light) the sky lights the face but is hidden from the camera: the background stays
+    black, and the silhouette's pixels are skin and black, not skin and sky (which would pull their NCC towards
+    the light's colour). A scene lit by its environment alone (the white furnace) sees it.
+    """
     points = all(light.position is not None for light in setup.lights.values())
-    return {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0 if points else 1}
+    hidden = {"hide_emitters": True} if setup.scene.key is not None and not points else {}
+    return {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0 if points else 1, **hidden}
 
 
 def _lambertian(material: dict, reflectance, setup: Setup) -> dict:
@@ -38,9 +47,11 @@ def _lambertian(material: dict, reflectance, setup: Setup) -> dict:
 
 
 def _lights(lights: dict, scene) -> dict:
-    """The key light, or in a scene without one the environment; none: ``{}`` (refused by the level)."""
+    """The key light and its ambient sky, or in a scene without a key the environment; none: ``{}`` (refused by
+    the level)."""
     if scene.key is not None:
-        return {"key": scene.key}
+        ambient = scene.ambient_light
+        return {"key": scene.key} if ambient is None else {"key": scene.key, "ambient": ambient}
     if scene.environment is not None:
         return {"environment": scene.environment}
     return {}
@@ -53,8 +64,8 @@ def _check(replicates: Replicates):
 
 DIRECT = Effect(
     "direct",
-    "Lambertian skin and props under the key light alone, direct lighting only (Mitsuba's direct integrator): "
-    "the analytic model's world, shading aside",
+    "Lambertian skin and props under the key light and its ambient sky of the same spectrum, direct lighting only "
+    "(Mitsuba's direct integrator): the analytic model's world, shading aside",
     integrator=_integrator, skin=_lambertian, prop=_lambertian, lights=_lights,
     limits=Limits(check=_check, why="the shading check is the test at this level"),
     samples_per_s=SAMPLES_PER_S_DIRECT,

@@ -22,7 +22,9 @@ RUSSIAN_ROULETTE_DEPTH = 5
 
 
 def _integrator(integrator: dict | None, setup: Setup) -> dict:
-    return {"type": "path", "max_depth": -1, "rr_depth": RUSSIAN_ROULETTE_DEPTH}
+    """Path tracing, the base's choice of hiding the sky from the camera kept."""
+    hidden = {"hide_emitters": True} if (integrator or {}).get("hide_emitters") else {}
+    return {"type": "path", "max_depth": -1, "rr_depth": RUSSIAN_ROULETTE_DEPTH, **hidden}
 
 
 INTERREFLECTION = Effect(

@@ -248,7 +248,7 @@ def physics_level(spec: str | Sequence[str] | Level) -> Level:
 
 def active_lights(scene: FaceScene, effects: str | Sequence[str] | Level) -> dict[str, Light]:
     """
-    The lights of a render: ``key`` (or, in a scene without one, the ``environment``), plus ``fill`` and
-    ``environment`` with ``mixed`` (:meth:`Level.lights`).
+    The lights of a render: ``key`` and its ``ambient`` sky (or, in a scene without a key, the ``environment``);
+    with ``mixed`` ``key``, ``fill`` and ``environment`` instead (:meth:`Level.lights`).
     """
     return physics_level(effects).lights(scene)

@@ -45,7 +45,8 @@ class TestParsePhysics:
 class TestActiveLights:
     def test_levels_choose_lights(self):
         scene = load_face_scene("face")
-        assert list(active_lights(scene, ())) == ["key"]
+        assert list(active_lights(scene, ())) == ["key", "ambient"]
+        assert list(active_lights(replace(scene, ambient=0.0), ())) == ["key"]
         assert list(active_lights(scene, ("mixed",))) == ["key", "fill", "environment"]
         sky = replace(scene, key=None, fill=None)
         assert list(active_lights(sky, ())) == ["environment"]
@@ -106,11 +107,12 @@ class TestRefusals:
             assert str(error.value) == message
 
 
-def _old_integrator(effects: tuple[str, ...], lights: dict) -> dict:
-    if "interreflection" in effects:
-        return {"type": "path", "max_depth": -1, "rr_depth": 5}
+def _old_integrator(effects: tuple[str, ...], lights: dict, scene) -> dict:
     points = all(light.position is not None for light in lights.values())
-    return {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0 if points else 1}
+    hidden = {"hide_emitters": True} if scene.key is not None and not points else {}  # the sky hidden, added since
+    if "interreflection" in effects:
+        return {"type": "path", "max_depth": -1, "rr_depth": 5, **hidden}
+    return {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0 if points else 1, **hidden}
 
 
 def _old_bsdf(reflectance, sheen: bool) -> dict:
@@ -119,14 +121,17 @@ def _old_bsdf(reflectance, sheen: bool) -> dict:
         inner = {"type": "diffuse", "reflectance": spectrum}
     else:
         inner = {"type": "roughplastic", "distribution": "ggx", "alpha": 0.35, "int_ior": 1.4, "ext_ior": 1.0,
-                 "nonlinear": False, "diffuse_reflectance": spectrum}
+                 "nonlinear": True, "diffuse_reflectance": spectrum}  # the coat's internal scattering, on since
     return {"type": "twosided", "bsdf": inner}
 
 
 def _old_lights(scene, effects: tuple[str, ...]) -> dict:
     if "mixed" in effects:
         return {name: getattr(scene, name) for name in ("key", "fill", "environment") if getattr(scene, name)}
-    return {"key": scene.key} if scene.key is not None else {"environment": scene.environment}
+    if scene.key is None:
+        return {"environment": scene.environment}
+    ambient = Light(scene.key.temperature, scene.key.illuminance * scene.ambient)  # the base's sky, added since
+    return {"key": scene.key, "ambient": ambient} if scene.ambient > 0 else {"key": scene.key}
 
 
 EFFECTS_BEFORE = ("interreflection", "sheen", "mixed", "noise")
@@ -140,9 +145,11 @@ LEVELS_ALL = ["+".join(c) for n in range(len(EFFECTS_BEFORE) + 1) for c in itert
 def test_each_level_composes_what_its_branches_built_before_the_registry(spec):
     """
     The parts of every level equal what the ``if "sheen" in effects`` branches of face_dict and face_validation
-    built before the registry (written out above): the integrator, the skin's and props' BSDFs, the lights, the
-    effects that change the document, the check run and eq4_shift's reason. (A render from the same document
-    and seed is the same image: measured bit-for-bit on every level before and after, docs/effects.md.)
+    built before the registry (written out above, with the defaults changed since on purpose: the base's
+    ambient sky of the key's spectrum, hidden from the camera, and the coat's internal scattering): the integrator, the skin's and props'
+    BSDFs, the lights, the effects that change the document, the check run and eq4_shift's reason. (A render
+    from the same document and seed is the same image: measured bit-for-bit on every level before and after the
+    registry, docs/effects.md.)
     """
     level = physics_level(spec or "direct")
     effects = level.names
@@ -154,7 +161,7 @@ def test_each_level_composes_what_its_branches_built_before_the_registry(spec):
         lights = level.lights(variant)
         assert lights == _old_lights(variant, effects)
         setup = level.setup(variant, None, GRID_DEFAULT, lights)
-        assert level.integrator(setup) == _old_integrator(effects, lights)
+        assert level.integrator(setup) == _old_integrator(effects, lights, variant)
     rho = np.linspace(0.2, 0.6, GRID_DEFAULT.size)
     assert level.skin(rho, setup) == {"bsdf": _old_bsdf(rho, "sheen" in effects)}
     assert level.prop(rho, setup) == {"bsdf": _old_bsdf(rho, False)}
@@ -172,36 +179,37 @@ def test_each_level_composes_what_its_branches_built_before_the_registry(spec):
         assert level.measure(images, None).images is images
 
 
-def _ambient(lights: dict, scene) -> dict:
+def _sky(lights: dict, scene) -> dict:
     """A uniform sky at the key light's temperature, a fifth of its illuminance (the docs' worked example)."""
     key = lights.get("key") or scene.key
-    return {**lights, "ambient": Light(key.temperature, key.illuminance / 5)}
+    return {**lights, "sky": Light(key.temperature, key.illuminance / 5)}
 
 
-AMBIENT = Effect("ambient", "a uniform sky at the key light's temperature, a fifth of its illuminance: no pure-"
-                 "black shadow, and one Planckian still lights the face", lights=_ambient)
+SKY = Effect("sky", "a uniform sky at the key light's temperature, a fifth of its illuminance: no pure-black "
+             "shadow, and one Planckian still lights the face", lights=_sky)
 
 
 def test_a_toy_effect_registered_for_a_test_only_renders_and_validates(monkeypatch):
     """
     Adding an effect is its module and its line in the registry: here a toy registered for this test only
-    (monkeypatch puts the registry back). It composes with the others, renders, and keeps the base's analytic
-    limit: its light has the key's spectrum, so the shading still cancels in NCC.
+    (monkeypatch puts the registry back), on a scene without the base's own ambient sky. It composes with the
+    others, renders, and keeps the base's analytic limit: its light has the key's spectrum, so the shading
+    still cancels in NCC.
     """
     pytest.importorskip("mitsuba")
     from skinrender.rendering.face import render_face, validate_face
 
-    monkeypatch.setitem(PHYSICS_EFFECTS, "ambient", AMBIENT)
-    assert parse_physics("ambient+sheen") == ("sheen", "ambient") and "ambient" in PHYSICS
-    assert list(physics_level("mixed+ambient").lights(load_face_scene("face"))) == [
-        "key", "fill", "environment", "ambient"]
+    monkeypatch.setitem(PHYSICS_EFFECTS, "sky", SKY)
+    dark = replace(load_face_scene("face"), ambient=0.0)
+    assert parse_physics("sky+sheen") == ("sheen", "sky") and "sky" in PHYSICS
+    assert list(physics_level("mixed+sky").lights(dark)) == ["key", "fill", "environment", "sky"]
     kwargs = {"size": 24, "spp": 8, "seed": 1, "prevailing": 2856, "calibration": 2856}
-    direct, lit = render_face(CAM, physics="direct", **kwargs), render_face(CAM, physics="ambient", **kwargs)
-    assert lit.physics == "ambient" and list(lit.info["lights"]) == ["key", "ambient"]
+    direct, lit = render_face(CAM, dark, physics="direct", **kwargs), render_face(CAM, dark, physics="sky", **kwargs)
+    assert lit.physics == "sky" and list(lit.info["lights"]) == ["key", "sky"]
     skin = lit.labels == LABEL_SKIN
     assert (direct.image[skin].max(axis=-1) == 0).any(), "the key light alone leaves some skin pixel black"
     assert (lit.image[skin].min(axis=-1) > 0).all(), "the sky reaches every skin pixel"
-    result = validate_face(CAM, physics="ambient", size=32, spp=48, limits=(), prevailing=2856, calibration=2856)
+    result = validate_face(CAM, dark, physics="sky", size=32, spp=48, limits=(), prevailing=2856, calibration=2856)
     assert [c.name for c in result.checks] == ["shading_cancels", "eq4_shift"]
     assert result.checks[0].passed is True, result.checks[0]
-    assert "ambient" not in PHYSICS_EFFECTS or PHYSICS_EFFECTS["ambient"] is AMBIENT
+    assert "sky" not in PHYSICS_EFFECTS or PHYSICS_EFFECTS["sky"] is SKY

@@ -1,0 +1,93 @@
+"""
+Run modules' doctests each in a fresh interpreter state, as pytest's ``--doctest-modules`` would, without
+pytest's start-up.
+
+-   ``python tests/doctest_alone.py skinrender.spectra``: one module, in this interpreter; exit 0 when every
+    example passes (the failures are printed).
+-   ``python tests/doctest_alone.py --serve``: reads module names on standard input, one a line, and for each
+    forks a child that imports the module and runs its doctests; answers one JSON line
+    ``{"module", "failed", "attempted", "output"}`` a module. Before forking, it imports only numpy and scipy
+    (whose import changes no printing: checked against numpy's default print options; colour-science's does —
+    it sets numpy's legacy printing — so it is not preloaded) and pytest's doctest checker, so each child pays for skinrender's own imports and nothing
+    of it is shared between modules: no module's doctests can rely on another's import.
+
+Used by ``tests/test_architecture.py::test_doctests_pass_on_their_own``. The option flags are the project's
+(``pyproject.toml``: ELLIPSIS, NORMALIZE_WHITESPACE, NUMBER), NUMBER through pytest's own output checker.
+Mitsuba and drjit are never imported before a fork (their threads do not survive it).
+"""
+
+from __future__ import annotations
+
+import doctest
+import importlib
+import io
+import json
+import os
+import sys
+from contextlib import redirect_stdout
+
+
+def run_module(module_name: str) -> tuple[int, int, str]:
+    """``(failed, attempted, output)`` of one module's doctests in this interpreter."""
+    from _pytest.doctest import _get_checker, _get_number_flag
+
+    flags = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE | _get_number_flag()
+    output = io.StringIO()
+    with redirect_stdout(output):
+        module = importlib.import_module(module_name)
+        runner = doctest.DocTestRunner(checker=_get_checker(), optionflags=flags)
+        for test in sorted(doctest.DocTestFinder().find(module, module_name), key=lambda t: t.name):
+            if test.examples:  # examples marked +SKIP are not attempted, as pytest skips them
+                runner.run(test)
+    result = runner.summarize(verbose=False)
+    return result.failed, result.attempted, output.getvalue()
+
+
+def serve() -> None:
+    """Answer module names on standard input, each run in a forked child (module docstring)."""
+    import numpy as np
+
+    defaults = np.get_printoptions()
+    import scipy.optimize  # noqa: F401
+    import scipy.stats  # noqa: F401
+    from _pytest.doctest import _get_checker
+
+    _get_checker()
+    assert np.get_printoptions() == defaults, "a preloaded library changed numpy's printing"
+    for line in sys.stdin:
+        name = line.strip()
+        if not name:
+            continue
+        read, write = os.pipe()
+        child = os.fork()
+        if child == 0:  # the child: run, report, leave without cleaning up the parent's state
+            os.close(read)
+            try:
+                failed, attempted, output = run_module(name)
+            except BaseException as error:  # noqa: BLE001  (an import error is a failure to report)
+                failed, attempted, output = 1, 0, f"{type(error).__name__}: {error}"
+            with os.fdopen(write, "w") as pipe:
+                json.dump({"module": name, "failed": failed, "attempted": attempted, "output": output[-3000:]}, pipe)
+            os._exit(0)
+        os.close(write)
+        with os.fdopen(read) as pipe:
+            answer = pipe.read()
+        _, status = os.waitpid(child, 0)
+        if not answer:
+            answer = json.dumps({"module": name, "failed": 1, "attempted": 0,
+                                 "output": f"the child died (wait status {status})"})
+        sys.stdout.write(answer.replace("\n", " ") + "\n")
+        sys.stdout.flush()
+
+
+def main(argv: list[str]) -> int:
+    if argv == ["--serve"]:
+        serve()
+        return 0
+    failed, attempted, output = run_module(argv[0])
+    print(output + f"{argv[0]}: {attempted} examples, {failed} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
