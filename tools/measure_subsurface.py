@@ -158,7 +158,9 @@ def main(what: str) -> None:
             ratio = errors.std(axis=0, ddof=1) / np.sqrt(np.mean(se**2, axis=0))
             print(f"{sampler}: 150 seeds, Vrhel 095's fit, 8 × 8 px, 16 spp: spread of the means over their "
                   f"standard errors {' '.join(f'{v:.2f}' for v in ratio)}; max |z| "
-                  f"{np.abs(errors / se).max():.1f}")
+                  f"{np.abs(errors / se).max():.1f}; spread of the means (relative) "
+                  f"{' '.join(f'{v:.4f}' for v in errors.std(axis=0, ddof=1))}; mean error "
+                  f"{' '.join(f'{v:+.4f}' for v in errors.mean(axis=0))}")
     elif what == "calibration":
         _calibration(100)
     elif what == "depth":

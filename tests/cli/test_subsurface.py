@@ -93,3 +93,44 @@ def test_the_default_spp_of_skin_patches_is_refused_with_its_estimate(capsys):
     line = assert_refused(["validate", "skin_patches", "--camera", CAM, *LIGHTS, "--physics", "subsurface",
                            "--max-minutes", "10"], ("--spp", "256 spp", "--max-minutes"), capsys)
     assert "30 skin patches" in line and "estimated" in line
+
+
+SKIN_PATCHES_TWO = """
+name = "skin_patches_two"
+columns = 2
+patch_px = 10
+gap_px = 2
+border_px = 1
+""" + "".join(f'[[patch]]\nname = "{name}"\nreflectance = "skin:{name}"\nskin = true\n'
+              for name in ("081 skin - caucasian (light)", "082 skin -- East indian (dark)"))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("camera", [CAM, "Canon EOS 5D Mark II"])
+@pytest.mark.parametrize("lights", [("A", "A"), ("H", "5900")])
+def test_skin_patches_pass_for_two_cameras_and_two_light_pairs(camera, lights, tmp_path, capsys):
+    """
+    Issue 22's done-when at a small size: skin_patches' lightest and darkest Vrhel skins (measured spectra, each
+    fitted by the skin model and rendered as its layers) at 10 × 10 px and 32 spp pass validate --physics
+    subsurface (both checks) through two cameras and two light pairs, and the JSON gives each patch's analytic
+    value: Eq. 4 of its slab's adding-doubling reflectance. (The whole chart at 48 spp: docs/subsurface.md.)
+    """
+    from skinrender.rendering.subsurface_chart import subsurface_chart
+    from skinrender.rendering.validation import analytic_reference
+
+    chart = tmp_path / "two.toml"
+    chart.write_text(SKIN_PATCHES_TWO)
+    prevailing, calibration = lights
+    status, out, err = run(["validate", chart, "--camera", camera, "--prevailing", prevailing, "--calibration",
+                            calibration, "--physics", "subsurface", "--spp", "32", "--tolerance", "0.2", "--json"],
+                           capsys)
+    assert status == 0, err[-500:]
+    document = json.loads(out)
+    assert document["verdict"] == "pass" and document["checks"]["difference"]["verdict"] == "pass"
+    assert [p["skin_model"]["source"] for p in document["patches"][:2]] == ["fit", "fit"]
+    assert all(p["skin_model"]["fit_rms"] <= 0.03 for p in document["patches"][:2])
+    slabs = subsurface_chart(str(chart))
+    expected = analytic_reference(camera, slabs.reflectances, document["prevailing_K"], document["calibration_K"])
+    np.testing.assert_allclose([p["analytic"] for p in document["patches"]], expected, rtol=1e-12)
+    measured = slabs.scene.reflectances(slabs.grid)[:2]
+    assert np.abs(slabs.reflectances[:2] - measured).max() > 1e-3  # the slab's value, not the measured spectrum's
