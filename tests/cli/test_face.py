@@ -80,6 +80,29 @@ class TestLadder:
         assert all(row["tpr_change"] == 0 for row in document["rows"] if row["level"] == "direct" and row["tpr"])
         assert status == [document["exit_status"]] and plot.read_bytes()[:4] == b"\x89PNG"
 
+    def test_subsurface_is_judged_against_the_budget(self, capsys):
+        """Issue 22: ``ladder --json`` has the ``subsurface`` level with ``eq4_shift``, ``budget`` and
+        ``within_budget`` like every level (a verdict, never information only), and ``--effects`` gives its row."""
+        status = []
+        document = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--size", "16",
+                        "--spp", "36", "--levels", "direct,subsurface", "--json"], capsys, status)
+        direct, subsurface = document["levels"]
+        assert subsurface["name"] == "subsurface" and subsurface["variant"] == "scalar_spectral"
+        assert subsurface["eq4_verdict"] in ("pass", "fail", "inconclusive")
+        assert subsurface["budget"] == direct["budget"] == document["budget"]["budget"] > 0
+        assert subsurface["eq4_shift"] >= 0 and subsurface["eq4_shift_bound"] >= subsurface["eq4_shift"]
+        assert subsurface["within_budget"] == {"pass": True, "fail": False}.get(subsurface["eq4_verdict"])
+        if subsurface["within_budget"] is None:
+            assert "no analytic limit on the face" in subsurface["undefined"]["within_budget"]
+        assert status == [document["exit_status"]]
+        table = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--size", "16",
+                     "--spp", "36", "--effects", "--skin", "skin-model:melanin=0.13", "--levels", "direct,subsurface",
+                     "--json"], capsys)
+        row = table["rows"][1]
+        assert (row["tone"], row["level"]) == ("skin-model:melanin=0.13", "subsurface")
+        assert row["eq4_verdict"] in ("pass", "fail", "inconclusive") and row["seconds"] > 0
+        assert {"eq4_shift", "budget", "within_budget", "tpr_change", "fpr_change"} <= set(row)
+
     def test_plot_writes_the_figure(self, tmp_path, capsys):
         plot = tmp_path / "sub" / "ladder.png"
         document = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--size", "16",
