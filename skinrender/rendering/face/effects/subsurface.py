@@ -33,10 +33,15 @@ and 0.3, measured with adding-doubling, ``docs/subsurface.md``).
 
 The document is written in millimetres (:data:`SCENE_SCALE_SUBSURFACE`) for
 the same reason; even so the skipped ~0.01 mm leaves a measured bias: a flat
-slab of the effective medium 100 mm from the origin renders 3.5–5 % (melanin
-0.02) and 6–9 % (melanin 0.3) darker than adding-doubling gives, per channel,
-against agreement within the noise (≈ 1 %) at the origin, where the chart's
-slabs are (``docs/subsurface.md``).
+slab of the effective medium 100 mm from the origin renders 6.0, 6.9 and
+8.4 % (melanin 0.02) and 13, 15 and 16 % (melanin 0.3) darker than
+adding-doubling gives (R, G, B), against agreement within the noise (≈ 1–2 %)
+at the origin, where the chart's slabs are (``docs/subsurface.md``). The bias
+grows towards blue, so it moves the skin's NCC too: Eq. 4's channels of the
+bundled face's skin (gbell 9 @ 450, 540, 610, 2856 K balanced to 5900 K)
+scaled by the melanin-0.02 factors move its NCC by 0.0034, most of its
+detection budget (0.0042). The face's ``eq4_shift`` at this level holds this
+artefact beside the physics.
 
 The boundary is a rough dielectric (GGX, :data:`SUBSURFACE_ALPHA`, the skin
 model's ``n``): the key and fill lights are points, which a smooth dielectric
