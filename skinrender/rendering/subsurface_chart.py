@@ -104,7 +104,8 @@ settings are given): its pixels are independent samples by construction, so a pa
 pixels' spread holds whatever the paths, and validate's difference test was calibrated with it (2 false alarms in
 100 seeds at α 0.01, ``docs/subsurface.md``). Over 150 seeds of a slab (8 × 8 px, 16 spp, the skin fitted to Vrhel
 095) the patch means' spread over their standard errors was 0.98, 1.02, 0.98 (R, G, B) with it and 0.96, 0.95, 0.94
-with ``multijitter`` (``tools/measure_subsurface.py samplers``): both honest, within the ratio's ±6 % noise."""
+with ``multijitter`` (``tools/measure_subsurface.py samplers``): both honest, within the ratio's ±6 % noise;
+multijitter's means spread 13–15 % less for the same paths, its difference test not yet calibrated on slabs."""
 
 SECONDS_PER_FIT = 1.3
 """Seconds to fit the skin model to one measured skin patch (one core, ~101 wavelengths), the estimates'."""
