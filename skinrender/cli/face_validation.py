@@ -75,6 +75,15 @@ def check_samples(spp: int, pixels: int) -> None:
                               flag="--spp")
 
 
+def check_replicates_work(args: argparse.Namespace, spp: int, pixels: int) -> None:
+    """Refuse, naming ``--spp``, a face validation whose replicate renders (:data:`REPLICATES` of ``pixels`` pixels
+    at ``⌈spp / REPLICATES⌉`` spp, at least :data:`SPP_REPLICATE_MIN`) are estimated beyond ``--max-minutes``."""
+    from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
+    from .common import check_render_work
+
+    check_render_work(args, pixels, max(-(-int(spp) // REPLICATES), SPP_REPLICATE_MIN), REPLICATES)
+
+
 def command_validate_face(args: argparse.Namespace, scene) -> None:
     """
     ``validate SCENE …`` for a face scene: the ``validate`` flags (``--camera``, ``--prevailing``,
@@ -92,7 +101,9 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
         raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene",
                               flag="--gamut")
     scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
-    check_samples(settings.spp, scene.camera.width * scene.camera.height if size is None else size * size)
+    pixels = scene.camera.width * scene.camera.height if size is None else size * size
+    check_samples(settings.spp, pixels)
+    check_replicates_work(args, settings.spp, pixels)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
                   skin, physics, settings.spp, settings.seed, size, settings.sampler, settings.variant,

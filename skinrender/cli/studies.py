@@ -109,7 +109,8 @@ def add_parsers(commands) -> None:
     p.add_argument("--reference-spp", metavar="N",
                    help="render --scene: spp of each level's reference render (default 4 × the largest of --spp-list)")
     add_max_minutes(p, "analytic: --repeat; search: --sample; sweep: the triplets of --positions; calibration: "
-                    "--seeds × --spp; validate: --seeds × --spp-list")
+                    "--seeds × --spp; validate: --seeds × --spp-list; render --scene: the levels × --spp-list × "
+                    "--size²")
     from .calibration import add_bench_arguments
 
     add_bench_arguments(p)
@@ -213,7 +214,7 @@ FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
 BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
                "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render", "calibration"),
                "scene": ("render", "calibration", "validate"),
-               "max_minutes": ("analytic", "search", "sweep", "calibration", "validate")}
+               "max_minutes": ("analytic", "search", "sweep", "calibration", "validate", "render")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
 :data:`FACE_BENCH_FLAGS`, the verdict benchmarks' :data:`skinrender.cli.calibration.VERDICT_BENCH_FLAGS`."""
 
@@ -270,6 +271,9 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
         if given:
             option = f"--{given[0].replace('_', '-')}"
             raise SkinrenderError(f"{option} goes with 'bench render --scene SCENE' (a face)", flag=option)
+        if args.what == "render" and args.max_minutes is not None:
+            raise SkinrenderError("--max-minutes caps the face bench (bench render --scene SCENE); the charts' render "
+                                  "bench does a fixed amount of work", flag="--max-minutes")
         return None
     from ..rendering.face.effects import active_lights, parse_physics
     from ..rendering.face.scene import load_face_scene
@@ -304,7 +308,24 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     levels = levels_of(args.levels if args.levels is not None else ",".join(LEVELS_BENCH))
     for level in levels:
         flag("--levels", active_lights, scene, flag("--levels", parse_physics, level))
+    check_face_bench_work(args, len(levels), size * size, spps, reference)
     return {"scene": scene, "size": size, "spps": spps, "reference_spp": reference, "levels": levels}
+
+
+def check_face_bench_work(args: argparse.Namespace, levels: int, pixels: int, spps: list[int], reference: int) -> None:
+    """
+    Refuse the face bench when its estimate exceeds ``--max-minutes``: per level one reference render at
+    ``reference`` spp and, per spp of the curve, a warm-up and a timed render (``2 × Σ spps``), all of ``pixels``
+    pixels (:func:`~skinrender.studies.face_sweep.estimate_seconds` on every core), naming ``--spp-list``.
+    """
+    import os
+
+    from ..studies.face_sweep import estimate_seconds
+
+    each = reference + 2 * sum(spps)
+    check_work(estimate_seconds(levels, pixels, each, os.cpu_count() or 1), "--spp-list",
+               f"{levels} levels × ({reference} + 2 × {sum(spps)}) spp × {pixels} pixels", args.max_minutes,
+               fewer="lower --spp-list, --reference-spp or --size")
 
 
 BENCH_ANALYTIC_SECONDS = 4.0

@@ -186,7 +186,9 @@ def test_table1_exit_status_says_its_verdict(capsys):
 @pytest.mark.parametrize("argv, names", [
     (["bench", "analytic", "--repeat", "1000000"], ("--repeat", "days", "--max-minutes")),
     (["bench", "search", "--sample", "100000"], ("--sample", "--max-minutes")),
-    (["bench", "render", "--max-minutes", "5"], ("--max-minutes", "bench analytic")),
+    (["bench", "render", "--max-minutes", "5"], ("--max-minutes", "fixed amount of work")),
+    (["bench", "render", "--scene", "face", "--spp-list", "64,256,1024", "--size", "256", "--max-minutes", "1"],
+     ("--spp-list", "levels × (4096 + 2 × 1344) spp × 65536 pixels", "--max-minutes")),
     (["table1", "--spp", "1048576"], ("--spp", "at most 267232 spp")),
 ])
 def test_work_and_its_flag_are_named(argv, names, capsys):
