@@ -49,7 +49,7 @@ def test_the_curve_starts_at_zero_and_is_linear(imx174):
 
 def test_quantisation_hides_a_small_read_noise():
     """The 8-bit CCD preset: 20 e⁻ at 0.006 DN/e⁻ is 0.12 DN, under the ADC step: undefined, with the reason."""
-    result = photon_transfer(camera("gbell:9@450,540,610"), "sony-icx418", points=8, spp=4)
+    result = photon_transfer(camera("gbell:9@450,540,610"), "sony-icx418", points=16, spp=4)
     assert result["read_noise_e"] == [None, None, None] and "quantisation" in result["undefined"]["read_noise_e"]
 
 
@@ -101,7 +101,7 @@ def test_dark_current_measured_from_the_dark_frames(imx174_dim):
 
 
 def test_quantised_dark_frames_give_no_dark_current():
-    result = photon_transfer(camera("gbell:9@450,540,610"), "sony-icx418", points=8, spp=4)
+    result = photon_transfer(camera("gbell:9@450,540,610"), "sony-icx418", points=16, spp=4)
     assert result["dark_current_e_per_s"] == [None, None, None]
     assert "dither" in result["undefined"]["dark_current_e_per_s"]
 

@@ -1,0 +1,101 @@
+"""
+The photon transfer's verdict
+=============================
+
+Whether the figures :func:`~skinrender.studies.ptc.photon_transfer` measured agree with those the imager
+states, as one difference test (:func:`~skinrender.evaluation.verdict.difference`), and how often it fails
+where they do (its calibration over seeds).
+
+-   :func:`ptc_verdict`: per tested figure and channel ``z = (fit − stated) / SE``; the largest ``|z|`` against the
+    two-sided Šidák critical value of a family-wise α of 0.01 over the figures tested.
+-   :func:`ptc_calibration`: ``seeds`` measurements of one render (the sensor noise's seed changes, the chart's
+    render is shared: its Monte Carlo noise is a fixed pattern the two-frame differences cancel), the observed
+    false-alarm rate with its Clopper–Pearson 95 % interval against α (``skinrender bench calibration --scene
+    ptc``).
+
+Tested: the conversion gain K (DN/e⁻) of each channel; the read noise (e⁻) where defined (σ_dark ≥ 0.5 DN);
+the dark current (e⁻/s) where resolved. Information only: the saturation capacity (EMVA 1288 defines it as the
+mean at the variance's peak, below the full well by construction: not an estimate of the stated full well) and
+the linearity error (the imager states none; the model is linear below the well).
+
+Units: those of the figures (DN/e⁻, e⁻, e⁻/s); z dimensionless; α and rates probabilities.
+
+References
+----------
+-   :cite:`EMVA1288` : EMVA Standard 1288, release 4.0 (docs/references.md).
+-   :cite:`Sidak1967`, :cite:`Clopper1934` : see :mod:`skinrender.evaluation.verdict`.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from ..evaluation.verdict import ALPHA_DIFFERENCE, EXIT_STATUS, binomial_interval, difference
+
+__all__ = ["TESTED", "INFORMATION_ONLY", "ptc_verdict", "ptc_calibration"]
+
+TESTED = ("gain_dn_per_e", "read_noise_e", "dark_current_e_per_s")
+"""The figures tested against the imager's stated values (each per channel, where reported)."""
+
+INFORMATION_ONLY = {
+    "full_well_e": "EMVA 1288's saturation capacity is the mean at the variance's peak, where part of the pixels "
+                   "already fill: below the full well by construction, so not an estimate of the stated figure",
+    "linearity_error": "the imager states no linearity error (its model is linear below the well); reported, not "
+                       "tested",
+}
+"""Figures reported without a test, and why."""
+
+
+def ptc_verdict(result: dict, alpha: float = ALPHA_DIFFERENCE) -> dict:
+    """
+    The difference test of a photon transfer ``result`` (``gain_dn_per_e``, ``read_noise_e``,
+    ``dark_current_e_per_s``, ``standard_error``, ``stated``): per figure of :data:`TESTED` and channel the
+    deviation ``fit − stated`` over its standard error, ``z``; ``fail`` when the largest ``|z|`` exceeds the
+    two-sided Šidák critical value of family-wise ``alpha`` over the values tested (normal law: each standard
+    error is propagated from thousands of pixel pairs' own moments, so its own error is a few percent).
+
+    Returns
+    -------
+    dict
+        ``z`` (per figure, per channel, ``None`` where not tested), ``checks`` (``{"fits": Verdict document}``:
+        the test in words, statistic, threshold, α, the worst value's figure and channel), ``verdict``,
+        ``passed``, ``exit_status`` and ``information_only`` (figure → why it is not tested).
+
+    Examples
+    --------
+    >>> doc = {"gain_dn_per_e": [0.1, 0.1, 0.1], "read_noise_e": [None] * 3, "dark_current_e_per_s": [None] * 3,
+    ...        "standard_error": {"gain_dn_per_e": [0.001] * 3, "read_noise_e": [None] * 3,
+    ...                           "dark_current_e_per_s": [None] * 3},
+    ...        "stated": {"gain_dn_per_e": 0.101, "read_noise_e": 5.0, "dark_current_e_per_s": 1.0}}
+    >>> v = ptc_verdict(doc)
+    >>> v["verdict"], v["z"]["gain_dn_per_e"]
+    ('pass', [-1.0, -1.0, -1.0])
+    >>> doc["stated"]["gain_dn_per_e"] = 0.11  # 10 % off: ten standard errors
+    >>> ptc_verdict(doc)["exit_status"]
+    1
+    """
+    deviations, errors, names, z = [], [], [], {}
+    for figure in TESTED:
+        z[figure] = []
+        for channel, (fit, se) in zip("RGB", zip(result[figure], result["standard_error"][figure])):
+            if fit is None or se is None:
+                z[figure].append(None)
+                continue
+            deviation = fit - result["stated"][figure]
+            deviations.append(deviation)
+            errors.append(se)
+            names.append(f"{figure} {channel}")
+            z[figure].append(float(deviation / se) if se > 0 else None)
+    verdict = difference(deviations, errors, alpha=alpha, name="fits")
+    details = {"tested": names}
+    if verdict.statistic is not None:
+        details["worst_figure"] = names[verdict.details["worst"]]
+    test = (f"{verdict.test}; each value (fit − stated) / SE of {', '.join(names)}; SE from each point's sampling "
+            "variance (the pixel pairs' fourth moments) through the least-squares fits, the read noise's by the delta "
+            "method" if names else verdict.test)
+    document = {**verdict.document(), "test": test, **details}
+    return {"z": z, "checks": {"fits": document}, "verdict": verdict.outcome, "passed": verdict.passed,
+            "exit_status": EXIT_STATUS[verdict.outcome], "information_only": dict(INFORMATION_ONLY)}
