@@ -60,6 +60,9 @@ def test_ptc_command_json_and_plot(tmp_path, capsys):
     assert status == 0 and (tmp_path / "ptc.png").is_file()
     assert {"points", "gain_dn_per_e", "read_noise_e", "full_well_e", "linearity_error", "stated"} <= set(document)
     assert set(document["points"][1]) >= {"exposure_s", "mean_dn", "variance_dn"}
+    assert {"standard_error", "z", "checks", "verdict", "passed", "exit_status", "information_only"} <= set(document)
+    assert document["verdict"] == "pass" and document["exit_status"] == 0 and document["checks"]["fits"]["alpha"] == 0.01
+    assert len(document["standard_error"]["gain_dn_per_e"]) == 3 and len(document["z"]["read_noise_e"]) == 3
 
 
 @pytest.mark.parametrize(("lux", "kelvin"), [(1e-3, 5900.0), (1e-9, 5900.0)])
@@ -135,4 +138,7 @@ def test_the_ptc_text_shows_every_figure_of_the_json(capsys):
     assert status == 0
     for column in ("gain DN/e⁻", "read noise e⁻", "dark current e⁻/s", "full well e⁻", "linearity %"):
         assert column in out
+    header = next(line for line in out.splitlines() if line.startswith("figure"))
+    assert header.split() == ["figure", "channel", "fit", "stated", "SE", "z"]
+    assert "test: difference" in out and "information only, full_well_e" in out and "verdict: PASS (exit status 0)" in out
     assert "dark_current_e_per_s undefined: not resolved" in out
