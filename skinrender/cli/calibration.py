@@ -41,16 +41,18 @@ def add_bench_arguments(p: argparse.ArgumentParser) -> None:
 
     p.add_argument("--camera", help="render, calibration, validate: the camera (default gbell:9@450,540,610); "
                    + HELP_CAMERA)
-    p.add_argument("--prevailing", help="calibration, validate: prevailing light (default 3300; a face 2856); "
+    p.add_argument("--prevailing", help="calibration, validate: prevailing light (default 3300; a face 2856; "
+                   "--scene ptc: the grey chart's one light, default 5900); "
                    + HELP_PLANCKIAN)
     p.add_argument("--calibration", help="calibration, validate: calibration light (default 4800; a face 5900); "
                    + HELP_PLANCKIAN)
     p.add_argument("--spp", metavar="N", help="calibration: samples per pixel (default 16; 64 with --imager; a face "
-                   "256, split over its 12 replicates)")
+                   "256, split over its 12 replicates; --scene ptc 64, its one render)")
     p.add_argument("--seeds", metavar="N", help="calibration: independent validations (default 40); validate: "
                    "validations per spp (default 5)")
     p.add_argument("--seed", metavar="S", help="calibration, validate: the first seed (default 0); the runs use S, "
-                   "S + 2, … (each validation takes its seed and the next; a face's S, S + 12, …: its 12 replicates)")
+                   "S + 2, … (each validation takes its seed and the next; a face's S, S + 12, …: its 12 replicates; "
+                   "--scene ptc's sensor seeds S, S + 1, … of one render with seed S)")
     p.add_argument("--imager", help="calibration, validate: through an image sensor (a preset or a TOML)")
     p.add_argument("--illuminance", type=float, help="calibration, validate with --imager: lux at the chart "
                    "(default 500)")
