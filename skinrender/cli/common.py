@@ -130,12 +130,12 @@ def check_render_work(args: argparse.Namespace, pixels: int, spp: int, renders: 
     """
     Refuse, before anything renders, ``renders`` renders of ``pixels`` pixels at ``spp`` that one pass cannot hold
     (:data:`~skinrender.rendering.renderer.SAMPLES_MAX`) or whose estimated time exceeds ``--max-minutes``
-    (:func:`~skinrender.studies.face_sweep.estimate_seconds` on every core), naming ``--spp``.
+    (:func:`~skinrender.studies.face.sweep.estimate_seconds` on every core), naming ``--spp``.
     """
     import os
 
     from ..rendering.renderer import SAMPLES_MAX
-    from ..studies.face_sweep import estimate_seconds
+    from ..studies.face.sweep import estimate_seconds
     from ..workload import check_work
 
     if spp * pixels > SAMPLES_MAX:

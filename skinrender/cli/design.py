@@ -127,7 +127,7 @@ def command_search(args: argparse.Namespace) -> None:
     from ..design.bank import positions_grid, sensor_bank
     from ..design.search import search
     from ..model.camera import sensor_curves
-    from ..studies.unknowns import check_positions
+    from ..studies.paper.unknowns import check_positions
 
     check_output(args.csv, "--csv", (".csv",))
     if not (math.isfinite(args.tie_tolerance) and args.tie_tolerance >= 0):
@@ -151,7 +151,7 @@ def command_search(args: argparse.Namespace) -> None:
     if not (math.isfinite(slope) and slope > 0):
         raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope}", flag="--slope")
     if args.workers is not None:
-        from ..studies.volumes import check_workers
+        from ..studies.paper.volumes import check_workers
 
         check_workers(args.workers)
     flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, slope)
