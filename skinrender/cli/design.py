@@ -151,7 +151,7 @@ def command_search(args: argparse.Namespace) -> None:
     if not (math.isfinite(slope) and slope > 0):
         raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope}", flag="--slope")
     if args.workers is not None:
-        from ..studies.paper.volumes import check_workers
+        from ..execution import check_workers
 
         check_workers(args.workers)
     flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, slope)
@@ -206,7 +206,8 @@ def check_search_time(args: argparse.Namespace, positions: int, noisy, max_tripl
     search's own refusal, with its count cap.
     """
     from ..design.noise_aware import SECONDS_PER_NOISY_SAMPLE
-    from ..design.search import SECONDS_PER_TRIPLET, check_workers
+    from ..design.search import SECONDS_PER_TRIPLET
+    from ..execution import check_workers
 
     count = positions * (positions - 1) * (positions - 2) // 6
     if count > max_triplets:

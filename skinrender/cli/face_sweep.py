@@ -111,7 +111,7 @@ def _checked(args: argparse.Namespace) -> dict:
     from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
     from ..studies.face.locus import SKIN_TONES
-    from ..studies.face.sweep import WORKERS_MAX
+    from ..execution import WORKERS_MAX
 
     check_output(args.csv, "--csv", (".csv",))
     cams = []

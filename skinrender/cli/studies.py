@@ -374,7 +374,7 @@ def command_bench(args: argparse.Namespace) -> None:
         emit(args, result, text)
         return
     if args.workers is not None:  # before any timing starts
-        from ..studies.paper.volumes import check_workers
+        from ..execution import check_workers
 
         check_workers(args.workers)
     if args.what == "sweep":

@@ -27,7 +27,7 @@ from ...datasets import reflectances
 from ...design.bank import SENSORS_PAPER
 from ...errors import SkinrenderError
 from ...spectra import GRID_DEFAULT, planck
-from ..paper.volumes import check_workers
+from ...execution import check_workers
 
 __all__ = ["machine", "bench_analytic", "bench_search", "bench_sweep", "bench_render"]
 

@@ -38,8 +38,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...design.search import WORKERS_MAX
 from ...errors import SkinrenderError
+from ...execution import WORKERS_MAX, check_workers, dask_name
 from ...evaluation.locus import skin_locus
 from ...files import write_output
 from ...model.camera import camera
@@ -53,7 +53,7 @@ from ...rendering.validation import analytic_reference
 from ...rendering.variants import choose_variant
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 from ...workload import duration_text
-from .workers import dask_name, run_renders
+from .workers import run_renders
 from .ladder import score_rendering
 
 __all__ = ["RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
@@ -275,9 +275,7 @@ def face_sweep(
     for name, value, low in (("size", size, 1), ("spp", spp, 1), ("seed", seed, 0)):  # size in pixels
         if not (isinstance(value, (int, np.integer)) and not isinstance(value, bool) and low <= value < 2**32):
             raise SkinrenderError(f"{name} must be an integer in [{low}, 2^32), got {value!r}")
-    workers = (os.cpu_count() or 1) if workers is None else workers
-    if not (isinstance(workers, (int, np.integer)) and not isinstance(workers, bool) and 1 <= workers <= WORKERS_MAX):
-        raise SkinrenderError(f"workers must be an integer in [1, {WORKERS_MAX}] processes, got {workers!r}")
+    workers = check_workers(workers, "workers")
     tasks = sweep_tasks(cams, pairs, skins, levels)
     _check_size(len(tasks), int(size), int(spp), max_renders, max_samples,
                 min(workers, os.cpu_count() or 1) if dask is None else os.cpu_count() or 1)

@@ -38,7 +38,8 @@ from .observations import paper_cameras, stage1_text, stage2_by_camera
 from .tables import write_tables
 from .unknowns import (Setting, check_camera, check_positions, check_search_work, check_sensors, resolve_setting,
                        setting_tables)
-from .volumes import VolumeCache, check_workers
+from ...execution import check_workers
+from .volumes import VolumeCache
 
 __all__ = [
     "STAGE2_CAMERA",

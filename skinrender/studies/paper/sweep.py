@@ -40,7 +40,8 @@ from .observations import paper_cameras, shared_file
 from .tables import TABLES
 from .unknowns import (SETTING_DEFAULT, Setting, check_positions, check_search_work, check_sensors, resolve_setting,
                        setting_tables, with_unknown)
-from .volumes import VolumeCache, check_workers
+from ...execution import check_workers
+from .volumes import VolumeCache
 
 __all__ = ["SWEEP_SLOPES", "SWEEP_GRIDS", "SWEEP_MUNSELL", "SWEEP_SKIN", "UNKNOWNS", "sweep_candidates", "sweep",
            "write_sweep", "reproduce_sweep"]

@@ -43,7 +43,8 @@ from ...spectra import EXTRAPOLATIONS, WavelengthGrid
 from ...workload import check_work
 from .matching import count_matches
 from .tables import table_rows
-from .volumes import VolumeCache, bank_key, check_workers, search_result
+from ...execution import check_workers
+from .volumes import VolumeCache, bank_key, search_result
 
 __all__ = ["STAGE1_CAMERA", "Setting", "SETTING_DEFAULT", "ResolvedSetting", "resolve_setting", "check_sensors",
            "check_positions", "check_search_work", "check_camera", "setting_tables", "with_unknown"]

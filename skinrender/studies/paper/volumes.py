@@ -24,41 +24,29 @@ computes every triplet.
 
 from __future__ import annotations
 
-import signal
 import time
-from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
+from ... import execution
 from ...design.bank import SensorBank, triplets
 from ...design.criteria import triplet_gains, triplet_volumes_many
-from ...design.search import SearchResult, check_workers, dask_client, stop_pool
-from ...workload import announce, progress_bar
+from ...design.search import SearchResult
+from ...execution import check_workers
 from ...evaluation.hull import HULL_KERNEL, notice_kernel
 from ...hints import NDArrayFloat
 
-__all__ = ["bank_key", "VolumeCache", "compute_volumes", "chunk_gains", "search_result", "check_workers"]
-
-_BANKS: tuple[SensorBank, ...] = ()
+__all__ = ["bank_key", "VolumeCache", "compute_volumes", "chunk_gains", "search_result"]
 
 
-def _init(banks: tuple[SensorBank, ...]) -> None:
-    global _BANKS
-    _BANKS = banks
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: no traceback per worker
-
-
-def _chunk(bank: int, index: np.ndarray, banks: tuple[SensorBank, ...] | None = None) -> NDArrayFloat:
-    """Volumes ``(len(index), Q + 1)`` of the triplets ``index`` of bank number ``bank``."""
-    return triplet_volumes_many((banks if banks is not None else _BANKS)[bank], np.asarray(index))
+def _chunk(banks: tuple[SensorBank, ...], task: tuple[int, np.ndarray]) -> NDArrayFloat:
+    """Volumes ``(len(index), Q + 1)`` of the triplets ``index`` of bank number ``bank`` (``task``)."""
+    bank, index = task
+    return triplet_volumes_many(banks[bank], np.asarray(index))
 
 
 chunk_gains = triplet_gains
 """The gains of many triplets at once: :func:`skinrender.design.criteria.triplet_gains` (its earlier name)."""
-
-
-def _dask_chunk(bank: SensorBank, index: np.ndarray) -> NDArrayFloat:
-    return _chunk(0, index, (bank,))
 
 
 def bank_key(sensor: float, spec: str, positions: NDArrayFloat, temperatures: NDArrayFloat, slope: float,
@@ -127,50 +115,19 @@ def compute_volumes(
     remaining = {k: len(parts) for k in keys}
     finished: dict[tuple, float] = {}
     notice_kernel(notice)
-    bar = progress_bar(len(index) * len(items), label, progress)
     start = time.perf_counter()
 
-    def store(job, values) -> None:
-        key = keys[job[0]]
-        out[key][job[1]] = values
+    def store(number: int, values) -> None:
+        bank, part = jobs[number]
+        key = keys[bank]
+        out[key][part] = values
         remaining[key] -= 1
         if remaining[key] == 0:
             finished[key] = time.perf_counter() - start
-        bar.update(len(job[1]))
 
-    if dask is not None:
-        client, own = dask_client(dask)
-        announce(progress, label, len(index) * len(items))
-        try:
-            remote = client.scatter(list(items), broadcast=True)
-            futures = [client.submit(_dask_chunk, remote[b], index[part], pure=False) for b, part in jobs]
-            if on_start is not None:
-                on_start()
-            for job, future in zip(jobs, futures):
-                store(job, future.result())
-        finally:
-            if own:
-                client.close()
-    elif workers == 1:
-        announce(progress, label, len(index) * len(items))
-        if on_start is not None:
-            on_start()
-        for job in jobs:
-            store(job, _chunk(job[0], index[job[1]], items))
-    else:
-        pool = ProcessPoolExecutor(workers, initializer=_init, initargs=(items,))
-        try:
-            futures = [pool.submit(_chunk, b, index[part]) for b, part in jobs]
-            announce(progress, label, len(index) * len(items))  # the workers are forked and busy
-            if on_start is not None:
-                on_start()  # the workers are forked at the first submit: a thread may start now
-            for job, future in zip(jobs, futures):
-                store(job, future.result())
-        except BaseException:  # Ctrl-C, or an error of on_start's: stop the workers now
-            stop_pool(pool)
-            raise
-        pool.shutdown()
-    bar.close()
+    execution.map(_chunk, [(b, index[part]) for b, part in jobs], workers=workers, dask=dask, shared=items,
+                  progress=progress, label=label, unit="triplet", sizes=[len(part) for _, part in jobs],
+                  on_start=on_start, on_result=store)
     return out, finished
 
 

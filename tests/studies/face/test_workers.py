@@ -2,7 +2,7 @@
 Tests for :mod:`skinrender.studies.face.workers`: results in task order from this process, worker processes and
 Dask; a worker's stdout goes to stderr; errors reach the caller (an unreachable scheduler:
 tests/cli/test_face_sweep.py). (That renders give the same numbers every way is
-tested through the face sweep, tests/studies/test_face_sweep.py.)
+tested through the face sweep, tests/studies/face/test_sweep.py; the pool itself: tests/test_execution.py.)
 """
 
 from __future__ import annotations

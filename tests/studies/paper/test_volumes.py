@@ -7,13 +7,11 @@ import pytest
 
 import skinrender as sr
 from skinrender.design.bank import positions_grid, sensor_bank, triplets
-from skinrender.design.search import WORKERS_MAX, search
-from skinrender.errors import SkinrenderError
+from skinrender.design.search import search
 from skinrender.spectra import GRID_DEFAULT
 from skinrender.studies.paper.volumes import (
     VolumeCache,
     bank_key,
-    check_workers,
     chunk_gains,
     compute_volumes,
     search_result,
@@ -80,19 +78,6 @@ class TestVolumeCache:
                                                                                         GRID_DEFAULT, "refuse")
         assert bank_key(9, "skin", where, t, 2.0, GRID_DEFAULT, "refuse") != bank_key(9, "skin", where, t, 5.0,
                                                                                         GRID_DEFAULT, "refuse")
-
-
-class TestCheckWorkers:
-    def test_default_is_every_core(self):
-        assert check_workers(None) >= 1
-
-    def test_the_bounds_are_search_s(self):
-        assert check_workers(1) == 1 and check_workers(WORKERS_MAX) == WORKERS_MAX
-
-    @pytest.mark.parametrize("bad", [0, -1, 1.5, 2.0, True, 1000, "2", float("nan")])
-    def test_refused(self, bad):
-        with pytest.raises(SkinrenderError, match="--workers"):
-            check_workers(bad)
 
 
 def test_dask_gives_the_same_volumes(sets):
