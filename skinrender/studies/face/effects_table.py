@@ -26,7 +26,7 @@ from pathlib import Path
 
 from ...errors import SkinrenderError
 from ...evaluation.budget import BUDGET_FRACTION
-from ...evaluation.verdict import EXIT_STATUS, combine
+from ...evaluation.verdict import Combined
 from ...rendering.face.effects import LEVELS_EACH
 from .ladder import REPLICATES_LADDER, ladder
 
@@ -46,7 +46,7 @@ ROW_KEYS = ("seconds", "spp", "eq4_shift", "eq4_shift_bound", "eq4_verdict", "bu
 
 
 @dataclass(frozen=True)
-class EffectsTable:
+class EffectsTable(Combined):
     """
     The table: ``rows`` (one per skin tone and level: ``tone``, ``skin``, ``level``, the :data:`ROW_KEYS` and
     ``undefined``), ``skins`` (per tone its ``skin``, Eq. 4's NCC and the detection ``budget``), the settings,
@@ -63,17 +63,13 @@ class EffectsTable:
     rows: list
     verdicts: list = field(default_factory=list, repr=False, compare=False)
 
-    @property
-    def verdict(self):
-        """Every row's ``eq4_shift`` verdict combined."""
-        return combine(self.verdicts, "effects table")
+    VERDICT_NAME = "effects table"
 
     def document(self) -> dict:
         """The JSON document."""
-        verdict = self.verdict
         return {"camera": self.camera, "prevailing_K": self.prevailing, "calibration_K": self.calibration,
                 "size": list(self.size), "spp": self.spp, "levels": list(self.levels), "skins": self.skins,
-                "rows": self.rows, "verdict": verdict.outcome, "exit_status": EXIT_STATUS[verdict.outcome]}
+                "rows": self.rows, **self.verdict.summary()}
 
     def figure(self, path) -> Path:
         """Draw the table (:func:`skinrender.studies.face.effect_figures.figure_effects`) to a PNG; returns ``path``."""

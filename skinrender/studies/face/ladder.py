@@ -42,7 +42,7 @@ import numpy as np
 from ...errors import SkinrenderError
 from ...evaluation.budget import BUDGET_FRACTION
 from ...evaluation.detection import SCORED_MIN_OUTPUT
-from ...evaluation.verdict import EXIT_STATUS, combine
+from ...evaluation.verdict import Combined
 from ...hints import NDArrayFloat
 from ...model.camera import camera
 from ...model.chromaticity import ncc
@@ -68,7 +68,7 @@ REPLICATES_LADDER = REPLICATES
 
 
 @dataclass(frozen=True)
-class Ladder:
+class Ladder(Combined):
     """
     The ladder's result.
 
@@ -119,18 +119,14 @@ class Ladder:
     budget: dict = field(default_factory=dict)
     verdicts: list = field(default_factory=list, repr=False, compare=False)
 
-    @property
-    def verdict(self):
-        """Every level's ``eq4_shift`` verdict combined (:func:`~skinrender.evaluation.verdict.combine`)."""
-        return combine(self.verdicts, "ladder")
+    VERDICT_NAME = "ladder"
 
     def document(self) -> dict:
         """The JSON document (``levels``, the budget, the verdict and the settings)."""
-        verdict = self.verdict
         return {"camera": self.camera, "scene": self.scene, "skin": self.skin,
                 "prevailing_K": self.prevailing, "calibration_K": self.calibration, "size": list(self.size),
                 "skin_ncc_analytic": self.skin_ncc_analytic, "locus_area": self.locus_area, "budget": self.budget,
-                "levels": self.levels, "verdict": verdict.outcome, "exit_status": EXIT_STATUS[verdict.outcome]}
+                "levels": self.levels, **self.verdict.summary()}
 
     def figure(self, path) -> Path:
         """
