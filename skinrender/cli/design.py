@@ -88,8 +88,8 @@ def add_parsers(commands) -> None:
                    help="fast (hull vertices only, exact; default) or naive (Qhull on every full point set)")
     add_noisy(p)
     p.add_argument("--max-triplets", type=int, default=1_000_000,
-                   help="refuse searches of more triplets than this (default 1 000 000; the 5 nm grid has 35 990, "
-                   "measured at ~80 s on 2 cores; the estimate is printed with the refusal)")
+                   help="refuse searches of more triplets than this (default 1 000 000; the 5 nm grid has 35 990; "
+                   "the estimate of the time is printed with the refusal)")
     add_max_minutes(p, "the triplets (× --noise-samples with --imager)")
     p.add_argument("--tie-tolerance", type=float, default=1e-9,
                    help="relative difference under which two values tie (default 1e-9); ties are all listed")

@@ -86,7 +86,7 @@ def add_parsers(commands) -> None:
     p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate"],
                    help="which benchmark")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant); search: "
-                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep (~8 s)")
+                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep")
     p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG; calibration: the "
                    "observed false-alarm rates with their 95 %% intervals against the nominal α")
     p.add_argument("--repeat", type=int, help="analytic: timed repetitions, best kept (default 3)")
@@ -308,12 +308,12 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
 
 
 BENCH_ANALYTIC_SECONDS = 4.0
-"""One ``bench analytic`` repetition (both routes), s: --repeat 1 vs 4 took 8.3 and 20.2 s (2-core AMD EPYC VM
-shared with other jobs)."""
+"""One ``bench analytic`` repetition (both routes), s: the estimates' rate, from ``--repeat 1`` against ``4``
+(docs/speed.md, "The rates behind the estimates")."""
 
 BENCH_SEARCH_SECONDS_PER_SAMPLE = 0.33
-"""What each ``bench search --sample`` triplet adds, s: --quick --sample 20 vs 200 took 12 and 72 s (same
-machine, --workers 1)."""
+"""What each ``bench search --sample`` triplet adds, s: the estimates' rate, from ``--quick --sample 20``
+against ``200`` with ``--workers 1`` (docs/speed.md, "The rates behind the estimates")."""
 
 
 def _bench_camera(args: argparse.Namespace) -> str:

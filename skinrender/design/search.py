@@ -46,8 +46,8 @@ __all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "WORKERS_MAX", "SECONDS_PER_TRIPLE
            "dask_client", "check_workers"]
 
 SECONDS_PER_TRIPLET = 2.2e-3
-"""One triplet's volumes (skin and Munsell, every calibration) on one core, s: the estimates' rate (measured ~2 ms
-on a 2-core AMD EPYC VM)."""
+"""One triplet's volumes (skin and Munsell, every calibration) on one core, s: the estimates' rate (measured with
+``skinrender bench search``: docs/speed.md, "The Stage 3 search")."""
 
 TOLERANCE_TIE = 1e-9
 """Two values within this relative difference are a tie; ties are reported."""

@@ -69,7 +69,8 @@ cores at :data:`SAMPLES_PER_S`)."""
 SECONDS_PER_RENDER = 0.15
 """Fixed cost of one face render on one core (scene, cached kernels, labels, scoring), s: the estimates' base;
 fitted with :data:`SAMPLES_PER_S` to two measured sweeps of 54 renders (direct, sheen, all effects) with one
-worker, 15 s at 64 px and 32 spp, 73 s at 128 px and 64 spp (2-core AMD EPYC VM, llvm_ad_spectral)."""
+worker at 64 px, 32 spp and 128 px, 64 spp (the measurements and their commands: docs/speed.md, "The rates
+behind the estimates")."""
 
 SAMPLES_PER_S = 9e5
 """Samples per second of the face on one core (one drjit thread), the estimates' rate (see
@@ -133,7 +134,7 @@ def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2) -> flo
 
     Examples
     --------
-    >>> round(estimate_seconds(54, 128 * 128, 64, cores=1))  # measured: 73 s
+    >>> round(estimate_seconds(54, 128 * 128, 64, cores=1))  # measured: docs/speed.md
     71
     """
     return renders * (SECONDS_PER_RENDER + pixels * spp / SAMPLES_PER_S) / max(1, cores)
