@@ -112,7 +112,9 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
             + "".join(f"\n{c.name}: {c.reason}\n  test: {c.test}" for c in result.checks)
             + f"\nverdict: {verdict.outcome.upper().replace('_', ' ')} (exit status {document['exit_status']}); "
             "difference tests: statistic = the largest |t| / critical value (≤ 1 passes); eq4_shift: the shift "
-            "of the skin's mean NCC against the detection budget, bound its 95 % upper bound")
+            "of the skin's mean NCC against the detection budget, bound its 95 % upper bound"
+            + ("" if result.spp_needed is None else
+               f"\nspp needed for eq4_shift to pass: about {result.spp_needed} in all (--spp)"))
     emit(args, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])
