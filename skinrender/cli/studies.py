@@ -316,11 +316,11 @@ def check_face_bench_work(args: argparse.Namespace, levels: int, pixels: int, sp
     """
     Refuse the face bench when its estimate exceeds ``--max-minutes``: per level one reference render at
     ``reference`` spp and, per spp of the curve, a warm-up and a timed render (``2 × Σ spps``), all of ``pixels``
-    pixels (:func:`~skinrender.studies.face_sweep.estimate_seconds` on every core), naming ``--spp-list``.
+    pixels (:func:`~skinrender.studies.face.sweep.estimate_seconds` on every core), naming ``--spp-list``.
     """
     import os
 
-    from ..studies.face_sweep import estimate_seconds
+    from ..studies.face.sweep import estimate_seconds
 
     each = reference + 2 * sum(spps)
     check_work(estimate_seconds(levels, pixels, each, os.cpu_count() or 1), "--spp-list",
