@@ -74,7 +74,7 @@ from .rendering.settings import RenderSettings
 from .rendering.validation import Validation, validate_gamut
 from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse, planck, resample
 from .studies import labelled as _labelled  # noqa: F401 (registers the figures of Rendering and FaceRendering)
-from .studies.tables import table1
+from .studies.paper.tables import table1
 
 __version__ = "0.1.0"
 

@@ -1,7 +1,7 @@
 """
 ``skinrender bench calibration`` and ``bench validate``: how often the
 validation's checks fail where their null holds, and what a validation costs
-and shows as spp grows (:mod:`skinrender.studies.calibration`). The flags are
+and shows as spp grows (:mod:`skinrender.studies.benchmarks.calibration`). The flags are
 added to ``bench``'s parser (:mod:`skinrender.cli.studies`), which refuses
 the ones another benchmark takes before calling :func:`command_bench_verdicts`.
 
@@ -76,7 +76,7 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     from ..model.illuminant import illuminant
     from ..rendering.renderer import SAMPLES_MAX, render_passes
     from ..rendering.scene import load_chart_scene
-    from ..studies.calibration import calibration_path, estimate_seconds, renders_of
+    from ..studies.benchmarks.calibration import calibration_path, estimate_seconds, renders_of
     from ..workload import check_work
     from .face import is_face_scene
 
@@ -133,7 +133,7 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
     from ..model.camera import camera
     from ..rendering.face.effects import PHYSICS_BASE, physics_level
     from ..rendering.face.scene import load_face_scene
-    from ..studies.face_calibration import SEED_STEP, estimate_face_seconds
+    from ..studies.benchmarks.face_calibration import SEED_STEP, estimate_face_seconds
     from ..workload import check_work
     from .face import planckian_flag
 
@@ -215,7 +215,7 @@ def _checked_ptc(args: argparse.Namespace) -> dict:
 
 @interruptible
 def _run(wrapped: argparse.Namespace) -> None:
-    from ..studies.calibration import bench_calibration, bench_validate
+    from ..studies.benchmarks.calibration import bench_calibration, bench_validate
 
     args = wrapped.args
     options = _checked(args, wrapped.spp_list)
@@ -238,7 +238,7 @@ def _run(wrapped: argparse.Namespace) -> None:
               "calibration": options["calibration"], "first_seed": options["first_seed"],
               "imaging": options["imaging"], "mc_variance": options["mc_variance"], "progress": progress}
     if options.get("kind") == "face":  # the face's own study: it knows where Eq. 4's null holds
-        from ..studies.face_calibration import face_calibration
+        from ..studies.benchmarks.face_calibration import face_calibration
 
         result = face_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
                                   options["prevailing"], options["calibration"], options["spps"][0],

@@ -60,7 +60,7 @@ def check_samples(spp: int, pixels: int) -> None:
     """
     from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
     from ..rendering.renderer import SAMPLES_MAX
-    from ..studies.face_sweep import SAMPLES_PER_S
+    from ..studies.face.sweep import SAMPLES_PER_S
 
     each = max(-(-int(spp) // REPLICATES), SPP_REPLICATE_MIN)
     total = each * REPLICATES * int(pixels)

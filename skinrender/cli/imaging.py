@@ -182,7 +182,7 @@ def command_ptc(args: argparse.Namespace) -> None:
     from ..model.imager import imager
     from ..studies.figures import figure_ptc
     from ..rendering.settings import RenderSettings
-    from ..studies.ptc import photon_transfer
+    from ..studies.benchmarks.ptc import photon_transfer
 
     plot = check_output(args.plot, "--plot", (".png",))
     cam = camera_of(args)

@@ -67,8 +67,8 @@ def test_face_bench_refusals(argv, names, capsys):
 def test_face_bench_text_shows_no_none_and_the_json_gives_reasons(monkeypatch, capsys):
     """A preset the floor makes unreachable prints "—" (never ``None``), its reason in a note and the JSON."""
     pytest.importorskip("mitsuba")
-    import skinrender.studies.bench_face as bench_face_module
-    from skinrender.studies.bench_face import PRESET_THRESHOLDS, presets_of
+    import skinrender.studies.benchmarks.bench_face as bench_face_module
+    from skinrender.studies.benchmarks.bench_face import PRESET_THRESHOLDS, presets_of
 
     spps, reference = [4, 16], 64
     noise = presets_of(spps, [0.03, 0.025], reference)  # a floor above the draft threshold
@@ -151,8 +151,8 @@ def test_quick_search_bench_times_the_20nm_search_and_estimates_the_rest(capsys)
 def test_face_bench_marks_extrapolated_presets(monkeypatch, capsys):
     """A preset the curve did not reach is the error model's extrapolation: starred, with a footnote."""
     pytest.importorskip("mitsuba")
-    import skinrender.studies.bench_face as bench_face_module
-    from skinrender.studies.bench_face import PRESET_THRESHOLDS, presets_of
+    import skinrender.studies.benchmarks.bench_face as bench_face_module
+    from skinrender.studies.benchmarks.bench_face import PRESET_THRESHOLDS, presets_of
 
     curve = [4, 16]
     presets = presets_of(curve, list(0.1 * (1 / np.array(curve)) ** 0.5), 4096)
