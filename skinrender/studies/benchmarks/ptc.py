@@ -269,7 +269,7 @@ def photon_transfer(
     ``gain_dn_per_e``, ``read_noise_e`` (the dark variance's intercept at t = 0: no dark current),
     ``dark_current_e_per_s`` (measured from the dark means), ``full_well_e``, ``linearity_error`` (percent), each
     per channel, ``stated`` (the imager's own figures), ``standard_error`` (of the first three) and the verdict's
-    keys (:func:`~skinrender.studies.ptc_verdict.ptc_verdict`: ``z``, ``checks``, ``verdict``, ``passed``,
+    keys (:func:`~skinrender.studies.benchmarks.ptc_verdict.ptc_verdict`: ``z``, ``checks``, ``verdict``, ``passed``,
     ``exit_status``, ``information_only``). ``settings``: the render's, and its seed the sensor noise's (or its
     fields ``spp``, ``seed`` … as ``options``).
     """

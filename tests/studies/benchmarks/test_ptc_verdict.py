@@ -1,5 +1,5 @@
 """
-Tests for :mod:`skinrender.studies.ptc_verdict`: the photon transfer's fits pass against a correct imager's stated
+Tests for :mod:`skinrender.studies.benchmarks.ptc_verdict`: the photon transfer's fits pass against a correct imager's stated
 figures and fail against a stated gain or read noise 10 % off (the 8-bit icx418's gain: 25 %) (the control: the test can fail); the per-figure z and
 standard errors are in the result; the calibration's rows count the false alarms.
 """
@@ -14,8 +14,8 @@ import pytest
 from skinrender.model.camera import camera
 from skinrender.model.imager import imager
 from skinrender.rendering.settings import RenderSettings
-from skinrender.studies.ptc import electron_rates, measure
-from skinrender.studies.ptc_verdict import INFORMATION_ONLY, ptc_calibration, ptc_verdict
+from skinrender.studies.benchmarks.ptc import electron_rates, measure
+from skinrender.studies.benchmarks.ptc_verdict import INFORMATION_ONLY, ptc_calibration, ptc_verdict
 
 pytest.importorskip("mitsuba")
 

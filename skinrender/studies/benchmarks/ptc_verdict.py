@@ -2,7 +2,7 @@
 The photon transfer's verdict
 =============================
 
-Whether the figures :func:`~skinrender.studies.ptc.photon_transfer` measured agree with those the imager
+Whether the figures :func:`~skinrender.studies.benchmarks.ptc.photon_transfer` measured agree with those the imager
 states, as one difference test (:func:`~skinrender.evaluation.verdict.difference`), and how often it fails
 where they do (its calibration over seeds).
 
@@ -33,7 +33,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ..evaluation.verdict import ALPHA_DIFFERENCE, EXIT_STATUS, binomial_interval, difference, sidak
+from ...evaluation.verdict import ALPHA_DIFFERENCE, EXIT_STATUS, binomial_interval, difference, sidak
 
 __all__ = ["TESTED", "INFORMATION_ONLY", "SECONDS_PER_MEASUREMENT", "estimate_ptc_seconds", "ptc_verdict", "ptc_calibration"]
 
@@ -162,8 +162,8 @@ def ptc_calibration(camera_, imager_, temperature: float = 5900.0, illuminance_l
         ``z`` (``{figure: {mean, sd, values}}``, per channel), ``tests``, ``runs`` (``[{seed, verdict, statistic,
         worst}]``), ``elapsed_s``.
     """
-    from ..model.imager import imager
-    from ..rendering.settings import RenderSettings
+    from ...model.imager import imager
+    from ...rendering.settings import RenderSettings
     from .bench import machine
     from .ptc import electron_rates, measure
 
