@@ -172,8 +172,8 @@ level of physics and no render variance in its predictions (its two-frame differ
 
 
 def _checked_ptc(args: argparse.Namespace) -> dict:
-    """``bench calibration --scene ptc --imager I``'s flags checked (:func:`~skinrender.studies.benchmarks.ptc_verdict.
-    ptc_calibration`): ``--prevailing`` is the grey chart's light (default 5900 K, as ``ptc --temperature``),
+    """``bench calibration --scene ptc --imager I``'s flags checked
+    (:func:`~skinrender.studies.benchmarks.ptc.ptc_calibration`): ``--prevailing`` is the grey chart's light (default 5900 K, as ``ptc --temperature``),
     ``--illuminance`` its lux (default 500), ``--spp`` the one render's (default 64), ``--seed`` the first sensor
     seed (the runs use S, S + 1, …; the render S)."""
     from ..model.camera import camera
@@ -222,7 +222,7 @@ def _run(wrapped: argparse.Namespace) -> None:
     print(f"bench {args.what}: about {options['estimate_s']:.0f} s (estimated) …", file=sys.stderr)
     progress = lambda line: print(line, file=sys.stderr)  # noqa: E731
     if options.get("kind") == "ptc":
-        from ..studies.benchmarks.ptc_verdict import ptc_calibration
+        from ..studies.benchmarks.ptc import ptc_calibration
 
         result = ptc_calibration(options["camera_"], options["imager_"], options["temperature"],
                                  options["illuminance_lux"], options["seeds"], options["first_seed"],

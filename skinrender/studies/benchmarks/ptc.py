@@ -10,6 +10,10 @@ what it gives — conversion gain, read noise, saturation capacity, linearity
 error, signal-to-noise ratio — beside the values the imager states.
 
 -   :func:`photon_transfer`: the measurement, a dict with CONTRACT.md's keys.
+-   :func:`electron_rates`, :func:`measure`: its two halves, the render and the sensor's measurement (with each
+    fit's standard error).
+-   :func:`ptc_calibration`: the false-alarm rate of its verdict
+    (:mod:`~skinrender.studies.benchmarks.ptc_verdict`) over sensor seeds of one render.
 
 Units: exposure s, means DN, variances DN², gain DN/e⁻, noise and capacity e⁻,
 linearity error in percent.
@@ -39,6 +43,9 @@ References
 
 from __future__ import annotations
 
+import time
+from collections.abc import Callable
+
 import numpy as np
 
 from ...errors import SkinrenderError
@@ -51,7 +58,7 @@ from ...rendering.scene import ChartScene, Patch
 from ...rendering.settings import RenderSettings
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["GREY_CHART", "PTC_SETTINGS", "photon_transfer"]
+__all__ = ["GREY_CHART", "PTC_SETTINGS", "electron_rates", "measure", "photon_transfer", "ptc_calibration"]
 
 GREY_CHART = ChartScene(name="ptc grey", description="one flat grey patch (reflectance 0.5) for photon transfer",
                         columns=1, patch_px=64, gap_px=0, border_px=0,
@@ -284,3 +291,57 @@ def photon_transfer(
     result = {"camera": camera_.name, "imager": im.name, "temperature_K": float(temperature),
               "illuminance_lux": float(illuminance_lux), "spp": spp, **measure(im, rate, settings.seed, points)}
     return {**result, **ptc_verdict(result)}
+
+
+def ptc_calibration(camera_, imager_, temperature: float = 5900.0, illuminance_lux: float = 500.0, seeds: int = 40,
+                    first_seed: int = 0, points: int = 24, spp: int = 64, alpha: float = 0.01,
+                    progress: Callable[[str], None] | None = None) -> dict:
+    """
+    ``seeds`` photon-transfer measurements of a correct imager (the sensor noise's seeds ``first_seed``,
+    ``first_seed + 1``, …; the grey chart rendered once at ``spp`` with seed ``first_seed``): every failure of the
+    fits' test is a false alarm. Per check (``fits``, the family; each tested figure, its share of it) the observed
+    rate with its Clopper–Pearson 95 % interval against the nominal α, and per figure and channel the mean and
+    standard deviation of z (0 and 1 where the standard errors are right).
+
+    Returns
+    -------
+    dict
+        ``machine``, ``scene`` (``ptc``), ``camera``, ``imager``, ``illuminance_lux``, ``prevailing_K`` (the light,
+        K), ``calibration_K`` (``None``), ``spp``, ``points``, ``seeds``, ``first_seed``, ``seed_step`` (1),
+        ``checks`` (``[{name, nominal_alpha, nominal, failures, seeds, rate, interval, consistent, outcomes}]``),
+        ``z`` (``{figure: {mean, sd, values}}``, per channel), ``tests``, ``runs`` (``[{seed, verdict, statistic,
+        worst}]``), ``elapsed_s``.
+    """
+    from .bench import machine
+    from .ptc_verdict import TESTED, false_alarm_rows, ptc_verdict
+
+    begun = time.perf_counter()
+    im = imager(imager_)
+    rate, used = electron_rates(camera_, im, temperature, illuminance_lux, RenderSettings(spp=spp, seed=first_seed))
+    runs, test = [], ""
+    for seed in range(first_seed, first_seed + seeds):
+        verdict = ptc_verdict(measure(im, rate, seed, points), alpha)
+        check = verdict["checks"]["fits"]
+        test = check["test"]
+        runs.append({"seed": seed, "verdict": verdict["verdict"], "statistic": check["statistic"],
+                     "threshold": check["threshold"], "worst": check.get("worst_figure"), "tested": check["tested"],
+                     "z": verdict["z"]})
+        if progress is not None:
+            progress(f"seed {seed}: {verdict['verdict']}, largest |z| {check['statistic']:.3g}"
+                     + (f" ({check['worst_figure']})" if verdict["verdict"] == "fail" else ""))
+    z = {}
+    for figure in TESTED:
+        values = np.array([[np.nan if v is None else v for v in run["z"][figure]] for run in runs])
+        tested = ~np.isnan(values)
+        if tested.any():
+            with np.errstate(invalid="ignore", divide="ignore"):
+                z[figure] = {"mean": [float(np.nanmean(c)) if t.any() else None for c, t in zip(values.T, tested.T)],
+                             "sd": [float(np.nanstd(c, ddof=1)) if t.sum() > 1 else None
+                                    for c, t in zip(values.T, tested.T)],
+                             "values": tested.sum(axis=0).tolist()}
+    return {"machine": machine(), "scene": "ptc", "camera": camera_.name, "imager": im.name,
+            "illuminance_lux": float(illuminance_lux), "prevailing_K": float(temperature), "calibration_K": None,
+            "spp": used, "points": points, "seeds": seeds, "first_seed": first_seed, "seed_step": 1, "alpha": alpha,
+            "checks": false_alarm_rows(runs, alpha), "z": z, "tests": {"fits": test},
+            "runs": [{key: run[key] for key in ("seed", "verdict", "statistic", "worst")} for run in runs],
+            "elapsed_s": time.perf_counter() - begun}

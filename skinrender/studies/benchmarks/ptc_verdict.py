@@ -8,7 +8,8 @@ where they do (its calibration over seeds).
 
 -   :func:`ptc_verdict`: per tested figure and channel ``z = (fit − stated) / SE``; the largest ``|z|`` against the
     two-sided Šidák critical value of a family-wise α of 0.01 over the figures tested.
--   :func:`ptc_calibration`: ``seeds`` measurements of one render (the sensor noise's seed changes, the chart's
+-   :func:`false_alarm_rows`, :func:`estimate_ptc_seconds`: for
+    :func:`~skinrender.studies.benchmarks.ptc.ptc_calibration`, ``seeds`` measurements of one render (the sensor noise's seed changes, the chart's
     render is shared: its Monte Carlo noise is a fixed pattern the two-frame differences cancel), the observed
     false-alarm rate with its Clopper–Pearson 95 % interval against α (``skinrender bench calibration --scene
     ptc``).
@@ -28,14 +29,12 @@ References
 
 from __future__ import annotations
 
-import time
-from collections.abc import Callable
-
 import numpy as np
 
 from ...evaluation.verdict import ALPHA_DIFFERENCE, EXIT_STATUS, binomial_interval, difference, sidak
 
-__all__ = ["TESTED", "INFORMATION_ONLY", "SECONDS_PER_MEASUREMENT", "estimate_ptc_seconds", "ptc_verdict", "ptc_calibration"]
+__all__ = ["TESTED", "INFORMATION_ONLY", "SECONDS_PER_MEASUREMENT", "estimate_ptc_seconds", "ptc_verdict",
+           "false_alarm_rows"]
 
 TESTED = ("gain_dn_per_e", "read_noise_e", "dark_current_e_per_s")
 """The figures tested against the imager's stated values (each per channel, where reported)."""
@@ -102,8 +101,9 @@ def ptc_verdict(result: dict, alpha: float = ALPHA_DIFFERENCE) -> dict:
             "exit_status": EXIT_STATUS[verdict.outcome], "information_only": dict(INFORMATION_ONLY)}
 
 
-SECONDS_PER_MEASUREMENT = 0.3
-"""One measurement of the 24-point series beside the shared render, s (0.19–0.42 measured on a loaded 2-core VM)."""
+SECONDS_PER_MEASUREMENT = 0.6
+"""One measurement of the 24-point series beside the shared render, s (0.19–0.68 measured on a 2-core VM under a
+load of 2–10: 400 seeds took 169 s for the imx174, 270 s for the icx418)."""
 
 
 def estimate_ptc_seconds(seeds: int, points: int = 24, spp: int = 64) -> float:
@@ -111,15 +111,16 @@ def estimate_ptc_seconds(seeds: int, points: int = 24, spp: int = 64) -> float:
     measurements of ``points`` exposures.
 
     >>> round(estimate_ptc_seconds(400))
-    126
+    245
     """
     from .calibration import estimate_seconds
 
     return estimate_seconds(1, 64 * 64, spp, renders=1) + seeds * SECONDS_PER_MEASUREMENT * points / 24
 
 
-def _rows(runs: list[dict], alpha: float) -> list[dict]:
-    """The family's and each figure's observed rate against its nominal one (a figure's: its channels' share of the
+def false_alarm_rows(runs: list[dict], alpha: float = ALPHA_DIFFERENCE) -> list[dict]:
+    """Over ``runs`` (``[{verdict, threshold, tested, z}]``, one per seed of a correct imager), the family's and each
+    figure's observed rate against its nominal one (a figure's: its channels' share of the
     family, 1 − (1 − α_Šidák)^channels, averaged over the runs: a dark current is tested only where resolved), with
     Clopper–Pearson 95 % intervals."""
 
@@ -141,59 +142,3 @@ def _rows(runs: list[dict], alpha: float) -> list[dict]:
                      "consistent": bool(lo <= rate <= hi),
                      "outcomes": {"fail": failures, "pass": len(runs) - failures}})
     return rows
-
-
-def ptc_calibration(camera_, imager_, temperature: float = 5900.0, illuminance_lux: float = 500.0, seeds: int = 40,
-                    first_seed: int = 0, points: int = 24, spp: int = 64, alpha: float = ALPHA_DIFFERENCE,
-                    progress: Callable[[str], None] | None = None) -> dict:
-    """
-    ``seeds`` photon-transfer measurements of a correct imager (the sensor noise's seeds ``first_seed``,
-    ``first_seed + 1``, …; the grey chart rendered once at ``spp`` with seed ``first_seed``): every failure of the
-    fits' test is a false alarm. Per check (``fits``, the family; each tested figure, its share of it) the observed
-    rate with its Clopper–Pearson 95 % interval against the nominal α, and per figure and channel the mean and
-    standard deviation of z (0 and 1 where the standard errors are right).
-
-    Returns
-    -------
-    dict
-        ``machine``, ``scene`` (``ptc``), ``camera``, ``imager``, ``illuminance_lux``, ``prevailing_K`` (the light,
-        K), ``calibration_K`` (``None``), ``spp``, ``points``, ``seeds``, ``first_seed``, ``seed_step`` (1),
-        ``checks`` (``[{name, nominal_alpha, nominal, failures, seeds, rate, interval, consistent, outcomes}]``),
-        ``z`` (``{figure: {mean, sd, values}}``, per channel), ``tests``, ``runs`` (``[{seed, verdict, statistic,
-        worst}]``), ``elapsed_s``.
-    """
-    from ...model.imager import imager
-    from ...rendering.settings import RenderSettings
-    from .bench import machine
-    from .ptc import electron_rates, measure
-
-    begun = time.perf_counter()
-    im = imager(imager_)
-    rate, used = electron_rates(camera_, im, temperature, illuminance_lux, RenderSettings(spp=spp, seed=first_seed))
-    runs, test = [], ""
-    for seed in range(first_seed, first_seed + seeds):
-        verdict = ptc_verdict(measure(im, rate, seed, points), alpha)
-        check = verdict["checks"]["fits"]
-        test = check["test"]
-        runs.append({"seed": seed, "verdict": verdict["verdict"], "statistic": check["statistic"],
-                     "threshold": check["threshold"], "worst": check.get("worst_figure"), "tested": check["tested"],
-                     "z": verdict["z"]})
-        if progress is not None:
-            progress(f"seed {seed}: {verdict['verdict']}, largest |z| {check['statistic']:.3g}"
-                     + (f" ({check['worst_figure']})" if verdict["verdict"] == "fail" else ""))
-    z = {}
-    for figure in TESTED:
-        values = np.array([[np.nan if v is None else v for v in run["z"][figure]] for run in runs])
-        tested = ~np.isnan(values)
-        if tested.any():
-            with np.errstate(invalid="ignore", divide="ignore"):
-                z[figure] = {"mean": [float(np.nanmean(c)) if t.any() else None for c, t in zip(values.T, tested.T)],
-                             "sd": [float(np.nanstd(c, ddof=1)) if t.sum() > 1 else None
-                                    for c, t in zip(values.T, tested.T)],
-                             "values": tested.sum(axis=0).tolist()}
-    return {"machine": machine(), "scene": "ptc", "camera": camera_.name, "imager": im.name,
-            "illuminance_lux": float(illuminance_lux), "prevailing_K": float(temperature), "calibration_K": None,
-            "spp": used, "points": points, "seeds": seeds, "first_seed": first_seed, "seed_step": 1, "alpha": alpha,
-            "checks": _rows(runs, alpha), "z": z, "tests": {"fits": test},
-            "runs": [{key: run[key] for key in ("seed", "verdict", "statistic", "worst")} for run in runs],
-            "elapsed_s": time.perf_counter() - begun}

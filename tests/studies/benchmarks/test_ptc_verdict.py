@@ -14,8 +14,8 @@ import pytest
 from skinrender.model.camera import camera
 from skinrender.model.imager import imager
 from skinrender.rendering.settings import RenderSettings
-from skinrender.studies.benchmarks.ptc import electron_rates, measure
-from skinrender.studies.benchmarks.ptc_verdict import INFORMATION_ONLY, ptc_calibration, ptc_verdict
+from skinrender.studies.benchmarks.ptc import electron_rates, measure, ptc_calibration
+from skinrender.studies.benchmarks.ptc_verdict import INFORMATION_ONLY, ptc_verdict
 
 pytest.importorskip("mitsuba")
 
