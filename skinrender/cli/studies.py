@@ -97,7 +97,8 @@ def add_parsers(commands) -> None:
                    help="sweep: peak positions START:END:STEP nm of the timed sweep (default 400:700:20)")
     p.add_argument("--scene", help="render: a face scene (face or a .toml with [camera] and [mesh]) to time the "
                    "face at each level of physics instead of the charts; calibration, validate: the chart (default "
-                   "macbeth; a face is refused until its checks' calibration is registered)")
+                   "macbeth; a face is refused until its checks' calibration is registered); calibration: 'ptc' "
+                   "runs the photon transfer's fits over --seeds sensor seeds (with --imager)")
     p.add_argument("--size", metavar="PX", help="render --scene: image side, pixels (default 256; --quick 64)")
     from ..studies.benchmarks.bench_face import LEVELS_BENCH
 
