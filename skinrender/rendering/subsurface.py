@@ -36,8 +36,7 @@ Choices, each measured (``docs/subsurface.md`` has the commands)
     interactions, where what they carry is below :func:`truncation_bound`.
 -   The variant: without a GPU, ``scalar_spectral`` (each path runs to its own
     end) rendered a slab 2.5× faster than ``llvm_ad_spectral`` (whose SIMD
-    packets wait for their longest path): 8.3 s against 20.8 s for 16 × 16 px
-    at 64 spp.
+    packets wait for their longest path; the times in ``docs/subsurface.md``).
 -   Lengths: the media's coefficients are per mm and scaled to the scene's
     unit (``scale``). Mitsuba starts a ray leaving a surface
     ``(1 + max|p|) · 8.9e-5`` scene units off it (float32), so a ray entering

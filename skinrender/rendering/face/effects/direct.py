@@ -25,9 +25,8 @@ __all__ = ["DIRECT", "SAMPLES_PER_S_DIRECT"]
 
 SAMPLES_PER_S_DIRECT = 9e5
 """Samples per second of the face on one core (one drjit thread), the estimates' rate for every level that costs
-no more: fitted with :data:`skinrender.studies.face_sweep.SECONDS_PER_RENDER` to two measured sweeps of 54
-renders (direct, sheen, all effects) with one worker, 15 s at 64 px and 32 spp, 73 s at 128 px and 64 spp (2-core
-AMD EPYC VM, llvm_ad_spectral)."""
+no more: fitted with :data:`skinrender.studies.face.sweep.SECONDS_PER_RENDER` to two measured sweeps (the
+measurements and their commands: docs/speed.md, "The rates behind the estimates")."""
 
 
 def _integrator(integrator: dict | None, setup: Setup) -> dict:
