@@ -158,7 +158,7 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
                               f"{SEED_MAX}")
     spp = integer_in(_or(args.spp, 256), "--spp", 1, SPP_MAX)
     plot = check_output(args.plot, "--plot", (".png",))
-    seconds = estimate_face_seconds(seeds, scene.camera.width * scene.camera.height, spp)
+    seconds = estimate_face_seconds(seeds, scene.camera.width * scene.camera.height, spp, level)
     check_work(seconds, "--seeds", f"{seeds} validations of the face at {spp} spp", args.max_minutes,
                fewer="run fewer --seeds")
     return {"run": run, "kind": "face", "scene": scene, "camera_": cam, **lights, "spps": [spp], "seeds": seeds,

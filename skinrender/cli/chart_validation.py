@@ -132,6 +132,7 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     from ..rendering.validation import validate
     from .common import check_render_work
     from .inputs import chart_inputs, chart_only
+    from .subsurface import check_chart_subsurface
 
     tolerance = tolerance_of(args)
     auto = spp_of(args)
@@ -144,6 +145,7 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     settings = settings_of(args, auto)
     requested = "auto" if auto else settings.spp
     inputs = chart_inputs(args, scene)
+    settings = check_chart_subsurface(args, inputs, settings)
     imaging = imaging_options(args)
     renders = 11 if args.gamut else 1  # --gamut: ten more, one per paper illuminant
     choice = None
@@ -182,6 +184,7 @@ def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict,
     from ..rendering.agreement import DARK_LEVEL
     from ..rendering.renderer import channel_names
     from .common import SPP_MAX
+    from .subsurface import subsurface_keys, subsurface_lines
 
     r = result.rendering
     checks = {"equivalence": result.verdict, "difference": result.difference}
@@ -194,6 +197,7 @@ def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict,
                 "checks": {name: v.document() for name, v in checks.items()}, "patches": result.patches(),
                 "worst": result.worst(), "max_rel_error": float(result.rel_error.max()),
                 "quadrature_rel_difference": result.quadrature}
+    document.update(subsurface_keys(r, document["patches"]))  # subsurface: each skin patch's slab
     names = channel_names(r.camera)
     rows = [[p["name"], names[k], _number(p["analytic"][k]), _number(p["rendered"][k]), f"{p['error'][k]:+.3g}",
              f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", p["shown"][k]]
@@ -201,7 +205,7 @@ def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict,
     lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
              f"{r.raw[0].spp} spp {settings.sampler}, {r.variant}, {r.seconds:.2f} s; output units "
              "(white = 255 at p = c); bound: the upper 95 % (family-wise) confidence bound of |error|",
-             table(rows, ["patch", "channel", "analytic", "rendered", "error", "bound", "tolerance", "shown"])]
+             *subsurface_lines(r), table(rows, ["patch", "channel", "analytic", "rendered", "error", "bound", "tolerance", "shown"])]
     lines += _summary("equivalence", result.verdict)
     needed = "—" if result.spp_needed is None else (result.spp_needed if result.spp_needed <= SPP_MAX
                                                     else f"{result.spp_needed:.3g} (more than a render may take)")

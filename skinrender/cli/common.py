@@ -100,7 +100,8 @@ def add_render(parser: argparse.ArgumentParser, spp_auto: bool = False) -> None:
                             "smallest spp expected to pass, from two cheap pilot renders")
     else:
         parser.add_argument("--spp", type=int, help="samples per pixel (overrides --quality)")
-    parser.add_argument("--sampler", choices=list(SAMPLERS), help="Mitsuba sampler: " + choices_help(SAMPLERS))
+    parser.add_argument("--sampler", choices=list(SAMPLERS), help="Mitsuba sampler: " + choices_help(SAMPLERS)
+                        + "; default multijitter (independent for a chart at --physics subsurface)")
     parser.add_argument("--seed", type=int, default=0, help="sampler seed; the same seed gives the same image (default 0)")
     parser.add_argument("--variant", help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral); "
                         "default: the fastest that works here")
@@ -126,11 +127,12 @@ def add_max_minutes(parser: argparse.ArgumentParser, what: str) -> None:
                         f"estimate, from {what}, is printed with the refusal)")
 
 
-def check_render_work(args: argparse.Namespace, pixels: int, spp: int, renders: int = 1) -> None:
+def check_render_work(args: argparse.Namespace, pixels: int, spp: int, renders: int = 1, levels=None) -> None:
     """
     Refuse, before anything renders, ``renders`` renders of ``pixels`` pixels at ``spp`` that one pass cannot hold
     (:data:`~skinrender.rendering.renderer.SAMPLES_MAX`) or whose estimated time exceeds ``--max-minutes``
-    (:func:`~skinrender.studies.face.sweep.estimate_seconds` on every core), naming ``--spp``.
+    (:func:`~skinrender.studies.face.sweep.estimate_seconds` on every core; ``levels``, one per render, at each
+    level's rate: ``subsurface`` is far slower), naming ``--spp``.
     """
     import os
 
@@ -143,7 +145,7 @@ def check_render_work(args: argparse.Namespace, pixels: int, spp: int, renders: 
                               f"{SAMPLES_MAX:.3g} (Mitsuba's 32-bit wavefront); at most {SAMPLES_MAX // pixels} spp "
                               "for this scene", flag="--spp")
     what = f"{renders} renders" if renders > 1 else "a render"
-    check_work(estimate_seconds(renders, pixels, spp, os.cpu_count() or 1), "--spp",
+    check_work(estimate_seconds(renders, pixels, spp, os.cpu_count() or 1, levels), "--spp",
                f"{what} of {pixels} pixels at {spp} spp", getattr(args, "max_minutes", None), fewer="lower --spp")
 
 

@@ -263,7 +263,8 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
 
     renders = len(levels) * REPLICATES_LADDER * (len(skins or SKIN_TONES) if args.effects else 1)
     each = -(-spp // REPLICATES_LADDER)
-    check_work(estimate_seconds(renders, size * size, each, 1), "--spp",
+    check_work(estimate_seconds(renders, size * size, each, 1, [level for level in levels
+                                                                for _ in range(renders // len(levels))]), "--spp",
                f"{len(levels)} levels of {REPLICATES_LADDER} × {size}×{size} px at {each} spp"
                + (f" for {len(skins or SKIN_TONES)} skins" if args.effects else ""), args.max_minutes,
                fewer="lower --spp or --size, or name fewer --levels")
@@ -336,7 +337,7 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
     scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
-    check_render_work(args, face_pixels(scene, size), settings.spp)
+    check_render_work(args, face_pixels(scene, size), settings.spp, levels=[physics])
     print(f"rendering the face ({physics}) at {settings.spp} spp …", file=sys.stderr)
     result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], skin, physics,
                          settings.spp, settings.seed, size, settings.sampler, settings.variant,
@@ -390,7 +391,7 @@ def command_detect_face(args: argparse.Namespace, scene) -> None:
     scene, cam, temperatures, physics, face_skin, size, imager, exposure, lux = face_inputs(args, scene)
     locus_skin = getattr(args, "locus_skin", None) or "skin"
     skin = flag("--locus-skin", reflectances, locus_skin)
-    check_render_work(args, face_pixels(scene, size), settings.spp)
+    check_render_work(args, face_pixels(scene, size), settings.spp, levels=[physics])
     print(f"rendering the face ({physics}) at {settings.spp} spp …", file=sys.stderr)
     result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], face_skin, physics,
                          settings.spp, settings.seed, size, settings.sampler, settings.variant,

@@ -75,13 +75,15 @@ def check_samples(spp: int, pixels: int) -> None:
                               flag="--spp")
 
 
-def check_replicates_work(args: argparse.Namespace, spp: int, pixels: int) -> None:
+def check_replicates_work(args: argparse.Namespace, spp: int, pixels: int, level: str | None = None) -> None:
     """Refuse, naming ``--spp``, a face validation whose replicate renders (:data:`REPLICATES` of ``pixels`` pixels
-    at ``⌈spp / REPLICATES⌉`` spp, at least :data:`SPP_REPLICATE_MIN`) are estimated beyond ``--max-minutes``."""
+    at ``⌈spp / REPLICATES⌉`` spp, at least :data:`SPP_REPLICATE_MIN`) are estimated beyond ``--max-minutes``, at
+    ``level``'s rate (``subsurface`` is far slower; ``None``: the base's)."""
     from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
     from .common import check_render_work
 
-    check_render_work(args, pixels, max(-(-int(spp) // REPLICATES), SPP_REPLICATE_MIN), REPLICATES)
+    check_render_work(args, pixels, max(-(-int(spp) // REPLICATES), SPP_REPLICATE_MIN), REPLICATES,
+                      levels=None if level is None else [level] * REPLICATES)
 
 
 def command_validate_face(args: argparse.Namespace, scene) -> None:
@@ -91,7 +93,7 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     every flag is checked before anything renders; ``scene``: the face scene loaded.
     """
     from ..rendering.face.validation import validate_face
-    from .common import emit, flag, settings_of, table
+    from .common import check_render_work, emit, flag, settings_of, table
     from .face import face_inputs
 
     settings = settings_of(args)
@@ -103,7 +105,7 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
     pixels = scene.camera.width * scene.camera.height if size is None else size * size
     check_samples(settings.spp, pixels)
-    check_replicates_work(args, settings.spp, pixels)
+    check_replicates_work(args, settings.spp, pixels, physics)  # subsurface: its own rate
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
                   skin, physics, settings.spp, settings.seed, size, settings.sampler, settings.variant,

@@ -14,7 +14,8 @@ everything below the command line takes those objects (never the strings):
     ``--extrapolation``), the two Planckian lights (K), the grid, the
     normalisation and knee of a chart render, each checked against the others
     before anything renders;
--   :func:`chart_only`: the face's flags refused on a chart;
+-   :func:`chart_only`: the face's flags refused on a chart (``--physics``
+    but a chart's levels, :data:`~skinrender.rendering.balance.CHART_PHYSICS`);
 -   :func:`imaging_document`, :func:`imaging_notes`: what a render through
     ``--imager`` adds to a command's JSON and text.
 
@@ -65,6 +66,9 @@ class ChartInputs:
         The Planckian lights, K.
     grid
         ``--grid``, nm.
+    physics
+        ``--physics``: ``direct`` or ``subsurface`` (:data:`~skinrender.rendering.balance.CHART_PHYSICS`; the
+        checks of ``subsurface`` are :func:`~skinrender.cli.subsurface.check_chart_subsurface`'s).
     """
 
     scene: ChartScene
@@ -74,13 +78,14 @@ class ChartInputs:
     grid: WavelengthGrid
     normalization: str = "white"
     knee: bool = False
+    physics: str = "direct"
 
     def keywords(self) -> dict:
         """The arguments of :func:`~skinrender.rendering.balance.render` and
         :func:`~skinrender.rendering.validation.validate` they give."""
         return {"scene": self.scene, "camera_": self.camera, "prevailing": self.prevailing,
                 "calibration": self.calibration, "normalization": self.normalization, "knee": self.knee,
-                "grid": self.grid}
+                "grid": self.grid, "physics": self.physics}
 
     @property
     def pixels(self) -> int:
@@ -136,16 +141,22 @@ def chart_inputs(args: argparse.Namespace, scene: ChartScene) -> ChartInputs:
         raise error.reworded(f"--grid: {error.message}", flag="--grid", cause=None,
                              hint="choose a --grid inside the chart's data") from None
     return ChartInputs(scene, cam, temperatures["prevailing"], temperatures["calibration"], grid,
-                       getattr(args, "normalization", "white"), bool(getattr(args, "knee", False)))
+                       getattr(args, "normalization", "white"), bool(getattr(args, "knee", False)),
+                       str(getattr(args, "physics", "direct")).strip())
 
 
 def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
-    """The face-only flags refused on a chart: ``--physics``, ``--size`` and (but for ``detect``) ``--skin``."""
-    given = [name for name, on in (("--physics", args.physics != "direct"), ("--skin", skin and args.skin is not None),
-                                   ("--size", args.size is not None)) if on]
+    """The face-only flags refused on a chart: ``--physics`` but a chart's levels
+    (:data:`~skinrender.rendering.balance.CHART_PHYSICS`), ``--size`` and (but for ``detect``) ``--skin``."""
+    from ..rendering.balance import CHART_PHYSICS
+
+    physics = str(args.physics).strip()
+    given = [name for name, on in (("--physics", physics not in CHART_PHYSICS),
+                                   ("--skin", skin and args.skin is not None), ("--size", args.size is not None)) if on]
     if given:
+        levels = f" (a chart takes --physics {' or '.join(CHART_PHYSICS)})" if "--physics" in given else ""
         raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
-                              "(e.g. 'face'), not a chart", flag=given[0])
+                              f"(e.g. 'face'), not a chart{levels}", flag=given[0])
 
 
 def imaging_document(imaged) -> dict:

@@ -18,6 +18,7 @@ from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options
 from .face import check_figure
 from .chart_validation import add_check_arguments, add_verdict_arguments, command_validate
 from .inputs import chart_inputs, chart_only, imaging_document, imaging_notes, scene_of
+from .subsurface import check_chart_subsurface, subsurface_keys
 
 
 
@@ -99,6 +100,7 @@ def command_render(args: argparse.Namespace) -> None:
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
     inputs = chart_inputs(args, scene)
+    settings = check_chart_subsurface(args, inputs, settings)
     imaging = imaging_options(args)
     check_render_work(args, inputs.pixels, settings.spp)
     print(f"rendering {inputs.scene.name} at {settings.spp} spp …", file=sys.stderr)
@@ -122,7 +124,8 @@ def command_render(args: argparse.Namespace) -> None:
                 "sampler": settings.sampler, "seed": settings.seed, "variant": result.variant,
                 "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
-                "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged)}
+                "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged),
+                **subsurface_keys(result)}
     if figure is not None:
         document["figure"] = str(figure)
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "
@@ -168,6 +171,7 @@ def command_detect(args: argparse.Namespace) -> None:
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
     inputs = chart_inputs(args, scene)
+    settings = check_chart_subsurface(args, inputs, settings)
     imaging = imaging_options(args)
     skin = flag("--locus-skin" if args.skin is None else "--skin", reflectances, locus_skin)
     check_render_work(args, inputs.pixels, settings.spp)
@@ -190,7 +194,7 @@ def command_detect(args: argparse.Namespace) -> None:
                 "mask_png": str(output), "preview_png": str(preview), "per_patch": result.per_patch,
                 "scored_min_output": SCORED_MIN_OUTPUT,
                 "boundary": args.boundary, "spp": rendering.raw[0].spp, "spp_requested": settings.spp,
-                "variant": rendering.variant, **imaging_document(imaged)}
+                "variant": rendering.variant, **imaging_document(imaged), **subsurface_keys(rendering)}
     rows = [[p["name"][:30], "skin" if p["is_skin"] else "",
              "undefined" if p["detected_fraction"] is None else f"{p['detected_fraction']:.2f}"]
             for p in result.per_patch]

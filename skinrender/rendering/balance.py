@@ -39,7 +39,14 @@ from .renderer import RawRender, render_raw
 from .scene import ChartScene, load_chart_scene
 from .settings import RenderSettings
 
-__all__ = ["PatchStatistics", "patch_statistics", "Rendering", "pair_gain", "balance", "render"]
+__all__ = ["PatchStatistics", "patch_statistics", "Rendering", "pair_gain", "balance", "render", "CHART_PHYSICS"]
+
+CHART_PHYSICS = {
+    "direct": "Lambertian patches under the directional light along the view axis (the analytic model's world)",
+    "subsurface": "the skin patches as the skin model's two layers under a dielectric boundary, lit by a uniform "
+                  "sky, against their slab's adding-doubling reflectance",
+}
+"""Levels of physics of a chart, name → meaning."""
 
 
 @dataclass(frozen=True)
@@ -189,6 +196,7 @@ def render(
     grid: WavelengthGrid = GRID_DEFAULT,
     cache: dict | None = None,
     emitter: str = "tabulated",
+    physics: str = "direct",
     **options,
 ) -> Rendering:
     """
@@ -209,6 +217,14 @@ def render(
         As :func:`~skinrender.rendering.renderer.render_raw`.
     cache
         A dict to reuse raw renders across calls, keyed by temperature.
+    physics
+        ``direct`` (Lambertian patches under the directional light) or ``subsurface``: the skin patches as the
+        skin model's layers under a sky (:mod:`skinrender.rendering.subsurface_chart`; the calibration render
+        renders the Lambertian patches only, the white balance reading the white alone; the sampler
+        :data:`~skinrender.rendering.subsurface_chart.SAMPLER_SUBSURFACE` unless ``settings`` or ``options``
+        name one). ``info`` then has ``physics``, ``reflectances`` (per patch, what Eq. 4 is checked with: the
+        slab's adding-doubling reflectance for a skin patch) and ``skin_model`` (per patch its layers' source, or
+        ``None``).
     **options
         ``spp``, ``seed``, ``sampler``, ``variant``, ``channels``: the settings one by one
         (:meth:`~skinrender.rendering.settings.RenderSettings.of`).
@@ -218,22 +234,34 @@ def render(
     :class:`Rendering`
     """
 
+    validate_method(physics, CHART_PHYSICS, "physics (of a chart)", role="physics")
+    if physics == "subsurface" and settings is None:
+        from .subsurface_chart import SAMPLER_SUBSURFACE
+
+        options = {"sampler": SAMPLER_SUBSURFACE, **options}
     settings = RenderSettings.of(settings, **options)
     chart = load_chart_scene(scene)
     cam = camera(camera_)
     validate_method(normalization, NORMALISATIONS, "normalization")
     p, c = _temperature(prevailing), _temperature(calibration)
     cache = {} if cache is None else cache
+    info = {}
+    if physics == "subsurface":
+        from .subsurface_chart import subsurface_renderer
 
-    def raw(temperature: float, offset: int) -> RawRender:
-        key = (temperature, offset)
+        renderer = subsurface_renderer(chart, cam, settings, grid)
+        info = {"physics": physics, "reflectances": renderer.chart.reflectances, "skin_model": renderer.chart.rows()}
+
+    def raw(temperature: float, offset: int, skins: bool = True) -> RawRender:
+        key = (temperature, offset) if physics == "direct" else (temperature, offset, physics, skins)
         if key not in cache:
-            cache[key] = render_raw(chart, cam, temperature, settings.replace(seed=settings.seed + offset), grid,
-                                    emitter)
+            seed = settings.seed + offset
+            cache[key] = (render_raw(chart, cam, temperature, settings.replace(seed=seed), grid, emitter)
+                          if physics == "direct" else renderer.raw(temperature, seed, skins))
         return cache[key]
 
     raw_p = raw(p, 0)
-    raw_c = raw_p if c == p else raw(c, 1)
+    raw_c = raw_p if c == p else raw(c, 1, skins=False)
     image, white_error, white_ratio = balance(raw_p, raw_c, chart, cam, normalization, knee, grid)
     return Rendering(chart, cam, p, c, normalization, knee, image, patch_statistics(image, chart), white_error,
-                     (raw_p,) if raw_c is raw_p else (raw_p, raw_c), {"white_ratio": white_ratio})
+                     (raw_p,) if raw_c is raw_p else (raw_p, raw_c), {"white_ratio": white_ratio, **info})

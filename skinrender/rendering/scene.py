@@ -25,14 +25,18 @@ averaging), ``white`` (reflectance of the white reference, default
 ``name`` and ``skin`` (bool, for detection).
 
 A reflectance is ``SET:SAMPLE`` (a set name from ``skinrender datasets`` and
-a sample name), ``SET:#N`` (the N-th sample, from 0), ``perfect`` (ρ = 1) or
-``grey:F`` (ρ = F for every wavelength).
+a sample name), ``SET:#N`` (the N-th sample, from 0), ``perfect`` (ρ = 1),
+``grey:F`` (ρ = F for every wavelength) or the skin model's parameters,
+``skin-model:melanin=0.05,blood=0.02`` (any fields of
+:class:`~skinrender.datasets.skin_model.SkinParameters`, the others at their
+defaults; :func:`skin_parameters_of`): its adding-doubling reflectance, and
+under ``--physics subsurface`` its layers.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 import numpy as np
@@ -45,7 +49,7 @@ from ..spectra import GRID_DEFAULT, WavelengthGrid
 from ..toml_tables import entry, from_table, read_toml
 
 __all__ = ["ROOT_SCENES", "Patch", "ChartScene", "load_chart_scene", "list_scenes", "read_scene_toml", "reflectance_of",
-           "check_mesh_file"]
+           "skin_parameters_of", "check_mesh_file"]
 
 ROOT_SCENES = Path(__file__).resolve().parent / "scenes"
 """Bundled scene files (installed with the package; ``scenes/`` in the repository links here)."""
@@ -115,9 +119,61 @@ class ChartScene:
         return np.array([reflectance_of(p.reflectance, grid, f"{self.source}: patch {p.name!r}") for p in self.patches])
 
 
+def skin_parameters_of(spec: str, where: str = "reflectance"):
+    """
+    The :class:`~skinrender.datasets.skin_model.SkinParameters` of a ``skin-model:NAME=VALUE,…`` spec (the
+    fields not named at their defaults), or ``None`` for any other spec (``skin-model:#3`` names a sample
+    of the ``skin-model`` set). A bad name or value is refused with ``where`` and the parameter named.
+
+    Examples
+    --------
+    >>> skin_parameters_of("skin-model:melanin=0.2").melanin, skin_parameters_of("skin:#0")
+    (0.2, None)
+    """
+    text = str(spec).strip()
+    if not (text.startswith("skin-model:") and "=" in text):
+        return None
+    from ..datasets.skin_model import SkinParameters, check_parameters
+
+    known = {f.name for f in fields(SkinParameters)}
+    values = {}
+    for item in text[len("skin-model:"):].split(","):
+        key, _, value = item.partition("=")
+        key = key.strip()
+        if key not in known:
+            raise SkinrenderError(f"{where}: {text!r}: unknown skin-model parameter {key!r}; known: "
+                                  f"{', '.join(sorted(known))}", flag=flag_of(where))
+        if key in values:
+            raise SkinrenderError(f"{where}: {text!r}: {key} is given twice; give each parameter once",
+                                  flag=flag_of(where))
+        try:
+            values[key] = float(value)
+        except ValueError:
+            raise SkinrenderError(f"{where}: {text!r}: {key} must be a number, "
+                                  f"got {value.strip()!r}", flag=flag_of(where)) from None
+        if not math.isfinite(values[key]) or values[key] < 0:
+            raise SkinrenderError(f"{where}: {text!r}: {key} must be a finite number ≥ 0, "
+                                  f"got {value.strip()!r}", flag=flag_of(where))
+    parameters = SkinParameters(**values)
+    try:
+        check_parameters(parameters)
+    except SkinrenderError as error:
+        raise SkinrenderError(f"{where}: {text!r}: {error}", flag=flag_of(where)) from None
+    return parameters
+
+
 def reflectance_of(spec: str, grid: WavelengthGrid, where: str = "reflectance") -> NDArrayFloat:
     """The reflectance named by a scene spec on ``grid`` (see the module docstring)."""
     text = str(spec).strip()
+    parameters = skin_parameters_of(text, where)
+    if parameters is not None:
+        from ..datasets.skin_model import skin_reflectance
+
+        with np.errstate(all="ignore"):  # a non-finite result is refused below, with no warning on stderr
+            reflectance = skin_reflectance(grid.wavelengths, parameters)
+        if not np.all(np.isfinite(reflectance)):
+            raise SkinrenderError(f"{where}: {text!r} gives no finite reflectance", flag=flag_of(where))
+        return reflectance
     if text == "perfect":
         return np.ones(grid.size)
     if text.startswith("grey:"):
@@ -130,7 +186,8 @@ def reflectance_of(spec: str, grid: WavelengthGrid, where: str = "reflectance") 
                                   flag=flag_of(where))
         return np.full(grid.size, value)
     if ":" not in text:
-        raise SkinrenderError(f"{where}: reflectance must be SET:SAMPLE, SET:#N, perfect or grey:F, got {text!r}")
+        raise SkinrenderError(f"{where}: reflectance must be SET:SAMPLE, SET:#N, perfect, grey:F or "
+                              f"skin-model:NAME=VALUE,…, got {text!r}", flag=flag_of(where))
     set_name, sample = text.split(":", 1)
     try:
         dataset = reflectances(set_name)

@@ -290,7 +290,8 @@ def validate(
     chart = load_chart_scene(scene)
     if rendering is None:
         rendering = render(chart, camera_, prevailing, calibration, normalization, knee, grid=grid, **render_options)
-    reflectance = chart.reflectances(grid)
+    reflectance = rendering.info.get("reflectances")  # subsurface: a skin patch's slab (its adding-doubling R)
+    reflectance = chart.reflectances(grid) if reflectance is None else reflectance
     r = rendering
     reference = analytic_reference(r.camera, reflectance, r.prevailing, r.calibration, r.normalization, r.knee, grid)
     quadrature = quadrature_difference(r.camera, reflectance, r.prevailing, r.calibration, r.normalization, grid,

@@ -80,6 +80,29 @@ class TestLadder:
         assert all(row["tpr_change"] == 0 for row in document["rows"] if row["level"] == "direct" and row["tpr"])
         assert status == [document["exit_status"]] and plot.read_bytes()[:4] == b"\x89PNG"
 
+    def test_subsurface_is_judged_against_the_budget(self, capsys):
+        """Issue 22: ``ladder --json`` has the ``subsurface`` level with ``eq4_shift``, ``budget`` and
+        ``within_budget`` like every level (a verdict, never information only), and ``--effects`` gives its row."""
+        status = []
+        document = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--size", "16",
+                        "--spp", "36", "--levels", "direct,subsurface", "--json"], capsys, status)
+        direct, subsurface = document["levels"]
+        assert subsurface["name"] == "subsurface" and subsurface["variant"] == "scalar_spectral"
+        assert subsurface["eq4_verdict"] in ("pass", "fail", "inconclusive")
+        assert subsurface["budget"] == direct["budget"] == document["budget"]["budget"] > 0
+        assert subsurface["eq4_shift"] >= 0 and subsurface["eq4_shift_bound"] >= subsurface["eq4_shift"]
+        assert subsurface["within_budget"] == {"pass": True, "fail": False}.get(subsurface["eq4_verdict"])
+        if subsurface["within_budget"] is None:
+            assert "no analytic limit on the face" in subsurface["undefined"]["within_budget"]
+        assert status == [document["exit_status"]]
+        table = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--size", "16",
+                     "--spp", "36", "--effects", "--skin", "skin-model:melanin=0.13", "--levels", "direct,subsurface",
+                     "--json"], capsys)
+        row = table["rows"][1]
+        assert (row["tone"], row["level"]) == ("skin-model:melanin=0.13", "subsurface")
+        assert row["eq4_verdict"] in ("pass", "fail", "inconclusive") and row["seconds"] > 0
+        assert {"eq4_shift", "budget", "within_budget", "tpr_change", "fpr_change"} <= set(row)
+
     def test_plot_writes_the_figure(self, tmp_path, capsys):
         plot = tmp_path / "sub" / "ladder.png"
         document = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--size", "16",
@@ -312,4 +335,23 @@ def test_ladder_work_is_capped_by_its_estimated_time(capsys):
 
     line = assert_refused(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--size", "1000",
                            "--spp", "100000"], ("--spp", "--max-minutes"), capsys)
-    assert "6 levels of 12 × 1000×1000 px at 8334 spp would take about" in line  # 12 replicates each
+    assert "7 levels of 12 × 1000×1000 px at 8334 spp would take about" in line  # 12 replicates each
+
+
+def test_subsurface_is_estimated_at_its_own_rate(capsys, monkeypatch):
+    """A face render or a ladder that is quick at direct is refused at subsurface (hundreds of times slower per
+    sample), with its estimate, before anything renders."""
+    from skinrender.rendering.face import render as face_render
+
+    from .refusal import assert_refused, run
+
+    monkeypatch.setattr(face_render, "render_face", lambda *a, **k: (_ for _ in ()).throw(AssertionError("rendered")))
+    settings = ["--size", "128", "--spp", "64", "--max-minutes", "5"]
+    line = assert_refused(["render", "face", *FACE, "--physics", "subsurface", *settings, "-o", "x.exr"],
+                          ("--spp", "--max-minutes"), capsys)
+    assert "would take about" in line
+    assert_refused(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--levels",
+                    "direct,subsurface", *settings], ("--spp", "--max-minutes"), capsys)
+    status, out, err = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--levels",
+                            "direct", "--size", "8", "--spp", "1", "--max-minutes", "5", "--json"], capsys)
+    assert status != 2, err[-400:]  # not refused at direct (its verdict aside)

@@ -113,10 +113,11 @@ def test_unreachable_dask(capsys):
 @pytest.mark.skipif(not hasattr(signal, "SIGINT") or os.name != "posix", reason="POSIX")
 def test_ctrl_c_stops_a_sweep_with_one_line(tmp_path):
     """Ctrl-C during a parallel sweep: exit 130, one line, nothing on stdout, no CSV. The interrupt follows the
-    sweep's own progress line; the sweep (96 renders of 256 px at 1024 spp) cannot finish first on any machine."""
+    sweep's own progress line; the sweep (direct only: subsurface's cost would refuse it; 256 px at 1024 spp) cannot
+    finish first on any machine."""
     target = tmp_path / "sweep.csv"
     argv = ["face-sweep", "--camera", CAM, "--lights", "2300/5900,2856/5900,5900/5900,10000/5900", "--size", "256",
-            "--spp", "1024", "--workers", "2", "--csv", str(target), "--json"]
+            "--spp", "1024", "--levels", "direct", "--workers", "2", "--csv", str(target), "--json"]
     status, out, err = interrupt_after(argv, "face sweep: ")
     assert status == 130, err[-800:]
     assert err.strip().splitlines()[-1] == "skinrender face-sweep: interrupted"

@@ -120,9 +120,14 @@ def transform(translate, rotate, scale) -> NDArrayFloat:
     return m
 
 
-def _mesh(mi, scene: FaceScene, material: dict) -> dict | object:
+def _scaled(matrix: NDArrayFloat, unit: float) -> NDArrayFloat:
+    """``matrix`` in a scene of ``unit`` scene units per metre (unchanged, not even rounded, at 1)."""
+    return matrix if unit == 1.0 else np.diag([unit, unit, unit, 1.0]) @ matrix
+
+
+def _mesh(mi, scene: FaceScene, material: dict, unit: float = 1.0) -> dict | object:
     """The head: a Mitsuba ``Mesh`` of the bundled scan, or the user's ``obj``/``ply``, with ``material``."""
-    matrix = transform(scene.mesh_translate, scene.mesh_rotate, scene.mesh_scale)
+    matrix = _scaled(transform(scene.mesh_translate, scene.mesh_rotate, scene.mesh_scale), unit)
     if scene.mesh != MESH_HEAD:
         kind = "ply" if scene.mesh.lower().endswith(".ply") else "obj"
         return {"type": kind, "filename": scene.mesh, "to_world": mi.ScalarTransform4f(matrix), **material,
@@ -173,33 +178,35 @@ def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, level
 
     matrix = mi.ScalarTransform4f
     c = scene.camera
-    setup = level.setup(scene, cam, grid, lights)
+    setup = level.setup(scene, cam, grid, lights, skin=skin)
+    k = level.scene_scale  # scene units per metre: 1 but with an effect that needs finer ray offsets
+    at = (lambda point: list(point)) if k == 1.0 else (lambda point: [k * v for v in point])  # noqa: E731
     document = {
         "type": "scene",
         "integrator": level.integrator(setup),
         "sensor": {
-            "type": "perspective", "fov": c.fov, "fov_axis": "x", "near_clip": 1e-3, "far_clip": 1e3,
-            "to_world": matrix().look_at(origin=list(c.position), target=list(c.target), up=list(c.up)),
+            "type": "perspective", "fov": c.fov, "fov_axis": "x", "near_clip": 1e-3 * k, "far_clip": 1e3 * k,
+            "to_world": matrix().look_at(origin=at(c.position), target=at(c.target), up=list(c.up)),
             "sampler": {"type": sampler, "sample_count": int(spp), "seed": int(seed)},
             "film": film_dict(cam, grid, group, c.width, c.height),
         },
     }
-    document[SHAPE_SKIN] = _mesh(mi, scene, level.skin(skin_reflectance_of(skin, grid, "skin"), setup))
-    for k, prop in enumerate(scene.props):
+    document[SHAPE_SKIN] = _mesh(mi, scene, level.skin(skin_reflectance_of(skin, grid, "skin"), setup), k)
+    for index, prop in enumerate(scene.props):
         size = [prop.size[0] / 2, prop.size[1] / 2, prop.size[2] / 2 if prop.shape == "cube" else 1.0]
-        document[prop_shape_id(k)] = {
-            "type": prop.shape, "to_world": matrix(transform(prop.position, prop.rotate, size)),
+        document[prop_shape_id(index)] = {
+            "type": prop.shape, "to_world": matrix(_scaled(transform(prop.position, prop.rotate, size), k)),
             **level.prop(reflectance_of(prop.reflectance, grid, f"prop {prop.name!r}"), setup),
         }
-    target = np.asarray(c.target)
+    target = np.asarray(at(c.target))
     for name, light in lights.items():
         lam, irradiance = light_irradiance(light, grid)
         if light.position is None:
             document[f"light_{name}"] = {"type": "constant", "sampling_weight": float(light.illuminance),
                                          "radiance": _spectrum(lam, irradiance / np.pi / scale)}
-        else:
-            squared = float(np.sum((np.asarray(light.position) - target) ** 2))
-            document[f"light_{name}"] = {"type": "point", "position": list(light.position),
+        else:  # the intensity of a point light that gives its irradiance at the target, in scene units
+            squared = float(np.sum((np.asarray(at(light.position)) - target) ** 2))
+            document[f"light_{name}"] = {"type": "point", "position": at(light.position),
                                          "sampling_weight": float(light.illuminance),
                                          "intensity": _spectrum(lam, irradiance * squared / scale)}
     return document

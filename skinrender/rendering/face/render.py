@@ -58,7 +58,7 @@ from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
 from ..exr import camera_attributes, write_exr, write_preview
 from ..outputs import draw_figure, save_result
 from ..renderer import SAMPLERS, SAMPLES_MAX, CameraKey, channel_names
-from ..variants import choose_variant, mitsuba
+from ..variants import mitsuba
 from .document import channel_groups, channel_integral, face_document, light_irradiance
 from .effects import Frame, Level, physics_level
 from .labels import label_names, render_labels, shape_labels
@@ -319,7 +319,7 @@ def render_face(
     lights = level.lights(face)
     white_p, white_c = white_references(face, cam, c, grid)
     scale = max(float(np.max(light_irradiance(light, grid)[1])) for light in lights.values())
-    variant = choose_variant(variant)
+    variant = level.choose_variant(variant)
     mi = mitsuba(variant)
     groups = channel_groups(cam, grid, channels)
     width, height = face.camera.width, face.camera.height

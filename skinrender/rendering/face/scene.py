@@ -164,47 +164,14 @@ def skin_reflectance_of(spec: str, grid: WavelengthGrid = GRID_DEFAULT, where: s
     """
     The reflectance of a skin spec on ``grid`` (fractions): a reflectance
     spec of a chart scene, or ``skin-model:NAME=VALUE,…`` (the skin model's
-    parameters).
+    parameters, :func:`~skinrender.rendering.scene.skin_parameters_of`).
 
     Examples
     --------
     >>> skin_reflectance_of("macbeth:light skin").shape
     (301,)
     """
-
-    text = str(spec).strip()
-    if not (text.startswith("skin-model:") and "=" in text):
-        return reflectance_of(text, grid, where)
-    from ...datasets.skin_model import SkinParameters, check_parameters, skin_reflectance
-
-    known = {f.name for f in fields(SkinParameters)}
-    values = {}
-    for item in text[len("skin-model:"):].split(","):
-        key, _, value = item.partition("=")
-        key = key.strip()
-        if key not in known:
-            raise SkinrenderError(f"{where}: {text!r}: unknown skin-model parameter {key!r}; known: "
-                                  f"{', '.join(sorted(known))}")
-        if key in values:
-            raise SkinrenderError(f"{where}: {text!r}: {key} is given twice; give each parameter once")
-        try:
-            values[key] = float(value)
-        except ValueError:
-            raise SkinrenderError(f"{where}: {text!r}: {key} must be a number, "
-                                  f"got {value.strip()!r}") from None
-        if not math.isfinite(values[key]) or values[key] < 0:
-            raise SkinrenderError(f"{where}: {text!r}: {key} must be a finite number ≥ 0, "
-                                  f"got {value.strip()!r}")
-    parameters = SkinParameters(**values)
-    try:
-        check_parameters(parameters)
-    except SkinrenderError as error:
-        raise SkinrenderError(f"{where}: {text!r}: {error}") from None
-    with np.errstate(all="ignore"):  # a non-finite result is refused below, with no warning on stderr
-        reflectance = skin_reflectance(grid.wavelengths, parameters)
-    if not np.all(np.isfinite(reflectance)):
-        raise SkinrenderError(f"{where}: {text!r} gives no finite reflectance")
-    return reflectance
+    return reflectance_of(spec, grid, where)
 
 
 def list_face_scenes() -> list[str]:

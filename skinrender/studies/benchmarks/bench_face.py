@@ -50,15 +50,18 @@ import numpy as np
 from ...errors import SkinrenderError
 from ...model.camera import camera
 from ...model.chromaticity import ncc
-from ...rendering.face.effects import LEVELS_EACH
+from ...rendering.face.effects import LEVELS_EACH, physics_level
 from .bench import _at_least_one, machine
 
 __all__ = ["LEVELS_BENCH", "SPPS_BENCH", "SIZE_BENCH", "PRESET_THRESHOLDS", "fit_error", "spp_for", "presets_of",
            "bench_face"]
 
-LEVELS_BENCH = LEVELS_EACH
-"""The levels timed: the analytic model's world and each effect alone (read from the registry of effects,
-:data:`skinrender.rendering.face.effects.LEVELS_EACH`)."""
+LEVELS_BENCH = tuple(level for level in LEVELS_EACH
+                     if physics_level(level).samples_per_s >= physics_level("direct").samples_per_s)
+"""The levels timed unless named: the analytic model's world and each effect alone (read from the registry of
+effects, :data:`skinrender.rendering.face.effects.LEVELS_EACH`) but those slower per sample than the base
+(``subsurface``: its reference alone would take hours at :data:`SIZE_BENCH`): name them (``--levels subsurface``)
+at a smaller size."""
 
 SPPS_BENCH = (4, 16, 64, 256)
 """Samples per pixel of the curve."""
@@ -225,6 +228,12 @@ def bench_face(
             raise SkinrenderError(f"--levels: {error}", flag="--levels") from None
     cam = camera(camera_spec)
     face = load_face_scene(scene)
+    from ...workload import check_work
+
+    for level in levels:  # a level too long is refused before anything renders
+        check_work(physics_level(level).seconds(size * size * reference_spp), "--levels",
+                   f"{level}'s reference ({size}×{size} px at {reference_spp} spp)",
+                   fewer="a smaller --size or --reference-spp")
     curve, presets = [], {}
     from ...evaluation.detection import SCORED_MIN_OUTPUT
 

@@ -54,11 +54,12 @@ SECONDS_LIMITS = 3.0
 """The white furnace and the closed sphere of one validation, s (measured 1.5–5 on 2 cores)."""
 
 
-def estimate_face_seconds(seeds: int, pixels: int, spp: int) -> float:
+def estimate_face_seconds(seeds: int, pixels: int, spp: int, level: str | None = None) -> float:
     """
     Wall time of ``seeds`` validations of a face of ``pixels`` pixels at ``spp`` (split over the replicates, each at
     least :data:`~skinrender.rendering.face.limits.SPP_REPLICATE_MIN`), s: the replicates
-    (:func:`skinrender.studies.face.sweep.estimate_seconds` on one core) and the scene-free limits.
+    (:func:`skinrender.studies.face.sweep.estimate_seconds` on one core, at ``level``'s rate: ``subsurface`` is far
+    slower; ``None``: the base's) and the scene-free limits.
 
     >>> round(estimate_face_seconds(10, 256 * 256, 256))  # measured: 68–140 s (6.8–14 s a validation, 2 cores)
     240
@@ -67,7 +68,8 @@ def estimate_face_seconds(seeds: int, pixels: int, spp: int) -> float:
     from ..face.sweep import estimate_seconds
 
     each = max(SPP_REPLICATE_MIN, -(-int(spp) // REPLICATES))
-    return seeds * (estimate_seconds(REPLICATES, pixels, each, 1) + SECONDS_LIMITS)
+    levels = None if level is None else [level] * REPLICATES
+    return seeds * (estimate_seconds(REPLICATES, pixels, each, 1, levels) + SECONDS_LIMITS)
 
 
 def _eq4_exact(level) -> bool:

@@ -55,6 +55,7 @@ from ...rendering.face.shift import face_budget
 from ...rendering.face.validation import mean_rendering, render_replicates, shift_against
 from ...rendering.validation import analytic_reference
 from ...spectra import GRID_DEFAULT, WavelengthGrid
+from ...workload import duration_text
 
 __all__ = ["LEVELS_DEFAULT", "REPLICATES_LADDER", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "score_rendering",
            "score_frame"]
@@ -322,9 +323,13 @@ def ladder(
         parse_physics(level)
     if isinstance(replicates, bool) or not isinstance(replicates, int) or replicates < 3:
         raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}")
+    side = (face.camera.width, face.camera.height) if size is None else (size, size)
+    each = max(1, -(-int(spp) // replicates))
+    seconds = sum(physics_level(level).seconds(side[0] * side[1] * each * replicates) for level in levels)
+    if progress is not None and seconds > 60:  # subsurface: minutes (the command line refuses beyond --max-minutes)
+        progress(f"the {len(levels)} levels should take about {duration_text(seconds)} on one core")
     analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
     budget, locus = face_budget(cam, analytic, c, budget_fraction, grid)
-    each = max(1, -(-int(spp) // replicates))
     seeds = [(int(seed) + k) % 2**32 for k in range(replicates)]
     rows, frames, verdicts, shape, mean = [], [], [], None, None
     for level in levels:

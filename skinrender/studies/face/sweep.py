@@ -45,7 +45,8 @@ from ...files import write_output
 from ...model.camera import camera
 from ...model.chromaticity import ncc
 from ...rendering.face import planckian_temperature, render_face
-from ...rendering.face.effects import parse_physics
+from ...rendering.face.effects import parse_physics, physics_level
+from ...rendering.face.effects.direct import SAMPLES_PER_S_DIRECT
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
 from ...rendering.renderer import SAMPLES_MAX
 from ...rendering.scene import PIXELS_MAX
@@ -72,9 +73,10 @@ fitted with :data:`SAMPLES_PER_S` to two measured sweeps of 54 renders (direct, 
 worker at 64 px, 32 spp and 128 px, 64 spp (the measurements and their commands: docs/speed.md, "The rates
 behind the estimates")."""
 
-SAMPLES_PER_S = 9e5
+SAMPLES_PER_S = SAMPLES_PER_S_DIRECT
 """Samples per second of the face on one core (one drjit thread), the estimates' rate (see
-:data:`SECONDS_PER_RENDER`)."""
+:data:`SECONDS_PER_RENDER`) at every level but those whose effects are slower (a level's own rate:
+:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`, e.g. ``subsurface``'s)."""
 
 CSV_COLUMNS = ("camera", "prevailing_K", "calibration_K", "skin", "level", "seconds", "spp",
                "skin_ncc_mean_r", "skin_ncc_mean_g", "skin_ncc_mean_b", "skin_ncc_std_r", "skin_ncc_std_g",
@@ -127,17 +129,20 @@ def sweep_tasks(cameras, lights, skins, levels) -> list[tuple]:
     return [(cam, p, c, skin, level) for cam, (p, c), skin, level in itertools.product(cameras, lights, skins, levels)]
 
 
-def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2) -> float:
+def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels=None) -> float:
     """
     Wall time of ``renders`` face renders of ``pixels`` pixels at ``spp`` on ``cores`` cores, s (from
-    :data:`SECONDS_PER_RENDER` and :data:`SAMPLES_PER_S`, per core; a worker's start, a few seconds, aside).
+    :data:`SECONDS_PER_RENDER` and :data:`SAMPLES_PER_S`, per core; a worker's start, a few seconds, aside);
+    ``levels``, one per render, each render at its level's rate
+    (:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`: ``subsurface`` is far slower).
 
     Examples
     --------
     >>> round(estimate_seconds(54, 128 * 128, 64, cores=1))  # measured: docs/speed.md
     71
     """
-    return renders * (SECONDS_PER_RENDER + pixels * spp / SAMPLES_PER_S) / max(1, cores)
+    rates = [SAMPLES_PER_S] * renders if levels is None else [physics_level(level).samples_per_s for level in levels]
+    return sum(SECONDS_PER_RENDER + pixels * spp / rate for rate in rates) / max(1, cores)
 
 
 @dataclass(frozen=True)
@@ -189,21 +194,30 @@ class FaceSweep:
         return write_output(path, handle.getvalue(), flag)
 
 
-def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples: float, cores: int) -> None:
+def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples: float, cores: int,
+                levels=None) -> None:
+    """Refuse a sweep too large (``levels``: each render's level; a slower level's samples count at its cost)."""
     pixels = size * size
     if pixels > PIXELS_MAX:
         raise SkinrenderError(f"size {size} pixels gives {pixels} pixels per image, more than {PIXELS_MAX}")
     if spp * pixels > SAMPLES_MAX:
         raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
                               f"most {SAMPLES_MAX // pixels} spp at this size")
-    seconds, on = estimate_seconds(renders, pixels, spp, cores), f"on {cores} core{'s' * (cores > 1)}"
+    seconds, on = estimate_seconds(renders, pixels, spp, cores, levels), f"on {cores} core{'s' * (cores > 1)}"
     about = f"about {duration_text(seconds)} {on}"
     if renders > max_renders:
         raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} ({about}); raise "
                               "the limit (--max-renders) or sweep fewer combinations")
-    if renders * pixels * spp > max_samples:
-        raise SkinrenderError(f"{renders} renders × {pixels} pixels × {spp} spp = {renders * pixels * spp:.3g} "
-                              f"samples is more than max_samples = {max_samples:.3g} ({about}); raise "
+    costs = [1.0] * renders if levels is None else [SAMPLES_PER_S / physics_level(level).samples_per_s
+                                                     for level in levels]
+    weighted = sum(costs) * pixels * spp
+    if weighted > max_samples:
+        slower = [] if levels is None else sorted({physics_level(level).name for level, cost in zip(levels, costs)
+                                                   if cost > 1})
+        counted = (f" (at {', '.join(slower)} a sample counts as {max(costs):.3g} at the base's rate, its cost)"
+                   if slower else "")
+        raise SkinrenderError(f"{renders} renders × {pixels} pixels × {spp} spp = {weighted:.3g} samples{counted} "
+                              f"is more than max_samples = {max_samples:.3g} ({about}); raise "
                               "the limit (--max-samples) or lower the size or spp")
 
 
@@ -279,7 +293,7 @@ def face_sweep(
     workers = check_workers(workers, "workers")
     tasks = sweep_tasks(cams, pairs, skins, levels)
     _check_size(len(tasks), int(size), int(spp), max_renders, max_samples,
-                min(workers, os.cpu_count() or 1) if dask is None else os.cpu_count() or 1)
+                min(workers, os.cpu_count() or 1) if dask is None else os.cpu_count() or 1, [t[-1] for t in tasks])
     face = load_face_scene(scene)
     settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance)
     start = time.perf_counter()

@@ -143,6 +143,21 @@ def test_estimate_grows_with_samples():
     assert estimate_seconds(10, 256 * 256, 64) > estimate_seconds(10, 64 * 64, 64) > estimate_seconds(1, 64 * 64, 64)
 
 
+def test_estimate_and_cap_count_each_level_at_its_cost():
+    """A subsurface render costs its own rate (samples/s): its estimate and its share of max_samples are larger."""
+    from skinrender.rendering.face.effects import physics_level
+
+    ratio = physics_level("direct").samples_per_s / physics_level("subsurface").samples_per_s
+    base = estimate_seconds(2, 64 * 64, 32, levels=["direct", "direct"])
+    assert base == pytest.approx(estimate_seconds(2, 64 * 64, 32))
+    slow = estimate_seconds(2, 64 * 64, 32, levels=["direct", "sheen+subsurface"])
+    assert slow > 100 * base and ratio > 100
+    arguments = {"cameras": [CAMERA], "lights": [(2856, 5900)], "skins": SKINS[:1], "size": 16, "spp": 4,
+                 "max_samples": 16 * 16 * 4 * 10}
+    with pytest.raises(SkinrenderError, match=r"at subsurface a sample counts as \d+ at the base's rate.*max-samples"):
+        face_sweep(levels=["direct", "subsurface"], **arguments)
+
+
 @pytest.mark.parametrize("kwargs, match", [
     ({"levels": ()}, "levels"), ({"levels": ("glossy",)}, "physics"), ({"skins": ("skin:nobody",)}, "skin"),
     ({"lights": [("x", 5900)]}, "illuminant"), ({"cameras": ["gbell:9@450"]}, "camera|peak|triplet|three"),

@@ -59,8 +59,10 @@ class Setup:
     What an effect's functions may read about the render.
 
     ``scene``, ``camera``, ``grid`` and the level's ``lights`` (``{name: Light}``) for the Mitsuba
-    document; ``calibration`` (K), ``seed``, ``imager`` (a preset, a TOML path or ``None``: the default)
-    and ``exposure`` (``auto`` or s) for ``post``, ``None`` while the document is built.
+    document, and the ``skin`` spec rendered (its reflectance is the ``skin`` part's argument; an effect that
+    needs more of it, as the skin model's layers, reads the spec); ``calibration`` (K), ``seed``, ``imager``
+    (a preset, a TOML path or ``None``: the default) and ``exposure`` (``auto`` or s) for ``post``, ``None``
+    while the document is built.
     """
 
     scene: FaceScene
@@ -71,6 +73,7 @@ class Setup:
     seed: int | None = None
     imager: object = None
     exposure: object = "auto"
+    skin: str | None = None
 
 
 @dataclass(frozen=True)
@@ -168,6 +171,17 @@ class Effect:
         What it changes, or ``None``.
     limits
         Its analytic limits.
+    samples_per_s
+        Samples per second of a face render with this effect on one core, measured: the estimates' rate
+        (``None``: it costs no more than the base). A level runs at the slowest of its effects' rates.
+    scene_scale
+        Scene units per metre of the Mitsuba document (1: metres). Mitsuba starts a ray leaving a surface
+        ``(1 + max|p|) · 8.9e-5`` scene units off it: in metres, ~0.1 mm at the face; in millimetres (1000),
+        ~0.01 mm. A level writes its document at the largest of its effects' scales.
+    variant
+        ``(requested) → variant``: the Mitsuba variant the effect renders best with (``requested``: the one the
+        user named, or ``None``), or ``None`` to leave the choice to
+        :func:`~skinrender.rendering.variants.choose_variant`.
     """
 
     name: str
@@ -179,11 +193,15 @@ class Effect:
     lights: Callable | None = None
     post: Callable | None = None
     limits: Limits = field(default_factory=Limits)
+    samples_per_s: float | None = None
+    scene_scale: float = 1.0
+    variant: Callable | None = None
 
     @property
     def changes_document(self) -> bool:
         """Whether it changes the Mitsuba document (else it acts after rendering only)."""
-        return any(part is not None for part in (self.integrator, self.skin, self.prop, self.lights))
+        return any(part is not None for part in (self.integrator, self.skin, self.prop, self.lights)) or \
+            self.scene_scale != 1.0
 
 
 def twosided(bsdf: dict) -> dict:

@@ -21,7 +21,12 @@ from __future__ import annotations
 from ..limits import check_shading
 from .base import Effect, Limits, Replicates, Setup, spectrum, twosided
 
-__all__ = ["DIRECT"]
+__all__ = ["DIRECT", "SAMPLES_PER_S_DIRECT"]
+
+SAMPLES_PER_S_DIRECT = 9e5
+"""Samples per second of the face on one core (one drjit thread), the estimates' rate for every level that costs
+no more: fitted with :data:`skinrender.studies.face.sweep.SECONDS_PER_RENDER` to two measured sweeps (the
+measurements and their commands: docs/speed.md, "The rates behind the estimates")."""
 
 
 def _integrator(integrator: dict | None, setup: Setup) -> dict:
@@ -62,5 +67,6 @@ DIRECT = Effect(
     "(Mitsuba's direct integrator): the analytic model's world, shading aside",
     integrator=_integrator, skin=_lambertian, prop=_lambertian, lights=_lights,
     limits=Limits(check=_check, why="the shading check is the test at this level"),
+    samples_per_s=SAMPLES_PER_S_DIRECT,
 )
 """The base of every level."""

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 from ....errors import SkinrenderError
 from ....methods import validate_method
+from ...variants import choose_variant
 from ..scene import FaceScene, Light
 from .base import Effect, Frame, Measured, Setup
 from .direct import DIRECT
@@ -38,6 +39,7 @@ from .interreflection import INTERREFLECTION
 from .mixed import MIXED
 from .noise import NOISE
 from .sheen import SHEEN
+from .subsurface import SUBSURFACE
 
 __all__ = ["PHYSICS_EFFECTS", "PHYSICS_BASE", "PHYSICS", "EFFECTS", "LEVELS_EACH", "LEVELS_LADDER", "Level",
            "parse_physics", "physics_level", "active_lights"]
@@ -46,6 +48,7 @@ PHYSICS_EFFECTS: dict[str, Effect] = {effect.name: effect for effect in (
     DIRECT,
     INTERREFLECTION,
     SHEEN,
+    SUBSURFACE,
     MIXED,
     NOISE,
 )}
@@ -136,6 +139,28 @@ class Level:
         """What the effects read (:class:`~.base.Setup`); ``after``: ``calibration``, ``seed``, ``imager``,
         ``exposure`` for ``post``."""
         return Setup(scene, camera, grid, lights, **after)
+
+    @property
+    def samples_per_s(self) -> float:
+        """Samples per second of a face render at this level on one core: its slowest effect's rate."""
+        return min(effect.samples_per_s for effect in self.effects if effect.samples_per_s is not None)
+
+    def seconds(self, samples: float) -> float:
+        """Seconds ``samples`` (pixels × spp) take at this level on one core (:attr:`samples_per_s`)."""
+        return float(samples) / self.samples_per_s
+
+    @property
+    def scene_scale(self) -> float:
+        """Scene units per metre of its Mitsuba document (:attr:`~.base.Effect.scene_scale`)."""
+        return max(effect.scene_scale for effect in self.effects)
+
+    def choose_variant(self, requested: str | None = None) -> str:
+        """The Mitsuba variant: the first effect's that chooses one (:attr:`~.base.Effect.variant`), else
+        :func:`~skinrender.rendering.variants.choose_variant`'s."""
+        for effect in self.effects:
+            if effect.variant is not None:
+                return effect.variant(requested)
+        return choose_variant(requested)
 
     def integrator(self, setup: Setup) -> dict:
         """The Mitsuba integrator."""

@@ -36,7 +36,7 @@ class TestParsePhysics:
         assert parse_physics("+".join(reversed(EFFECTS))) == EFFECTS
         assert set(EFFECTS) | {"direct"} == set(PHYSICS)
 
-    @pytest.mark.parametrize("spec", ["", "glossy", "direct+noise", "sheen+", "subsurface"])
+    @pytest.mark.parametrize("spec", ["", "glossy", "direct+noise", "sheen+", "bssrdf"])
     def test_refused(self, spec):
         with pytest.raises(SkinrenderError, match="physics"):
             parse_physics(spec)
@@ -81,10 +81,11 @@ class TestRegistry:
         assert base.limits.check is not None and base.limits.holds
 
     def test_level_lists_are_read_from_the_registry(self):
-        assert EFFECTS == tuple(PHYSICS_EFFECTS)[1:] == ("interreflection", "sheen", "mixed", "noise")
+        assert EFFECTS == tuple(PHYSICS_EFFECTS)[1:] == ("interreflection", "sheen", "subsurface", "mixed", "noise")
         assert LEVELS_EACH == ("direct", *EFFECTS)
-        assert LEVELS_LADDER == (*LEVELS_EACH, "interreflection+sheen+mixed+noise")
-        assert LEVELS_DEFAULT is LEVELS_LADDER and LEVELS_BENCH is LEVELS_EACH
+        assert LEVELS_LADDER == (*LEVELS_EACH, "interreflection+sheen+subsurface+mixed+noise")
+        assert LEVELS_DEFAULT is LEVELS_LADDER and LEVELS_BENCH == tuple(level for level in LEVELS_EACH
+                                                                         if level != "subsurface")
         assert list(PHYSICS) == list(PHYSICS_EFFECTS) and dict(PHYSICS)["noise"] == NOISE.description
 
 
@@ -92,9 +93,9 @@ class TestRefusals:
     """Unknown and duplicate effects are refused with the messages they had before the registry."""
 
     @pytest.mark.parametrize("spec, message", [
-        ("glossy", "physics ('glossy') must be one of direct, interreflection, sheen, mixed, noise, got 'glossy'"),
-        ("", "physics ('') must be one of direct, interreflection, sheen, mixed, noise, got ''"),
-        ("sheen+", "physics ('sheen+') must be one of direct, interreflection, sheen, mixed, noise, got ''"),
+        ("glossy", "physics ('glossy') must be one of direct, interreflection, sheen, subsurface, mixed, noise, got 'glossy'"),
+        ("", "physics ('') must be one of direct, interreflection, sheen, subsurface, mixed, noise, got ''"),
+        ("sheen+", "physics ('sheen+') must be one of direct, interreflection, sheen, subsurface, mixed, noise, got ''"),
         ("direct+noise", "physics: 'direct' is the base and combines with nothing, got 'direct+noise'"),
         ("sheen+interreflection+sheen",
          "physics: sheen named twice in 'sheen+interreflection+sheen'; name each effect once"),
@@ -133,8 +134,11 @@ def _old_lights(scene, effects: tuple[str, ...]) -> dict:
     return {"key": scene.key, "ambient": ambient} if scene.ambient > 0 else {"key": scene.key}
 
 
-LEVELS_ALL = ["+".join(c) for n in range(len(EFFECTS) + 1) for c in itertools.combinations(EFFECTS, n)]
-"""Every level: direct (the empty combination) and each of the 15 combinations of the four effects."""
+EFFECTS_BEFORE = ("interreflection", "sheen", "mixed", "noise")
+"""The effects registered when the registry replaced the branches (``subsurface`` came later: its own tests)."""
+
+LEVELS_ALL = ["+".join(c) for n in range(len(EFFECTS_BEFORE) + 1) for c in itertools.combinations(EFFECTS_BEFORE, n)]
+"""Every level of those: direct (the empty combination) and each of the 15 combinations of the four effects."""
 
 
 @pytest.mark.parametrize("spec", LEVELS_ALL)

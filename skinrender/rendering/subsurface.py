@@ -1,0 +1,283 @@
+"""
+Skin as participating media under a dielectric boundary
+=======================================================
+
+Mitsuba 3 has no BSSRDF: subsurface scattering in skin is rendered as
+homogeneous participating media inside a dielectric boundary of the skin's
+refractive index, path traced by ``volpathmis``. This module holds what the
+chart's slabs (:mod:`~skinrender.rendering.subsurface_chart`) and the face
+(:mod:`skinrender.rendering.face.effects.subsurface`) share: the skin model's
+layers of a skin spec, the slab rendered and its adding-doubling reflectance,
+the one effective medium of the face, the Mitsuba media and integrator.
+
+-   :class:`SkinMedia`, :func:`skin_media_of`: the layers of a skin spec, from
+    the skin model's parameters (``skin-model:melanin=…``) or fitted to a
+    measured reflectance (:mod:`skinrender.datasets.skin_fit`).
+-   :func:`slab_layers`, :func:`slab_reflectance`: the flat slab as rendered
+    (the dermis :data:`SLAB_DERMIS_MM` thick, air below) and its adding-doubling
+    reflectance.
+-   :func:`effective_layer`: one semi-infinite medium of the two layers'
+    reflectance.
+-   :func:`medium_dict`, :data:`INTEGRATOR_SUBSURFACE`,
+    :func:`truncation_bound`, :func:`subsurface_variant`: the Mitsuba pieces.
+
+Choices, each measured (``docs/subsurface.md`` has the commands)
+-----------------------------------------------------------------
+-   ``volpathmis`` over ``volpath``: with the same settings, a flat skin slab's
+    pixel standard deviation at 16 spp was 27–36 % against 36–53 %.
+-   Russian roulette off (:data:`DEPTH_MAX_SUBSURFACE`): Mitsuba's roulette
+    keeps a path with probability at most 0.95 per bounce and divides by it,
+    but light in skin scatters hundreds of times with an albedo of ~0.999, so
+    the few surviving paths carry weights of 0.95⁻ⁿ that a render rarely
+    draws: at 64 spp a slab's mean came out 21 %, 7.6 % and 2.5 % low (R, G,
+    B) with Mitsuba's default (roulette from depth 5), pixel standard
+    deviation 32–51 %, against within 0.6 % and 14–15 % without. Paths end
+    where they leave the skin, or at :data:`DEPTH_MAX_SUBSURFACE`
+    interactions, where what they carry is below :func:`truncation_bound`.
+-   The variant: without a GPU, ``scalar_spectral`` (each path runs to its own
+    end) rendered a slab 2.5× faster than ``llvm_ad_spectral`` (whose SIMD
+    packets wait for their longest path; the times in ``docs/subsurface.md``).
+-   Lengths: the media's coefficients are per mm and scaled to the scene's
+    unit (``scale``). Mitsuba starts a ray leaving a surface
+    ``(1 + max|p|) · 8.9e-5`` scene units off it (float32), so a ray entering
+    the skin skips that much of the medium: a thin epidermis is only rendered
+    near the origin (the chart's slabs, in mm, within a few mm of it).
+
+Units: coefficients mm⁻¹, thicknesses mm, wavelengths nm, reflectance fractions.
+
+References
+----------
+-   :cite:`Prahl1995` : S. A. Prahl (1995). The adding-doubling method.
+-   :cite:`Jakob2022` : W. Jakob et al. (2022). Mitsuba 3 renderer.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
+
+import numpy as np
+
+from ..errors import SkinrenderError
+from ..hints import NDArrayFloat
+from ..spectra import WavelengthGrid
+from .renderer import _spectrum
+from .scene import reflectance_of, skin_parameters_of
+from .variants import choose_variant
+
+__all__ = ["SLAB_DERMIS_MM", "FIT_RMS_MAX", "FIT_STEP_NM", "DEPTH_MAX_SUBSURFACE", "INTEGRATOR_SUBSURFACE",
+           "TRUNCATION_MAX", "SkinMedia", "skin_media_of", "slab_layers", "slab_reflectance", "effective_layer",
+           "medium_dict", "truncation_bound", "check_truncation", "subsurface_variant"]
+
+SLAB_DERMIS_MM = 5.0
+"""Thickness of the rendered dermis, mm, standing for the model's semi-infinite one: the slab's adding-doubling
+reflectance differs from the semi-infinite model's by at most 7.2e-6 (relative, melanin 0.02–0.3, 400–700 nm;
+4.0e-3 at 2 mm, 4.8e-4 at 3 mm, 1.3e-8 at 8 mm), far below a render's noise."""
+
+FIT_RMS_MAX = 0.03
+"""A measured reflectance rendered as skin media must fit the skin model to this RMS (fraction) or better: the
+model fits the 100 NIST skins to at most 0.012 and the 30 Vrhel skins to at most 0.022 (``docs/skin-model.md``);
+worse, the spectrum is not skin as the model knows it."""
+
+FIT_STEP_NM = 3.0
+"""A measured reflectance is fitted every this many nm of its grid within 400–700 nm (the NIST fits' spacing)."""
+
+DEPTH_MAX_SUBSURFACE = 2**16
+"""Interactions a path may have (and Russian roulette's start: never before the cap)."""
+
+TRUNCATION_MAX = 1e-6
+"""Largest :func:`truncation_bound` a render accepts (a fraction of the light)."""
+
+INTEGRATOR_SUBSURFACE = {"type": "volpathmis", "max_depth": DEPTH_MAX_SUBSURFACE, "rr_depth": DEPTH_MAX_SUBSURFACE}
+"""The integrator of skin media: ``volpathmis``, Russian roulette off (module docstring)."""
+
+
+@dataclass(frozen=True, eq=False)
+class SkinMedia:
+    """
+    The skin model's layers of a skin spec.
+
+    Attributes
+    ----------
+    spec
+        The skin spec.
+    parameters
+        The :class:`~skinrender.datasets.skin_model.SkinParameters` (given, or fitted).
+    fit_rms
+        ``None`` where the spec gave the parameters; else the fit's RMS reflectance error (fraction) over the
+        fitted wavelengths.
+    bounds_hit
+        The fit's parameters at a bound (name → ``"low"``/``"high"``).
+    layers
+        The epidermis and the semi-infinite dermis (:class:`~skinrender.datasets.skin_model.SkinLayer`) on
+        ``wavelengths`` (nm).
+    """
+
+    spec: str
+    parameters: object
+    fit_rms: float | None
+    layers: tuple
+    wavelengths: NDArrayFloat
+    bounds_hit: dict = field(default_factory=dict)
+
+    def as_dict(self) -> dict:
+        """JSON values: ``spec``, ``source`` (``parameters`` or ``fit``), ``parameters``, ``fit_rms``, ``bounds_hit``."""
+        p = self.parameters
+        names = ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "epidermis_mm", "n")
+        return {"spec": self.spec, "source": "parameters" if self.fit_rms is None else "fit",
+                "parameters": {name: float(getattr(p, name)) for name in names}, "fit_rms": self.fit_rms,
+                "bounds_hit": dict(self.bounds_hit)}
+
+
+def skin_media_of(spec: str, grid: WavelengthGrid, where: str = "skin") -> SkinMedia:
+    """
+    The skin model's layers of a skin spec on ``grid``.
+
+    ``skin-model:NAME=VALUE,…`` gives the parameters. Any other reflectance spec (``skin:089 …``) is a
+    measured spectrum: the model is fitted to it every :data:`FIT_STEP_NM` nm within 400–700 nm
+    (:func:`~skinrender.datasets.skin_fit.fit_skin_spectrum`, ~1.3 s) and its layers are rendered; a fit worse
+    than :data:`FIT_RMS_MAX` (or one that fails) is refused naming ``where``. Cached per spec and grid.
+
+    Raises
+    ------
+    SkinrenderError
+        A bad spec, or a spectrum the model does not fit.
+    """
+    return _skin_media(str(spec).strip(), grid, where)
+
+
+@lru_cache(maxsize=256)
+def _skin_media(spec: str, grid: WavelengthGrid, where: str) -> SkinMedia:
+    from ..datasets.skin_fit import fit_skin_spectrum
+    from ..datasets.skin_model import skin_layers
+
+    lam = grid.wavelengths
+    parameters = skin_parameters_of(spec, where)
+    if parameters is not None:
+        return SkinMedia(spec, parameters, None, skin_layers(lam, parameters), lam)
+    measured = reflectance_of(spec, grid, where)
+    inside = np.flatnonzero((lam >= 400.0) & (lam <= 700.0))
+    chosen = inside[::max(1, int(round(FIT_STEP_NM / grid.step)))]
+    accepts = ("subsurface renders the skin model's layers: give its parameters "
+               "(skin-model:melanin=…,blood=…) or a measured skin reflectance the model fits")
+    if chosen.size < 8:
+        raise SkinrenderError(f"{where}: {spec!r}: the grid has {chosen.size} wavelengths inside 400–700 nm to fit "
+                              f"the skin model on, fewer than 8; {accepts}")
+    fit = fit_skin_spectrum(lam[chosen], measured[chosen], name=spec)
+    if not fit.converged or not math.isfinite(fit.rms) or fit.rms > FIT_RMS_MAX:
+        found = f"RMS {fit.rms:.3f}" if math.isfinite(fit.rms) else "no fit"
+        raise SkinrenderError(f"{where}: {spec!r} is a measured reflectance and the skin model fits it to {found} "
+                              f"(at most {FIT_RMS_MAX:g} is skin-like); {accepts}")
+    return SkinMedia(spec, fit.parameters, float(fit.rms), skin_layers(lam, fit.parameters), lam,
+                     dict(fit.bounds_hit))
+
+
+def slab_layers(layers, dermis_mm: float = SLAB_DERMIS_MM) -> tuple:
+    """The flat slab as rendered: the epidermis over a dermis ``dermis_mm`` thick, air below (SkinLayer s)."""
+    epidermis, dermis = layers
+    return epidermis, replace(dermis, thickness_mm=float(dermis_mm))
+
+
+def slab_reflectance(layers, dermis_mm: float = SLAB_DERMIS_MM) -> NDArrayFloat:
+    """
+    Adding-doubling reflectance of the rendered slab (:func:`slab_layers`): total reflectance for collimated
+    light at normal incidence, the surface's specular reflection included (Prahl's ``UR1``), on the layers'
+    wavelengths, fractions.
+
+    Examples
+    --------
+    >>> from skinrender.datasets.skin_model import SkinParameters, skin_layers, reflectance_of_layers
+    >>> layers = skin_layers([450.0, 650.0], SkinParameters(melanin=0.1))
+    >>> bool(abs(slab_reflectance(layers) - reflectance_of_layers(layers)).max() < 1e-5)
+    True
+    """
+    from ..datasets.skin_model import reflectance_of_layers
+
+    return reflectance_of_layers(slab_layers(layers, dermis_mm))
+
+
+def effective_layer(layers, tolerance: float = 1e-7):
+    """
+    One semi-infinite medium whose adding-doubling reflectance (collimated normal incidence) equals the two
+    layers': the dermis' scattering, ``g`` and ``n``, and per wavelength the absorption ``μa_eff`` (mm⁻¹) found
+    by bisection in log μa until the reflectances agree within ``tolerance``. The face renders it; under diffuse
+    light its reflectance differs from the two layers' (:func:`~skinrender.datasets.skin_model.reflectance_of_layers`
+    with ``diffuse=True``; measured in ``docs/subsurface.md``).
+
+    Examples
+    --------
+    >>> from skinrender.datasets.skin_model import SkinParameters, skin_layers, reflectance_of_layers
+    >>> layers = skin_layers([450.0, 650.0], SkinParameters(melanin=0.1))
+    >>> single = effective_layer(layers)
+    >>> single.name, single.thickness_mm, bool(abs(reflectance_of_layers((single,)) - reflectance_of_layers(layers)).max() < 1e-6)
+    ('effective', None, True)
+    """
+    from ..datasets.adding_doubling import Slab, stack_reflectance
+    from ..datasets.skin_model import SkinLayer, reflectance_of_layers
+
+    dermis = layers[-1]
+    target = reflectance_of_layers(layers)
+    low, high = np.full(target.shape, 1e-8), np.full(target.shape, 1e4)
+    for _ in range(80):
+        middle = np.sqrt(low * high)
+        r = stack_reflectance([Slab(middle, dermis.mu_s_per_mm, dermis.g, None)], n=dermis.n)
+        bright = r > target
+        low, high = np.where(bright, middle, low), np.where(bright, high, middle)
+        if np.all(np.abs(r - target) <= tolerance):
+            break
+    mu_a = np.sqrt(low * high)
+    return SkinLayer("effective", None, mu_a, np.array(dermis.mu_s_per_mm), dermis.g, dermis.n)
+
+
+def medium_dict(layer, grid: WavelengthGrid, mm_per_unit: float = 1.0) -> dict:
+    """
+    A Mitsuba ``homogeneous`` medium of a layer (``mu_a_per_mm``, ``mu_s_per_mm`` on ``grid``'s wavelengths):
+    extinction ``μa + μs`` and albedo ``μs / (μa + μs)`` as ``irregular`` spectra, scaled to a scene whose unit is
+    ``mm_per_unit`` mm, and a Henyey–Greenstein phase function of the layer's ``g``.
+    """
+    mu_a, mu_s = np.asarray(layer.mu_a_per_mm, dtype=np.float64), np.asarray(layer.mu_s_per_mm, dtype=np.float64)
+    mu_t = mu_a + mu_s
+    if not (np.all(np.isfinite(mu_t)) and np.all(mu_t > 0)):
+        raise SkinrenderError(f"layer {layer.name}: extinction μa + μs must be finite and > 0 mm⁻¹")
+    return {"type": "homogeneous", "sigma_t": _spectrum(grid.wavelengths, mu_t),
+            "albedo": _spectrum(grid.wavelengths, mu_s / mu_t), "scale": float(mm_per_unit),
+            "phase": {"type": "hg", "g": float(layer.g)}}
+
+
+def truncation_bound(layers, depth: int = DEPTH_MAX_SUBSURFACE) -> float:
+    """
+    The largest fraction of the light a path cut at ``depth`` interactions can have carried: light scattered
+    ``n`` times survives absorption with probability at most ``ω_max^n``, ``ω = μs / (μa + μs)`` the largest
+    albedo of the layers over the wavelengths.
+
+    >>> from skinrender.datasets.skin_model import skin_layers
+    >>> truncation_bound(skin_layers([400.0, 700.0])) < 1e-20
+    True
+    """
+    albedo = max(float(np.max(np.asarray(layer.mu_s_per_mm) / (np.asarray(layer.mu_a_per_mm)
+                                                                  + np.asarray(layer.mu_s_per_mm))))
+                 for layer in layers)
+    return float(math.exp(depth * math.log(albedo))) if albedo > 0 else 0.0
+
+
+def check_truncation(media: SkinMedia, where: str) -> float:
+    """:func:`truncation_bound` of ``media``, refused above :data:`TRUNCATION_MAX` (scattering too strong for
+    its absorption: paths longer than the depth cap would carry light)."""
+    bound = truncation_bound(media.layers)
+    if bound > TRUNCATION_MAX:
+        raise SkinrenderError(f"{where}: {media.spec!r}: paths cut at {DEPTH_MAX_SUBSURFACE} interactions would "
+                              f"lose up to {bound:.2g} of the light (more than {TRUNCATION_MAX:g}): its scattering "
+                              "is too strong for its absorption to render")
+    return bound
+
+
+def subsurface_variant(requested: str | None = None) -> str:
+    """
+    The Mitsuba variant for skin media: ``requested`` if given; else ``cuda_ad_spectral`` where it runs, else
+    ``scalar_spectral`` (faster than ``llvm_ad_spectral`` for long random walks, module docstring).
+    """
+    if requested is not None:
+        return choose_variant(requested)
+    chosen = choose_variant(None)
+    return chosen if chosen.startswith("cuda") else choose_variant("scalar_spectral")
