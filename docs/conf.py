@@ -56,14 +56,14 @@ html_title = f"skinrender {release}"
 html_static_path: list[str] = []
 
 # Docstring markup in modules that other work was rewriting when the site was built
-# (rendering/face_validation.py, rendering/validation.py, rendering/imaging.py, studies/bench_face.py) is
+# (rendering/face_validation.py, rendering/validation.py, rendering/imaging.py, studies/benchmarks/bench_face.py) is
 # mended here, at build time, rather than in the modules: each entry is (object's full name, text in its
 # docstring, what the docs show instead). An entry whose text is no longer there does nothing; fix the module
 # and remove the entry.
 DOCSTRING_MENDS = [
     # |z| and |ΔNCC| read as substitution references
     ("skinrender.rendering.validation.Validation.worst", "|z|", r"\|z\|"),
-    ("skinrender.studies.bench_face.PRESET_THRESHOLDS", "|ΔNCC|", r"\|ΔNCC\|"),
+    ("skinrender.studies.benchmarks.bench_face.PRESET_THRESHOLDS", "|ΔNCC|", r"\|ΔNCC\|"),
     # a numpydoc-style citation: the bibliography is cited with :cite:
     ("skinrender.rendering.imaging", "[EMVA1288]_", ":cite:`EMVA1288`"),
 ]

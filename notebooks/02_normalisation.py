@@ -27,7 +27,7 @@ matplotlib.use('Agg')
 import matplotlib.pyplot as plt
 import numpy as np
 import skinrender as sr
-from skinrender.studies.reproduce import STAGE2_CAMERA, STAGE2_NORMALISATIONS, stage2_cases, stage2_observation, stage2_pairs
+from skinrender.studies.paper.reproduce import STAGE2_CAMERA, STAGE2_NORMALISATIONS, stage2_cases, stage2_observation, stage2_pairs
 
 T = np.array(sr.TEMPERATURES_PAPER)  # K
 CAMERA = STAGE2_CAMERA  # the paper's Sony is not public

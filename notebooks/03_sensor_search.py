@@ -30,7 +30,7 @@ import skinrender as sr
 from skinrender.design.bank import sensor_bank, positions_grid
 from skinrender.design.criteria import triplet_volumes_fast, triplet_volumes_naive
 from skinrender.design.search import search
-from skinrender.studies.tables import PAPER_TABLES, table_rows
+from skinrender.studies.paper.tables import PAPER_TABLES, table_rows
 
 POSITIONS = '400:700:50'  # nm; the paper: 400:700:10
 skin = sr.reflectances('skin').on(sr.GRID_DEFAULT)

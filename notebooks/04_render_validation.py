@@ -30,7 +30,7 @@ import numpy as np
 import skinrender as sr
 from skinrender.rendering.balance import render
 from skinrender.rendering.validation import validate, analytic_reference
-from skinrender.studies.tables import table1
+from skinrender.studies.paper.tables import table1
 
 CAMERA = 'gbell:9@450,540,610'
 SPP = 64

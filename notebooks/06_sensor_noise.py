@@ -31,7 +31,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import skinrender as sr
 from skinrender.model.imager import list_imagers
-from skinrender.studies.ptc import photon_transfer
+from skinrender.studies.benchmarks.ptc import photon_transfer
 from skinrender.rendering.imaging import render_imaged
 from skinrender.rendering.sensor_validation import validate_imaged
 from skinrender.rendering.validation import analytic_reference
@@ -97,4 +97,4 @@ free = optimise_camera('detection', skin, munsell, [[450, 540, 610]], max_evalua
 
 # %% [markdown]
 # ## Reference API
-# `skinrender.model.imager`, `model.exposure`, `model.noise`, `rendering.imaging`, `studies.ptc`, `design.noise_aware`; commands `imagers`, `ptc`, `score`, and `--imager` on `render`, `validate`, `detect`, `search`, `design`. The docs' noise page (`docs/imager.md`) gives the full-size measurements.
+# `skinrender.model.imager`, `model.exposure`, `model.noise`, `rendering.imaging`, `studies.benchmarks.ptc`, `design.noise_aware`; commands `imagers`, `ptc`, `score`, and `--imager` on `render`, `validate`, `detect`, `search`, `design`. The docs' noise page (`docs/imager.md`) gives the full-size measurements.

@@ -31,8 +31,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 import skinrender as sr
 from skinrender.rendering.face import render_face
-from skinrender.studies.ladder import ladder
-from skinrender.studies.face_locus import face_locus
+from skinrender.studies.face.ladder import ladder
+from skinrender.studies.face.locus import face_locus
 
 CAM = sr.camera('gbell:9@450,540,610')
 
@@ -84,4 +84,4 @@ ax.set(xlabel='NCC r', ylabel='NCC g'); ax.legend(fontsize=7)
 
 # %% [markdown]
 # ## Reference API
-# `skinrender.rendering.face` (`render_face`), `rendering.face.scene`, `studies.ladder`, `studies.face_locus`; commands `render face --physics … --skin …`, `detect face` (`--figure`: the detected skin over the face), `ladder` (`--plot`: the figure above); `studies.figures` (`figure_ladder`, `figure_face`, `figure_chart`). The docs' face page (`docs/face.md`) gives the full-size measurements.
+# `skinrender.rendering.face` (`render_face`), `rendering.face.scene`, `studies.face.ladder`, `studies.face.locus`; commands `render face --physics … --skin …`, `detect face` (`--figure`: the detected skin over the face), `ladder` (`--plot`: the figure above); `studies.figures` (`figure_ladder`, `figure_face`, `figure_chart`). The docs' face page (`docs/face.md`) gives the full-size measurements.

@@ -68,13 +68,13 @@ from .model.response import (
 )
 from .model.stage1 import illuminant_selection, illuminant_set, illuminant_track, select_illuminants
 from .rendering.balance import Rendering
-from .rendering.dispatch import load_scene, render
+from .rendering.dispatch import load_scene, render, validate
 from .rendering.scene import ChartScene
 from .rendering.settings import RenderSettings
-from .rendering.validation import Validation, validate, validate_gamut
+from .rendering.validation import Validation, validate_gamut
 from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse, planck, resample
 from .studies import labelled as _labelled  # noqa: F401 (registers the figures of Rendering and FaceRendering)
-from .studies.tables import table1
+from .studies.paper.tables import table1
 
 __version__ = "0.1.0"
 

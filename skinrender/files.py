@@ -38,7 +38,8 @@ from typing import BinaryIO, NamedTuple
 
 from .errors import SkinrenderError
 
-__all__ = ["MACHINE_ERRNOS", "TOML_BYTES_MAX", "MESH_BYTES_MAX", "OutputError", "Output", "read_input", "exists",
+__all__ = ["MACHINE_ERRNOS", "TOML_BYTES_MAX", "MESH_BYTES_MAX", "EXR_BYTES_MAX", "OutputError", "Output",
+           "read_input", "check_input", "exists",
            "reason_of", "shown", "check_output_path", "write_outputs", "write_output", "remove_pending"]
 
 TOML_BYTES_MAX = 1_000_000
@@ -46,6 +47,10 @@ TOML_BYTES_MAX = 1_000_000
 
 MESH_BYTES_MAX = 256_000_000
 """Largest mesh (OBJ, PLY) read, bytes: a few million triangles; the bundled head is 0.2 MB."""
+
+EXR_BYTES_MAX = 1_000_000_000
+"""Largest EXR image read (a reference render, an image to detect in), bytes: a 4096 × 4096 image of four float32
+channels is 268 MB; the package's renders are under 5 MB."""
 
 MACHINE_ERRNOS = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EIO, errno.EROFS})
 """Errors of the machine rather than of the input (a full disk or quota, a file over the size limit, a failing
@@ -98,6 +103,44 @@ def _kind(mode: int) -> str:
     return "not a regular file"
 
 
+def _open_checked(path, limit: int, what: str, where: str | None) -> int:
+    """An open, non-blocking descriptor of ``path`` once it is shown a regular file of at most ``limit`` bytes."""
+    try:
+        handle = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
+    except OSError as error:
+        raise SkinrenderError(f"{where or shown(path)}: "
+                              f"{'no such file' if error.errno == errno.ENOENT else reason_of(error)}") from None
+    except ValueError:  # an embedded NUL byte
+        raise SkinrenderError(f"{where or repr(str(path))}: not a file name (it holds a NUL byte)") from None
+    try:
+        info = os.fstat(handle)
+        if not stat.S_ISREG(info.st_mode):
+            raise SkinrenderError(f"{where or path}: {_kind(info.st_mode)}, not a regular file; expected {what}")
+        if info.st_size > limit:
+            raise SkinrenderError(f"{where or path}: {info.st_size / 1e6:.3g} MB is larger than {what} may be "
+                                  f"({limit / 1e6:.3g} MB)")
+    except OSError as error:
+        os.close(handle)
+        raise SkinrenderError(f"{where or path}: cannot be read ({reason_of(error)})") from None
+    except SkinrenderError:
+        os.close(handle)
+        raise
+    return handle
+
+
+def check_input(path: str | Path, limit: int, what: str = "a file", where: str | None = None) -> None:
+    """
+    Refuse ``path`` unless it is a regular file of at most ``limit`` bytes, as :func:`read_input` does, for a
+    file a library reads itself (an EXR through OpenEXR): nothing is read, a named pipe is not waited on.
+
+    >>> check_input("/dev/zero", 1000, "an EXR image")
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: /dev/zero: a device, not a regular file; expected an EXR image
+    """
+    os.close(_open_checked(path, limit, what, where))
+
+
 def read_input(path: str | Path, limit: int, what: str = "a file", where: str | None = None) -> bytes:
     """
     The bytes of the input file ``path``, refused unless it is a regular file of at most ``limit`` bytes.
@@ -130,20 +173,8 @@ def read_input(path: str | Path, limit: int, what: str = "a file", where: str | 
     ...
     skinrender.errors.SkinrenderError: /dev/zero: a device, not a regular file; expected a file
     """
+    handle = _open_checked(path, limit, what, where)
     try:
-        handle = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
-    except OSError as error:
-        raise SkinrenderError(f"{where or shown(path)}: "
-                              f"{'no such file' if error.errno == errno.ENOENT else reason_of(error)}") from None
-    except ValueError:  # an embedded NUL byte
-        raise SkinrenderError(f"{where or repr(str(path))}: not a file name (it holds a NUL byte)") from None
-    try:
-        info = os.fstat(handle)
-        if not stat.S_ISREG(info.st_mode):
-            raise SkinrenderError(f"{where or path}: {_kind(info.st_mode)}, not a regular file; expected {what}")
-        if info.st_size > limit:
-            raise SkinrenderError(f"{where or path}: {info.st_size / 1e6:.3g} MB is larger than {what} may be "
-                                  f"({limit / 1e6:.3g} MB)")
         chunks, size = [], 0
         while size <= limit:
             chunk = os.read(handle, min(1 << 20, limit + 1 - size))

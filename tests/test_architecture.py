@@ -20,7 +20,7 @@ import skinrender
 
 ROOT = Path(skinrender.__file__).parent
 REPOSITORY = ROOT.parent
-LAYER_MODULES = {"constants", "errors", "files", "hints", "workload", "toml_tables", "spectra", "spectral_csv", "methods",
+LAYER_MODULES = {"constants", "errors", "files", "hints", "workload", "execution", "toml_tables", "spectra", "spectral_csv", "methods",
                  "extras", "datasets", "model", "evaluation", "design", "rendering", "studies", "cli", "testing"}
 """What ``skinrender.<name>`` may be when it is a module."""
 MODULE_LINES_MAX = 450

@@ -51,6 +51,21 @@ class TestReadInput:
         with pytest.raises(SkinrenderError, match="a folder"):
             read_input(tmp_path / "set.csv", 100)
 
+    def test_check_input_refuses_as_read_input_does_without_reading(self, tmp_path):
+        """For files a library opens itself (OpenEXR): a pipe, a device, an oversized file refused; a file passes."""
+        from skinrender.files import check_input
+
+        os.mkfifo(tmp_path / "pipe.exr")
+        with pytest.raises(SkinrenderError, match="a named pipe, not a regular file; expected an EXR image"):
+            check_input(tmp_path / "pipe.exr", 100, "an EXR image")
+        with open(tmp_path / "big.exr", "wb") as handle:
+            handle.truncate(10**6)
+        with pytest.raises(SkinrenderError, match=r"1 MB is larger than an EXR image may be \(0.001 MB\)"):
+            check_input(tmp_path / "big.exr", 1000, "an EXR image")
+        with pytest.raises(SkinrenderError, match="no such file"):
+            check_input(tmp_path / "none.exr", 1000)
+        assert check_input(tmp_path / "big.exr", 10**6) is None
+
     def test_an_oversized_file_is_refused_before_it_is_read(self, tmp_path):
         path = tmp_path / "big.csv"
         with open(path, "wb") as handle:  # sparse: no disk used

@@ -1,7 +1,7 @@
 """
 ``skinrender bench calibration`` and ``bench validate``: how often the
 validation's checks fail where their null holds, and what a validation costs
-and shows as spp grows (:mod:`skinrender.studies.calibration`). The flags are
+and shows as spp grows (:mod:`skinrender.studies.benchmarks.calibration`). The flags are
 added to ``bench``'s parser (:mod:`skinrender.cli.studies`), which refuses
 the ones another benchmark takes before calling :func:`command_bench_verdicts`.
 
@@ -41,16 +41,18 @@ def add_bench_arguments(p: argparse.ArgumentParser) -> None:
 
     p.add_argument("--camera", help="render, calibration, validate: the camera (default gbell:9@450,540,610); "
                    + HELP_CAMERA)
-    p.add_argument("--prevailing", help="calibration, validate: prevailing light (default 3300; a face 2856); "
+    p.add_argument("--prevailing", help="calibration, validate: prevailing light (default 3300; a face 2856; "
+                   "--scene ptc: the grey chart's one light, default 5900); "
                    + HELP_PLANCKIAN)
     p.add_argument("--calibration", help="calibration, validate: calibration light (default 4800; a face 5900); "
                    + HELP_PLANCKIAN)
     p.add_argument("--spp", metavar="N", help="calibration: samples per pixel (default 16; 64 with --imager; a face "
-                   "256, split over its 12 replicates)")
+                   "256, split over its 12 replicates; --scene ptc 64, its one render)")
     p.add_argument("--seeds", metavar="N", help="calibration: independent validations (default 40); validate: "
                    "validations per spp (default 5)")
     p.add_argument("--seed", metavar="S", help="calibration, validate: the first seed (default 0); the runs use S, "
-                   "S + 2, … (each validation takes its seed and the next; a face's S, S + 12, …: its 12 replicates)")
+                   "S + 2, … (each validation takes its seed and the next; a face's S, S + 12, …: its 12 replicates; "
+                   "--scene ptc's sensor seeds S, S + 1, … of one render with seed S)")
     p.add_argument("--imager", help="calibration, validate: through an image sensor (a preset or a TOML)")
     p.add_argument("--illuminance", type=float, help="calibration, validate with --imager: lux at the chart "
                    "(default 500)")
@@ -74,11 +76,13 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     from ..model.illuminant import illuminant
     from ..rendering.renderer import SAMPLES_MAX, render_passes
     from ..rendering.scene import load_chart_scene
-    from ..studies.calibration import calibration_path, estimate_seconds, renders_of
+    from ..studies.benchmarks.calibration import calibration_path, estimate_seconds, renders_of
     from ..workload import check_work
     from .face import is_face_scene
 
     scene_spec = _or(args.scene, "macbeth")
+    if scene_spec == "ptc":
+        return _checked_ptc(args)
     kind = "face" if is_face_scene(scene_spec) else "chart"
     run = calibration_path(kind, args.level)
     if kind == "face":
@@ -129,7 +133,7 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
     from ..model.camera import camera
     from ..rendering.face.effects import PHYSICS_BASE, physics_level
     from ..rendering.face.scene import load_face_scene
-    from ..studies.face_calibration import SEED_STEP, estimate_face_seconds
+    from ..studies.benchmarks.face_calibration import SEED_STEP, estimate_face_seconds
     from ..workload import check_work
     from .face import planckian_flag
 
@@ -162,19 +166,79 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
             "level": level}
 
 
+PTC_REFUSED = ("calibration", "exposure", "level", "mc_variance")
+"""``bench`` flags that ``--scene ptc`` refuses: the photon transfer has one light, its own exposure series, no
+level of physics and no render variance in its predictions (its two-frame differences cancel it)."""
+
+
+def _checked_ptc(args: argparse.Namespace) -> dict:
+    """``bench calibration --scene ptc --imager I``'s flags checked
+    (:func:`~skinrender.studies.benchmarks.ptc.ptc_calibration`): ``--prevailing`` is the grey chart's light (default 5900 K, as ``ptc --temperature``),
+    ``--illuminance`` its lux (default 500), ``--spp`` the one render's (default 64), ``--seed`` the first sensor
+    seed (the runs use S, S + 1, …; the render S)."""
+    from ..model.camera import camera
+    from ..model.imager import imager
+    from ..studies.benchmarks.ptc_verdict import estimate_ptc_seconds
+    from ..workload import check_work
+    from .common import positive_number
+    from .face import planckian_flag
+
+    if args.what != "calibration":
+        raise SkinrenderError("--scene ptc: bench validate runs a chart's tolerance against spp; the photon "
+                              "transfer's fits: bench calibration --scene ptc --imager I", flag="--scene")
+    for name in PTC_REFUSED:
+        if getattr(args, name) is not None:
+            option = f"--{name.replace('_', '-')}"
+            raise SkinrenderError(f"{option} does not go with --scene ptc: the photon transfer has one light "
+                                  "(--prevailing), its own exposure series and no render variance to correct",
+                                  flag=option)
+    if args.imager is None:
+        raise SkinrenderError("--scene ptc measures an image sensor: give --imager I (see 'skinrender imagers')",
+                              flag="--imager")
+    sensor = flag("--imager", imager, args.imager)
+    lux = positive_number(_or(args.illuminance, 500.0), "--illuminance", "lx")
+    temperature = planckian_flag(_or(args.prevailing, "5900"), "--prevailing")
+    cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))
+    seeds = integer_in(_or(args.seeds, SEEDS_DEFAULT["calibration"]), "--seeds", 1, 100_000)
+    first = integer_in(_or(args.seed, 0), "--seed", 0, SEED_MAX)
+    if first + seeds - 1 > SEED_MAX:
+        raise SkinrenderError(f"--seed: the runs use seeds {first} to {first + seeds - 1}, beyond {SEED_MAX}",
+                              flag="--seed")
+    spp = integer_in(_or(args.spp, 64), "--spp", 1, SPP_MAX)
+    plot = check_output(args.plot, "--plot", (".png",))
+    seconds = estimate_ptc_seconds(seeds, spp=spp)
+    check_work(seconds, "--seeds", f"{seeds} photon-transfer measurements", args.max_minutes,
+               fewer="run fewer --seeds")
+    return {"kind": "ptc", "camera_": cam, "imager_": sensor, "illuminance_lux": lux, "temperature": temperature,
+            "seeds": seeds, "first_seed": first, "spp": spp, "plot": plot, "estimate_s": seconds}
+
+
 @interruptible
 def _run(wrapped: argparse.Namespace) -> None:
-    from ..studies.calibration import bench_calibration, bench_validate
+    from ..studies.benchmarks.calibration import bench_calibration, bench_validate
 
     args = wrapped.args
     options = _checked(args, wrapped.spp_list)
     print(f"bench {args.what}: about {options['estimate_s']:.0f} s (estimated) …", file=sys.stderr)
     progress = lambda line: print(line, file=sys.stderr)  # noqa: E731
+    if options.get("kind") == "ptc":
+        from ..studies.benchmarks.ptc import ptc_calibration
+
+        result = ptc_calibration(options["camera_"], options["imager_"], options["temperature"],
+                                 options["illuminance_lux"], options["seeds"], options["first_seed"],
+                                 spp=options["spp"], progress=progress)
+        result["estimate_s"] = options["estimate_s"]
+        if options["plot"] is not None:
+            from ..studies.figures import figure_calibration
+
+            result["plot"] = str(figure_calibration(result, options["plot"]))
+        emit(args, result, _calibration_text(result))
+        return
     common = {"scene": options["scene"], "camera_": options["camera_"], "prevailing": options["prevailing"],
               "calibration": options["calibration"], "first_seed": options["first_seed"],
               "imaging": options["imaging"], "mc_variance": options["mc_variance"], "progress": progress}
     if options.get("kind") == "face":  # the face's own study: it knows where Eq. 4's null holds
-        from ..studies.face_calibration import face_calibration
+        from ..studies.benchmarks.face_calibration import face_calibration
 
         result = face_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
                                   options["prevailing"], options["calibration"], options["spps"][0],
@@ -209,8 +273,9 @@ def command_bench_verdicts(args: argparse.Namespace, spp_list: list[int] | None 
 
 def _settings_text(result: dict) -> str:
     sensor = f" and {result['imager']} at {result['illuminance_lux']:g} lx" if result.get("imager") else ""
-    return (f"{result['scene']} through {result['camera']}{sensor}, {result['prevailing_K']:g} K / "
-            f"{result['calibration_K']:g} K")
+    lights = (f"{result['prevailing_K']:g} K" if result["calibration_K"] is None
+              else f"{result['prevailing_K']:g} K / {result['calibration_K']:g} K")
+    return f"{result['scene']} through {result['camera']}{sensor}, {lights}"
 
 
 def _calibration_text(result: dict) -> str:
@@ -223,11 +288,19 @@ def _calibration_text(result: dict) -> str:
              {True: "yes", False: "NO", None: "—"}[c["consistent"]]] for c in result["checks"]]
     seeds, step = result["seeds"], result.get("seed_step", 2)
     level = f", level {result['level']}" if result.get("level") else ""
-    lines = [f"calibration of validate: {_settings_text(result)}{level}, {result['spp']} spp, {seeds} seeds "
+    what = "ptc's fits" if result["scene"] == "ptc" else "validate"
+    lines = [f"calibration of {what}: {_settings_text(result)}{level}, {result['spp']} spp, {seeds} seeds "
              f"({result['first_seed']}, {result['first_seed'] + step}, …), {result['elapsed_s']:.1f} s "
              f"(estimated {result['estimate_s']:.0f} s); every failure is a false alarm where the null holds:",
              table(rows, ["check", "nominal α", "failures", "rate", "95 % interval", "consistent"]), "tests:"]
     lines += [f"  {name}: {test}" for name, test in result["tests"].items()]
+    if result.get("z"):  # the photon transfer's: z over the seeds, 0 ± 1 where the standard errors are right
+        shown = lambda v: "—" if v is None else f"{v:+.2f}"  # noqa: E731
+        lines += ["z = (fit − stated) / SE over the seeds, mean / sd per channel R, G, B (0 / 1 where the standard "
+                  "errors are right):"]
+        lines += [f"  {figure}: " + ", ".join(f"{shown(m)} / {'—' if s is None else f'{s:.2f}'}"
+                                              for m, s in zip(z["mean"], z["sd"]))
+                  for figure, z in result["z"].items()]
     if result.get("plot"):
         lines.append(f"plot: {result['plot']}")
     return "\n".join(lines)

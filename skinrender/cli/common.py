@@ -130,12 +130,12 @@ def check_render_work(args: argparse.Namespace, pixels: int, spp: int, renders: 
     """
     Refuse, before anything renders, ``renders`` renders of ``pixels`` pixels at ``spp`` that one pass cannot hold
     (:data:`~skinrender.rendering.renderer.SAMPLES_MAX`) or whose estimated time exceeds ``--max-minutes``
-    (:func:`~skinrender.studies.face_sweep.estimate_seconds` on every core), naming ``--spp``.
+    (:func:`~skinrender.studies.face.sweep.estimate_seconds` on every core), naming ``--spp``.
     """
     import os
 
     from ..rendering.renderer import SAMPLES_MAX
-    from ..studies.face_sweep import estimate_seconds
+    from ..studies.face.sweep import estimate_seconds
     from ..workload import check_work
 
     if spp * pixels > SAMPLES_MAX:
@@ -420,7 +420,7 @@ def interruptible(command):
     """
     ``command`` (a function of the parsed arguments) run in a worker thread while the main thread waits, so that
     Ctrl-C stops it at once: Mitsuba renders in native code, where the main thread would take the interrupt
-    only when the render returns (~30 s late at 160 px, 2048 spp, measured). The KeyboardInterrupt reaches
+    only when the render returns (as late as the whole render: tens of seconds for a large face). The KeyboardInterrupt reaches
     :func:`skinrender.cli.main`, which exits 130 at once (``os._exit``: the worker is not waited for, and
     nothing is written after it). The command's own result or exception is passed on.
     """

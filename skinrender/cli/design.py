@@ -88,8 +88,8 @@ def add_parsers(commands) -> None:
                    help="fast (hull vertices only, exact; default) or naive (Qhull on every full point set)")
     add_noisy(p)
     p.add_argument("--max-triplets", type=int, default=1_000_000,
-                   help="refuse searches of more triplets than this (default 1 000 000; the 5 nm grid has 35 990, "
-                   "measured at ~80 s on 2 cores; the estimate is printed with the refusal)")
+                   help="refuse searches of more triplets than this (default 1 000 000; the 5 nm grid has 35 990; "
+                   "the estimate of the time is printed with the refusal)")
     add_max_minutes(p, "the triplets (× --noise-samples with --imager)")
     p.add_argument("--tie-tolerance", type=float, default=1e-9,
                    help="relative difference under which two values tie (default 1e-9); ties are all listed")
@@ -127,7 +127,7 @@ def command_search(args: argparse.Namespace) -> None:
     from ..design.bank import positions_grid, sensor_bank
     from ..design.search import search
     from ..model.camera import sensor_curves
-    from ..studies.unknowns import check_positions
+    from ..studies.paper.unknowns import check_positions
 
     check_output(args.csv, "--csv", (".csv",))
     if not (math.isfinite(args.tie_tolerance) and args.tie_tolerance >= 0):
@@ -151,7 +151,7 @@ def command_search(args: argparse.Namespace) -> None:
     if not (math.isfinite(slope) and slope > 0):
         raise SkinrenderError(f"--slope must be a finite number > 0 (the gbell slope b), got {slope}", flag="--slope")
     if args.workers is not None:
-        from ..studies.volumes import check_workers
+        from ..execution import check_workers
 
         check_workers(args.workers)
     flag("--positions", sensor_curves, positions, grid, None if args.sensor == 1 else args.sensor * 10.0, slope)
@@ -206,7 +206,8 @@ def check_search_time(args: argparse.Namespace, positions: int, noisy, max_tripl
     search's own refusal, with its count cap.
     """
     from ..design.noise_aware import SECONDS_PER_NOISY_SAMPLE
-    from ..design.search import SECONDS_PER_TRIPLET, check_workers
+    from ..design.search import SECONDS_PER_TRIPLET
+    from ..execution import check_workers
 
     count = positions * (positions - 1) * (positions - 2) // 6
     if count > max_triplets:

@@ -63,7 +63,7 @@ def add_face_arguments(parser: argparse.ArgumentParser) -> None:
 
 def add_parsers(commands) -> None:
     """Add the parser of ladder."""
-    from ..studies.ladder import LEVELS_DEFAULT, REPLICATES_LADDER
+    from ..studies.face.ladder import LEVELS_DEFAULT, REPLICATES_LADDER
 
     p = commands.add_parser("ladder", run=command_ladder,
                             help=f"the face rendered at each level of physics ({level_names(True)}, "
@@ -247,7 +247,7 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
         raise SkinrenderError(f"--skin: one skin for the ladder (several go with --effects), got {len(skins)}")
     for skin in skins:
         skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
-    from ..studies.ladder import LEVELS_DEFAULT
+    from ..studies.face.ladder import LEVELS_DEFAULT
 
     default = ",".join(LEVELS_EACH if args.effects else LEVELS_DEFAULT)
     levels = levels_of(default if args.levels is None else args.levels)
@@ -256,9 +256,9 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
                               f"{','.join(levels)!r}")
     variant_of(args.variant)
     lux = noise_sensor(args, levels)
-    from ..studies.effects_table import SKIN_TONES
-    from ..studies.face_sweep import estimate_seconds
-    from ..studies.ladder import REPLICATES_LADDER
+    from ..studies.face.effects_table import SKIN_TONES
+    from ..studies.face.sweep import estimate_seconds
+    from ..studies.face.ladder import REPLICATES_LADDER
     from ..workload import check_work
 
     renders = len(levels) * REPLICATES_LADDER * (len(skins or SKIN_TONES) if args.effects else 1)
@@ -278,8 +278,8 @@ def _shown(value, digits: str = ".4f") -> str:
 
 @interruptible
 def command_ladder(args: argparse.Namespace) -> None:
-    from ..studies.effects_table import effects_table
-    from ..studies.ladder import ladder
+    from ..studies.face.effects_table import effects_table
+    from ..studies.face.ladder import ladder
 
     plot = check_output(getattr(args, "plot", None), "--plot", (".png",))
     inputs = _ladder_inputs(args)
@@ -381,7 +381,7 @@ def command_detect_face(args: argparse.Namespace, scene) -> None:
     from ..evaluation.locus import skin_locus
     from ..rendering.exr import write_png, write_preview
     from ..rendering.face import render_face
-    from ..studies.ladder import score_frame
+    from ..studies.face.ladder import score_frame
 
     settings = settings_of(args)
     output = check_output(args.output, "--output", (".png",))

@@ -2,7 +2,7 @@
 The face sweep: ``face-sweep`` renders the face for every camera × light
 pair × skin × level of physics, on every core or a Dask cluster, and scores
 skin detection on each render as ``ladder`` does
-(:mod:`skinrender.studies.face_sweep`).
+(:mod:`skinrender.studies.face.sweep`).
 
 ``--camera`` and ``--skin`` repeat (camera and skin specs hold commas);
 ``--lights`` takes comma-separated ``PREVAILING/CALIBRATION`` pairs and
@@ -35,9 +35,9 @@ SPP_DEFAULT = 32
 
 def add_parsers(commands) -> None:
     """Add the parser of face-sweep."""
-    from ..studies.face_locus import SKIN_TONES
-    from ..studies.face_sweep import RENDERS_MAX, SWEEP_SAMPLES_MAX
-    from ..studies.ladder import LEVELS_DEFAULT
+    from ..studies.face.locus import SKIN_TONES
+    from ..studies.face.sweep import RENDERS_MAX, SWEEP_SAMPLES_MAX
+    from ..studies.face.ladder import LEVELS_DEFAULT
 
     p = commands.add_parser("face-sweep", run=command_face_sweep,
                             help="the face rendered for every camera × light pair × skin × level of "
@@ -103,15 +103,15 @@ def _once(name: str, items: list[str]) -> None:
 
 
 def _checked(args: argparse.Namespace) -> dict:
-    """Every flag checked, before any render: the arguments of :func:`~skinrender.studies.face_sweep.face_sweep`."""
+    """Every flag checked, before any render: the arguments of :func:`~skinrender.studies.face.sweep.face_sweep`."""
     import numpy as np
 
     from ..model.camera import camera
     from ..model.response import response
     from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
-    from ..studies.face_locus import SKIN_TONES
-    from ..studies.face_sweep import WORKERS_MAX
+    from ..studies.face.locus import SKIN_TONES
+    from ..execution import WORKERS_MAX
 
     check_output(args.csv, "--csv", (".csv",))
     cams = []
@@ -157,7 +157,7 @@ def command_face_sweep(args: argparse.Namespace) -> None:
 
 
 def _face_sweep(args: argparse.Namespace) -> None:
-    from ..studies.face_sweep import face_sweep
+    from ..studies.face.sweep import face_sweep
 
     result = face_sweep(**_checked(args), progress=None if args.quiet else sys.stderr)
     if args.csv is not None:

@@ -60,7 +60,7 @@ def check_samples(spp: int, pixels: int) -> None:
     """
     from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
     from ..rendering.renderer import SAMPLES_MAX
-    from ..studies.face_sweep import SAMPLES_PER_S
+    from ..studies.face.sweep import SAMPLES_PER_S
 
     each = max(-(-int(spp) // REPLICATES), SPP_REPLICATE_MIN)
     total = each * REPLICATES * int(pixels)
@@ -73,6 +73,15 @@ def check_samples(spp: int, pixels: int) -> None:
                               f"samples, more than one render may take ({SAMPLES_MAX}, ~{SAMPLES_MAX / SAMPLES_PER_S / 60:.0f} "
                               f"min on one core at {SAMPLES_PER_S:.1e} samples/s); at most {most} spp at this size",
                               flag="--spp")
+
+
+def check_replicates_work(args: argparse.Namespace, spp: int, pixels: int) -> None:
+    """Refuse, naming ``--spp``, a face validation whose replicate renders (:data:`REPLICATES` of ``pixels`` pixels
+    at ``⌈spp / REPLICATES⌉`` spp, at least :data:`SPP_REPLICATE_MIN`) are estimated beyond ``--max-minutes``."""
+    from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
+    from .common import check_render_work
+
+    check_render_work(args, pixels, max(-(-int(spp) // REPLICATES), SPP_REPLICATE_MIN), REPLICATES)
 
 
 def command_validate_face(args: argparse.Namespace, scene) -> None:
@@ -92,7 +101,9 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
         raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene",
                               flag="--gamut")
     scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
-    check_samples(settings.spp, scene.camera.width * scene.camera.height if size is None else size * size)
+    pixels = scene.camera.width * scene.camera.height if size is None else size * size
+    check_samples(settings.spp, pixels)
+    check_replicates_work(args, settings.spp, pixels)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
                   skin, physics, settings.spp, settings.seed, size, settings.sampler, settings.variant,
@@ -112,7 +123,9 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
             + "".join(f"\n{c.name}: {c.reason}\n  test: {c.test}" for c in result.checks)
             + f"\nverdict: {verdict.outcome.upper().replace('_', ' ')} (exit status {document['exit_status']}); "
             "difference tests: statistic = the largest |t| / critical value (≤ 1 passes); eq4_shift: the shift "
-            "of the skin's mean NCC against the detection budget, bound its 95 % upper bound")
+            "of the skin's mean NCC against the detection budget, bound its 95 % upper bound"
+            + ("" if result.spp_needed is None else
+               f"\nspp needed for eq4_shift to pass: about {result.spp_needed} in all (--spp)"))
     emit(args, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])

@@ -36,7 +36,9 @@ def add_parsers(commands) -> None:
     """Add the parsers of imagers, score, ptc."""
     p = commands.add_parser("ptc", run=command_ptc,
                             help="EMVA 1288-style photon transfer of the simulated camera, measured from "
-                            "rendered pixels: gain DN/e⁻, read noise e⁻, full well e⁻, linearity, SNR")
+                            "rendered pixels: gain DN/e⁻, read noise e⁻, full well e⁻, linearity, SNR; the fits "
+                            "tested against the imager's stated figures (z = (fit − stated)/SE, Šidák, α 0.01): "
+                            "exit 0 pass, 1 fail")
     p.add_argument("--camera", required=True, help=HELP_CAMERA)
     p.add_argument("--imager", required=True, help="image sensor: a preset (see 'skinrender imagers') or a TOML file")
     p.add_argument("--temperature", type=float, default=5900.0, help="the light's Planckian temperature, K (default 5900)")
@@ -180,7 +182,7 @@ def command_ptc(args: argparse.Namespace) -> None:
     from ..model.imager import imager
     from ..studies.figures import figure_ptc
     from ..rendering.settings import RenderSettings
-    from ..studies.ptc import photon_transfer
+    from ..studies.benchmarks.ptc import photon_transfer
 
     plot = check_output(args.plot, "--plot", (".png",))
     cam = camera_of(args)
@@ -201,12 +203,38 @@ def command_ptc(args: argparse.Namespace) -> None:
     if args.plot:
         write_output(plot, lambda stream: figure_ptc(result, stream), "--plot")
         result["plot"] = str(plot)
-    shown = lambda v: "undefined" if v is None else f"{v:.4g}"  # noqa: E731
+    text = _ptc_text(result, cam.name, sensor.name, args.illuminance)
+    emit(args, result, text)
+    if result["exit_status"]:
+        raise SystemExit(result["exit_status"])
+
+
+PTC_TESTED_LABELS = {"gain_dn_per_e": "gain DN/e⁻", "read_noise_e": "read noise e⁻",
+                     "dark_current_e_per_s": "dark current e⁻/s"}
+"""The tested figures' labels in ``ptc``'s text."""
+
+
+def _ptc_text(result: dict, camera_name: str, sensor_name: str, lux: float) -> str:
+    """``ptc``'s text: the figures per channel, then per tested figure and channel the fit, stated value, standard
+    error and z, the test in words, what is information only, and the verdict with its exit status."""
+    shown = lambda v, f=".4g": "undefined" if v is None else format(v, f)  # noqa: E731
     rows = [[name, *(shown(result[key][k]) for key in PTC_FIGURES)] for k, name in enumerate("RGB")]
     rows.append(["stated", *(f"{result['stated'][key]:.4g}" if key in result["stated"] else "" for key in PTC_FIGURES)])
-    text = (f"photon transfer of {cam.name} through {sensor.name} ({len(result['points'])} exposures, "
-            f"{args.illuminance:g} lx):\n"
+    tests = [[label, channel, shown(result[key][k]), f"{result['stated'][key]:.4g}",
+              shown(result["standard_error"][key][k], ".3g"),
+              "not tested" if result["z"][key][k] is None else f"{result['z'][key][k]:+.2f}"]
+             for key, label in PTC_TESTED_LABELS.items() for k, channel in enumerate("RGB")]
+    check = result["checks"]["fits"]
+    verdict = result["verdict"]
+    return (f"photon transfer of {camera_name} through {sensor_name} ({len(result['points'])} exposures, "
+            f"{lux:g} lx):\n"
             + table(rows, ["channel", "gain DN/e⁻", "read noise e⁻", "dark current e⁻/s", "full well e⁻",
                            "linearity %"])
-            + "".join(f"\n{key} undefined: {why}" for key, why in result["undefined"].items()))
-    emit(args, result, text)
+            + "".join(f"\n{key} undefined: {why}" for key, why in result["undefined"].items())
+            + "\n\nthe fits against the stated figures (z = (fit − stated) / SE):\n"
+            + table(tests, ["figure", "channel", "fit", "stated", "SE", "z"])
+            + f"\ntest: {check['test']}, α {check['alpha']:g}"
+            + "".join(f"\ninformation only, {key}: {why}" for key, why in result["information_only"].items())
+            + f"\nverdict: {verdict.upper().replace('_', ' ')} (exit status {result['exit_status']}): {check['reason']}"
+            + ("" if check["statistic"] is None else
+               f"; largest |z| {check['statistic']:.3g} ({check['worst_figure']}) against {check['threshold']:.3g}"))

@@ -169,7 +169,7 @@ def _text(method, parameters, lam, reflectance, layers, plot) -> str:
 def _command_fit(args: argparse.Namespace) -> None:
     from ..datasets import reflectances
     from ..datasets.skin_fit import FIT_BOUNDS, FIT_PARAMETERS, fit_seconds, fit_skin_spectra
-    from ..design.search import check_workers
+    from ..execution import check_workers
 
     for name, (option, _) in PARAMETER_FLAGS.items():
         if name not in HELD_IN_FIT and getattr(args, name) is not None:

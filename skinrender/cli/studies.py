@@ -86,7 +86,7 @@ def add_parsers(commands) -> None:
     p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate"],
                    help="which benchmark")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant); search: "
-                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep (~8 s)")
+                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep")
     p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG; calibration: the "
                    "observed false-alarm rates with their 95 %% intervals against the nominal α")
     p.add_argument("--repeat", type=int, help="analytic: timed repetitions, best kept (default 3)")
@@ -97,9 +97,10 @@ def add_parsers(commands) -> None:
                    help="sweep: peak positions START:END:STEP nm of the timed sweep (default 400:700:20)")
     p.add_argument("--scene", help="render: a face scene (face or a .toml with [camera] and [mesh]) to time the "
                    "face at each level of physics instead of the charts; calibration, validate: the chart (default "
-                   "macbeth; a face is refused until its checks' calibration is registered)")
+                   "macbeth; a face is refused until its checks' calibration is registered); calibration: 'ptc' "
+                   "runs the photon transfer's fits over --seeds sensor seeds (with --imager)")
     p.add_argument("--size", metavar="PX", help="render --scene: image side, pixels (default 256; --quick 64)")
-    from ..studies.bench_face import LEVELS_BENCH
+    from ..studies.benchmarks.bench_face import LEVELS_BENCH
 
     p.add_argument("--levels", help="render --scene: comma-separated levels of physics (default "
                    + ",".join(LEVELS_BENCH) + ")")
@@ -109,7 +110,8 @@ def add_parsers(commands) -> None:
     p.add_argument("--reference-spp", metavar="N",
                    help="render --scene: spp of each level's reference render (default 4 × the largest of --spp-list)")
     add_max_minutes(p, "analytic: --repeat; search: --sample; sweep: the triplets of --positions; calibration: "
-                    "--seeds × --spp; validate: --seeds × --spp-list")
+                    "--seeds × --spp; validate: --seeds × --spp-list; render --scene: the levels × --spp-list × "
+                    "--size²")
     from .calibration import add_bench_arguments
 
     add_bench_arguments(p)
@@ -141,8 +143,8 @@ def command_reproduce(args: argparse.Namespace) -> None:
                               flag="--stage1-camera")
     check_sweep_flags(args)
     if args.sweep:
-        from ..studies.sweep import reproduce_sweep
-        from ..studies.unknowns import Setting
+        from ..studies.paper.sweep import reproduce_sweep
+        from ..studies.paper.unknowns import Setting
 
         base = Setting(args.slope, args.grid, args.skin, args.munsell, args.illuminants,
                        args.stage1_camera or args.camera, args.extrapolation)
@@ -160,7 +162,7 @@ def command_reproduce(args: argparse.Namespace) -> None:
                 + ", ".join(result["artifacts"]) + "".join(f"\nnote: {n}" for n in result["notes"]))
         emit(args, result, text)
         return
-    from ..studies.reproduce import reproduce, summary_text
+    from ..studies.paper.reproduce import reproduce, summary_text
 
     result = reproduce(
         args.output, args.sensors, POSITIONS_DEFAULT if args.positions is None else args.positions, args.camera,
@@ -174,11 +176,11 @@ def command_reproduce(args: argparse.Namespace) -> None:
 
 def command_table1(args: argparse.Namespace) -> None:
     from ..model.camera import camera
-    from ..studies.tables import table1
+    from ..studies.paper.tables import table1
     from .common import SPP_MAX, check_seed
 
     from ..evaluation.verdict import EXIT_STATUS
-    from ..studies.tables import TABLE1_TOLERANCE
+    from ..studies.paper.tables import TABLE1_TOLERANCE
 
     from ..rendering.settings import RenderSettings
 
@@ -213,7 +215,7 @@ FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
 BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
                "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render", "calibration"),
                "scene": ("render", "calibration", "validate"),
-               "max_minutes": ("analytic", "search", "sweep", "calibration", "validate")}
+               "max_minutes": ("analytic", "search", "sweep", "calibration", "validate", "render")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
 :data:`FACE_BENCH_FLAGS`, the verdict benchmarks' :data:`skinrender.cli.calibration.VERDICT_BENCH_FLAGS`."""
 
@@ -270,11 +272,14 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
         if given:
             option = f"--{given[0].replace('_', '-')}"
             raise SkinrenderError(f"{option} goes with 'bench render --scene SCENE' (a face)", flag=option)
+        if args.what == "render" and args.max_minutes is not None:
+            raise SkinrenderError("--max-minutes caps the face bench (bench render --scene SCENE); the charts' render "
+                                  "bench does a fixed amount of work", flag="--max-minutes")
         return None
     from ..rendering.face.effects import active_lights, parse_physics
     from ..rendering.face.scene import load_face_scene
     from ..rendering.renderer import SAMPLES_MAX
-    from ..studies.bench_face import LEVELS_BENCH, SIZE_BENCH, SPPS_BENCH
+    from ..studies.benchmarks.bench_face import LEVELS_BENCH, SIZE_BENCH, SPPS_BENCH
     from .common import SPP_MAX, flag
     from .face import SIZE_MAX, is_face_scene, levels_of
 
@@ -304,16 +309,33 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     levels = levels_of(args.levels if args.levels is not None else ",".join(LEVELS_BENCH))
     for level in levels:
         flag("--levels", active_lights, scene, flag("--levels", parse_physics, level))
+    check_face_bench_work(args, len(levels), size * size, spps, reference)
     return {"scene": scene, "size": size, "spps": spps, "reference_spp": reference, "levels": levels}
 
 
+def check_face_bench_work(args: argparse.Namespace, levels: int, pixels: int, spps: list[int], reference: int) -> None:
+    """
+    Refuse the face bench when its estimate exceeds ``--max-minutes``: per level one reference render at
+    ``reference`` spp and, per spp of the curve, a warm-up and a timed render (``2 × Σ spps``), all of ``pixels``
+    pixels (:func:`~skinrender.studies.face.sweep.estimate_seconds` on every core), naming ``--spp-list``.
+    """
+    import os
+
+    from ..studies.face.sweep import estimate_seconds
+
+    each = reference + 2 * sum(spps)
+    check_work(estimate_seconds(levels, pixels, each, os.cpu_count() or 1), "--spp-list",
+               f"{levels} levels × ({reference} + 2 × {sum(spps)}) spp × {pixels} pixels", args.max_minutes,
+               fewer="lower --spp-list, --reference-spp or --size")
+
+
 BENCH_ANALYTIC_SECONDS = 4.0
-"""One ``bench analytic`` repetition (both routes), s: --repeat 1 vs 4 took 8.3 and 20.2 s (2-core AMD EPYC VM
-shared with other jobs)."""
+"""One ``bench analytic`` repetition (both routes), s: the estimates' rate, from ``--repeat 1`` against ``4``
+(docs/speed.md, "The rates behind the estimates")."""
 
 BENCH_SEARCH_SECONDS_PER_SAMPLE = 0.33
-"""What each ``bench search --sample`` triplet adds, s: --quick --sample 20 vs 200 took 12 and 72 s (same
-machine, --workers 1)."""
+"""What each ``bench search --sample`` triplet adds, s: the estimates' rate, from ``--quick --sample 20``
+against ``200`` with ``--workers 1`` (docs/speed.md, "The rates behind the estimates")."""
 
 
 def _bench_camera(args: argparse.Namespace) -> str:
@@ -333,7 +355,7 @@ def _camera_spec(spec: str) -> str:
 
 
 def command_bench(args: argparse.Namespace) -> None:
-    from ..studies.bench import bench_analytic, bench_search, bench_sweep
+    from ..studies.benchmarks.bench import bench_analytic, bench_search, bench_sweep
 
     if args.what in ("calibration", "validate"):
         from .calibration import command_bench_verdicts
@@ -351,7 +373,7 @@ def command_bench(args: argparse.Namespace) -> None:
         return command_bench_verdicts(args, spps)
     face = face_bench_options(args)
     if face is not None:
-        from ..studies.bench_face import bench_face
+        from ..studies.benchmarks.bench_face import bench_face
 
         result = bench_face(camera_spec=_bench_camera(args), levels=face["levels"], spps=face["spps"],
                             size=face["size"], reference_spp=face["reference_spp"], scene=face["scene"],
@@ -374,18 +396,18 @@ def command_bench(args: argparse.Namespace) -> None:
         emit(args, result, text)
         return
     if args.workers is not None:  # before any timing starts
-        from ..studies.volumes import check_workers
+        from ..execution import check_workers
 
         check_workers(args.workers)
     if args.what == "sweep":
         from ..design.bank import SENSORS_PAPER, positions_grid
-        from ..studies.unknowns import check_search_work
+        from ..studies.paper.unknowns import check_search_work
 
         where = flag("--positions", positions_grid, _or_default(args, "positions"))
         check_search_work(len(SENSORS_PAPER), where, "--positions", args.max_minutes, args.workers,
                           "each setting's ")
     if args.what == "render":
-        from ..studies.bench import bench_render
+        from ..studies.benchmarks.bench import bench_render
 
         plot = check_output(args.plot, "--plot", (".png",))  # before the ~30 s of timing
         result = bench_render(camera_spec=_bench_camera(args), quick=args.quick)

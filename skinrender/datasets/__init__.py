@@ -67,11 +67,32 @@ def reflectances(spec: str | SpectralSet, extrapolation: str = "refuse") -> Spec
     Returns
     -------
     :class:`SpectralSet`
+        One row per sample (``names``), reflectance fractions on the set's own wavelengths (nm);
+        ``on(grid)`` resamples them with the set's ``extrapolation``.
+
+    Raises
+    ------
+    SkinrenderError
+        An unknown name (the message lists the sets), a CSV that cannot be read, or an
+        ``extrapolation`` other than ``refuse``, ``zero`` or ``constant``.
 
     Examples
     --------
     >>> reflectances("macbeth").count
     24
+
+    A CSV measured over 450–650 nm put on a 400–700 nm grid: with ``extrapolation="zero"`` the
+    reflectance is 0 outside the data (with the default, ``refuse``, this resampling is an error):
+
+    >>> import tempfile
+    >>> from skinrender.spectra import WavelengthGrid
+    >>> path = Path(tempfile.mkdtemp()) / "two.csv"
+    >>> _ = path.write_text("wavelength,pale,dark\\n450,0.40,0.20\\n550,0.50,0.25\\n650,0.60,0.30\\n")
+    >>> samples = reflectances(str(path), extrapolation="zero")
+    >>> samples.names
+    ('pale', 'dark')
+    >>> samples.on(WavelengthGrid(400, 700, 50))[0].tolist()
+    [0.0, 0.4, 0.45, 0.5, 0.55, 0.6, 0.0]
     """
 
     if isinstance(spec, SpectralSet):

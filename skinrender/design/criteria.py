@@ -71,10 +71,11 @@ def triplet_volumes_naive(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
 
 SMALL_SET = 20
 """Reflectance sets up to this size skip the per-illuminant vertex reduction:
-for them ten more hulls save nothing (sensor 9, compiled kernel, four
-alternating runs over 450 triplets: the first 20 skin spectra 0.38–0.44 ms per
-triplet without, 0.37–0.42 ms with). From about 30 it pays: the 30 skin spectra
-0.59–0.66 ms without, 0.49–0.59 ms with; the 1269 Munsell chips need it."""
+for them ten more hulls save nothing (the same time per triplet with and
+without, for the first 20 skin spectra); from about 30 it pays (a sixth less
+for the 30 skin spectra), and the 1269 Munsell chips need it. Measured with
+sensor 9, the compiled kernel and four alternating runs over 450 triplets
+(docs/speed.md, "The rates behind the estimates")."""
 
 def triplet_volumes_fast(bank: SensorBank, triplet: ArrayLike) -> NDArrayFloat:
     """

@@ -59,8 +59,9 @@ __all__ = ["TPR_MIN", "SECONDS_PER_NOISY_SAMPLE", "NOISE_SAMPLES_MAX", "NOISE_SE
            "calibration_index", "exposure_capped", "triplet_noisy_rates"]
 
 SECONDS_PER_NOISY_SAMPLE = 0.022
-"""What each noise sample adds to one triplet of a noisy search, s on one core: ``search --imager`` over 286
-triplets took 21 and 132 s with 4 and 40 noise samples (2 workers, 2-core AMD EPYC VM shared with other jobs)."""
+"""What each noise sample adds to one triplet of a noisy search, s on one core: the estimates' rate, from
+``search --imager`` over 286 triplets with 4 and 40 noise samples (docs/speed.md, "The rates behind the
+estimates")."""
 
 NOISE_SAMPLES_MAX = 1000
 """Most noisy frames per pixel (``--noise-samples``)."""

@@ -21,40 +21,33 @@ References
 
 from __future__ import annotations
 
-import os
-import signal
 import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 
+from .. import execution
 from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError
-from ..extras import require
+from ..execution import DASK_TIMEOUT_S, WORKERS_MAX, check_workers, dask_client, stop_pool  # noqa: F401 (their earlier home)
 from ..files import write_output
 from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
-from ..workload import announce, duration_text, progress_bar
-from .bank import SensorBank, positions_grid, sensor_bank, triplets
+from ..workload import duration_text
+from .bank import positions_grid, sensor_bank, triplets
 from .criteria import triplet_false_positive_rates, triplet_volumes_many, triplet_volumes_naive
 from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, exposure_capped, triplet_noisy_rates
 
 __all__ = ["TOLERANCE_TIE", "SEARCH_METHODS", "WORKERS_MAX", "SECONDS_PER_TRIPLET", "SearchResult", "search", "stop_pool",
            "dask_client", "check_workers"]
 
-DASK_TIMEOUT_S = 10.0
-"""Seconds to wait for a Dask scheduler before giving up."""
-
-WORKERS_MAX = max(64, 4 * (os.cpu_count() or 1))
-
 SECONDS_PER_TRIPLET = 2.2e-3
-"""One triplet's volumes (skin and Munsell, every calibration) on one core, s: the estimates' rate (measured ~2 ms
-on a 2-core AMD EPYC VM)."""
-"""Most worker processes a search may start (each holds the sensor banks)."""
+"""One triplet's volumes (skin and Munsell, every calibration) on one core, s: the estimates' rate (measured with
+``skinrender bench search``: docs/speed.md, "The Stage 3 search")."""
 
 TOLERANCE_TIE = 1e-9
 """Two values within this relative difference are a tie; ties are reported."""
@@ -70,25 +63,15 @@ SEARCH_METHODS = {
 # Parallel search
 # --------------------------------------------------------------------------- #
 
-_WORKER_BANKS: tuple[SensorBank, ...] = ()
-_WORKER_NOISY: tuple | None = None
 
-
-def _init_worker(banks: tuple[SensorBank, ...], noisy: tuple | None = None) -> None:
-    global _WORKER_BANKS, _WORKER_NOISY
-    _WORKER_BANKS, _WORKER_NOISY = banks, noisy
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: no traceback per worker
-
-
-def _volumes_chunk(chunk: np.ndarray, method: str, banks: tuple[SensorBank, ...] | None = None,
-                   detection: bool = False, noisy: tuple | None = None, numbers: np.ndarray | None = None):
+def _volumes_chunk(shared: tuple, task: tuple, method: str, detection: bool = False):
     """
-    Volumes of a chunk of index triplets for every bank, shape ``(len(banks), T, Q + 1)``,
-    with ``detection`` the false-positive rates of the skin locus ``(T, Q)``, and with ``noisy``
-    (``(setting, rates_skin, rates_nonskin)``) the noisy (TPR, FPR) ``(T, 2)`` of triplets ``numbers``.
+    Volumes of a chunk of index triplets for every bank, shape ``(len(banks), T, Q + 1)``, with ``detection``
+    the false-positive rates of the skin locus ``(T, Q)``, and with noise (``shared``'s second item,
+    ``(setting, rates_skin, rates_nonskin)``) the noisy (TPR, FPR) ``(T, 2)`` of the triplets; ``shared`` is
+    ``(banks, noisy)``, ``task`` is ``(index triplets, their numbers)``.
     """
-    if banks is None:
-        banks, noisy = _WORKER_BANKS, _WORKER_NOISY
+    (banks, noisy), (chunk, numbers) = shared, task
     noisy_rates = None
     if noisy is not None:
         setting, rates_skin, rates_nonskin = noisy
@@ -104,22 +87,6 @@ def _volumes_chunk(chunk: np.ndarray, method: str, banks: tuple[SensorBank, ...]
     if not detection:
         return out, None, noisy_rates
     return out, np.array([triplet_false_positive_rates(banks[0], banks[1], t) for t in chunk]), noisy_rates
-
-
-def check_workers(workers: int | None, flag: str = "--workers") -> int:
-    """
-    The worker processes: ``None`` means every core; anything but an integer (``int`` or a numpy integer, not a
-    bool or a float) in ``[1, WORKERS_MAX]`` is refused, naming ``flag``.
-
-    >>> check_workers(2)
-    2
-    """
-    if workers is None:
-        return os.cpu_count() or 1
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or not 1 <= workers <= WORKERS_MAX:
-        raise SkinrenderError(f"{flag} must be an integer in [1, {WORKERS_MAX}] (processes), got {workers!r}",
-                              flag=flag)
-    return int(workers)
 
 
 def _chunks(index: np.ndarray, count: int) -> list[np.ndarray]:
@@ -252,16 +219,6 @@ class SearchResult:
         write_output(path, text, flag)  # complete or absent, never half
 
 
-def stop_pool(pool: ProcessPoolExecutor) -> None:
-    """Stop a process pool at once (Ctrl-C, an error): its workers terminated and reaped, its queued work dropped."""
-    processes = list((getattr(pool, "_processes", None) or {}).values())
-    for process in processes:
-        process.terminate()
-    for process in processes:
-        process.join(timeout=5.0)
-    pool.shutdown(wait=False, cancel_futures=True)
-
-
 def search(
     sensor: float,
     skin: NDArrayFloat,
@@ -355,45 +312,17 @@ def search(
         pack = (noisy, bank_rates(banks[0], noisy, sensor, slope, grid), bank_rates(banks[1], noisy, sensor, slope, grid))
     noisy_rates = np.empty((len(index), 2)) if noisy is not None else None
 
-    def store(chunk, result) -> None:
+    def store(number: int, result) -> None:
+        chunk = chunks[number]
         out[:, chunk] = result[0]
         if detection:
             fpr[chunk] = result[1]
         if noisy is not None:
             noisy_rates[chunk] = result[2]
 
-    bar = progress_bar(len(index), label, progress)
-    if dask is not None:
-        client, own = dask_client(dask)
-        announce(progress, label, len(index))
-        try:
-            remote_banks = client.scatter(banks, broadcast=True)
-            futures = [client.submit(_volumes_chunk, index[c], method, remote_banks, detection, pack, c, pure=False)
-                       for c in chunks]
-            for chunk, future in zip(chunks, futures):
-                store(chunk, future.result())
-                bar.update(len(chunk))
-        finally:
-            if own:
-                client.close()
-    elif workers == 1:
-        announce(progress, label, len(index))
-        for chunk in chunks:
-            store(chunk, _volumes_chunk(index[chunk], method, banks, detection, pack, chunk))
-            bar.update(len(chunk))
-    else:
-        pool = ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(banks, pack))
-        try:
-            futures = [pool.submit(_volumes_chunk, index[c], method, None, detection, None, c) for c in chunks]
-            announce(progress, label, len(index))  # the workers are forked and busy
-            for chunk, future in zip(chunks, futures):
-                store(chunk, future.result())
-                bar.update(len(chunk))
-        except BaseException:  # Ctrl-C or an error: stop the workers now and drop the queued chunks
-            stop_pool(pool)
-            raise
-        pool.shutdown()
-    bar.close()
+    execution.map(partial(_volumes_chunk, method=method, detection=detection), [(index[c], c) for c in chunks],
+                  workers=workers, dask=dask, shared=(banks, pack), progress=progress, label=label, unit="triplet",
+                  sizes=[len(c) for c in chunks], on_result=store)
     elapsed = time.perf_counter() - start
     return SearchResult(
         float(sensor), float(slope), where, where[index], banks[0].temperatures, out[0], out[1], elapsed,
@@ -406,23 +335,4 @@ def search(
                                            "exposure_note": exposure_capped(noisy, pack[1], banks[0].temperatures,
                                                                             index)})},
     )
-
-
-def dask_client(dask):
-    """
-    A ``distributed.Client`` for a scheduler address (owned: the caller closes it) or the client given, as
-    ``(client, owned)``; an address that cannot be reached within ``DASK_TIMEOUT_S`` is a one-line error naming
-    ``--dask``.
-    """
-    require("dask", "--dask")
-    from distributed import Client
-
-    if not isinstance(dask, Client):
-        try:
-            return Client(dask, timeout=DASK_TIMEOUT_S), True
-        except (OSError, ValueError, TypeError, TimeoutError) as error:
-            raise SkinrenderError(f"--dask: cannot reach a Dask scheduler at {dask!r} within {DASK_TIMEOUT_S:g} s "
-                                  f"({type(error).__name__}: {' '.join(str(error).split())[:120]})",
-                                  flag="--dask") from None
-    return dask, False
 

@@ -52,7 +52,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 
-__all__ = ["OUTCOMES", "EXIT_STATUS", "ALPHA_EQUIVALENCE", "ALPHA_DIFFERENCE", "Verdict", "combine", "sidak",
+__all__ = ["OUTCOMES", "EXIT_STATUS", "ALPHA_EQUIVALENCE", "ALPHA_DIFFERENCE", "Verdict", "combine", "Combined", "sidak",
            "critical_z", "equivalence", "difference", "samples_needed", "binomial_interval"]
 
 OUTCOMES = {
@@ -129,6 +129,15 @@ class Verdict:
         """:data:`EXIT_STATUS` of the outcome."""
         return EXIT_STATUS[self.outcome]
 
+    def summary(self) -> dict:
+        """
+        What a result's JSON document says of its verdict: ``verdict`` (the outcome) and ``exit_status``.
+
+        >>> Verdict("a", "fail", 0.01, "z").summary()
+        {'verdict': 'fail', 'exit_status': 1}
+        """
+        return {"verdict": self.outcome, "exit_status": EXIT_STATUS[self.outcome]}
+
     def document(self) -> dict:
         """The JSON form: every attribute, the details merged in."""
         return {"name": self.name, "verdict": self.outcome, "passed": self.passed, "alpha": self.alpha,
@@ -159,6 +168,21 @@ def combine(verdicts, name: str = "overall") -> Verdict:
             return Verdict(name, outcome, max(v.alpha for v in verdicts), "every check's own", reason=reason)
     return Verdict(name, "not_applicable", max((v.alpha for v in verdicts), default=0.0), "every check's own",
                    reason="no check applies" if not verdicts else "; ".join(v.reason for v in verdicts))
+
+
+class Combined:
+    """
+    A result whose ``verdicts`` (its checks', a list of :class:`Verdict`) give its ``verdict``: them combined
+    (:func:`combine`) under the class's :attr:`VERDICT_NAME`.
+    """
+
+    VERDICT_NAME = "overall"
+    """The combined verdict's name."""
+
+    @property
+    def verdict(self) -> Verdict:
+        """Every check's verdict combined (:func:`combine`)."""
+        return combine(self.verdicts, self.VERDICT_NAME)
 
 
 def _check_alpha(alpha: float) -> float:

@@ -168,11 +168,32 @@ def camera(spec: str | Camera, extrapolation: str = "refuse") -> Camera:
     Returns
     -------
     :class:`Camera`
+        ``sensitivities(grid)`` gives its three curves on a grid (nm), rows R, G, B, unitless.
+
+    Raises
+    ------
+    SkinrenderError
+        A malformed spec (``role`` ``camera``), an unknown camera name, a CSV that cannot be read, has
+        other than three sensitivity columns or a channel zero everywhere, or an unknown ``extrapolation``.
 
     Examples
     --------
+    Peaks may be written in any order; channels come out R, G, B (longest first):
+
     >>> camera("gbell:9@450,540,610").peaks
     (610.0, 540.0, 450.0)
+
+    A CSV camera measured over 450–650 nm, its curves held at their end values beyond the data with
+    ``extrapolation="constant"`` (with the default, ``refuse``, a wider grid is an error):
+
+    >>> import tempfile
+    >>> path = Path(tempfile.mkdtemp()) / "cam.csv"
+    >>> _ = path.write_text("wavelength,R,G,B\\n450,0.0,0.2,1.0\\n550,0.2,1.0,0.2\\n650,1.0,0.2,0.0\\n")
+    >>> cam = camera(str(path), extrapolation="constant")
+    >>> cam.kind, cam.extrapolation
+    ('measured', 'constant')
+    >>> cam.sensitivities(WavelengthGrid(400, 700, 50))[0].tolist()  # R
+    [0.0, 0.0, 0.1, 0.2, 0.6, 1.0, 1.0]
     """
 
     if isinstance(spec, Camera):

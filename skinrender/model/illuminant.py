@@ -35,7 +35,8 @@ NAMED_TEMPERATURES = {"A": TEMPERATURE_A, "H": TEMPERATURE_HORIZON, "HORIZON": T
 @dataclass(frozen=True)
 class Illuminant:
     """
-    A light source.
+    A light source: a Planckian radiator when ``temperature`` is set, else a measured SPD; made from a
+    user's spec by :func:`illuminant`, evaluated by :meth:`spd`.
 
     Parameters
     ----------
@@ -92,11 +93,34 @@ def illuminant(spec: Illuminant | float | str) -> Illuminant:
     Returns
     -------
     :class:`Illuminant`
+        ``temperature`` in K for a Planckian radiator, ``None`` for a measured SPD.
+
+    Raises
+    ------
+    SkinrenderError
+        A temperature outside (0, :data:`~skinrender.constants.TEMPERATURE_MAX`] K, a CSV that cannot
+        be read or has other than one SPD column, or a spec that is none of these.
 
     Examples
     --------
     >>> illuminant("3300K").temperature
     3300.0
+    >>> illuminant("a").name, illuminant("a").temperature  # CIE A: Planck at 2856 K
+    ('A', 2856.0)
+
+    Planck radiance at 560 nm, W·m⁻²·sr⁻¹·nm⁻¹:
+
+    >>> illuminant(3300).spd([560.0]).round(1).tolist()
+    [899.4]
+
+    A measured SPD (relative units) from a CSV, linearly interpolated between its wavelengths:
+
+    >>> import tempfile
+    >>> path = Path(tempfile.mkdtemp()) / "led.csv"
+    >>> _ = path.write_text("wavelength,spd\\n400,0.5\\n550,1.0\\n700,0.8\\n")
+    >>> led = illuminant(str(path))
+    >>> led.name, led.temperature, led.spd([475.0, 625.0]).tolist()
+    ('led.csv', None, [0.75, 0.9])
     """
 
     if isinstance(spec, Illuminant):

@@ -303,10 +303,8 @@ def simulate_dn(
 
     Parameters
     ----------
-    imager
-        An :class:`~skinrender.model.imager.Imager`, a preset name or a TOML path.
-    electrons_mean
-        Expected electrons, photo plus dark, e⁻ ≥ 0, any shape.
+    imager, electrons_mean
+        As :func:`statistics_dn`: the imager, and the expected electrons (e⁻, any shape).
     rng_or_seed
         A numpy Generator, or an integer seed in [0, 2³²).
 

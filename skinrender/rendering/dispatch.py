@@ -16,6 +16,13 @@ through :func:`skinrender.rendering.face.render.render_face`. Both results
 save themselves (``.save(exr, png=…, figure=…)``) and draw their labelled
 figure (``.figure(path)``).
 
+:func:`validate` (``skinrender.validate``) checks any scene the command
+line's ``validate`` takes: a chart against Eq. 4 patch by patch
+(:func:`skinrender.rendering.validation.validate`), a face against its
+level's analytic limits and Eq. 4's detection budget
+(:func:`skinrender.rendering.face.validation.validate_face`). Both results
+give ``verdict`` (pass, fail or inconclusive), ``bound`` and ``spp_needed``.
+
 Units: temperatures K; images in Eq. 4 output units (255 for white at p = c).
 """
 
@@ -25,7 +32,7 @@ import inspect
 
 from ..errors import SkinrenderError
 
-__all__ = ["load_scene", "render"]
+__all__ = ["load_scene", "render", "validate"]
 
 
 def load_scene(spec):
@@ -71,6 +78,35 @@ def _options(function) -> list[str]:
     return names
 
 
+def _camera_of(camera, options: dict, what: str):
+    """The camera given as ``camera`` or (the chart functions' name) ``camera_``, once."""
+    if "camera_" in options:
+        if camera is not None:
+            raise SkinrenderError(f"{what}: give the camera once (camera or camera_)")
+        camera = options.pop("camera_")
+    if camera is None:
+        raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)")
+    return camera
+
+
+def _check_options(function, arguments: dict, options: dict, kind: str, what: str, forwards_to=None) -> None:
+    """Refuse, naming them, options that ``function`` (of a ``kind`` scene) does not take, nor ``forwards_to`` (the
+    function its ``**options`` go to)."""
+    names = _options(function) + ([] if forwards_to is None else _options(forwards_to))
+    known = [name for name in dict.fromkeys(names) if name not in arguments]
+    unknown = sorted(set(options) - set(known))
+    if unknown:
+        verb = "is not an option" if len(unknown) == 1 else "are not options"
+        raise SkinrenderError(f"{what}: {', '.join(unknown)} {verb} of a {kind} scene; its options: "
+                              f"{', '.join(known)}")
+
+
+def _chart_lights(prevailing, calibration, what: str) -> None:
+    for name, value in (("prevailing", prevailing), ("calibration", calibration)):
+        if value is None:
+            raise SkinrenderError(f"{name}: a chart {what} needs the {name} light (kelvin, A or H)")
+
+
 def render(scene, camera=None, prevailing=None, calibration=None, **options):
     """
     Render a chart or a face scene through a camera, white balanced to the calibration light (Eq. 4).
@@ -112,12 +148,7 @@ def render(scene, camera=None, prevailing=None, calibration=None, **options):
     ('sheen', (16, 16, 3))
     """
 
-    if "camera_" in options:  # the chart renderer's name for it
-        if camera is not None:
-            raise SkinrenderError("render: give the camera once (camera or camera_)")
-        camera = options.pop("camera_")
-    if camera is None:
-        raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)")
+    camera = _camera_of(camera, options, "render")
     from .face.scene import FaceScene
 
     scene = load_scene(scene)
@@ -129,15 +160,67 @@ def render(scene, camera=None, prevailing=None, calibration=None, **options):
     else:
         from .balance import render as render_chart
 
-        for name, value in (("prevailing", prevailing), ("calibration", calibration)):
-            if value is None:
-                raise SkinrenderError(f"{name}: a chart render needs the {name} light (kelvin, A or H)")
+        _chart_lights(prevailing, calibration, "render")
         kind, function = "chart", render_chart
         arguments = {"scene": scene, "camera_": camera, "prevailing": prevailing, "calibration": calibration}
-    known = [name for name in _options(function) if name not in arguments]
-    unknown = sorted(set(options) - set(known))
-    if unknown:
-        verb = "is not an option" if len(unknown) == 1 else "are not options"
-        raise SkinrenderError(f"render: {', '.join(unknown)} {verb} of a {kind} scene; its options: "
-                              f"{', '.join(known)}")
+    _check_options(function, arguments, options, kind, "render")
+    return function(**arguments, **options)
+
+
+def validate(scene, camera=None, prevailing=None, calibration=None, **options):
+    """
+    Render a chart or a face scene and check it against the analytic model: a three-way verdict.
+
+    Parameters
+    ----------
+    scene
+        A chart or a face scene: a bundled name, a TOML path, or a parsed scene.
+    camera
+        A :class:`~skinrender.model.camera.Camera` or a camera spec (``camera_`` is taken too).
+    prevailing, calibration
+        Planckian lights (kelvin, ``A``, ``H``), as :func:`render`.
+    **options
+        A chart's: ``tolerance`` (relative), ``alpha``, ``alpha_difference``, ``rendering``, ``normalization``,
+        ``knee``, ``grid`` and the render settings (:func:`skinrender.rendering.validation.validate`).
+        A face's: ``skin``, ``physics``, ``spp`` (in all, over the replicates), ``seed``, ``size`` (pixels),
+        ``replicates``, ``limits``, ``budget_fraction``, ``imager``, ``exposure`` (s or ``auto``),
+        ``illuminance`` (lx) … (:func:`skinrender.rendering.face.validation.validate_face`).
+
+    Returns
+    -------
+    :class:`~skinrender.rendering.validation.Validation` or :class:`~skinrender.rendering.face.validation.FaceValidation`
+        Both with ``verdict`` (a :class:`~skinrender.evaluation.verdict.Verdict`), ``bound`` (a chart's: the
+        smallest relative tolerance that would pass; a face's: the upper bound of Eq. 4's NCC error, the
+        smallest detection budget that would pass) and ``spp_needed`` (the spp expected to pass, or ``None``).
+
+    Raises
+    ------
+    SkinrenderError
+        A bad scene, camera, light or option, each named; an option of the other kind of scene.
+
+    Examples
+    --------
+    >>> import skinrender as sr
+    >>> v = sr.validate("face", "gbell:9@450,540,610", 2856, 2856, physics="direct", spp=48,
+    ...                 size=24)  # doctest: +SKIP
+    >>> v.verdict.outcome, v.spp_needed  # doctest: +SKIP
+    ('pass', 48)
+    """
+
+    camera = _camera_of(camera, options, "validate")
+    from .face.scene import FaceScene
+
+    scene = load_scene(scene)
+    if isinstance(scene, FaceScene):
+        from .face.validation import validate_face
+
+        kind, function, forwards_to = "face", validate_face, None
+    else:
+        from .balance import render as render_chart
+        from .validation import validate as validate_chart
+
+        _chart_lights(prevailing, calibration, "validation")
+        kind, function, forwards_to = "chart", validate_chart, render_chart
+    arguments = {"scene": scene, "camera_": camera, "prevailing": prevailing, "calibration": calibration}
+    _check_options(function, arguments, options, kind, "validate", forwards_to)
     return function(**arguments, **options)

@@ -56,10 +56,14 @@ def _written(path, write):
 
 
 def read_exr(path: str | Path, names: tuple[str, ...]) -> NDArrayFloat:
-    """Read the named channels of an EXR (EXR files sort channels by name: look them up by name)."""
+    """Read the named channels of an EXR (EXR files sort channels by name: look them up by name); the file is first
+    checked to be a regular file of at most :data:`~skinrender.files.EXR_BYTES_MAX` bytes."""
     require("render", "reading EXR files")
     import OpenEXR
 
+    from ..files import EXR_BYTES_MAX, check_input
+
+    check_input(path, EXR_BYTES_MAX, "an EXR image")
     # separate_channels: else OpenEXR merges channels named R, G, B (every CSV or bundled camera) into one "RGB"
     with OpenEXR.File(str(path), separate_channels=True) as handle:
         channels = handle.channels()

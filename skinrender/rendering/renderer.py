@@ -259,9 +259,9 @@ class ChartRenderer:
 
     With the ``tabulated`` emitter a new temperature only replaces the
     emitter's values (a kernel input), so the compiled kernels are reused:
-    measured ~0.55 s per 256-spp Macbeth render after a ~1.5 s first one,
-    against ~1.4 s for every render with Mitsuba's ``blackbody``, whose
-    temperature is compiled in. ``settings`` (:class:`~skinrender.rendering.settings.RenderSettings`)
+    after the first render each takes about a third of its time, and about
+    40 % of a render with Mitsuba's ``blackbody``, whose temperature is
+    compiled in (docs/speed.md, "Rendering the charts"). ``settings`` (:class:`~skinrender.rendering.settings.RenderSettings`)
     gives the spp, sampler, variant and channel passes; each render takes its own seed.
     """
 

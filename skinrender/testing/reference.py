@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SkinrenderError
-from ..files import Output, write_outputs
+from ..files import EXR_BYTES_MAX, Output, read_input, write_outputs
 from ..hints import NDArrayFloat
 from .regression import Measurement, values_of
 
@@ -79,15 +79,27 @@ def sidecar_of(path: Path) -> Path:
     return Path(path).with_suffix(".json")
 
 
+SIDECAR_BYTES_MAX = 10_000_000
+"""Largest reference sidecar read, bytes (a face's is a few kB)."""
+
+
 def _sha256(path: Path) -> str:
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    """The SHA-256 of a reference EXR, read only if it is a regular file of bounded size."""
+    try:
+        return hashlib.sha256(read_input(path, EXR_BYTES_MAX, "a reference EXR")).hexdigest()
+    except SkinrenderError as error:
+        raise ReferenceProblem(f"the reference render is unusable ({error}): restore it, or delete it and its "
+                               "sidecar and rerun with --skinrender-regen") from None
 
 
 def _load_sidecar(path: Path) -> dict:
     sidecar = sidecar_of(path)
     try:
-        document = json.loads(sidecar.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as error:
+        document = json.loads(read_input(sidecar, SIDECAR_BYTES_MAX, "a reference sidecar").decode("utf-8"))
+    except SkinrenderError as error:
+        raise ReferenceProblem(f"the reference's sidecar is unusable ({error}); it was not rewritten: delete it (and "
+                               f"{Path(path).name}) to regenerate") from None
+    except (UnicodeDecodeError, json.JSONDecodeError) as error:
         raise ReferenceProblem(f"the reference's sidecar {shown(sidecar)} is unreadable ({type(error).__name__}: "
                                f"{error}); it was not rewritten: delete it (and {Path(path).name}) to regenerate"
                                ) from None

@@ -67,6 +67,21 @@ def test_a_faces_calibration_per_check(tmp_path, capsys):
     assert plot.stat().st_size > 0 and document["estimate_s"] > 0
 
 
+def test_ptc_calibration_rates_and_z(capsys):
+    """``--scene ptc``: the photon transfer's fits over a few sensor seeds of one render, the family's row and each
+    tested figure's, and z's mean and spread per channel."""
+    status, out, err = run(["bench", "calibration", "--scene", "ptc", "--imager", "sony-imx174", "--seeds", "3",
+                            "--spp", "1", "--json"], capsys)
+    assert status == 0, err[-500:]
+    document = json.loads(out)
+    names = [row["name"] for row in document["checks"]]
+    assert names == ["fits", "gain_dn_per_e", "read_noise_e", "dark_current_e_per_s"]
+    assert document["checks"][0]["nominal_alpha"] == 0.01 and document["checks"][0]["seeds"] == 3
+    assert [run_["seed"] for run_ in document["runs"]] == [0, 1, 2] and document["seed_step"] == 1
+    assert set(document["z"]) == {"gain_dn_per_e", "read_noise_e", "dark_current_e_per_s"}
+    assert len(document["z"]["gain_dn_per_e"]["sd"]) == 3 and "Šidák" in document["tests"]["fits"]
+
+
 def test_validate_rows_in_text(small_chart, capsys):
     status, out, err = run(["bench", "validate", "--scene", small_chart, "--seeds", "2", "--spp-list", "4,16"], capsys)
     assert status == 0, err[-500:]
@@ -99,6 +114,12 @@ def test_validate_rows_in_text(small_chart, capsys):
     (["calibration", "--size", "16"], "--size"),
     (["analytic", "--seeds", "3"], "--seeds"),
     (["render", "--imager", "sony-imx174"], "--imager"),
+    (["calibration", "--scene", "ptc"], ("--imager", "ptc")),
+    (["calibration", "--scene", "ptc", "--imager", "sony-imx174", "--calibration", "4800"], ("--calibration", "ptc")),
+    (["calibration", "--scene", "ptc", "--imager", "sony-imx174", "--level", "direct"], "--level"),
+    (["calibration", "--scene", "ptc", "--imager", "nope"], "--imager"),
+    (["calibration", "--scene", "ptc", "--imager", "sony-imx174", "--seeds", "100000"], ("--seeds", "--max-minutes")),
+    (["validate", "--scene", "ptc"], ("--scene", "bench calibration --scene ptc")),
 ])
 def test_refusals_name_the_flag(argv, names, tmp_path, capsys):
     assert_refused(["bench", *argv], names, capsys, output=tmp_path)

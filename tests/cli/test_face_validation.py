@@ -151,3 +151,12 @@ def test_an_undecided_main_check_is_not_passed_by_the_scene_free_limits(capsys):
     assert document["undefined"]["passed"].startswith("INCONCLUSIVE: shading_cancels: only 0 skin pixels")
     status, out, err = run(argv, capsys)
     assert status == 3 and "verdict: INCONCLUSIVE (exit status 3)" in out and "PASS (" not in out
+
+
+def test_its_replicates_are_capped_by_their_estimated_time(capsys):
+    """Issue 25: validate face had only the one-pass sample cap, no estimate against --max-minutes."""
+    status, out, err = run([*BASE, "--size", "256", "--spp", "4096", "--max-minutes", "1", "--json"], capsys)
+    assert status == 2 and out == ""
+    line = err.strip().splitlines()[-1]
+    assert line.startswith("skinrender validate: error: --spp: 12 renders of 65536 pixels at 342 spp would take about")
+    assert "--max-minutes" in line

@@ -67,8 +67,8 @@ def test_face_bench_refusals(argv, names, capsys):
 def test_face_bench_text_shows_no_none_and_the_json_gives_reasons(monkeypatch, capsys):
     """A preset the floor makes unreachable prints "—" (never ``None``), its reason in a note and the JSON."""
     pytest.importorskip("mitsuba")
-    import skinrender.studies.bench_face as bench_face_module
-    from skinrender.studies.bench_face import PRESET_THRESHOLDS, presets_of
+    import skinrender.studies.benchmarks.bench_face as bench_face_module
+    from skinrender.studies.benchmarks.bench_face import PRESET_THRESHOLDS, presets_of
 
     spps, reference = [4, 16], 64
     noise = presets_of(spps, [0.03, 0.025], reference)  # a floor above the draft threshold
@@ -151,8 +151,8 @@ def test_quick_search_bench_times_the_20nm_search_and_estimates_the_rest(capsys)
 def test_face_bench_marks_extrapolated_presets(monkeypatch, capsys):
     """A preset the curve did not reach is the error model's extrapolation: starred, with a footnote."""
     pytest.importorskip("mitsuba")
-    import skinrender.studies.bench_face as bench_face_module
-    from skinrender.studies.bench_face import PRESET_THRESHOLDS, presets_of
+    import skinrender.studies.benchmarks.bench_face as bench_face_module
+    from skinrender.studies.benchmarks.bench_face import PRESET_THRESHOLDS, presets_of
 
     curve = [4, 16]
     presets = presets_of(curve, list(0.1 * (1 / np.array(curve)) ** 0.5), 4096)
@@ -186,7 +186,9 @@ def test_table1_exit_status_says_its_verdict(capsys):
 @pytest.mark.parametrize("argv, names", [
     (["bench", "analytic", "--repeat", "1000000"], ("--repeat", "days", "--max-minutes")),
     (["bench", "search", "--sample", "100000"], ("--sample", "--max-minutes")),
-    (["bench", "render", "--max-minutes", "5"], ("--max-minutes", "bench analytic")),
+    (["bench", "render", "--max-minutes", "5"], ("--max-minutes", "fixed amount of work")),
+    (["bench", "render", "--scene", "face", "--spp-list", "64,256,1024", "--size", "256", "--max-minutes", "1"],
+     ("--spp-list", "levels × (4096 + 2 × 1344) spp × 65536 pixels", "--max-minutes")),
     (["table1", "--spp", "1048576"], ("--spp", "at most 267232 spp")),
 ])
 def test_work_and_its_flag_are_named(argv, names, capsys):

@@ -213,7 +213,7 @@ class TestTripletVolumes:
         """``chunk_volumes`` gathers the clouds itself: the same numbers, to the bit, as one call per triplet."""
         from skinrender import reflectances
         from skinrender.spectra import GRID_DEFAULT
-        from skinrender.studies.volumes import chunk_gains
+        from skinrender.studies.paper.volumes import chunk_gains
 
         bank = bank_module.sensor_bank(sensor, reflectances("munsell").on(GRID_DEFAULT), [410, 470, 530, 600, 690])
         chosen = bank_module.triplets(5)

@@ -58,3 +58,43 @@ def test_refusals(kwargs, message):
     with pytest.raises(sr.SkinrenderError) as error:
         sr.render(**arguments)
     assert str(error.value).startswith(message)
+
+
+def test_validate_a_face_from_python_with_its_verdict_bound_and_spp_needed():
+    """Issue 23 item 4: ``sr.validate`` of a face returns the verdict, the bound and the spp it takes."""
+    from skinrender.rendering.face.validation import FaceValidation, validate_face
+
+    result = sr.validate("face", CAMERA, 2856, 2856, physics="direct", spp=48, size=16, seed=3, limits=())
+    assert isinstance(result, FaceValidation)
+    assert [c.name for c in result.checks] == ["shading_cancels", "eq4_shift"]
+    shift = result.checks[-1]
+    assert result.bound == shift.bound and result.bound >= shift.statistic
+    document = result.document()
+    assert document["bound"] == result.bound and document["spp_needed"] == result.spp_needed
+    assert shift.outcome == "pass" and result.spp_needed is not None  # a direct face: Eq. 4 holds
+    assert 16 * result.replicates <= result.spp_needed <= result.spp  # shown within at the spp it had
+    same = validate_face(CAMERA, "face", 2856, 2856, physics="direct", spp=48, size=16, seed=3, limits=())
+    assert same.bound == result.bound
+
+
+def test_validate_a_chart_from_python_as_before():
+    from skinrender.rendering.validation import Validation
+    from skinrender.rendering.validation import validate as validate_chart
+
+    result = sr.validate("macbeth", CAMERA, 2856, 2300, spp=4, seed=1, tolerance=0.002)
+    assert isinstance(result, Validation) and result.verdict.outcome != "pass"
+    same = validate_chart("macbeth", CAMERA, 2856, 2300, spp=4, seed=1, tolerance=0.002)
+    assert result.bound == same.bound and result.spp_needed == same.spp_needed > 4
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"scene": "face", "tolerance": 0.1}, "validate: tolerance is not an option of a face scene; its options: skin"),
+    ({"scene": "macbeth", "physics": "sheen"}, "validate: physics is not an option of a chart scene"),
+    ({"scene": "macbeth", "calibration": None}, "calibration: a chart validation needs the calibration light"),
+    ({"scene": "macbeth", "camera": None}, "camera: name the camera"),
+])
+def test_validate_refusals(kwargs, message):
+    arguments = {"camera": CAMERA, "prevailing": 2856, "calibration": 2856, **kwargs}
+    with pytest.raises(sr.SkinrenderError) as error:
+        sr.validate(**arguments)
+    assert str(error.value).startswith(message)

@@ -53,3 +53,16 @@ def test_the_same_curves_give_the_same_hash_whatever_their_source(tmp_path):
     np.savetxt(path, np.column_stack([lam, *gbell.sensitivities()]), delimiter=",", header="wavelength_nm,R,G,B",
                comments="", fmt="%.17g")
     assert camera_attributes(camera(str(path)))["camera_sha256"] == camera_attributes(gbell)["camera_sha256"]
+
+
+def test_read_exr_refuses_a_device_unread(tmp_path):
+    """Issue 25: an EXR path naming a device (here a link to /dev/zero) is refused before OpenEXR reads it."""
+    import os
+
+    from skinrender.errors import SkinrenderError
+
+    if not os.path.exists("/dev/zero"):
+        pytest.skip("no /dev/zero")
+    (tmp_path / "image.exr").symlink_to("/dev/zero")
+    with pytest.raises(SkinrenderError, match="a device, not a regular file; expected an EXR image"):
+        read_exr(tmp_path / "image.exr", ("R", "G", "B"))

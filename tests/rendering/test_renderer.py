@@ -16,7 +16,7 @@ from skinrender.rendering.balance import render
 from skinrender.rendering.exr import read_exr, write_exr, write_preview
 from skinrender.rendering.renderer import channel_names, render_raw
 from skinrender.rendering.validation import validate
-from skinrender.studies.tables import table1
+from skinrender.studies.paper.tables import table1
 from skinrender.rendering import variants
 
 pytest.importorskip("mitsuba")

@@ -59,3 +59,16 @@ def test_a_reference_that_does_not_fit_the_check(face, tmp_path, change, match):
     other = Measurement(**{**face.__dict__, **change})
     with pytest.raises(ReferenceProblem, match=match):
         read_reference(path, other)
+
+
+@pytest.mark.parametrize("which", ["exr", "sidecar"])
+def test_a_reference_that_is_not_a_regular_file_is_refused_unread(face, tmp_path, which):
+    """Issue 25: the reference's hash and its sidecar were read whole, whatever they were (a link to /dev/zero)."""
+    import os
+
+    path, sidecar = write_reference(tmp_path / "x.exr", face, 0.01)
+    target = path if which == "exr" else sidecar
+    target.unlink()
+    os.mkfifo(target)  # a named pipe: read whole, it would block for ever
+    with pytest.raises(ReferenceProblem, match="a named pipe, not a regular file"):
+        read_reference(path, face)

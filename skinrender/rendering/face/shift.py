@@ -110,7 +110,8 @@ def eq4_shift(images: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayFloat
     -------
     :class:`~skinrender.rendering.face.limits.LimitCheck`
         ``statistic`` the shift (Euclidean, NCC), ``tolerance`` the budget, ``bound`` the shift's upper
-        confidence bound; details ``shift`` (r, g), ``shift_se``, ``ncc_mean``, ``ncc_expected``,
+        confidence bound; details ``shift`` (r, g), ``shift_se``, ``shift_length_se`` (the shift's standard
+        error), ``ncc_mean``, ``ncc_expected``,
         ``within_budget`` (true, false or null), ``budget`` (:meth:`DetectionBudget.document`), and
         ``share_outside``: the share of the pixels whose own NCC differs from Eq. 4's beyond their noise
         (Šidák over the pixels at :data:`~skinrender.rendering.face.limits.ALPHA`).
@@ -136,7 +137,7 @@ def eq4_shift(images: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayFloat
     tolerance = None if budget is None else budget.budget
     details = {"shift": shift.tolist(), "shift_se": shift_se.tolist(), "ncc_mean": value.tolist(),
                "ncc_expected": expected.tolist(), "share_outside": float(outside.mean()),
-               "budget": None if budget is None else budget.document()}
+               "shift_length_se": length_se, "budget": None if budget is None else budget.document()}
     if tolerance is None:
         verdict, _ = equivalence([length], [length_se], 1.0, alpha, dof=k - 1, name="eq4_shift", scale=1.0)
         because = "no detection budget" if budget is None else budget.reason

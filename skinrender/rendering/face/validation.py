@@ -72,7 +72,7 @@ import numpy as np
 
 from ...constants import CONSTANT_OUTPUT_SCALE
 from ...errors import SkinrenderError
-from ...evaluation.verdict import EXIT_STATUS, Verdict, combine
+from ...evaluation.verdict import EXIT_STATUS, Verdict, combine, samples_needed
 from ...model.chromaticity import ncc
 from ...model.response import gain
 from ...spectra import GRID_DEFAULT
@@ -239,6 +239,35 @@ class FaceValidation:
         """True when the verdict is ``pass``, False for ``fail``, else None (inconclusive or nothing tested)."""
         return self.verdict.passed
 
+    def _shift(self) -> LimitCheck | None:
+        return next((c for c in self.checks if c.name == "eq4_shift"), None)
+
+    @property
+    def bound(self) -> float | None:
+        """``eq4_shift``'s upper confidence bound on Eq. 4's error (NCC): the smallest detection budget that would
+        pass; ``None`` where no shift was measured."""
+        shift = self._shift()
+        return None if shift is None else shift.bound
+
+    @property
+    def spp_needed(self) -> int | None:
+        """
+        Samples per pixel in all (over the replicates) at which ``eq4_shift`` is expected to pass: its standard
+        error shrinking as 1/√spp, the measured shift taken as it is
+        (:func:`~skinrender.evaluation.verdict.samples_needed`), at least
+        :data:`~skinrender.rendering.face.limits.SPP_REPLICATE_MIN` per replicate. ``None`` when no count can pass (the shift is at
+        or beyond its budget) or nothing was measured or budgeted.
+        """
+        shift = self._shift()
+        if shift is None or shift.statistic is None or shift.tolerance is None:
+            return None
+        se = shift.details.get("shift_length_se")
+        if se is None:
+            return None
+        needed = samples_needed(self.spp, [shift.statistic], [se], shift.tolerance, shift.alpha,
+                                dof=self.replicates - 1)
+        return None if needed is None else max(needed, SPP_REPLICATE_MIN * self.replicates)
+
     def document(self) -> dict:
         """The JSON document of ``skinrender validate face``."""
         r, verdict = self.rendering, self.verdict
@@ -247,7 +276,8 @@ class FaceValidation:
                 "spp_requested": self.spp_requested, "replicates": self.replicates, "seed": self.seed,
                 "sampler": r.sampler, "variant": r.variant, "elapsed_s": self.seconds,
                 "size": [r.scene.camera.width, r.scene.camera.height], "labels": r.label_names, **self.info,
-                "checks": [c.document() for c in self.checks], "passed": self.passed, "verdict": verdict.outcome,
+                "checks": [c.document() for c in self.checks], "bound": self.bound, "spp_needed": self.spp_needed,
+                "passed": self.passed, "verdict": verdict.outcome,
                 "exit_status": EXIT_STATUS[verdict.outcome]}
 
 

@@ -23,8 +23,8 @@ from skinrender.rendering.face.labels import LABEL_SKIN
 from skinrender.rendering.face.scene import Light, load_face_scene
 from skinrender.rendering.renderer import _spectrum
 from skinrender.spectra import GRID_DEFAULT
-from skinrender.studies.bench_face import LEVELS_BENCH
-from skinrender.studies.ladder import LEVELS_DEFAULT
+from skinrender.studies.benchmarks.bench_face import LEVELS_BENCH
+from skinrender.studies.face.ladder import LEVELS_DEFAULT
 
 CAM = "gbell:9@450,540,610"
 

@@ -1,0 +1,251 @@
+"""
+Many tasks on one core, every core or a Dask cluster
+====================================================
+
+One way to run a list of independent tasks: :func:`map` calls ``function(task)`` for each, in this process
+(one worker), in a pool of worker processes (:class:`concurrent.futures.ProcessPoolExecutor`), or on a Dask
+cluster (the ``concurrent.futures`` executor of a ``distributed.Client``, :meth:`Client.get_executor`), and
+returns the results in task order, the same every way. The Stage 3 search
+(:func:`skinrender.design.search.search`), the volumes of many searches
+(:mod:`skinrender.studies.paper.volumes`) and the face renders (:mod:`skinrender.studies.face.workers`) run
+on it.
+
+What every caller gets the same:
+
+-   **Progress**: a bar on a terminal, one line elsewhere (:func:`~skinrender.workload.progress_bar`,
+    :func:`~skinrender.workload.announce`), said once the work is under way (the workers started).
+-   **Ctrl-C and errors**: the workers ignore SIGINT (the parent handles it, no traceback per worker); an
+    interrupt or a task's error terminates the workers at once, drops the queued tasks and is raised here.
+-   **Data shared by every task** (``shared``): sent once per worker (the pool's initializer, Dask's
+    ``scatter(broadcast=True)``), not with every task.
+-   **Workers**: :func:`check_workers` (``--workers``: ``None`` is every core); :func:`dask_client`
+    (``--dask``: an address or a client).
+
+Determinism is the caller's: a task carries its seed; a result does not depend on the worker that computed
+it or on the order tasks finish in.
+
+-   :func:`map`, :func:`check_workers`, :func:`dask_client`, :func:`dask_name`, :func:`stop_pool`.
+-   :data:`WORKERS_MAX`, :data:`DASK_TIMEOUT_S`.
+
+Units: times s.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import signal
+from collections.abc import Callable, Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+
+import numpy as np
+
+from .errors import SkinrenderError
+from .extras import require
+from .workload import announce, progress_bar
+
+__all__ = ["WORKERS_MAX", "DASK_TIMEOUT_S", "map", "check_workers", "dask_client", "dask_name", "stop_pool"]
+
+WORKERS_MAX = max(64, 4 * (os.cpu_count() or 1))
+"""Most worker processes a command may start (each holds the data its tasks share)."""
+
+DASK_TIMEOUT_S = 10.0
+"""Seconds to wait for a Dask scheduler before giving up."""
+
+
+def check_workers(workers: int | None, flag: str = "--workers") -> int:
+    """
+    The worker processes: ``None`` means every core; anything but an integer (``int`` or a numpy integer, not a
+    bool or a float) in ``[1, WORKERS_MAX]`` is refused, naming ``flag``.
+
+    >>> check_workers(2)
+    2
+    >>> check_workers(0, "workers")
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: workers must be an integer in [1, ...] (processes), got 0
+    """
+    if workers is None:
+        return os.cpu_count() or 1
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or not 1 <= workers <= WORKERS_MAX:
+        raise SkinrenderError(f"{flag} must be an integer in [1, {WORKERS_MAX}] (processes), got {workers!r}",
+                              flag=flag)
+    return int(workers)
+
+
+def dask_client(dask):
+    """
+    A ``distributed.Client`` for a scheduler address (owned: the caller closes it) or the client given, as
+    ``(client, owned)``; an address that cannot be reached within :data:`DASK_TIMEOUT_S` is a one-line error
+    naming ``--dask``.
+    """
+    require("dask", "--dask")
+    from distributed import Client
+
+    if not isinstance(dask, Client):
+        try:
+            return Client(dask, timeout=DASK_TIMEOUT_S), True
+        except (OSError, ValueError, TypeError, TimeoutError) as error:
+            raise SkinrenderError(f"--dask: cannot reach a Dask scheduler at {dask!r} within {DASK_TIMEOUT_S:g} s "
+                                  f"({type(error).__name__}: {' '.join(str(error).split())[:120]})",
+                                  flag="--dask") from None
+    return dask, False
+
+
+def dask_name(dask) -> str | None:
+    """
+    The scheduler address of ``dask`` (an address or a ``distributed.Client``), ``None`` without one.
+
+    >>> dask_name(None), dask_name("tcp://h:8786")
+    (None, 'tcp://h:8786')
+    """
+    if dask is None or isinstance(dask, str):
+        return dask
+    return str(getattr(getattr(dask, "scheduler", None), "address", "a Dask client"))
+
+
+def stop_pool(pool: ProcessPoolExecutor) -> None:
+    """Stop a process pool at once (Ctrl-C, an error): its workers terminated, its queued work dropped."""
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        process.terminate()
+    # waiting is short once the workers are gone, and it frees the queues' named semaphores: a `spawn` pool's
+    # resource tracker would otherwise warn of them on stderr when the command line exits at once (130)
+    pool.shutdown(wait=True, cancel_futures=True)
+
+
+_SHARED = None
+"""A pool worker's copy of the data its tasks share (set once, by :func:`_start_worker`)."""
+
+
+def _start_worker(shared, initializer: Callable | None, initargs: tuple) -> None:
+    global _SHARED
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: no traceback per worker
+    _SHARED = shared
+    if initializer is not None:
+        initializer(*initargs)
+
+
+def _with_shared(function: Callable, task):
+    """``function(shared, task)`` in a pool worker, with the worker's copy of the shared data."""
+    return function(_SHARED, task)
+
+
+def map(function: Callable, tasks: Sequence, *, workers: int = 1, dask=None, shared=None,
+        initializer: Callable | None = None, initargs: tuple = (), start: str | None = None, progress=None,
+        label: str = "tasks", unit: str = "task", sizes: Sequence[int] | None = None,
+        on_start: Callable[[], None] | None = None,
+        on_result: Callable[[int, object], None] | None = None) -> list:
+    """
+    ``function(task)`` for every task (``function(shared, task)`` with ``shared``), results in task order.
+
+    Parameters
+    ----------
+    function
+        A picklable callable (a module-level function or a :func:`functools.partial` of one) for a pool or
+        Dask; any callable for one worker.
+    tasks
+        The tasks (picklable for a pool or Dask).
+    workers
+        Processes; 1 (and no ``dask``) runs every task in this process, in order.
+    dask
+        A Dask scheduler address (``tcp://host:8786``) or a ``distributed.Client``: the tasks run there
+        (``workers`` is not used).
+    shared
+        Data every task needs (sensor banks): sent once to each worker, passed as ``function``'s first
+        argument; ``None``: ``function(task)``.
+    initializer, initargs
+        Called in each pool worker when it starts (after SIGINT is ignored there), e.g. to set a renderer up.
+    start
+        How pool workers start (:func:`multiprocessing.get_context`: ``"spawn"``, ``"fork"``); ``None``: the
+        platform's default.
+    progress
+        A stream (``sys.stderr``) for the progress bar (a terminal) or the line saying the work started, or
+        ``None``.
+    label, unit
+        The progress's label and the unit of ``sizes``.
+    sizes
+        Units of work per task (``None``: one each): the progress counts them.
+    on_start
+        Called once the tasks are under way (a pool's workers started): the caller's other work may run then;
+        an exception it raises stops the workers and is raised here.
+    on_result
+        Called with ``(index, result)`` as each task finishes (in the order they finish).
+
+    Returns
+    -------
+    list
+        One result per task, in task order.
+
+    Examples
+    --------
+    >>> from functools import partial
+    >>> import operator
+    >>> map(partial(operator.mul, 3), [5, 1, 4])
+    [15, 3, 12]
+    >>> map(operator.add, [1, 2], shared=10)
+    [11, 12]
+    """
+    results: list = [None] * len(tasks)
+    sizes = [1] * len(tasks) if sizes is None else list(sizes)
+    bar = progress_bar(sum(sizes), label, progress, unit)
+
+    def started() -> None:
+        announce(progress, label, sum(sizes), unit)
+        if on_start is not None:
+            on_start()
+
+    def store(index: int, result) -> None:
+        results[index] = result
+        bar.update(sizes[index])
+        if on_result is not None:
+            on_result(index, result)
+
+    try:
+        if dask is not None:
+            _map_dask(dask, function, tasks, shared, started, store)
+        elif workers == 1:
+            started()
+            for index, task in enumerate(tasks):
+                store(index, function(task) if shared is None else function(shared, task))
+        elif tasks:
+            context = multiprocessing.get_context(start) if start is not None else None
+            pool = ProcessPoolExecutor(min(workers, len(tasks)), mp_context=context, initializer=_start_worker,
+                                       initargs=(shared, initializer, initargs))
+            try:
+                calls = [(function, task) if shared is None else (_with_shared, function, task) for task in tasks]
+                _collect({pool.submit(*call): index for index, call in enumerate(calls)}, started, store)
+            except BaseException:  # Ctrl-C or an error: stop the workers now and drop the queued tasks
+                stop_pool(pool)
+                raise
+            pool.shutdown()
+        else:
+            started()
+    finally:
+        bar.close()
+    return results
+
+
+def _collect(futures: dict[Future, int], started: Callable[[], None], store: Callable[[int, object], None]) -> None:
+    """Each future's result stored under its task's index as it finishes (after ``started()``)."""
+    started()  # the workers are started and busy
+    pending = set(futures)
+    while pending:
+        done, pending = wait(pending, return_when=FIRST_COMPLETED)
+        for future in done:
+            store(futures[future], future.result())
+
+
+def _map_dask(dask, function: Callable, tasks: Sequence, shared, started, store) -> None:
+    client, own = dask_client(dask)
+    executor = client.get_executor(pure=False)
+    try:
+        arguments = () if shared is None else (client.scatter([shared], broadcast=True)[0],)
+        try:
+            _collect({executor.submit(function, *arguments, task): index for index, task in enumerate(tasks)},
+                     started, store)
+        except BaseException:
+            executor.shutdown(wait=False)  # cancels what is left
+            raise
+    finally:
+        if own:
+            client.close()

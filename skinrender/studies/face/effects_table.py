@@ -1,0 +1,115 @@
+"""
+What each effect does to skin detection, and what it costs
+==========================================================
+
+For light, medium and dark skin, the face at the base level and with each
+effect alone (:data:`~skinrender.rendering.face.effects.LEVELS_EACH`, read
+from the registry: a new effect gets its row), each a :func:`~skinrender.studies.face.ladder.ladder`
+level: how far the effect moves the skin's mean NCC from Eq. 4 (``eq4_shift``,
+with its 95 % upper bound) against the detection budget, how it changes the
+true- and false-positive rates from ``direct``'s, what a shift of the budget
+would do to them, and the seconds the level took. ``skinrender ladder
+--effects`` prints it (``--plot``: :func:`skinrender.studies.face.effect_figures.figure_effects`).
+
+-   :data:`SKIN_TONES`: the default skins (the skin model at three melanin
+    fractions).
+-   :func:`effects_table`, :class:`EffectsTable`: the study.
+
+Units: NCC fractions; rates fractions; seconds s; temperatures K.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+from ...errors import SkinrenderError
+from ...evaluation.budget import BUDGET_FRACTION
+from ...evaluation.verdict import Combined
+from ...rendering.face.effects import LEVELS_EACH
+from .ladder import REPLICATES_LADDER, ladder
+
+__all__ = ["SKIN_TONES", "ROW_KEYS", "EffectsTable", "effects_table"]
+
+SKIN_TONES = {
+    "light": "skin-model:melanin=0.02",
+    "medium": "skin-model:melanin=0.13",
+    "dark": "skin-model:melanin=0.3",
+}
+"""The skins of the table, tone → skin spec: the skin model at melanin volume fractions 0.02, 0.13 and 0.3 (issue
+22's light, medium and dark), its other parameters at their defaults."""
+
+ROW_KEYS = ("seconds", "spp", "eq4_shift", "eq4_shift_bound", "eq4_verdict", "budget", "within_budget", "tpr", "fpr",
+            "tpr_change", "fpr_change", "budget_tpr_change", "budget_fpr_change", "skin_pixels", "prop_pixels")
+"""The ladder's keys each row of the table carries (beside ``tone``, ``skin``, ``level`` and ``undefined``)."""
+
+
+@dataclass(frozen=True)
+class EffectsTable(Combined):
+    """
+    The table: ``rows`` (one per skin tone and level: ``tone``, ``skin``, ``level``, the :data:`ROW_KEYS` and
+    ``undefined``), ``skins`` (per tone its ``skin``, Eq. 4's NCC and the detection ``budget``), the settings,
+    and every level's ``eq4_shift`` verdict (``verdicts``, not in the document).
+    """
+
+    camera: str
+    prevailing: float
+    calibration: float
+    size: tuple
+    spp: int
+    levels: tuple
+    skins: list
+    rows: list
+    verdicts: list = field(default_factory=list, repr=False, compare=False)
+
+    VERDICT_NAME = "effects table"
+
+    def document(self) -> dict:
+        """The JSON document."""
+        return {"camera": self.camera, "prevailing_K": self.prevailing, "calibration_K": self.calibration,
+                "size": list(self.size), "spp": self.spp, "levels": list(self.levels), "skins": self.skins,
+                "rows": self.rows, **self.verdict.summary()}
+
+    def figure(self, path) -> Path:
+        """Draw the table (:func:`skinrender.studies.face.effect_figures.figure_effects`) to a PNG; returns ``path``."""
+        from .effect_figures import figure_effects
+
+        title = (f"What each effect does to skin detection: {self.camera}, {self.prevailing:g} K balanced to "
+                 f"{self.calibration:g} K, {self.size[0]}×{self.size[1]} px, {self.spp} spp per level")
+        return figure_effects(self.rows, title, path)
+
+
+def effects_table(camera_, prevailing, calibration, skins: Mapping[str, str] | None = None,
+                  levels: Sequence[str] = LEVELS_EACH, spp: int = 64, size: int | None = 64, seed: int = 0,
+                  scene="face", variant: str | None = None, imager: str | None = None,
+                  illuminance: float | None = None, replicates: int = REPLICATES_LADDER,
+                  budget_fraction: float = BUDGET_FRACTION,
+                  progress: Callable[[str], None] | None = None) -> EffectsTable:
+    """
+    The ladder (:func:`~skinrender.studies.face.ladder.ladder`) at ``levels`` for each skin of ``skins``
+    (tone → skin spec; default :data:`SKIN_TONES`), gathered per tone and level.
+
+    ``levels`` must hold ``direct``: the rates' changes are from it. The other arguments are the ladder's.
+    """
+    skins = dict(SKIN_TONES if skins is None else skins)
+    if not skins:
+        raise SkinrenderError("skins: name at least one skin")
+    levels = tuple(levels)
+    if "direct" not in levels:
+        raise SkinrenderError(f"levels: the table compares each effect with 'direct'; add it, got {','.join(levels)!r}")
+    rows, described, verdicts, result = [], [], [], None
+    for tone, skin in skins.items():
+        if progress is not None:
+            progress(f"{tone} skin ({skin}) …")
+        result = ladder(camera_, prevailing, calibration, skin, levels, spp, seed, size, scene, variant,
+                        imager=imager, illuminance=illuminance, progress=progress, replicates=replicates,
+                        budget_fraction=budget_fraction)
+        described.append({"tone": tone, "skin": skin, "skin_ncc_analytic": result.skin_ncc_analytic,
+                          "budget": result.budget})
+        for row in result.levels:
+            rows.append({"tone": tone, "skin": skin, "level": row["name"], **{key: row[key] for key in ROW_KEYS},
+                         "undefined": row["undefined"]})
+        verdicts.extend(replace(verdict, name=f"{tone} skin, {verdict.name}") for verdict in result.verdicts)
+    return EffectsTable(result.camera, result.prevailing, result.calibration, result.size, int(spp), levels,
+                        described, rows, verdicts)

@@ -1,0 +1,289 @@
+"""
+Face sweeps
+===========
+
+The face (:func:`skinrender.rendering.face.render_face`) rendered for every
+combination of cameras × (prevailing, calibration) light pairs × skins ×
+levels of physics, each scored as the ladder scores a level
+(:mod:`skinrender.studies.face.ladder`): the scored skin pixels' NCC mean and
+spread, the share of them inside the camera's analytic skin locus (TPR) and
+that of the scored prop pixels (FPR). The renders run on every core (a
+process pool) or a Dask cluster, as the Stage 3 search does
+(:mod:`skinrender.design.search`).
+
+-   :func:`face_sweep`, :class:`FaceSweep`: the sweep, its JSON document and CSV.
+-   :func:`score_rendering`: one face render scored (the ladder's scoring).
+-   :func:`sweep_tasks`: the combinations, in the order of the result.
+
+Determinism: every render uses the same seed, the Mitsuba variant chosen
+once in the calling process and one drjit thread
+(:mod:`~skinrender.studies.face.workers`, which runs the renders), so the
+numbers (all but ``seconds``) are the same with one worker, several or a
+Dask cluster (tested). A script that asks for several workers needs the
+``if __name__ == "__main__":`` guard (workers are spawned).
+
+Units: temperatures K, times s, image sides pixels, NCC and rates fractions.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import itertools
+import os
+import time
+from dataclasses import dataclass, field
+from functools import partial
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import SkinrenderError
+from ...execution import WORKERS_MAX, check_workers, dask_name
+from ...evaluation.locus import skin_locus
+from ...files import write_output
+from ...model.camera import camera
+from ...model.chromaticity import ncc
+from ...rendering.face import planckian_temperature, render_face
+from ...rendering.face.effects import parse_physics
+from ...rendering.face.scene import load_face_scene, skin_reflectance_of
+from ...rendering.renderer import SAMPLES_MAX
+from ...rendering.scene import PIXELS_MAX
+from ...rendering.validation import analytic_reference
+from ...rendering.variants import choose_variant
+from ...spectra import GRID_DEFAULT, WavelengthGrid
+from ...workload import duration_text
+from .workers import run_renders
+from .ladder import score_rendering
+
+__all__ = ["RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
+           "FaceSweep", "face_sweep", "sweep_tasks", "estimate_seconds"]
+
+RENDERS_MAX = 5000
+"""Most renders a sweep may ask for unless ``max_renders`` is raised (a guard against a slip of the flags)."""
+
+SWEEP_SAMPLES_MAX = 10**11
+"""Most samples (renders × pixels × spp) a sweep may ask for unless ``max_samples`` is raised (about 15 h on 2
+cores at :data:`SAMPLES_PER_S`)."""
+
+SECONDS_PER_RENDER = 0.15
+"""Fixed cost of one face render on one core (scene, cached kernels, labels, scoring), s: the estimates' base;
+fitted with :data:`SAMPLES_PER_S` to two measured sweeps of 54 renders (direct, sheen, all effects) with one
+worker at 64 px, 32 spp and 128 px, 64 spp (the measurements and their commands: docs/speed.md, "The rates
+behind the estimates")."""
+
+SAMPLES_PER_S = 9e5
+"""Samples per second of the face on one core (one drjit thread), the estimates' rate (see
+:data:`SECONDS_PER_RENDER`)."""
+
+CSV_COLUMNS = ("camera", "prevailing_K", "calibration_K", "skin", "level", "seconds", "spp",
+               "skin_ncc_mean_r", "skin_ncc_mean_g", "skin_ncc_mean_b", "skin_ncc_std_r", "skin_ncc_std_g",
+               "skin_ncc_std_b", "tpr", "fpr", "skin_pixels", "prop_pixels",
+               "skin_ncc_analytic_r", "skin_ncc_analytic_g", "skin_ncc_analytic_b")
+"""Columns of :meth:`FaceSweep.to_csv`; an empty cell where a value is ``None``."""
+
+
+@dataclass(frozen=True)
+class _Settings:
+    """What every render of a sweep shares (sent to each worker once per task; small)."""
+
+    scene: object
+    size: int
+    spp: int
+    seed: int
+    variant: str
+    grid: WavelengthGrid
+    imager: str | None
+    illuminance: float | None
+
+
+def _render_task(task: tuple, settings: _Settings) -> dict:
+    """One combination ``(camera, prevailing K, calibration K, skin, level)`` rendered and scored."""
+    cam, p, c, skin, level = task
+    start = time.perf_counter()
+    result = render_face(cam, settings.scene, p, c, skin, level, settings.spp, settings.seed, settings.size,
+                         variant=settings.variant, grid=settings.grid, imager=settings.imager,
+                         illuminance=settings.illuminance)
+    locus = skin_locus(cam, "skin", calibration=c, grid=settings.grid)
+    rho = skin_reflectance_of(skin, settings.grid, "skin")
+    analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=settings.grid))[0]
+    row = {"camera": cam.name, "prevailing_K": p, "calibration_K": c, "skin": skin,
+           "level": result.physics, "seconds": 0.0, "spp": result.spp, **score_rendering(result, locus),
+           "skin_ncc_analytic": analytic.tolist(), "variant": result.variant}
+    row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
+    row["seconds"] = time.perf_counter() - start
+    return row
+
+
+def sweep_tasks(cameras, lights, skins, levels) -> list[tuple]:
+    """
+    Every combination, cameras outermost, then light pairs, skins, levels.
+
+    Examples
+    --------
+    >>> [t[1:] for t in sweep_tasks(["cam"], [(2856.0, 5900.0)], ["a", "b"], ["direct"])]
+    [(2856.0, 5900.0, 'a', 'direct'), (2856.0, 5900.0, 'b', 'direct')]
+    """
+    return [(cam, p, c, skin, level) for cam, (p, c), skin, level in itertools.product(cameras, lights, skins, levels)]
+
+
+def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2) -> float:
+    """
+    Wall time of ``renders`` face renders of ``pixels`` pixels at ``spp`` on ``cores`` cores, s (from
+    :data:`SECONDS_PER_RENDER` and :data:`SAMPLES_PER_S`, per core; a worker's start, a few seconds, aside).
+
+    Examples
+    --------
+    >>> round(estimate_seconds(54, 128 * 128, 64, cores=1))  # measured: docs/speed.md
+    71
+    """
+    return renders * (SECONDS_PER_RENDER + pixels * spp / SAMPLES_PER_S) / max(1, cores)
+
+
+@dataclass(frozen=True)
+class FaceSweep:
+    """
+    The sweep's result.
+
+    Attributes
+    ----------
+    combinations
+        One dict per combination, in :func:`sweep_tasks` order: ``camera``, ``prevailing_K``,
+        ``calibration_K``, ``skin``, ``level``, ``seconds``, ``spp``, ``skin_ncc_mean``, ``skin_ncc_std``
+        (``[r, g, b]``), ``tpr``, ``fpr``, ``skin_pixels``, ``prop_pixels``, ``skin_ncc_analytic`` (Eq. 4's
+        NCC of the skin, ``[r, g, b]``), ``undefined`` (``{key: reason}`` for each ``None``, as the ladder's;
+        in the JSON, not the CSV), ``variant``, and ``imager``/``exposure_s`` with ``noise``.
+    elapsed_s
+        Wall time of the renders, s.
+    """
+
+    scene: object
+    size: int
+    spp: int
+    seed: int
+    variant: str
+    workers: int
+    elapsed_s: float
+    combinations: list = field(default_factory=list)
+    dask: str | None = None
+
+    def document(self) -> dict:
+        """The JSON document (``combinations`` and the settings)."""
+        return {"scene": self.scene, "size": self.size, "spp": self.spp, "seed": self.seed,
+                "variant": self.variant, "workers": self.workers, "dask": self.dask, "elapsed_s": self.elapsed_s,
+                "renders": len(self.combinations), "combinations": self.combinations}
+
+    def to_csv(self, path, flag: str | None = None) -> Path:
+        """Every combination as a CSV row (:data:`CSV_COLUMNS`), written whole or not at all (``flag``: the
+        option that named ``path``, for the message when it cannot be written)."""
+        handle = io.StringIO(newline="")
+        writer = csv.writer(handle, lineterminator="\n")
+        writer.writerow(CSV_COLUMNS)
+        for row in self.combinations:
+            triples = [v for key in ("skin_ncc_mean", "skin_ncc_std")
+                       for v in (row[key] if row[key] is not None else [None] * 3)]
+            cells = [row["camera"], row["prevailing_K"], row["calibration_K"], row["skin"], row["level"],
+                     row["seconds"], row["spp"], *triples, row["tpr"], row["fpr"], row["skin_pixels"],
+                     row["prop_pixels"], *row["skin_ncc_analytic"]]
+            writer.writerow(["" if v is None else f"{v:.17g}" if isinstance(v, float) else v for v in cells])
+        return write_output(path, handle.getvalue(), flag)
+
+
+def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples: float, cores: int) -> None:
+    pixels = size * size
+    if pixels > PIXELS_MAX:
+        raise SkinrenderError(f"size {size} pixels gives {pixels} pixels per image, more than {PIXELS_MAX}")
+    if spp * pixels > SAMPLES_MAX:
+        raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
+                              f"most {SAMPLES_MAX // pixels} spp at this size")
+    seconds, on = estimate_seconds(renders, pixels, spp, cores), f"on {cores} core{'s' * (cores > 1)}"
+    about = f"about {duration_text(seconds)} {on}"
+    if renders > max_renders:
+        raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} ({about}); raise "
+                              "the limit (--max-renders) or sweep fewer combinations")
+    if renders * pixels * spp > max_samples:
+        raise SkinrenderError(f"{renders} renders × {pixels} pixels × {spp} spp = {renders * pixels * spp:.3g} "
+                              f"samples is more than max_samples = {max_samples:.3g} ({about}); raise "
+                              "the limit (--max-samples) or lower the size or spp")
+
+
+def face_sweep(
+    cameras,
+    lights,
+    skins,
+    levels,
+    size: int = 64,
+    spp: int = 32,
+    seed: int = 0,
+    scene="face",
+    variant: str | None = None,
+    grid: WavelengthGrid = GRID_DEFAULT,
+    imager: str | None = None,
+    illuminance: float | None = None,
+    workers: int | None = None,
+    dask=None,
+    progress=None,
+    max_renders: int = RENDERS_MAX,
+    max_samples: float = SWEEP_SAMPLES_MAX,
+) -> FaceSweep:
+    """
+    Render and score the face for every camera × light pair × skin × level.
+
+    Parameters
+    ----------
+    cameras
+        Cameras or specs.
+    lights
+        (prevailing, calibration) pairs: kelvin, ``A`` or ``H`` (Planckian lights).
+    skins
+        Skin specs (``SET:SAMPLE``, ``SET:#N``, ``skin-model:melanin=…``).
+    levels
+        Physics levels (:data:`skinrender.rendering.face.PHYSICS`, effects joined by ``+``).
+    size
+        Image side, pixels.
+    spp, seed, variant, grid
+        As :func:`skinrender.rendering.face.render_face`; every render uses ``seed``; the variant is chosen
+        once here (``None``: the fastest that works) and used by every worker.
+    scene
+        A face scene name or path.
+    imager, illuminance
+        The ``noise`` level's image sensor and the key light's illuminance, lx (as :func:`ladder`).
+    workers
+        Processes; ``None``: every core. 1 renders in this process.
+    dask
+        A Dask scheduler address (``tcp://host:8786``) or a ``distributed.Client``: the renders run there.
+    progress
+        A stream (``sys.stderr``) for a progress bar (shown on a terminal only), or ``None``.
+    max_renders, max_samples
+        Refuse a sweep of more renders, or more samples (renders × pixels × spp), than these; the message
+        carries an estimate of the time.
+
+    Returns
+    -------
+    :class:`FaceSweep`
+    """
+    cams = [camera(c) for c in cameras]
+    pairs = [(planckian_temperature(p, "prevailing"), planckian_temperature(c, "calibration")) for p, c in lights]
+    skins = [str(s).strip() for s in skins]
+    levels = [str(level).strip() for level in levels]
+    for name, values in (("cameras", cams), ("lights", pairs), ("skins", skins), ("levels", levels)):
+        if not values:
+            raise SkinrenderError(f"{name}: name at least one")
+    for skin in skins:
+        skin_reflectance_of(skin, grid, "skin")
+    for level in levels:
+        parse_physics(level)
+    for name, value, low in (("size", size, 1), ("spp", spp, 1), ("seed", seed, 0)):  # size in pixels
+        if not (isinstance(value, (int, np.integer)) and not isinstance(value, bool) and low <= value < 2**32):
+            raise SkinrenderError(f"{name} must be an integer in [{low}, 2^32), got {value!r}")
+    workers = check_workers(workers, "workers")
+    tasks = sweep_tasks(cams, pairs, skins, levels)
+    _check_size(len(tasks), int(size), int(spp), max_renders, max_samples,
+                min(workers, os.cpu_count() or 1) if dask is None else os.cpu_count() or 1)
+    face = load_face_scene(scene)
+    settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance)
+    start = time.perf_counter()
+    rows = run_renders(partial(_render_task, settings=settings), tasks, settings.variant, int(workers), dask,
+                       progress, "face sweep")
+    return FaceSweep(face.name, int(size), int(spp), int(seed), settings.variant,
+                     1 if dask is not None else int(workers), time.perf_counter() - start, rows, dask_name(dask))

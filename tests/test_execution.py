@@ -1,0 +1,157 @@
+"""
+Tests for :mod:`skinrender.execution`: one ``map`` in this process, in worker processes and on Dask, results in
+task order every way; the data the tasks share; progress; an error or an interrupt stops the workers and reaches
+the caller; the worker count's check. (Ctrl-C from the command line: tests/cli/test_design.py and
+tests/cli/test_face_sweep.py; the Stage 3 search, the volumes and the face renders on it: their own tests.)
+"""
+
+from __future__ import annotations
+
+import io
+import operator
+import os
+from functools import partial
+
+import numpy as np
+import pytest
+
+from skinrender import execution
+from skinrender.errors import SkinrenderError
+from skinrender.execution import WORKERS_MAX, check_workers, dask_name
+
+
+def _pid(_task) -> int:
+    return os.getpid()
+
+
+def _shared_sum(shared: np.ndarray, task: int) -> float:
+    return float(shared[task]) + 0.5
+
+
+def _pid_and_shared(shared, _task) -> tuple[int, int]:
+    return os.getpid(), id(shared)
+
+
+def _signal_ignored(_task) -> bool:
+    import signal
+
+    return signal.getsignal(signal.SIGINT) == signal.SIG_IGN
+
+
+_STARTED: list = []
+
+
+def _mark(value) -> None:
+    _STARTED.append(value)
+
+
+def _marked(_task) -> list:
+    return list(_STARTED)
+
+
+class TestMap:
+    @pytest.mark.parametrize("workers", [1, 2])
+    def test_results_in_task_order(self, workers):
+        assert execution.map(partial(operator.mul, 3), [5, 1, 4, 2, 7], workers=workers) == [15, 3, 12, 6, 21]
+
+    def test_no_tasks(self):
+        started = []
+        assert execution.map(abs, [], workers=2, on_start=lambda: started.append(True)) == []
+        assert started == [True]
+
+    def test_one_worker_runs_here(self):
+        assert set(execution.map(_pid, range(3))) == {os.getpid()}
+
+    def test_two_workers_run_elsewhere(self):
+        pids = execution.map(_pid, range(6), workers=2)
+        assert os.getpid() not in pids and 1 <= len(set(pids)) <= 2
+
+    @pytest.mark.parametrize("workers", [1, 2])
+    def test_shared_data_is_the_first_argument(self, workers):
+        shared = np.arange(10.0)
+        assert execution.map(_shared_sum, [3, 0, 9], workers=workers, shared=shared) == [3.5, 0.5, 9.5]
+
+    def test_shared_data_is_sent_once_per_worker(self):
+        """Every task of one worker sees the same object: the worker's copy, not one pickled with each task."""
+        seen = execution.map(_pid_and_shared, range(8), workers=2, shared=np.zeros(1000))
+        by_worker = {}
+        for pid, identity in seen:
+            by_worker.setdefault(pid, set()).add(identity)
+        assert all(len(ids) == 1 for ids in by_worker.values())
+
+    def test_workers_ignore_ctrl_c_the_parent_handles_it(self):
+        assert execution.map(_signal_ignored, range(2), workers=2) == [True, True]
+
+    def test_the_initializer_runs_in_each_worker(self):
+        assert execution.map(_marked, range(2), workers=2, initializer=_mark, initargs=("ready",)) == [["ready"]] * 2
+
+    @pytest.mark.parametrize("workers", [1, 2])
+    def test_on_start_and_on_result(self, workers):
+        events = []
+        execution.map(abs, [-1, -2, -3], workers=workers, on_start=lambda: events.append("start"),
+                      on_result=lambda i, r: events.append((i, r)))
+        assert events[0] == "start" and sorted(events[1:]) == [(0, 1), (1, 2), (2, 3)]
+
+    def test_progress_counts_the_sizes(self):
+        """Not a terminal: one line saying the work started, in the units of ``sizes``."""
+        log = io.StringIO()
+        execution.map(abs, [-1, -2], sizes=[4, 3], progress=log, label="sensor 9", unit="triplet")
+        assert log.getvalue() == "sensor 9: 7 triplets …\n"
+
+    @pytest.mark.parametrize("workers", [1, 2])
+    def test_an_error_in_a_task_reaches_the_caller(self, workers):
+        with pytest.raises(ZeroDivisionError):
+            execution.map(partial(operator.truediv, 1), [1, 0, 2], workers=workers)
+
+    def test_an_interrupt_stops_the_workers(self, monkeypatch):
+        """Ctrl-C (raised by ``on_start``, once the workers are busy: no timing involved) terminates them."""
+        pools = []
+        real = execution.ProcessPoolExecutor
+
+        def recorded(*args, **kwargs):
+            pools.append(real(*args, **kwargs))
+            return pools[-1]
+
+        workers = []
+
+        def interrupt():
+            workers.extend(pools[0]._processes.values())  # started and busy
+            raise KeyboardInterrupt
+
+        monkeypatch.setattr(execution, "ProcessPoolExecutor", recorded)
+        with pytest.raises(KeyboardInterrupt):
+            execution.map(abs, range(50), workers=2, on_start=interrupt)
+        assert workers and not any(process.is_alive() for process in workers)
+        assert pools[0]._shutdown_thread  # the pool was shut down: the queued tasks were dropped
+
+    def test_dask(self):
+        distributed = pytest.importorskip("distributed")
+        with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                      dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+            assert execution.map(partial(operator.add, 1), [2, 3, 4], dask=client) == [3, 4, 5]
+            assert execution.map(_shared_sum, [1, 2], dask=client, shared=np.arange(3.0)) == [1.5, 2.5]
+            with pytest.raises(ZeroDivisionError):
+                execution.map(partial(operator.truediv, 1), [1, 0], dask=client)
+            assert dask_name(client) == cluster.scheduler_address
+        assert dask_name(None) is None and dask_name("tcp://h:1") == "tcp://h:1"
+
+    def test_an_unreachable_scheduler_is_one_line_naming_the_flag(self):
+        pytest.importorskip("distributed")
+        with pytest.raises(SkinrenderError, match="^--dask: cannot reach a Dask scheduler") as error:
+            execution.map(abs, [1], dask="tcp://127.0.0.1:9")
+        assert error.value.flag == "--dask"
+
+
+class TestCheckWorkers:
+    def test_default_is_every_core(self):
+        assert check_workers(None) == (os.cpu_count() or 1)
+
+    def test_the_bounds(self):
+        assert check_workers(1) == 1 and check_workers(WORKERS_MAX) == WORKERS_MAX
+        assert check_workers(np.int64(2)) == 2
+
+    @pytest.mark.parametrize("bad", [0, -1, 1.5, 2.0, True, 1000, "2", float("nan")])
+    def test_refused(self, bad):
+        with pytest.raises(SkinrenderError, match="--workers") as error:
+            check_workers(bad)
+        assert error.value.flag == "--workers"
