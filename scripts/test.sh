@@ -1,6 +1,15 @@
 #!/usr/bin/env bash
-# Set up (scripts/setup.sh) and run the whole test suite.
+# Set up (scripts/setup.sh) and run the whole test suite, one pytest-xdist worker per core (-n auto), each test
+# file on one worker (--dist loadfile: a file's module fixtures, renders shared by its tests, are made once).
+# Arguments go to pytest after these, so `-n 0` runs in this process.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-.venv/bin/python -m pytest "$@"
+# Where PYTHONDONTWRITEBYTECODE is set, each of the suite's Python processes (workers, notebook kernels, command-line
+# children, doctest children) would compile skinrender and the tests afresh: keep compiled code under .venv/pycache
+# instead (never beside the sources).
+if [ -n "${PYTHONDONTWRITEBYTECODE:-}" ]; then
+    export PYTHONPYCACHEPREFIX="$PWD/.venv/pycache"
+    unset PYTHONDONTWRITEBYTECODE
+fi
+.venv/bin/python -m pytest -n auto --dist loadfile "$@"

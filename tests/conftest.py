@@ -62,3 +62,13 @@ def small_chart(tmp_path_factory) -> Path:
     path = tmp_path_factory.mktemp("scene") / "small.toml"
     path.write_text(SMALL_CHART)
     return path
+
+
+def pytest_collection_modifyitems(session, config, items):
+    """
+    Run the tests marked ``slow`` first (the order among them and among the rest kept). With pytest-xdist
+    (``scripts/test.sh`` runs ``-n auto --dist loadfile``) a file goes to one worker in the order its first test
+    comes, so the long files start at once and short ones fill in behind them, instead of one long file left
+    to run alone at the end.
+    """
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)

@@ -17,6 +17,7 @@ import argparse
 import doctest
 import os
 import re
+import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -208,18 +209,45 @@ def command_line(tmp_path: Path) -> dict[str, str]:
             "MPLBACKEND": "Agg"}
 
 
+SHELL = re.compile(r"[|&;<>()`$*?~\\]")
+"""What makes a command need the shell (a pipe, a redirection, a variable, a glob…)."""
+
+
+def run_command(command: str, work: Path, env: dict[str, str], capfd, monkeypatch) -> tuple[int, str, str]:
+    """``(status, stdout, stderr)`` of one console command run in ``work``. A plain ``skinrender …`` line (no shell
+    syntax) runs in this process, its standard output and error captured at the file descriptors (so that a native
+    library's writes count, as in a terminal): the same command line without starting Python and importing
+    Mitsuba again for every line (``tests/test_cli.py`` runs the installed command in a child process); any other
+    line runs in ``bash``."""
+    words = shlex.split(command)
+    if words[0] != "skinrender" or SHELL.search(command):
+        run = subprocess.run(["bash", "-c", command], capture_output=True, text=True, cwd=work, env=env)
+        return run.returncode, run.stdout, run.stderr
+    from skinrender.cli import main
+
+    with monkeypatch.context() as patch:
+        patch.chdir(work)
+        patch.setenv("MPLBACKEND", "Agg")
+        capfd.readouterr()
+        try:
+            status = main(words[1:])
+        except SystemExit as exit_:  # argparse's own refusals
+            status = exit_.code
+        out, err = capfd.readouterr()
+    return (0 if status is None else status), out, err
+
+
 @pytest.mark.parametrize("page, line, body", CONSOLE, ids=[f"{p.name}:{line}" for p, line, _ in CONSOLE])
-def test_console_example(page, line, body, command_line, tmp_path):
+def test_console_example(page, line, body, command_line, tmp_path, capfd, monkeypatch):
     """Each command of the block exits with the status shown and prints what is shown."""
     where = f"{page.name}:{line}"
     work = tmp_path / "work"
     work.mkdir()
     checker = doctest.OutputChecker()
     for command, expected, status in console_steps(body):
-        run = subprocess.run(["bash", "-c", command], capture_output=True, text=True, cwd=work,
-                             env=command_line)
-        got = run.stdout if run.returncode == 0 else run.stderr
-        assert run.returncode == status, f"{where}: `{command}` exited {run.returncode}:\n{run.stderr}"
+        returncode, stdout, stderr = run_command(command, work, command_line, capfd, monkeypatch)
+        got = stdout if returncode == 0 else stderr
+        assert returncode == status, f"{where}: `{command}` exited {returncode}:\n{stderr}"
         assert checker.check_output(normalised(expected), normalised(got), doctest.ELLIPSIS), (
             f"{where}: `{command}` printed\n{got}\ninstead of\n{expected}")
 

@@ -106,8 +106,14 @@ def test_csv_refused_before_any_render(tmp_path, capsys):
     assert_refused([*SWEEP, "--csv", tmp_path / "sweep.csv", "--skin", "skin:nobody"], "--skin", capsys, tmp_path)
 
 
-def test_unreachable_dask(capsys):
-    assert_refused([*SWEEP, "--dask", "tcp://127.0.0.1:9"], "--dask", capsys)
+def test_unreachable_dask(capsys, monkeypatch):
+    """Refused in one line naming --dask (waiting 1 s for the scheduler rather than the default 10 s: the refusal is
+    the same)."""
+    import skinrender.execution as execution
+
+    monkeypatch.setattr(execution, "DASK_TIMEOUT_S", 1.0)
+    line = assert_refused([*SWEEP, "--dask", "tcp://127.0.0.1:9"], "--dask", capsys)
+    assert "within 1 s" in line
 
 
 @pytest.mark.skipif(not hasattr(signal, "SIGINT") or os.name != "posix", reason="POSIX")

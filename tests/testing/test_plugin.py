@@ -50,6 +50,10 @@ def warm(tmp_path_factory):
     measure("macbeth", "gbell:9@450,540,610", "A", "A", spp=4)
     import matplotlib.pyplot  # noqa: F401  (the difference figure's)
 
+    # contourpy too: imported first inside a run, it is unloaded after it and, compiled, cannot be imported again
+    # (later tests of the same pytest-xdist worker drawing a contour failed)
+    import contourpy  # noqa: F401
+
 
 @pytest.fixture
 def project(pytester):

@@ -63,16 +63,28 @@ def test_spp_is_split_over_the_replicates_and_seeds_follow():
 
 
 def test_through_the_sensor_the_shading_check_runs_and_its_control_fails(monkeypatch):
-    """The 8-bit sensor's dithered pixels pass; the same frames against an Eq. 4 off by 1 % in R fail."""
+    """The 8-bit sensor's dithered pixels pass; the same frames against an Eq. 4 off by 1 % in R fail. (The frames
+    are rendered once: the control gets the first validation's renders, seed for seed, not rendered again.)"""
     import skinrender.rendering.face.validation as module
 
+    rendered, render = {}, module.render_face
+
+    def render_once(*args, **kwargs):
+        key = repr((args, sorted(kwargs.items())))
+        if key not in rendered:
+            rendered[key] = render(*args, **kwargs)
+        return rendered[key]
+
+    monkeypatch.setattr(module, "render_face", render_once)
     kwargs = {"physics": "noise", "size": 64, "spp": 192, "limits": (), "prevailing": 2856, "calibration": 5900}
     check = validate_face(CAM, **kwargs).checks[0]
     assert check.name == "shading_cancels" and check.pixels > 100 and check.passed is True, check
     assert check.details["skin_pixels_undithered"] > 0
+    frames = {key: r.image.copy() for key, r in rendered.items()}
     reference = module.analytic_reference
     monkeypatch.setattr(module, "analytic_reference", lambda *a, **k: reference(*a, **k) * [1.01, 1.0, 1.0])
     assert validate_face(CAM, **kwargs).checks[0].passed is False
+    assert len(rendered) == 12 and all(np.array_equal(r.image, frames[key]) for key, r in rendered.items())
 
 
 @pytest.mark.parametrize("kwargs, match", [
