@@ -5,11 +5,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-# Where PYTHONDONTWRITEBYTECODE is set, each of the suite's Python processes (workers, notebook kernels, command-line
-# children, doctest children) would compile skinrender and the tests afresh: keep compiled code under .venv/pycache
-# instead (never beside the sources).
-if [ -n "${PYTHONDONTWRITEBYTECODE:-}" ]; then
-    export PYTHONPYCACHEPREFIX="$PWD/.venv/pycache"
-    unset PYTHONDONTWRITEBYTECODE
-fi
 .venv/bin/python -m pytest -n auto --dist loadfile "$@"
