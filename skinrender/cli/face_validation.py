@@ -93,7 +93,7 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     every flag is checked before anything renders; ``scene``: the face scene loaded.
     """
     from ..rendering.face.validation import validate_face
-    from .common import check_render_work, emit, flag, settings_of, table
+    from .common import emit, flag, settings_of, table
     from .face import face_inputs
 
     settings = settings_of(args)

@@ -309,23 +309,25 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     levels = levels_of(args.levels if args.levels is not None else ",".join(LEVELS_BENCH))
     for level in levels:
         flag("--levels", active_lights, scene, flag("--levels", parse_physics, level))
-    check_face_bench_work(args, len(levels), size * size, spps, reference)
+    check_face_bench_work(args, levels, size * size, spps, reference)
     return {"scene": scene, "size": size, "spps": spps, "reference_spp": reference, "levels": levels}
 
 
-def check_face_bench_work(args: argparse.Namespace, levels: int, pixels: int, spps: list[int], reference: int) -> None:
+def check_face_bench_work(args: argparse.Namespace, levels: list[str], pixels: int, spps: list[int],
+                          reference: int) -> None:
     """
     Refuse the face bench when its estimate exceeds ``--max-minutes``: per level one reference render at
     ``reference`` spp and, per spp of the curve, a warm-up and a timed render (``2 × Σ spps``), all of ``pixels``
-    pixels (:func:`~skinrender.studies.face.sweep.estimate_seconds` on every core), naming ``--spp-list``.
+    pixels (:func:`~skinrender.studies.face.sweep.estimate_seconds` on every core, each level at its own rate:
+    ``subsurface`` is far slower), naming ``--spp-list``.
     """
     import os
 
     from ..studies.face.sweep import estimate_seconds
 
     each = reference + 2 * sum(spps)
-    check_work(estimate_seconds(levels, pixels, each, os.cpu_count() or 1), "--spp-list",
-               f"{levels} levels × ({reference} + 2 × {sum(spps)}) spp × {pixels} pixels", args.max_minutes,
+    check_work(estimate_seconds(len(levels), pixels, each, os.cpu_count() or 1, levels), "--spp-list",
+               f"{len(levels)} levels × ({reference} + 2 × {sum(spps)}) spp × {pixels} pixels", args.max_minutes,
                fewer="lower --spp-list, --reference-spp or --size")
 
 

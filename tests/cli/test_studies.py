@@ -197,6 +197,23 @@ def test_work_and_its_flag_are_named(argv, names, capsys):
     assert_refused(argv, names, capsys)
 
 
+def test_the_face_bench_estimates_each_level_at_its_own_rate():
+    """A subsurface level in the face bench is estimated at its own (far slower) rate, as render and ladder do."""
+    import argparse
+    import re
+
+    from skinrender.cli.studies import check_face_bench_work
+    from skinrender.errors import SkinrenderError
+
+    def minutes(levels):
+        with pytest.raises(SkinrenderError) as error:
+            check_face_bench_work(argparse.Namespace(max_minutes=0.001), levels, 128 * 128, [16, 64], 256)
+        value, unit = re.search(r"about ([\d.]+) (s|min|h)", str(error.value)).groups()
+        return float(value) * {"s": 1 / 60, "min": 1, "h": 60}[unit]
+
+    assert minutes(["direct", "subsurface"]) > 10 * minutes(["direct", "sheen"])
+
+
 def test_reproduce_on_a_full_disk_leaves_no_folder_and_names_o(tmp_path, capsys, monkeypatch):
     """A file of the reproduce folder cannot be written: the folder (made in a temporary beside it) is removed,
     and the one line names -o and the reason, exit 1 (the machine's error)."""
