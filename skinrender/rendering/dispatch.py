@@ -204,7 +204,7 @@ def validate(scene, camera=None, prevailing=None, calibration=None, **options):
     >>> v = sr.validate("face", "gbell:9@450,540,610", 2856, 2856, physics="direct", spp=48,
     ...                 size=24)  # doctest: +SKIP
     >>> v.verdict.outcome, v.spp_needed  # doctest: +SKIP
-    ('pass', 48)
+    ('pass', 192)
     """
 
     camera = _camera_of(camera, options, "validate")
