@@ -108,9 +108,10 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     check_replicates_work(args, settings.spp, pixels, physics)  # subsurface: its own rate
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
-                  skin, physics, settings.spp, settings.seed, size, settings.sampler, settings.variant,
-                  settings.channels, imager, exposure, lux, limits=limits,
-                  progress=lambda line: print(line, file=sys.stderr))
+                  physics=physics, spp=settings.spp, seed=settings.seed, limits=limits,
+                  progress=lambda line: print(line, file=sys.stderr), skin=skin, size=size, sampler=settings.sampler,
+                  variant=settings.variant, channels=settings.channels, imager=imager, exposure=exposure,
+                  illuminance=lux)
     document = result.document()
     rows = [[c.name, c.outcome.replace("_", " "), _number(c.statistic), _number(c.tolerance), _number(c.bound),
              f"{c.alpha:g}", c.pixels] for c in result.checks]

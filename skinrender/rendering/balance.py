@@ -9,6 +9,7 @@ the Eq. 10 factor, through the one gain of the analytic model
 
 -   :class:`PatchStatistics`, :func:`patch_statistics`: patch means and
     standard errors.
+-   :class:`Eq4Options`: Eq. 4's options (normalisation, knee, grid, scale), taken whole.
 -   :func:`balance`: Eq. 4 on a pair of raw renders.
 -   :func:`render`, :class:`Rendering`: the Eq. 4 image of a (prevailing,
     calibration) pair.
@@ -39,7 +40,8 @@ from .renderer import RawRender, render_raw
 from .scene import ChartScene, load_chart_scene
 from .settings import RenderSettings
 
-__all__ = ["PatchStatistics", "patch_statistics", "Rendering", "pair_gain", "balance", "render", "CHART_PHYSICS"]
+__all__ = ["PatchStatistics", "patch_statistics", "Rendering", "Eq4Options", "pair_gain", "balance", "render",
+           "CHART_PHYSICS"]
 
 CHART_PHYSICS = {
     "direct": "Lambertian patches under the directional light along the view axis (the analytic model's world)",
@@ -150,18 +152,39 @@ def pair_gain(white_p: NDArrayFloat, white_c: NDArrayFloat, normalization: str, 
     return gain(white_p, white_c, normalization, f[0], f[1], scale)
 
 
-def balance(
-    raw_prevailing: RawRender,
-    raw_calibration: RawRender,
-    scene: ChartScene,
-    cam: Camera,
-    normalization: str = "white",
-    knee: bool = False,
-    grid: WavelengthGrid = GRID_DEFAULT,
-    scale: float = CONSTANT_OUTPUT_SCALE,
-) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat]:
+@dataclass(frozen=True)
+class Eq4Options:
     """
-    Eq. 4 (with Eq. 10) applied to raw renders: ``v · F · raw_p / white_c``.
+    Eq. 4's options, taken whole by what applies it: the normalisation (``white``: WP, Eq. 8; ``none``,
+    ``560nm``, ``euclidean``: Eqs. 5–7), the knee (Eq. 10), the wavelength grid (nm) the Eqs. 5–7 factors are
+    computed on, and the output scale ``v`` (output units: 255 for white at p = c).
+
+    Examples
+    --------
+    >>> Eq4Options().apply(np.array([1.0, 2.0, 4.0]), np.full(3, 4.0), np.full(3, 4.0), 2856.0, 2856.0)
+    array([ 63.75, 127.5 , 255.  ])
+    """
+
+    normalization: str = "white"
+    knee: bool = False
+    grid: WavelengthGrid = GRID_DEFAULT
+    scale: float = CONSTANT_OUTPUT_SCALE
+
+    def apply(self, signal: NDArrayFloat, white_p: NDArrayFloat, white_c: NDArrayFloat, prevailing: float,
+              calibration: float) -> NDArrayFloat:
+        """
+        Eq. 4 of ``signal`` (shape ``(..., 3)``, the raw unit of the whites): the :func:`pair_gain` of the
+        whites ``(3,)`` under the prevailing and calibration lights (K) times it, through the knee (Eq. 10)
+        where asked; output units.
+        """
+        out = pair_gain(white_p, white_c, self.normalization, prevailing, calibration, self.grid, self.scale) * signal
+        return apply_knee(out) if self.knee else out
+
+
+def balance(raw_prevailing: RawRender, raw_calibration: RawRender, scene: ChartScene, cam: Camera,
+            eq4: Eq4Options) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat]:
+    """
+    Eq. 4 (with Eq. 10, as ``eq4`` asks) applied to raw renders: ``v · F · raw_p / white_c``.
 
     ``white_c`` is the white reference's mean under the calibration render;
     ``F`` is WP (Eq. 8) from the two renders' whites for ``white``, or
@@ -177,10 +200,8 @@ def balance(
     if np.any(white_c <= 0):
         raise SkinrenderError(f"camera {cam.name}: a channel sees no light from the white reference at "
                               f"{raw_calibration.temperature:g} K")
-    image = pair_gain(white_p, white_c, normalization, raw_prevailing.temperature, raw_calibration.temperature,
-                      grid, scale) * raw_prevailing.radiance
-    if knee:
-        image = apply_knee(image)
+    image = eq4.apply(raw_prevailing.radiance, white_p, white_c, raw_prevailing.temperature,
+                      raw_calibration.temperature)
     relative = np.array([stats_p.standard_error[white] / white_p, stats_c.standard_error[white] / white_c])
     return image.astype(np.float32), relative, white_p / white_c
 
@@ -262,6 +283,6 @@ def render(
 
     raw_p = raw(p, 0)
     raw_c = raw_p if c == p else raw(c, 1, skins=False)
-    image, white_error, white_ratio = balance(raw_p, raw_c, chart, cam, normalization, knee, grid)
+    image, white_error, white_ratio = balance(raw_p, raw_c, chart, cam, Eq4Options(normalization, knee, grid))
     return Rendering(chart, cam, p, c, normalization, knee, image, patch_statistics(image, chart), white_error,
                      (raw_p,) if raw_c is raw_p else (raw_p, raw_c), {"white_ratio": white_ratio, **info})

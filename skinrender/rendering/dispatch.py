@@ -92,7 +92,7 @@ def _camera_of(camera, options: dict, what: str):
 def _check_options(function, arguments: dict, options: dict, kind: str, what: str, forwards_to=None) -> None:
     """Refuse, naming them, options that ``function`` (of a ``kind`` scene) does not take, nor ``forwards_to`` (the
     function its ``**options`` go to)."""
-    names = _options(function) + ([] if forwards_to is None else _options(forwards_to))
+    names = ([] if forwards_to is None else _options(forwards_to)) + _options(function)  # the render's first
     known = [name for name in dict.fromkeys(names) if name not in arguments]
     unknown = sorted(set(options) - set(known))
     if unknown:
@@ -214,7 +214,9 @@ def validate(scene, camera=None, prevailing=None, calibration=None, **options):
     if isinstance(scene, FaceScene):
         from .face.validation import validate_face
 
-        kind, function, forwards_to = "face", validate_face, None
+        from .face.render import render_face
+
+        kind, function, forwards_to = "face", validate_face, render_face
     else:
         from .balance import render as render_chart
         from .validation import validate as validate_chart

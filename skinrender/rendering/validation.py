@@ -37,10 +37,10 @@ from ..evaluation.gamut import gamut
 from ..evaluation.verdict import ALPHA_DIFFERENCE, ALPHA_EQUIVALENCE, Verdict
 from ..hints import NDArrayFloat
 from ..model.camera import Camera, camera
-from ..model.response import gain, knee as apply_knee, response
+from ..model.response import gain, response
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .agreement import TOLERANCE_DEFAULT, agreement, check_tolerance, tolerance_scale
-from .balance import Rendering, pair_gain, patch_statistics, render
+from .balance import Eq4Options, Rendering, patch_statistics, render
 from .patch_errors import SKEW_MAX, error_law
 from .renderer import chart_renderer
 from .scene import ChartScene, load_chart_scene
@@ -93,8 +93,7 @@ def analytic_reference(
     spd_p, spd_c = planck(lam, prevailing) * weights, planck(lam, calibration) * weights
     signal = (o_fine * spd_p) @ x.T
     white_p, white_c = spd_p @ x.T, spd_c @ x.T
-    out = pair_gain(white_p, white_c, normalization, prevailing, calibration, grid, scale) * signal
-    out = apply_knee(out) if knee else out
+    out = Eq4Options(normalization, knee, grid, scale).apply(signal, white_p, white_c, prevailing, calibration)
     return out.reshape(*o.shape[:-1], 3)
 
 
@@ -243,8 +242,7 @@ def validate(
     camera_: Camera | str,
     prevailing,
     calibration,
-    normalization: str = "white",
-    knee: bool = False,
+    *,
     grid: WavelengthGrid = GRID_DEFAULT,
     rendering: Rendering | None = None,
     tolerance: float = TOLERANCE_DEFAULT,
@@ -257,8 +255,8 @@ def validate(
 
     Parameters
     ----------
-    scene, camera_, prevailing, calibration, normalization, knee, grid
-        As :func:`skinrender.rendering.balance.render` (temperatures K, grid nm).
+    scene, camera_, prevailing, calibration, grid
+        As :func:`skinrender.rendering.balance.render` (temperatures K, grid nm); the rest by keyword.
     rendering
         A render to check instead (with its own normalisation and knee).
     tolerance
@@ -269,8 +267,8 @@ def validate(
         Family-wise error rates of the equivalence verdict (its bounds hold together at ``1 − alpha``) and
         of the difference test (its false-alarm rate).
     render_options
-        To :func:`skinrender.rendering.balance.render`: ``settings`` (a
-        :class:`~skinrender.rendering.settings.RenderSettings`) or its fields ``spp``, ``seed``, ``sampler``,
+        To :func:`skinrender.rendering.balance.render`: ``normalization``, ``knee`` (Eq. 4's), ``settings``
+        (a :class:`~skinrender.rendering.settings.RenderSettings`) or its fields ``spp``, ``seed``, ``sampler``,
         ``variant``, ``channels``; ``cache``, ``emitter``.
 
     Returns
@@ -289,7 +287,7 @@ def validate(
     tolerance = check_tolerance(tolerance, "tolerance")
     chart = load_chart_scene(scene)
     if rendering is None:
-        rendering = render(chart, camera_, prevailing, calibration, normalization, knee, grid=grid, **render_options)
+        rendering = render(chart, camera_, prevailing, calibration, grid=grid, **render_options)
     reflectance = rendering.info.get("reflectances")  # subsurface: a skin patch's slab (its adding-doubling R)
     reflectance = chart.reflectances(grid) if reflectance is None else reflectance
     r = rendering

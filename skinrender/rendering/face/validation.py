@@ -84,8 +84,8 @@ from .render import FaceRendering, render_face
 from .scene import skin_reflectance_of
 from .shift import budget_rates, eq4_shift, face_budget
 
-__all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "FaceValidation",
-           "Replicated", "render_replicates", "mean_rendering", "shift_against", "validate_face"]
+__all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "RENDER_OPTIONS",
+           "FaceValidation", "Replicated", "render_replicates", "mean_rendering", "shift_against", "validate_face"]
 
 LIMITS_SCENE_FREE = {
     "furnace": "white furnace: the scene's mesh, reflectance 1, every bounce, in a uniform sky",
@@ -104,6 +104,9 @@ SPHERE_SIZE = 16
 
 SPHERE_SPP = 16
 """Samples per pixel of each closed-sphere replicate."""
+
+RENDER_OPTIONS = ("skin", "size", "sampler", "variant", "grid", "channels", "imager", "exposure", "illuminance")
+""":func:`validate_face`'s keywords that go to each replicate's :func:`~skinrender.rendering.face.render_face`."""
 
 
 @dataclass(frozen=True)
@@ -146,21 +149,20 @@ class Replicated:
 
 
 def render_replicates(camera_, scene, prevailing, calibration, skin, level: Level, spp: int, seeds, size=None,
-                      sampler: str = "multijitter", variant: str | None = None, channels: str = "auto", imager=None,
-                      exposure="auto", illuminance: float | None = None, grid=GRID_DEFAULT) -> Replicated:
+                      grid=GRID_DEFAULT, **options) -> Replicated:
     """
     The face rendered once per seed of ``seeds`` at ``spp`` each (arguments as
-    :func:`~skinrender.rendering.face.render_face`), measured as the level's checks see it.
+    :func:`~skinrender.rendering.face.render_face`; ``options``: its ``sampler``, ``variant``, ``channels``,
+    ``imager``, ``exposure``, ``illuminance``), measured as the level's checks see it.
     """
     start = time.perf_counter()
-    renders = [render_face(camera_, scene, prevailing, calibration, skin, level, spp, s, size, sampler, variant,
-                           grid=grid, channels=channels, imager=imager, exposure=exposure, illuminance=illuminance)
+    renders = [render_face(camera_, scene, prevailing, calibration, skin, level, spp, s, size, grid=grid, **options)
                for s in seeds]
     first = renders[0]
     images = np.array([r.image for r in renders], dtype=np.float64)
     rho = skin_reflectance_of(first.skin, grid, "skin")
     expected = ncc(analytic_reference(first.camera, rho[None], first.prevailing, first.calibration, grid=grid))[0]
-    measured = level.measure(images, first, imager)  # through a sensor: its dark signal, clipping, codes
+    measured = level.measure(images, first, options.get("imager"))  # through a sensor: dark signal, clipping, codes
     return Replicated(renders, level, measured, expected, time.perf_counter() - start, grid)
 
 
@@ -286,30 +288,23 @@ def validate_face(
     scene="face",
     prevailing=None,
     calibration=None,
-    skin: str | None = None,
+    *,
     physics: str | Level = "direct",
     spp: int = 256,
     seed: int = 0,
-    size=None,
-    sampler: str = "multijitter",
-    variant: str | None = None,
-    channels: str = "auto",
-    imager=None,
-    exposure="auto",
-    illuminance: float | None = None,
     replicates: int = REPLICATES,
     limits=tuple(LIMITS_SCENE_FREE),
     progress: Callable[[str], None] | None = None,
     budget_fraction: float | None = None,
+    **render_options,
 ) -> FaceValidation:
     """
     Render a face scene ``replicates`` times and check the analytic limits of its level and Eq. 4's error.
 
     Parameters
     ----------
-    camera_, scene, prevailing, calibration, skin, physics, sampler, variant, channels, imager, exposure, illuminance
-        As :func:`skinrender.rendering.face.render_face` (temperatures K,
-        illuminance lx, exposure s or ``auto``).
+    camera_, scene, prevailing, calibration, physics
+        As :func:`skinrender.rendering.face.render_face` (temperatures K); the rest by keyword.
     spp
         Samples per pixel in all, split over the replicates (each ``⌈spp / replicates⌉``, at least
         :data:`~skinrender.rendering.face.limits.SPP_REPLICATE_MIN`).
@@ -326,10 +321,19 @@ def validate_face(
     budget_fraction
         The share of the margin to the skin locus's boundary that Eq. 4's error may use
         (:data:`~skinrender.evaluation.budget.BUDGET_FRACTION` unless given).
+    **render_options
+        The render's own, to each replicate's :func:`skinrender.rendering.face.render_face`: ``skin``,
+        ``size`` (image side, pixels; ``None``: the scene's), ``sampler``, ``variant``, ``channels``, ``grid``
+        (nm), ``imager``, ``exposure`` (s or ``auto``), ``illuminance`` (lx).
 
     Returns
     -------
     :class:`FaceValidation`
+
+    Raises
+    ------
+    SkinrenderError
+        A bad argument, named; a render option ``render_face`` does not take.
     """
 
     from ...evaluation.budget import BUDGET_FRACTION
@@ -345,11 +349,16 @@ def validate_face(
                               + ", ".join(LIMITS_SCENE_FREE))
     if isinstance(spp, bool) or not isinstance(spp, (int, np.integer)) or spp < 1:
         raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
+    unknown = sorted(set(render_options) - set(RENDER_OPTIONS))
+    if unknown:
+        raise SkinrenderError(f"{', '.join(unknown)}: not an option of a face's render; its options: "
+                              + ", ".join(RENDER_OPTIONS))
     each = max(SPP_REPLICATE_MIN, math.ceil(int(spp) / replicates))
     seeds = [(int(seed) + k) % 2**32 for k in range(replicates)]
     say(f"rendering the face ({level.name}) {replicates} times at {each} spp …")
-    replicated = render_replicates(camera_, scene, prevailing, calibration, skin, level, each, seeds, size, sampler,
-                                   variant, channels, imager, exposure, illuminance)
+    skin, variant = render_options.pop("skin", None), render_options.get("variant")
+    replicated = render_replicates(camera_, scene, prevailing, calibration, skin, level, each, seeds,
+                                   **render_options)
     first, measured = replicated.first, replicated.measured
     checks: list[LimitCheck] = []
     check = level.check  # the level's analytic limit (the last effect's that has one), or none
