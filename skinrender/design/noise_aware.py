@@ -21,8 +21,8 @@ an image sensor at a stated light level, a triplet is judged on noisy pixels:
     same balance; TPR is the share of noisy skin pixels inside it, FPR that of
     noisy non-skin pixels.
 
--   :class:`NoisySetting`: imager, illuminance (lx), exposure, calibration
-    (K), samples and seed.
+-   :class:`NoisySetting`: imager, illuminance (lx), exposure (an
+    :class:`~skinrender.model.exposure.Imaging`), calibration (K), samples and seed.
 -   :func:`bank_rates`: step 1 for a bank.
 -   :func:`triplet_noisy_rates`: (TPR, FPR) of one triplet.
 -   :data:`TPR_MIN`: the TPR a triplet must keep to be ranked by its FPR.
@@ -46,9 +46,9 @@ from ..evaluation.locus import hull_locus
 from ..hints import ArrayLike, NDArrayFloat
 from ..model.camera import sensor_curves
 from ..model.chromaticity import ncc
-from ..model.exposure import (AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S, auto_exposure,
-                              auto_exposure_note, electrons_mean, irradiance_planck)
-from ..model.imager import Imager, imager
+from ..model.exposure import (AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S, Imaging, auto_exposure,
+                              auto_exposure_note, electrons_mean, imaging, irradiance_planck)
+from ..model.imager import Imager
 from ..model.noise import simulate_dn
 from ..model.response import gain
 from ..spectra import GRID_DEFAULT, WavelengthGrid
@@ -78,13 +78,11 @@ locus: otherwise noise that pushes every pixel out of the locus would look like 
 
 
 @dataclass(frozen=True)
-class NoisySetting:
-    """What the noisy criterion is computed for: imager, illuminance (lx), exposure (s or ``auto``), the
-    calibration light (K, one of the bank's illuminants), noisy samples per pixel and the seed."""
+class NoisySetting(Imaging):
+    """What the noisy criterion is computed for: the :class:`~skinrender.model.exposure.Imaging` (imager,
+    illuminance in lx, exposure in s or ``auto``), the calibration light (K, one of the bank's illuminants),
+    noisy samples per pixel and the seed."""
 
-    imager: Imager
-    illuminance_lux: float
-    exposure: float | str = "auto"
     calibration: float = 3300.0
     samples: int = 4
     seed: int = 0
@@ -92,17 +90,15 @@ class NoisySetting:
 
 def noisy_setting(imager_: Imager | str, illuminance_lux: float, exposure: float | str = "auto",
                   calibration: float = 3300.0, samples: int = 4, seed: int = 0) -> NoisySetting:
-    """A checked :class:`NoisySetting` (one-line errors naming the argument)."""
-    if not (np.isfinite(illuminance_lux) and illuminance_lux > 0):
-        raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance_lux!r}")
-    if not (isinstance(exposure, str) and exposure == "auto"):
-        if not (isinstance(exposure, (int, float)) and np.isfinite(exposure) and exposure > 0):
-            raise SkinrenderError(f"exposure must be 'auto' or a finite number of seconds > 0, got {exposure!r}")
+    """A checked :class:`NoisySetting` (one-line errors naming the argument; the imaging's checks are
+    :func:`~skinrender.model.exposure.imaging`'s)."""
+    setting = imaging(imager_, illuminance_lux, exposure)
     if not (isinstance(samples, (int, np.integer)) and 1 <= samples <= NOISE_SAMPLES_MAX):
         raise SkinrenderError(f"noise samples must be an integer in [1, {NOISE_SAMPLES_MAX}], got {samples!r}")
     if not (isinstance(seed, (int, np.integer)) and 0 <= seed <= NOISE_SEED_MAX):
         raise SkinrenderError(f"seed must be an integer in [0, 2^32), got {seed!r}")
-    return NoisySetting(imager(imager_), float(illuminance_lux), exposure, float(calibration), int(samples), int(seed))
+    return NoisySetting(setting.imager, setting.illuminance_lux, setting.exposure, float(calibration), int(samples),
+                        int(seed))
 
 
 def bank_rates(bank: SensorBank, setting: NoisySetting, sensor: float, slope: float = 2.0,

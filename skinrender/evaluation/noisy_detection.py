@@ -7,6 +7,9 @@ noise-free Eq. 4 chromaticities, and the skin and non-skin pixels it is scored
 on are noisy frames of an :class:`~skinrender.model.imager.Imager` at a stated
 illuminance and exposure.
 
+-   :class:`ImagedWhites`: the whites, exposures and white-balance gains of
+    every (prevailing, calibration) pair through an imager (steps 1–3 below),
+    formed once for any number of reflectance sets.
 -   :class:`PixelElectrons`, :func:`pixel_electrons`: the expected electrons
     and white-balance gains of a reflectance set (steps 1–3 below).
 -   :class:`NoisyDetection`, :func:`noisy_detection`: seeded Monte Carlo
@@ -61,18 +64,18 @@ from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..model.camera import Camera
 from ..model.chromaticity import ncc
-from ..model.exposure import (AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S, auto_exposure,
-                              auto_exposure_note, electrons_mean, irradiance_planck)
+from ..model.exposure import (AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S, Imaging, auto_exposure,
+                              auto_exposure_note, electrons_mean, imaging, irradiance_planck)
 from ..model.illuminant import illuminants_array
-from ..model.imager import Imager, checked_array, imager
+from ..model.imager import Imager, checked_array
 from ..model.noise import (clipping_counts, clipping_note, ncc_covariance, random_generator, simulate_dn_clipped,
                            statistics_dn)
 from ..model.response import gain, response_raw, spds_on
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .locus import SkinLocus, false_positive_rate, locus_points, skin_locus
 
-__all__ = ["AUTO_EXPOSURE_FRACTION", "NCC_LINEAR_MAX", "SECONDS_PER_NOISY_PIXEL", "NoisyDetection", "PixelElectrons", "noisy_detection",
-           "pixel_electrons"]
+__all__ = ["AUTO_EXPOSURE_FRACTION", "NCC_LINEAR_MAX", "SECONDS_PER_NOISY_PIXEL", "NoisyDetection", "ImagedWhites",
+           "PixelElectrons", "noisy_detection", "pixel_electrons"]
 
 @dataclass(frozen=True)
 class NoisyDetection:
@@ -141,12 +144,6 @@ def _reflectance_array(values: ArrayLike, name: str, grid: WavelengthGrid) -> ND
     return out
 
 
-def _positive(value: object, name: str, unit: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) or value <= 0:
-        raise SkinrenderError(f"{name} must be a finite number > 0, {unit}, got {value!r}")
-    return float(value)
-
-
 def _temperatures(values: ArrayLike, name: str) -> NDArrayFloat:
     out = checked_array(values, name, "K").ravel()
     if out.size == 0 or np.any(out <= 0):
@@ -171,8 +168,7 @@ class PixelElectrons:
         Expected electrons (photo plus dark), e⁻, shape ``(P, C, n, 3)`` for
         P prevailing and C calibration illuminants and n reflectances.
     gains
-        The Eq. 4 gain of each (p, c) pair, output units per DN above the
-        black level, shape ``(P, C, 1, 3)``.
+        The Eq. 4 gain of each (p, c) pair, output units per DN above the black level, shape ``(P, C, 1, 3)``.
     exposure_s
         Exposure, s, per calibration illuminant, shape ``(C,)``.
     notes
@@ -194,14 +190,70 @@ def _white_rates(im: Imager, cam: Camera, temperatures: NDArrayFloat, lux: float
     return rate, raw
 
 
+@dataclass(frozen=True)
+class ImagedWhites:
+    """
+    The white of every (prevailing, calibration) pair through an imager (steps 1–3 above), formed once: what
+    every reflectance set's pixels are formed from (:meth:`pixels`). Build it with :meth:`of`.
+
+    Attributes
+    ----------
+    camera, setting
+        The camera; the imager, illuminance (lx) and exposure (:class:`~skinrender.model.exposure.Imaging`).
+    prevailing, calibrations, grid
+        Illuminants, K, shapes ``(P,)`` and ``(C,)``; the wavelength grid, nm.
+    rates, raw
+        The white's electron rate under each prevailing light, e⁻/s (dark current included), and its Eq. 1 raw
+        response, shapes ``(P, 3)``.
+    gains, exposure_s, notes
+        As :class:`PixelElectrons`.
+    """
+
+    camera: Camera
+    setting: Imaging
+    prevailing: NDArrayFloat
+    calibrations: NDArrayFloat
+    grid: WavelengthGrid
+    rates: NDArrayFloat
+    raw: NDArrayFloat
+    gains: NDArrayFloat
+    exposure_s: NDArrayFloat
+    notes: tuple[str, ...] = ()
+
+    @classmethod
+    def of(cls, cam: Camera, prevailing: ArrayLike, calibrations: ArrayLike, setting: Imaging,
+           grid: WavelengthGrid = GRID_DEFAULT) -> ImagedWhites:
+        """The whites of ``cam`` under every pair of ``prevailing`` and ``calibrations`` (K), through ``setting``."""
+        prevailing = _temperatures(prevailing, "prevailing")
+        calibrations = _temperatures(calibrations, "calibrations")
+        im, lux, auto = setting.imager, setting.illuminance_lux, setting.exposure == "auto"
+        white_p, raw_white_p = _white_rates(im, cam, prevailing, lux, grid)  # (P, 3)
+        white_c, _ = _white_rates(im, cam, calibrations, lux, grid)  # (C, 3)
+        exposures = (np.atleast_1d(auto_exposure(im, white_c, AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S)) if auto
+                     else np.full(calibrations.size, float(setting.exposure)))  # (C,)
+        capped = auto_exposure_note(im, white_c, AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S) if auto else None
+        # the Eq. 4 gain from the noise-free whites (DN above black) of each (p, c) pair, exposed for c
+        t = exposures[None, :, None]
+        gains = gain(im.gain_dn_per_e * white_p[:, None, :] * t, im.gain_dn_per_e * white_c[None, :, :] * t)
+        return cls(cam, setting, prevailing, calibrations, grid, white_p, raw_white_p, gains[:, :, None, :],
+                   exposures, (capped,) if capped else ())
+
+    def pixels(self, reflectance: ArrayLike, name: str = "reflectance") -> PixelElectrons:
+        """The expected electrons of reflectances on the grid (``(n, grid.size)``, fractions; ``name`` in errors)."""
+        reflectance = _reflectance_array(reflectance, name, self.grid)
+        dark = self.setting.imager.dark_current_e_per_s
+        ratio = response_raw(self.camera, reflectance, self.prevailing, "none", self.grid) / self.raw[:, None, :]
+        photo = ratio * (self.rates - dark)[:, None, :]  # e⁻/s, Eq. 1 ratio × the white's, (P, n, 3)
+        electrons = (photo[:, None] + dark) * self.exposure_s[None, :, None, None]
+        return PixelElectrons(electrons, self.gains, self.exposure_s, self.notes)
+
+
 def pixel_electrons(
     cam: Camera,
     reflectance: ArrayLike,
     prevailing: ArrayLike,
     calibrations: ArrayLike,
-    imager_: str | Path | Imager,
-    illuminance_lux: float,
-    exposure: float | str = "auto",
+    setting: Imaging,
     grid: WavelengthGrid = GRID_DEFAULT,
 ) -> PixelElectrons:
     """
@@ -215,12 +267,9 @@ def pixel_electrons(
         Reflectances on ``grid``, shape ``(n, grid.size)``, fractions.
     prevailing, calibrations
         Illuminants, K (Planckian): every pair of the two.
-    imager_
-        An :class:`~skinrender.model.imager.Imager`, a preset name or a TOML path.
-    illuminance_lux
-        The chart's illuminance, lx > 0.
-    exposure
-        Exposure, s > 0, or ``auto``.
+    setting
+        The imager, the chart's illuminance (lx > 0) and the exposure (s > 0, or ``auto``):
+        :func:`~skinrender.model.exposure.imaging`.
     grid
         The wavelength grid, nm.
 
@@ -232,33 +281,13 @@ def pixel_electrons(
     --------
     >>> from skinrender.model.camera import camera
     >>> pixels = pixel_electrons(camera("gbell:9@450,540,610"), np.ones((1, 301)), [3300.0], [3300.0],
-    ...                          "sony-imx174", 500.0)
+    ...                          imaging("sony-imx174", 500.0))
     >>> print(f"{pixels.electrons.max() / 32691:.3f} of the full well in {pixels.exposure_s[0] * 1e3:.2f} ms")
     0.700 of the full well in 12.12 ms
     """
 
-    im = imager(imager_)
     reflectance = _reflectance_array(reflectance, "reflectance", grid)
-    prevailing = _temperatures(prevailing, "prevailing")
-    calibrations = _temperatures(calibrations, "calibrations")
-    lux = _positive(illuminance_lux, "illuminance_lux", "lx")
-    white_p, raw_white_p = _white_rates(im, cam, prevailing, lux, grid)  # (P, 3)
-    white_c, _ = _white_rates(im, cam, calibrations, lux, grid)  # (C, 3)
-    notes: tuple[str, ...] = ()
-    if isinstance(exposure, str) and exposure.strip().lower() == "auto":
-        exposures = np.atleast_1d(auto_exposure(im, white_c, AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S))  # (C,)
-        capped = auto_exposure_note(im, white_c, AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S)
-        notes = (capped,) if capped else ()
-    else:
-        exposures = np.full(calibrations.size, _positive(exposure, "exposure", "s (or 'auto')"))
-    dark = im.dark_current_e_per_s
-    # the Eq. 4 gain from the noise-free whites (DN above black) of each (p, c) pair, exposed for c
-    t = exposures[None, :, None]
-    gains = gain(im.gain_dn_per_e * white_p[:, None, :] * t, im.gain_dn_per_e * white_c[None, :, :] * t)
-    ratio = response_raw(cam, reflectance, prevailing, "none", grid) / raw_white_p[:, None, :]  # Eq. 1, (P, n, 3)
-    photo = ratio * (white_p - dark)[:, None, :]  # e⁻/s
-    electrons = (photo[:, None] + dark) * exposures[None, :, None, None]
-    return PixelElectrons(electrons, gains[:, :, None, :], exposures, notes)
+    return ImagedWhites.of(cam, prevailing, calibrations, setting, grid).pixels(reflectance)
 
 
 SECONDS_PER_NOISY_PIXEL = 8e-7
@@ -370,12 +399,12 @@ def noisy_detection(
     TPR 0.9... (noise-free 1.000), 3 exposures
     """
 
-    im = imager(imager_)
+    setting = imaging(imager_, illuminance_lux, exposure)
+    im = setting.imager
     skin = _reflectance_array(skin, "skin", grid)
     nonskin = _reflectance_array(nonskin, "nonskin", grid)
     prevailing = _temperatures(illuminants, "illuminants")
     calibrations = prevailing if calibration is None else _temperatures(calibration, "calibration")
-    lux = _positive(illuminance_lux, "illuminance_lux", "lx")
     if isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or samples < 1:
         raise SkinrenderError(f"samples must be an integer ≥ 1, got {samples!r}")
     rng = random_generator(seed, "seed")
@@ -398,9 +427,10 @@ def noisy_detection(
         total = samples * int(np.prod(pixels.electrons.shape[:-1]))
         return _Draws(hits, black, total, clipping_counts(full, clipped, total))  # every draw counted
 
-    on_skin = pixel_electrons(cam, skin, prevailing, calibrations, im, lux, exposure, grid)
+    whites = ImagedWhites.of(cam, prevailing, calibrations, setting, grid)  # formed once, for both sets
+    on_skin = whites.pixels(skin, "skin")
     skin_draws = inside(on_skin)
-    nonskin_draws = inside(pixel_electrons(cam, nonskin, prevailing, calibrations, im, lux, exposure, grid))
+    nonskin_draws = inside(whites.pixels(nonskin, "nonskin"))
     undefined: dict = {}
     (tpr, tpr_se), (fpr, fpr_se) = (_defined_rates(draws, name, undefined)
                                     for draws, name in ((skin_draws, "tpr"), (nonskin_draws, "fpr")))
@@ -410,8 +440,8 @@ def noisy_detection(
     notes = on_skin.notes + tuple(f"{name} pixels {note}" for name, note in clipped if note)
     return NoisyDetection(
         tpr=tpr, fpr=fpr, tpr_se=tpr_se, fpr_se=fpr_se, samples=int(samples),
-        exposure_s=tuple(float(value) for value in exposures), illuminance_lux=lux, imager=im.name,
-        tpr_noise_free=tpr_free, fpr_noise_free=fpr_free,
+        exposure_s=tuple(float(value) for value in exposures), illuminance_lux=setting.illuminance_lux,
+        imager=im.name, tpr_noise_free=tpr_free, fpr_noise_free=fpr_free,
         calibrations_K=tuple(float(value) for value in calibrations),
         skin_ncc_std=tuple(float(value) for value in spread), undefined=undefined,
         black_share=(skin_draws.black / skin_draws.total, nonskin_draws.black / nonskin_draws.total),

@@ -14,6 +14,8 @@ expected photo- and dark electrons of a pixel, and the automatic exposure.
     exposure that puts a white at a fraction of the full well;
     :func:`auto_exposure_note`: what to say when the longest exposure stops it
     short of that fraction.
+-   :class:`Imaging`, :func:`imaging`: an imager at an illuminance and an
+    exposure, checked once, taken whole by what forms noisy pixels.
 
 Units: wavelength nm, radiance W·m⁻²·sr⁻¹·nm⁻¹, irradiance W·m⁻²·nm⁻¹,
 illuminance lx, time s, charge e⁻.
@@ -30,6 +32,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
@@ -45,6 +48,8 @@ from .imager import imager as imager_of
 __all__ = [
     "CONSTANT_K_M",
     "AUTO_EXPOSURE_FRACTION",
+    "Imaging",
+    "imaging",
     "AUTO_EXPOSURE_MAX_S",
     "auto_exposure",
     "auto_exposure_note",
@@ -322,3 +327,54 @@ def auto_exposure_note(
     return (f"auto exposure capped at the longest exposure, {longest_s * 1e3:.3g} ms: the white's brightest channel "
             f"reaches {reached.min():.3g} of the full well, not the {fraction:g} target "
             f"({int(capped.sum())} of {capped.size} whites)")
+
+
+@dataclass(frozen=True)
+class Imaging:
+    """
+    An imager over a chart lit at an illuminance and exposed for a time: what noisy pixels are formed under
+    (build it checked with :func:`imaging`).
+
+    Attributes
+    ----------
+    imager
+        The :class:`~skinrender.model.imager.Imager`.
+    illuminance_lux
+        The chart's illuminance, lx > 0.
+    exposure
+        Exposure, s > 0, or ``"auto"`` (:func:`auto_exposure`: the white under the calibration light at
+        :data:`AUTO_EXPOSURE_FRACTION` of the full well).
+    """
+
+    imager: Imager
+    illuminance_lux: float
+    exposure: float | str = "auto"
+
+
+def _positive(value: object, name: str, unit: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) or value <= 0:
+        raise SkinrenderError(f"{name} must be a finite number > 0, {unit}, got {value!r}")
+    return float(value)
+
+
+def imaging(imager_: str | Path | Imager, illuminance_lux: float, exposure: float | str = "auto") -> Imaging:
+    """
+    A checked :class:`Imaging`: ``imager_`` an :class:`~skinrender.model.imager.Imager`, a preset name or a TOML
+    path; ``illuminance_lux`` (lx) and ``exposure`` (s) finite and > 0, or ``exposure`` ``auto`` (any case).
+
+    Raises
+    ------
+    SkinrenderError
+        One line naming the argument (``illuminance_lux``, ``exposure``, the imager).
+
+    Examples
+    --------
+    >>> setting = imaging("sony-imx174", 500, "Auto")
+    >>> setting.imager.name, setting.illuminance_lux, setting.exposure
+    ('sony-imx174', 500.0, 'auto')
+    """
+    im = imager_of(imager_)
+    lux = _positive(illuminance_lux, "illuminance_lux", "lx")
+    if isinstance(exposure, str) and exposure.strip().lower() == "auto":
+        return Imaging(im, lux, "auto")
+    return Imaging(im, lux, _positive(exposure, "exposure", "s (or 'auto')"))

@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from skinrender.model.exposure import AUTO_EXPOSURE_MAX_S
+from skinrender.model.exposure import AUTO_EXPOSURE_MAX_S, imaging
 import pytest
 
 from skinrender.datasets import reflectances
@@ -83,7 +83,7 @@ class TestPixelElectrons:
     def test01_noise_free_chain_is_eq4(self, sets):
         """Without noise or dark current, gain · K · μ has the Eq. 4 chromaticities of every pair."""
         skin, _ = sets
-        pixels = pixel_electrons(CAMERA, skin, ILLUMINANTS, ILLUMINANTS, BIG_WELL, 500.0)
+        pixels = pixel_electrons(CAMERA, skin, ILLUMINANTS, ILLUMINANTS, imaging(BIG_WELL, 500.0))
         assert pixels.electrons.shape == (3, 3, 30, 3) and pixels.gains.shape == (3, 3, 1, 3)
         chain = ncc(pixels.gains * BIG_WELL.gain_dn_per_e * pixels.electrons)
         eq4 = ncc(response(CAMERA, skin, ILLUMINANTS[:, None], ILLUMINANTS[None, :]))
@@ -92,15 +92,16 @@ class TestPixelElectrons:
     def test02_auto_exposure_puts_the_white_at_the_fraction(self):
         im = imager("sony-icx418")
         white = np.ones((1, CAMERA.sensitivities().shape[1]))
-        pixels = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, im, 5000.0)  # bright: under a frame time
+        bright = imaging(im, 5000.0)  # under a frame time
+        pixels = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, bright)
         diagonal = pixels.electrons[np.arange(3), np.arange(3), 0]  # p = c: the calibration white
         assert np.all(pixels.exposure_s < AUTO_EXPOSURE_MAX_S)
         np.testing.assert_allclose(diagonal.max(axis=-1), AUTO_EXPOSURE_FRACTION * im.full_well_e, rtol=1e-12)
-        dim = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, im, 5.0)  # dim: the frame time caps it
+        dim = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, imaging(im, 5.0))  # dim: the frame time caps it
         np.testing.assert_array_equal(dim.exposure_s, AUTO_EXPOSURE_MAX_S)
-        fixed = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, im, 400.0, exposure=0.01)
+        fixed = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, imaging(im, 400.0, 0.01))
         np.testing.assert_array_equal(fixed.exposure_s, 0.01)
-        doubled = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, im, 800.0, exposure=0.01)
+        doubled = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, imaging(im, 800.0, 0.01))
         dark = im.dark_current_e_per_s * 0.01  # e⁻: photo-electrons double with the light, dark ones do not
         np.testing.assert_allclose(doubled.electrons - dark, 2 * (fixed.electrons - dark), rtol=1e-12)
 
@@ -113,7 +114,7 @@ class TestNoisyDetection:
         skin, nonskin = sets
         white = np.ones((1, skin.shape[1]))
         lux_max = 1e6
-        rate = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, BIG_WELL, lux_max, exposure=1.0)
+        rate = pixel_electrons(CAMERA, white, ILLUMINANTS, ILLUMINANTS, imaging(BIG_WELL, lux_max, 1.0))
         exposure = 0.5 * BIG_WELL.full_well_e / rate.electrons.max()  # s: the brightest white at half the well
         locus = skin_locus(CAMERA, skin, ILLUMINANTS)
         free_skin, free_other = locus_points(CAMERA, skin, ILLUMINANTS), locus_points(CAMERA, nonskin, ILLUMINANTS)
@@ -121,8 +122,9 @@ class TestNoisyDetection:
         for lux in (1e-2, 1.0, 1e2, 1e4, lux_max):
             result = noisy_detection(CAMERA, skin, nonskin, ILLUMINANTS, BIG_WELL, lux, exposure, samples=8,
                                      seed=11, locus=locus)
-            sigma = max(ncc_std_max(BIG_WELL, pixel_electrons(CAMERA, data, ILLUMINANTS, ILLUMINANTS, BIG_WELL,
-                                                              lux, exposure)) for data in (skin, nonskin))
+            setting = imaging(BIG_WELL, lux, exposure)
+            sigma = max(ncc_std_max(BIG_WELL, pixel_electrons(CAMERA, data, ILLUMINANTS, ILLUMINANTS, setting))
+                        for data in (skin, nonskin))
             band = (band_share(locus, free_skin, N_SIGMA_BAND * sigma),
                     band_share(locus, free_other, N_SIGMA_BAND * sigma))
             assert abs(result.tpr - result.tpr_noise_free) <= band[0]
@@ -216,8 +218,8 @@ def test_long_exposure_reports_the_clipped_pixels():
 
 
 def test_capped_auto_exposure_is_noted():
-    electrons = pixel_electrons(CAMERA, np.ones((1, 301)), [3300.0], [3300.0], "sony-icx418", 500.0)
+    electrons = pixel_electrons(CAMERA, np.ones((1, 301)), [3300.0], [3300.0], imaging("sony-icx418", 500.0))
     assert electrons.exposure_s[0] == AUTO_EXPOSURE_MAX_S and "not the 0.7 target" in electrons.notes[0]
     reached = electrons.electrons.max() / imager("sony-icx418").full_well_e
     assert f"{reached:.3g} of the full well" in electrons.notes[0]
-    assert pixel_electrons(CAMERA, np.ones((1, 301)), [3300.0], [3300.0], "sony-imx174", 500.0).notes == ()
+    assert pixel_electrons(CAMERA, np.ones((1, 301)), [3300.0], [3300.0], imaging("sony-imx174", 500.0)).notes == ()
