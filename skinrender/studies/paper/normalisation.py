@@ -4,7 +4,8 @@ Stage 2: the normalisations compared
 
 The data of the paper's Figs. 3–7 and the figures themselves.
 
--   :data:`STAGE2_CAMERA`, :data:`STAGE2_NORMALISATIONS`.
+-   :data:`STAGE2_CAMERA`, :data:`STAGE2_NORMALISATIONS`; :class:`Stage2`:
+    the setting (camera, sets, illuminants, grid) taken whole.
 -   :func:`stage2_pairs`: Munsell gamut volume of every (prevailing,
     calibration) pair under one normalisation (the data of Figs. 3–5).
 -   :func:`stage2_observation`: whether the largest volume per calibration
@@ -23,6 +24,7 @@ References
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -30,6 +32,7 @@ from scipy.spatial import ConvexHull
 
 from ...constants import TEMPERATURES_PAPER
 from ...datasets import reflectances
+from ...errors import SkinrenderError
 from ...evaluation.gamut import gamut_calibration, gamut_hull
 from ...files import write_output
 from ...evaluation.hull import hull_volume_vertices
@@ -38,7 +41,7 @@ from ...model.camera import camera
 from ...model.response import response
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 
-__all__ = ["STAGE2_CAMERA", "STAGE2_NORMALISATIONS", "stage2_pairs", "stage2_observation", "stage2_cases",
+__all__ = ["STAGE2_CAMERA", "STAGE2_NORMALISATIONS", "Stage2", "stage2_pairs", "stage2_observation", "stage2_cases",
            "stage2_gamut_panels", "stage2_write"]
 
 STAGE2_CAMERA = "Nikon 5100 (NPL)"
@@ -46,6 +49,40 @@ STAGE2_CAMERA = "Nikon 5100 (NPL)"
 
 STAGE2_NORMALISATIONS = (("560nm", True), ("euclidean", True), ("white", False))
 """Figs. 3, 4, 5: 560nm and euclidean with the knee (the paper's choice), white without."""
+
+
+@dataclasses.dataclass(frozen=True)
+class Stage2:
+    """
+    Stage 2's setting, taken whole by :func:`stage2_cases` and :func:`stage2_write`: the camera (a spec), the
+    skin and Munsell reflectance sets (specs), the illuminant set (K) and the wavelength grid (nm).
+
+    Examples
+    --------
+    >>> Stage2.of("Kodak DCS-200", munsell="macbeth")
+    Stage2(camera_spec='Kodak DCS-200', skin='skin', munsell='macbeth', illuminants=(2000.0, ...), grid=...)
+    """
+
+    camera_spec: str = STAGE2_CAMERA
+    skin: str = "skin"
+    munsell: str = "munsell"
+    illuminants: ArrayLike = TEMPERATURES_PAPER
+    grid: WavelengthGrid = GRID_DEFAULT
+
+    @classmethod
+    def of(cls, camera_spec: str | Stage2 = STAGE2_CAMERA, **fields) -> Stage2:
+        """``camera_spec`` (a camera spec, or a whole :class:`Stage2`) with ``fields`` replaced; an unknown
+        field is refused, named."""
+        names = [field.name for field in dataclasses.fields(cls)]
+        unknown = sorted(set(fields) - set(names))
+        if unknown:
+            raise SkinrenderError(f"{', '.join(unknown)}: not a Stage 2 setting; the settings: {', '.join(names)}")
+        return dataclasses.replace(camera_spec if isinstance(camera_spec, cls) else cls(camera_spec), **fields)
+
+    @property
+    def temperatures(self) -> NDArrayFloat:
+        """The illuminant set as an array, K."""
+        return np.asarray(self.illuminants, dtype=np.float64)
 
 
 def stage2_pairs(
@@ -97,18 +134,19 @@ def stage2_observation(volumes: NDArrayFloat) -> dict:
     return {"argmax_prevailing": argmax.tolist(), "on_calibration": on, "total": int(volumes.shape[1])}
 
 
-def stage2_cases(
-    camera_spec: str = STAGE2_CAMERA,
-    skin: str = "skin",
-    munsell: str = "munsell",
-    illuminants: ArrayLike = TEMPERATURES_PAPER,
-    grid: WavelengthGrid = GRID_DEFAULT,
-) -> dict:
-    """Skin and Munsell one-calibration-case volumes per calibration (white) and their ratio (Fig. 7)."""
-    t = np.asarray(illuminants, dtype=np.float64)
-    cam = camera(camera_spec)
+def stage2_cases(camera_spec: str | Stage2 = STAGE2_CAMERA, **setting) -> dict:
+    """
+    Skin and Munsell one-calibration-case volumes per calibration (white) and their ratio (Fig. 7).
+
+    ``camera_spec`` is a camera spec or a whole :class:`Stage2`; ``setting`` its other fields by keyword
+    (``skin``, ``munsell``, ``illuminants`` in K, ``grid`` in nm). Returns ``skin`` and ``munsell`` (output
+    units³ per calibration), their ``ratio`` and the ``temperatures`` (K).
+    """
+    stage = Stage2.of(camera_spec, **setting)
+    t, grid = stage.temperatures, stage.grid
+    cam = camera(stage.camera_spec)
     out = {}
-    for name, spec in (("skin", skin), ("munsell", munsell)):
+    for name, spec in (("skin", stage.skin), ("munsell", stage.munsell)):
         values = reflectances(spec).on(grid)
         out[name] = np.array([gamut_calibration(cam, values, q, t, "white", False, grid).volume for q in t])
     out["ratio"] = out["skin"] / out["munsell"]
@@ -140,16 +178,11 @@ def stage2_gamut_panels(
     return panels
 
 
-def stage2_write(
-    directory: str | Path,
-    camera_spec: str = STAGE2_CAMERA,
-    skin: str = "skin",
-    munsell: str = "munsell",
-    illuminants: ArrayLike = TEMPERATURES_PAPER,
-    grid: WavelengthGrid = GRID_DEFAULT,
-) -> tuple[dict, list[Path]]:
+def stage2_write(directory: str | Path, camera_spec: str | Stage2 = STAGE2_CAMERA,
+                 **setting) -> tuple[dict, list[Path]]:
     """
-    Figs. 3–7 (PNG; Figs. 3–5 with their volumes as CSV) in ``directory``.
+    Figs. 3–7 (PNG; Figs. 3–5 with their volumes as CSV) in ``directory``, for ``camera_spec`` (a camera spec or
+    a whole :class:`Stage2`) and ``setting`` (its other fields by keyword, as :func:`stage2_cases`).
 
     Returns
     -------
@@ -160,7 +193,8 @@ def stage2_write(
     from ..figures import figure_cases, figure_gamuts, figure_pairs
 
     directory = Path(directory)
-    temperatures = np.asarray(illuminants, dtype=np.float64)
+    stage = Stage2.of(camera_spec, **setting)
+    camera_spec, munsell, temperatures, grid = stage.camera_spec, stage.munsell, stage.temperatures, stage.grid
     artifacts: list[Path] = []
     stage2 = {}
     for number, (normalization, knee) in zip((3, 4, 5), STAGE2_NORMALISATIONS):
@@ -180,6 +214,6 @@ def stage2_write(
                   f"Fig. 6: Munsell gamuts, 560nm normalisation with knee ({camera_spec})", path)
     artifacts.append(path)
     path = directory / "fig7_cases.png"
-    figure_cases(stage2_cases(camera_spec, skin, munsell, temperatures, grid), path)
+    figure_cases(stage2_cases(stage), path)
     artifacts.append(path)
     return stage2, artifacts

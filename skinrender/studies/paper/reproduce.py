@@ -32,7 +32,7 @@ from ...hints import ArrayLike
 from ...spectra import WavelengthGrid
 from .folders import MANIFEST, check_output, output_folder
 from .matching import unmatched_sensors
-from .normalisation import (STAGE2_CAMERA, STAGE2_NORMALISATIONS, stage2_cases, stage2_gamut_panels,
+from .normalisation import (STAGE2_CAMERA, STAGE2_NORMALISATIONS, Stage2, stage2_cases, stage2_gamut_panels,
                             stage2_observation, stage2_pairs, stage2_write)
 from .observations import paper_cameras, stage1_text, stage2_by_camera
 from .tables import write_tables
@@ -154,9 +154,8 @@ def reproduce(
 
         def stage2_and_observations() -> None:
             try:
-                side["stage2"], side["artifacts"] = stage2_write(folder, camera_spec, setting.skin, setting.munsell,
-                                                                 resolved.temperatures, resolved.grid) \
-                    if figures else ({}, [])
+                stage = Stage2(camera_spec, setting.skin, setting.munsell, resolved.temperatures, resolved.grid)
+                side["stage2"], side["artifacts"] = stage2_write(folder, stage) if figures else ({}, [])
                 if observations:
                     with tempfile.TemporaryDirectory() as scratch:
                         cameras = paper_cameras(scratch, shared)
