@@ -92,6 +92,7 @@ def test_through_the_sensor_the_shading_check_runs_and_its_control_fails(monkeyp
     ({"limits": ("moon",)}, "limits"),
     ({"spp": 0}, "spp"),
     ({"physics": "glossy"}, "physics"),
+    ({"tolerance": 0.1}, "tolerance: not an option of a face's render; its options: skin, size"),
 ])
 def test_refusals(kwargs, match):
     with pytest.raises(SkinrenderError, match=match):

@@ -3,14 +3,17 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from skinrender.constants import TEMPERATURES_PAPER
 from skinrender.evaluation.gamut import gamut
 from skinrender.model.camera import camera
 from skinrender.model.response import response
 from skinrender.datasets import reflectances
+from skinrender.errors import SkinrenderError
 from skinrender.spectra import WavelengthGrid
-from skinrender.studies.paper.normalisation import stage2_gamut_panels, stage2_observation, stage2_pairs
+from skinrender.studies.paper.normalisation import (Stage2, stage2_cases, stage2_gamut_panels, stage2_observation,
+                                                    stage2_pairs)
 
 GRID = WavelengthGrid(400, 700, 10)
 
@@ -34,3 +37,14 @@ def test_observation_counts_the_diagonal():
 def test_panels_of_a_short_illuminant_set():
     panels = stage2_gamut_panels("Kodak DCS-200", "macbeth", [2000.0, 5000.0], GRID)
     assert len(panels) == 2 and panels[0]["label"] == "prevailing 5000 K, calibration 5000 K"
+
+
+def test_cases_take_the_setting_whole_or_by_keyword():
+    """Fig. 7's volumes are the same from a whole :class:`Stage2` and from its fields by keyword."""
+    t = [2000.0, 5000.0]
+    whole = stage2_cases(Stage2("Kodak DCS-200", munsell="macbeth", illuminants=t, grid=GRID))
+    named = stage2_cases("Kodak DCS-200", munsell="macbeth", illuminants=t, grid=GRID)
+    assert all(np.array_equal(whole[key], named[key]) for key in ("skin", "munsell", "ratio", "temperatures"))
+    assert whole["skin"].shape == (2,) and np.all(whole["munsell"] > 0)
+    with pytest.raises(SkinrenderError, match="munsel: not a Stage 2 setting"):
+        stage2_cases("Kodak DCS-200", munsel="macbeth")
