@@ -2,13 +2,20 @@
 colour-science datasets
 =======================
 
-Data that the colour-science package ships, read from the installed package
-(nothing copied): BSD-3-Clause, data from the cited measurements.
+Data that the colour-science package ships (BSD-3-Clause, data from the cited
+measurements), read without importing colour (its import takes over a second):
 
 -   ``macbeth``: the 24 ColorChecker patches measured by N. Ohta
     (``SDS_COLOURCHECKERS["ColorChecker N Ohta"]``), 380–780 nm / 5 nm.
 -   cameras ``Nikon 5100 (NPL)`` and ``Sigma SDMerill (NPL)`` (Darrodi et al.
-    2015) and ``Canon EOS 5D Mark II`` (rawtoaces, AMPAS).
+    2015; ``MSDS_CAMERA_SENSITIVITIES``).
+
+These are bundled as CSV, written from colour-science 0.4.7 by
+``tools/build_colour_data.py`` with every float64 exact; see
+``resources/LICENCE-colour-science.txt``.
+
+-   camera ``Canon EOS 5D Mark II`` (rawtoaces, AMPAS): read in place from the CSV
+    in the installed colour-science package, found without importing it.
 
 References
 ----------
@@ -22,50 +29,58 @@ References
 
 from __future__ import annotations
 
-import os
+import importlib.util
+from pathlib import Path
 
-import numpy as np
+from .registry import REGISTRY_CAMERAS, REGISTRY_REFLECTANCES, SpectralSet, read_bundled_csv, register
 
-from .registry import REGISTRY_CAMERAS, REGISTRY_REFLECTANCES, SpectralSet, register
-
-__all__ = ["sds_macbeth", "msds_camera_canon"]
+__all__ = ["sds_macbeth", "msds_camera_canon", "path_colour_rawtoaces"]
 
 LICENCE_COLOUR = "BSD-3-Clause (colour-science package data)"
 SOURCE_MACBETH = "ColorChecker 24 patches measured by N. Ohta, colour-science SDS_COLOURCHECKERS['ColorChecker N Ohta']"
+VERSION_COLOUR = "0.4.7"
+"""The colour-science version the bundled CSVs were written from (``tools/build_colour_data.py``)."""
+SHA256_MACBETH = "480703adf5b1c024a0108bf4a5b8cbd2642a2d1988ce5bad3584011be6c04347"
+BUNDLED_CAMERAS = {
+    "Nikon 5100 (NPL)": ("camera_nikon_5100_npl.csv", "6c654c7b6b9a1d49caf078ff31827a680c17da6c02d62721e6e590568013b6a1"),
+    "Sigma SDMerill (NPL)": (
+        "camera_sigma_sdmerill_npl.csv", "6b1925bfddce9941cca6cde80e118d1004306ffeec206330e6ad3299732c3b3a",
+    ),
+}
+"""Camera name → (bundled CSV, its SHA-256)."""
 
 
 @register(REGISTRY_REFLECTANCES, "macbeth", SOURCE_MACBETH, LICENCE_COLOUR)
 def sds_macbeth() -> SpectralSet:
     """The 24 ColorChecker (Macbeth) patches, 380–780 nm every 5 nm."""
-    import colour
-
-    patches = colour.SDS_COLOURCHECKERS["ColorChecker N Ohta"]
-    names = tuple(patches.keys())
-    first = patches[names[0]]
-    values = np.array([patches[name].values for name in names])
-    return SpectralSet("macbeth", np.asarray(first.wavelengths, float), values, names, SOURCE_MACBETH, LICENCE_COLOUR)
+    table = read_bundled_csv("colourchecker_n_ohta.csv", SHA256_MACBETH)
+    return SpectralSet("macbeth", table.wavelengths, table.values, table.names, SOURCE_MACBETH, LICENCE_COLOUR)
 
 
 def _camera_loader(name: str):
     def load() -> SpectralSet:
-        from colour.characterisation import MSDS_CAMERA_SENSITIVITIES
-
-        msds = MSDS_CAMERA_SENSITIVITIES[name]
+        table = read_bundled_csv(*BUNDLED_CAMERAS[name], kind="sensitivity")
         return SpectralSet(
-            name, np.asarray(msds.wavelengths, float), np.asarray(msds.values, float).T,
-            ("R", "G", "B"), REGISTRY_CAMERAS[name].source, LICENCE_COLOUR,
+            name, table.wavelengths, table.values, ("R", "G", "B"), REGISTRY_CAMERAS[name].source, LICENCE_COLOUR,
             extrapolation="zero", kind="sensitivity",
         )
 
     return load
 
 
-for _name in ("Nikon 5100 (NPL)", "Sigma SDMerill (NPL)"):
+for _name in BUNDLED_CAMERAS:
     register(
         REGISTRY_CAMERAS, _name,
         f"{_name}: Darrodi et al. 2015 (JOSA A 32:381), colour-science MSDS_CAMERA_SENSITIVITIES",
         LICENCE_COLOUR,
     )(_camera_loader(_name))
+
+def path_colour_rawtoaces() -> Path:
+    """Folder of the rawtoaces CSVs in the installed colour-science package, found without importing colour
+    (the folder ``colour.characterisation.aces_it.ROOT_RESOURCES_RAWTOACES`` names)."""
+    spec = importlib.util.find_spec("colour")
+    return Path(spec.origin).parent / "characterisation" / "datasets" / "rawtoaces"
+
 
 SOURCE_CANON = "Canon EOS 5D Mark II: AMPAS rawtoaces, colour-science CANON_EOS_5DMark_II_RGB_Sensitivities.csv"
 
@@ -73,12 +88,10 @@ SOURCE_CANON = "Canon EOS 5D Mark II: AMPAS rawtoaces, colour-science CANON_EOS_
 @register(REGISTRY_CAMERAS, "Canon EOS 5D Mark II", SOURCE_CANON, LICENCE_COLOUR + " / AMPAS rawtoaces")
 def msds_camera_canon() -> SpectralSet:
     """Canon EOS 5D Mark II sensitivities from rawtoaces, 380–780 nm every 5 nm."""
-    from colour.characterisation.aces_it import ROOT_RESOURCES_RAWTOACES
-
     from ..spectral_csv import read_spectra_csv
 
     table = read_spectra_csv(
-        os.path.join(ROOT_RESOURCES_RAWTOACES, "CANON_EOS_5DMark_II_RGB_Sensitivities.csv"),
+        path_colour_rawtoaces() / "CANON_EOS_5DMark_II_RGB_Sensitivities.csv",
         kind="sensitivity", expected_columns=3,
     )
     return SpectralSet(
