@@ -29,7 +29,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import ConvexHull, QhullError
 
 from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError
@@ -125,6 +124,8 @@ def gamut_hull(points: ArrayLike) -> tuple[Gamut, np.ndarray]:
     unit, scale = boxed
     if is_flat(unit):
         return Gamut(0.0, count, True), every
+    from scipy.spatial import ConvexHull, QhullError  # here: a heavy import most commands never use
+
     try:
         hull = ConvexHull(unit)
     except QhullError:

@@ -23,7 +23,6 @@ References
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial import ConvexHull, QhullError
 
 from ..hints import NDArrayFloat
 from .gamut import is_flat, to_unit_box
@@ -89,6 +88,8 @@ def hull_volume_vertices(cloud: NDArrayFloat) -> tuple[float, np.ndarray | None]
     if boxed is None:
         return 0.0, None
     unit, scale = boxed
+    from scipy.spatial import ConvexHull, QhullError  # here: a heavy import most commands never use
+
     try:
         hull = ConvexHull(unit, qhull_options=QHULL_OPTIONS)
     except QhullError:

@@ -32,7 +32,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import ConvexHull, QhullError
 
 from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError
@@ -204,6 +203,8 @@ def skin_locus(
 
 def hull_locus(points: NDArrayFloat, illuminants: NDArrayFloat, calibration: float | None) -> SkinLocus | None:
     """The convex-hull locus of (r, g) ``points`` (vertices counter-clockwise), ``None`` if it has no area."""
+    from scipy.spatial import ConvexHull, QhullError  # here: a heavy import most commands never use
+
     try:
         hull = ConvexHull(points)
     except QhullError:

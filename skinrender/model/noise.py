@@ -43,7 +43,6 @@ import math
 from pathlib import Path
 
 import numpy as np
-from scipy.special import ndtr, owens_t
 
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
@@ -61,6 +60,7 @@ _CHUNK_CELLS = 1 << 21  # pixel × code cells summed at once (bounded memory)
 
 def _moments_closed(m: NDArrayFloat, s: NDArrayFloat, low: float, high: float) -> tuple[NDArrayFloat, ...]:
     """Normal N(m, s²) censored at the codes low, high, plus the Euler–Maclaurin rounding terms."""
+    from scipy.special import ndtr  # in the functions that use it: a heavy import most commands never use
     za, zb = (low - m) / s, (high - m) / s
     below, above = ndtr(za), ndtr(-zb)
     inside = np.maximum(1.0 - below - above, 0.0)
@@ -77,6 +77,7 @@ def _moments_closed(m: NDArrayFloat, s: NDArrayFloat, low: float, high: float) -
 
 def _exceed_normal(m: NDArrayFloat, s: NDArrayFloat, low: float, high: float) -> tuple[NDArrayFloat, ...]:
     """The window's first code, DN, its steps and P(DN > code) of clip(round(N(m, s²)), low, high), per row."""
+    from scipy.special import ndtr
     start = np.clip(np.floor(m - _WINDOW_SIGMA * s), low, high)
     steps = np.arange(math.ceil(2 * _WINDOW_SIGMA * s.max(initial=0.0)) + 2, dtype=np.float64)
     code = start[:, None] + steps
@@ -110,6 +111,7 @@ def _moments_normal(m: NDArrayFloat, s: NDArrayFloat, low: float, high: float) -
 
 def _bivariate_normal_cdf(h: NDArrayFloat, k: NDArrayFloat, rho: NDArrayFloat, r: NDArrayFloat) -> NDArrayFloat:
     """P(Z₁ < h, Z₂ < k) for standard normals of correlation ρ, r = √(1 − ρ²) > 0, by Owen's T [Owen1956]."""
+    from scipy.special import ndtr, owens_t
     h = np.where(h == 0, 1e-300, h)  # the formula divides by h and k; the nudge changes nothing else
     k = np.where(k == 0, 1e-300, k)
     with np.errstate(over="ignore"):
@@ -124,6 +126,7 @@ def _moments_filling(mu: NDArrayFloat, im: Imager) -> tuple[NDArrayFloat, ...]:
     P(Y < y) = Φ₂(h, k; ρ) + (1 − Φ(h)) Φ((w − μ_sat) / σ_r) with w = (y − b) / K,
     h = (μ_sat − μ) / √μ, k = (w − μ) / √(μ + σ_r²), ρ = √(μ / (μ + σ_r²)).
     """
+    from scipy.special import ndtr
     gain, black, well, read = im.gain_dn_per_e, im.black_level_dn, im.full_well_e, im.read_noise_e
     spread = _WINDOW_SIGMA * (np.sqrt(mu) + read)  # e⁻
     start = np.clip(np.floor(black + gain * (np.minimum(mu, well) - spread)) - 1, 0, im.max_dn)
