@@ -12,6 +12,14 @@ too old a libLLVM (Debian 12's libllvm15: "Cannot select … fmaximum"), so
 each candidate is first tried in a child process. ``DRJIT_LIBLLVM_PATH`` is set
 to the newest libLLVM ≥ 16 found in the usual places unless the user set it.
 
+The verdicts of those trials are left in the environment
+(:data:`VERDICTS_VARIABLE`) for the processes this one starts (pool workers, a
+CLI run from a script), so that one trial serves a whole session. Each verdict
+is bound to a fingerprint of what decides it (host, interpreter, the installed
+mitsuba and drjit, the libLLVM file, the environment variables drjit and CUDA
+read): a child whose fingerprint differs (another machine, another install,
+a library replaced since) tries the variant again.
+
 -   :func:`choose_variant`: the variant to use (cached per process).
 -   :func:`libllvm_path`: the libLLVM drjit will load, or ``None``.
 -   :func:`mitsuba`: the ``mitsuba`` module with the chosen variant set.
@@ -20,17 +28,20 @@ to the newest libLLVM ≥ 16 found in the usual places unless the user set it.
 from __future__ import annotations
 
 import glob
+import hashlib
+import importlib.util
 import os
 import re
 import shutil
+import socket
 import subprocess
 import sys
 
 from ..errors import SkinrenderError
 from ..extras import require
 
-__all__ = ["VARIANTS_SPECTRAL", "LIBLLVM_MINIMUM", "ROUNDED", "libllvm_path", "variant_works", "choose_variant",
-           "mitsuba", "rounded_note"]
+__all__ = ["VARIANTS_SPECTRAL", "LIBLLVM_MINIMUM", "ROUNDED", "VERDICTS_VARIABLE", "libllvm_path", "fingerprint",
+           "variant_works", "choose_variant", "mitsuba", "rounded_note"]
 
 ROUNDED: list[int] = []
 """Sample counts a Mitsuba sampler rounded a render's spp up to in this process (its "Sample count rounded up"
@@ -90,18 +101,76 @@ _PROBE = (
 drjit aborts on with too old a libLLVM."""
 
 
+VERDICTS_VARIABLE = "SKINRENDER_VARIANT_VERDICTS"
+"""Environment variable holding this session's probe verdicts, ``FINGERPRINT variant=1 variant=0 …``: set by the
+process that ran the probes, read by the processes it starts (see :func:`fingerprint`)."""
+
+
+def _stat(path: str | None) -> str:
+    """Device, inode, size and modification time of ``path`` (followed to its file), or ``-``."""
+    try:
+        info = os.stat(path) if path else None
+    except OSError:
+        info = None
+    return "-" if info is None else f"{info.st_dev}:{info.st_ino}:{info.st_size}:{info.st_mtime_ns}"
+
+
+def fingerprint() -> str:
+    """
+    What a variant's probe verdict depends on, hashed: the host (and its boot), the interpreter, the installed
+    ``mitsuba`` and ``drjit`` packages (their modules' and libraries' identity and times), the libLLVM drjit loads (the file's) and
+    every ``DRJIT_*``, ``MI_*``, ``CUDA_*`` and ``LD_*`` environment variable. A verdict is only trusted under
+    the same fingerprint, so a reinstall, a replaced library or another machine means a new probe.
+    """
+    parts = [socket.gethostname(), sys.executable, sys.version, _stat(sys.executable), libllvm_path() or "-",
+             _stat(libllvm_path())]
+    try:
+        with open("/proc/sys/kernel/random/boot_id", encoding="ascii") as handle:
+            parts.append(handle.read().strip())
+    except OSError:
+        pass
+    for package in ("mitsuba", "drjit"):  # their modules and libraries, not __pycache__ (written on first import)
+        spec = importlib.util.find_spec(package)
+        folder = os.path.dirname(spec.origin) if spec is not None and spec.origin else None
+        files = sorted(glob.glob(os.path.join(glob.escape(folder), "*.[ps][yo]*"))) if folder else []
+        parts += [folder or "-", *(f"{os.path.basename(f)}={_stat(f)}" for f in files)]
+    parts += sorted(f"{k}={v}" for k, v in os.environ.items()
+                    if k.startswith(("DRJIT_", "MI_", "CUDA_", "LD_")))
+    return hashlib.sha256("\0".join(parts).encode()).hexdigest()[:32]
+
+
+def _verdicts(key: str) -> dict[str, bool]:
+    """The verdicts in the environment, where they were made under fingerprint ``key``; else none."""
+    fields = os.environ.get(VERDICTS_VARIABLE, "").split()
+    if not fields or fields[0] != key:
+        return {}
+    pairs = (field.partition("=") for field in fields[1:])
+    return {variant: value == "1" for variant, sign, value in pairs if sign and value in ("0", "1")}
+
+
 def variant_works(variant: str) -> bool:
-    """Whether ``variant`` renders a tiny specfilm scene in a child process on this machine."""
+    """
+    Whether ``variant`` renders a tiny specfilm scene in a child process on this machine.
+
+    The verdict is left in :data:`VERDICTS_VARIABLE` for the processes this one starts, which take it instead
+    of probing again only under the same :func:`fingerprint`.
+    """
     if variant.startswith("cuda") and not (shutil.which("nvidia-smi") or os.path.exists("/dev/nvidia0")):
         return False
     if variant.startswith("llvm") and libllvm_path() is None:
         return False
+    key = fingerprint()
+    known = _verdicts(key)
+    if variant in known:
+        return known[variant]
     try:
         done = subprocess.run([sys.executable, "-c", _PROBE, variant], capture_output=True, text=True,
                               timeout=180, env=os.environ.copy())
     except (OSError, subprocess.TimeoutExpired):
-        return False
-    return done.returncode == 0
+        return False  # perhaps a busy machine: not recorded, a child tries again
+    works = known[variant] = done.returncode == 0
+    os.environ[VERDICTS_VARIABLE] = " ".join([key, *(f"{name}={int(ok)}" for name, ok in sorted(known.items()))])
+    return works
 
 
 def choose_variant(requested: str | None = None, notice=sys.stderr) -> str:
