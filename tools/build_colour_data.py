@@ -13,6 +13,8 @@ Writes, under ``skinrender/datasets/resources/``:
 - ``camera_nikon_5100_npl.csv`` and ``camera_sigma_sdmerill_npl.csv``:
   ``colour.characterisation.MSDS_CAMERA_SENSITIVITIES["Nikon 5100 (NPL)"]`` and
   ``["Sigma SDMerill (NPL)"]`` (Darrodi et al. 2015), columns R, G, B.
+- ``cie1924_photopic.csv``: ``colour.colorimetry.SDS_LEFS_PHOTOPIC["CIE 1924 Photopic Standard Observer"]``,
+  the CIE 1924 V(λ), 360–830 nm every 1 nm, one column ``V``.
 
 Every number is written with ``repr`` (the shortest text that reads back as the same
 float64), so the bundled sets are bit-identical to colour-science's. Prints the SHA-256
@@ -30,8 +32,11 @@ from pathlib import Path
 import colour
 import numpy as np
 from colour.characterisation import MSDS_CAMERA_SENSITIVITIES
+from colour.colorimetry import SDS_LEFS_PHOTOPIC
 
 ROOT_RESOURCES = Path(__file__).resolve().parents[1] / "skinrender" / "datasets" / "resources"
+
+PHOTOPIC = "CIE 1924 Photopic Standard Observer"
 
 CAMERAS = {"Nikon 5100 (NPL)": "camera_nikon_5100_npl.csv", "Sigma SDMerill (NPL)": "camera_sigma_sdmerill_npl.csv"}
 
@@ -61,6 +66,9 @@ def main() -> None:
         msds = MSDS_CAMERA_SENSITIVITIES[camera]
         assert list(msds.labels) == ["red", "green", "blue"], msds.labels
         write(filename, np.asarray(msds.wavelengths, float), ["R", "G", "B"], np.asarray(msds.values, float))
+
+    sd = SDS_LEFS_PHOTOPIC[PHOTOPIC]
+    write("cie1924_photopic.csv", np.asarray(sd.wavelengths, float), ["V"], np.asarray(sd.values, float)[:, None])
 
 
 if __name__ == "__main__":

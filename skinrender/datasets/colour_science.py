@@ -9,6 +9,7 @@ measurements), read without importing colour (its import takes over a second):
     (``SDS_COLOURCHECKERS["ColorChecker N Ohta"]``), 380–780 nm / 5 nm.
 -   cameras ``Nikon 5100 (NPL)`` and ``Sigma SDMerill (NPL)`` (Darrodi et al.
     2015; ``MSDS_CAMERA_SENSITIVITIES``).
+-   the CIE 1924 photopic V(λ) (``SDS_LEFS_PHOTOPIC``), 360–830 nm / 1 nm, for lux.
 
 These are bundled as CSV, written from colour-science 0.4.7 by
 ``tools/build_colour_data.py`` with every float64 exact; see
@@ -34,7 +35,7 @@ from pathlib import Path
 
 from .registry import REGISTRY_CAMERAS, REGISTRY_REFLECTANCES, SpectralSet, read_bundled_csv, register
 
-__all__ = ["sds_macbeth", "msds_camera_canon", "path_colour_rawtoaces"]
+__all__ = ["sds_macbeth", "msds_camera_canon", "path_colour_rawtoaces", "photopic_v_cie1924"]
 
 LICENCE_COLOUR = "BSD-3-Clause (colour-science package data)"
 SOURCE_MACBETH = "ColorChecker 24 patches measured by N. Ohta, colour-science SDS_COLOURCHECKERS['ColorChecker N Ohta']"
@@ -48,6 +49,9 @@ BUNDLED_CAMERAS = {
     ),
 }
 """Camera name → (bundled CSV, its SHA-256)."""
+SHA256_PHOTOPIC = "6e71d5d2c0ecb319416f713a09d525b3ffa6add006367397690a8069d764c4ce"
+SOURCE_PHOTOPIC = ("CIE 1924 photopic luminous efficiency V(λ), colour-science "
+                   "SDS_LEFS_PHOTOPIC['CIE 1924 Photopic Standard Observer']")
 
 
 @register(REGISTRY_REFLECTANCES, "macbeth", SOURCE_MACBETH, LICENCE_COLOUR)
@@ -55,6 +59,23 @@ def sds_macbeth() -> SpectralSet:
     """The 24 ColorChecker (Macbeth) patches, 380–780 nm every 5 nm."""
     table = read_bundled_csv("colourchecker_n_ohta.csv", SHA256_MACBETH)
     return SpectralSet("macbeth", table.wavelengths, table.values, table.names, SOURCE_MACBETH, LICENCE_COLOUR)
+
+
+def photopic_v_cie1924() -> SpectralSet:
+    """
+    The CIE 1924 photopic luminous efficiency V(λ), unitless, 360–830 nm every 1 nm (one spectrum, ``V``).
+
+    Bundled from colour-science (``tools/build_colour_data.py``) so that working in lux does not import colour.
+
+    Examples
+    --------
+    >>> v = photopic_v_cie1924()
+    >>> float(v.wavelengths[v.values[0].argmax()]), float(v.values.max())
+    (555.0, 1.0)
+    """
+    table = read_bundled_csv("cie1924_photopic.csv", SHA256_PHOTOPIC, kind="sensitivity")
+    return SpectralSet("CIE 1924 V", table.wavelengths, table.values, table.names, SOURCE_PHOTOPIC, LICENCE_COLOUR,
+                       kind="sensitivity")
 
 
 def _camera_loader(name: str):

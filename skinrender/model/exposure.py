@@ -79,17 +79,18 @@ def photopic_efficiency(grid: WavelengthGrid) -> NDArrayFloat:
     """
     CIE 1924 V(λ) on ``grid`` (nm), unitless, read-only.
 
-    Interpolated linearly from colour-science's table; 0 outside 360–830 nm.
+    Interpolated linearly from colour-science's table (bundled:
+    :func:`~skinrender.datasets.colour_science.photopic_v_cie1924`); 0 outside 360–830 nm.
 
     Examples
     --------
     >>> print(f"{photopic_efficiency(WavelengthGrid(555, 556, 1))[0]:.3f}")
     1.000
     """
-    from colour.colorimetry import SDS_LEFS_PHOTOPIC  # a heavy import, only when needed
+    from ..datasets.colour_science import photopic_v_cie1924
 
-    sd = SDS_LEFS_PHOTOPIC["CIE 1924 Photopic Standard Observer"]
-    values = np.interp(grid.wavelengths, sd.wavelengths, sd.values, left=0.0, right=0.0)
+    v = photopic_v_cie1924()
+    values = np.interp(grid.wavelengths, v.wavelengths, v.values[0], left=0.0, right=0.0)
     values.flags.writeable = False
     return values
 

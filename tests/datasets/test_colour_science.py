@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import skinrender.datasets as datasets
-from skinrender.datasets.colour_science import BUNDLED_CAMERAS, path_colour_rawtoaces
+from skinrender.datasets.colour_science import BUNDLED_CAMERAS, path_colour_rawtoaces, photopic_v_cie1924
 
 
 def test_macbeth_is_colour_sciences_ohta_chart():
@@ -33,16 +33,27 @@ def test_bundled_cameras_are_colour_sciences(name):
     np.testing.assert_array_equal(camera.values, np.asarray(msds.values).T)
 
 
+def test_photopic_v_is_colour_sciences_cie1924():
+    """V(λ), which every command working in lux uses, bundled bit for bit."""
+    colorimetry = pytest.importorskip("colour.colorimetry")
+    sd = colorimetry.SDS_LEFS_PHOTOPIC["CIE 1924 Photopic Standard Observer"]
+    v = photopic_v_cie1924()
+    np.testing.assert_array_equal(v.wavelengths, sd.wavelengths)
+    np.testing.assert_array_equal(v.values[0], sd.values)
+
+
 def test_rawtoaces_folder_is_the_one_colour_names():
     aces_it = pytest.importorskip("colour.characterisation.aces_it")
     assert path_colour_rawtoaces().samefile(aces_it.ROOT_RESOURCES_RAWTOACES)
 
 
 def test_loading_the_sets_does_not_import_colour():
-    """The chart and every colour-science camera load in a fresh interpreter that never imports colour."""
+    """The chart, every colour-science camera and V(λ) (lux) load in a fresh interpreter that never imports
+    colour."""
     code = (
         "import sys, skinrender.datasets as d; d.reflectances('macbeth'); "
         "[d.camera_sensitivities(n) for n in ('Nikon 5100 (NPL)', 'Sigma SDMerill (NPL)', 'Canon EOS 5D Mark II')]; "
+        "from skinrender.model.exposure import illuminance_lux; illuminance_lux([1.0] * 81, '380:780:5'); "
         "print(sorted(m for m in sys.modules if m == 'colour' or m.startswith('colour.')))"
     )
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
@@ -63,7 +74,8 @@ def test_rebuild_script_matches(tmp_path):
     spec.loader.exec_module(module)
     module.ROOT_RESOURCES = tmp_path
     module.main()
-    for name in ("colourchecker_n_ohta.csv", *(filename for filename, _ in BUNDLED_CAMERAS.values())):
+    for name in ("colourchecker_n_ohta.csv", "cie1924_photopic.csv",
+                 *(filename for filename, _ in BUNDLED_CAMERAS.values())):
         assert (tmp_path / name).read_bytes() == (ROOT_RESOURCES / name).read_bytes(), name
 
 
