@@ -55,13 +55,12 @@ def test_an_error_in_a_worker_reaches_the_caller(variant):
 
 def test_a_worker_writes_nothing_on_stdout():
     """A pool worker's writes on its stdout (file descriptor 1, where Mitsuba's native log would go, and print)
-    reach stderr, never the parent's stdout, which holds ``--json``'s one document."""
-    script = ("import os\n"
-              "from functools import partial\n"
-              "from skinrender.rendering.variants import choose_variant\n"
+    reach stderr, never the parent's stdout, which holds ``--json``'s one document. Both kinds of write are tasks of
+    one pool of two workers (``exec`` of each line: a builtin, so it pickles), not a pool each."""
+    script = ("from skinrender.rendering.variants import choose_variant\n"
               "from skinrender.studies.face.workers import run_renders\n"
-              "run_renders(partial(os.write, 1), [b'written on descriptor 1\\n'], choose_variant(None), 2)\n"
-              "run_renders(print, ['printed by a worker', 'and another'], choose_variant(None), 2)\n"
+              "run_renders(exec, ['import os; os.write(1, b\"written on descriptor 1\\\\n\")',\n"
+              "                   'print(\"printed by a worker\")', 'print(\"and another\")'], choose_variant(None), 2)\n"
               "print('the parent')\n")
     done = subprocess.run([sys.executable, "-c", script], check=False, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr[-800:]
