@@ -164,7 +164,8 @@ def _skin_media(spec: str, grid: WavelengthGrid, where: str) -> SkinMedia:
     if chosen.size < 8:
         raise SkinrenderError(f"{where}: {spec!r}: the grid has {chosen.size} wavelengths inside 400–700 nm to fit "
                               f"the skin model on, fewer than 8; {accepts}")
-    fit = _fit(spec, lam[chosen].tobytes(), measured[chosen].tobytes())
+    fit = _fit(spec, np.asarray(lam[chosen], dtype=np.float64).tobytes(),
+               np.asarray(measured[chosen], dtype=np.float64).tobytes())
     if not fit.converged or not math.isfinite(fit.rms) or fit.rms > FIT_RMS_MAX:
         found = f"RMS {fit.rms:.3f}" if math.isfinite(fit.rms) else "no fit"
         raise SkinrenderError(f"{where}: {spec!r} is a measured reflectance and the skin model fits it to {found} "
