@@ -137,7 +137,8 @@ def skin_media_of(spec: str, grid: WavelengthGrid, where: str = "skin") -> SkinM
     ``skin-model:NAME=VALUE,…`` gives the parameters. Any other reflectance spec (``skin:089 …``) is a
     measured spectrum: the model is fitted to it every :data:`FIT_STEP_NM` nm within 400–700 nm
     (:func:`~skinrender.datasets.skin_fit.fit_skin_spectrum`, ~1.3 s) and its layers are rendered; a fit worse
-    than :data:`FIT_RMS_MAX` (or one that fails) is refused naming ``where``. Cached per spec and grid.
+    than :data:`FIT_RMS_MAX` (or one that fails) is refused naming ``where``. Cached per spec and grid, the
+    fit per spec and measured values.
 
     Raises
     ------
@@ -149,7 +150,6 @@ def skin_media_of(spec: str, grid: WavelengthGrid, where: str = "skin") -> SkinM
 
 @lru_cache(maxsize=256)
 def _skin_media(spec: str, grid: WavelengthGrid, where: str) -> SkinMedia:
-    from ..datasets.skin_fit import fit_skin_spectrum
     from ..datasets.skin_model import skin_layers
 
     lam = grid.wavelengths
@@ -164,13 +164,23 @@ def _skin_media(spec: str, grid: WavelengthGrid, where: str) -> SkinMedia:
     if chosen.size < 8:
         raise SkinrenderError(f"{where}: {spec!r}: the grid has {chosen.size} wavelengths inside 400–700 nm to fit "
                               f"the skin model on, fewer than 8; {accepts}")
-    fit = fit_skin_spectrum(lam[chosen], measured[chosen], name=spec)
+    fit = _fit(spec, np.asarray(lam[chosen], dtype=np.float64).tobytes(),
+               np.asarray(measured[chosen], dtype=np.float64).tobytes())
     if not fit.converged or not math.isfinite(fit.rms) or fit.rms > FIT_RMS_MAX:
         found = f"RMS {fit.rms:.3f}" if math.isfinite(fit.rms) else "no fit"
         raise SkinrenderError(f"{where}: {spec!r} is a measured reflectance and the skin model fits it to {found} "
                               f"(at most {FIT_RMS_MAX:g} is skin-like); {accepts}")
     return SkinMedia(spec, fit.parameters, float(fit.rms), skin_layers(lam, fit.parameters), lam,
                      dict(fit.bounds_hit))
+
+
+@lru_cache(maxsize=256)
+def _fit(spec: str, wavelengths: bytes, measured: bytes):
+    """The skin model's fit to a measured spectrum (float64 bytes of its wavelengths in nm and reflectances), named
+    ``spec``: cached on every input, so the same spectrum in another chart (another ``where``) is not fitted again."""
+    from ..datasets.skin_fit import fit_skin_spectrum
+
+    return fit_skin_spectrum(np.frombuffer(wavelengths), np.frombuffer(measured), name=spec)
 
 
 def slab_layers(layers, dermis_mm: float = SLAB_DERMIS_MM) -> tuple:

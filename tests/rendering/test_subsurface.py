@@ -38,6 +38,8 @@ class TestSkinMediaOf:
         media = skin_media_of(spec, GRID_DEFAULT)
         assert media.fit_rms is not None and 0 < media.fit_rms <= FIT_RMS_MAX
         assert media.as_dict()["source"] == "fit" and skin_media_of(spec, GRID_DEFAULT) is media  # cached
+        elsewhere = skin_media_of(spec, GRID_DEFAULT, "patch 'b'")  # another chart's patch: the same fit, not refitted
+        assert elsewhere is not media and elsewhere.parameters is media.parameters
         from skinrender.rendering.scene import reflectance_of
 
         measured = reflectance_of(spec, GRID_DEFAULT)

@@ -100,7 +100,9 @@ class TestAgainstAddingDoubling:
 
 class TestRenderer:
     def test_calibration_render_and_determinism(self, two):
-        renderer = subsurface_renderer(two, CAMERA, spp=4)
+        """At 2 spp: what is checked (which patches a calibration render leaves out, the same seed giving the same
+        image, the settings reported) holds at any sample count; the skin slabs' paths are this file's cost."""
+        renderer = subsurface_renderer(two, CAMERA, spp=2)
         chart = load_scene(two)
         whites = renderer.raw(5900, seed=1, skins=False)
         rows, columns = chart.patch_pixels(0)
@@ -109,7 +111,7 @@ class TestRenderer:
         assert np.all(whites.image[rows, columns] > 0)
         first, again = renderer.raw(2856, seed=7), renderer.raw(2856, seed=7)
         np.testing.assert_array_equal(first.image, again.image)
-        assert first.variant == renderer.variant and first.spp == 4
+        assert first.variant == renderer.variant and first.spp == 2
         assert first.sampler == "independent"  # SAMPLER_SUBSURFACE unless the settings name one
         assert subsurface_renderer(two, CAMERA, spp=4, sampler="multijitter").sampler == "multijitter"
 

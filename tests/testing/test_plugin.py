@@ -54,6 +54,13 @@ def warm(tmp_path_factory):
     # (later tests of the same pytest-xdist worker drawing a contour failed)
     import contourpy  # noqa: F401
 
+    # hypothesis' pytest plugin imports hypothesis at the end of every run (its terminal summary): ~1–2 s a run when
+    # each run imports it anew (measured: the most of a run that renders nothing)
+    try:
+        import hypothesis.internal.observability  # noqa: F401
+    except ImportError:  # no hypothesis, no plugin of it
+        pass
+
 
 @pytest.fixture
 def project(pytester):
