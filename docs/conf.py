@@ -41,6 +41,11 @@ from api_pages import write_api_pages  # noqa: E402
 
 write_api_pages(DOCS / "api")
 autodoc_default_options = {"members": True, "show-inheritance": False}
+# Functions and classes stay out of the pages' tables of contents: no page shows them (every toctree has
+# ``:maxdepth: 1``, the theme's sidebar shows no page-local contents; the HTML is the same either way), and the
+# sidebar's navigation, resolved for every page, otherwise copies every API page's objects each time (~5 % of the
+# build).
+toc_object_entries = False
 autodoc_member_order = "bysource"
 autodoc_typehints = "none"
 # The package has no ``# type:`` comments (and shows no type hints): without this, autodoc reads every function's
