@@ -6,10 +6,12 @@ pytest's start-up.
     example passes (the failures are printed).
 -   ``python tests/doctest_alone.py --serve``: reads module names on standard input, one a line, and for each
     forks a child that imports the module and runs its doctests; answers one JSON line
-    ``{"module", "failed", "attempted", "output"}`` a module. Before forking, it imports only numpy and scipy
-    (whose import changes no printing: checked against numpy's default print options; colour-science's does —
-    it sets numpy's legacy printing — so it is not preloaded) and pytest's doctest checker, so each child pays for skinrender's own imports and nothing
-    of it is shared between modules: no module's doctests can rely on another's import.
+    ``{"module", "failed", "attempted", "output"}`` a module. Before forking, it imports only third-party
+    libraries whose import changes neither numpy's printing nor the warning filters (checked: numpy and scipy,
+    and matplotlib's pyplot and pandas, which colour-science imports) and pytest's doctest checker. Not
+    colour-science itself: its import sets numpy's legacy printing, which a module's doctests must see only when
+    that module (or what it calls) imports colour. So each child pays for skinrender's own imports and colour's,
+    and nothing of them is shared between modules: no module's doctests can rely on another's import.
 
 Used by ``tests/test_architecture.py::test_doctests_pass_on_their_own``. The option flags are the project's
 (``pyproject.toml``: ELLIPSIS, NORMALIZE_WHITESPACE, NUMBER), NUMBER through pytest's own output checker.
@@ -19,12 +21,17 @@ Mitsuba and drjit are never imported before a fork (their threads do not survive
 from __future__ import annotations
 
 import doctest
+import gc
 import importlib
 import io
 import json
 import os
 import sys
 from contextlib import redirect_stdout
+
+PRELOADED = ("matplotlib.pyplot", "pandas")
+"""Imported by the server before it forks, besides numpy, scipy and pytest's checker (module docstring):
+colour-science's heaviest imports (~0.5 s of CPU in each child that imports colour)."""
 
 
 def run_module(module_name: str) -> tuple[int, int, str]:
@@ -45,6 +52,8 @@ def run_module(module_name: str) -> tuple[int, int, str]:
 
 def serve() -> None:
     """Answer module names on standard input, each run in a forked child (module docstring)."""
+    import warnings
+
     import numpy as np
 
     defaults = np.get_printoptions()
@@ -53,7 +62,14 @@ def serve() -> None:
     from _pytest.doctest import _get_checker
 
     _get_checker()
+    filters = list(warnings.filters)  # scipy's own are there in any interpreter that imports it
+    for name in PRELOADED:
+        importlib.import_module(name)
     assert np.get_printoptions() == defaults, "a preloaded library changed numpy's printing"
+    assert warnings.filters == filters, "a preloaded library changed the warning filters"
+    # The children's garbage collections leave the preloaded objects alone: without this, the first collection in
+    # each child touches every object and so copies every page the server holds (about as slow as the preloads).
+    gc.freeze()
     for line in sys.stdin:
         name = line.strip()
         if not name:
