@@ -141,13 +141,15 @@ def doctest_examples(tmp_path_factory) -> Path:
 
 @pytest.fixture(scope="module")
 def doctest_server(doctest_examples):
-    """``doctest_alone.py --serve``: each module's doctests in a child forked from an interpreter holding no
-    skinrender module (this test worker's own); :func:`doctest_examples` is on its import path."""
+    """``doctest_alone.py --serve``: each module's doctests in a child forked from an interpreter that imported
+    only third-party libraries and the package's ``__init__`` (what a fresh interpreter runs before any module of
+    the package), not this test worker; :func:`doctest_examples` is on its import path."""
     import os
 
     path = os.pathsep.join(filter(None, [os.environ.get("PYTHONPATH"), str(doctest_examples)]))
     server = subprocess.Popen([sys.executable, str(DOCTEST_ALONE), "--serve"], stdin=subprocess.PIPE,
-                              stdout=subprocess.PIPE, text=True, cwd=REPOSITORY, env={**os.environ, "PYTHONPATH": path})
+                              stdout=subprocess.PIPE, text=True, cwd=REPOSITORY,
+                              env={**os.environ, "PYTHONPATH": path})
 
     def run(module: str) -> dict:
         server.stdin.write(module + "\n")
@@ -191,7 +193,8 @@ def test_the_doctest_server_children_start_alike(doctest_server, doctest_example
         "with_colour": ">>> import numpy as np, colour\n>>> np.float64(0.5)\n0.5\n",
         "without_colour": ">>> import numpy as np\n>>> np.float64(0.5)\nnp.float64(0.5)\n",
         "sets_an_attribute": ">>> import skinrender.errors\n>>> skinrender.errors.LEFT_BEHIND = 1\n",
-        "sees_no_attribute": ">>> import skinrender.errors\n>>> hasattr(skinrender.errors, 'LEFT_BEHIND')\nFalse\n",
+        "sees_no_attribute": (">>> import skinrender.errors\n"
+                              ">>> hasattr(skinrender.errors, 'LEFT_BEHIND')\nFalse\n"),
     }
     for name, example in examples.items():
         (doctest_examples / f"{name}.py").write_text(f'"""\n{example}"""\n', encoding="utf-8")

@@ -119,13 +119,16 @@ def test_a_notebook_sees_no_name_of_the_one_before(kernel):
     manager = kernel()
     execute(new(cells=[cell(RESET)]), manager)
     before = new(cells=[cell("import matplotlib\nmatplotlib.use('Agg')\nimport matplotlib.pyplot as plt\n"
-                             "from skinrender.model.imager import list_imagers\nleft_behind = plt.figure().number\n"
-                             "list_imagers()\nprint(__import__('skinrender').model.imager._presets.cache_info().currsize)")])
+                             "from skinrender.model import imager\n"
+                             "from skinrender.model.imager import list_imagers\n"
+                             "left_behind = plt.figure().number\nlist_imagers()\n"
+                             "print(imager._presets.cache_info().currsize)")])
     execute(before, manager)
     assert before.cells[0].outputs[0]["text"].strip() == "1"  # the cache below held something
     execute(new(cells=[cell(RESET)]), manager)
-    after = new(cells=[cell("import sys\nprint(sorted({'left_behind', 'plt', 'matplotlib', 'list_imagers'} & set(dir())), "
-                            "sys.modules['matplotlib.pyplot'].get_fignums(), "
+    after = new(cells=[cell("import sys\n"
+                            "names = {'left_behind', 'plt', 'matplotlib', 'imager', 'list_imagers'} & set(dir())\n"
+                            "print(sorted(names), sys.modules['matplotlib.pyplot'].get_fignums(), "
                             "sys.modules['skinrender.model.imager']._presets.cache_info().currsize)")])
     execute(after, manager)
     assert after.cells[0].outputs[0]["text"].strip() == "[] [] 0"
