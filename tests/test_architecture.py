@@ -134,11 +134,22 @@ def doctests_alone(module: str, cwd: Path = REPOSITORY, path: str | None = None)
 
 
 @pytest.fixture(scope="module")
-def doctest_server():
-    """``doctest_alone.py --serve``: each module's doctests in a child forked from an interpreter holding no
-    skinrender module (this test worker's own)."""
+def doctest_examples(tmp_path_factory) -> Path:
+    """A folder on the doctest server's import path, for example modules written by the tests."""
+    return tmp_path_factory.mktemp("doctest_examples")
+
+
+@pytest.fixture(scope="module")
+def doctest_server(doctest_examples):
+    """``doctest_alone.py --serve``: each module's doctests in a child forked from an interpreter that imported
+    only third-party libraries and the package's ``__init__`` (what a fresh interpreter runs before any module of
+    the package), not this test worker; :func:`doctest_examples` is on its import path."""
+    import os
+
+    path = os.pathsep.join(filter(None, [os.environ.get("PYTHONPATH"), str(doctest_examples)]))
     server = subprocess.Popen([sys.executable, str(DOCTEST_ALONE), "--serve"], stdin=subprocess.PIPE,
-                              stdout=subprocess.PIPE, text=True, cwd=REPOSITORY)
+                              stdout=subprocess.PIPE, text=True, cwd=REPOSITORY,
+                              env={**os.environ, "PYTHONPATH": path})
 
     def run(module: str) -> dict:
         server.stdin.write(module + "\n")
@@ -172,3 +183,21 @@ def test_the_doctest_server_reports_a_failure(doctest_server):
     """The server's children pass a good module and fail one that cannot be imported."""
     assert doctest_server("skinrender.errors")["failed"] == 0
     assert doctest_server("no_such_module_here")["failed"] == 1
+
+
+def test_the_doctest_server_children_start_alike(doctest_server, doctest_examples):
+    """A child sees numpy's printing and the package's modules as a fresh interpreter would, whatever the child
+    before it imported or changed: colour-science's legacy printing only where the module imports colour, and no
+    attribute set by another module's doctests."""
+    examples = {
+        "with_colour": ">>> import numpy as np, colour\n>>> np.float64(0.5)\n0.5\n",
+        "without_colour": ">>> import numpy as np\n>>> np.float64(0.5)\nnp.float64(0.5)\n",
+        "sets_an_attribute": ">>> import skinrender.errors\n>>> skinrender.errors.LEFT_BEHIND = 1\n",
+        "sees_no_attribute": (">>> import skinrender.errors\n"
+                              ">>> hasattr(skinrender.errors, 'LEFT_BEHIND')\nFalse\n"),
+    }
+    for name, example in examples.items():
+        (doctest_examples / f"{name}.py").write_text(f'"""\n{example}"""\n', encoding="utf-8")
+    for name in ("with_colour", "without_colour", "sets_an_attribute", "sees_no_attribute", "with_colour"):
+        result = doctest_server(name)
+        assert (result["failed"], result["attempted"] > 0) == (0, True), result

@@ -127,8 +127,11 @@ def test_entry_point_subprocess():
 @pytest.mark.skipif(not __import__("os").path.exists("/dev/full"), reason="needs Linux's /dev/full (always full)")
 @pytest.mark.parametrize("json_flag", [[], ["--json"]])
 def test_a_full_standard_output_is_one_line_not_an_internal_error(json_flag):
+    """A real process whose standard output is full (``/dev/full``): one line, exit 1. Any command's output goes
+    through the same ``emit`` and flush in ``main``; ``imagers`` is a quick one (``cameras`` imports colour-science:
+    ~1 s more per run)."""
     with open("/dev/full", "w") as full:
-        done = subprocess.run([sys.executable, "-m", "skinrender", "cameras", *json_flag], check=False, stdout=full,
+        done = subprocess.run([sys.executable, "-m", "skinrender", "imagers", *json_flag], check=False, stdout=full,
                               stderr=subprocess.PIPE, text=True)
     lines = done.stderr.splitlines()
     assert done.returncode == 1 and len(lines) == 1, done.stderr

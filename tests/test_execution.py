@@ -135,11 +135,15 @@ class TestMap:
             assert dask_name(client) == cluster.scheduler_address
         assert dask_name(None) is None and dask_name("tcp://h:1") == "tcp://h:1"
 
-    def test_an_unreachable_scheduler_is_one_line_naming_the_flag(self):
+    def test_an_unreachable_scheduler_is_one_line_naming_the_flag(self, monkeypatch):
+        """Waiting 1 s for the scheduler (:data:`~skinrender.execution.DASK_TIMEOUT_S`) rather than the
+        default 10 s: the refusal is the same, and it names the wait."""
         pytest.importorskip("distributed")
+        monkeypatch.setattr(execution, "DASK_TIMEOUT_S", 1.0)
         with pytest.raises(SkinrenderError, match="^--dask: cannot reach a Dask scheduler") as error:
             execution.map(abs, [1], dask="tcp://127.0.0.1:9")
-        assert error.value.flag == "--dask"
+        message = str(error.value)
+        assert error.value.flag == "--dask" and "within 1 s" in message and "\n" not in message
 
 
 class TestCheckWorkers:
