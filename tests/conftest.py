@@ -72,3 +72,16 @@ def pytest_collection_modifyitems(session, config, items):
     to run alone at the end.
     """
     items.sort(key=lambda item: item.get_closest_marker("slow") is None)
+
+
+@pytest.fixture(autouse=True, scope="module")
+def release_scenes_after_the_module():
+    """Each test module leaves no Mitsuba scene loaded for the next one on the same worker: scenes kept alive
+    make every later render in the process slower (:mod:`skinrender.rendering.loaded`)."""
+    yield
+    import sys
+
+    if "skinrender.rendering.renderer" in sys.modules:  # nothing to release where nothing rendered
+        from skinrender.rendering.loaded import release_scenes
+
+        release_scenes()

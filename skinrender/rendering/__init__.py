@@ -12,6 +12,8 @@ Layer 5 (beside design, independent of it): scene files, Mitsuba variants, the r
 -   :mod:`skinrender.rendering.validation`
 -   :mod:`skinrender.rendering.face` (the face: scenes, effects of physics,
     render, labels, limits, validation)
+-   :mod:`skinrender.rendering.loaded` (the scenes kept loaded between renders;
+    ``release_scenes`` for long-lived processes)
 -   :mod:`skinrender.rendering.outputs` (a result's ``.save()`` and
     ``.figure()``), :mod:`skinrender.rendering.dispatch` (one ``render`` for
     charts and faces)
