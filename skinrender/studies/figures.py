@@ -80,18 +80,26 @@ def _save(figure, path, legend: dict | None = None, layout: bool = True):
 
 
 def figure_pairs(volumes: NDArrayFloat, temperatures: NDArrayFloat, title: str, path: str | Path) -> Path:
-    """Figs. 3–5: ``volumes[p, q]`` (output units³) relative to each calibration's largest, one panel per calibration."""
+    """Figs. 3–5: ``volumes[p, q]`` (output units³) relative to each calibration's largest, one panel per calibration
+    (K), five to a row (the paper's ten: 2 × 5)."""
     plt = _pyplot()
     relative = volumes / volumes.max(axis=0, keepdims=True)
-    figure, axes = plt.subplots(2, 5, figsize=(13, 5.2), sharey=True)
-    index = np.arange(1, temperatures.size + 1)
+    count = temperatures.size
+    columns = min(5, count)
+    rows = -(-count // columns)  # the paper's ten: 2 × 5
+    figure, axes = plt.subplots(rows, columns, figsize=(13 * max(columns, 3) / 5, 2.6 * rows), sharey=True,
+                                squeeze=False)
+    index = np.arange(1, count + 1)
     for q, axis in enumerate(axes.ravel()):
+        if q >= count:
+            axis.set_visible(False)
+            continue
         axis.plot(index, relative[:, q], "o-", ms=3)
         axis.plot(index[q], relative[q, q], "D", mfc="none", mec="k", ms=8, label="calibration")
         axis.set_title(f"calibration {temperatures[q]:g} K", fontsize=9)
         axis.set_xticks(index)
         axis.tick_params(labelsize=7)
-    axes[1, 0].set_xlabel("prevailing illuminant (1–10)")
+    axes[-1, 0].set_xlabel(f"prevailing illuminant (1–{count})")
     axes[0, 0].set_ylabel("relative Munsell gamut")
     figure.suptitle(title)
     # Fixed margins for this fixed grid: tight_layout took ~0.6 s per figure, a third of reproduce's Stage 2 thread.
@@ -130,7 +138,7 @@ def figure_cases(cases: dict, path: str | Path) -> Path:
     figure, axes = plt.subplots(1, 3, figsize=(12, 3.6))
     for axis, key, label in zip(axes, ("skin", "munsell", "ratio"), ("skin gamut", "Munsell gamut", "skin / Munsell")):
         axis.plot(index, cases[key], "o-")
-        axis.set(xlabel="calibration illuminant (1–10)", title=label, xticks=index)
+        axis.set(xlabel=f"calibration illuminant (1–{index.size})", title=label, xticks=index)
     figure.suptitle("Fig. 7: one-calibration-case gamuts, white normalisation")
     return _save(figure, path)
 

@@ -119,3 +119,30 @@ class TestFigureLadder:
         three = png_size(figure_ladder([level, {**level, "name": "mixed"}, {**level, "name": "sheen+noise"}],
                                        polygon, analytic, "three", tmp_path / "3.png", names))
         assert three[0] == one[0] and three[1] > 2.2 * one[1]
+
+
+@pytest.mark.parametrize("count, shape", [(10, (2, 5)), (3, (1, 3)), (12, (3, 5))])
+def test_figure_pairs_has_one_panel_per_calibration(count, shape, tmp_path):
+    """Figs. 3–5 for any number of illuminants (``reproduce --illuminants`` takes a list of kelvin): one panel per
+    calibration, five to a row; three once raised an IndexError on the paper's fixed 2 × 5 grid, twelve would have
+    dropped two."""
+    from skinrender.studies import figures
+
+    temperatures = np.linspace(2000.0, 10000.0, count)
+    volumes = np.random.default_rng(0).uniform(1.0, 2.0, (count, count))
+    drawn = {}
+    close = figures._pyplot().close
+
+    def keep(figure):
+        drawn["axes"] = [a for a in figure.axes if a.get_visible()]
+        drawn["grid"] = figure.axes[0].get_subplotspec().get_gridspec().get_geometry()
+        close(figure)
+
+    figures._pyplot().close = keep
+    try:
+        path = figures.figure_pairs(volumes, temperatures, "test", tmp_path / "pairs.png")
+    finally:
+        figures._pyplot().close = close
+    assert png_size(path)[0] > 0
+    assert drawn["grid"] == shape and len(drawn["axes"]) == count
+    assert [a.get_title() for a in drawn["axes"]] == [f"calibration {t:g} K" for t in temperatures]
