@@ -32,9 +32,11 @@ Units: times s.
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 import os
 import signal
+import threading
 from collections.abc import Callable, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 
@@ -225,21 +227,56 @@ def map(function: Callable, tasks: Sequence, *, workers: int = 1, dask=None, sha
     return results
 
 
+INTERRUPT_POLL_S = 0.2
+"""How often, s, :func:`_collect` looks for a Ctrl-C that arrived while it waited (see :func:`_deferred_interrupt`)."""
+
+
+@contextlib.contextmanager
+def _deferred_interrupt():
+    """
+    Ctrl-C (SIGINT) while waiting on futures is noted, not raised, and ``interrupted()`` says whether it came.
+
+    A KeyboardInterrupt raised inside ``concurrent.futures.wait`` can land while it holds some of the futures'
+    locks (it takes them one by one), which are then never released: the pool's manager thread blocks on one of
+    them and stopping the pool waits for ever. The caller raises KeyboardInterrupt itself between waits, where it
+    holds no lock. Outside the main thread (where Python delivers signals) nothing changes.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield lambda: False
+        return
+    came = threading.Event()
+    previous = signal.getsignal(signal.SIGINT)
+    if previous is not signal.default_int_handler:  # a handler of the caller's own, or SIGINT ignored: leave it
+        yield lambda: False
+        return
+    signal.signal(signal.SIGINT, lambda signum, frame: came.set())
+    try:
+        yield came.is_set
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
 def _collect(futures: dict[Future, int], started: Callable[[], None], store: Callable[[int, object], None]) -> None:
-    """Each future's result stored under its task's index as it finishes (after ``started()``)."""
+    """Each future's result stored under its task's index as it finishes (after ``started()``); Ctrl-C raises
+    KeyboardInterrupt between waits, holding no future's lock."""
     started()  # the workers are started and busy
     pending = set(futures)
-    while pending:
-        done, pending = wait(pending, return_when=FIRST_COMPLETED)
-        for future in done:
-            store(futures[future], future.result())
+    with _deferred_interrupt() as interrupted:
+        while pending:
+            done, pending = wait(pending, timeout=INTERRUPT_POLL_S, return_when=FIRST_COMPLETED)
+            if interrupted():
+                raise KeyboardInterrupt
+            for future in done:
+                store(futures[future], future.result())
 
 
 def _map_dask(dask, function: Callable, tasks: Sequence, shared, started, store) -> None:
     client, own = dask_client(dask)
     executor = client.get_executor(pure=False)
     try:
-        arguments = () if shared is None else (client.scatter([shared], broadcast=True)[0],)
+        # hash=False: a key of its own; with the content's hash, two clients scattering the same data (two runs on
+        # one scheduler) shared one key, and the first to release it cancelled the other's tasks (CancelledError)
+        arguments = () if shared is None else (client.scatter([shared], broadcast=True, hash=False)[0],)
         try:
             _collect({executor.submit(function, *arguments, task): index for index, task in enumerate(tasks)},
                      started, store)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import io
 import operator
 import os
+import threading
 from functools import partial
 
 import numpy as np
@@ -159,3 +160,37 @@ class TestCheckWorkers:
         with pytest.raises(SkinrenderError, match="--workers") as error:
             check_workers(bad)
         assert error.value.flag == "--workers"
+
+
+def test_ctrl_c_while_collecting_is_raised_between_waits_holding_no_lock():
+    """A Ctrl-C that arrives while results are collected is raised by ``_collect`` itself, between two waits, with
+    no future's lock held. (Raised wherever it landed, it could fall inside ``concurrent.futures.wait`` while that
+    held some futures' locks: the process pool's manager thread then blocked on one, and stopping the pool waited
+    for ever: a search interrupted in CI hung until its watchdog.) The signal is sent from inside the first
+    result's ``store``: the old handler raised it there."""
+    import os
+    import signal
+    import traceback
+    from concurrent.futures import ThreadPoolExecutor
+
+    from skinrender.execution import _collect
+
+    gate = threading.Event()
+    with ThreadPoolExecutor(2) as pool:
+        futures = {pool.submit(lambda: 1): 0, pool.submit(gate.wait): 1}
+        futures_list = list(futures)
+        futures_list[0].result()
+
+        def store(index, result):
+            os.kill(os.getpid(), signal.SIGINT)
+
+        try:
+            with pytest.raises(KeyboardInterrupt) as raised:
+                _collect(futures, lambda: None, store)
+            assert traceback.extract_tb(raised.tb)[-1].name == "_collect"
+            for future in futures_list:
+                assert future._condition.acquire(blocking=False), "a future's lock was left held"
+                future._condition.release()
+        finally:
+            gate.set()
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
