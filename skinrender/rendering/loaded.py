@@ -11,7 +11,8 @@ machine (``llvm_ad_spectral``; a 32 × 32 px face at 16 spp after six chart rend
 face render took 0.17 s instead of 0.015 s, the first at a new size 0.55 s instead of 0.044 s.
 
 A long-lived process that moves on to other work (a notebook, a test session, a service) calls
-:func:`release_scenes` between tasks; the next render of a released scene loads it again.
+:func:`release_scenes` between tasks; the next render of a released scene loads it again and, with the same seed,
+draws the same samples (its kernel, compiled again, may round a pixel differently in float32's last bit).
 """
 
 from __future__ import annotations

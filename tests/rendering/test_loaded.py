@@ -1,5 +1,7 @@
 """Tests for :mod:`skinrender.rendering.loaded`: the rendering caches' scenes are released, and a released scene
-renders the same image again."""
+renders the same image again: the same samples (the seed), to float32 rounding. A kernel compiled again in another
+state of the process (other scenes' objects alive) may round a pixel differently in its last bit (measured: one
+pixel of 192 of a face, 7.6e-6 at 101.5, in a test worker that had rendered other scenes before)."""
 
 from __future__ import annotations
 
@@ -23,6 +25,6 @@ def test_release_empties_the_caches_and_the_same_seed_renders_the_same_image():
     assert release_scenes() >= 2
     assert renderer._renderer.cache_info().currsize == 0 and face_render._load.cache_info().currsize == 0
     assert release_scenes() == 0
-    np.testing.assert_array_equal(sr.render("macbeth", **kwargs).image, first.image)
-    np.testing.assert_array_equal(sr.render("face", size=8, **kwargs).image, face.image)
+    np.testing.assert_allclose(sr.render("macbeth", **kwargs).image, first.image, rtol=2**-22, atol=0)
+    np.testing.assert_allclose(sr.render("face", size=8, **kwargs).image, face.image, rtol=2**-22, atol=0)
     release_scenes()
