@@ -12,7 +12,8 @@ face render took 0.17 s instead of 0.015 s, the first at a new size 0.55 s inste
 
 A long-lived process that moves on to other work (a notebook, a test session, a service) calls
 :func:`release_scenes` between tasks; the next render of a released scene loads it again and, with the same seed,
-draws the same samples (its kernel, compiled again, may round a pixel differently in float32's last bit).
+draws the same samples (its kernel, compiled again, may round a pixel differently in float32's last bits: within
+:data:`~skinrender.rendering.validation.FLOAT32_FLOOR`).
 """
 
 from __future__ import annotations
