@@ -64,16 +64,6 @@ def small_chart(tmp_path_factory) -> Path:
     return path
 
 
-def pytest_collection_modifyitems(session, config, items):
-    """
-    Run the tests marked ``slow`` first (the order among them and among the rest kept). With pytest-xdist
-    (``scripts/test.sh`` runs ``-n auto --dist loadfile``) a file goes to one worker in the order its first test
-    comes, so the long files start at once and short ones fill in behind them, instead of one long file left
-    to run alone at the end.
-    """
-    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
-
-
 @pytest.fixture(autouse=True)
 def release_scenes_after_each_test():
     """Each test leaves no Mitsuba scene loaded for the next one on the same worker: scenes kept alive make every
@@ -103,7 +93,11 @@ Only the order changes; a file missing here runs in its place."""
 
 
 def pytest_collection_modifyitems(config, items):
-    """Put the files of :data:`LONGEST_FIRST` first, in that order; the rest keep their collection order."""
+    """
+    Put the files of :data:`LONGEST_FIRST` first, in that order, then the tests marked ``slow`` (notebooks, long
+    computations) of any other file; the rest keep their collection order. With pytest-xdist a file goes to one
+    worker in the order its first test comes, so the long files start at once and short ones fill in behind them.
+    """
     rank = {name: index for index, name in enumerate(LONGEST_FIRST)}
     root = Path(str(config.rootpath))
 
@@ -112,6 +106,6 @@ def pytest_collection_modifyitems(config, items):
             name = Path(str(item.path)).resolve().relative_to(root).as_posix()
         except ValueError:
             name = ""
-        return rank.get(name, len(rank))
+        return rank.get(name, len(rank)), item.get_closest_marker("slow") is None
 
     items.sort(key=key)  # stable: the collection order within each rank
