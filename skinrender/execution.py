@@ -241,14 +241,12 @@ def _deferred_interrupt():
     them and stopping the pool waits for ever. The caller raises KeyboardInterrupt itself between waits, where it
     holds no lock. Outside the main thread (where Python delivers signals) nothing changes.
     """
-    if threading.current_thread() is not threading.main_thread():
+    previous = signal.getsignal(signal.SIGINT)
+    # signals reach the main thread only; a handler of the caller's own, or SIGINT ignored, is left as it is
+    if threading.current_thread() is not threading.main_thread() or previous is not signal.default_int_handler:
         yield lambda: False
         return
     came = threading.Event()
-    previous = signal.getsignal(signal.SIGINT)
-    if previous is not signal.default_int_handler:  # a handler of the caller's own, or SIGINT ignored: leave it
-        yield lambda: False
-        return
     signal.signal(signal.SIGINT, lambda signum, frame: came.set())
     try:
         yield came.is_set

@@ -122,8 +122,8 @@ def fingerprint() -> str:
     every ``DRJIT_*``, ``MI_*``, ``CUDA_*`` and ``LD_*`` environment variable. A verdict is only trusted under
     the same fingerprint, so a reinstall, a replaced library or another machine means a new probe.
     """
-    parts = [socket.gethostname(), sys.executable, sys.version, _stat(sys.executable), libllvm_path() or "-",
-             _stat(libllvm_path())]
+    llvm = libllvm_path()
+    parts = [socket.gethostname(), sys.executable, sys.version, _stat(sys.executable), llvm or "-", _stat(llvm)]
     try:
         with open("/proc/sys/kernel/random/boot_id", encoding="ascii") as handle:
             parts.append(handle.read().strip())
