@@ -166,16 +166,20 @@ def render_replicates(camera_, scene, prevailing, calibration, skin, level: Leve
     return Replicated(renders, level, measured, expected, time.perf_counter() - start, grid)
 
 
-def mean_rendering(replicated: Replicated, imager=None, exposure="auto") -> FaceRendering:
+def mean_rendering(replicated: Replicated, imager=None, exposure="auto", radiance=None,
+                   seed: int | None = None) -> FaceRendering:
     """
     The replicates as one render of all their samples: the mean radiance, through the level's ``post`` (one
     frame through a sensor, the first seed's) and Eq. 4's gain; what one render at the replicates' total spp
-    would give.
+    would give. ``radiance`` (specfilm units, ``(..., 3)``) replaces the replicates' mean (e.g. a bootstrap
+    resample's), ``seed`` the sensor frame's seed.
     """
     renders, level, first = replicated.renders, replicated.level, replicated.first
-    radiance = np.mean([r.radiance for r in renders], axis=0)
+    if radiance is None:
+        radiance = np.mean([r.radiance for r in renders], axis=0)
     setup = level.setup(first.scene, first.camera, replicated.grid, level.lights(first.scene),
-                        calibration=first.calibration, seed=first.seed, imager=imager, exposure=exposure)
+                        calibration=first.calibration, seed=first.seed if seed is None else int(seed),
+                        imager=imager, exposure=exposure)
     frame = level.post(Frame(radiance, first.white_prevailing, first.white_calibration,
                              {"lights": first.info.get("lights", {})}), setup)
     applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
