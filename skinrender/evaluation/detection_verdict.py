@@ -22,6 +22,7 @@ removed). So ``rendered = eq4 + change + mc_floor``, each term measured.
 -   :data:`DETECTION_TOLERANCE`, :data:`HALVES_DETECTION`, :data:`DETECTION_KEYS`.
 -   :func:`check_tolerance`: a tolerance in (0, 1), or a one-line error.
 -   :func:`detection_verdict`: the document and the verdict.
+-   :func:`finding`, :func:`findings_text`: a finding in words.
 
 Units: rates fractions.
 """
@@ -36,7 +37,7 @@ from ..errors import SkinrenderError
 from .verdict import ALPHA_EQUIVALENCE, Verdict, equivalence
 
 __all__ = ["DETECTION_TOLERANCE", "HALVES_DETECTION", "DETECTION_KEYS", "check_tolerance", "detection_verdict",
-           "finding"]
+           "finding", "findings_text"]
 
 DETECTION_TOLERANCE = 0.02
 """How far, as a fraction, Eq. 4 may be off in TPR and in FPR unless told (``--detection-tolerance``)."""
@@ -142,6 +143,30 @@ def detection_verdict(rendered: Sequence, separated: Sequence, eq4: Sequence, sa
     ordered = {key: document[key] for key in DETECTION_KEYS}
     ordered.update({key: value for key, value in document.items() if key not in ordered})
     return ordered, verdict
+
+
+def findings_text(levels, tolerance: float = DETECTION_TOLERANCE) -> str:
+    """
+    The findings of several levels in one line: where Eq. 4 mispredicts detection (:func:`finding`), where the
+    samples could not tell, or that it predicts it everywhere; ``levels`` are ``(name, detection document)``.
+
+    >>> findings_text([("direct", {"verdict": "pass"}), ("mixed", {"verdict": "fail", "tpr_change": 0.0,
+    ...                 "fpr_change": 0.41, "tolerance": 0.02})])
+    'Eq. 4 mispredicts detection (by more than 0.02) at: mixed (FPR +0.41); it holds at: direct'
+    """
+    levels = list(levels)
+    wrong = [finding(name, document) for name, document in levels if document.get("verdict") == "fail"]
+    held = [name for name, document in levels if document.get("verdict") == "pass"]
+    open_ = [name for name, document in levels if document.get("verdict") == "inconclusive"]
+    parts = []
+    if wrong:
+        parts.append(f"Eq. 4 mispredicts detection (by more than {tolerance:g}) at: {', '.join(wrong)}")
+    if held:
+        parts.append(("it holds at: " if wrong else f"Eq. 4 predicts detection within {tolerance:g} at: ")
+                     + ", ".join(held))
+    if open_:
+        parts.append("undecided (more samples needed) at: " + ", ".join(open_))
+    return "; ".join(parts) if parts else "no level had pixels to score"
 
 
 def finding(level: str, document: dict) -> str | None:

@@ -4,11 +4,14 @@ The physics ladder
 
 The face rendered at each level of physics
 (:data:`skinrender.rendering.face.PHYSICS`), and what each level does to skin
-detection: the skin pixels' NCC against Eq. 4's — tested against the
-detection budget (:mod:`skinrender.rendering.face.shift`: ``eq4_shift``,
-``budget``, ``within_budget``) — and the true- and false-positive rates of the
-camera's analytic skin locus on the rendered pixels, and how far each level
-moves them from ``direct``'s.
+detection: the true- and false-positive rates of the camera's analytic skin
+locus on the rendered pixels, and whether Eq. 4 predicts them — each level's
+``detection`` verdict (:mod:`skinrender.rendering.face.detection`: the rates
+with the renderer's noise separated against Eq. 4's, within
+``detection_tolerance``), which is the ladder's verdict — and, as diagnostics,
+the skin pixels' NCC against Eq. 4's with the detection budget
+(:mod:`skinrender.rendering.face.shift`: ``eq4_shift``, ``budget``,
+``within_budget``) and how far each level moves the rates from ``direct``'s.
 
 -   :func:`ladder`, :class:`Ladder`: the study; :meth:`Ladder.figure` draws it
     (renders, label masks, detected masks, NCC over the locus with the budget).
@@ -25,7 +28,9 @@ pixels (label 1) whose NCC (r, g) lies in the locus
 (:func:`skinrender.evaluation.locus.skin_locus` of the ``skin`` set, one white
 balancing at the calibration light), ``fpr`` that of the scored prop pixels;
 the background is left out. Each is ``None`` when no pixel of its kind is
-scored, with its reason in the level's ``undefined`` (``{key: reason}``).
+scored, with its reason in the level's ``undefined`` (``{key: reason}``). The
+locus is that of the ``skin_set`` (default ``skin``, the Vrhel skins; each row
+says which in ``skin_set``).
 
 Units: temperatures K, times s, NCC and rates fractions.
 """
@@ -51,7 +56,9 @@ from ...rendering.face.effects import LEVELS_LADDER, parse_physics, physics_leve
 from ...rendering.face.labels import LABEL_SKIN
 from ...rendering.face.limits import REPLICATES
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
-from ...rendering.face.shift import face_budget
+from ...evaluation.detection_verdict import DETECTION_TOLERANCE, check_tolerance, findings_text
+from ...rendering.face.detection import face_detection
+from ...rendering.face.shift import SKIN_SET_DEFAULT, face_budget, skin_set_name
 from ...rendering.face.validation import mean_rendering, render_replicates, shift_against
 from ...rendering.validation import analytic_reference
 from ...spectra import GRID_DEFAULT, WavelengthGrid
@@ -119,15 +126,23 @@ class Ladder(Combined):
     label_names: dict = field(default_factory=dict)
     budget: dict = field(default_factory=dict)
     verdicts: list = field(default_factory=list, repr=False, compare=False)
+    skin_set: str = SKIN_SET_DEFAULT
+    detection_tolerance: float = DETECTION_TOLERANCE
 
     VERDICT_NAME = "ladder"
 
+    @property
+    def finding(self) -> str:
+        """The ladder's finding in words: where Eq. 4 mispredicts detection (:func:`findings_text`)."""
+        return findings_text([(row["name"], row["detection"]) for row in self.levels], self.detection_tolerance)
+
     def document(self) -> dict:
         """The JSON document (``levels``, the budget, the verdict and the settings)."""
-        return {"camera": self.camera, "scene": self.scene, "skin": self.skin,
+        return {"camera": self.camera, "scene": self.scene, "skin": self.skin, "skin_set": self.skin_set,
                 "prevailing_K": self.prevailing, "calibration_K": self.calibration, "size": list(self.size),
                 "skin_ncc_analytic": self.skin_ncc_analytic, "locus_area": self.locus_area, "budget": self.budget,
-                "levels": self.levels, **self.verdict.summary()}
+                "detection_tolerance": self.detection_tolerance, "levels": self.levels, "finding": self.finding,
+                **self.verdict.summary()}
 
     def figure(self, path) -> Path:
         """
@@ -272,6 +287,8 @@ def ladder(
     progress: Callable[[str], None] | None = None,
     replicates: int = REPLICATES_LADDER,
     budget_fraction: float = BUDGET_FRACTION,
+    skin_set=SKIN_SET_DEFAULT,
+    detection_tolerance: float = DETECTION_TOLERANCE,
 ) -> Ladder:
     """
     Render the face at each level of physics, score skin detection there and test Eq. 4's error.
@@ -305,6 +322,12 @@ def ladder(
     budget_fraction
         The share of the margin to the locus's boundary Eq. 4's error may use
         (:data:`~skinrender.evaluation.budget.BUDGET_FRACTION`).
+    skin_set
+        The reflectance set the skin locus is built from (a name such as ``skin`` or ``skin-tones``, a
+        :class:`~skinrender.datasets.SpectralSet` or spectra on ``grid``).
+    detection_tolerance
+        How far Eq. 4 may be off in TPR and in FPR (fractions in (0, 1)): each level's ``detection`` verdict
+        (:func:`~skinrender.rendering.face.detection.face_detection`).
 
     Returns
     -------
@@ -328,8 +351,10 @@ def ladder(
     seconds = sum(physics_level(level).seconds(side[0] * side[1] * each * replicates) for level in levels)
     if progress is not None and seconds > 60:  # subsurface: minutes (the command line refuses beyond --max-minutes)
         progress(f"the {len(levels)} levels should take about {duration_text(seconds)} on one core")
+    detection_tolerance = check_tolerance(detection_tolerance, "detection_tolerance")
     analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
-    budget, locus = face_budget(cam, analytic, c, budget_fraction, grid)
+    budget, locus = face_budget(cam, analytic, c, budget_fraction, grid, skin_set, rho)
+    set_name = skin_set_name(skin_set)
     seeds = [(int(seed) + k) % 2**32 for k in range(replicates)]
     rows, frames, verdicts, shape, mean = [], [], [], None, None
     for level in levels:
@@ -342,9 +367,13 @@ def ladder(
         scores, frame = score_frame(mean, locus)
         shift = shift_against(replicated, budget, locus, mean.image)
         rows.append(_level_row(level, replicated, mean, scores, shift, shift.details["budget_rates"]))
+        detection, verdict = face_detection(replicated, locus, detection_tolerance, seed=seed, imager=imager,
+                                            mean=mean)
+        rows[-1].update({"skin_set": set_name, "detection": detection})
         frames.append(frame)
-        verdicts.append(replace(shift.verdict, name=f"eq4_shift at {rows[-1]['name']}"))
+        verdicts.append(replace(verdict, name=f"detection at {rows[-1]['name']}"))
         shape = (mean.scene.camera.width, mean.scene.camera.height)
     _changes(rows)
     return Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), rows, frames,
-                  np.asarray(locus.polygon), dict(mean.label_names), budget.document(), verdicts)
+                  np.asarray(locus.polygon), dict(mean.label_names), budget.document(), verdicts, set_name,
+                  detection_tolerance)
