@@ -32,8 +32,8 @@ HELP_TOLERANCE = (
     "says how many would)")
 
 EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the verdict of --tolerance; a face: its "
-                   "checks' verdicts combined, eq4_shift held to the detection budget), 2 a refused input, 130 "
-                   "interrupted")
+                   "checks' verdicts combined, detection held to --detection-tolerance; eq4_shift against the "
+                   "detection budget is a diagnostic), 2 a refused input, 130 interrupted")
 
 
 def add_check_arguments(p) -> None:
@@ -46,6 +46,12 @@ def add_check_arguments(p) -> None:
     p.add_argument("--limits", metavar="LIST",
                    help="face scenes: the scene-free limits run beside the level's own: furnace, sphere "
                    "(comma-separated) or none (default: both)")
+    p.add_argument("--detection-tolerance", metavar="RATE",
+                   help="face scenes: how far Eq. 4 may be off in TPR and in FPR, a fraction in (0, 1), for the "
+                   "detection check (default 0.02)")
+    p.add_argument("--skin-set", metavar="SET",
+                   help="face scenes: the reflectance set of the skin locus the detection check classifies with "
+                   "(default skin; skin-tones spans very light to very dark)")
 
 
 def add_verdict_arguments(p) -> None:
@@ -137,8 +143,10 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     tolerance = tolerance_of(args)
     auto = spp_of(args)
     chart_only(args)
-    if args.limits is not None:
-        raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart", flag="--limits")
+    for name in ("limits", "detection_tolerance", "skin_set"):
+        if getattr(args, name, None) is not None:
+            option = "--" + name.replace("_", "-")
+            raise SkinrenderError(f"{option} goes with a face scene (e.g. 'face'), not a chart", flag=option)
     if args.gamut and args.imager is not None:
         raise SkinrenderError("--gamut compares the noise-free render's gamut volumes: it goes without --imager",
                               flag="--gamut")

@@ -19,6 +19,7 @@ import sys
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
                      interruptible, positive_number, table, variant_of)
+from .detection_options import add_detection_tolerance, add_skin_set, skin_set_of, tolerance_of
 from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
 
 __all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
@@ -73,6 +74,8 @@ def add_parsers(commands) -> None:
     p.add_argument("--max-samples", metavar="N", default=f"{SWEEP_SAMPLES_MAX:g}",
                    help=f"refuse sweeps of more samples (renders × pixels × spp) than this (default "
                    f"{SWEEP_SAMPLES_MAX:g})")
+    add_skin_set(p)
+    add_detection_tolerance(p)
     add_common(p)
 
 
@@ -144,8 +147,17 @@ def _checked(args: argparse.Namespace) -> dict:
         "illuminance": lux,
         "workers": None if args.workers is None else integer_in(args.workers, "--workers", 1, WORKERS_MAX),
         "dask": args.dask, "max_renders": integer_in(args.max_renders, "--max-renders", 1, 10**9),
-        "max_samples": max_samples,
+        "max_samples": max_samples, "detection_tolerance": tolerance_of(args),
+        "skin_set": _skin_set(args, cams, pairs),
     }
+
+
+def _skin_set(args: argparse.Namespace, cams, pairs):
+    """``--skin-set`` checked for every camera at every calibration."""
+    skins = None
+    for cam in cams:
+        skins = skin_set_of(args, cam, [c for _, c in pairs])
+    return skins
 
 
 def command_face_sweep(args: argparse.Namespace) -> None:
@@ -179,9 +191,15 @@ def _face_sweep(args: argparse.Namespace) -> None:
         return "—" if value is None else f"{value:.3f}"
 
     rows = [[row["camera"], f"{row['prevailing_K']:g}/{row['calibration_K']:g}", row["skin"], row["level"],
-             f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]), rate(row["tpr"]), rate(row["fpr"])]
+             f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]), rate(row["tpr"]), rate(row["fpr"]),
+             f"{rate(row['detection']['tpr'])} ({rate(row['detection']['tpr_eq4'])})",
+             f"{rate(row['detection']['fpr'])} ({rate(row['detection']['fpr_eq4'])})", row["detection"]["verdict"]]
             for row in document["combinations"]]
-    text = (table(rows, ["camera", "P/C K", "skin", "level", "s", "spp", "skin NCC r g b", "TPR", "FPR"])
+    text = (table(rows, ["camera", "P/C K", "skin", "level", "s", "spp", "skin NCC r g b", "TPR seen", "FPR seen",
+                         "TPR (Eq. 4)", "FPR (Eq. 4)", "detection"])
+            + f"\n(the {document['combinations'][0]['skin_set']} skin locus; seen: as rendered; TPR, FPR: the "
+            "renderer's noise separated, Eq. 4's in brackets; detection: the changes held to "
+            f"±{args.detection_tolerance})"
             + f"\n{len(rows)} render{'s' * (len(rows) != 1)} of {result.size}×{result.size} px at {document['spp']} spp in "
             f"{result.elapsed_s:.1f} s ({'Dask' if result.dask else f'{result.workers} worker' + 's' * (result.workers > 1)}, {result.variant})"
             + (f"; wrote {args.csv}" if args.csv else ""))

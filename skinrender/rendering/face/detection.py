@@ -28,7 +28,8 @@ next to another material (their colour mixes two; Eq. 4 gives one) and pixels
 too dark to score (the brightest channel of the mean below
 :data:`~skinrender.evaluation.detection.SCORED_MIN_OUTPUT`).
 
--   :func:`face_detection`: the rates, the changes and the verdict.
+-   :func:`face_detection`: the rates, the changes and the verdict;
+    :func:`detection_check`, the same as a row of ``validate face``.
 -   :func:`material_chromaticities`: Eq. 4's NCC (r, g) of each label.
 -   :func:`one_material`: the pixels that see one material.
 
@@ -41,7 +42,7 @@ import numpy as np
 
 from ...constants import CONSTANT_OUTPUT_SCALE
 from ...evaluation.detection import SCORED_MIN_OUTPUT
-from ...evaluation.detection_verdict import DETECTION_TOLERANCE, HALVES_DETECTION, detection_verdict
+from ...evaluation.detection_verdict import DETECTION_KEYS, DETECTION_TOLERANCE, HALVES_DETECTION, detection_verdict
 from ...evaluation.locus import SkinLocus
 from ...evaluation.noise_separation import SPREAD_Z, replicate_noise, rg_of, separate_noise
 from ...evaluation.verdict import ALPHA_EQUIVALENCE, Verdict
@@ -49,11 +50,12 @@ from ...hints import NDArrayFloat
 from ...model.response import gain
 from ..validation import analytic_reference
 from .labels import LABEL_SKIN
+from .limits import LimitCheck
 from .render import white_references
 from .scene import skin_reflectance_of
 from .validation import Replicated, mean_rendering
 
-__all__ = ["face_detection", "material_chromaticities", "one_material"]
+__all__ = ["face_detection", "detection_check", "material_chromaticities", "one_material"]
 
 
 def one_material(labels: NDArrayFloat) -> NDArrayFloat:
@@ -168,3 +170,23 @@ def face_detection(replicated: Replicated, locus: SkinLocus, tolerance: float = 
     document["spread"] = {int(group): {"pixels": s.pixels, "physics_kept": list(s.kept), "separated": s.separated}
                           for group, s in spreads.items()}
     return document, verdict
+
+
+def detection_check(replicated: Replicated, locus: SkinLocus, tolerance: float = DETECTION_TOLERANCE,
+                    **options) -> tuple[dict, LimitCheck]:
+    """
+    :func:`face_detection` as a row of ``validate face``'s checks (``detection``): ``statistic`` the larger
+    upper bound of the changes over the tolerance, ``tolerance`` the tolerance, ``bound`` the larger upper
+    bound; and its document. ``options``: :func:`face_detection`'s.
+    """
+    document, verdict = face_detection(replicated, locus, tolerance, **options)
+    pixels = sum(document["pixels"].values())
+    bounds = [document[f"{key}_change_bound"] for key in ("tpr", "fpr") if document[f"{key}_change_bound"] is not None]
+    said = ", ".join(f"{key.upper()} {document[key]:.3f} against Eq. 4's {document[key + '_eq4']:.3f}"
+                     for key in ("tpr", "fpr") if document[key] is not None)
+    row = LimitCheck("detection", True, verdict.passed, verdict.statistic, tolerance, pixels,
+                     f"the skin locus's rates with the renderer's noise separated: {said or 'none scored'}; "
+                     f"{verdict.reason}", {key: document[key] for key in DETECTION_KEYS if key != "verdict"},
+                     outcome=verdict.outcome, alpha=verdict.alpha, test=verdict.test,
+                     bound=max(bounds) if bounds else None)
+    return document, row

@@ -82,7 +82,7 @@ from .limit_scenes import check_furnace, check_sphere, furnace_radiance, sphere_
 from .limits import REPLICATES, SPP_REPLICATE_MIN, LimitCheck
 from .render import FaceRendering, render_face
 from .scene import skin_reflectance_of
-from .shift import budget_rates, eq4_shift, face_budget
+from .shift import budget_rates, eq4_shift, face_budget, skin_set_name
 
 __all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "RENDER_OPTIONS",
            "FaceValidation", "Replicated", "render_replicates", "mean_rendering", "shift_against", "validate_face"]
@@ -236,9 +236,10 @@ class FaceValidation:
 
     @property
     def verdict(self) -> Verdict:
-        """The checks' verdicts combined: ``fail`` if one failed, else ``inconclusive`` if one was, else ``pass``
-        if one passed, else ``not_applicable``."""
-        return combine([c.verdict for c in self.checks], "validate face")
+        """The verdicts of the checks that apply combined (a diagnostic row, ``eq4_shift``, decides nothing):
+        ``fail`` if one failed, else ``inconclusive`` if one was, else ``pass`` if one passed, else
+        ``not_applicable``."""
+        return combine([c.verdict for c in self.checks if c.applies], "validate face")
 
     @property
     def passed(self) -> bool | None:
@@ -300,6 +301,8 @@ def validate_face(
     limits=tuple(LIMITS_SCENE_FREE),
     progress: Callable[[str], None] | None = None,
     budget_fraction: float | None = None,
+    skin_set="skin",
+    detection_tolerance: float | None = None,
     **render_options,
 ) -> FaceValidation:
     """
@@ -324,7 +327,14 @@ def validate_face(
         Called with a line of text before each stage.
     budget_fraction
         The share of the margin to the skin locus's boundary that Eq. 4's error may use
-        (:data:`~skinrender.evaluation.budget.BUDGET_FRACTION` unless given).
+        (:data:`~skinrender.evaluation.budget.BUDGET_FRACTION` unless given); ``eq4_shift`` is a diagnostic
+        (``applies`` false): it does not decide the verdict.
+    skin_set
+        The reflectance set of the skin locus (``skin`` unless given; a name, a set or spectra).
+    detection_tolerance
+        How far Eq. 4 may be off in TPR and in FPR, fractions in (0, 1) (the ``detection`` check,
+        :func:`~skinrender.rendering.face.detection.face_detection`; its document is ``info["detection"]``);
+        :data:`~skinrender.evaluation.detection_verdict.DETECTION_TOLERANCE` unless given.
     **render_options
         The render's own, to each replicate's :func:`skinrender.rendering.face.render_face`: ``skin``,
         ``size`` (image side, pixels; ``None``: the scene's), ``sampler``, ``variant``, ``channels``, ``grid``
@@ -373,9 +383,20 @@ def validate_face(
         if row is not None and row.outcome == "inconclusive":
             checks[0] = replace(row, reason=f"{row.reason}; {measured.note}")
         checks = [replace(c, details={**c.details, **measured.excluded}) for c in checks]
+    from ...evaluation.detection_verdict import DETECTION_TOLERANCE, check_tolerance
+    from .detection import detection_check
+
+    tolerance = check_tolerance(DETECTION_TOLERANCE if detection_tolerance is None else detection_tolerance,
+                                "detection_tolerance")
     fraction = BUDGET_FRACTION if budget_fraction is None else budget_fraction
-    budget, locus = face_budget(first.camera, replicated.expected, first.calibration, fraction)
-    checks.append(shift_against(replicated, budget, locus))
+    rho_skin = skin_reflectance_of(first.skin, replicated.grid, "skin")
+    budget, locus = face_budget(first.camera, replicated.expected, first.calibration, fraction, replicated.grid,
+                                skin_set, rho_skin)
+    detection, check_row = detection_check(replicated, locus, tolerance, seed=seed,
+                                           imager=render_options.get("imager"),
+                                           exposure=render_options.get("exposure", "auto"))
+    checks.append(check_row)
+    checks.append(replace(shift_against(replicated, budget, locus), applies=False))  # a diagnostic
     cam = first.camera
     if "furnace" in limits:
         say(f"white furnace ({FURNACE_SIZE}² px, {replicates} × {FURNACE_SPP} spp) …")
@@ -394,6 +415,8 @@ def validate_face(
         info["spp_note"] = (f"each replicate rendered at {each} spp, the least a replicate takes "
                             f"(SPP_REPLICATE_MIN); {spp} spp over {replicates} would give fewer")
     info["budget"] = budget.document()
+    info["detection"] = detection
+    info["skin_set"] = skin_set_name(skin_set)
     renders = replicated.renders
     return FaceValidation(first, checks, int(sum(r.spp for r in renders)), int(spp), int(replicates), int(seed),
                           time.perf_counter() - start, info)

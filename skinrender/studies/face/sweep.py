@@ -44,7 +44,12 @@ from ...evaluation.locus import skin_locus
 from ...files import write_output
 from ...model.camera import camera
 from ...model.chromaticity import ncc
-from ...rendering.face import planckian_temperature, render_face
+from ...evaluation.detection_verdict import DETECTION_TOLERANCE, check_tolerance
+from ...rendering.face import planckian_temperature
+from ...rendering.face.detection import face_detection
+from ...rendering.face.limits import REPLICATES
+from ...rendering.face.shift import skin_set_name
+from ...rendering.face.validation import mean_rendering, render_replicates
 from ...rendering.face.effects import parse_physics, physics_level
 from ...rendering.face.effects.direct import SAMPLES_PER_S_DIRECT
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
@@ -57,8 +62,12 @@ from ...workload import duration_text
 from .workers import run_renders
 from .ladder import score_rendering
 
-__all__ = ["RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
+__all__ = ["REPLICATES_SWEEP", "RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
            "FaceSweep", "face_sweep", "sweep_tasks", "estimate_seconds"]
+
+REPLICATES_SWEEP = REPLICATES
+"""Replicates each combination is rendered as (independent seeds, ``⌈spp / K⌉`` spp each): their mean is scored,
+their spread separates the renderer's noise from the physics in the detection verdict."""
 
 RENDERS_MAX = 5000
 """Most renders a sweep may ask for unless ``max_renders`` is raised (a guard against a slip of the flags)."""
@@ -81,7 +90,9 @@ SAMPLES_PER_S = SAMPLES_PER_S_DIRECT
 CSV_COLUMNS = ("camera", "prevailing_K", "calibration_K", "skin", "level", "seconds", "spp",
                "skin_ncc_mean_r", "skin_ncc_mean_g", "skin_ncc_mean_b", "skin_ncc_std_r", "skin_ncc_std_g",
                "skin_ncc_std_b", "tpr", "fpr", "skin_pixels", "prop_pixels",
-               "skin_ncc_analytic_r", "skin_ncc_analytic_g", "skin_ncc_analytic_b")
+               "skin_ncc_analytic_r", "skin_ncc_analytic_g", "skin_ncc_analytic_b", "skin_set",
+               "detection_verdict", "detection_tpr", "detection_fpr", "tpr_eq4", "fpr_eq4", "tpr_change",
+               "fpr_change")
 """Columns of :meth:`FaceSweep.to_csv`; an empty cell where a value is ``None``."""
 
 
@@ -97,21 +108,32 @@ class _Settings:
     grid: WavelengthGrid
     imager: str | None
     illuminance: float | None
+    skin_set: object = "skin"
+    tolerance: float = DETECTION_TOLERANCE
 
 
 def _render_task(task: tuple, settings: _Settings) -> dict:
-    """One combination ``(camera, prevailing K, calibration K, skin, level)`` rendered and scored."""
+    """One combination ``(camera, prevailing K, calibration K, skin, level)`` rendered as :data:`REPLICATES_SWEEP`
+    replicates (seeds ``seed, seed + 1, …``, ``⌈spp / K⌉`` each), scored on their mean as the ladder scores a
+    level, with its detection verdict."""
     cam, p, c, skin, level = task
     start = time.perf_counter()
-    result = render_face(cam, settings.scene, p, c, skin, level, settings.spp, settings.seed, settings.size,
-                         variant=settings.variant, grid=settings.grid, imager=settings.imager,
-                         illuminance=settings.illuminance)
-    locus = skin_locus(cam, "skin", calibration=c, grid=settings.grid)
+    k = REPLICATES_SWEEP
+    seeds = [(settings.seed + i) % 2**32 for i in range(k)]
+    replicated = render_replicates(cam, settings.scene, p, c, skin, physics_level(level), -(-settings.spp // k),
+                                   seeds, settings.size, grid=settings.grid, variant=settings.variant,
+                                   imager=settings.imager, illuminance=settings.illuminance)
+    result = mean_rendering(replicated, settings.imager)
+    locus = skin_locus(cam, settings.skin_set, calibration=c, grid=settings.grid)
     rho = skin_reflectance_of(skin, settings.grid, "skin")
     analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=settings.grid))[0]
+    detection, _ = face_detection(replicated, locus, settings.tolerance, seed=settings.seed, imager=settings.imager,
+                                  mean=result)
     row = {"camera": cam.name, "prevailing_K": p, "calibration_K": c, "skin": skin,
-           "level": result.physics, "seconds": 0.0, "spp": result.spp, **score_rendering(result, locus),
-           "skin_ncc_analytic": analytic.tolist(), "variant": result.variant}
+           "level": result.physics, "seconds": 0.0, "spp": result.spp, "replicates": k,
+           "spp_per_replicate": replicated.first.spp, **score_rendering(result, locus),
+           "skin_ncc_analytic": analytic.tolist(), "variant": result.variant,
+           "skin_set": skin_set_name(settings.skin_set), "detection": detection}
     row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
     row["seconds"] = time.perf_counter() - start
     return row
@@ -187,9 +209,12 @@ class FaceSweep:
         for row in self.combinations:
             triples = [v for key in ("skin_ncc_mean", "skin_ncc_std")
                        for v in (row[key] if row[key] is not None else [None] * 3)]
+            found = row["detection"]
             cells = [row["camera"], row["prevailing_K"], row["calibration_K"], row["skin"], row["level"],
                      row["seconds"], row["spp"], *triples, row["tpr"], row["fpr"], row["skin_pixels"],
-                     row["prop_pixels"], *row["skin_ncc_analytic"]]
+                     row["prop_pixels"], *row["skin_ncc_analytic"], row["skin_set"], found["verdict"],
+                     found["tpr"], found["fpr"], found["tpr_eq4"], found["fpr_eq4"], found["tpr_change"],
+                     found["fpr_change"]]
             writer.writerow(["" if v is None else f"{v:.17g}" if isinstance(v, float) else v for v in cells])
         return write_output(path, handle.getvalue(), flag)
 
@@ -203,7 +228,10 @@ def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples
     if spp * pixels > SAMPLES_MAX:
         raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
                               f"most {SAMPLES_MAX // pixels} spp at this size")
-    seconds, on = estimate_seconds(renders, pixels, spp, cores, levels), f"on {cores} core{'s' * (cores > 1)}"
+    each = -(-spp // REPLICATES_SWEEP)  # every combination is rendered as replicates of ⌈spp / K⌉
+    seconds = estimate_seconds(renders * REPLICATES_SWEEP, pixels, each, cores,
+                               None if levels is None else [level for level in levels for _ in range(REPLICATES_SWEEP)])
+    on = f"on {cores} core{'s' * (cores > 1)}"
     about = f"about {duration_text(seconds)} {on}"
     if renders > max_renders:
         raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} ({about}); raise "
@@ -239,6 +267,8 @@ def face_sweep(
     progress=None,
     max_renders: int = RENDERS_MAX,
     max_samples: float = SWEEP_SAMPLES_MAX,
+    skin_set="skin",
+    detection_tolerance: float = DETECTION_TOLERANCE,
 ) -> FaceSweep:
     """
     Render and score the face for every camera × light pair × skin × level.
@@ -271,6 +301,12 @@ def face_sweep(
     max_renders, max_samples
         Refuse a sweep of more renders, or more samples (renders × pixels × spp), than these; the message
         carries an estimate of the time.
+    skin_set
+        The reflectance set of every combination's skin locus (``skin``: the Vrhel skins; a name, a set or
+        spectra); each row says which (``skin_set``).
+    detection_tolerance
+        How far Eq. 4 may be off in TPR and FPR, fractions in (0, 1): each row's ``detection`` verdict
+        (:func:`~skinrender.rendering.face.detection.face_detection`).
 
     Returns
     -------
@@ -295,7 +331,8 @@ def face_sweep(
     _check_size(len(tasks), int(size), int(spp), max_renders, max_samples,
                 min(workers, os.cpu_count() or 1) if dask is None else os.cpu_count() or 1, [t[-1] for t in tasks])
     face = load_face_scene(scene)
-    settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance)
+    settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance,
+                         skin_set, check_tolerance(detection_tolerance, "detection_tolerance"))
     start = time.perf_counter()
     rows = run_renders(partial(_render_task, settings=settings), tasks, settings.variant, int(workers), dask,
                        progress, "face sweep")
