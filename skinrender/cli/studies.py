@@ -209,12 +209,12 @@ def command_table1(args: argparse.Namespace) -> None:
         raise SystemExit(result["exit_status"])
 
 
-FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
+FACE_BENCH_FLAGS = ("levels", "spp_list", "reference_spp")
 """``bench`` flags that go with ``render --scene``."""
 
 BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
                "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render", "calibration"),
-               "scene": ("render", "calibration", "validate"),
+               "scene": ("render", "calibration", "validate"), "size": ("render", "calibration"),
                "max_minutes": ("analytic", "search", "sweep", "calibration", "validate", "render")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
 :data:`FACE_BENCH_FLAGS`, the verdict benchmarks' :data:`skinrender.cli.calibration.VERDICT_BENCH_FLAGS`."""
@@ -263,7 +263,7 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     The face bench's options from ``bench render --scene …`` (checked, one-line errors naming the flag), or
     ``None`` for the chart bench; the face flags without ``--scene`` are refused.
     """
-    given = [name for name in FACE_BENCH_FLAGS if getattr(args, name, None) is not None]
+    given = [name for name in (*FACE_BENCH_FLAGS, "size") if getattr(args, name, None) is not None]
     if args.scene is not None and args.what != "render":
         raise SkinrenderError(f"--scene goes with 'bench render', 'bench calibration' or 'bench validate', not "
                               f"'bench {args.what}'", flag="--scene")
