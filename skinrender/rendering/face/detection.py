@@ -28,6 +28,7 @@ next to another material (their colour mixes two; Eq. 4 gives one) and pixels
 too dark to score (the brightest channel of the mean below
 :data:`~skinrender.evaluation.detection.SCORED_MIN_OUTPUT`).
 
+-   :func:`detection_rates`, :class:`DetectionRates`: the rates and their half-samples;
 -   :func:`face_detection`: the rates, the changes and the verdict;
     :func:`detection_check`, the same as a row of ``validate face``.
 -   :func:`material_chromaticities`: Eq. 4's NCC (r, g) of each label.
@@ -38,9 +39,12 @@ Units: NCC fractions; rates fractions; radiance in the specfilm's units.
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
+
 import numpy as np
 
 from ...constants import CONSTANT_OUTPUT_SCALE
+from ...errors import SkinrenderError
 from ...evaluation.detection import SCORED_MIN_OUTPUT
 from ...evaluation.detection_verdict import DETECTION_KEYS, DETECTION_TOLERANCE, HALVES_DETECTION, detection_verdict
 from ...evaluation.locus import SkinLocus
@@ -55,7 +59,7 @@ from .render import white_references
 from .scene import skin_reflectance_of
 from .validation import Replicated, mean_rendering
 
-__all__ = ["face_detection", "detection_check", "material_chromaticities", "one_material"]
+__all__ = ["DetectionRates", "detection_rates", "face_detection", "detection_check", "material_chromaticities", "one_material"]
 
 
 def one_material(labels: NDArrayFloat) -> NDArrayFloat:
@@ -99,6 +103,63 @@ def _frame(replicated: Replicated, radiance: NDArrayFloat, seed: int, imager, ex
     return np.asarray(frame.image, dtype=np.float64)[:, 0, :]
 
 
+@dataclass(frozen=True)
+class DetectionRates:
+    """
+    The rates of one render's replicates, each ``(tpr, fpr)`` (``None`` where no pixel of the kind is scored):
+    ``rendered`` (as rendered), ``separated`` (the renderer's noise removed), ``eq4`` (Eq. 4's), ``samples``
+    (``separated`` on each half-sample of the replicates, in the order the seed draws them: two renders of
+    the same level and seed draw the same halves), ``variance_factor`` (the half-samples' variance times this is
+    the squared standard error), ``pixels`` (``{"skin", "prop"}`` scored) and the materials' ``spreads``.
+    """
+
+    rendered: tuple
+    separated: tuple
+    eq4: tuple
+    samples: list
+    variance_factor: float
+    pixels: dict
+    spreads: dict = field(default_factory=dict, repr=False)
+
+
+def detection_rates(replicated: Replicated, locus: SkinLocus, halves: int = HALVES_DETECTION, seed: int = 0,
+                    imager=None, exposure="auto", mean=None, z: float = SPREAD_Z) -> DetectionRates:
+    """The rates :func:`face_detection` tests (arguments as there)."""
+    first, level = replicated.first, replicated.level
+    mean = mean_rendering(replicated, imager, exposure) if mean is None else mean
+    image = np.asarray(mean.image, dtype=np.float64)
+    labels = first.labels
+    tested = one_material(labels) & (image.max(axis=-1) >= SCORED_MIN_OUTPUT)
+    materials = labels[tested]
+    skin = materials == LABEL_SKIN
+    balance = gain(*white_references(first.scene, first.camera, first.calibration, replicated.grid),
+                   scale=CONSTANT_OUTPUT_SCALE)
+    radiance = np.array([r.radiance[tested] for r in replicated.renders], dtype=np.float64)  # (K, n, 3)
+    expected = material_chromaticities(first, replicated.grid)[materials]
+    post = any(effect.post is not None for effect in level.effects)
+
+    def separated_rates(sample: NDArrayFloat, chromaticity: NDArrayFloat):
+        bias, covariance = replicate_noise(sample * balance)
+        separated, spreads = separate_noise(chromaticity, covariance, materials, z, bias=bias)
+        return _rates(locus.contains(separated), skin), spreads
+
+    rendered_rg = rg_of(image[tested])
+    point, spreads = separated_rates(radiance, rendered_rg)
+    k = radiance.shape[0]
+    if k < 2:
+        raise SkinrenderError(f"replicates: the renderer's noise is measured from two or more, got {k}")
+    kept = k - k // 2  # each half-sample keeps this many replicates: the delete-(k // 2) jackknife
+    rng = np.random.default_rng([int(seed) % 2**32, 0xD37EC7])
+    samples = []
+    for _ in range(int(halves)):
+        sample = radiance[np.sort(rng.permutation(k)[:kept])]
+        chromaticity = (rg_of(_frame(replicated, sample.mean(axis=0), int(rng.integers(0, 2**32)), imager, exposure))
+                        if post else rg_of(sample.mean(axis=0) * balance))  # through a sensor: a frame of its own
+        samples.append(separated_rates(sample, chromaticity)[0])
+    return DetectionRates(_rates(locus.contains(rendered_rg), skin), point, _rates(locus.contains(expected), skin),
+                          samples, (k - kept) / kept, {"skin": int(skin.sum()), "prop": int((~skin).sum())}, spreads)
+
+
 def face_detection(replicated: Replicated, locus: SkinLocus, tolerance: float = DETECTION_TOLERANCE,
                    halves: int = HALVES_DETECTION, seed: int = 0, imager=None, exposure="auto",
                    mean=None, alpha: float = ALPHA_EQUIVALENCE, z: float = SPREAD_Z) -> tuple[dict, Verdict]:
@@ -133,42 +194,11 @@ def face_detection(replicated: Replicated, locus: SkinLocus, tolerance: float = 
         The ``detection`` document (:func:`~skinrender.evaluation.detection_verdict.detection_verdict`) and
         its verdict.
     """
-    first, level = replicated.first, replicated.level
-    mean = mean_rendering(replicated, imager, exposure) if mean is None else mean
-    image = np.asarray(mean.image, dtype=np.float64)
-    labels = first.labels
-    tested = one_material(labels) & (image.max(axis=-1) >= SCORED_MIN_OUTPUT)
-    materials = labels[tested]
-    skin = materials == LABEL_SKIN
-    balance = gain(*white_references(first.scene, first.camera, first.calibration, replicated.grid),
-                   scale=CONSTANT_OUTPUT_SCALE)
-    radiance = np.array([r.radiance[tested] for r in replicated.renders], dtype=np.float64)  # (K, n, 3)
-    expected = material_chromaticities(first, replicated.grid)[materials]
-    post = any(effect.post is not None for effect in level.effects)
-
-    def separated_rates(sample: NDArrayFloat, chromaticity: NDArrayFloat):
-        bias, covariance = replicate_noise(sample * balance)
-        separated, spreads = separate_noise(chromaticity, covariance, materials, z, bias=bias)
-        return _rates(locus.contains(separated), skin), spreads
-
-    rendered_rg = rg_of(image[tested])
-    point, spreads = separated_rates(radiance, rendered_rg)
-    k = radiance.shape[0]
-    kept = k - k // 2  # each half-sample keeps this many replicates: the delete-(k // 2) jackknife
-    rng = np.random.default_rng([int(seed) % 2**32, 0xD37EC7])
-    samples = []
-    for _ in range(int(halves)):
-        sample = radiance[np.sort(rng.permutation(k)[:kept])]
-        chromaticity = (rg_of(_frame(replicated, sample.mean(axis=0), int(rng.integers(0, 2**32)), imager, exposure))
-                        if post else rg_of(sample.mean(axis=0) * balance))  # through a sensor: a frame of its own
-        samples.append(separated_rates(sample, chromaticity)[0])
-    rendered = _rates(locus.contains(rendered_rg), skin)
-    eq4 = _rates(locus.contains(expected), skin)
-    document, verdict = detection_verdict(rendered, point, eq4, samples, tolerance, alpha=alpha,
-                                          pixels={"skin": int(skin.sum()), "prop": int((~skin).sum())},
-                                          variance_factor=(k - kept) / kept)
+    rates = detection_rates(replicated, locus, halves, seed, imager, exposure, mean, z)
+    document, verdict = detection_verdict(rates.rendered, rates.separated, rates.eq4, rates.samples, tolerance,
+                                          alpha=alpha, pixels=rates.pixels, variance_factor=rates.variance_factor)
     document["spread"] = {int(group): {"pixels": s.pixels, "physics_kept": list(s.kept), "separated": s.separated}
-                          for group, s in spreads.items()}
+                          for group, s in rates.spreads.items()}
     return document, verdict
 
 
