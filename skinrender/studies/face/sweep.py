@@ -209,12 +209,12 @@ class FaceSweep:
         for row in self.combinations:
             triples = [v for key in ("skin_ncc_mean", "skin_ncc_std")
                        for v in (row[key] if row[key] is not None else [None] * 3)]
-            found = row["detection"]
+            found = row.get("detection") or {}
             cells = [row["camera"], row["prevailing_K"], row["calibration_K"], row["skin"], row["level"],
                      row["seconds"], row["spp"], *triples, row["tpr"], row["fpr"], row["skin_pixels"],
-                     row["prop_pixels"], *row["skin_ncc_analytic"], row["skin_set"], found["verdict"],
-                     found["tpr"], found["fpr"], found["tpr_eq4"], found["fpr_eq4"], found["tpr_change"],
-                     found["fpr_change"]]
+                     row["prop_pixels"], *row["skin_ncc_analytic"], row.get("skin_set"),
+                     *(found.get(key) for key in ("verdict", "tpr", "fpr", "tpr_eq4", "fpr_eq4", "tpr_change",
+                                                   "fpr_change"))]
             writer.writerow(["" if v is None else f"{v:.17g}" if isinstance(v, float) else v for v in cells])
         return write_output(path, handle.getvalue(), flag)
 
