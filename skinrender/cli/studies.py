@@ -83,10 +83,12 @@ def add_parsers(commands) -> None:
     p = commands.add_parser("bench", run=command_bench,
                             help="speed and accuracy figures; calibration: the validation's false-alarm "
                             "rates over seeds; validate: seconds, bound and false alarms per spp")
-    p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate"],
-                   help="which benchmark")
+    p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate", "rank"],
+                   help="which benchmark (rank: skinrender rank on 20 candidates, 4 light pairs, 3 skins and the "
+                   "five fast levels at 64 px, 16 spp, against 10 minutes on 2 cores)")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant); search: "
-                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep")
+                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep; rank: 4 "
+                   "candidates, 1 light pair, 1 skin, 2 levels")
     p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG; calibration: the "
                    "observed false-alarm rates with their 95 %% intervals against the nominal α")
     p.add_argument("--repeat", type=int, help="analytic: timed repetitions, best kept (default 3)")
@@ -212,8 +214,8 @@ def command_table1(args: argparse.Namespace) -> None:
 FACE_BENCH_FLAGS = ("levels", "spp_list", "reference_spp")
 """``bench`` flags that go with ``render --scene``."""
 
-BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
-               "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render", "calibration"),
+BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",),
+               "workers": ("search", "sweep", "rank"), "positions": ("sweep",), "quick": ("render", "search", "rank"), "plot": ("render", "calibration"),
                "scene": ("render", "calibration", "validate"), "size": ("render", "calibration"),
                "max_minutes": ("analytic", "search", "sweep", "calibration", "validate", "render")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
@@ -331,6 +333,29 @@ def check_face_bench_work(args: argparse.Namespace, levels: list[str], pixels: i
                fewer="lower --spp-list, --reference-spp or --size")
 
 
+def _bench_rank(args: argparse.Namespace) -> None:
+    """``bench rank [--quick] [--workers N]``: the ranking's speed on the issue's configuration."""
+    from ..execution import check_workers
+    from ..studies.benchmarks.bench_rank import bench_rank
+
+    refuse_foreign_flags(args)
+    if args.scene is not None:
+        raise SkinrenderError("--scene goes with 'bench render', 'bench calibration' or 'bench validate', not "
+                              "'bench rank'", flag="--scene")
+    if args.workers is not None:
+        check_workers(args.workers)
+    result = bench_rank(args.quick, args.workers, None if args.json else sys.stderr)
+    load = result["load_average"]
+    text = (f"rank: {result['candidates']} candidates × {result['lights']} light pairs × {result['skins']} skins × "
+            f"{len(result['levels'])} levels at {result['size']} px, {result['spp']} spp: {result['seconds']:.0f} s "
+            f"(search {result['search_s']:.0f} s, renders and ranking {result['rank_s']:.0f} s) on "
+            f"{result['machine']['cpu_count']} cores, load average {load['before'][0]:.1f} → {load['after'][0]:.1f}; "
+            f"target {result['target_s']:.0f} s on 2 cores: "
+            + {True: "within", False: "BEYOND", None: "not judged here (another machine or --quick)"}[
+                result["within_target"]])
+    emit(args, result, text)
+
+
 BENCH_ANALYTIC_SECONDS = 4.0
 """One ``bench analytic`` repetition (both routes), s: the estimates' rate, from ``--repeat 1`` against ``4``
 (docs/speed.md, "The rates behind the estimates")."""
@@ -358,6 +383,9 @@ def _camera_spec(spec: str) -> str:
 
 def command_bench(args: argparse.Namespace) -> None:
     from ..studies.benchmarks.bench import bench_analytic, bench_search, bench_sweep
+
+    if args.what == "rank":
+        return _bench_rank(args)
 
     if args.what in ("calibration", "validate"):
         from .calibration import command_bench_verdicts
