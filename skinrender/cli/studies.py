@@ -333,29 +333,6 @@ def check_face_bench_work(args: argparse.Namespace, levels: list[str], pixels: i
                fewer="lower --spp-list, --reference-spp or --size")
 
 
-def _bench_rank(args: argparse.Namespace) -> None:
-    """``bench rank [--quick] [--workers N]``: the ranking's speed on the issue's configuration."""
-    from ..execution import check_workers
-    from ..studies.benchmarks.bench_rank import bench_rank
-
-    refuse_foreign_flags(args)
-    if args.scene is not None:
-        raise SkinrenderError("--scene goes with 'bench render', 'bench calibration' or 'bench validate', not "
-                              "'bench rank'", flag="--scene")
-    if args.workers is not None:
-        check_workers(args.workers)
-    result = bench_rank(args.quick, args.workers, None if args.json else sys.stderr)
-    load = result["load_average"]
-    text = (f"rank: {result['candidates']} candidates × {result['lights']} light pairs × {result['skins']} skins × "
-            f"{len(result['levels'])} levels at {result['size']} px, {result['spp']} spp: {result['seconds']:.0f} s "
-            f"(search {result['search_s']:.0f} s, renders and ranking {result['rank_s']:.0f} s) on "
-            f"{result['machine']['cpu_count']} cores, load average {load['before'][0]:.1f} → {load['after'][0]:.1f}; "
-            f"target {result['target_s']:.0f} s on 2 cores: "
-            + {True: "within", False: "BEYOND", None: "not judged here (another machine or --quick)"}[
-                result["within_target"]])
-    emit(args, result, text)
-
-
 BENCH_ANALYTIC_SECONDS = 4.0
 """One ``bench analytic`` repetition (both routes), s: the estimates' rate, from ``--repeat 1`` against ``4``
 (docs/speed.md, "The rates behind the estimates")."""
@@ -385,7 +362,10 @@ def command_bench(args: argparse.Namespace) -> None:
     from ..studies.benchmarks.bench import bench_analytic, bench_search, bench_sweep
 
     if args.what == "rank":
-        return _bench_rank(args)
+        from .ranking import command_bench_rank
+
+        refuse_foreign_flags(args)
+        return command_bench_rank(args)
 
     if args.what in ("calibration", "validate"):
         from .calibration import command_bench_verdicts

@@ -55,9 +55,8 @@ from ...model.response import gain
 from ..validation import analytic_reference
 from .labels import LABEL_SKIN
 from .limits import LimitCheck
-from .render import white_references
+from .render import balanced_frame, white_references
 from .scene import skin_reflectance_of
-from .validation import Replicated, mean_rendering
 
 __all__ = ["DetectionRates", "detection_rates", "face_detection", "detection_check", "material_chromaticities", "one_material"]
 
@@ -97,10 +96,11 @@ def _rates(inside: NDArrayFloat, skin: NDArrayFloat) -> tuple[float | None, floa
     return (float(inside[skin].mean()) if skin.any() else None, float(inside[props].mean()) if props.any() else None)
 
 
-def _frame(replicated: Replicated, radiance: NDArrayFloat, seed: int, imager, exposure) -> NDArrayFloat:
+def _frame(replicated, radiance: NDArrayFloat, seed: int, imager, exposure) -> NDArrayFloat:
     """One frame (balanced, output units) of the pixels' ``radiance`` ``(n, 3)`` through the level's sensor."""
-    frame = mean_rendering(replicated, imager, exposure, radiance=radiance[:, None, :], seed=seed)
-    return np.asarray(frame.image, dtype=np.float64)[:, 0, :]
+    image, _, _ = balanced_frame(replicated.first, replicated.level, radiance[:, None, :], replicated.grid, seed,
+                                 imager, exposure)
+    return image[:, 0, :]
 
 
 @dataclass(frozen=True)
@@ -122,12 +122,16 @@ class DetectionRates:
     spreads: dict = field(default_factory=dict, repr=False)
 
 
-def detection_rates(replicated: Replicated, locus: SkinLocus, halves: int = HALVES_DETECTION, seed: int = 0,
+def detection_rates(replicated, locus: SkinLocus, halves: int = HALVES_DETECTION, seed: int = 0,
                     imager=None, exposure="auto", mean=None, z: float = SPREAD_Z) -> DetectionRates:
     """The rates :func:`face_detection` tests (arguments as there)."""
     first, level = replicated.first, replicated.level
-    mean = mean_rendering(replicated, imager, exposure) if mean is None else mean
-    image = np.asarray(mean.image, dtype=np.float64)
+    if mean is None:
+        radiance_mean = np.mean([r.radiance for r in replicated.renders], axis=0)
+        image = balanced_frame(first, level, radiance_mean, replicated.grid, first.seed, imager, exposure)[0]
+        image = image.astype(np.float32).astype(np.float64)  # as mean_rendering gives it
+    else:
+        image = np.asarray(mean.image, dtype=np.float64)
     labels = first.labels
     tested = one_material(labels) & (image.max(axis=-1) >= SCORED_MIN_OUTPUT)
     materials = labels[tested]
@@ -160,7 +164,7 @@ def detection_rates(replicated: Replicated, locus: SkinLocus, halves: int = HALV
                           samples, (k - kept) / kept, {"skin": int(skin.sum()), "prop": int((~skin).sum())}, spreads)
 
 
-def face_detection(replicated: Replicated, locus: SkinLocus, tolerance: float = DETECTION_TOLERANCE,
+def face_detection(replicated, locus: SkinLocus, tolerance: float = DETECTION_TOLERANCE,
                    halves: int = HALVES_DETECTION, seed: int = 0, imager=None, exposure="auto",
                    mean=None, alpha: float = ALPHA_EQUIVALENCE, z: float = SPREAD_Z) -> tuple[dict, Verdict]:
     """
@@ -202,7 +206,7 @@ def face_detection(replicated: Replicated, locus: SkinLocus, tolerance: float = 
     return document, verdict
 
 
-def detection_check(replicated: Replicated, locus: SkinLocus, tolerance: float = DETECTION_TOLERANCE,
+def detection_check(replicated, locus: SkinLocus, tolerance: float = DETECTION_TOLERANCE,
                     **options) -> tuple[dict, LimitCheck]:
     """
     :func:`face_detection` as a row of ``validate face``'s checks (``detection``): ``statistic`` the larger

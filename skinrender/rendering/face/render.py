@@ -11,6 +11,7 @@ with a label image from the geometry.
     ``.figure()``).
 -   :func:`white_references`: the channel responses to a white under the
     prevailing and the calibration light.
+-   :func:`balanced_frame`: a radiance as one frame of a level (its sensor's, if it has one), balanced.
 -   :func:`write_face_exr`: the float32 EXR, with a ``label`` channel.
 -   :func:`planckian_temperature`: a Planckian light spec in K.
 
@@ -64,7 +65,7 @@ from .effects import Frame, Level, physics_level
 from .labels import label_names, render_labels, shape_labels
 from .scene import MESH_HEAD, FaceScene, load_face_scene, prevailing_name, skin_reflectance_of
 
-__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "face_exr",
+__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "balanced_frame", "face_exr",
            "write_face_exr"]
 
 LOADED_KEPT = 6
@@ -341,6 +342,21 @@ def render_face(
     return FaceRendering(face, cam, level.name, skin, float(p), float(c), image.astype(np.float32), radiance,
                          labels, label_names(face), spp_used, int(spp), int(seed), sampler, variant,
                          time.perf_counter() - start, len(groups), white_p, white_c, applied, frame.info)
+
+
+def balanced_frame(first: FaceRendering, level: Level, radiance: NDArrayFloat, grid: WavelengthGrid, seed: int,
+                   imager=None, exposure="auto") -> tuple[NDArrayFloat, Frame, NDArrayFloat]:
+    """
+    A ``radiance`` (specfilm units, ``(..., 3)``) of ``first``'s scene, camera and lights as one frame of
+    ``level``: through its ``post`` (a sensor's frame, seeded by ``seed``) and Eq. 4's gain. Returns the image
+    (output units, float64), the frame and the gain.
+    """
+    setup = level.setup(first.scene, first.camera, grid, level.lights(first.scene), calibration=first.calibration,
+                        seed=int(seed), imager=imager, exposure=exposure)
+    frame = level.post(Frame(radiance, first.white_prevailing, first.white_calibration,
+                             {"lights": first.info.get("lights", {})}), setup)
+    applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
+    return applied * frame.signal, frame, applied
 
 
 def face_exr(rendering: FaceRendering) -> tuple[NDArrayFloat, tuple[str, ...], dict]:

@@ -80,7 +80,7 @@ from ..validation import analytic_reference
 from .effects import Frame, Level, Measured, Replicates, physics_level
 from .limit_scenes import check_furnace, check_sphere, furnace_radiance, sphere_channels
 from .limits import REPLICATES, SPP_REPLICATE_MIN, LimitCheck
-from .render import FaceRendering, render_face
+from .render import FaceRendering, balanced_frame, render_face
 from .scene import skin_reflectance_of
 from .shift import budget_rates, eq4_shift, face_budget, skin_set_name
 
@@ -166,24 +166,17 @@ def render_replicates(camera_, scene, prevailing, calibration, skin, level: Leve
     return Replicated(renders, level, measured, expected, time.perf_counter() - start, grid)
 
 
-def mean_rendering(replicated: Replicated, imager=None, exposure="auto", radiance=None,
-                   seed: int | None = None) -> FaceRendering:
+def mean_rendering(replicated: Replicated, imager=None, exposure="auto") -> FaceRendering:
     """
     The replicates as one render of all their samples: the mean radiance, through the level's ``post`` (one
     frame through a sensor, the first seed's) and Eq. 4's gain; what one render at the replicates' total spp
-    would give. ``radiance`` (specfilm units, ``(..., 3)``) replaces the replicates' mean (e.g. a bootstrap
-    resample's), ``seed`` the sensor frame's seed.
+    would give.
     """
-    renders, level, first = replicated.renders, replicated.level, replicated.first
-    if radiance is None:
-        radiance = np.mean([r.radiance for r in renders], axis=0)
-    setup = level.setup(first.scene, first.camera, replicated.grid, level.lights(first.scene),
-                        calibration=first.calibration, seed=first.seed if seed is None else int(seed),
-                        imager=imager, exposure=exposure)
-    frame = level.post(Frame(radiance, first.white_prevailing, first.white_calibration,
-                             {"lights": first.info.get("lights", {})}), setup)
-    applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
-    return replace(first, image=(applied * frame.signal).astype(np.float32), radiance=radiance, gain=applied,
+    renders, first = replicated.renders, replicated.first
+    radiance = np.mean([r.radiance for r in renders], axis=0)
+    image, frame, applied = balanced_frame(first, replicated.level, radiance, replicated.grid, first.seed, imager,
+                                           exposure)
+    return replace(first, image=image.astype(np.float32), radiance=radiance, gain=applied,
                    spp=int(sum(r.spp for r in renders)), spp_requested=int(sum(r.spp_requested for r in renders)),
                    seconds=replicated.seconds, info=frame.info)
 

@@ -19,7 +19,7 @@ import os
 import time
 
 from ..face.effects_table import SKIN_TONES
-from ..face.rank import LEVELS_RANK, rank, search_candidates
+from ..face.ranking import LEVELS_RANK, rank, search_candidates
 from .bench import machine
 
 __all__ = ["TARGET_S", "bench_rank"]

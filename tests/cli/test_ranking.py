@@ -1,4 +1,4 @@
-"""Tests for :mod:`skinrender.cli.rank`: every flag refused by name before the search or a render; one small run."""
+"""Tests for :mod:`skinrender.cli.ranking`: every flag refused by name before the search or a render; one small run."""
 
 from __future__ import annotations
 

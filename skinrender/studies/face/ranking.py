@@ -253,8 +253,8 @@ class Ranking:
                 "levels": self.levels}
 
     def figure(self, path):
-        """Rank against rank per level (:func:`skinrender.studies.face.rank_figure.figure_rank`) to a PNG."""
-        from .rank_figure import figure_rank
+        """Rank against rank per level (:func:`skinrender.studies.face.ranking_figure.figure_rank`) to a PNG."""
+        from .ranking_figure import figure_rank
 
         return figure_rank(self.levels, f"Would Eq. 4 still choose the same camera? {len(self.cameras)} candidates, "
                            f"{len(self.lights)} light pairs × {len(self.skins)} skins, {self.size} px, {self.spp} spp, "

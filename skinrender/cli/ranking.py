@@ -4,7 +4,7 @@ The top ``--top`` triplets of the Stage 3 search (``--sensor``,
 ``--positions``, ``--slope`` as ``search``) and any ``--camera`` are scored
 on rendered faces (``--skin`` × ``--lights`` at each of ``--levels``) and by
 Eq. 4 with one score, Youden's J = TPR − FPR, and ranked both ways
-(:mod:`skinrender.studies.face.rank`).
+(:mod:`skinrender.studies.face.ranking`).
 
 Units: temperatures K, image sides pixels, rates and scores fractions, times s.
 """
@@ -20,7 +20,7 @@ from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, add_max_minutes
                      integer_in, table, variant_of)
 from .detection_options import add_skin_set, skin_set_of
 
-__all__ = ["add_parsers", "command_rank", "TOP_DEFAULT", "POSITIONS_DEFAULT"]
+__all__ = ["add_parsers", "command_rank", "command_bench_rank", "TOP_DEFAULT", "POSITIONS_DEFAULT"]
 
 TOP_DEFAULT = 10
 """``--top`` unless given: the search's best ten triplets."""
@@ -40,7 +40,7 @@ SECONDS_DETECTION_RATES = 0.15
 def add_parsers(commands) -> None:
     """Add the parser of rank."""
     from ..studies.face.effects_table import SKIN_TONES
-    from ..studies.face.rank import LEVELS_RANK
+    from ..studies.face.ranking import LEVELS_RANK
     from .face import HELP_SKIN, level_names
     from .face_sweep import LIGHTS_DEFAULT
 
@@ -168,7 +168,7 @@ def _answer(level: dict) -> str:
 
 def command_rank(args: argparse.Namespace) -> None:
     """The search (``--top`` > 0), the renders and the ranking; every flag checked before the first."""
-    from ..studies.face.rank import rank, search_candidates
+    from ..studies.face.ranking import rank, search_candidates
 
     options = _checked(args)
     progress = None if args.quiet else sys.stderr
@@ -204,3 +204,25 @@ def command_rank(args: argparse.Namespace) -> None:
         document["plot"] = str(options["plot"])
         lines.append(f"figure: {options['plot']}")
     emit(args, document, "\n".join(lines))
+
+
+def command_bench_rank(args: argparse.Namespace) -> None:
+    """``bench rank [--quick] [--workers N]``: the ranking's speed on the issue's configuration."""
+    from ..execution import check_workers
+    from ..studies.benchmarks.bench_rank import bench_rank
+
+    if args.scene is not None:
+        raise SkinrenderError("--scene goes with 'bench render', 'bench calibration' or 'bench validate', not "
+                              "'bench rank'", flag="--scene")
+    if args.workers is not None:
+        check_workers(args.workers)
+    result = bench_rank(args.quick, args.workers, None if args.json else sys.stderr)
+    load = result["load_average"]
+    text = (f"rank: {result['candidates']} candidates × {result['lights']} light pairs × {result['skins']} skins × "
+            f"{len(result['levels'])} levels at {result['size']} px, {result['spp']} spp: {result['seconds']:.0f} s "
+            f"(search {result['search_s']:.0f} s, renders and ranking {result['rank_s']:.0f} s) on "
+            f"{result['machine']['cpu_count']} cores, load average {load['before'][0]:.1f} → {load['after'][0]:.1f}; "
+            f"target {result['target_s']:.0f} s on 2 cores: "
+            + {True: "within", False: "BEYOND", None: "not judged here (another machine or --quick)"}[
+                result["within_target"]])
+    emit(args, result, text)

@@ -2,7 +2,7 @@
 The ranking's figure
 ====================
 
-:func:`figure_rank` draws :mod:`skinrender.studies.face.rank` (``skinrender rank --plot``): per level each
+:func:`figure_rank` draws :mod:`skinrender.studies.face.ranking` (``skinrender rank --plot``): per level each
 candidate's rank by Eq. 4 against its rank on the rendered faces, the diagonal where they agree, Kendall's τ with
 its 95 % interval and whether Eq. 4's best camera stays best in the title. It draws with
 :mod:`skinrender.studies.figures`' helpers (one figure style, one place that imports matplotlib).
@@ -21,7 +21,7 @@ __all__ = ["figure_rank"]
 
 def figure_rank(levels: list[dict], title: str, path: str | Path) -> Path:
     """
-    Rank against rank per level. ``levels``: :class:`~skinrender.studies.face.rank.Ranking`'s (``level``,
+    Rank against rank per level. ``levels``: :class:`~skinrender.studies.face.ranking.Ranking`'s (``level``,
     ``candidates`` with ``rank_eq4`` and ``rank_rendered``, ``kendall_tau``, ``kendall_tau_interval``,
     ``same_best``).
     """

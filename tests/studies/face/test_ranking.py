@@ -1,5 +1,5 @@
 """
-Tests for :mod:`skinrender.studies.face.rank`: at ``direct`` Eq. 4 and the rendered faces rank the cameras alike
+Tests for :mod:`skinrender.studies.face.ranking`: at ``direct`` Eq. 4 and the rendered faces rank the cameras alike
 (the renderer's noise separated, the scores are Eq. 4's); the search's candidates; the summaries on scores whose
 answer is known. Renders at 48 px, 12 replicates of 2 spp, one scene: the smallest at which every camera's props
 keep enough pixels to be scored.
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.studies.face.rank import _level_summary, rank, search_candidates, triplet_camera
+from skinrender.studies.face.ranking import _level_summary, rank, search_candidates, triplet_camera
 
 CAMERAS = ["gbell:9@450,540,610", "gbell:9@560,570,590", "Nikon 5100 (NPL)"]
 
