@@ -47,6 +47,7 @@ from ...model.chromaticity import ncc
 from ...rendering.face import planckian_temperature, render_face
 from ...rendering.face.effects import parse_physics, physics_level
 from ...rendering.face.effects.direct import SAMPLES_PER_S_DIRECT
+from ...rendering.face.effects.direct import SECONDS_PER_RENDER as SECONDS_PER_RENDER_DIRECT
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
 from ...rendering.renderer import SAMPLES_MAX
 from ...rendering.scene import PIXELS_MAX
@@ -67,11 +68,9 @@ SWEEP_SAMPLES_MAX = 10**11
 """Most samples (renders × pixels × spp) a sweep may ask for unless ``max_samples`` is raised (about 15 h on 2
 cores at :data:`SAMPLES_PER_S`)."""
 
-SECONDS_PER_RENDER = 0.15
-"""Fixed cost of one face render on one core (scene, cached kernels, labels, scoring), s: the estimates' base;
-fitted with :data:`SAMPLES_PER_S` to two measured sweeps of 54 renders (direct, sheen, all effects) with one
-worker at 64 px, 32 spp and 128 px, 64 spp (the measurements and their commands: docs/speed.md, "The rates
-behind the estimates")."""
+SECONDS_PER_RENDER = SECONDS_PER_RENDER_DIRECT
+"""Fixed cost of one face render on one core, s: the estimates' base
+(:data:`skinrender.rendering.face.effects.direct.SECONDS_PER_RENDER`)."""
 
 SAMPLES_PER_S = SAMPLES_PER_S_DIRECT
 """Samples per second of the face on one core (one drjit thread), the estimates' rate (see

@@ -21,11 +21,17 @@ from __future__ import annotations
 from ..limits import check_shading
 from .base import Effect, Limits, Replicates, Setup, spectrum, twosided
 
-__all__ = ["DIRECT", "SAMPLES_PER_S_DIRECT"]
+__all__ = ["EFFECT", "DIRECT", "SAMPLES_PER_S_DIRECT", "SECONDS_PER_RENDER"]
+
+SECONDS_PER_RENDER = 0.15
+"""Fixed cost of one face render on one core (scene, cached kernels, labels, scoring), s: the estimates' base;
+fitted with :data:`SAMPLES_PER_S_DIRECT` to two measured sweeps of 54 renders (direct, sheen, all effects) with one
+worker at 64 px, 32 spp and 128 px, 64 spp (the measurements and their commands: docs/speed.md, "The rates
+behind the estimates")."""
 
 SAMPLES_PER_S_DIRECT = 9e5
 """Samples per second of the face on one core (one drjit thread), the estimates' rate for every level that costs
-no more: fitted with :data:`skinrender.studies.face.sweep.SECONDS_PER_RENDER` to two measured sweeps (the
+no more: fitted with :data:`SECONDS_PER_RENDER` to two measured sweeps (the
 measurements and their commands: docs/speed.md, "The rates behind the estimates")."""
 
 
@@ -68,5 +74,9 @@ DIRECT = Effect(
     integrator=_integrator, skin=_lambertian, prop=_lambertian, lights=_lights,
     limits=Limits(check=_check, why="the shading check is the test at this level"),
     samples_per_s=SAMPLES_PER_S_DIRECT,
+    order=0,
 )
 """The base of every level."""
+
+EFFECT = DIRECT
+"""This module's effect (the registry takes it: :mod:`.levels`)."""

@@ -1,0 +1,127 @@
+"""
+A chart's effects of physics
+============================
+
+The chart's registry of effects (:class:`~skinrender.rendering.physics.Registry`,
+the same classes as the face's): ``direct`` (the Lambertian patches under the
+directional light, the analytic model's world), ``subsurface`` (the skin
+patches as the skin model's layers under a sky,
+:mod:`~skinrender.rendering.subsurface_chart`) and the image sensor, ``noise``
+(added by an ``imager``, not named in ``--physics``: a chart records through a
+sensor with ``--imager``). Each supplies its ``chart`` part, how a chart
+renders at a level whose last such part it is, and says what does not go with
+it (``refuse`` before any work; ``refuses``: the validation's options).
+
+-   :data:`CHART_REGISTRY`, :data:`CHART_EFFECTS`: the registry and its table.
+-   :data:`CHART_DIRECT`, :data:`CHART_SUBSURFACE`, :data:`CHART_NOISE`: the effects.
+
+Units: temperatures K, illuminance lx, exposure s, times s.
+"""
+
+from __future__ import annotations
+
+from ..errors import SkinrenderError
+from .face.effects.direct import SAMPLES_PER_S_DIRECT
+from .physics import Effect, Registry
+from .sensor import NoiseOptions
+from .subsurface_chart import SAMPLER_SUBSURFACE, SAMPLES_PER_S_SLAB
+
+__all__ = ["CHART_DIRECT", "CHART_SUBSURFACE", "CHART_NOISE", "CHART_EFFECTS", "CHART_REGISTRY"]
+
+
+class _Lambertian:
+    """The raw renders of the Lambertian chart (:class:`~skinrender.rendering.renderer.ChartRenderer`)."""
+
+    def __init__(self, request):
+        from .renderer import chart_renderer
+
+        self.renderer = chart_renderer(request.scene, request.camera, request.settings, request.grid,
+                                       request.emitter)
+        self.info: dict = {}
+
+    def raw(self, temperature: float, seed: int, skins: bool = True):
+        return self.renderer.raw(temperature, seed)
+
+
+class _Slabs:
+    """The raw renders of a chart whose skin patches are slabs (:func:`~skinrender.rendering.subsurface_chart.subsurface_renderer`)."""
+
+    def __init__(self, request):
+        from .subsurface_chart import subsurface_renderer
+
+        self.renderer = subsurface_renderer(request.scene, request.camera, request.settings, request.grid)
+        chart = self.renderer.chart
+        self.info = {"physics": request.level.name, "reflectances": chart.reflectances, "skin_model": chart.rows()}
+
+    def raw(self, temperature: float, seed: int, skins: bool = True):
+        return self.renderer.raw(temperature, seed, skins)
+
+
+def _direct(request, cache):
+    from .balance import render_balanced
+
+    return render_balanced(request, _Lambertian(request), cache), None
+
+
+def _subsurface(request, cache):
+    from .balance import render_balanced
+
+    return render_balanced(request, _Slabs(request), cache), None
+
+
+def _imaged(request, cache):
+    from .imaging import render_imaged_request
+
+    imaged = render_imaged_request(request)
+    return imaged.rendering, imaged
+
+
+def _skin_patches(request) -> None:
+    """Refuse a chart without a skin patch at ``subsurface`` (nothing would be a slab), and a sensor on it."""
+    scene = request.scene
+    if not any(patch.skin for patch in scene.patches):
+        raise SkinrenderError(f"physics subsurface renders a chart's skin patches (skin = true) as the skin model's "
+                              f"layers; {scene.name} has none", role="physics")
+    if "noise" in request.options:
+        raise SkinrenderError("imager: a chart at physics subsurface is rendered without an image sensor; drop it (or "
+                              "use physics direct)", role="imager")
+
+
+def _slab_seconds(request) -> float:
+    from .subsurface_chart import estimate_seconds
+
+    return estimate_seconds(request.scene, request.settings.spp)
+
+
+CHART_DIRECT = Effect(
+    "direct",
+    "Lambertian patches under the directional light along the view axis (the analytic model's world)",
+    chart=_direct, samples_per_s=SAMPLES_PER_S_DIRECT, order=0,
+)
+"""The base: the chart the analytic model describes."""
+
+CHART_SUBSURFACE = Effect(
+    "subsurface",
+    "the skin patches as the skin model's two layers under a dielectric boundary, lit by a uniform sky, against "
+    "their slab's adding-doubling reflectance",
+    chart=_subsurface, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches, samples_per_s=SAMPLES_PER_S_SLAB,
+    estimate=_slab_seconds, order=30,
+    refuses={"gamut": "the gamut volumes are compared on the Lambertian chart",
+             "spp_auto": "it picks spp from the Lambertian chart's pilot renders; give spp N"},
+)
+"""The skin patches as slabs (:mod:`~skinrender.rendering.subsurface_chart`)."""
+
+CHART_NOISE = Effect(
+    "noise",
+    "through an image sensor (skinrender.model.noise.simulate_dn): shot, dark, read and quantisation noise, full "
+    "well and ADC clipping",
+    short="sensor noise", chart=_imaged, options=NoiseOptions, added_by=("imager",), named=False, order=50,
+    refuses={"gamut": "the gamut volumes are compared on the noise-free render"},
+)
+"""The chart recorded by an image sensor (:func:`~skinrender.rendering.imaging.render_imaged`)."""
+
+CHART_EFFECTS: dict[str, Effect] = {effect.name: effect for effect in (CHART_DIRECT, CHART_SUBSURFACE, CHART_NOISE)}
+"""A chart's effects, name → effect, in the order a level applies them, the base first."""
+
+CHART_REGISTRY = Registry(CHART_EFFECTS, "physics (of a chart)")
+"""A chart's registry of effects: its physics specs (``direct``, ``subsurface``) and levels."""
