@@ -2,7 +2,7 @@
 A chart's effects of physics
 ============================
 
-The chart's registry of effects (:class:`~skinrender.rendering.physics.Registry`,
+The chart's registry of effects (:class:`~skinrender.rendering.registry.Registry`,
 the same classes as the face's): ``direct`` (the Lambertian patches under the
 directional light, the analytic model's world), ``subsurface`` (the skin
 patches as the skin model's layers under a sky,
@@ -22,7 +22,8 @@ from __future__ import annotations
 
 from ..errors import SkinrenderError
 from .face.effects.direct import SAMPLES_PER_S_DIRECT
-from .physics import Effect, Registry
+from .physics import Effect
+from .registry import Registry
 from .sensor import NoiseOptions
 from .subsurface_chart import SAMPLER_SUBSURFACE, SAMPLES_PER_S_SLAB
 
@@ -87,10 +88,14 @@ def _skin_patches(request) -> None:
                               "use physics direct)", role="imager")
 
 
-def _slab_seconds(request) -> float:
+def _slab_seconds(request, cores: int) -> tuple[float, str]:
+    """A subsurface chart's render on ``cores`` cores: its skin patches' paths (the Lambertian ones are free)."""
     from .subsurface_chart import estimate_seconds
 
-    return estimate_seconds(request.scene, request.settings.spp)
+    scene, spp = request.scene, request.settings.spp
+    what = (f"the {sum(p.skin for p in scene.patches)} skin patches of {scene.name} as media at {spp} spp "
+            f"({SAMPLES_PER_S_SLAB:g} samples/s per core, {cores} core{'s' * (cores > 1)})")
+    return estimate_seconds(scene, spp) / cores, what
 
 
 CHART_DIRECT = Effect(

@@ -8,7 +8,7 @@ A chart and a face are two kinds of scene, each an object of one protocol,
 (``request``), renders it (``render``), validates it against the analytic
 model (``validate``), estimates its time (``estimate_seconds``) and draws its
 labelled figure (``figure``); its ``registry`` is its effects of physics
-(:class:`~skinrender.rendering.physics.Registry`). :data:`SCENE_KINDS` is the
+(:class:`~skinrender.rendering.registry.Registry`). :data:`SCENE_KINDS` is the
 one table of kinds and :func:`scene_kind` the one place a scene (or a spec) is
 told to be a chart or a face: nothing else tests a scene's type or a kind's
 name.
@@ -38,7 +38,7 @@ class SceneKind(Protocol):
     name
         ``chart`` or ``face`` (the figures' and the pytest plugin's word for it).
     registry
-        Its effects of physics (:class:`~skinrender.rendering.physics.Registry`).
+        Its effects of physics (:class:`~skinrender.rendering.registry.Registry`).
     render_options, validate_options
         The keywords ``skinrender.render`` and ``skinrender.validate`` take for it (beside scene, camera and the
         two lights), in the order a refusal lists them.
@@ -76,17 +76,27 @@ class SceneKind(Protocol):
     def estimate_seconds(self, request, renders: int = 1, cores: int = 1) -> float:
         """Seconds ``renders`` renders of a request should take on ``cores`` cores."""
 
+    def workload(self, request, renders: int = 1, cores: int = 1) -> tuple[float, str]:
+        """``(seconds, what)``: :meth:`estimate_seconds` and what is estimated, in words (for a refusal)."""
+
     def figure(self, result, path, **options) -> Path:
         """Its render drawn with its labels into a PNG at ``path``."""
 
 
-def _seconds(request, renders: int, cores: int) -> float:
-    """``renders`` renders of ``request`` on ``cores`` cores, s: its level's own estimate where an effect gives one,
-    else a render's fixed cost and its pixels × spp at the level's rate."""
+def _workload(request, renders: int, cores: int) -> tuple[float, str]:
+    """
+    ``renders`` renders of ``request`` on ``cores`` cores: ``(seconds, what)`` (what they are, in words, for a
+    refusal): its level's own estimate where an effect gives one (:attr:`~skinrender.rendering.physics.Effect.estimate`),
+    else a render's fixed cost and its pixels × spp at the level's rate.
+    """
+    cores = max(1, int(cores))
     estimate = request.level.estimate
-    each = estimate(request) if estimate is not None else (
-        SECONDS_PER_RENDER + request.pixels * request.settings.spp / request.level.samples_per_s)
-    return renders * each / max(1, cores)
+    if estimate is not None:
+        seconds, what = estimate(request, cores)
+        return renders * seconds, what
+    spp, pixels = request.settings.spp, request.pixels
+    seconds = renders * (SECONDS_PER_RENDER + pixels * spp / request.level.samples_per_s) / cores
+    return seconds, f"{f'{renders} renders' if renders > 1 else 'a render'} of {pixels} pixels at {spp} spp"
 
 
 class ChartKind:
@@ -162,7 +172,10 @@ class ChartKind:
         return validate(scene, camera, prevailing, calibration, **options)
 
     def estimate_seconds(self, request, renders: int = 1, cores: int = 1) -> float:  # noqa: D102
-        return _seconds(request, renders, cores)
+        return _workload(request, renders, cores)[0]
+
+    def workload(self, request, renders: int = 1, cores: int = 1) -> tuple[float, str]:  # noqa: D102
+        return _workload(request, renders, cores)
 
     def figure(self, result, path, **options) -> Path:  # noqa: D102
         from .outputs import draw_figure
@@ -224,7 +237,10 @@ class FaceKind:
         return validate_face(camera, scene, prevailing, calibration, **options)
 
     def estimate_seconds(self, request, renders: int = 1, cores: int = 1) -> float:  # noqa: D102
-        return _seconds(request, renders, cores)
+        return _workload(request, renders, cores)[0]
+
+    def workload(self, request, renders: int = 1, cores: int = 1) -> tuple[float, str]:  # noqa: D102
+        return _workload(request, renders, cores)
 
     def figure(self, result, path, **options) -> Path:  # noqa: D102
         from .outputs import draw_figure

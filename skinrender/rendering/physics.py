@@ -5,8 +5,8 @@ Effects of physics and levels
 What every scene kind's physics is made of: an :class:`Effect` (one effect of
 physics: what it changes in a render, its analytic limits, its options), a
 :class:`Level` (the base and the effects added to it, applied in their
-registry's order) and a :class:`Registry` (a scene kind's table of effects and
-the one parser of a physics spec into a level). The face's registry is
+registry's order) and a registry (:class:`~skinrender.rendering.registry.Registry`: a scene
+kind's table of effects and the one parser of a physics spec into a level). The face's registry is
 :data:`skinrender.rendering.face.effects.PHYSICS_REGISTRY` (its effects one
 module each, :mod:`skinrender.rendering.face.effects`, where the parts an
 effect supplies are described); a chart's is
@@ -18,21 +18,20 @@ never the spec.
 
 -   :class:`Effect`, :class:`Limits`: an effect and its analytic limits.
 -   :class:`Level`: a composition of effects.
--   :class:`Registry`: a scene kind's effects; ``names``, ``level``,
-    ``with_options`` (an effect's options from keywords, and the effects they
-    add), ``register``.
+
+A scene kind's table of effects and its parser are a
+:class:`~skinrender.rendering.registry.Registry`.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 from ..errors import SkinrenderError
-from ..methods import validate_method
 from .variants import choose_variant
 
-__all__ = ["Effect", "Limits", "Level", "Registry"]
+__all__ = ["Effect", "Limits", "Level"]
 
 
 @dataclass(frozen=True)
@@ -109,8 +108,9 @@ class Effect:
     scene, refuse, chart
         See :mod:`skinrender.rendering.face.effects.base`.
     estimate
-        ``(request) → seconds`` of one render on one core where pixels × spp / :attr:`samples_per_s` does not
-        give them (a subsurface chart: its skin patches only), or ``None``.
+        ``(request, cores) → (seconds, what)``: one render on ``cores`` cores and what it is in words, where
+        pixels × spp / :attr:`samples_per_s` does not give it (a subsurface chart: its skin patches only), or
+        ``None``.
     refuses
         What a validation at a level with it does not take, option → why (a subsurface chart's ``gamut`` and
         ``spp_auto``).
@@ -139,6 +139,9 @@ class Effect:
     estimate: Callable | None = None
     refuses: Mapping[str, str] = field(default_factory=dict, compare=False, hash=False)
 
+    def __repr__(self) -> str:
+        return f"Effect({self.name!r})"
+
     @property
     def changes_document(self) -> bool:
         """Whether it changes the Mitsuba document (else it acts after rendering only)."""
@@ -166,6 +169,9 @@ class Level:
     """
 
     effects: tuple[Effect, ...]
+
+    def __repr__(self) -> str:
+        return f"Level({self.name!r})"
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -244,15 +250,14 @@ class Level:
         """How a chart renders at this level (its last effect's ``chart`` part), or ``None``."""
         return self._last("chart")
 
-    def refused(self, option: str) -> tuple[str, str] | None:
-        """``(effect name, why)`` of the first of its effects that refuses a validation's ``option``
+    def refused(self, option: str) -> tuple[Effect, str] | None:
+        """``(effect, why)`` of the first of its effects that refuses a validation's ``option``
         (:attr:`Effect.refuses`), or ``None``."""
-        return next(((effect.name, effect.refuses[option]) for effect in self.effects if option in effect.refuses),
-                    None)
+        return next(((effect, effect.refuses[option]) for effect in self.effects if option in effect.refuses), None)
 
     @property
     def estimate(self):
-        """``(request) → seconds`` of one render on one core where an effect says (its last such), else ``None``."""
+        """``(request, cores) → (seconds, what)`` of one render where an effect says (its last such), else ``None``."""
         return self._last("estimate")
 
     def refuse(self, request) -> None:
@@ -332,110 +337,3 @@ class Level:
         broken = [effect for effect in self.effects if not effect.limits.holds]
         deciding = broken[:1] or [effect for effect in self.effects if effect.limits.check is not None][-1:]
         return deciding[0].limits.why if deciding else "no analytic limit at this level"
-
-
-
-
-class Registry:
-    """
-    A scene kind's effects of physics, name → :class:`Effect`, in the order a level applies them, the base
-    first; the one parser of a physics spec into a :class:`Level`.
-
-    Parameters
-    ----------
-    effects
-        The table, read live (an effect added to it is a level at once).
-    what
-        How a refusal names a spec: ``physics ({spec!r})`` (the face's), ``physics (of a chart)``.
-    """
-
-    def __init__(self, effects: dict[str, Effect], what: str = "physics ({spec!r})"):
-        self.effects, self.what = effects, what
-
-    def __repr__(self) -> str:
-        return f"Registry({', '.join(self.effects)})"
-
-    @property
-    def base(self) -> Effect:
-        """The effect every level starts from (the table's first)."""
-        return next(iter(self.effects.values()))
-
-    @property
-    def named(self) -> dict[str, Effect]:
-        """The effects a user may name in a spec (:attr:`Effect.named`), in order."""
-        return {name: effect for name, effect in self.effects.items() if effect.named}
-
-    def register(self, effect: Effect) -> Effect:
-        """Add ``effect`` in the place of its :attr:`Effect.order` (after the base); a name taken is refused."""
-        if not isinstance(effect, Effect) or effect.name in self.effects:
-            raise SkinrenderError(f"register: an effect of a new name, got {getattr(effect, 'name', effect)!r}")
-        items = sorted([*self.effects.values(), effect], key=lambda e: (e is not self.base, e.order))
-        self.effects.clear()
-        self.effects.update({e.name: e for e in items})
-        return effect
-
-    def names(self, spec: str) -> tuple[str, ...]:
-        """The effects of a spec, in the registry's order (``()`` for the base); a bad spec refused, its role
-        ``physics``."""
-        text = str(spec).strip()
-        parts = [part.strip() for part in text.split("+")]
-        base = self.base.name
-        for part in parts:
-            validate_method(part, self.named, self.what.format(spec=text), role="physics")
-        if base in parts and len(parts) > 1:
-            raise SkinrenderError(f"physics: {base!r} is the base and combines with nothing, got {text!r}",
-                                  role="physics")
-        twice = sorted({part for part in parts if parts.count(part) > 1})
-        if twice:
-            raise SkinrenderError(f"physics: {', '.join(twice)} named twice in {text!r}; name each effect once",
-                                  role="physics")
-        return tuple(name for name in self.effects if name in parts and name != base)
-
-    def level(self, spec: str | Sequence[str] | Level) -> Level:
-        """A :class:`Level` from a spec, a sequence of effect names (``()``: the base) or a level of this registry
-        (returned as it is)."""
-        if isinstance(spec, Level):
-            alien = [effect.name for effect in spec.effects if self.effects.get(effect.name) is not effect]
-            if alien:
-                raise SkinrenderError(f"physics: {', '.join(alien)} {'is' if len(alien) == 1 else 'are'} not of "
-                                      f"this scene's effects ({', '.join(self.named)})", role="physics")
-            return spec
-        if not isinstance(spec, str):
-            spec = "+".join(spec) or self.base.name
-        return self._level(self.names(spec))
-
-    def _level(self, names) -> Level:
-        return Level((self.base, *(self.effects[name] for name in self.effects if name in names
-                                   and name != self.base.name)))
-
-    def with_options(self, level: Level, given: Mapping[str, object]) -> tuple[Level, dict[str, object]]:
-        """
-        The level and its effects' options from flat keywords ``given`` (``imager=…``, ``exposure=…``): each
-        keyword goes to the effect of this registry whose :attr:`Effect.options` has it (made and checked
-        there); an effect the level lacks is added where the keyword is in its :attr:`Effect.added_by`
-        (an imager adds ``noise``: the one place that rule is written), and any other keyword of it is refused,
-        naming it. ``given``'s ``None`` values count as not given. Returns ``(level, {effect name: options})``.
-        """
-        given = {key: value for key, value in given.items() if value is not None}
-        owners = {option: effect for effect in self.effects.values() for option in effect.option_names()}
-        unknown = sorted(set(given) - set(owners))
-        if unknown:
-            raise SkinrenderError(f"{', '.join(unknown)}: not an effect's option; the options: "
-                                  f"{', '.join(owners) or 'none'}", role=unknown[0])
-        names = set(level.names)
-        options = {}
-        for effect in self.effects.values():
-            mine = {key: value for key, value in given.items() if owners[key] is effect}
-            if not mine:
-                continue
-            options[effect.name] = effect.options(**mine)  # each value checked, its role its name
-            if effect.name not in names and effect is not self.base:
-                adding = [key for key in mine if key in effect.added_by]
-                if not adding:
-                    key = sorted(mine)[0]
-                    ways = " or ".join([*effect.added_by, *([f"physics {effect.name!r}"] if effect.named else [])])
-                    raise SkinrenderError(f"{key} is an option of the {effect.short or effect.name} ({effect.name}): "
-                                          f"it goes with {ways}", role=key)
-                names.add(effect.name)
-        level = self._level(names)
-        return level, level.default_options(options)

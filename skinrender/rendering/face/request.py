@@ -55,7 +55,7 @@ class FaceRequest(Request):
 
         if not isinstance(self.scene, FaceScene):
             raise SkinrenderError(f"scene must be a face scene (a FaceScene), got {self.scene!r}", role="scene")
-        skin_reflectance_of(self.skin, self.grid, "skin")
+        named("skin", skin_reflectance_of, self.skin, self.grid, "skin")
         self.level.lights(self.scene)  # a level's lights the scene lacks (mixed without a fill) refused
         spp, pixels = self.settings.spp, self.pixels
         if spp * pixels > SAMPLES_MAX:

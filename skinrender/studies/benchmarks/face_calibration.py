@@ -90,7 +90,7 @@ def face_run(scene, camera_, prevailing, calibration, spp, seed, imaging=None, m
     imaging = imaging or {}
     result = validate_face(camera_, scene, prevailing, calibration, physics=level or PHYSICS_BASE, spp=spp,
                            seed=seed, size=size, variant=variant, imager=imaging.get("imager_"),
-                           exposure=imaging.get("exposure", "auto"), illuminance=imaging.get("illuminance_lux"),
+                           exposure=imaging.get("exposure"), illuminance=imaging.get("illuminance_lux"),
                            limits=limits)
     shift = next(c for c in result.checks if c.name == "eq4_shift")
     return {"checks": {c.name: c.verdict for c in result.checks}, "bound": shift.bound, "seconds": result.seconds,

@@ -37,7 +37,8 @@ import pkgutil
 import sys
 from collections.abc import Iterator, Mapping, Sequence
 
-from ...physics import Effect, Level, Registry
+from ...physics import Effect, Level
+from ...registry import Registry
 from ..scene import FaceScene, Light
 
 __all__ = ["Registry", "PHYSICS_REGISTRY", "PHYSICS_EFFECTS", "PHYSICS_BASE", "PHYSICS", "EFFECTS", "LEVELS_EACH",
