@@ -20,7 +20,7 @@ from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common,
                      check_output, check_seed, choices_help, emit, flag, flagged, integer_in, interruptible,
                      positive_number, settings_of, table, variant_of)
 
-__all__ = ["add_parsers", "add_face_arguments", "check_figure", "check_face_flags", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
+__all__ = ["add_parsers", "add_face_arguments", "check_figure", "check_face_flags", "face_request_of", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
 
 SIZE_MAX = 2000
@@ -144,7 +144,7 @@ def check_face_flags(args: argparse.Namespace) -> tuple:
     ``--normalization`` (``white`` only: a face is balanced with WP), ``--grid`` (the default: a face renders on
     400:700:1 nm), ``--physics`` (not empty) and ``--size`` (an integer in [1, :data:`SIZE_MAX`]). Returns
     ``(camera, {prevailing, calibration} K, size px or None)``; the rest is the request's
-    (:func:`~skinrender.cli.inputs.face_request_of`).
+    (:func:`face_request_of`).
     """
     cam = camera_of(args)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
@@ -160,6 +160,25 @@ def check_face_flags(args: argparse.Namespace) -> tuple:
     size = getattr(args, "size", None)
     size = None if size is None else integer_in(size, "--size", 1, SIZE_MAX)
     return cam, temperatures, size
+
+
+def face_request_of(args: argparse.Namespace, scene, settings, **changes):
+    """
+    A face command's :class:`~skinrender.rendering.face.request.FaceRequest` from the flags of ``render``,
+    ``validate``, ``detect`` (absent ones take their defaults), as every front door builds it
+    (:meth:`~skinrender.rendering.kinds.FaceKind.request`), each refusal naming its flag; ``changes``: keywords
+    replaced (``spp``: a validation's per replicate). What only the command line has is checked first: the
+    camera sees each light (:func:`check_face_flags`), ``--normalization`` is ``white``,
+    ``--grid`` the default, ``--physics`` names a level, ``--size`` an integer.
+    """
+    from ..rendering.kinds import FACE
+    from .inputs import REQUEST_FLAGS, sensor_flags, settings_fields
+
+    cam, temperatures, size = check_face_flags(args)
+    keywords = {"skin": getattr(args, "skin", None), "physics": getattr(args, "physics", None) or "direct",
+                "size": size, **sensor_flags(args), **settings_fields(args, settings), **changes}
+    return flagged(REQUEST_FLAGS, FACE.request, scene, cam, temperatures["prevailing"], temperatures["calibration"],
+                   **keywords)
 
 
 def face_pixels(scene, size: int | None) -> int:
@@ -315,7 +334,7 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
     from ..rendering.face.render import face_exr
 
     from ..rendering.kinds import FACE
-    from .inputs import check_request_work, face_request_of
+    from .inputs import check_request_work
 
     settings = settings_of(args)
     output = check_output(getattr(args, "output", "render.exr"), "--output", (".exr",))
@@ -367,7 +386,7 @@ def command_detect_face(args: argparse.Namespace, scene) -> None:
     from ..studies.face.ladder import score_frame
 
     from ..rendering.kinds import FACE
-    from .inputs import check_request_work, face_request_of
+    from .inputs import check_request_work
 
     settings = settings_of(args)
     output = check_output(args.output, "--output", (".png",))

@@ -84,8 +84,8 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
     from ..rendering.kinds import FACE
     from .common import emit, flag, integer_in, settings_of, table
-    from .face import SIZE_MAX, face_pixels
-    from .inputs import check_request_work, face_request_of
+    from .face import SIZE_MAX, face_pixels, face_request_of
+    from .inputs import check_request_work
 
     settings = settings_of(args)
     if getattr(args, "knee", False):

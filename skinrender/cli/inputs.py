@@ -16,7 +16,7 @@ everything below the command line takes those objects (never the strings):
     before anything renders;
 -   :func:`chart_only`: the face's flags refused on a chart (``--physics``
     but a chart's levels, :data:`~skinrender.rendering.chart_effects.CHART_REGISTRY`);
--   :func:`chart_request_of`, :func:`face_request_of`: the request of a render
+-   :func:`chart_request_of` (a face's: :func:`~skinrender.cli.face.face_request_of`): the request of a render
     command (:mod:`skinrender.rendering.request`), built by its scene kind's
     ``request`` as every front door builds it, each refusal naming its flag
     (:data:`REQUEST_FLAGS`); :func:`check_request_work`: its estimate against
@@ -48,7 +48,7 @@ if TYPE_CHECKING:
     from ..spectra import WavelengthGrid
 
 __all__ = ["REQUEST_FLAGS", "by_kind", "scene_of", "ChartInputs", "chart_inputs", "chart_only", "chart_request_of",
-           "face_request_of", "settings_fields", "check_request_work", "imaging_document", "imaging_notes"]
+           "settings_fields", "sensor_flags", "check_request_work", "imaging_document", "imaging_notes"]
 
 REQUEST_FLAGS = {"scene": "SCENE", "camera": "--camera", "prevailing": "--prevailing", "calibration": "--calibration",
                  "physics": "--physics", "spp": "--spp", "seed": "--seed", "sampler": "--sampler",
@@ -225,25 +225,6 @@ def chart_request_of(args: argparse.Namespace, scene: ChartScene, settings: Rend
     """A chart command's :class:`~skinrender.rendering.request.ChartRequest`: :func:`chart_inputs` (each flag's
     object, checked against the others) made the request (:meth:`ChartInputs.request`)."""
     return chart_inputs(args, scene).request(args, settings, **changes)
-
-
-def face_request_of(args: argparse.Namespace, scene: FaceScene, settings: RenderSettings, **changes):
-    """
-    A face command's :class:`~skinrender.rendering.face.request.FaceRequest` from the flags of ``render``,
-    ``validate``, ``detect`` (absent ones take their defaults), as every front door builds it
-    (:meth:`~skinrender.rendering.kinds.FaceKind.request`), each refusal naming its flag; ``changes``: keywords
-    replaced (``spp``: a validation's per replicate). What only the command line has is checked first: the
-    camera sees each light (:func:`~skinrender.cli.face.check_face_flags`), ``--normalization`` is ``white``,
-    ``--grid`` the default, ``--physics`` names a level, ``--size`` an integer.
-    """
-    from ..rendering.kinds import FACE
-    from .face import check_face_flags
-
-    cam, temperatures, size = check_face_flags(args)
-    keywords = {"skin": getattr(args, "skin", None), "physics": getattr(args, "physics", None) or "direct",
-                "size": size, **sensor_flags(args), **settings_fields(args, settings), **changes}
-    return flagged(REQUEST_FLAGS, FACE.request, scene, cam, temperatures["prevailing"], temperatures["calibration"],
-                   **keywords)
 
 
 def check_request_work(args: argparse.Namespace, request, renders: int = 1, spp: int | None = None) -> None:

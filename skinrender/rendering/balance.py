@@ -242,9 +242,8 @@ def render(
         ``None``).
     **options
         ``spp``, ``seed``, ``sampler``, ``variant``, ``channels``: the settings one by one
-        (:meth:`~skinrender.rendering.settings.RenderSettings.of`); ``imager``, ``illuminance`` (lx),
-        ``exposure`` (s or ``auto``): the chart recorded through an image sensor
-        (:func:`~skinrender.rendering.imaging.render_imaged`; its settings in ``info``).
+        (:meth:`~skinrender.rendering.settings.RenderSettings.of`). (Through an image sensor: ``skinrender.render``
+        with ``imager=``, or :func:`~skinrender.rendering.imaging.render_imaged`.)
 
     Returns
     -------
@@ -260,7 +259,10 @@ def render(
 
     request = chart_request(scene, camera_, prevailing, calibration, normalization=normalization, knee=knee,
                             settings=settings, grid=grid, emitter=emitter, physics=physics, **options)
-    return request.level.chart(request, cache)[0]
+    if request.sensor is not None:
+        raise SkinrenderError("imager: this renders the radiance; through an image sensor: skinrender.render or "
+                              "skinrender.rendering.imaging.render_imaged", role="imager")
+    return render_balanced(request, request.level.chart(request), cache)
 
 
 def render_balanced(request, source, cache: dict | None = None) -> Rendering:

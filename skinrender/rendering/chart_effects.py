@@ -8,9 +8,13 @@ directional light, the analytic model's world), ``subsurface`` (the skin
 patches as the skin model's layers under a sky,
 :mod:`~skinrender.rendering.subsurface_chart`) and the image sensor, ``noise``
 (added by an ``imager``, not named in ``--physics``: a chart records through a
-sensor with ``--imager``). Each supplies its ``chart`` part, how a chart
-renders at a level whose last such part it is, and says what does not go with
-it (``refuse`` before any work; ``refuses``: the validation's options).
+sensor with ``--imager``). ``direct`` and ``subsurface`` supply the ``chart``
+part, the source of a level's raw renders (``source.raw(temperature, seed,
+skins)``, ``source.info``) that :func:`~skinrender.rendering.balance.render_balanced`
+balances; the sensor supplies its options, and a request that holds them is
+recorded through it (:func:`~skinrender.rendering.imaging.render_imaged_request`).
+Each says what does not go with it (``refuse`` before any work; ``refuses``:
+the validation's options).
 
 -   :data:`CHART_REGISTRY`, :data:`CHART_EFFECTS`: the registry and its table.
 -   :data:`CHART_DIRECT`, :data:`CHART_SUBSURFACE`, :data:`CHART_NOISE`: the effects.
@@ -21,8 +25,7 @@ Units: temperatures K, illuminance lx, exposure s, times s.
 from __future__ import annotations
 
 from ..errors import SkinrenderError
-from .face.effects.direct import SAMPLES_PER_S_DIRECT
-from .physics import Effect
+from .physics import SAMPLES_PER_S_DIRECT, Effect
 from .registry import Registry
 from .sensor import NoiseOptions
 from .subsurface_chart import SAMPLER_SUBSURFACE, SAMPLES_PER_S_SLAB
@@ -58,32 +61,13 @@ class _Slabs:
         return self.renderer.raw(temperature, seed, skins)
 
 
-def _direct(request, cache):
-    from .balance import render_balanced
-
-    return render_balanced(request, _Lambertian(request), cache), None
-
-
-def _subsurface(request, cache):
-    from .balance import render_balanced
-
-    return render_balanced(request, _Slabs(request), cache), None
-
-
-def _imaged(request, cache):
-    from .imaging import render_imaged_request
-
-    imaged = render_imaged_request(request)
-    return imaged.rendering, imaged
-
-
 def _skin_patches(request) -> None:
     """Refuse a chart without a skin patch at ``subsurface`` (nothing would be a slab), and a sensor on it."""
     scene = request.scene
     if not any(patch.skin for patch in scene.patches):
         raise SkinrenderError(f"physics subsurface renders a chart's skin patches (skin = true) as the skin model's "
                               f"layers; {scene.name} has none", role="physics")
-    if "noise" in request.options:
+    if request.sensor is not None:
         raise SkinrenderError("imager: a chart at physics subsurface is rendered without an image sensor; drop it (or "
                               "use physics direct)", role="imager")
 
@@ -101,7 +85,7 @@ def _slab_seconds(request, cores: int) -> tuple[float, str]:
 CHART_DIRECT = Effect(
     "direct",
     "Lambertian patches under the directional light along the view axis (the analytic model's world)",
-    chart=_direct, samples_per_s=SAMPLES_PER_S_DIRECT, order=0,
+    chart=_Lambertian, samples_per_s=SAMPLES_PER_S_DIRECT, order=0,
 )
 """The base: the chart the analytic model describes."""
 
@@ -109,7 +93,7 @@ CHART_SUBSURFACE = Effect(
     "subsurface",
     "the skin patches as the skin model's two layers under a dielectric boundary, lit by a uniform sky, against "
     "their slab's adding-doubling reflectance",
-    chart=_subsurface, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches, samples_per_s=SAMPLES_PER_S_SLAB,
+    chart=_Slabs, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches, samples_per_s=SAMPLES_PER_S_SLAB,
     estimate=_slab_seconds, order=30,
     refuses={"gamut": "the gamut volumes are compared on the Lambertian chart",
              "spp_auto": "it picks spp from the Lambertian chart's pilot renders; give spp N"},
@@ -120,10 +104,11 @@ CHART_NOISE = Effect(
     "noise",
     "through an image sensor (skinrender.model.noise.simulate_dn): shot, dark, read and quantisation noise, full "
     "well and ADC clipping",
-    short="sensor noise", chart=_imaged, options=NoiseOptions, added_by=("imager",), named=False, order=50,
+    short="sensor noise", options=NoiseOptions, added_by=("imager",), named=False, order=50,
     refuses={"gamut": "the gamut volumes are compared on the noise-free render"},
 )
-"""The chart recorded by an image sensor (:func:`~skinrender.rendering.imaging.render_imaged`)."""
+"""The chart recorded by an image sensor (:func:`~skinrender.rendering.imaging.render_imaged_request`: a request
+whose options hold the sensor's, :attr:`~skinrender.rendering.request.Request.sensor`)."""
 
 CHART_EFFECTS: dict[str, Effect] = {effect.name: effect for effect in (CHART_DIRECT, CHART_SUBSURFACE, CHART_NOISE)}
 """A chart's effects, name → effect, in the order a level applies them, the base first."""

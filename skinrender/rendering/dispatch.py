@@ -63,10 +63,11 @@ def _camera_of(camera, options: dict, what: str):
     """The camera given as ``camera`` or (the chart functions' name) ``camera_``, once."""
     if "camera_" in options:
         if camera is not None:
-            raise SkinrenderError(f"{what}: give the camera once (camera or camera_)")
+            raise SkinrenderError(f"{what}: give the camera once (camera or camera_)", role="camera")
         camera = options.pop("camera_")
     if camera is None:
-        raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)")
+        raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)",
+                              role="camera")
     return camera
 
 

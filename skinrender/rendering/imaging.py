@@ -197,7 +197,7 @@ def render_imaged_request(request) -> ImagedRendering:
     from .request import ILLUMINANCE_DEFAULT
     from .renderer import chart_renderer
 
-    sensor, settings, grid = request.options["noise"], request.settings, request.grid
+    sensor, settings, grid = request.sensor, request.settings, request.grid
     chart, camera_, prevailing, calibration = request.scene, request.camera, request.prevailing, request.calibration
     im, exposure, normalization = sensor.imager, sensor.exposure, request.normalization
     illuminance_lux = ILLUMINANCE_DEFAULT if sensor.illuminance is None else sensor.illuminance

@@ -24,7 +24,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Protocol
 
-from .face.effects.direct import SECONDS_PER_RENDER
+from .physics import SECONDS_PER_RENDER
 
 __all__ = ["SceneKind", "ChartKind", "FaceKind", "CHART", "FACE", "SCENE_KINDS", "scene_kind"]
 
@@ -134,14 +134,22 @@ class ChartKind:
         return chart_request(scene, camera, prevailing, calibration, **options)
 
     def render(self, request, cache: dict | None = None):
-        """The :class:`~skinrender.rendering.balance.Rendering` of a request (its level's chart part; through an
-        image sensor: the Eq. 4 image of the noisy DN, the sensor's settings in ``info``)."""
-        return request.level.chart(request, cache)[0]
+        """The :class:`~skinrender.rendering.balance.Rendering` of a request (its level's raw renders balanced;
+        through an image sensor: the Eq. 4 image of the noisy DN, the sensor's settings in ``info``)."""
+        return self.render_imaged(request, cache)[0]
 
     def render_imaged(self, request, cache: dict | None = None) -> tuple:
-        """``(rendering, imaged)``: the render and, through an image sensor, its
+        """``(rendering, imaged)``: the render and, where the request records through an image sensor
+        (:attr:`~skinrender.rendering.request.Request.sensor`), its
         :class:`~skinrender.rendering.imaging.ImagedRendering` (``None`` without)."""
-        return request.level.chart(request, cache)
+        if request.sensor is not None:
+            from .imaging import render_imaged_request
+
+            imaged = render_imaged_request(request)
+            return imaged.rendering, imaged
+        from .balance import render_balanced
+
+        return render_balanced(request, request.level.chart(request), cache), None
 
     def validate(self, request, *, tolerance=None, alpha=None, alpha_difference=None, cache=None):
         """
@@ -154,7 +162,7 @@ class ChartKind:
         from .validation import analytic_reference, validate_rendering
 
         tolerance = TOLERANCE_DEFAULT if tolerance is None else check_tolerance(tolerance, "tolerance")
-        rendering, imaged = request.level.chart(request, cache)
+        rendering, imaged = self.render_imaged(request, cache)
         if imaged is None:
             return validate_rendering(rendering, tolerance, ALPHA_EQUIVALENCE if alpha is None else alpha,
                                       ALPHA_DIFFERENCE if alpha_difference is None else alpha_difference,

@@ -18,6 +18,11 @@ never the spec.
 
 -   :class:`Effect`, :class:`Limits`: an effect and its analytic limits.
 -   :class:`Level`: a composition of effects.
+-   :class:`Setup`, :class:`Frame`, :class:`Replicates`, :class:`Measured`:
+    what an effect's functions read and return (a face's; their parts:
+    :mod:`skinrender.rendering.face.effects.base`).
+-   :data:`SAMPLES_PER_S_DIRECT`, :data:`SECONDS_PER_RENDER`: the base's
+    rate and a render's fixed cost, the estimates'.
 
 A scene kind's table of effects and its parser are a
 :class:`~skinrender.rendering.registry.Registry`.
@@ -27,11 +32,103 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from ..errors import SkinrenderError
+from ..hints import NDArrayFloat
 from .variants import choose_variant
 
-__all__ = ["Effect", "Limits", "Level"]
+if TYPE_CHECKING:
+    from ..model.camera import Camera
+    from ..spectra import WavelengthGrid
+    from .face.scene import FaceScene, Light
+
+__all__ = ["SAMPLES_PER_S_DIRECT", "SECONDS_PER_RENDER", "Setup", "Frame", "Replicates", "Measured", "Effect",
+           "Limits", "Level"]
+
+
+SAMPLES_PER_S_DIRECT = 9e5
+"""Samples per second of a render at the base level on one core (one drjit thread), the estimates' rate for every
+level that costs no more: fitted with :data:`SECONDS_PER_RENDER` to two measured sweeps of the face (the
+measurements and their commands: docs/speed.md, "The rates behind the estimates")."""
+
+SECONDS_PER_RENDER = 0.15
+"""Fixed cost of one face render on one core (scene, cached kernels, labels, scoring), s: the estimates' base;
+fitted with :data:`SAMPLES_PER_S_DIRECT` to two measured sweeps of 54 renders (direct, sheen, all effects) with one
+worker at 64 px, 32 spp and 128 px, 64 spp (the measurements and their commands: docs/speed.md, "The rates
+behind the estimates")."""
+
+
+@dataclass(frozen=True)
+class Setup:
+    """
+    What an effect's functions may read about the render.
+
+    ``scene``, ``camera``, ``grid`` and the level's ``lights`` (``{name: Light}``) for the Mitsuba
+    document, and the ``skin`` spec rendered (its reflectance is the ``skin`` part's argument; an effect that
+    needs more of it, as the skin model's layers, reads the spec); ``calibration`` (K), ``seed``
+    and ``options`` (effect name → its options, :attr:`Effect.options`) for ``post``, ``None`` while the
+    document is built.
+    """
+
+    scene: FaceScene
+    camera: Camera
+    grid: WavelengthGrid
+    lights: Mapping[str, Light]
+    calibration: float | None = None
+    seed: int | None = None
+    options: Mapping[str, object] = field(default_factory=dict)
+    skin: str | None = None
+
+
+@dataclass(frozen=True)
+class Frame:
+    """
+    A rendered frame before Eq. 4's gain: ``signal`` ``(height, width, 3)`` (the specfilm's radiance,
+    or DN after a sensor), the whites in the same units that the gain is formed from, ``(3,)`` each,
+    and the rendering's ``info`` (JSON-ready).
+    """
+
+    signal: NDArrayFloat
+    white_prevailing: NDArrayFloat
+    white_calibration: NDArrayFloat
+    info: dict
+
+
+@dataclass(frozen=True)
+class Replicates:
+    """
+    What a limit's check reads: the replicate images ``(K, height, width, 3)`` (balanced, output units,
+    after any ``measure``), the ``labels``, Eq. 4's NCC of the skin ``expected``, the ``first`` replicate
+    (a :class:`~skinrender.rendering.face.render.FaceRendering`), the level's ``lights`` in its scene,
+    and a sensor's ``usable`` pixels, ``bias`` bound and standard-error ``floor`` (``None`` without one).
+    """
+
+    images: NDArrayFloat
+    labels: NDArrayFloat
+    expected: NDArrayFloat
+    first: object
+    lights: Mapping[str, Light]
+    usable: NDArrayFloat | None = None
+    bias: NDArrayFloat | None = None
+    floor: NDArrayFloat | None = None
+
+
+@dataclass(frozen=True)
+class Measured:
+    """
+    The replicate images as the checks see them, after a ``measure`` step (a sensor's: its dark signal
+    removed), with the ``usable`` pixels, the ``bias`` bound and the standard-error ``floor``
+    (:class:`Replicates`), the pixels it left out (``excluded``, ``{name: count}``, added to the check's
+    details) and a ``note`` added to the reason of a check left undecided.
+    """
+
+    images: NDArrayFloat
+    usable: NDArrayFloat | None = None
+    bias: NDArrayFloat | None = None
+    floor: NDArrayFloat | None = None
+    excluded: dict = field(default_factory=dict)
+    note: str = ""
 
 
 @dataclass(frozen=True)
@@ -207,10 +304,8 @@ class Level:
 
     @staticmethod
     def setup(scene: FaceScene, camera, grid, lights: Mapping[str, Light], **after) -> Setup:
-        """What the effects read (:class:`~skinrender.rendering.face.effects.base.Setup`); ``after``: ``calibration``, ``seed``, ``options`` (effect
+        """What the effects read (:class:`Setup`); ``after``: ``calibration``, ``seed``, ``options`` (effect
         name → its options) for ``post``."""
-        from .face.effects.base import Setup
-
         return Setup(scene, camera, grid, lights, **after)
 
     def _last(self, part: str):
@@ -247,7 +342,8 @@ class Level:
 
     @property
     def chart(self):
-        """How a chart renders at this level (its last effect's ``chart`` part), or ``None``."""
+        """The source of a chart's raw renders at this level (its last effect's ``chart`` part:
+        ``(request) → source``), or ``None``."""
         return self._last("chart")
 
     def refused(self, option: str) -> tuple[Effect, str] | None:
@@ -312,11 +408,9 @@ class Level:
         return self._fold("post", frame, setup)
 
     def measure(self, images, first, options: Mapping[str, object] | None = None) -> Measured:
-        """The replicate images as the checks see them (:class:`~skinrender.rendering.face.effects.base.Measured`); ``options``: effect name →
+        """The replicate images as the checks see them (:class:`Measured`); ``options``: effect name →
         its options (the defaults where missing)."""
         options = self.default_options() if options is None else options
-        from .face.effects.base import Measured
-
         measured = Measured(images)
         for effect in self.effects:
             if effect.limits.measure is not None:

@@ -154,6 +154,14 @@ class Request:
         """The checks of a scene kind's request (its own fields)."""
 
     @property
+    def sensor(self):
+        """The image sensor's options where the level records through one (its effect's options are a
+        :class:`~skinrender.rendering.sensor.NoiseOptions`), else ``None``."""
+        from .sensor import NoiseOptions
+
+        return next((options for options in self.options.values() if isinstance(options, NoiseOptions)), None)
+
+    @property
     def pixels(self) -> int:
         """The pixels of the scene's image."""
         raise NotImplementedError

@@ -19,6 +19,8 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from ..errors import SkinrenderError
 from ..model.imager import Imager, imager as load_imager, is_integer
 
@@ -34,9 +36,9 @@ counts overflow."""
 
 def _number(value) -> float | None:
     """``value`` as a float where it is a real number (not a bool), else ``None``."""
-    if isinstance(value, bool):
+    if isinstance(value, (bool, np.bool_)):
         return None
-    if is_integer(value) or isinstance(value, float):
+    if is_integer(value) or isinstance(value, (float, np.floating)):
         return float(value)
     try:
         return float(value) if isinstance(value, str) else None

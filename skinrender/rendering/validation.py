@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
+from ..errors import SkinrenderError
 from ..evaluation.gamut import gamut
 from ..evaluation.verdict import ALPHA_DIFFERENCE, ALPHA_EQUIVALENCE, Verdict
 from ..hints import NDArrayFloat
@@ -40,7 +41,7 @@ from ..model.camera import Camera, camera
 from ..model.response import gain, response
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .agreement import TOLERANCE_DEFAULT, agreement, check_tolerance, tolerance_scale
-from .balance import Eq4Options, Rendering, patch_statistics, render
+from .balance import Eq4Options, Rendering, patch_statistics
 from .patch_errors import SKEW_MAX, error_law
 from .renderer import chart_renderer
 from .scene import ChartScene, load_chart_scene
@@ -287,11 +288,16 @@ def validate(
     tolerance = check_tolerance(tolerance, "tolerance")
     if rendering is not None:
         return validate_rendering(rendering, tolerance, alpha, alpha_difference, grid)
-    from .kinds import CHART
+    from .balance import render_balanced
+    from .request import chart_request
 
     cache = render_options.pop("cache", None)
-    request = CHART.request(scene, camera_, prevailing, calibration, grid=grid, **render_options)
-    return CHART.validate(request, tolerance=tolerance, alpha=alpha, alpha_difference=alpha_difference, cache=cache)
+    request = chart_request(scene, camera_, prevailing, calibration, grid=grid, **render_options)
+    if request.sensor is not None:
+        raise SkinrenderError("imager: this checks the radiance's render; through an image sensor: "
+                              "skinrender.validate with imager=", role="imager")
+    rendering = render_balanced(request, request.level.chart(request), cache)
+    return validate_rendering(rendering, tolerance, alpha, alpha_difference, grid)
 
 
 def validate_rendering(rendering: Rendering, tolerance: float = TOLERANCE_DEFAULT, alpha: float = ALPHA_EQUIVALENCE,

@@ -60,7 +60,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..evaluation.verdict import ALPHA_DIFFERENCE, Verdict, difference, sidak
 from ..hints import NDArrayFloat
-from .replicates import REPLICATES, measure_face, region_values
+from .replicates import measure_face, region_values
 
 __all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
            "Comparison", "scene_kind", "measure", "values_of", "setting_notes", "compare"]

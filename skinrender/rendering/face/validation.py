@@ -195,12 +195,13 @@ def mean_rendering(replicated: Replicated, imager=None, exposure=None) -> FaceRe
     """
     renders, level, first = replicated.renders, replicated.level, replicated.first
     options = dict(replicated.options)
-    if imager is not None or exposure is not None:
+    if imager is not None or exposure is not None:  # deprecated: the sensor's options of the replicates replaced
         from ..sensor import NoiseOptions
 
-        noise = options.get("noise", NoiseOptions())
-        options["noise"] = NoiseOptions(imager if imager is not None else noise.imager, noise.illuminance,
-                                        exposure if exposure is not None else noise.exposure)
+        for name, noise in options.items():
+            if isinstance(noise, NoiseOptions):
+                options[name] = NoiseOptions(imager if imager is not None else noise.imager, noise.illuminance,
+                                             exposure if exposure is not None else noise.exposure)
     radiance = np.mean([r.radiance for r in renders], axis=0)
     setup = level.setup(first.scene, first.camera, replicated.grid, level.lights(first.scene),
                         calibration=first.calibration, seed=first.seed, options=options)

@@ -32,7 +32,6 @@ Units: temperatures K, times s, NCC and rates fractions.
 
 from __future__ import annotations
 
-import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path

@@ -29,8 +29,9 @@ part            what the function does
                 (``noise``: the lights scaled to its illuminance)
 ``refuse``      ``(request) → None``: refuses, before any work, what does not
                 go with the effect (naming the argument)
-``chart``       ``(request, cache) → (Rendering, ImagedRendering | None)``:
-                how a chart renders at a level whose last chart part is this
+``chart``       ``(request) → source``: a chart's raw renders at a level
+                whose last chart part is this (``source.raw(temperature,
+                seed, skins)``, ``source.info``; a chart's effects only)
 ==============  ==============================================================
 
 An effect **owns its options**: ``options`` is a frozen dataclass whose fields
@@ -41,7 +42,9 @@ of its level, by effect name, and the effect's functions read it from
 ``setup.options[name]``. ``added_by`` names the options whose presence adds
 the effect to a level (an ``imager`` adds ``noise``).
 
--   :class:`Effect`, :class:`Limits`: an effect and its analytic limits.
+-   :class:`Effect`, :class:`Limits`: an effect and its analytic limits (the
+    classes every scene kind's physics is made of:
+    :mod:`skinrender.rendering.physics`, where they are defined).
 -   :class:`Setup`, :class:`Frame`: what the functions read, and what ``post``
     works on.
 -   :class:`Replicates`, :class:`Measured`: what a limit's check reads, and
@@ -55,89 +58,12 @@ a sensor, DN; temperatures K; exposure s.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
-
 from ....hints import NDArrayFloat
-from ....model.camera import Camera
 from ....spectra import WavelengthGrid
+from ...physics import Effect, Frame, Limits, Measured, Replicates, Setup
 from ...renderer import _spectrum
-from ...physics import Effect, Limits
-from ..scene import FaceScene, Light
 
 __all__ = ["Effect", "Limits", "Setup", "Frame", "Replicates", "Measured", "twosided", "spectrum"]
-
-
-@dataclass(frozen=True)
-class Setup:
-    """
-    What an effect's functions may read about the render.
-
-    ``scene``, ``camera``, ``grid`` and the level's ``lights`` (``{name: Light}``) for the Mitsuba
-    document, and the ``skin`` spec rendered (its reflectance is the ``skin`` part's argument; an effect that
-    needs more of it, as the skin model's layers, reads the spec); ``calibration`` (K), ``seed``
-    and ``options`` (effect name → its options, :attr:`Effect.options`) for ``post``, ``None`` while the
-    document is built.
-    """
-
-    scene: FaceScene
-    camera: Camera
-    grid: WavelengthGrid
-    lights: Mapping[str, Light]
-    calibration: float | None = None
-    seed: int | None = None
-    options: Mapping[str, object] = field(default_factory=dict)
-    skin: str | None = None
-
-
-@dataclass(frozen=True)
-class Frame:
-    """
-    A rendered frame before Eq. 4's gain: ``signal`` ``(height, width, 3)`` (the specfilm's radiance,
-    or DN after a sensor), the whites in the same units that the gain is formed from, ``(3,)`` each,
-    and the rendering's ``info`` (JSON-ready).
-    """
-
-    signal: NDArrayFloat
-    white_prevailing: NDArrayFloat
-    white_calibration: NDArrayFloat
-    info: dict
-
-
-@dataclass(frozen=True)
-class Replicates:
-    """
-    What a limit's check reads: the replicate images ``(K, height, width, 3)`` (balanced, output units,
-    after any ``measure``), the ``labels``, Eq. 4's NCC of the skin ``expected``, the ``first`` replicate
-    (a :class:`~skinrender.rendering.face.render.FaceRendering`), the level's ``lights`` in its scene,
-    and a sensor's ``usable`` pixels, ``bias`` bound and standard-error ``floor`` (``None`` without one).
-    """
-
-    images: NDArrayFloat
-    labels: NDArrayFloat
-    expected: NDArrayFloat
-    first: object
-    lights: Mapping[str, Light]
-    usable: NDArrayFloat | None = None
-    bias: NDArrayFloat | None = None
-    floor: NDArrayFloat | None = None
-
-
-@dataclass(frozen=True)
-class Measured:
-    """
-    The replicate images as the checks see them, after a ``measure`` step (a sensor's: its dark signal
-    removed), with the ``usable`` pixels, the ``bias`` bound and the standard-error ``floor``
-    (:class:`Replicates`), the pixels it left out (``excluded``, ``{name: count}``, added to the check's
-    details) and a ``note`` added to the reason of a check left undecided.
-    """
-
-    images: NDArrayFloat
-    usable: NDArrayFloat | None = None
-    bias: NDArrayFloat | None = None
-    floor: NDArrayFloat | None = None
-    excluded: dict = field(default_factory=dict)
-    note: str = ""
 
 
 def twosided(bsdf: dict) -> dict:
