@@ -175,9 +175,14 @@ class ChartKind:
         return validate_imaged(imaged, ratio, grid=grid, tolerance=tolerance)
 
     def validate_of(self, scene, camera, prevailing, calibration, **options):  # noqa: D102
-        from .validation import validate
+        checks = {name: options.pop(name) for name in ("tolerance", "alpha", "alpha_difference", "cache")
+                  if name in options}
+        rendering = options.pop("rendering", None)
+        if rendering is not None:  # a render given to check: the chart's own check of it
+            from .validation import validate
 
-        return validate(scene, camera, prevailing, calibration, **options)
+            return validate(scene, camera, prevailing, calibration, rendering=rendering, **checks, **options)
+        return self.validate(self.request(scene, camera, prevailing, calibration, **options), **checks)
 
     def estimate_seconds(self, request, renders: int = 1, cores: int = 1) -> float:  # noqa: D102
         return _workload(request, renders, cores)[0]

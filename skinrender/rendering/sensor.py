@@ -76,7 +76,7 @@ class NoiseOptions:
     >>> NoiseOptions(exposure=-1)
     Traceback (most recent call last):
     ...
-    skinrender.errors.SkinrenderError: exposure must be auto or a finite number of seconds > 0 and ≤ 1e+05, got -1
+    skinrender.errors.SkinrenderError: exposure must be auto or a finite number of seconds > 0 and ≤ 100000, got -1
     """
 
     imager: Imager | None = None

@@ -41,9 +41,10 @@ from ..model.camera import Camera, camera
 from ..model.response import gain, response
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .agreement import TOLERANCE_DEFAULT, agreement, check_tolerance, tolerance_scale
-from .balance import Eq4Options, Rendering, patch_statistics
+from .balance import Eq4Options, Rendering, patch_statistics, render_balanced
 from .patch_errors import SKEW_MAX, error_law
 from .renderer import chart_renderer
+from .request import chart_request
 from .scene import ChartScene, load_chart_scene
 from .settings import RenderSettings, seed_at
 from .spp_choice import square_spp
@@ -288,9 +289,6 @@ def validate(
     tolerance = check_tolerance(tolerance, "tolerance")
     if rendering is not None:
         return validate_rendering(rendering, tolerance, alpha, alpha_difference, grid)
-    from .balance import render_balanced
-    from .request import chart_request
-
     cache = render_options.pop("cache", None)
     request = chart_request(scene, camera_, prevailing, calibration, grid=grid, **render_options)
     if request.sensor is not None:

@@ -12,19 +12,22 @@ from skinrender.rendering.chart_effects import CHART_EFFECTS, CHART_REGISTRY
 from skinrender.rendering.physics import Effect, Level
 
 
-def test_every_effect_renders_a_chart_and_the_named_ones_are_the_specs():
+def test_the_named_effects_are_the_specs_and_each_has_its_source():
+    """A named effect is a spec of ``--physics`` and supplies the source of the raw renders; an unnamed one (the
+    sensor) is reached through its options, which a request holds (:attr:`Request.sensor`)."""
     assert next(iter(CHART_EFFECTS)) == CHART_REGISTRY.base.name == "direct"
     for name, effect in CHART_EFFECTS.items():
-        assert isinstance(effect, Effect) and effect.name == name and callable(effect.chart)
+        assert isinstance(effect, Effect) and effect.name == name
         assert effect.description.strip() and "\n" not in effect.description
+        assert callable(effect.chart) if effect.named else effect.chart is None
     unnamed = [name for name, effect in CHART_EFFECTS.items() if not effect.named]
-    assert unnamed and all(CHART_EFFECTS[name].added_by for name in unnamed)  # reached through their options
+    assert unnamed and all(CHART_EFFECTS[name].added_by and CHART_EFFECTS[name].options for name in unnamed)
     for name in unnamed:
         with pytest.raises(SkinrenderError, match=r"physics \(of a chart\) must be one of"):
             CHART_REGISTRY.level(name)
 
 
-def test_a_level_renders_with_its_last_chart_part_and_says_what_it_refuses():
+def test_a_level_renders_from_its_last_source_and_says_what_it_refuses():
     for name in CHART_REGISTRY.named:
         level = CHART_REGISTRY.level(name)
         assert isinstance(level, Level) and level.chart is CHART_EFFECTS[name].chart
