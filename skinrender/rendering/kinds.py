@@ -99,7 +99,27 @@ def _workload(request, renders: int, cores: int) -> tuple[float, str]:
     return seconds, f"{f'{renders} renders' if renders > 1 else 'a render'} of {pixels} pixels at {spp} spp"
 
 
-class ChartKind:
+class _Kind:
+    """What the kinds share: their estimates (:func:`_workload`) and figures (by the kind's name)."""
+
+    name = ""
+
+    def __repr__(self) -> str:
+        return self.name.upper()
+
+    def estimate_seconds(self, request, renders: int = 1, cores: int = 1) -> float:  # noqa: D102
+        return _workload(request, renders, cores)[0]
+
+    def workload(self, request, renders: int = 1, cores: int = 1) -> tuple[float, str]:  # noqa: D102
+        return _workload(request, renders, cores)
+
+    def figure(self, result, path, **options) -> Path:  # noqa: D102
+        from .outputs import draw_figure
+
+        return draw_figure(self.name, result, path, **options)
+
+
+class ChartKind(_Kind):
     """A chart (:class:`~skinrender.rendering.scene.ChartScene`): patches under a light, checked against Eq. 4."""
 
     name = "chart"
@@ -107,9 +127,6 @@ class ChartKind:
                       "cache", "emitter", "physics", "imager", "illuminance", "exposure")
     validate_options = (*render_options, "rendering", "tolerance", "alpha", "alpha_difference")
     lights_required = True
-
-    def __repr__(self) -> str:
-        return "CHART"
 
     @property
     def registry(self):
@@ -184,19 +201,9 @@ class ChartKind:
             return validate(scene, camera, prevailing, calibration, rendering=rendering, **checks, **options)
         return self.validate(self.request(scene, camera, prevailing, calibration, **options), **checks)
 
-    def estimate_seconds(self, request, renders: int = 1, cores: int = 1) -> float:  # noqa: D102
-        return _workload(request, renders, cores)[0]
-
-    def workload(self, request, renders: int = 1, cores: int = 1) -> tuple[float, str]:  # noqa: D102
-        return _workload(request, renders, cores)
-
-    def figure(self, result, path, **options) -> Path:  # noqa: D102
-        from .outputs import draw_figure
-
-        return draw_figure(self.name, result, path, **options)
 
 
-class FaceKind:
+class FaceKind(_Kind):
     """A face (:class:`~skinrender.rendering.face.scene.FaceScene`): a head in skin, props, lights; checked against
     the analytic limits of its level and Eq. 4's detection budget."""
 
@@ -205,9 +212,6 @@ class FaceKind:
                       "exposure", "illuminance")
     validate_options = (*render_options, "replicates", "limits", "progress", "budget_fraction")
     lights_required = False
-
-    def __repr__(self) -> str:
-        return "FACE"
 
     @property
     def registry(self):
@@ -249,16 +253,6 @@ class FaceKind:
 
         return validate_face(camera, scene, prevailing, calibration, **options)
 
-    def estimate_seconds(self, request, renders: int = 1, cores: int = 1) -> float:  # noqa: D102
-        return _workload(request, renders, cores)[0]
-
-    def workload(self, request, renders: int = 1, cores: int = 1) -> tuple[float, str]:  # noqa: D102
-        return _workload(request, renders, cores)
-
-    def figure(self, result, path, **options) -> Path:  # noqa: D102
-        from .outputs import draw_figure
-
-        return draw_figure(self.name, result, path, **options)
 
 
 CHART = ChartKind()
