@@ -130,9 +130,10 @@ class Registry:
                 adding = [key for key in mine if key in effect.added_by]
                 if not adding:
                     key = sorted(mine)[0]
-                    ways = " or ".join([*effect.added_by, *([f"physics {effect.name!r}"] if effect.named else [])])
+                    ways = [f"a level with {effect.name}"] * effect.named + (
+                        [f"{' or '.join(effect.added_by)}, which adds it"] if effect.added_by else [])
                     raise SkinrenderError(f"{key} is an option of the {effect.short or effect.name} ({effect.name}): "
-                                          f"it goes with {ways}", role=key)
+                                          f"it goes with {' or with '.join(ways)}", role=key)
                 names.add(effect.name)
         level = self._level(names)
         return level, level.default_options(options)
