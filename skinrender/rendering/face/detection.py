@@ -96,10 +96,11 @@ def _rates(inside: NDArrayFloat, skin: NDArrayFloat) -> tuple[float | None, floa
     return (float(inside[skin].mean()) if skin.any() else None, float(inside[props].mean()) if props.any() else None)
 
 
-def _frame(replicated, radiance: NDArrayFloat, seed: int, imager, exposure) -> NDArrayFloat:
-    """One frame (balanced, output units) of the pixels' ``radiance`` ``(n, 3)`` through the level's sensor."""
+def _frame(replicated, radiance: NDArrayFloat, seed: int) -> NDArrayFloat:
+    """One frame (balanced, output units) of the pixels' ``radiance`` ``(n, 3)`` through the level's sensor (with
+    the replicates' options)."""
     image, _, _ = balanced_frame(replicated.first, replicated.level, radiance[:, None, :], replicated.grid, seed,
-                                 imager, exposure)
+                                 replicated.options)
     return image[:, 0, :]
 
 
@@ -122,13 +123,13 @@ class DetectionRates:
     spreads: dict = field(default_factory=dict, repr=False)
 
 
-def detection_rates(replicated, locus: SkinLocus, halves: int = HALVES_DETECTION, seed: int = 0,
-                    imager=None, exposure="auto", mean=None, z: float = SPREAD_Z) -> DetectionRates:
+def detection_rates(replicated, locus: SkinLocus, halves: int = HALVES_DETECTION, seed: int = 0, mean=None,
+                    z: float = SPREAD_Z) -> DetectionRates:
     """The rates :func:`face_detection` tests (arguments as there)."""
     first, level = replicated.first, replicated.level
     if mean is None:
         radiance_mean = np.mean([r.radiance for r in replicated.renders], axis=0)
-        image = balanced_frame(first, level, radiance_mean, replicated.grid, first.seed, imager, exposure)[0]
+        image = balanced_frame(first, level, radiance_mean, replicated.grid, first.seed, replicated.options)[0]
         image = image.astype(np.float32).astype(np.float64)  # as mean_rendering gives it
     else:
         image = np.asarray(mean.image, dtype=np.float64)
@@ -157,16 +158,16 @@ def detection_rates(replicated, locus: SkinLocus, halves: int = HALVES_DETECTION
     samples = []
     for _ in range(int(halves)):
         sample = radiance[np.sort(rng.permutation(k)[:kept])]
-        chromaticity = (rg_of(_frame(replicated, sample.mean(axis=0), int(rng.integers(0, 2**32)), imager, exposure))
-                        if post else rg_of(sample.mean(axis=0) * balance))  # through a sensor: a frame of its own
+        chromaticity = (rg_of(_frame(replicated, sample.mean(axis=0), int(rng.integers(0, 2**32)))) if post
+                        else rg_of(sample.mean(axis=0) * balance))  # through a sensor: a frame of its own
         samples.append(separated_rates(sample, chromaticity)[0])
     return DetectionRates(_rates(locus.contains(rendered_rg), skin), point, _rates(locus.contains(expected), skin),
                           samples, (k - kept) / kept, {"skin": int(skin.sum()), "prop": int((~skin).sum())}, spreads)
 
 
 def face_detection(replicated, locus: SkinLocus, tolerance: float = DETECTION_TOLERANCE,
-                   halves: int = HALVES_DETECTION, seed: int = 0, imager=None, exposure="auto",
-                   mean=None, alpha: float = ALPHA_EQUIVALENCE, z: float = SPREAD_Z) -> tuple[dict, Verdict]:
+                   halves: int = HALVES_DETECTION, seed: int = 0, mean=None, alpha: float = ALPHA_EQUIVALENCE,
+                   z: float = SPREAD_Z) -> tuple[dict, Verdict]:
     """
     The detection rates of a face's replicates as rendered, with their Monte Carlo noise removed and as Eq. 4
     predicts them, and whether Eq. 4 is shown right within ``tolerance`` (see the module).
@@ -183,8 +184,6 @@ def face_detection(replicated, locus: SkinLocus, tolerance: float = DETECTION_TO
         Half-samples of the replicates whose spread gives the standard errors (≥ 2).
     seed
         The seed of the half-samples (which replicates, and their sensor frames).
-    imager, exposure
-        A sensor level's imager and exposure (as the render's).
     mean
         The replicates' mean as one render (:func:`~skinrender.rendering.face.validation.mean_rendering`;
         ``None``: made here).
@@ -198,7 +197,7 @@ def face_detection(replicated, locus: SkinLocus, tolerance: float = DETECTION_TO
         The ``detection`` document (:func:`~skinrender.evaluation.detection_verdict.detection_verdict`) and
         its verdict.
     """
-    rates = detection_rates(replicated, locus, halves, seed, imager, exposure, mean, z)
+    rates = detection_rates(replicated, locus, halves, seed, mean, z)
     document, verdict = detection_verdict(rates.rendered, rates.separated, rates.eq4, rates.samples, tolerance,
                                           alpha=alpha, pixels=rates.pixels, variance_factor=rates.variance_factor)
     document["spread"] = {int(group): {"pixels": s.pixels, "physics_kept": list(s.kept), "separated": s.separated}

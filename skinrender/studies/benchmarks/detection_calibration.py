@@ -36,11 +36,12 @@ from ...evaluation.verdict import binomial_interval
 from ...model.camera import camera
 from ...rendering.face import planckian_temperature
 from ...rendering.face.detection import face_detection
-from ...rendering.face.effects import PHYSICS_BASE, PHYSICS_EFFECTS, physics_level
+from ...rendering.face.effects import PHYSICS_BASE, PHYSICS_EFFECTS, PHYSICS_REGISTRY, physics_level
 from ...rendering.face.limits import REPLICATES
 from ...rendering.face.scene import load_face_scene
 from ...rendering.face.shift import skin_set_name
 from ...rendering.face.validation import render_replicates
+from ...rendering.settings import seed_at
 from .bench import machine
 
 __all__ = ["detection_calibration", "estimate_detection_seconds"]
@@ -110,18 +111,18 @@ def detection_calibration(level: str = PHYSICS_BASE, seeds: int = 40, camera_="g
     p, c = planckian_temperature(prevailing, "prevailing"), planckian_temperature(calibration, "calibration")
     locus = skin_locus(cam, skin_set, calibration=c)
     imaging = imaging or {}
+    sensor = PHYSICS_REGISTRY.options_for(effects, {"imager": imaging.get("imager_"),
+                                                    "exposure": imaging.get("exposure"),
+                                                    "illuminance": imaging.get("illuminance_lux")})
     each = max(1, -(-int(spp) // REPLICATES))
     begun, runs, verdicts = time.perf_counter(), [], []
     for j in range(seeds):
-        seed = (first_seed + j * REPLICATES) % 2**32
+        seed = seed_at(first_seed, j * REPLICATES)
         start = time.perf_counter()
-        replicated = render_replicates(cam, face, p, c, skin, effects, each, [(seed + k) % 2**32
-                                                                             for k in range(REPLICATES)],
-                                       size, variant=variant, imager=imaging.get("imager_"),
-                                       exposure=imaging.get("exposure", "auto"),
-                                       illuminance=imaging.get("illuminance_lux"))
-        document, verdict = face_detection(replicated, locus, tolerance, seed=seed, imager=imaging.get("imager_"),
-                                           exposure=imaging.get("exposure", "auto"))
+        replicated = render_replicates(cam, face, p, c, skin, effects, each,
+                                       [seed_at(seed, k) for k in range(REPLICATES)], size, variant=variant,
+                                       **sensor)
+        document, verdict = face_detection(replicated, locus, tolerance, seed=seed)
         verdicts.append(verdict)
         runs.append({"seed": seed, "seconds": time.perf_counter() - start, "outcome": verdict.outcome,
                      **{key: document[key] for key in ("tpr_change", "fpr_change", "tpr_change_bound",

@@ -45,11 +45,12 @@ from ...execution import dask_name
 from ...model.camera import Camera, camera
 from ...rendering.face import planckian_temperature
 from ...rendering.face.detection import detection_rates
-from ...rendering.face.effects import physics_level
+from ...rendering.face.effects import PHYSICS_REGISTRY, Level
 from ...rendering.face.limits import REPLICATES
 from ...rendering.face.scene import load_face_scene
 from ...rendering.face.shift import skin_set_name
 from ...rendering.face.validation import render_replicates
+from ...rendering.settings import seed_at
 from ...rendering.variants import choose_variant
 from ...spectra import GRID_DEFAULT
 from .workers import run_renders
@@ -109,15 +110,17 @@ def search_candidates(top: int, sensor: float, positions="400:700:10", slope: fl
     return [triplet_camera(sensor, result.triplets[t], slope) for t in order[:int(top)]]
 
 
-def candidate_renders(cameras, scene, prevailing: float, calibration: float, skin, level, spp: int, seeds,
-                      size, variant=None, grid=GRID_DEFAULT, imager=None, illuminance=None) -> list:
+def candidate_renders(cameras, scene, prevailing: float, calibration: float, skin, level: Level, spp: int, seeds,
+                      size, variant=None, grid=GRID_DEFAULT, sensor=None) -> list:
     """
     Every candidate's replicates of one scene, the one place a ranking gets its images: a
     :class:`~skinrender.rendering.face.validation.Replicated` per camera of ``cameras`` (their order), each
-    rendered at ``spp`` per seed of ``seeds``.
+    rendered at ``spp`` per seed of ``seeds`` (``sensor``: the sensor's keywords, ``imager``, ``illuminance``, for
+    a level with ``noise``; dropped at the others).
     """
+    options = PHYSICS_REGISTRY.options_for(level, dict(sensor or {}))
     return [render_replicates(cam, scene, prevailing, calibration, skin, level, spp, seeds, size, grid=grid,
-                              variant=variant, imager=imager, illuminance=illuminance) for cam in cameras]
+                              variant=variant, **options) for cam in cameras]
 
 
 def rank_tasks(lights, skins, levels) -> list[tuple]:
@@ -149,15 +152,14 @@ def _scene_task(task: tuple, settings: _Settings) -> dict:
     half-sample."""
     p, c, skin, level = task
     start = time.perf_counter()
-    seeds = [(settings.seed + k) % 2**32 for k in range(REPLICATES)]
+    seeds = [seed_at(settings.seed, k) for k in range(REPLICATES)]
     each = -(-settings.spp // REPLICATES)
-    renders = candidate_renders(settings.cameras, settings.scene, p, c, skin, physics_level(level), each, seeds,
-                                settings.size, settings.variant, imager=settings.imager,
-                                illuminance=settings.illuminance)
+    renders = candidate_renders(settings.cameras, settings.scene, p, c, skin, level, each, seeds, settings.size,
+                                settings.variant, sensor={"imager": settings.imager, "illuminance": settings.illuminance})
     scores = []
     for cam, replicated in zip(settings.cameras, renders):
         locus = skin_locus(cam, settings.skin_set, calibration=c)
-        rates = detection_rates(replicated, locus, settings.halves, settings.seed, imager=settings.imager)
+        rates = detection_rates(replicated, locus, settings.halves, settings.seed)
         youden = lambda pair: None if None in pair else pair[0] - pair[1]  # noqa: E731
         scores.append({"eq4": youden(rates.eq4), "rendered": youden(rates.separated),
                        "halves": [youden(sample) for sample in rates.samples], "factor": rates.variance_factor,
@@ -300,7 +302,8 @@ def rank(cameras, lights, skins, levels=LEVELS_RANK, size: int = 64, spp: int = 
     if len(cams) < 2:
         raise SkinrenderError(f"cameras: a ranking needs two or more candidates, got {len(cams)}")
     pairs = [(planckian_temperature(p, "prevailing"), planckian_temperature(c, "calibration")) for p, c in lights]
-    skins, levels = [str(s).strip() for s in skins], [physics_level(level).name for level in levels]
+    skins = [str(s).strip() for s in skins]
+    levels = [PHYSICS_REGISTRY.level(level) for level in levels]  # each spec parsed once, here
     for name, values in (("lights", pairs), ("skins", skins), ("levels", levels)):
         if not values:
             raise SkinrenderError(f"{name}: name at least one")
@@ -315,14 +318,14 @@ def rank(cameras, lights, skins, levels=LEVELS_RANK, size: int = 64, spp: int = 
     names = [cam.name for cam in cams]
     summaries = []
     for level in levels:
-        mine = [d for d in done if d["task"][3] == level]
+        mine = [d for d in done if d["task"][3].name == level.name]
         eq4 = np.array([[np.nan if s["eq4"] is None else s["eq4"] for s in d["scores"]] for d in mine])
         rendered = np.array([[np.nan if s["rendered"] is None else s["rendered"] for s in d["scores"]] for d in mine])
         halves_ = np.array([[[np.nan if v is None else v for v in s["halves"]] for s in d["scores"]] for d in mine])
         undefined = {}
         if np.isnan(eq4).any() or np.isnan(rendered).any():
             undefined["scenes"] = "some scene had no scored skin or prop pixel for some camera: its J is left out"
-        summaries.append(_level_summary(level, names, np.nanmean(eq4, axis=0), np.nanmean(rendered, axis=0),
+        summaries.append(_level_summary(level.name, names, np.nanmean(eq4, axis=0), np.nanmean(rendered, axis=0),
                                         np.nanmean(halves_, axis=0).T, mine[0]["scores"][0]["factor"], undefined))
     spp_used = done[0]["scores"][0]["spp"]
     return Ranking(names, [list(pair) for pair in pairs], skins, skin_set_name(skin_set), int(size), spp_used,
