@@ -136,14 +136,14 @@ def _checked(args: argparse.Namespace) -> dict:
     levels = levels_of(args.levels)
     flag("--scene", load_face_scene, args.scene)
     variant_of(args.variant)
-    lux = noise_sensor(args, levels)
+    imager, lux = noise_sensor(args, levels)  # (the imager loaded once, the lux checked)
     max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
     if args.dask is not None and not str(args.dask).strip():
         raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one", flag="--dask")
     return {
         "cameras": cams, "lights": pairs, "skins": skins, "levels": levels, "scene": args.scene,
         "size": integer_in(args.size, "--size", 1, SIZE_MAX), "spp": integer_in(args.spp, "--spp", 1, SPP_MAX),
-        "seed": integer_in(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": args.imager,
+        "seed": integer_in(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": imager,
         "illuminance": lux,
         "workers": None if args.workers is None else integer_in(args.workers, "--workers", 1, WORKERS_MAX),
         "dask": args.dask, "max_renders": integer_in(args.max_renders, "--max-renders", 1, 10**9),

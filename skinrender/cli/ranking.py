@@ -128,7 +128,7 @@ def _checked(args: argparse.Namespace) -> dict:
     levels = levels_of(args.levels)
     scene = flag("--scene", load_face_scene, args.scene)
     variant_of(args.variant)
-    lux = noise_sensor(args, levels)
+    imager, lux = noise_sensor(args, levels)
     size = integer_in(args.size, "--size", 1, SIZE_MAX)
     spp = integer_in(args.spp, "--spp", 1, SPP_MAX)
     seed = integer_in(args.seed, "--seed", 0, SEED_MAX - REPLICATES)
@@ -153,7 +153,7 @@ def _checked(args: argparse.Namespace) -> dict:
                fewer="lower --top, --size or --spp, or name fewer --lights, --skin or --levels")
     return {"top": top, "sensor": sensor, "slope": slope, "positions": args.positions, "extra": extra,
             "lights": pairs, "skins": skins, "levels": levels, "scene": scene, "size": size, "spp": spp,
-            "seed": seed, "variant": args.variant, "imager": args.imager, "illuminance": lux, "workers": workers,
+            "seed": seed, "variant": args.variant, "imager": imager, "illuminance": lux, "workers": workers,
             "dask": args.dask, "skin_set": skins_set, "plot": plot, "estimate_s": seconds}
 
 
@@ -173,11 +173,14 @@ def command_rank(args: argparse.Namespace) -> None:
     options = _checked(args)
     progress = None if args.quiet else sys.stderr
     print(f"rank: about {options['estimate_s'] / 60:.1f} min (estimated) …", file=sys.stderr)
+    from ..model.camera import camera
+
     cameras = []
-    if options["top"]:
-        cameras = search_candidates(options["top"], options["sensor"], options["positions"], options["slope"],
-                                    options["workers"], options["dask"], progress=progress)
-    cameras += [cam.name for cam in options["extra"] if cam.name not in cameras]
+    if options["top"]:  # the search's triplets as cameras, parsed once here
+        cameras = [camera(spec) for spec in search_candidates(options["top"], options["sensor"], options["positions"],
+                                                              options["slope"], options["workers"], options["dask"],
+                                                              progress=progress)]
+    cameras += [cam for cam in options["extra"] if cam.name not in {c.name for c in cameras}]
     result = rank(cameras, options["lights"], options["skins"], options["levels"], options["size"], options["spp"],
                   options["seed"], options["scene"], options["skin_set"], options["variant"], options["imager"],
                   options["illuminance"], options["workers"], options["dask"], progress,

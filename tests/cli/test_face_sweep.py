@@ -164,3 +164,13 @@ def test_a_full_disk_leaves_no_csv(tmp_path, capsys, monkeypatch):
     status, out, err = run([*SWEEP, "--workers", "1", "--csv", tmp_path / "s.csv", "--json"], capsys)
     assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
     assert f"error: --csv {tmp_path / 's.csv'}: cannot be written (no space left" in err
+
+
+def test_the_sensors_flags_reach_the_noise_level(capsys):
+    """--illuminance and --imager go to the noise level's sensor (after the front door, noise_sensor returns both:
+    the sweep had taken the pair for the lux and refused every --illuminance)."""
+    status, out, err = run([*SWEEP, "--levels", "noise", "--illuminance", "500", "--imager", "sony-imx174",
+                            "--workers", "1", "--json"], capsys)
+    assert status == 0, err[-500:]
+    row = json.loads(out)["combinations"][0]
+    assert row["illuminance_lux"] == 500 and row["imager"] == "sony-imx174"
