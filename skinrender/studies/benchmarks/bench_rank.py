@@ -40,7 +40,8 @@ def bench_rank(quick: bool = False, workers: int | None = None, progress=None) -
     dict
         ``machine``, ``load_average`` (1, 5, 15 min, before and after), ``candidates``, ``lights``, ``skins``,
         ``levels``, ``size``, ``spp``, ``search_s``, ``rank_s``, ``seconds``, ``target_s``, ``within_target``
-        (on a machine of 2 cores; ``None`` on another) and the ranking's per-level ``kendall_tau``.
+        (on a machine of 2 cores; ``None`` on another), the ranking's per-level ``kendall_tau`` and the whole
+        ``ranking`` (``rank``'s document).
     """
     top = 4 if quick else 20
     lights = LIGHTS_RANK[1:2] if quick else LIGHTS_RANK
@@ -58,4 +59,5 @@ def bench_rank(quick: bool = False, workers: int | None = None, progress=None) -
             "levels": list(levels), "size": 64, "spp": result.spp, "workers": result.workers,
             "search_s": searched - start, "rank_s": end - searched, "seconds": end - start, "target_s": TARGET_S,
             "within_target": (end - start <= TARGET_S) if cores == 2 and not quick else None,
-            "kendall_tau": {level["level"]: level["kendall_tau"] for level in result.levels}}
+            "kendall_tau": {level["level"]: level["kendall_tau"] for level in result.levels},
+            "ranking": result.document()}
