@@ -65,6 +65,11 @@ def command_validate(args: argparse.Namespace) -> None:
     if isinstance(scene, FaceScene):  # the face: the analytic limits that hold at its level of physics
         from .face_validation import command_validate_face
 
+        if args.spectral:
+            raise SkinrenderError("--spectral validates a chart (e.g. macbeth) against Eq. 4 and a direct render; a "
+                                  "face's spectral render is seen through cameras by face-sweep and ladder",
+                                  flag="--spectral")
+
         for name, option, given in (("--spp auto", "--spp", str(args.spp).strip().lower() == "auto"),
                                     ("--tolerance", "--tolerance", args.tolerance is not None)):
             if given:
@@ -145,6 +150,13 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     settings = settings_of(args, auto)
     requested = "auto" if auto else settings.spp
     inputs = chart_inputs(args, scene)
+    if args.spectral or args.bands is not None:
+        from .spectral import bands_of, command_validate_spectral
+
+        bands_of(args)  # --bands without --spectral: refused
+        if auto:
+            raise SkinrenderError("--spp auto goes without --spectral: give --spp N", flag="--spp")
+        return command_validate_spectral(args, scene, inputs, settings, tolerance)
     settings = check_chart_subsurface(args, inputs, settings)
     imaging = imaging_options(args)
     renders = 11 if args.gamut else 1  # --gamut: ten more, one per paper illuminant

@@ -137,20 +137,22 @@ def check_figure(args: argparse.Namespace, *taken) -> Path | None:
     return figure
 
 
-def face_inputs(args: argparse.Namespace, scene) -> tuple:
+def face_inputs(args: argparse.Namespace, scene, spectral: bool = False) -> tuple:
     """
     The inputs of a face render from the flags of ``render``/``validate``, each checked with a one-line error
     naming its flag: ``(scene, camera, temperatures {prevailing, calibration} K, physics, skin, size px or None,
     imager, exposure, illuminance lx)``; with ``--imager`` the level gains ``noise``. ``scene``: the face scene
-    the command loaded (:func:`~skinrender.cli.inputs.scene_of`).
+    the command loaded (:func:`~skinrender.cli.inputs.scene_of`). ``spectral``: no camera and no calibration
+    (``None`` and ``{prevailing}`` in their places).
     """
     from ..rendering.face.effects import parse_physics
     from ..rendering.face.scene import skin_reflectance_of
     from ..spectra import GRID_DEFAULT
 
-    cam = camera_of(args)
-    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
-    _check_light(cam, temperatures)
+    cam = None if spectral else camera_of(args)
+    temperatures = {name: _planckian(args, name) for name in ("prevailing",) + (() if spectral else ("calibration",))}
+    if cam is not None:
+        _check_light(cam, temperatures)
     if getattr(args, "normalization", "white") != "white":
         raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
                               f"got {args.normalization!r}", flag="--normalization")

@@ -107,9 +107,11 @@ def _chart_lights(prevailing, calibration, what: str) -> None:
             raise SkinrenderError(f"{name}: a chart {what} needs the {name} light (kelvin, A or H)")
 
 
-def render(scene, camera=None, prevailing=None, calibration=None, **options):
+def render(scene, camera=None, prevailing=None, calibration=None, spectral: bool = False, **options):
     """
-    Render a chart or a face scene through a camera, white balanced to the calibration light (Eq. 4).
+    Render a chart or a face scene through a camera, white balanced to the calibration light (Eq. 4); with
+    ``spectral=True``, once for every camera: a :class:`~skinrender.rendering.spectral.SpectralImage` (no camera,
+    no calibration: ``.through(camera, calibration=K)`` gives each camera's result).
 
     Parameters
     ----------
@@ -128,10 +130,16 @@ def render(scene, camera=None, prevailing=None, calibration=None, **options):
         A face's: ``skin``, ``physics`` (``direct``, effects joined by ``+``), ``spp`` (default 64), ``seed``,
         ``size`` (pixels), ``sampler``, ``variant``, ``grid``, ``channels``, ``imager``, ``exposure`` (s or
         ``auto``), ``illuminance`` (lx) (:func:`skinrender.rendering.face.render.render_face`).
+        A spectral render's: ``bands`` (``START:END:STEP`` nm, default 400:700:5) and the options above but a
+        chart's ``normalization``, ``knee``, ``cache`` and ``channels`` (applied by ``.through``, or meaningless).
+    spectral
+        Render the bands of :mod:`~skinrender.rendering.bands` instead of a camera's channels
+        (:func:`~skinrender.rendering.spectral.render_spectral`).
 
     Returns
     -------
-    :class:`~skinrender.rendering.balance.Rendering` or :class:`~skinrender.rendering.face.render.FaceRendering`
+    :class:`~skinrender.rendering.balance.Rendering`, :class:`~skinrender.rendering.face.render.FaceRendering`
+    or, spectral, :class:`~skinrender.rendering.spectral.SpectralImage`
 
     Raises
     ------
@@ -148,6 +156,8 @@ def render(scene, camera=None, prevailing=None, calibration=None, **options):
     ('sheen', (16, 16, 3))
     """
 
+    if spectral:
+        return _render_spectral(scene, camera, prevailing, calibration, options)
     camera = _camera_of(camera, options, "render")
     from .face.scene import FaceScene
 
@@ -165,6 +175,32 @@ def render(scene, camera=None, prevailing=None, calibration=None, **options):
         arguments = {"scene": scene, "camera_": camera, "prevailing": prevailing, "calibration": calibration}
     _check_options(function, arguments, options, kind, "render")
     return function(**arguments, **options)
+
+
+def _render_spectral(scene, camera, prevailing, calibration, options: dict):
+    """``render(…, spectral=True)``: no camera, no calibration (both applied by ``.through``), the options
+    checked against the spectral renderer of the scene's kind."""
+    for name, value in (("camera", camera if camera is not None else options.get("camera_")),
+                        ("calibration", calibration)):
+        if value is not None:
+            raise SkinrenderError(f"{name}: a spectral render takes no {name}; see it through one afterwards: "
+                                  "SpectralImage.through(camera, calibration=K)")
+    from .face.scene import FaceScene
+
+    scene = load_scene(scene)
+    if isinstance(scene, FaceScene):
+        from .face.spectral import render_face_spectral as function
+
+        kind = "face"
+    else:
+        from .spectral_chart import render_chart_spectral as function
+
+        kind = "chart"
+        _chart_lights(prevailing, 0, "spectral render")
+    _check_options(function, {"scene": scene, "prevailing": prevailing}, options, kind, "render")
+    from .spectral import render_spectral
+
+    return render_spectral(scene, prevailing, **options)
 
 
 def validate(scene, camera=None, prevailing=None, calibration=None, **options):

@@ -72,6 +72,7 @@ def analytic_reference(
     grid: WavelengthGrid = GRID_DEFAULT,
     refine: int = REFINE,
     scale: float = CONSTANT_OUTPUT_SCALE,
+    bands: WavelengthGrid | None = None,
 ) -> NDArrayFloat:
     """
     Eq. 4 of the integral the renderer estimates.
@@ -79,13 +80,17 @@ def analytic_reference(
     Sensor curves and reflectances (given on ``grid``) are linearly
     interpolated onto a grid ``refine`` times finer, Planck is evaluated there,
     and the products are integrated with the trapezoid rule. Shape
-    ``reflectance.shape[:-1] + (3,)``, output units.
+    ``reflectance.shape[:-1] + (3,)``, output units. ``bands``: the camera as a spectral render of those bands
+    sees it (:mod:`~skinrender.rendering.bands`: its curves at the bands, linearly interpolated, 0 beyond them).
     """
 
     cam = camera(cam)
     fine = WavelengthGrid(grid.start, grid.end, grid.step / refine)
     lam, coarse = fine.wavelengths, grid.wavelengths
-    x = np.array([np.interp(lam, coarse, curve) for curve in cam.sensitivities(grid)])
+    on = grid if bands is None else bands
+    x = np.array([np.interp(lam, on.wavelengths, curve, left=None if bands is None else 0.0,
+                            right=None if bands is None else 0.0)
+                  for curve in cam.sensitivities(on)])
     o = np.asarray(reflectance, dtype=np.float64)
     o_fine = np.apply_along_axis(lambda row: np.interp(lam, coarse, row), -1, o.reshape(-1, coarse.size))
     weights = np.full(lam.size, fine.step)
@@ -248,6 +253,7 @@ def validate(
     tolerance: float = TOLERANCE_DEFAULT,
     alpha: float = ALPHA_EQUIVALENCE,
     alpha_difference: float = ALPHA_DIFFERENCE,
+    allowance: NDArrayFloat | float = 0.0,
     **render_options,
 ) -> Validation:
     """
@@ -266,6 +272,11 @@ def validate(
     alpha, alpha_difference
         Family-wise error rates of the equivalence verdict (its bounds hold together at ``1 − alpha``) and
         of the difference test (its false-alarm rate).
+    allowance
+        A known systematic ``|rendered − analytic|`` (output units, per patch and channel, or one value) the
+        difference test allows beside the float32 floor: a spectral render's basis error
+        (:func:`~skinrender.rendering.spectral_validation.validate_spectral`). The equivalence verdict allows
+        nothing: the tolerance holds the whole error.
     render_options
         To :func:`skinrender.rendering.balance.render`: ``normalization``, ``knee`` (Eq. 4's), ``settings``
         (a :class:`~skinrender.rendering.settings.RenderSettings`) or its fields ``spp``, ``seed``, ``sampler``,
@@ -295,7 +306,7 @@ def validate(
     quadrature = quadrature_difference(r.camera, reflectance, r.prevailing, r.calibration, r.normalization, grid,
                                        exact=None if r.knee else reference)
     sigma, skewness = error_law(rendering, reference)
-    floor = float32_floor(rendering.camera, grid)[None, :] * np.abs(reference)
+    floor = float32_floor(rendering.camera, grid)[None, :] * np.abs(reference) + np.abs(allowance)
     dof = float(np.min(rendering.patches.count) - 1)
     out = agreement(rendering.patches.mean, reference, sigma, tolerance, r.raw[0].spp, dof, floor, alpha,
                     alpha_difference, skewness=skewness, skew_max=SKEW_MAX)

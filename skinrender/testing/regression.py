@@ -179,7 +179,8 @@ def _white_relative_variance(rendering) -> NDArrayFloat:
         mean = pixels.mean(axis=0)
         return np.cov(pixels, rowvar=False) / len(pixels) / np.outer(mean, mean)
 
-    sigma_c = relative_covariance(rendering.raw[-1])
+    analytic = rendering.info.get("white_calibration") == "analytic"  # a spectral render's: computed, exact
+    sigma_c = 0.0 * relative_covariance(rendering.raw[-1]) if analytic else relative_covariance(rendering.raw[-1])
     if rendering.normalization != "white" or rendering.prevailing == rendering.calibration:
         return np.diagonal(sigma_c).copy()
     sigma_w = relative_covariance(rendering.raw[0])

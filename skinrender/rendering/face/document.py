@@ -67,11 +67,18 @@ def channel_groups(cam: Camera, grid: WavelengthGrid, channels: str = "auto") ->
     return [(0,), (1,), (2,)] if _separate(cam, grid, channels) else [(0, 1, 2)]
 
 
-def film_dict(cam: Camera, grid: WavelengthGrid, group: tuple[int, ...], width: int, height: int) -> dict:
-    """A float32 ``specfilm``, box filter, with the camera's ``group`` channels (named as for charts)."""
-    curves, names = cam.sensitivities(grid), channel_names(cam)
+def film_dict(cam: Camera | None, grid: WavelengthGrid, group: tuple[int, ...], width: int, height: int,
+              channels: dict | None = None) -> dict:
+    """
+    A float32 ``specfilm``, box filter, with the camera's ``group`` channels (named as for charts), or with
+    ``channels`` (name → Mitsuba spectrum: a spectral render's bands, :func:`~skinrender.rendering.bands.film_channels`)
+    in their place.
+    """
     film = {"type": "specfilm", "width": int(width), "height": int(height), "component_format": "float32",
             "rfilter": {"type": "box"}}
+    if channels is not None:
+        return {**film, **channels}
+    curves, names = cam.sensitivities(grid), channel_names(cam)
     for k in group:
         film[names[k]] = _spectrum(grid.wavelengths, curves[k])
     return film
@@ -151,9 +158,9 @@ def _mesh(mi, scene: FaceScene, material: dict, unit: float = 1.0) -> dict | obj
     return mesh
 
 
-def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, level, skin: str,
+def face_document(mi, scene: FaceScene, cam: Camera | None, grid: WavelengthGrid, level, skin: str,
                   group: tuple[int, ...], spp: int, seed: int, sampler: str, lights: dict[str, Light],
-                  scale: float) -> dict:
+                  scale: float, channels: dict | None = None) -> dict:
     """
     The Mitsuba scene dictionary of a face scene.
 
@@ -168,6 +175,9 @@ def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, level
         The skin spec (:func:`~skinrender.rendering.face.scene.skin_reflectance_of`).
     group
         The camera channels of this pass.
+    channels
+        A spectral render's film channels (name → Mitsuba spectrum) in place of the camera's (``cam``
+        ``None``).
     lights
         The lights to add (the level's, :meth:`~skinrender.rendering.face.effects.levels.Level.lights`),
         with their temperatures: a point light where it has a position, else the uniform environment.
@@ -188,7 +198,7 @@ def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, level
             "type": "perspective", "fov": c.fov, "fov_axis": "x", "near_clip": 1e-3 * k, "far_clip": 1e3 * k,
             "to_world": matrix().look_at(origin=at(c.position), target=at(c.target), up=list(c.up)),
             "sampler": {"type": sampler, "sample_count": int(spp), "seed": int(seed)},
-            "film": film_dict(cam, grid, group, c.width, c.height),
+            "film": film_dict(cam, grid, group, c.width, c.height, channels),
         },
     }
     document[SHAPE_SKIN] = _mesh(mi, scene, level.skin(skin_reflectance_of(skin, grid, "skin"), setup), k)

@@ -64,8 +64,8 @@ from .effects import Frame, Level, physics_level
 from .labels import label_names, render_labels, shape_labels
 from .scene import MESH_HEAD, FaceScene, load_face_scene, prevailing_name, skin_reflectance_of
 
-__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "face_exr",
-           "write_face_exr"]
+__all__ = ["FaceRendering", "FacePlan", "planckian_temperature", "white_references", "plan_face", "render_face",
+           "finish_face", "face_exr", "write_face_exr"]
 
 LOADED_KEPT = 6
 """Face documents kept loaded in Mitsuba (the least recently used goes first)."""
@@ -162,21 +162,29 @@ def planckian_temperature(spec, name: str) -> float:
     return float(item.temperature)
 
 
-def white_references(scene: FaceScene, cam: Camera, calibration: float,
-                     grid: WavelengthGrid = GRID_DEFAULT) -> tuple[NDArrayFloat, NDArrayFloat]:
+def white_references(scene: FaceScene, cam: Camera, calibration: float, grid: WavelengthGrid = GRID_DEFAULT,
+                     bands=None) -> tuple[NDArrayFloat, NDArrayFloat]:
     """
     ``white_p`` and ``white_c`` (channels, specfilm units): a perfect white at
     the camera target facing the key light (or open to the environment in a
     scene without one), and under the calibration Planckian at ``calibration``
-    K (its scale arbitrary: Eq. 4 cancels it).
+    K (its scale arbitrary: Eq. 4 cancels it). ``bands``: integrated as a spectral render sees the camera
+    (:mod:`~skinrender.rendering.bands`: its curves at the bands, through the hats).
     """
     light = getattr(scene, prevailing_name(scene))
     if light is None:
         raise SkinrenderError(f"face scene {scene.source or scene.name} has no key light and no environment")
     lam, irradiance = light_irradiance(light, grid)
-    white_p = channel_integral(cam, grid, lam, irradiance / np.pi)
+    if bands is None:
+        integral = lambda spectrum: channel_integral(cam, grid, lam, spectrum)  # noqa: E731
+    else:
+        from ..bands import band_integrals, projection
+
+        matrix = projection(cam, bands, grid)
+        integral = lambda spectrum: band_integrals(lam, spectrum, bands) @ matrix.T  # noqa: E731
+    white_p = integral(irradiance / np.pi)
     spd = planck(lam, calibration)
-    white_c = channel_integral(cam, grid, lam, spd / np.max(spd))
+    white_c = integral(spd / np.max(spd))
     if np.any(white_c <= 0) or np.any(white_p <= 0):
         raise SkinrenderError(f"camera {cam.name}: a channel sees no light from the white reference")
     return white_p, white_c
@@ -185,13 +193,15 @@ def white_references(scene: FaceScene, cam: Camera, calibration: float,
 @dataclass(frozen=True)
 class _Document:
     """
-    A face's Mitsuba document as a cache key: what it depends on (the camera by its curves, the level by the
-    effects that change the document, the lights by name); the level and the lights themselves ride along,
-    outside the key.
+    A face's Mitsuba document as a cache key: what it depends on (the camera by its curves, or a spectral
+    render's bands; the level by the effects that change the document, the lights by name); the level and the
+    lights themselves ride along, outside the key.
     """
 
     scene: FaceScene
-    camera: CameraKey
+    camera: CameraKey | None
+    grid: WavelengthGrid
+    bands: WavelengthGrid | None
     effects: tuple[str, ...]
     skin: str | None
     group: tuple[int, ...]
@@ -206,10 +216,13 @@ class _Document:
 
 @functools.lru_cache(maxsize=LOADED_KEPT)
 def _load(document: _Document):
-    mi = mitsuba(document.variant)
-    scene = document.scene
-    built = face_document(mi, scene, document.camera.camera, document.camera.grid, document.level, document.skin,
-                          document.group, document.spp, 0, document.sampler, document.lights, document.scale)
+    from ..bands import film_channels
+
+    mi, scene = mitsuba(document.variant), document.scene
+    channels = None if document.bands is None else film_channels(document.bands)
+    cam = None if document.camera is None else document.camera.camera
+    built = face_document(mi, scene, cam, document.grid, document.level, document.skin, document.group,
+                          document.spp, 0, document.sampler, document.lights, document.scale, channels)
     try:
         return mi.load_dict(built)
     except RuntimeError as error:  # the checks of load_face_scene passed, yet Mitsuba refused the user's mesh
@@ -220,10 +233,95 @@ def _load(document: _Document):
                               f"{reason}") from None
 
 
-def _loaded(scene, cam, grid, level: Level, skin, group, spp, sampler, variant, lights, scale):
-    """The face's document loaded into Mitsuba, reused across renders that share it (:data:`LOADED_KEPT` kept)."""
-    return _load(_Document(scene, CameraKey.of(cam, grid), level.document_key, skin, group, spp, sampler, variant,
-                           tuple(sorted(lights.items())), scale, level, lights))
+@dataclass(frozen=True)
+class FacePlan:
+    """
+    What a face render renders, checked once, before any camera: the ``scene`` (resized, its lights set to the
+    prevailing temperature and illuminance), the ``level``, the ``skin`` spec, the key light's temperature
+    ``prevailing`` (K), the level's ``lights``, the emitters' ``scale`` (W·m⁻²·nm⁻¹), the Mitsuba ``variant``,
+    ``spp``, ``seed``, ``sampler`` and ``grid`` (nm).
+    """
+
+    scene: FaceScene
+    level: Level
+    skin: str
+    prevailing: float | None
+    lights: dict
+    scale: float
+    variant: str
+    spp: int
+    seed: int
+    sampler: str
+    grid: WavelengthGrid
+
+    def loaded(self, cam: Camera | None = None, group: tuple[int, ...] = (), bands: WavelengthGrid | None = None):
+        """The Mitsuba scene of this plan through ``cam``'s ``group`` channels, or with ``bands`` as its film,
+        reused across renders that share it (:data:`LOADED_KEPT` kept)."""
+        key = None if cam is None else CameraKey.of(cam, self.grid)
+        return _load(_Document(self.scene, key, self.grid, bands, self.level.document_key, self.skin, group,
+                               self.spp, self.sampler, self.variant, tuple(sorted(self.lights.items())), self.scale,
+                               self.level, self.lights))
+
+    def render(self, loaded) -> tuple[NDArrayFloat, int]:
+        """One render of ``loaded`` with the plan's seed: its channels ``(height, width, n)`` float64 in absolute
+        units (the emitters' ``scale`` restored), and the spp the sampler used."""
+        mi = mitsuba(self.variant)
+        width, height = self.scene.camera.width, self.scene.camera.height
+        values = np.array(mi.render(loaded, seed=int(self.seed)), dtype=np.float64)
+        spp = int(loaded.sensors()[0].sampler().sample_count())
+        return values.reshape(height, width, -1) * self.scale, spp
+
+    def labels(self, loaded) -> NDArrayFloat:
+        """The label image (:func:`~skinrender.rendering.face.labels.render_labels`) through ``loaded``."""
+        mi = mitsuba(self.variant)
+        return render_labels(mi, loaded, self.scene.camera.width, self.scene.camera.height, shape_labels(self.scene))
+
+
+def _whole(value, low: int = 1, high: float = np.inf) -> bool:
+    return isinstance(value, (int, np.integer)) and not isinstance(value, bool) and low <= value < high
+
+
+def plan_face(scene: FaceScene | str = "face", prevailing=None, skin: str | None = None,
+              physics: str | Level = "direct", spp: int = 64, seed: int = 0, size=None,
+              sampler: str = "multijitter", variant: str | None = None, grid: WavelengthGrid = GRID_DEFAULT,
+              illuminance: float | None = None) -> FacePlan:
+    """
+    A face render's :class:`FacePlan`, every argument checked with a one-line error naming it (arguments as
+    :func:`render_face`).
+    """
+    face = load_face_scene(scene)
+    if size is not None:
+        width, height = (size, size) if np.ndim(size) == 0 else size
+        if not (_whole(width) and _whole(height)):
+            raise SkinrenderError(f"size must be a positive number of pixels (or two), got {size!r}")
+        face = face.resized(int(width), int(height))
+    level = physics_level(physics)
+    skin = face.skin if skin is None else str(skin).strip()
+    skin_reflectance_of(skin, grid, "skin")
+    validate_method(sampler, SAMPLERS, "sampler")
+    if not _whole(spp):
+        raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
+    if not _whole(seed, 0, 2**32):
+        raise SkinrenderError(f"seed must be an integer in [0, 2^32) (Mitsuba's seeds are 32-bit), got {seed!r}")
+    pixels = face.camera.width * face.camera.height
+    if spp * pixels > SAMPLES_MAX:
+        raise SkinrenderError(f"spp {spp} × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
+                              f"{SAMPLES_MAX:.3g}; at most {SAMPLES_MAX // pixels} spp at this size")
+    name = prevailing_name(face)
+    if illuminance is not None and getattr(face, name) is not None:
+        if not (isinstance(illuminance, (int, float)) and np.isfinite(illuminance) and illuminance > 0):
+            raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance!r}")
+        ratio = float(illuminance) / getattr(face, name).illuminance
+        face = replace(face, **{k: replace(getattr(face, k), illuminance=getattr(face, k).illuminance * ratio)
+                                for k in ("key", "fill", "environment") if getattr(face, k) is not None})
+    if prevailing is not None and getattr(face, name) is not None:
+        light = replace(getattr(face, name), temperature=planckian_temperature(prevailing, "prevailing"))
+        face = replace(face, **{name: light})
+    p = getattr(face, name).temperature if getattr(face, name) is not None else None
+    lights = level.lights(face)
+    scale = max(float(np.max(light_irradiance(light, grid)[1])) for light in lights.values())
+    return FacePlan(face, level, skin, p, lights, scale, level.choose_variant(variant), int(spp), int(seed), sampler,
+                    grid)
 
 
 def render_face(
@@ -282,65 +380,42 @@ def render_face(
     """
 
     start = time.perf_counter()
-    face = load_face_scene(scene)
-    if size is not None:
-        width, height = (size, size) if np.ndim(size) == 0 else size
-        whole = [isinstance(v, (int, np.integer)) and not isinstance(v, bool) and v >= 1
-                 for v in (width, height)]
-        if not all(whole):
-            raise SkinrenderError(f"size must be a positive number of pixels (or two), got {size!r}")
-        face = face.resized(int(width), int(height))
+    plan = plan_face(scene, prevailing, skin, physics, spp, seed, size, sampler, variant, grid, illuminance)
     cam = camera(camera_)
-    level = physics_level(physics)
-    skin = face.skin if skin is None else str(skin).strip()
-    skin_reflectance_of(skin, grid, "skin")
-    validate_method(sampler, SAMPLERS, "sampler")
-    if not (isinstance(spp, (int, np.integer)) and not isinstance(spp, bool) and spp >= 1):
-        raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
-    if not (isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and 0 <= seed < 2**32):
-        raise SkinrenderError(f"seed must be an integer in [0, 2^32) (Mitsuba's seeds are 32-bit), "
-                              f"got {seed!r}")
-    pixels = face.camera.width * face.camera.height
-    if spp * pixels > SAMPLES_MAX:
-        raise SkinrenderError(f"spp {spp} × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
-                              f"{SAMPLES_MAX:.3g}; at most {SAMPLES_MAX // pixels} spp at this size")
-    name = prevailing_name(face)
-    if illuminance is not None and getattr(face, name) is not None:
-        if not (isinstance(illuminance, (int, float)) and np.isfinite(illuminance) and illuminance > 0):
-            raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance!r}")
-        ratio = float(illuminance) / getattr(face, name).illuminance
-        face = replace(face, **{k: replace(getattr(face, k), illuminance=getattr(face, k).illuminance * ratio)
-                                for k in ("key", "fill", "environment") if getattr(face, k) is not None})
-    if prevailing is not None and getattr(face, name) is not None:
-        light = replace(getattr(face, name), temperature=planckian_temperature(prevailing, "prevailing"))
-        face = replace(face, **{name: light})
-    p = getattr(face, name).temperature if getattr(face, name) is not None else None
-    c = p if calibration is None else planckian_temperature(calibration, "calibration")
-    lights = level.lights(face)
-    white_p, white_c = white_references(face, cam, c, grid)
-    scale = max(float(np.max(light_irradiance(light, grid)[1])) for light in lights.values())
-    variant = level.choose_variant(variant)
-    mi = mitsuba(variant)
+    c = plan.prevailing if calibration is None else planckian_temperature(calibration, "calibration")
+    white_p, white_c = white_references(plan.scene, cam, c, grid)
     groups = channel_groups(cam, grid, channels)
-    width, height = face.camera.width, face.camera.height
+    width, height = plan.scene.camera.width, plan.scene.camera.height
     radiance = np.zeros((height, width, 3))
     spp_used, first = int(spp), None
     for group in groups:
-        loaded = _loaded(face, cam, grid, level, skin, group, int(spp), sampler, variant, lights, scale)
+        loaded = plan.loaded(cam, group)
         first = first or loaded
-        spp_used = int(loaded.sensors()[0].sampler().sample_count())
-        values = np.array(mi.render(loaded, seed=int(seed)), dtype=np.float64)
-        radiance[:, :, list(group)] = values.reshape(height, width, len(group)) * scale
-    labels = render_labels(mi, first, width, height, shape_labels(face))
-    info = {"lights": {k: {"temperature_K": v.temperature, "illuminance_lx": v.illuminance}
-                       for k, v in lights.items()}}
-    after = level.setup(face, cam, grid, lights, calibration=c, seed=int(seed), imager=imager, exposure=exposure)
-    frame = level.post(Frame(radiance, white_p, white_c, info), after)  # e.g. noise: one frame through a sensor
+        radiance[:, :, list(group)], spp_used = plan.render(loaded)
+    return finish_face(plan, cam, c, radiance, white_p, white_c, plan.labels(first), spp_used, len(groups), start,
+                       imager, exposure)
+
+
+def finish_face(plan: FacePlan, cam: Camera, calibration: float, radiance: NDArrayFloat, white_p: NDArrayFloat,
+                white_c: NDArrayFloat, labels: NDArrayFloat, spp_used: int, passes: int, start: float,
+                imager=None, exposure="auto", info: dict | None = None) -> FaceRendering:
+    """
+    A face render from its ``radiance`` through ``cam`` (``(height, width, 3)``, specfilm units) and the whites:
+    the level's post-processing (``noise``: one frame through the image sensor), Eq. 4's gain (WP, Eq. 8) to
+    ``calibration`` (K), the :class:`FaceRendering` (``start``: when the work began, ``time.perf_counter()``;
+    ``info``: keys added to its ``info``).
+    """
+    extra = {"lights": {k: {"temperature_K": v.temperature, "illuminance_lx": v.illuminance}
+                        for k, v in plan.lights.items()}, **(info or {})}
+    after = plan.level.setup(plan.scene, cam, plan.grid, plan.lights, calibration=calibration, seed=plan.seed,
+                             imager=imager, exposure=exposure)
+    frame = plan.level.post(Frame(radiance, white_p, white_c, extra), after)  # e.g. noise: one frame, a sensor
     applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
     image = applied * frame.signal
-    return FaceRendering(face, cam, level.name, skin, float(p), float(c), image.astype(np.float32), radiance,
-                         labels, label_names(face), spp_used, int(spp), int(seed), sampler, variant,
-                         time.perf_counter() - start, len(groups), white_p, white_c, applied, frame.info)
+    return FaceRendering(plan.scene, cam, plan.level.name, plan.skin, float(plan.prevailing), float(calibration),
+                         image.astype(np.float32), radiance, labels, label_names(plan.scene), int(spp_used),
+                         plan.spp, plan.seed, plan.sampler, plan.variant, time.perf_counter() - start, passes,
+                         white_p, white_c, applied, frame.info)
 
 
 def face_exr(rendering: FaceRendering) -> tuple[NDArrayFloat, tuple[str, ...], dict]:
