@@ -70,6 +70,12 @@ def add_parsers(commands) -> None:
     p.add_argument("--csv", help="write every combination's row to this CSV file (whole or not at all)")
     p.add_argument("--max-renders", metavar="N", default=str(RENDERS_MAX),
                    help=f"refuse sweeps of more renders than this (default {RENDERS_MAX})")
+    p.add_argument("--direct", action="store_true",
+                   help="render every camera on its own (the default for one --camera); without it several cameras "
+                   "are seen through one spectral render per light, skin and level")
+    p.add_argument("--bands", metavar="START:END:STEP",
+                   help="the spectral renders' band grid in nm (default 400:700:5): a hat per band, a camera on this "
+                   "grid seen exactly")
     p.add_argument("--max-samples", metavar="N", default=f"{SWEEP_SAMPLES_MAX:g}",
                    help=f"refuse sweeps of more samples (renders × pixels × spp) than this (default "
                    f"{SWEEP_SAMPLES_MAX:g})")
@@ -137,7 +143,20 @@ def _checked(args: argparse.Namespace) -> dict:
     max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
     if args.dask is not None and not str(args.dask).strip():
         raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one", flag="--dask")
+    spectral = len(cams) > 1 and not args.direct
+    if args.bands is not None and not spectral:
+        raise SkinrenderError("--bands: the bands of a spectral sweep, which renders several --camera once (not with "
+                              "--direct or one camera)", flag="--bands")
+    bands = None
+    if spectral:
+        from ..rendering.bands import BANDS_DEFAULT, check_bands, parse_bands, projection
+
+        bands = BANDS_DEFAULT if args.bands is None else flag("--bands", parse_bands, args.bands)
+        flag("--bands", check_bands, bands, GRID_DEFAULT, "the face's lights and reflectances (400–700 nm)")
+        for cam in cams:
+            flag({"camera": "--camera", None: "--bands"}, projection, cam, bands, GRID_DEFAULT)
     return {
+        "spectral": spectral, **({"bands": bands} if spectral else {}),
         "cameras": cams, "lights": pairs, "skins": skins, "levels": levels, "scene": args.scene,
         "size": integer_in(args.size, "--size", 1, SIZE_MAX), "spp": integer_in(args.spp, "--spp", 1, SPP_MAX),
         "seed": integer_in(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": args.imager,
@@ -181,8 +200,13 @@ def _face_sweep(args: argparse.Namespace) -> None:
     rows = [[row["camera"], f"{row['prevailing_K']:g}/{row['calibration_K']:g}", row["skin"], row["level"],
              f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]), rate(row["tpr"]), rate(row["fpr"])]
             for row in document["combinations"]]
+    spectral = result.spectral
+    how = ("" if spectral is None else f" seen through {spectral['renders']} spectral render"
+           f"{'s' * (spectral['renders'] != 1)} of {spectral['bands']} bands ({spectral['bands_nm']} nm)")
     text = (table(rows, ["camera", "P/C K", "skin", "level", "s", "spp", "skin NCC r g b", "TPR", "FPR"])
-            + f"\n{len(rows)} render{'s' * (len(rows) != 1)} of {result.size}×{result.size} px at {document['spp']} spp in "
+            + f"\n{len(rows)} {'render' if spectral is None else 'combination'}{'s' * (len(rows) != 1)}{how} of "
+            f"{result.size}×{result.size} px at "
+            f"{document['spp']} spp in "
             f"{result.elapsed_s:.1f} s ({'Dask' if result.dask else f'{result.workers} worker' + 's' * (result.workers > 1)}, {result.variant})"
             + (f"; wrote {args.csv}" if args.csv else ""))
     emit(args, document, text)

@@ -39,6 +39,8 @@ hat); sensitivities as the camera gives them.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from ..errors import SkinrenderError
@@ -148,16 +150,32 @@ def hats(bands: WavelengthGrid) -> list[tuple[NDArrayFloat, NDArrayFloat]]:
 
 
 def film_channels(bands: WavelengthGrid) -> dict:
-    """The ``specfilm`` channels of the bands: name → Mitsuba ``irregular`` spectrum of its hat."""
-    from .renderer import _spectrum
+    """
+    The ``specfilm`` channels of the bands: name → Mitsuba ``regular`` spectrum of its hat (2 or 3 values over
+    its support: evaluated without the search an ``irregular`` one needs; the same hat, measured to the float32
+    rounding).
 
-    return {name: _spectrum(wavelengths, values) for name, (wavelengths, values) in zip(band_names(bands), hats(bands))}
+    >>> film_channels(WavelengthGrid(400, 410, 5))["405nm"]
+    {'type': 'regular', 'wavelength_min': 400.0, 'wavelength_max': 410.0, 'values': '0,1,0'}
+    """
+    return {name: {"type": "regular", "wavelength_min": float(wavelengths[0]), "wavelength_max": float(wavelengths[-1]),
+                   "values": ",".join(f"{value:g}" for value in values)}
+            for name, (wavelengths, values) in zip(band_names(bands), hats(bands))}
 
 
 def hat_matrix(bands: WavelengthGrid, wavelengths: NDArrayFloat) -> NDArrayFloat:
-    """Every hat at ``wavelengths`` (nm), shape ``(bands, wavelengths)``; 0 outside the bands."""
-    lam = bands.wavelengths
-    return np.array([np.interp(wavelengths, lam, np.eye(lam.size)[j], left=0.0, right=0.0) for j in range(lam.size)])
+    """Every hat at ``wavelengths`` (nm), shape ``(bands, wavelengths)``; 0 outside the bands (cached: every
+    camera seen through a render integrates its whites on the same wavelengths)."""
+    return _hat_matrix(bands, np.asarray(wavelengths, dtype=np.float64).tobytes())
+
+
+@functools.lru_cache(maxsize=8)
+def _hat_matrix(bands: WavelengthGrid, data: bytes) -> NDArrayFloat:
+    wavelengths, lam = np.frombuffer(data, dtype=np.float64), bands.wavelengths
+    matrix = np.array([np.interp(wavelengths, lam, np.eye(lam.size)[j], left=0.0, right=0.0)
+                       for j in range(lam.size)])
+    matrix.setflags(write=False)
+    return matrix
 
 
 def band_integrals(wavelengths: NDArrayFloat, spectrum: NDArrayFloat, bands: WavelengthGrid) -> NDArrayFloat:

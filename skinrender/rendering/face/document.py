@@ -59,7 +59,8 @@ from ..scene import reflectance_of
 from .labels import SHAPE_SKIN, prop_shape_id
 from .scene import MESH_HEAD, FaceScene, Light, skin_reflectance_of
 
-__all__ = ["channel_groups", "film_dict", "light_irradiance", "channel_integral", "transform", "face_document"]
+__all__ = ["channel_groups", "film_dict", "light_irradiance", "channel_integral", "transform", "face_document",
+           "skin_material", "light_documents"]
 
 
 def channel_groups(cam: Camera, grid: WavelengthGrid, channels: str = "auto") -> list[tuple[int, ...]]:
@@ -190,7 +191,7 @@ def face_document(mi, scene: FaceScene, cam: Camera | None, grid: WavelengthGrid
     c = scene.camera
     setup = level.setup(scene, cam, grid, lights, skin=skin)
     k = level.scene_scale  # scene units per metre: 1 but with an effect that needs finer ray offsets
-    at = (lambda point: list(point)) if k == 1.0 else (lambda point: [k * v for v in point])  # noqa: E731
+    at = _at(k)
     document = {
         "type": "scene",
         "integrator": level.integrator(setup),
@@ -201,22 +202,45 @@ def face_document(mi, scene: FaceScene, cam: Camera | None, grid: WavelengthGrid
             "film": film_dict(cam, grid, group, c.width, c.height, channels),
         },
     }
-    document[SHAPE_SKIN] = _mesh(mi, scene, level.skin(skin_reflectance_of(skin, grid, "skin"), setup), k)
+    document[SHAPE_SKIN] = _mesh(mi, scene, skin_material(scene, level, grid, skin, lights, cam), k)
     for index, prop in enumerate(scene.props):
         size = [prop.size[0] / 2, prop.size[1] / 2, prop.size[2] / 2 if prop.shape == "cube" else 1.0]
         document[prop_shape_id(index)] = {
             "type": prop.shape, "to_world": matrix(_scaled(transform(prop.position, prop.rotate, size), k)),
             **level.prop(reflectance_of(prop.reflectance, grid, f"prop {prop.name!r}"), setup),
         }
-    target = np.asarray(at(c.target))
+    return {**document, **light_documents(scene, level, grid, lights, scale)}
+
+
+def _at(unit: float):
+    """A point (m) in a scene of ``unit`` scene units per metre, as a list (unchanged, not even rounded, at 1)."""
+    return (lambda point: list(point)) if unit == 1.0 else (lambda point: [unit * v for v in point])
+
+
+def skin_material(scene: FaceScene, level, grid: WavelengthGrid, skin: str, lights: dict[str, Light],
+                  cam: Camera | None = None) -> dict:
+    """The skin's shape properties at ``level`` (``{"bsdf": …}``, a medium's ``"interior"``), plain dicts."""
+    setup = level.setup(scene, cam, grid, lights, skin=skin)
+    return level.skin(skin_reflectance_of(skin, grid, "skin"), setup)
+
+
+def light_documents(scene: FaceScene, level, grid: WavelengthGrid, lights: dict[str, Light], scale: float) -> dict:
+    """
+    The emitters of ``lights`` (``{"light_NAME": …}``, plain dicts): a point light where it has a position (its
+    intensity giving its irradiance at the camera target, in the level's scene units), else the uniform
+    environment; every spectrum divided by ``scale`` (W·m⁻²·nm⁻¹).
+    """
+    at = _at(level.scene_scale)
+    target = np.asarray(at(scene.camera.target))
+    out = {}
     for name, light in lights.items():
         lam, irradiance = light_irradiance(light, grid)
         if light.position is None:
-            document[f"light_{name}"] = {"type": "constant", "sampling_weight": float(light.illuminance),
-                                         "radiance": _spectrum(lam, irradiance / np.pi / scale)}
+            out[f"light_{name}"] = {"type": "constant", "sampling_weight": float(light.illuminance),
+                                    "radiance": _spectrum(lam, irradiance / np.pi / scale)}
         else:  # the intensity of a point light that gives its irradiance at the target, in scene units
             squared = float(np.sum((np.asarray(at(light.position)) - target) ** 2))
-            document[f"light_{name}"] = {"type": "point", "position": at(light.position),
-                                         "sampling_weight": float(light.illuminance),
-                                         "intensity": _spectrum(lam, irradiance * squared / scale)}
-    return document
+            out[f"light_{name}"] = {"type": "point", "position": at(light.position),
+                                    "sampling_weight": float(light.illuminance),
+                                    "intensity": _spectrum(lam, irradiance * squared / scale)}
+    return out

@@ -34,6 +34,7 @@ from ...spectra import GRID_DEFAULT, WavelengthGrid
 from ..bands import BANDS_DEFAULT, bands_text, check_bands, estimate, parse_bands, projection
 from .effects import Level
 from .render import FaceRendering, finish_face, plan_face, planckian_temperature, white_references
+from .revalue import spectral_loaded
 
 __all__ = ["render_face_spectral", "face_through"]
 
@@ -81,9 +82,8 @@ def render_face_spectral(
     if "noise" not in plan.level and (imager is not None or exposure != "auto"):
         raise SkinrenderError("imager and exposure are the noise level's: add noise to physics")
     estimate(bands, plan.scene.camera.width * plan.scene.camera.height, 0.0)  # refused beyond the memory cap
-    loaded = plan.loaded(bands=bands)
+    loaded, labels = spectral_loaded(plan, bands)  # one kernel per structure (revalue)
     radiance, spp_used = plan.render(loaded)
-    labels = plan.labels(loaded)
     scale = plan.scale
     info = {"lights": {k: {"temperature_K": v.temperature, "illuminance_lx": v.illuminance}
                        for k, v in plan.lights.items()}, "imager": imager, "exposure": exposure}
