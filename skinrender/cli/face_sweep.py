@@ -21,7 +21,7 @@ from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, e
                      interruptible, positive_number, table, variant_of)
 from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
 
-__all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
+__all__ = ["add_parsers", "command_face_sweep", "cameras_of", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
 
 LIGHTS_DEFAULT = "2300/5900,2856/5900,5900/5900,10000/5900"
 """``--lights`` unless given: horizon sunlight to blue sky, balanced to daylight (as the face loci)."""
@@ -70,12 +70,9 @@ def add_parsers(commands) -> None:
     p.add_argument("--csv", help="write every combination's row to this CSV file (whole or not at all)")
     p.add_argument("--max-renders", metavar="N", default=str(RENDERS_MAX),
                    help=f"refuse sweeps of more renders than this (default {RENDERS_MAX})")
-    p.add_argument("--direct", action="store_true",
-                   help="render every camera on its own (the default for one --camera); without it several cameras "
-                   "are seen through one spectral render per light, skin and level")
-    p.add_argument("--bands", metavar="START:END:STEP",
-                   help="the spectral renders' band grid in nm (default 400:700:5): a hat per band, a camera on this "
-                   "grid seen exactly")
+    from .spectral import add_cameras_arguments
+
+    add_cameras_arguments(p)
     p.add_argument("--max-samples", metavar="N", default=f"{SWEEP_SAMPLES_MAX:g}",
                    help=f"refuse sweeps of more samples (renders × pixels × spp) than this (default "
                    f"{SWEEP_SAMPLES_MAX:g})")
@@ -101,6 +98,20 @@ def _lights(values: list[str]) -> list[tuple[float, float]]:
     return pairs
 
 
+def cameras_of(specs: list[str], name: str = "--camera") -> list:
+    """Every repeated ``--camera`` made a camera once, its curves checked on the default grid, none twice."""
+    from ..model.camera import camera
+    from ..spectra import GRID_DEFAULT
+
+    cams = []
+    for spec in specs:
+        cam = flag(name, camera, spec)
+        flag(name, cam.sensitivities, GRID_DEFAULT)
+        cams.append(cam)
+    _once(name, [cam.name for cam in cams])
+    return cams
+
+
 def _once(name: str, items: list[str]) -> None:
     """Refuse a sweep that names one camera, light pair or skin twice (it would render it twice), naming ``name``."""
     twice = sorted({item for item in items if items.count(item) > 1})
@@ -112,7 +123,6 @@ def _checked(args: argparse.Namespace) -> dict:
     """Every flag checked, before any render: the arguments of :func:`~skinrender.studies.face.sweep.face_sweep`."""
     import numpy as np
 
-    from ..model.camera import camera
     from ..model.response import response
     from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
@@ -120,12 +130,7 @@ def _checked(args: argparse.Namespace) -> dict:
     from ..execution import WORKERS_MAX
 
     check_output(args.csv, "--csv", (".csv",))
-    cams = []
-    for spec in args.camera:
-        cam = flag("--camera", camera, spec)
-        flag("--camera", cam.sensitivities, GRID_DEFAULT)
-        cams.append(cam)
-    _once("--camera", [cam.name for cam in cams])
+    cams = cameras_of(args.camera)
     pairs = _lights(args.lights or [LIGHTS_DEFAULT])
     for cam in cams:
         for t in sorted({t for pair in pairs for t in pair}):
@@ -143,20 +148,11 @@ def _checked(args: argparse.Namespace) -> dict:
     max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
     if args.dask is not None and not str(args.dask).strip():
         raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one", flag="--dask")
-    spectral = len(cams) > 1 and not args.direct
-    if args.bands is not None and not spectral:
-        raise SkinrenderError("--bands: the bands of a spectral sweep, which renders several --camera once (not with "
-                              "--direct or one camera)", flag="--bands")
-    bands = None
-    if spectral:
-        from ..rendering.bands import BANDS_DEFAULT, check_bands, parse_bands, projection
+    from .spectral import bands_for
 
-        bands = BANDS_DEFAULT if args.bands is None else flag("--bands", parse_bands, args.bands)
-        flag("--bands", check_bands, bands, GRID_DEFAULT, "the face's lights and reflectances (400–700 nm)")
-        for cam in cams:
-            flag({"camera": "--camera", None: "--bands"}, projection, cam, bands, GRID_DEFAULT)
+    bands = bands_for(args, cams)
     return {
-        "spectral": spectral, **({"bands": bands} if spectral else {}),
+        "spectral": bands is not None, **({"bands": bands} if bands is not None else {}),
         "cameras": cams, "lights": pairs, "skins": skins, "levels": levels, "scene": args.scene,
         "size": integer_in(args.size, "--size", 1, SIZE_MAX), "spp": integer_in(args.spp, "--spp", 1, SPP_MAX),
         "seed": integer_in(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": args.imager,

@@ -164,7 +164,7 @@ def locus_skin_of(args: argparse.Namespace, chart: bool) -> str:
 @interruptible
 def command_detect(args: argparse.Namespace) -> None:
     from ..rendering.face.scene import FaceScene
-    from .face import command_detect_face
+    from .face_detection import command_detect_face
 
     scene = scene_of(args)
     if isinstance(scene, FaceScene):  # the label channel is the ground truth

@@ -23,8 +23,8 @@ import sys
 from ..errors import SkinrenderError
 from .common import check_output, emit, flag, grid_of, settings_of, table
 
-__all__ = ["add_spectral_arguments", "bands_of", "check_spectral_work", "command_render_spectral",
-           "command_validate_spectral", "HELP_BANDS"]
+__all__ = ["add_spectral_arguments", "add_cameras_arguments", "bands_of", "bands_for", "check_spectral_work",
+           "command_render_spectral", "command_validate_spectral", "command_ladders", "HELP_BANDS"]
 
 HELP_BANDS = ("with --spectral: the band grid START:END:STEP in nm (default 400:700:5, 61 bands), inside --grid: "
               "one film channel per band, a piecewise-linear hat, so that a camera given on this grid is seen "
@@ -41,6 +41,36 @@ def add_spectral_arguments(parser: argparse.ArgumentParser, command: str) -> Non
             "direct render of --camera at independent seeds (a difference test that must not fire)")
     parser.add_argument("--spectral", action="store_true", help=text)
     parser.add_argument("--bands", metavar="START:END:STEP", help=HELP_BANDS)
+
+
+def add_cameras_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--direct`` and ``--bands`` of a command whose ``--camera`` repeats (``face-sweep``, ``ladder``)."""
+    parser.add_argument("--direct", action="store_true",
+                        help="render every camera on its own (the default for one --camera); without it several "
+                        "cameras are seen through one spectral render per light, skin and level")
+    parser.add_argument("--bands", metavar="START:END:STEP",
+                        help="the spectral renders' band grid in nm (default 400:700:5): a hat per band, a camera on "
+                        "this grid seen exactly")
+
+
+def bands_for(args: argparse.Namespace, cameras: list):
+    """
+    The bands several ``--camera`` are seen through (``--bands``, default 400:700:5; each camera checked against
+    them), or ``None`` for one render per camera (one camera, or ``--direct``; ``--bands`` then refused).
+    """
+    from ..rendering.bands import BANDS_DEFAULT, check_bands, parse_bands, projection
+    from ..spectra import GRID_DEFAULT
+
+    if len(cameras) == 1 or args.direct:
+        if args.bands is not None:
+            raise SkinrenderError("--bands: the bands of a spectral render, which several --camera share (not with "
+                                  "--direct or one camera)", flag="--bands")
+        return None
+    bands = BANDS_DEFAULT if args.bands is None else flag("--bands", parse_bands, args.bands)
+    flag("--bands", check_bands, bands, GRID_DEFAULT, "the face's lights and reflectances (400–700 nm)")
+    for cam in cameras:
+        flag({"camera": "--camera", None: "--bands"}, projection, cam, bands, GRID_DEFAULT)
+    return bands
 
 
 def bands_of(args: argparse.Namespace):
@@ -207,3 +237,34 @@ def _inside(bands, grid) -> None:
     from ..rendering.bands import check_bands
 
     check_bands(bands, grid, "the chart's light and reflectances (--grid)")
+
+
+def command_ladders(args: argparse.Namespace, inputs: dict, cameras: list, bands, plot) -> None:
+    """``ladder`` with several ``--camera``: each level's replicates rendered once spectrally (or, ``--direct``,
+    per camera) and seen through every camera; one ladder per camera, the verdict their combination."""
+    from ..evaluation.verdict import combine
+    from ..studies.face.ladder import ladders
+    from .face import ladder_text
+
+    if plot is not None:
+        raise SkinrenderError("--plot draws one camera's ladder: give one --camera", flag="--plot")
+    say = lambda line: print(line, file=sys.stderr)  # noqa: E731
+    inputs = {key: value for key, value in inputs.items() if key != "camera_"}
+    results = ladders(cameras, **inputs, bands=bands, progress=say)
+    documents = [result.document() for result in results]
+    verdict = combine([result.verdict for result in results], "ladders")
+    document = {"cameras": documents, "spectral": None if bands is None else {"bands_nm": _text(bands),
+                                                                            "bands": bands.size, "basis": "hat"},
+                **verdict.summary()}
+    text = "\n\n".join(ladder_text(result, doc) for result, doc in zip(results, documents))
+    text += f"\nverdict over {len(results)} cameras: {verdict.outcome.upper().replace('_', ' ')} (exit status " \
+            f"{document['exit_status']})"
+    emit(args, document, text)
+    if document["exit_status"]:
+        raise SystemExit(document["exit_status"])
+
+
+def _text(bands) -> str:
+    from ..rendering.bands import bands_text
+
+    return bands_text(bands)

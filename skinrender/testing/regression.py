@@ -192,7 +192,6 @@ def _white_relative_variance(rendering) -> NDArrayFloat:
 
 def _chart(chart, cam, prevailing, calibration, spp, seed, imager, illuminance, variant) -> Measurement:
     from ..rendering.balance import render
-    from ..rendering.renderer import channel_names
 
     if imager is None:
         rendering = render(chart, cam, prevailing, calibration, spp=spp, seed=seed, variant=variant)
@@ -206,13 +205,21 @@ def _chart(chart, cam, prevailing, calibration, spp, seed, imager, illuminance, 
         rendering = render_imaged(chart, cam, prevailing, calibration, sensor, lux, spp=spp, seed=seed,
                                   variant=variant).rendering
         relative = np.zeros(3)  # the whites of a sensor's balance are noise-free
+    settings = {} if imager is None else {"imager": sensor.name, "illuminance_lux": float(lux)}
+    return _chart_values(chart, cam, rendering, relative, settings)
+
+
+def _chart_values(chart, cam, rendering, relative, settings: dict) -> Measurement:
+    """A chart render reduced to its patch means with their standard errors (``relative``: the whites' relative
+    variance per channel)."""
+    from ..rendering.renderer import channel_names
+
     stats = rendering.patches
     se = np.sqrt(stats.standard_error**2 + stats.mean**2 * relative[None, :])
     dof = np.broadcast_to(stats.count[:, None] - 1.0, se.shape)
     names = tuple(p.name for p in chart.patches)
     items = tuple(f"{n} / {c}" for n in names for c in cam.channels)
-    settings = {"spp": int(rendering.raw[0].spp), "variant": rendering.variant,
-                **({} if imager is None else {"imager": sensor.name, "illuminance_lux": float(lux)})}
+    settings = {"spp": int(rendering.raw[0].spp), "variant": rendering.variant, **settings}
     return Measurement("chart", rendering.image, None, channel_names(cam), names, items, stats.mean.ravel(),
                        se.ravel(), np.where(se.ravel() > 0, dof.ravel(), np.inf), settings)
 
@@ -230,6 +237,10 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     Render ``scene`` (a chart or a face) through ``camera`` under the Planckian ``prevailing`` light (K),
     white balanced to ``calibration`` (K), and reduce it to the values a regression compares (module
     docstring).
+
+    ``camera`` may be a list of cameras: the scene is then rendered once spectrally (a face: once per replicate
+    seed) and seen through each (:mod:`skinrender.testing.spectral`), and a list of measurements returned, one
+    per camera, in their order.
 
     ``spp`` defaults to :data:`SPP_CHART` or :data:`SPP_FACE`; ``physics``, ``skin`` and ``size`` (pixels,
     default :data:`SIZE_FACE`) go with faces; ``imager`` (and ``illuminance``, lx) put the image sensor's
@@ -251,8 +262,13 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
                                   "(e.g. 'face'), not a chart")
         if illuminance is not None and imager is None:
             raise SkinrenderError("illuminance sets the image sensor's exposure: it goes with imager")
-    cam = _named("camera", camera_of, camera)
-    _named("camera", cam.sensitivities)
+    several = isinstance(camera, (list, tuple))
+    cams = [_named("camera", camera_of, one) for one in (camera if several else [camera])]
+    if not cams:
+        raise SkinrenderError("camera: name at least one camera")
+    for cam in cams:
+        _named("camera", cam.sensitivities)
+    cam = cams[0]
     p, c = _planckian(prevailing, "prevailing"), _planckian(calibration, "calibration")
     spp = _integer(SPP_CHART if kind == "chart" and spp is None else SPP_FACE if spp is None else spp, "spp", 1,
                    2**31)
@@ -260,19 +276,27 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     if illuminance is not None and not (isinstance(illuminance, (int, float)) and math.isfinite(illuminance)
                                         and illuminance > 0):
         raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance!r}")
-    if kind == "chart":
-        found = _chart(chart, cam, p, c, spp * factor, seed, imager, illuminance, variant)
-        name = chart.name
+    size = SIZE_FACE if size is None else size
+    if several:
+        from .spectral import measure_spectral
+
+        found = measure_spectral(kind, chart if kind == "chart" else scene, cams, p, c, spp * factor, seed, physics,
+                                 skin, imager, illuminance, size, variant)
+    elif kind == "chart":
+        found = [_chart(chart, cam, p, c, spp * factor, seed, imager, illuminance, variant)]
     else:
-        found = Measurement("face", *measure_face(scene, cam, p, c, spp * factor, seed, physics, skin, imager,
-                                                  illuminance, SIZE_FACE if size is None else size, variant))
-        name = found.settings.pop("scene_name")
+        found = [Measurement("face", *measure_face(scene, cam, p, c, spp * factor, seed, physics, skin, imager,
+                                                   illuminance, size, variant))]
     from .. import __version__
 
-    settings = {"kind": kind, "scene": name, **camera_attributes(cam), "prevailing_K": p, "calibration_K": c,
-                "spp_requested": spp, "seed": seed, **found.settings, "skinrender_version": __version__}
-    return Measurement(found.kind, found.image, found.labels, found.channels, found.regions, found.items,
-                       found.mean, found.standard_error, found.dof, settings, chart if kind == "chart" else None)
+    out = []
+    for cam, one in zip(cams, found):
+        name = chart.name if kind == "chart" else one.settings.pop("scene_name")
+        settings = {"kind": kind, "scene": name, **camera_attributes(cam), "prevailing_K": p, "calibration_K": c,
+                    "spp_requested": spp, "seed": seed, **one.settings, "skinrender_version": __version__}
+        out.append(Measurement(one.kind, one.image, one.labels, one.channels, one.regions, one.items, one.mean,
+                               one.standard_error, one.dof, settings, chart if kind == "chart" else None))
+    return out if several else out[0]
 
 
 def values_of(kind: str, image: NDArrayFloat, labels: NDArrayFloat | None, regions, scene=None) -> NDArrayFloat:
@@ -331,7 +355,8 @@ class Comparison:
 NOTED = {"camera_sha256": "the camera's curves", "variant": "the Mitsuba variant", "spp_requested": "spp",
          "seed": "the seed", "skinrender_version": "the skinrender version", "physics": "the physics",
          "skin": "the skin", "imager": "the imager", "prevailing_K": "the prevailing light (K)",
-         "calibration_K": "the calibration light (K)", "size": "the image size"}
+         "calibration_K": "the calibration light (K)", "size": "the image size",
+         "spectral_bands_nm": "the spectral bands (nm; none: one render per camera)"}
 """Settings whose change against the reference is noted in a failure message, key → words."""
 
 

@@ -35,7 +35,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 
-__all__ = ["REPLICATES", "replicate_seeds", "region_values", "measure_face"]
+__all__ = ["REPLICATES", "replicate_seeds", "region_values", "measure_face", "face_effects", "reduce_face"]
 
 REPLICATES = 4
 """Independent replicates a face is rendered as, for its per-pixel Monte Carlo covariance."""
@@ -99,8 +99,16 @@ def measure_face(scene, cam, prevailing: float, calibration: float, spp: int, se
     ``imager`` adds physics ``noise``; ``illuminance`` without it or ``noise`` is refused.
     """
     from ..rendering.face import render_face
-    from ..rendering.renderer import channel_names
 
+    effects = face_effects(spp, physics, imager, illuminance)
+    renders = [render_face(cam, scene, prevailing, calibration, skin=skin, physics=effects, spp=spp // REPLICATES,
+                           seed=s, size=size, variant=variant, imager=imager, illuminance=illuminance)
+               for s in replicate_seeds(seed)]
+    return reduce_face(renders, cam)
+
+
+def face_effects(spp: int, physics: str | None, imager: str | None, illuminance: float | None) -> str:
+    """A face check's level (``imager`` adds ``noise``), ``spp`` and ``illuminance`` checked (module docstring)."""
     if spp < REPLICATES:
         raise SkinrenderError(f"spp: a face check renders {REPLICATES} replicates, so spp must be at least "
                               f"{REPLICATES}, got {spp}")
@@ -110,9 +118,13 @@ def measure_face(scene, cam, prevailing: float, calibration: float, spp: int, se
     elif illuminance is not None and "noise" not in effects.split("+"):
         raise SkinrenderError("illuminance sets the image sensor's exposure: it goes with imager (or physics "
                               "'noise')")
-    renders = [render_face(cam, scene, prevailing, calibration, skin=skin, physics=effects, spp=spp // REPLICATES,
-                           seed=s, size=size, variant=variant, imager=imager, illuminance=illuminance)
-               for s in replicate_seeds(seed)]
+    return effects
+
+
+def reduce_face(renders: list, cam) -> tuple:
+    """:func:`measure_face`'s reduction of the replicate renders of one camera (``renders``, one per seed)."""
+    from ..rendering.renderer import channel_names
+
     first = renders[0]
     stack = np.array([r.image for r in renders], dtype=np.float64)
     image = stack.mean(axis=0).astype(np.float32)

@@ -85,7 +85,7 @@ from .scene import skin_reflectance_of
 from .shift import budget_rates, eq4_shift, face_budget
 
 __all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "RENDER_OPTIONS",
-           "FaceValidation", "Replicated", "render_replicates", "mean_rendering", "shift_against", "validate_face"]
+           "FaceValidation", "Replicated", "render_replicates", "replicated_of", "mean_rendering", "shift_against", "validate_face"]
 
 LIMITS_SCENE_FREE = {
     "furnace": "white furnace: the scene's mesh, reflectance 1, every bounce, in a uniform sky",
@@ -158,12 +158,18 @@ def render_replicates(camera_, scene, prevailing, calibration, skin, level: Leve
     start = time.perf_counter()
     renders = [render_face(camera_, scene, prevailing, calibration, skin, level, spp, s, size, grid=grid, **options)
                for s in seeds]
+    return replicated_of(renders, level, grid, options.get("imager"), time.perf_counter() - start)
+
+
+def replicated_of(renders: list, level: Level, grid=GRID_DEFAULT, imager=None, seconds: float = 0.0) -> Replicated:
+    """Replicate renders of one camera (e.g. seen through spectral renders, one per seed) measured as the level's
+    checks see them; ``seconds``: the time they took."""
     first = renders[0]
     images = np.array([r.image for r in renders], dtype=np.float64)
     rho = skin_reflectance_of(first.skin, grid, "skin")
     expected = ncc(analytic_reference(first.camera, rho[None], first.prevailing, first.calibration, grid=grid))[0]
-    measured = level.measure(images, first, options.get("imager"))  # through a sensor: dark signal, clipping, codes
-    return Replicated(renders, level, measured, expected, time.perf_counter() - start, grid)
+    measured = level.measure(images, first, imager)  # through a sensor: dark signal, clipping, codes
+    return Replicated(renders, level, measured, expected, seconds, grid)
 
 
 def mean_rendering(replicated: Replicated, imager=None, exposure="auto") -> FaceRendering:

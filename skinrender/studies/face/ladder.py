@@ -52,13 +52,14 @@ from ...rendering.face.labels import LABEL_SKIN
 from ...rendering.face.limits import REPLICATES
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
 from ...rendering.face.shift import face_budget
-from ...rendering.face.validation import mean_rendering, render_replicates, shift_against
+from ...rendering.bands import BANDS_DEFAULT, parse_bands, projection
+from ...rendering.face.validation import mean_rendering, render_replicates, replicated_of, shift_against
 from ...rendering.validation import analytic_reference
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 from ...workload import duration_text
 
-__all__ = ["LEVELS_DEFAULT", "REPLICATES_LADDER", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "score_rendering",
-           "score_frame"]
+__all__ = ["LEVELS_DEFAULT", "REPLICATES_LADDER", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "ladders",
+           "score_rendering", "score_frame"]
 
 LEVELS_DEFAULT = LEVELS_LADDER
 """The levels of :func:`ladder`: the analytic model's world, each effect alone, then all of them (read from the
@@ -310,8 +311,25 @@ def ladder(
     -------
     :class:`Ladder`
     """
+    return ladders([camera_], prevailing, calibration, skin, levels, spp, seed, size, scene, variant, grid, imager,
+                   illuminance, progress, replicates, budget_fraction, bands=None)[0]
 
-    cam = camera(camera_)
+
+def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: Sequence[str] = LEVELS_DEFAULT,
+            spp: int = 64, seed: int = 0, size: int | None = 128, scene="face", variant: str | None = None,
+            grid: WavelengthGrid = GRID_DEFAULT, imager: str | None = None, illuminance: float | None = None,
+            progress: Callable[[str], None] | None = None, replicates: int = REPLICATES_LADDER,
+            budget_fraction: float = BUDGET_FRACTION, bands: WavelengthGrid | str | None = BANDS_DEFAULT) -> list:
+    """
+    :func:`ladder` for every camera of ``cameras`` (arguments as there): each level's replicates rendered once
+    spectrally with ``bands`` (``START:END:STEP`` nm; one render per seed, seen through every camera:
+    :mod:`~skinrender.rendering.face.spectral`), or, with ``bands=None``, once per camera. A spectral
+    level's seconds are shared equally by the cameras (each adds its own projections). One :class:`Ladder` per
+    camera, in their order.
+    """
+    cams = [camera(c) for c in cameras]
+    if not cams:
+        raise SkinrenderError("cameras: name at least one camera")
     p, c = planckian_temperature(prevailing, "prevailing"), planckian_temperature(calibration, "calibration")
     face = load_face_scene(scene)
     skin = face.skin if skin is None else str(skin).strip()
@@ -323,28 +341,63 @@ def ladder(
         parse_physics(level)
     if isinstance(replicates, bool) or not isinstance(replicates, int) or replicates < 3:
         raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}")
+    if bands is not None:
+        bands = parse_bands(bands)
+        for cam in cams:
+            projection(cam, bands, grid)
     side = (face.camera.width, face.camera.height) if size is None else (size, size)
     each = max(1, -(-int(spp) // replicates))
-    seconds = sum(physics_level(level).seconds(side[0] * side[1] * each * replicates) for level in levels)
+    renders = 1 if bands is not None else len(cams)
+    seconds = renders * sum(physics_level(level).seconds(side[0] * side[1] * each * replicates) for level in levels)
     if progress is not None and seconds > 60:  # subsurface: minutes (the command line refuses beyond --max-minutes)
         progress(f"the {len(levels)} levels should take about {duration_text(seconds)} on one core")
-    analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
-    budget, locus = face_budget(cam, analytic, c, budget_fraction, grid)
     seeds = [(int(seed) + k) % 2**32 for k in range(replicates)]
-    rows, frames, verdicts, shape, mean = [], [], [], None, None
+    studied = []
+    for cam in cams:
+        analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
+        studied.append((cam, analytic, *face_budget(cam, analytic, c, budget_fraction, grid)))
+    rows, frames, verdicts = [[] for _ in cams], [[] for _ in cams], [[] for _ in cams]
+    means = [None] * len(cams)
+    options = {"variant": variant, "imager": imager, "illuminance": illuminance, "grid": grid}
     for level in levels:
-        if progress is not None:
-            progress(f"rendering the face: {level} ({replicates} × {each} spp) …")
         effects = physics_level(level)
-        replicated = render_replicates(cam, face, p, c, skin, effects, each, seeds, size, variant=variant,
-                                       imager=imager, illuminance=illuminance, grid=grid)
-        mean = mean_rendering(replicated, imager)
-        scores, frame = score_frame(mean, locus)
-        shift = shift_against(replicated, budget, locus, mean.image)
-        rows.append(_level_row(level, replicated, mean, scores, shift, shift.details["budget_rates"]))
-        frames.append(frame)
-        verdicts.append(replace(shift.verdict, name=f"eq4_shift at {rows[-1]['name']}"))
+        if progress is not None:
+            how = "" if bands is None else f", spectral ({bands.size} bands) for {len(cams)} cameras"
+            progress(f"rendering the face: {level} ({replicates} × {each} spp{how}) …")
+        for index, replicated in enumerate(_replicated(cams, face, p, c, skin, effects, each, seeds, size, bands,
+                                                       options)):
+            _, _, budget, locus = studied[index]
+            mean = means[index] = mean_rendering(replicated, imager)
+            scores, frame = score_frame(mean, locus)
+            shift = shift_against(replicated, budget, locus, mean.image)
+            rows[index].append(_level_row(level, replicated, mean, scores, shift, shift.details["budget_rates"]))
+            frames[index].append(frame)
+            verdicts[index].append(replace(shift.verdict, name=f"eq4_shift at {rows[index][-1]['name']}"))
+    out = []
+    for (cam, analytic, budget, locus), mine, drawn, checked, mean in zip(studied, rows, frames, verdicts, means):
+        _changes(mine)
         shape = (mean.scene.camera.width, mean.scene.camera.height)
-    _changes(rows)
-    return Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), rows, frames,
-                  np.asarray(locus.polygon), dict(mean.label_names), budget.document(), verdicts)
+        out.append(Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), mine, drawn,
+                          np.asarray(locus.polygon), dict(mean.label_names), budget.document(), checked))
+    return out
+
+
+def _replicated(cams, face, p, c, skin, level, spp, seeds, size, bands, options) -> list:
+    """One level's replicates for each camera: rendered per camera, or once per seed spectrally and seen through
+    each camera (the renders' seconds shared equally)."""
+    if bands is None:
+        return [render_replicates(cam, face, p, c, skin, level, spp, seeds, size, **options) for cam in cams]
+    from ...rendering.face.spectral import render_face_spectral
+
+    grid = options["grid"]
+    start = time.perf_counter()
+    spectral = [render_face_spectral(face, p, skin, level, spp, s, size, variant=options["variant"], grid=grid,
+                                     bands=bands, imager=options["imager"], illuminance=options["illuminance"])
+                for s in seeds]
+    share = (time.perf_counter() - start) / len(cams)
+    out = []
+    for cam in cams:
+        begin = time.perf_counter()
+        renders = [image.through(cam, c) for image in spectral]
+        out.append(replicated_of(renders, level, grid, options["imager"], share + time.perf_counter() - begin))
+    return out
