@@ -20,10 +20,10 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
-from .common import emit, imaging_options, interruptible, settings_of, table
+from .common import emit, flag, imaging_options, interruptible, settings_of, table
 
 __all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_check_arguments", "add_verdict_arguments", "tolerance_of", "spp_of", "command_validate",
-           "command_validate_chart"]
+           "command_validate_chart", "command_validate_spectral"]
 
 HELP_TOLERANCE = (
     "relative tolerance REL in (0, 1) on each lit patch channel (default 0.01, 1 %%); a channel darker than 1 %% of "
@@ -151,7 +151,7 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     requested = "auto" if auto else settings.spp
     inputs = chart_inputs(args, scene)
     if args.spectral or args.bands is not None:
-        from .spectral import bands_of, command_validate_spectral
+        from .bands_flags import bands_of
 
         bands_of(args)  # --bands without --spectral: refused
         if auto:
@@ -294,3 +294,52 @@ def _imaged_report(result, imaged, requested) -> tuple[dict, str]:
     lines.append(f"bound {result.bound:.3g} (the smallest relative tolerance the means would pass); spp needed ≈ "
                  f"{needed}")
     return document, "\n".join(lines) + imaging_notes(imaged)
+
+def command_validate_spectral(args: argparse.Namespace, scene, inputs, settings, tolerance) -> None:
+    """``validate CHART --spectral``: the projected render against Eq. 4 and against a direct render."""
+    from ..evaluation.verdict import EXIT_STATUS, combine
+    from ..rendering.spectral_validation import validate_spectral
+
+    from .bands_flags import bands_of, check_spectral_work
+
+    bands = bands_of(args)
+    for name, given in (("--imager", args.imager is not None), ("--gamut", bool(args.gamut))):
+        if given:
+            raise SkinrenderError(f"{name} goes without --spectral (validate --spectral checks the projected render "
+                                  "against Eq. 4 and a direct render)", flag=name)
+    flag("--bands", _inside, bands, inputs.grid)
+    from .common import check_render_work
+
+    check_spectral_work(args, bands, inputs.pixels, settings.spp)
+    check_render_work(args, inputs.pixels, settings.spp, 2)  # the direct render: prevailing and calibration
+    print(f"rendering {inputs.scene.name} spectrally ({bands.size} bands) and directly at {settings.spp} spp …",
+          file=sys.stderr)
+    result = flag({"camera": "--camera", "bands": "--bands", None: "--camera"}, validate_spectral, inputs.scene,
+                  inputs.camera, inputs.prevailing, inputs.calibration, bands=bands, grid=inputs.grid,
+                  normalization=inputs.normalization, knee=inputs.knee, tolerance=tolerance, settings=settings)
+    document, lines = _chart_report(inputs, result.validation, settings, settings.spp, tolerance)
+    document["spectral"] = result.document()
+    direct = result.direct_difference
+    lines.append(f"spectral: {bands.size} bands {bands} (hat basis), basis error at most "
+                 f"{result.basis_relative:.2g} relative (Eq. 4 of the camera as the bands see it − of its curves; "
+                 "allowed in the difference test above)")
+    lines.append(f"spectral − direct render (seed {result.direct.raw[0].seed}): {direct.outcome.upper()} — "
+                 f"{direct.reason}")
+    verdict = combine([result.verdict, direct], "validation")
+    document["verdict"], document["passed"] = verdict.outcome, verdict.outcome == "pass"
+    document["exit_status"] = EXIT_STATUS[verdict.outcome]
+    rows = [[name, document["checks"][key]["verdict"] if key in document["checks"] else direct.outcome]
+            for name, key in (("Eq. 4 within tolerance", "equivalence"), ("Eq. 4 difference", "difference"),
+                              ("spectral − direct difference", "direct"))]
+    text = "\n".join(lines) + "\n" + table(rows, ["check", "outcome"])
+    text += f"\nverdict: {verdict.outcome.upper().replace('_', ' ')} (exit status {document['exit_status']})"
+    emit(args, document, text)
+    if document["exit_status"]:
+        raise SystemExit(document["exit_status"])
+
+
+
+def _inside(bands, grid) -> None:
+    from ..rendering.bands import check_bands
+
+    check_bands(bands, grid, "the chart's light and reflectances (--grid)")

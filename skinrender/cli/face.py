@@ -21,7 +21,7 @@ from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common,
                      sensor_settings, settings_of, table, variant_of)
 
 __all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
-           "ladder_text",
+           "ladder_text", "command_ladders",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
 
 SIZE_MAX = 2000
@@ -102,7 +102,7 @@ def add_parsers(commands) -> None:
                    "detected mask and the skin pixels' NCC over the analytic skin locus with the budget; with "
                    "--effects, the table's bars")
     add_max_minutes(p, "the levels × --size² × --spp (with --effects, × the skins)")
-    from .spectral import add_cameras_arguments
+    from .bands_flags import add_cameras_arguments
 
     add_cameras_arguments(p)
     add_common(p)
@@ -242,7 +242,7 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
 
-    from .face_sweep import cameras_of
+    from .bands_flags import cameras_of
 
     cams = cameras_of(args.camera)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
@@ -273,7 +273,7 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     from ..studies.face.ladder import REPLICATES_LADDER
     from ..workload import check_work
 
-    from .spectral import bands_for
+    from .bands_flags import bands_for
 
     bands = bands_for(args, cams)
     renders = len(levels) * REPLICATES_LADDER * (len(skins or SKIN_TONES) if args.effects else 1)
@@ -303,8 +303,6 @@ def command_ladder(args: argparse.Namespace) -> None:
     inputs = _ladder_inputs(args)
     cams, bands = inputs.pop("cameras"), inputs.pop("bands")
     if len(cams) > 1:
-        from .spectral import command_ladders
-
         skins = inputs.pop("skins")
         return command_ladders(args, {**inputs, "skin": skins[0] if skins else None}, cams, bands, plot)
     inputs["camera_"] = cams[0]
@@ -396,3 +394,33 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
             f"{result.prevailing:g} K white-balanced to {result.calibration:g} K: {path} (+ {preview}, "
             f"label channel: {labels}), {result.spp} spp, {result.variant}, {result.seconds:.2f} s")
     emit(args, document, text)
+
+def command_ladders(args: argparse.Namespace, inputs: dict, cameras: list, bands, plot) -> None:
+    """``ladder`` with several ``--camera``: each level's replicates rendered once spectrally (or, ``--direct``,
+    per camera) and seen through every camera; one ladder per camera, the verdict their combination."""
+    from ..evaluation.verdict import combine
+    from ..studies.face.ladder import ladders
+
+    if plot is not None:
+        raise SkinrenderError("--plot draws one camera's ladder: give one --camera", flag="--plot")
+    say = lambda line: print(line, file=sys.stderr)  # noqa: E731
+    inputs = {key: value for key, value in inputs.items() if key != "camera_"}
+    results = ladders(cameras, **inputs, bands=bands, progress=say)
+    documents = [result.document() for result in results]
+    verdict = combine([result.verdict for result in results], "ladders")
+    document = {"cameras": documents, "spectral": None if bands is None else {"bands_nm": _text(bands),
+                                                                            "bands": bands.size, "basis": "hat"},
+                **verdict.summary()}
+    text = "\n\n".join(ladder_text(result, doc) for result, doc in zip(results, documents))
+    text += f"\nverdict over {len(results)} cameras: {verdict.outcome.upper().replace('_', ' ')} (exit status " \
+            f"{document['exit_status']})"
+    emit(args, document, text)
+    if document["exit_status"]:
+        raise SystemExit(document["exit_status"])
+
+
+
+def _text(bands) -> str:
+    from ..rendering.bands import bands_text
+
+    return bands_text(bands)

@@ -21,7 +21,7 @@ from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, e
                      interruptible, positive_number, table, variant_of)
 from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
 
-__all__ = ["add_parsers", "command_face_sweep", "cameras_of", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
+__all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
 
 LIGHTS_DEFAULT = "2300/5900,2856/5900,5900/5900,10000/5900"
 """``--lights`` unless given: horizon sunlight to blue sky, balanced to daylight (as the face loci)."""
@@ -70,7 +70,7 @@ def add_parsers(commands) -> None:
     p.add_argument("--csv", help="write every combination's row to this CSV file (whole or not at all)")
     p.add_argument("--max-renders", metavar="N", default=str(RENDERS_MAX),
                    help=f"refuse sweeps of more renders than this (default {RENDERS_MAX})")
-    from .spectral import add_cameras_arguments
+    from .bands_flags import add_cameras_arguments
 
     add_cameras_arguments(p)
     p.add_argument("--max-samples", metavar="N", default=f"{SWEEP_SAMPLES_MAX:g}",
@@ -98,20 +98,6 @@ def _lights(values: list[str]) -> list[tuple[float, float]]:
     return pairs
 
 
-def cameras_of(specs: list[str], name: str = "--camera") -> list:
-    """Every repeated ``--camera`` made a camera once, its curves checked on the default grid, none twice."""
-    from ..model.camera import camera
-    from ..spectra import GRID_DEFAULT
-
-    cams = []
-    for spec in specs:
-        cam = flag(name, camera, spec)
-        flag(name, cam.sensitivities, GRID_DEFAULT)
-        cams.append(cam)
-    _once(name, [cam.name for cam in cams])
-    return cams
-
-
 def _once(name: str, items: list[str]) -> None:
     """Refuse a sweep that names one camera, light pair or skin twice (it would render it twice), naming ``name``."""
     twice = sorted({item for item in items if items.count(item) > 1})
@@ -130,6 +116,8 @@ def _checked(args: argparse.Namespace) -> dict:
     from ..execution import WORKERS_MAX
 
     check_output(args.csv, "--csv", (".csv",))
+    from .bands_flags import cameras_of
+
     cams = cameras_of(args.camera)
     pairs = _lights(args.lights or [LIGHTS_DEFAULT])
     for cam in cams:
@@ -148,7 +136,7 @@ def _checked(args: argparse.Namespace) -> dict:
     max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
     if args.dask is not None and not str(args.dask).strip():
         raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one", flag="--dask")
-    from .spectral import bands_for
+    from .bands_flags import bands_for
 
     bands = bands_for(args, cams)
     return {

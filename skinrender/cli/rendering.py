@@ -18,7 +18,8 @@ from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options
 from .face import check_figure
 from .chart_validation import add_check_arguments, add_verdict_arguments, command_validate
 from .inputs import chart_inputs, chart_only, imaging_document, imaging_notes, scene_of
-from .spectral import add_spectral_arguments, bands_of, command_render_spectral
+from .bands_flags import add_spectral_arguments, bands_of
+from .spectral_commands import command_render_spectral
 from .subsurface import check_chart_subsurface, subsurface_keys
 
 

@@ -31,8 +31,9 @@ from __future__ import annotations
 import inspect
 
 from ..errors import SkinrenderError
+from .bands import BANDS_DEFAULT
 
-__all__ = ["load_scene", "render", "validate"]
+__all__ = ["load_scene", "render", "validate", "render_spectral", "render_cameras"]
 
 
 def load_scene(spec):
@@ -110,7 +111,7 @@ def _chart_lights(prevailing, calibration, what: str) -> None:
 def render(scene, camera=None, prevailing=None, calibration=None, spectral: bool = False, **options):
     """
     Render a chart or a face scene through a camera, white balanced to the calibration light (Eq. 4); with
-    ``spectral=True``, once for every camera: a :class:`~skinrender.rendering.spectral.SpectralImage` (no camera,
+    ``spectral=True``, once for every camera: a :class:`~skinrender.rendering.spectral_image.SpectralImage` (no camera,
     no calibration: ``.through(camera, calibration=K)`` gives each camera's result).
 
     Parameters
@@ -134,12 +135,12 @@ def render(scene, camera=None, prevailing=None, calibration=None, spectral: bool
         chart's ``normalization``, ``knee``, ``cache`` and ``channels`` (applied by ``.through``, or meaningless).
     spectral
         Render the bands of :mod:`~skinrender.rendering.bands` instead of a camera's channels
-        (:func:`~skinrender.rendering.spectral.render_spectral`).
+        (:func:`~skinrender.rendering.spectral_image.render_spectral`).
 
     Returns
     -------
     :class:`~skinrender.rendering.balance.Rendering`, :class:`~skinrender.rendering.face.render.FaceRendering`
-    or, spectral, :class:`~skinrender.rendering.spectral.SpectralImage`
+    or, spectral, :class:`~skinrender.rendering.spectral_image.SpectralImage`
 
     Raises
     ------
@@ -189,7 +190,7 @@ def _render_spectral(scene, camera, prevailing, calibration, options: dict):
 
     scene = load_scene(scene)
     if isinstance(scene, FaceScene):
-        from .face.spectral import render_face_spectral as function
+        from .face.spectral_face import render_face_spectral as function
 
         kind = "face"
     else:
@@ -198,8 +199,6 @@ def _render_spectral(scene, camera, prevailing, calibration, options: dict):
         kind = "chart"
         _chart_lights(prevailing, 0, "spectral render")
     _check_options(function, {"scene": scene, "prevailing": prevailing}, options, kind, "render")
-    from .spectral import render_spectral
-
     return render_spectral(scene, prevailing, **options)
 
 
@@ -262,3 +261,79 @@ def validate(scene, camera=None, prevailing=None, calibration=None, **options):
     arguments = {"scene": scene, "camera_": camera, "prevailing": prevailing, "calibration": calibration}
     _check_options(function, arguments, options, kind, "validate", forwards_to)
     return function(**arguments, **options)
+
+
+def render_spectral(scene, prevailing=None, bands=BANDS_DEFAULT, **options):
+    """
+    Render a chart or a face once with the bands as its film (no camera, no calibration: both applied by
+    :meth:`~skinrender.rendering.spectral_image.SpectralImage.through`).
+
+    Parameters
+    ----------
+    scene
+        A chart or a face: a bundled name, a TOML path or a parsed scene.
+    prevailing
+        The light: kelvin, ``A`` or ``H`` (a chart needs it; a face keeps its scene's key light where
+        ``None``).
+    bands
+        ``START:END:STEP`` nm or a :class:`~skinrender.spectra.WavelengthGrid` (default 400:700:5).
+    **options
+        A chart's: ``spp``, ``seed``, ``sampler``, ``variant`` (or ``settings``), ``grid``, ``emitter``,
+        ``physics`` (``direct``) (:func:`~skinrender.rendering.spectral_chart.render_chart_spectral`). A face's:
+        ``skin``, ``physics``, ``spp``, ``seed``, ``size``, ``sampler``, ``variant``, ``grid``, ``imager``,
+        ``exposure``, ``illuminance`` (:func:`~skinrender.rendering.face.spectral_face.render_face_spectral`).
+    """
+    from .face.scene import FaceScene
+
+    scene = load_scene(scene)
+    if isinstance(scene, FaceScene):
+        from .face.spectral_face import render_face_spectral
+
+        return render_face_spectral(scene, prevailing, bands=bands, **options)
+    from .spectral_chart import render_chart_spectral
+
+    if prevailing is None:
+        raise SkinrenderError("prevailing: a chart's spectral render needs its light (kelvin, A or H)")
+    return render_chart_spectral(scene, prevailing, bands, **options)
+
+
+def render_cameras(scene, cameras, prevailing=None, calibration=None, bands=BANDS_DEFAULT, **options) -> list:
+    """
+    Render ``scene`` once spectrally, then return each camera's result: what ``sr.render(scene, camera,
+    prevailing, calibration, …)`` returns for every camera of ``cameras``, in their order, from one render
+    (their images share its light paths).
+
+    Parameters
+    ----------
+    scene, prevailing, bands, options
+        As :func:`render_spectral`.
+    cameras
+        Cameras or specs (at least one).
+    calibration
+        The white balance's light (kelvin, ``A``, ``H``); ``None``: the prevailing light. The chart's
+        ``normalization`` and ``knee`` go in ``options`` too.
+
+    Examples
+    --------
+    >>> import skinrender as sr
+    >>> faces = sr.render_cameras("face", ["gbell:9@450,540,610", "Nikon 5100 (NPL)"], 2856, 5900,
+    ...                           spp=4, size=16)  # doctest: +SKIP
+    >>> [face.camera.name for face in faces]  # doctest: +SKIP
+    ['gbell:9@450,540,610', 'Nikon 5100 (NPL)']
+    """
+    from ..model.camera import camera
+    from ..model.illuminant import illuminant
+    from ..spectra import GRID_DEFAULT
+    from .bands import parse_bands, projection
+
+    cams = [camera(cam) for cam in cameras] if not isinstance(cameras, (str, bytes)) else [camera(cameras)]
+    if not cams:
+        raise SkinrenderError("cameras: name at least one camera")
+    bands = parse_bands(bands)
+    for cam in cams:  # every camera checked against the bands before the render
+        projection(cam, bands, options.get("grid", GRID_DEFAULT))
+    if calibration is not None and illuminant(calibration).temperature is None:
+        raise SkinrenderError(f"calibration: a Planckian light (kelvin, A or H), got {calibration!r}")
+    balance = {key: options.pop(key) for key in ("normalization", "knee") if key in options}
+    spectral = render_spectral(scene, prevailing, bands, **options)
+    return [spectral.through(cam, calibration, **balance) for cam in cams]

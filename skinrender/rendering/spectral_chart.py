@@ -7,7 +7,7 @@ A chart (:mod:`skinrender.rendering.scene`) rendered with the bands of
 emitter of :mod:`skinrender.rendering.renderer`, and then seen through any
 camera as :func:`skinrender.rendering.balance.render` would render it.
 
--   :func:`render_chart_spectral`: the render (a :class:`~skinrender.rendering.spectral.SpectralImage`).
+-   :func:`render_chart_spectral`: the render (a :class:`~skinrender.rendering.spectral_image.SpectralImage`).
 -   :func:`chart_through`: one camera's :class:`~skinrender.rendering.balance.Rendering` from it.
 -   :func:`calibration_white`: the white reference under the calibration light, as the bands see a camera.
 
@@ -72,9 +72,9 @@ def render_chart_spectral(scene, prevailing, bands: WavelengthGrid | str = BANDS
 
     Returns
     -------
-    :class:`~skinrender.rendering.spectral.SpectralImage`
+    :class:`~skinrender.rendering.spectral_image.SpectralImage`
     """
-    from .spectral import SpectralImage
+    from .spectral_image import SpectralImage
 
     settings = RenderSettings.of(settings, **options)
     if settings.channels != "auto":
@@ -93,7 +93,8 @@ def render_chart_spectral(scene, prevailing, bands: WavelengthGrid | str = BANDS
     estimate(bands, width * height, 0.0)  # refused beyond the memory cap
     raw = _renderer(chart, bands, settings.replace(seed=0), grid, emitter).raw(p, settings.seed)
     return SpectralImage("chart", chart, bands, raw.image, raw.emitter_scale, p, physics, raw.spp, settings.spp,
-                         settings.seed, raw.sampler, raw.variant, raw.seconds, grid, info={"emitter": emitter})
+                         settings.seed, raw.sampler, raw.variant, raw.seconds, grid, info={"emitter": emitter},
+                         seen_through=chart_through)
 
 
 def calibration_white(chart: ChartScene, matrix: NDArrayFloat, bands: WavelengthGrid, grid: WavelengthGrid,

@@ -61,7 +61,7 @@ class SpectralValidation:
     basis_error
         Per patch and channel, Eq. 4 of the camera as the bands see it minus Eq. 4 of its curves, output units.
     spectral
-        The :class:`~skinrender.rendering.spectral.SpectralImage` rendered.
+        The :class:`~skinrender.rendering.spectral_image.SpectralImage` rendered.
     direct
         The direct render of the camera (``None`` when not asked).
     direct_difference
@@ -130,7 +130,7 @@ def validate_spectral(
     bands
         The band grid (``START:END:STEP`` nm; default 400:700:5).
     spectral
-        A :class:`~skinrender.rendering.spectral.SpectralImage` of the chart at ``prevailing`` to check instead
+        A :class:`~skinrender.rendering.spectral_image.SpectralImage` of the chart at ``prevailing`` to check instead
         of rendering one.
     direct
         Also render the camera directly (seeds ``seed + 2``, ``seed + 3``) and test the difference.

@@ -183,7 +183,7 @@ class RenderRegression:
     def _check_cameras(self, scene, cameras: list, prevailing, calibration, options: dict, basename,
                        alpha: float) -> list | None:
         """
-        Several cameras seen through one spectral render (:mod:`skinrender.testing.spectral`), each compared with
+        Several cameras seen through one spectral render (:mod:`skinrender.testing.spectral_checks`), each compared with
         its own reference ``<basename or test name>.<camera>.exr``; the test fails with every camera that differs.
         """
         if not cameras:

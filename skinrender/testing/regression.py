@@ -64,7 +64,7 @@ from ..hints import NDArrayFloat
 from .replicates import REPLICATES, measure_face, region_values
 
 __all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
-           "Comparison", "scene_kind", "measure", "values_of", "setting_notes", "compare"]
+           "Comparison", "scene_kind", "measure", "measure_spectral", "values_of", "setting_notes", "compare"]
 
 REFERENCE_SPP_FACTOR = 4
 """A reference is rendered at this many times the check's spp (and the same seed): its own noise then moves
@@ -239,7 +239,7 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     docstring).
 
     ``camera`` may be a list of cameras: the scene is then rendered once spectrally (a face: once per replicate
-    seed) and seen through each (:mod:`skinrender.testing.spectral`), and a list of measurements returned, one
+    seed) and seen through each (:func:`measure_spectral`), and a list of measurements returned, one
     per camera, in their order.
 
     ``spp`` defaults to :data:`SPP_CHART` or :data:`SPP_FACE`; ``physics``, ``skin`` and ``size`` (pixels,
@@ -278,8 +278,6 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
         raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance!r}")
     size = SIZE_FACE if size is None else size
     if several:
-        from .spectral import measure_spectral
-
         found = measure_spectral(kind, chart if kind == "chart" else scene, cams, p, c, spp * factor, seed, physics,
                                  skin, imager, illuminance, size, variant)
     elif kind == "chart":
@@ -297,6 +295,46 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
         out.append(Measurement(one.kind, one.image, one.labels, one.channels, one.regions, one.items, one.mean,
                                one.standard_error, one.dof, settings, chart if kind == "chart" else None))
     return out if several else out[0]
+
+
+def measure_spectral(kind: str, scene, cameras: list, prevailing: float, calibration: float, spp: int, seed: int,
+                     physics: str | None, skin: str | None, imager: str | None, illuminance: float | None, size: int,
+                     variant: str | None) -> list:
+    """
+    One :class:`Measurement` per camera of ``cameras`` from one spectral render
+    of ``scene`` (a loaded chart, or a face spec) with :data:`~skinrender.rendering.bands.BANDS_DEFAULT`
+    (arguments as :func:`measure`; a chart through an ``imager`` is refused: its sensor records a camera's
+    channels). The settings add ``spectral_bands_nm``, so that a reference made one render per camera is told
+    apart in a failure's notes.
+    """
+    from ..rendering.bands import BANDS_DEFAULT, bands_text
+
+    bands = {"spectral_bands_nm": bands_text(BANDS_DEFAULT)}
+    if kind == "chart":
+        if imager is not None:
+            raise SkinrenderError("imager: a chart's image sensor records one camera's render; check several cameras "
+                                  "without it, or one camera at a time")
+        from ..rendering.spectral_chart import render_chart_spectral
+
+        image = render_chart_spectral(scene, prevailing, BANDS_DEFAULT, spp=spp, seed=seed, variant=variant)
+        out = []
+        for cam in cameras:
+            rendering = image.through(cam, calibration)
+            out.append(_chart_values(scene, cam, rendering, _white_relative_variance(rendering), bands))
+        return out
+    from ..rendering.face.spectral_face import render_face_spectral
+    from .replicates import face_effects, reduce_face, replicate_seeds
+
+    effects = face_effects(spp, physics, imager, illuminance)
+    images = [render_face_spectral(scene, prevailing, skin, effects, spp // REPLICATES, s, size, variant=variant,
+                                   bands=BANDS_DEFAULT, imager=imager, illuminance=illuminance)
+              for s in replicate_seeds(seed)]
+    out = []
+    for cam in cameras:
+        found = Measurement("face", *reduce_face([image.through(cam, calibration) for image in images], cam))
+        out.append(Measurement(found.kind, found.image, found.labels, found.channels, found.regions, found.items,
+                               found.mean, found.standard_error, found.dof, {**found.settings, **bands}))
+    return out
 
 
 def values_of(kind: str, image: NDArrayFloat, labels: NDArrayFloat | None, regions, scene=None) -> NDArrayFloat:

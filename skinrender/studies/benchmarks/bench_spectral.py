@@ -5,7 +5,7 @@ The spectral render's trade, measured
 ``skinrender bench render --spectral --cameras N[,N…]``: a face sweep
 (:func:`skinrender.studies.face.sweep.face_sweep`: 2 light pairs × 2 skins ×
 2 levels at 64 px, 16 spp) over N cameras, rendered once per light, skin and
-level with the bands as its film (:mod:`skinrender.rendering.face.spectral`)
+level with the bands as its film (:mod:`skinrender.rendering.face.spectral_face`)
 against one render per camera, timed whole with one worker; and the error
 each way, so that the speed is compared at equal error.
 
@@ -32,8 +32,12 @@ each way, so that the speed is compared at equal error.
     share its light paths; the variance of their difference over seeds
     (Macbeth patch means) against that of two independent direct renders.
 
+-   **The basis error** (:func:`basis_errors`): a camera not given on the
+    band grid, seen through the bands, against its own curves: Eq. 4 exactly,
+    no render.
+
 -   :func:`bench_spectral`, :func:`bench_cameras`, :func:`channel_errors`,
-    :func:`camera_difference`, :func:`estimate_bench_seconds`.
+    :func:`camera_difference`, :func:`basis_errors`, :func:`estimate_bench_seconds`.
 
 Units: seconds s; errors relative (fractions); temperatures K; sizes pixels.
 """
@@ -53,7 +57,8 @@ from ..face.sweep import estimate_seconds, face_sweep
 
 __all__ = ["CAMERA_COUNTS", "LIGHTS_SPECTRAL", "SKINS_SPECTRAL", "LEVELS_SPECTRAL", "SIZE_SPECTRAL", "SPP_SPECTRAL",
            "REFERENCE_SPP_SPECTRAL", "ERROR_CAMERAS", "NARROW_CAMERA", "BROAD_CHANNEL", "CRN_CAMERAS", "CRN_SEEDS",
-           "bench_cameras", "channel_errors", "camera_difference", "estimate_bench_seconds", "bench_spectral"]
+           "BASIS_CAMERAS", "BASIS_STEPS", "bench_cameras", "channel_errors", "camera_difference", "basis_errors",
+           "estimate_bench_seconds", "bench_spectral"]
 
 CAMERA_COUNTS = (1, 5, 20, 61)
 """The camera counts of the bench's rows."""
@@ -161,6 +166,42 @@ def camera_difference(cameras=CRN_CAMERAS, seeds: int = CRN_SEEDS, spp: int = SP
             "variance_ratio_min": float(ratio.min()), "variance_ratio_max": float(ratio.max())}
 
 
+BASIS_CAMERAS = ("gbell:9@450,540,610", "gbell:3@450,540,610", "gbell:1@450,540,610", "impulse@450,550,650",
+                 "Nikon 5100 (NPL)", "Sigma SDMerill (NPL)")
+"""Cameras whose basis error is stated: gbell 9, 3, 1 (FWHM 90, 30, 10 nm) given every 1 nm, the impulse, and
+measured cameras given every 5 and 10 nm."""
+
+BASIS_STEPS = (2.5, 5.0, 10.0)
+"""Band steps (nm) of the basis error."""
+
+
+def basis_errors(cameras=BASIS_CAMERAS, steps=BASIS_STEPS, lights=((2856.0, 5900.0), (2300.0, 2300.0))) -> list:
+    """
+    What the bands do to a camera not given on their grid, exactly (no render): the largest relative difference
+    over the Macbeth chart (a channel darker than 1 % of white against 1 % of white) between Eq. 4 of the camera
+    as the bands see it (its curves at the bands, linearly interpolated) and Eq. 4 of its curves on the 1 nm
+    grid, for each band step (400–700 nm) and light pair; one row per camera and step.
+    """
+    from ...model.camera import camera
+    from ...rendering.agreement import tolerance_scale
+    from ...rendering.scene import load_chart_scene
+    from ...rendering.validation import analytic_reference
+    from ...spectra import WavelengthGrid
+
+    reflectance = load_chart_scene("macbeth").reflectances(GRID_DEFAULT)
+    rows = []
+    for spec in cameras:
+        cam = camera(spec)
+        for step in steps:
+            bands, worst = WavelengthGrid(400.0, 700.0, step), 0.0
+            for p, c in lights:
+                exact = analytic_reference(cam, reflectance, p, c)
+                seen = analytic_reference(cam, reflectance, p, c, bands=bands)
+                worst = max(worst, float(np.max(np.abs(seen - exact) / tolerance_scale(exact))))
+            rows.append({"camera": cam.name, "bands_nm": f"400:700:{step:g}", "max_rel_error": worst})
+    return rows
+
+
 def estimate_bench_seconds(counts, size: int = SIZE_SPECTRAL, spp: int = SPP_SPECTRAL,
                            reference_spp: int = REFERENCE_SPP_SPECTRAL) -> float:
     """The bench's time on one core, s: the sweeps both ways, the error renders and the seeds of the common random
@@ -196,7 +237,8 @@ def bench_spectral(counts=CAMERA_COUNTS, size: int = SIZE_SPECTRAL, spp: int = S
         ``rows`` (one per count: ``cameras``, ``spectral_s``, ``direct_s``, ``speedup`` — at equal error —,
         ``speedup_timed``, ``error_spectral``, ``error_direct``, ``error_ratio``), ``narrow`` (``camera``,
         per channel ``error_spectral``, ``error_direct``, ``penalty``), ``errors`` (the broad cameras' per
-        channel), ``common_random_numbers`` (:func:`camera_difference`), the sweep's settings and ``machine``.
+        channel), ``common_random_numbers`` (:func:`camera_difference`), ``basis`` (:func:`basis_errors`), the
+        sweep's settings and ``machine``.
     """
     from .bench import machine
 
@@ -228,7 +270,7 @@ def bench_spectral(counts=CAMERA_COUNTS, size: int = SIZE_SPECTRAL, spp: int = S
                                      "error_direct": narrow_d.tolist(), "penalty": ((narrow_s / narrow_d) ** 2).tolist()},
             "errors": {"cameras": bench_cameras(5)[1:1 + ERROR_CAMERAS], "spectral": broad["spectral"].tolist(),
                        "direct": broad["direct"].tolist(), "channel": "RGB"[BROAD_CHANNEL]},
-            "common_random_numbers": crn, "scene": "face", "lights_K": [list(pair) for pair in lights],
+            "common_random_numbers": crn, "basis": basis_errors(), "scene": "face", "lights_K": [list(pair) for pair in lights],
             "skins": skins, "levels": levels, "size": size, "spp": spp, "reference_spp": reference_spp,
             "bands_nm": "400:700:5", "workers": 1, "seed": seed, "elapsed_s": time.perf_counter() - start,
             "grid_nm": f"{GRID_DEFAULT.start:g}:{GRID_DEFAULT.end:g}:{GRID_DEFAULT.step:g}", "machine": machine()}

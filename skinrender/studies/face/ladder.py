@@ -323,7 +323,7 @@ def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: S
     """
     :func:`ladder` for every camera of ``cameras`` (arguments as there): each level's replicates rendered once
     spectrally with ``bands`` (``START:END:STEP`` nm; one render per seed, seen through every camera:
-    :mod:`~skinrender.rendering.face.spectral`), or, with ``bands=None``, once per camera. A spectral
+    :mod:`~skinrender.rendering.face.spectral_face`), or, with ``bands=None``, once per camera. A spectral
     level's seconds are shared equally by the cameras (each adds its own projections). One :class:`Ladder` per
     camera, in their order.
     """
@@ -387,7 +387,7 @@ def _replicated(cams, face, p, c, skin, level, spp, seeds, size, bands, options)
     each camera (the renders' seconds shared equally)."""
     if bands is None:
         return [render_replicates(cam, face, p, c, skin, level, spp, seeds, size, **options) for cam in cams]
-    from ...rendering.face.spectral import render_face_spectral
+    from ...rendering.face.spectral_face import render_face_spectral
 
     grid = options["grid"]
     start = time.perf_counter()

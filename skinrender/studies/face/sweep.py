@@ -129,7 +129,7 @@ def _spectral_task(task: tuple, settings: _Settings, bands: WavelengthGrid) -> l
     every calibration: their rows, the render's seconds shared equally among them (each adds its own
     projection and scoring).
     """
-    from ...rendering.face.spectral import render_face_spectral
+    from ...rendering.face.spectral_face import render_face_spectral
 
     p, skin, level, cams, calibrations = task
     spectral = render_face_spectral(settings.scene, p, skin, level, settings.spp, settings.seed, settings.size,
@@ -327,7 +327,7 @@ def face_sweep(
         carries an estimate of the time.
     spectral, bands
         Render once per prevailing light, skin and level with ``bands`` (``START:END:STEP`` nm) as the film and
-        see every camera and calibration through it (:mod:`~skinrender.rendering.face.spectral`), rather than
+        see every camera and calibration through it (:mod:`~skinrender.rendering.face.spectral_face`), rather than
         once per combination; ``None``: spectral for more than one camera. A spectral render's seconds are
         shared equally by the rows it serves.
 

@@ -12,7 +12,7 @@ camera (``noise``: one frame through the image sensor, as
 white balance. The result is the :class:`~skinrender.rendering.face.render.FaceRendering`
 a render of that camera returns.
 
--   :func:`render_face_spectral`: the render (a :class:`~skinrender.rendering.spectral.SpectralImage`).
+-   :func:`render_face_spectral`: the render (a :class:`~skinrender.rendering.spectral_image.SpectralImage`).
 -   :func:`face_through`: one camera's render from it.
 
 Every level works so: its effects change the scene's document and the
@@ -71,9 +71,9 @@ def render_face_spectral(
 
     Returns
     -------
-    :class:`~skinrender.rendering.spectral.SpectralImage`
+    :class:`~skinrender.rendering.spectral_image.SpectralImage`
     """
-    from ..spectral import SpectralImage
+    from ..spectral_image import SpectralImage
 
     start = time.perf_counter()
     bands = parse_bands(bands)
@@ -90,7 +90,7 @@ def render_face_spectral(
     return SpectralImage("face", plan.scene, bands, (radiance / scale).astype("float32"), scale,
                          float(plan.prevailing), plan.level.name, spp_used, plan.spp, plan.seed, plan.sampler,
                          plan.variant, time.perf_counter() - start, grid, labels, _names(plan.scene), plan.skin,
-                         info, plan)
+                         info, plan, face_through)
 
 
 def _names(scene) -> dict:
