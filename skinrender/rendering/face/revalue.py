@@ -23,7 +23,8 @@ coefficients) and copied in. The flattening is checked once per structure,
 on the document first loaded: every value parameter it exposes must be found
 with the value it holds (to float32 rounding), or the structure is loaded anew
 for every render, as before. The copy is exact (tested: the image equals a
-fresh document's, bit for bit). ``scalar_spectral`` compiles nothing: there a
+fresh document's, bit for bit in one process; a fresh document's kernel, compiled anew after others were
+loaded, may round a pixel an ulp apart). ``scalar_spectral`` compiles nothing: there a
 fresh document is loaded as before.
 
 -   :func:`spectral_loaded`: the loaded document and its label image.

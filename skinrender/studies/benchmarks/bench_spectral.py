@@ -6,8 +6,11 @@ The spectral render's trade, measured
 (:func:`skinrender.studies.face.sweep.face_sweep`: 2 light pairs × 2 skins ×
 2 levels at 64 px, 16 spp) over N cameras, rendered once per light, skin and
 level with the bands as its film (:mod:`skinrender.rendering.face.spectral_face`)
-against one render per camera, timed whole with one worker; and the error
-each way, so that the speed is compared at equal error.
+against one render per camera, timed whole with one worker (every spectral
+sweep first, then every direct one, each way after a warm-up of its own: a
+process renders one way, as a command does: loading the other way's scenes
+would change the kernels a render compiles); and the error each way, so that
+the speed is compared at equal error.
 
 -   **Cameras**: :func:`bench_cameras`: gbell 9 (FWHM 90 nm) triplets at
     450, 540, 610 nm shifted together by up to ±30 nm (every 1 nm at 61).
@@ -246,23 +249,22 @@ def bench_spectral(counts=CAMERA_COUNTS, size: int = SIZE_SPECTRAL, spp: int = S
     counts = [int(n) for n in counts]
     lights, skins, levels = list(LIGHTS_SPECTRAL), list(SKINS_SPECTRAL), list(LEVELS_SPECTRAL)
     start = time.perf_counter()
-    say("warming up (kernels compiled once, both ways) …")
-    for spectral in (True, False):
-        face_sweep(bench_cameras(2), lights[:1], skins[:1], levels, size, spp, seed, workers=1, spectral=spectral)
+    timing = {True: {}, False: {}}
+    for spectral in (True, False):  # one way at a time, as one command renders: the other's scenes stay unloaded
+        way = "spectral" if spectral else "one render per camera"
+        say(f"warming up ({way}: its kernels compiled once) …")
+        face_sweep(bench_cameras(2), lights, skins, levels, size, spp, seed, workers=1, spectral=spectral)
+        for count in counts:
+            say(f"{count} camera{'s' * (count > 1)}, {way} …")
+            sweep = face_sweep(bench_cameras(count), lights, skins, levels, size, spp, seed, workers=1,
+                               spectral=spectral)
+            timing[spectral][count] = sweep.elapsed_s
     say(f"errors: {ERROR_CAMERAS} cameras and {NARROW_CAMERA} against {reference_spp}-spp references …")
     broad = _errors(bench_cameras(5)[1:1 + ERROR_CAMERAS], spp, reference_spp, seed, size)
     narrow = _errors([NARROW_CAMERA], spp, reference_spp, seed, size)
     error_s = float(np.sqrt(np.mean(broad["spectral"][:, BROAD_CHANNEL] ** 2)))
     error_d = float(np.sqrt(np.mean(broad["direct"][:, BROAD_CHANNEL] ** 2)))
-    rows = []
-    for count in counts:
-        cams = bench_cameras(count)
-        timing = {}
-        for spectral in (True, False):
-            say(f"{count} camera{'s' * (count > 1)}, {'spectral' if spectral else 'one render per camera'} …")
-            sweep = face_sweep(cams, lights, skins, levels, size, spp, seed, workers=1, spectral=spectral)
-            timing[spectral] = sweep.elapsed_s
-        rows.append(_row(count, timing[True], timing[False], error_s, error_d))
+    rows = [_row(count, timing[True][count], timing[False][count], error_s, error_d) for count in counts]
     say(f"common random numbers: {CRN_SEEDS} seeds of the Macbeth chart …")
     crn = camera_difference(seed=seed)
     narrow_s, narrow_d = narrow["spectral"][0], narrow["direct"][0]
