@@ -1,6 +1,6 @@
 """
 The spectral render's flags: ``--spectral``, ``--bands``, ``--direct``
-=====================================================================
+======================================================================
 
 ``render`` and ``validate`` take ``--spectral`` (the scene rendered once with the bands of
 :mod:`skinrender.rendering.bands` as its film) and ``--bands START:END:STEP`` (nm); ``face-sweep`` and

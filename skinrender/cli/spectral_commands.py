@@ -1,5 +1,5 @@
 """
-Spectral renders on the command line: ``render SCENE --spectral``, ``validate CHART --spectral``
+Spectral renders on the command line: ``render SCENE --spectral``, ``bench render --spectral``
 ==============================================================================================
 
 ``render SCENE --spectral --prevailing P [--bands START:END:STEP]`` renders a
@@ -7,9 +7,10 @@ chart or a face once with the bands of :mod:`skinrender.rendering.bands` as its
 film (no camera, no calibration) into a float32 EXR
 (:meth:`~skinrender.rendering.spectral_image.SpectralImage.save`); any camera is
 applied afterwards (``sr.read_spectral(path).through(camera, calibration=K)``).
-``validate CHART --spectral`` renders a chart so, sees it through ``--camera``
-and checks it against Eq. 4 and against a direct render of that camera
-(:func:`~skinrender.rendering.spectral_validation.validate_spectral`).
+``bench render --spectral [--cameras N,…]`` measures the trade
+(:mod:`skinrender.studies.benchmarks.bench_spectral`). ``validate CHART
+--spectral`` is :func:`skinrender.cli.chart_validation.command_validate_spectral`; the flags are
+:mod:`skinrender.cli.bands_flags`.
 
 Units: wavelengths nm, temperatures K, times s, memory bytes.
 """
