@@ -17,10 +17,11 @@ Units: output units (255 for white at p = c), temperatures K, times s.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import sys
 
 from ..errors import SkinrenderError
-from .common import emit, flag, imaging_options, interruptible, settings_of, table
+from .common import emit, flag, interruptible, settings_of, table
 
 __all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_check_arguments", "add_verdict_arguments", "tolerance_of", "spp_of", "command_validate",
            "command_validate_chart", "command_validate_spectral"]
@@ -58,25 +59,27 @@ def add_verdict_arguments(p) -> None:
 def command_validate(args: argparse.Namespace) -> None:
     """``validate``: a face (:mod:`skinrender.cli.face_validation`) or a chart (:func:`command_validate_chart`),
     the scene loaded once."""
-    from ..rendering.face.scene import FaceScene
-    from .inputs import scene_of
+    from .inputs import by_kind, scene_of
 
     scene = scene_of(args)
-    if isinstance(scene, FaceScene):  # the face: the analytic limits that hold at its level of physics
-        from .face_validation import command_validate_face
+    return by_kind(scene, chart=command_validate_chart, face=_validate_face)(args, scene)
 
-        if args.spectral:
-            raise SkinrenderError("--spectral validates a chart (e.g. macbeth) against Eq. 4 and a direct render; a "
-                                  "face's spectral render is seen through cameras by face-sweep and ladder",
-                                  flag="--spectral")
 
-        for name, option, given in (("--spp auto", "--spp", str(args.spp).strip().lower() == "auto"),
-                                    ("--tolerance", "--tolerance", args.tolerance is not None)):
-            if given:
-                raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts",
-                                      flag=option)
-        return command_validate_face(args, scene)
-    return command_validate_chart(args, scene)
+def _validate_face(args: argparse.Namespace, scene) -> None:
+    """``validate`` on a face: the analytic limits that hold at its level of physics
+    (:mod:`skinrender.cli.face_validation`); the chart's verdict flags refused."""
+    from .face_validation import command_validate_face
+
+    if args.spectral:
+        raise SkinrenderError("--spectral validates a chart (e.g. macbeth) against Eq. 4 and a direct render; a "
+                              "face's spectral render is seen through cameras by face-sweep and ladder",
+                              flag="--spectral")
+    for name, option, given in (("--spp auto", "--spp", str(args.spp).strip().lower() == "auto"),
+                                ("--tolerance", "--tolerance", args.tolerance is not None)):
+        if given:
+            raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts",
+                                  flag=option)
+    return command_validate_face(args, scene)
 
 
 def tolerance_of(args: argparse.Namespace) -> float:
@@ -108,75 +111,82 @@ def _summary(name: str, verdict) -> list[str]:
     return [f"{name}: {verdict.outcome.upper().replace('_', ' ')} — {verdict.reason}", f"  test: {verdict.test}"]
 
 
-def _auto_spp(inputs, settings, imaging, tolerance) -> dict:
+def _auto_spp(request, tolerance) -> dict:
     """``--spp auto``: the pilots and the spp chosen (:func:`~skinrender.rendering.spp_choice.spp_for_tolerance`)."""
+    import dataclasses
+
+    from ..rendering.kinds import CHART
     from ..rendering.renderer import SAMPLES_MAX
     from ..rendering.spp_choice import spp_for_tolerance
-    from ..rendering.validation import validate
 
-    width, height = inputs.scene.size
+    settings = request.settings
 
     def at(spp, seed):
-        pilot = settings.replace(spp=spp, seed=seed)
-        if imaging is None:
-            return validate(**inputs.keywords(), tolerance=tolerance, settings=pilot)
-        return _imaged(inputs, pilot, imaging, tolerance)[0]
+        pilot = dataclasses.replace(request, settings=settings.replace(spp=spp, seed=seed))
+        return CHART.validate(pilot, tolerance=tolerance)
 
-    print(f"spp auto: pilot renders of {inputs.scene.name} …", file=sys.stderr)
-    choice = spp_for_tolerance(at, tolerance, settings.seed, spp_max=SAMPLES_MAX // (width * height),
+    print(f"spp auto: pilot renders of {request.scene.name} …", file=sys.stderr)
+    choice = spp_for_tolerance(at, tolerance, settings.seed, spp_max=SAMPLES_MAX // request.pixels,
                                sampler=settings.sampler)
     print(f"spp auto: {choice['spp']} spp ({choice['why']})", file=sys.stderr)
     return choice
+
+
+def _refused(request, option: str, flag: str, words: str) -> None:
+    """Refuse a validation ``option`` (its ``flag``) that an effect of the request's level does not take."""
+    refused = request.level.refused(option)
+    if refused is not None:
+        effect, why = refused
+        given = [f"--physics {effect.name}"] * effect.named + [f"--{name}" for name in effect.added_by]
+        raise SkinrenderError(f"{words} does not go with {' or '.join(given)}: {why}", flag=flag)
 
 
 def command_validate_chart(args: argparse.Namespace, scene) -> None:
     """``validate`` on a chart ``scene`` (loaded by :func:`command_validate`; the face is
     :mod:`skinrender.cli.face_validation`)."""
     from ..evaluation.verdict import EXIT_STATUS
+    from ..rendering.kinds import CHART
+    from ..rendering.sensor_validation import ImagedValidation
     from ..rendering.spp_choice import PILOT_SPP
-    from ..rendering.validation import validate
-    from .common import check_render_work
-    from .inputs import chart_inputs, chart_only
-    from .subsurface import check_chart_subsurface
+    from .inputs import chart_only, chart_request_of, check_request_work
 
     tolerance = tolerance_of(args)
     auto = spp_of(args)
     chart_only(args)
     if args.limits is not None:
         raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart", flag="--limits")
-    if args.gamut and args.imager is not None:
-        raise SkinrenderError("--gamut compares the noise-free render's gamut volumes: it goes without --imager",
-                              flag="--gamut")
     settings = settings_of(args, auto)
     requested = "auto" if auto else settings.spp
-    inputs = chart_inputs(args, scene)
+    request = chart_request_of(args, scene, settings)
     if args.spectral or args.bands is not None:
         from .bands_flags import bands_of
 
         bands_of(args)  # --bands without --spectral: refused
         if auto:
             raise SkinrenderError("--spp auto goes without --spectral: give --spp N", flag="--spp")
-        return command_validate_spectral(args, scene, inputs, settings, tolerance)
-    settings = check_chart_subsurface(args, inputs, settings)
-    imaging = imaging_options(args)
+        return command_validate_spectral(args, request, tolerance)
+    if args.gamut:  # the gamut volumes of the Lambertian, noise-free chart
+        _refused(request, "gamut", "--gamut", "--gamut (the chart's gamut volumes under the paper's lights)")
+    if auto:
+        _refused(request, "spp_auto", "--spp", "--spp auto")
     renders = 11 if args.gamut else 1  # --gamut: ten more, one per paper illuminant
     choice = None
     if auto:
-        check_render_work(args, inputs.pixels, max(PILOT_SPP), len(PILOT_SPP))
-        choice = _auto_spp(inputs, settings, imaging, tolerance)
-        settings = settings.replace(spp=choice["spp"])
-    check_render_work(args, inputs.pixels, settings.spp, renders)
-    print(f"rendering {inputs.scene.name} at {settings.spp} spp and validating …", file=sys.stderr)
-    if imaging is not None:
-        result, imaged = _imaged(inputs, settings, imaging, tolerance)
-        document, text = _imaged_report(result, imaged, requested)
+        check_request_work(args, request, len(PILOT_SPP), max(PILOT_SPP))
+        choice = _auto_spp(request, tolerance)
+        request = dataclasses.replace(request, settings=request.settings.replace(spp=choice["spp"]))
+    check_request_work(args, request, renders)
+    settings = request.settings
+    print(f"rendering {request.scene.name} at {settings.spp} spp and validating …", file=sys.stderr)
+    result = CHART.validate(request, tolerance=tolerance)
+    if isinstance(result, ImagedValidation):  # through the image sensor: the sensor's checks too
+        document, text = _imaged_report(result, result.imaged, requested)
         verdict = result.verdict
     else:
-        result = validate(**inputs.keywords(), tolerance=tolerance, settings=settings)
-        document, lines = _chart_report(inputs, result, settings, requested, tolerance)
+        document, lines = _chart_report(request, result, settings, requested, tolerance)
         verdict = result.verdict
         if args.gamut:
-            verdict = _gamut(inputs, settings, tolerance, document, lines, verdict)
+            verdict = _gamut(request, settings, tolerance, document, lines, verdict)
         text = "\n".join(lines)
         document["verdict"] = verdict.outcome
         document["passed"] = verdict.outcome == "pass"
@@ -249,17 +259,6 @@ def _gamut(inputs, settings, tolerance, document, lines, verdict):
     return combine([verdict, gamut_verdict], "validation")
 
 
-def _imaged(inputs, settings, imaging, tolerance):
-    """The render through the sensor and its validation: (validation, imaged)."""
-    from ..rendering.sensor_validation import validate_imaged
-    from ..rendering.validation import analytic_reference
-    rendering, imaged = inputs.render(settings, imaging)
-    grid = inputs.grid
-    ratio = analytic_reference(rendering.camera, rendering.scene.reflectances(grid), rendering.prevailing,
-                               rendering.prevailing, grid=grid) / 255.0
-    return validate_imaged(imaged, ratio, grid=grid, tolerance=tolerance), imaged
-
-
 def _imaged_report(result, imaged, requested) -> tuple[dict, str]:
     """``validate --imager``'s document and text."""
     from ..rendering.renderer import channel_names
@@ -295,32 +294,36 @@ def _imaged_report(result, imaged, requested) -> tuple[dict, str]:
                  f"{needed}")
     return document, "\n".join(lines) + imaging_notes(imaged)
 
-def command_validate_spectral(args: argparse.Namespace, scene, inputs, settings, tolerance) -> None:
-    """``validate CHART --spectral``: the projected render against Eq. 4 and against a direct render."""
-    from ..evaluation.verdict import EXIT_STATUS, combine
-    from ..rendering.spectral_validation import validate_spectral
 
+def command_validate_spectral(args: argparse.Namespace, request, tolerance: float) -> None:
+    """``validate CHART --spectral``: the chart of ``request`` (the camera's) rendered once spectrally, seen
+    through its camera, against Eq. 4 and against a direct render
+    (:func:`~skinrender.rendering.spectral_validation.validate_spectral`)."""
+    from ..evaluation.verdict import EXIT_STATUS, combine
+    from ..rendering.bands import bands_text, check_bands
+    from ..rendering.spectral_validation import validate_spectral
     from .bands_flags import bands_of, check_spectral_work
+    from .inputs import check_request_work
 
     bands = bands_of(args)
-    for name, given in (("--imager", args.imager is not None), ("--gamut", bool(args.gamut))):
+    for name, given in (("--imager", request.sensor is not None), ("--gamut", bool(args.gamut)),
+                        ("--physics", bool(request.level.names))):
         if given:
             raise SkinrenderError(f"{name} goes without --spectral (validate --spectral checks the projected render "
-                                  "against Eq. 4 and a direct render)", flag=name)
-    flag("--bands", _inside, bands, inputs.grid)
-    from .common import check_render_work
-
-    check_spectral_work(args, bands, inputs.pixels, settings.spp)
-    check_render_work(args, inputs.pixels, settings.spp, 2)  # the direct render: prevailing and calibration
-    print(f"rendering {inputs.scene.name} spectrally ({bands.size} bands) and directly at {settings.spp} spp …",
+                                  "of the direct level against Eq. 4 and a direct render)", flag=name)
+    flag("--bands", check_bands, bands, request.grid, "the chart's light and reflectances (--grid)")
+    settings = request.settings
+    check_spectral_work(args, bands, request.pixels, settings.spp)
+    check_request_work(args, request, 2)  # the direct render: prevailing and calibration
+    print(f"rendering {request.scene.name} spectrally ({bands.size} bands) and directly at {settings.spp} spp …",
           file=sys.stderr)
-    result = flag({"camera": "--camera", "bands": "--bands", None: "--camera"}, validate_spectral, inputs.scene,
-                  inputs.camera, inputs.prevailing, inputs.calibration, bands=bands, grid=inputs.grid,
-                  normalization=inputs.normalization, knee=inputs.knee, tolerance=tolerance, settings=settings)
-    document, lines = _chart_report(inputs, result.validation, settings, settings.spp, tolerance)
+    result = flag({"camera": "--camera", "bands": "--bands", None: "--camera"}, validate_spectral, request.scene,
+                  request.camera, request.prevailing, request.calibration, bands=bands, grid=request.grid,
+                  normalization=request.normalization, knee=request.knee, tolerance=tolerance, settings=settings)
+    document, lines = _chart_report(request, result.validation, settings, settings.spp, tolerance)
     document["spectral"] = result.document()
     direct = result.direct_difference
-    lines.append(f"spectral: {bands.size} bands {bands} (hat basis), basis error at most "
+    lines.append(f"spectral: {bands.size} bands {bands_text(bands)} nm (hat basis), basis error at most "
                  f"{result.basis_relative:.2g} relative (Eq. 4 of the camera as the bands see it − of its curves; "
                  "allowed in the difference test above)")
     lines.append(f"spectral − direct render (seed {result.direct.raw[0].seed}): {direct.outcome.upper()} — "
@@ -336,10 +339,3 @@ def command_validate_spectral(args: argparse.Namespace, scene, inputs, settings,
     emit(args, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])
-
-
-
-def _inside(bands, grid) -> None:
-    from ..rendering.bands import check_bands
-
-    check_bands(bands, grid, "the chart's light and reflectances (--grid)")

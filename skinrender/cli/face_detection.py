@@ -11,8 +11,8 @@ import argparse
 import sys
 
 from ..files import Output, write_outputs
-from .common import check_output, check_render_work, emit, flag, settings_of, table
-from .face import check_figure, face_inputs, face_pixels
+from .common import check_output, emit, flag, settings_of, table
+from .face import check_figure, face_request_of
 
 __all__ = ["command_detect_face"]
 
@@ -27,21 +27,23 @@ def command_detect_face(args: argparse.Namespace, scene) -> None:
     from ..evaluation.detection import SCORED_MIN_OUTPUT
     from ..evaluation.locus import skin_locus
     from ..rendering.exr import write_png, write_preview
-    from ..rendering.face import render_face
     from ..studies.face.ladder import score_frame
+
+    from ..rendering.kinds import FACE
+    from .inputs import check_request_work
 
     settings = settings_of(args)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
-    scene, cam, temperatures, physics, face_skin, size, imager, exposure, lux = face_inputs(args, scene)
+    request = face_request_of(args, scene, settings)
+    cam, scene = request.camera, request.scene
+    temperatures = {"prevailing": request.prevailing, "calibration": request.calibration}
     locus_skin = getattr(args, "locus_skin", None) or "skin"
     skin = flag("--locus-skin", reflectances, locus_skin)
-    check_render_work(args, face_pixels(scene, size), settings.spp, levels=[physics])
-    print(f"rendering the face ({physics}) at {settings.spp} spp …", file=sys.stderr)
-    result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], face_skin, physics,
-                         settings.spp, settings.seed, size, settings.sampler, settings.variant,
-                         channels=settings.channels, imager=imager, exposure=exposure, illuminance=lux)
+    check_request_work(args, request)
+    print(f"rendering the face ({request.level.name}) at {settings.spp} spp …", file=sys.stderr)
+    result = FACE.render(request)
     locus = skin_locus(cam, skin, calibration=temperatures["calibration"], boundary=args.boundary)
     scores, frame = score_frame(result, locus, clip_negative=True)  # scored as the ladder: too dark has no chromaticity
     mask, scored = frame["inside"], frame["scored"]

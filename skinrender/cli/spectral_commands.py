@@ -22,7 +22,7 @@ import sys
 
 from ..errors import SkinrenderError
 from .bands_flags import bands_of, check_spectral_work
-from .common import check_output, emit, flag, grid_of, settings_of, table
+from .common import check_output, emit, flag, flagged, grid_of, settings_of, table
 
 __all__ = ["command_render_spectral", "add_bench_spectral_arguments", "command_bench_spectral",
            "BENCH_SPECTRAL_REFUSED"]
@@ -45,28 +45,27 @@ def _common_refusals(args: argparse.Namespace) -> None:
 
 
 def command_render_spectral(args: argparse.Namespace, scene) -> None:
-    """``render SCENE --spectral``: the bands' EXR of a chart or a face (module docstring)."""
+    """``render SCENE --spectral``: the bands' EXR of a chart or a face (module docstring): the scene kind's
+    request with ``bands`` (no camera, no calibration), rendered by the kind."""
     from ..rendering.bands import bands_text
-    from ..rendering.face.scene import FaceScene
+    from ..rendering.kinds import scene_kind
 
     _common_refusals(args)
     bands = bands_of(args)
     settings = settings_of(args)
     output = check_output(args.output, "--output", (".exr",))
-    face = isinstance(scene, FaceScene)
+    kind = scene_kind(scene)
+    face = kind.name == "face"
     if face:
-        from ..rendering.face.spectral_face import render_face_spectral
-        from .face import face_inputs, face_pixels
+        from .face import face_request_of
 
-        scene, _, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene, spectral=True)
-        memory, seconds = check_spectral_work(args, bands, face_pixels(scene, size), settings.spp, [physics])
-        print(f"rendering the face ({physics}) spectrally, {bands.size} bands, at {settings.spp} spp …",
-              file=sys.stderr)
-        result = flag({"bands": "--bands", None: "SCENE"}, render_face_spectral, scene, temperatures["prevailing"],
-                      skin, physics, settings.spp, settings.seed, size, settings.sampler, settings.variant,
-                      bands=bands, imager=imager, exposure=exposure, illuminance=lux)
+        request = face_request_of(args, scene, settings, bands=bands)
     else:
-        result, memory, seconds = _chart(args, scene, bands, settings)
+        request = _chart_request(args, scene, settings, bands)
+    memory, seconds = check_spectral_work(args, bands, request.pixels, request.settings.spp, [request.level])
+    print(f"rendering {request.scene.name} ({request.level.name}) spectrally, {bands.size} bands, at "
+          f"{request.settings.spp} spp …", file=sys.stderr)
+    result = flag({"bands": "--bands", None: "SCENE"}, kind.render, request)
     result.save(output)
     document = {"image": str(output), "channels": [*result.channels, *(["label"] if face else [])],
                 "bands_nm": bands_text(result.bands), "bands": int(result.bands.size), "basis": "hat", "spp": result.spp,
@@ -75,21 +74,22 @@ def command_render_spectral(args: argparse.Namespace, scene) -> None:
                 "prevailing_K": result.prevailing, "physics": result.physics, "scale": result.scale,
                 "memory_estimate_bytes": memory, "seconds_estimate": seconds}
     if face:
+        sensor = request.sensor
         document.update({"skin": result.skin, "labels": result.label_names,
                          "size": [result.scene.camera.width, result.scene.camera.height],
-                         "imager": result.info.get("imager"), "exposure": result.info.get("exposure")})
+                         "imager": None if sensor is None or sensor.imager is None else sensor.imager.name,
+                         "exposure": None if sensor is None else sensor.exposure})
     text = (f"{result.scene.name} ({result.physics}) under {result.prevailing:g} K, {result.bands.size} bands "
-            f"{result.bands} (hat basis): {output}, {result.spp} spp, {result.variant}, {result.seconds:.2f} s; see it "
-            "through a camera with sr.read_spectral(path).through(camera, calibration=K)")
+            f"{bands_text(result.bands)} nm (hat basis): {output}, {result.spp} spp, {result.variant}, "
+            f"{result.seconds:.2f} s; see it through a camera with sr.read_spectral(path).through(camera, "
+            "calibration=K)")
     emit(args, document, text)
 
 
-def _chart(args: argparse.Namespace, scene, bands, settings) -> tuple:
-    """A chart's spectral render from the flags: ``(image, memory, seconds)``."""
-    from ..model.illuminant import illuminant
-    from ..rendering.bands import check_bands
-    from ..rendering.spectral_chart import render_chart_spectral
-    from .inputs import chart_only
+def _chart_request(args: argparse.Namespace, scene, settings, bands):
+    """A chart's spectral request from the flags (each refusal naming its flag): the direct level, no sensor."""
+    from ..rendering.kinds import CHART
+    from .inputs import REQUEST_FLAGS, chart_only, settings_fields
 
     chart_only(args)
     _refuse(args, {"--physics": str(args.physics).strip() != "direct"},
@@ -99,20 +99,13 @@ def _chart(args: argparse.Namespace, scene, bands, settings) -> tuple:
                    "--exposure": args.exposure is not None},
             "a chart's image sensor records a camera's channels: apply it to a direct render of the camera")
     grid = grid_of(args)
-    light = flag("--prevailing", illuminant, args.prevailing)
-    if light.temperature is None:
-        raise SkinrenderError(f"--prevailing: rendering needs a Planckian illuminant (kelvin, A or H), got {light}",
-                              flag="--prevailing")
-    flag("--bands", check_bands, bands, grid, "the chart's light and reflectances (--grid)")
+    request = flagged(REQUEST_FLAGS, CHART.request, scene, None, args.prevailing, None, grid=grid, bands=bands,
+                      **settings_fields(args, settings))
     try:
         scene.reflectances(grid)
     except SkinrenderError as error:
         raise error.reworded(f"--grid: {error.message}", flag="--grid") from None
-    width, height = scene.size
-    memory, seconds = check_spectral_work(args, bands, width * height, settings.spp)
-    print(f"rendering {scene.name} spectrally, {bands.size} bands, at {settings.spp} spp …", file=sys.stderr)
-    result = render_chart_spectral(scene, light.temperature, bands, settings, grid)
-    return result, memory, seconds
+    return request
 
 
 BENCH_SPECTRAL_REFUSED = ("quick", "scene", "camera", "size", "levels", "spp_list", "reference_spp", "workers")

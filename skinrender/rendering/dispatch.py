@@ -28,12 +28,10 @@ Units: temperatures K; images in Eq. 4 output units (255 for white at p = c).
 
 from __future__ import annotations
 
-import inspect
-
 from ..errors import SkinrenderError
 from .bands import BANDS_DEFAULT
 
-__all__ = ["load_scene", "render", "validate", "render_spectral", "render_cameras"]
+__all__ = ["load_scene", "render", "validate", "render_spectral", "render_cameras", "SPECTRAL_OMITTED"]
 
 
 def load_scene(spec):
@@ -57,43 +55,25 @@ def load_scene(spec):
     >>> type(load_scene("macbeth")).__name__, type(load_scene("face")).__name__
     ('ChartScene', 'FaceScene')
     """
-    from .face.scene import is_face_scene, load_face_scene  # here: importing skinrender need not load the face
-    from .scene import load_chart_scene
+    from .kinds import scene_kind  # here: importing skinrender need not load the face
 
-    return load_face_scene(spec) if is_face_scene(spec) else load_chart_scene(spec)
-
-
-def _options(function) -> list[str]:
-    """The names a renderer takes: its parameters, ``settings`` led by the render settings' fields (which its
-    ``**options`` take one by one)."""
-    from dataclasses import fields
-
-    from .settings import RenderSettings
-
-    names = []
-    for name, parameter in inspect.signature(function).parameters.items():
-        if name == "settings":
-            names += [field.name for field in fields(RenderSettings)]
-        if parameter.kind is not parameter.VAR_KEYWORD:
-            names.append(name)
-    return names
+    return scene_kind(spec).load(spec)
 
 
 def _camera_of(camera, options: dict, what: str):
     """The camera given as ``camera`` or (the chart functions' name) ``camera_``, once."""
     if "camera_" in options:
         if camera is not None:
-            raise SkinrenderError(f"{what}: give the camera once (camera or camera_)")
+            raise SkinrenderError(f"{what}: give the camera once (camera or camera_)", role="camera")
         camera = options.pop("camera_")
     if camera is None:
-        raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)")
+        raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)",
+                              role="camera")
     return camera
 
 
-def _check_options(function, arguments: dict, options: dict, kind: str, what: str, forwards_to=None) -> None:
-    """Refuse, naming them, options that ``function`` (of a ``kind`` scene) does not take, nor ``forwards_to`` (the
-    function its ``**options`` go to)."""
-    names = ([] if forwards_to is None else _options(forwards_to)) + _options(function)  # the render's first
+def _check_options(names: tuple[str, ...], arguments: dict, options: dict, kind: str, what: str) -> None:
+    """Refuse, naming them, options not among a ``kind`` scene's ``names`` (nor given as ``arguments``)."""
     known = [name for name in dict.fromkeys(names) if name not in arguments]
     unknown = sorted(set(options) - set(known))
     if unknown:
@@ -102,17 +82,20 @@ def _check_options(function, arguments: dict, options: dict, kind: str, what: st
                               f"{', '.join(known)}")
 
 
-def _chart_lights(prevailing, calibration, what: str) -> None:
+def _lights(kind, prevailing, calibration, what: str) -> None:
+    """The lights a kind's request cannot do without: a chart needs both (a face keeps its scene's)."""
+    if not kind.lights_required:
+        return
     for name, value in (("prevailing", prevailing), ("calibration", calibration)):
         if value is None:
-            raise SkinrenderError(f"{name}: a chart {what} needs the {name} light (kelvin, A or H)")
+            raise SkinrenderError(f"{name}: a chart {what} needs the {name} light (kelvin, A or H)", role=name)
 
 
 def render(scene, camera=None, prevailing=None, calibration=None, spectral: bool = False, **options):
     """
     Render a chart or a face scene through a camera, white balanced to the calibration light (Eq. 4); with
-    ``spectral=True``, once for every camera: a :class:`~skinrender.rendering.spectral_image.SpectralImage` (no camera,
-    no calibration: ``.through(camera, calibration=K)`` gives each camera's result).
+    ``spectral=True``, once for every camera: a :class:`~skinrender.rendering.spectral_image.SpectralImage` (no
+    camera, no calibration: ``.through(camera, calibration=K)`` gives each camera's result).
 
     Parameters
     ----------
@@ -132,10 +115,11 @@ def render(scene, camera=None, prevailing=None, calibration=None, spectral: bool
         ``size`` (pixels), ``sampler``, ``variant``, ``grid``, ``channels``, ``imager``, ``exposure`` (s or
         ``auto``), ``illuminance`` (lx) (:func:`skinrender.rendering.face.render.render_face`).
         A spectral render's: ``bands`` (``START:END:STEP`` nm, default 400:700:5) and the options above but a
-        chart's ``normalization``, ``knee``, ``cache`` and ``channels`` (applied by ``.through``, or meaningless).
+        chart's ``normalization``, ``knee``, ``cache``, a sensor's, and ``channels`` (applied by ``.through``, or
+        meaningless).
     spectral
         Render the bands of :mod:`~skinrender.rendering.bands` instead of a camera's channels
-        (:func:`~skinrender.rendering.spectral_image.render_spectral`).
+        (:func:`render_spectral`; the request's ``bands``).
 
     Returns
     -------
@@ -158,48 +142,19 @@ def render(scene, camera=None, prevailing=None, calibration=None, spectral: bool
     """
 
     if spectral:
-        return _render_spectral(scene, camera, prevailing, calibration, options)
+        from .request import spectral_only
+
+        spectral_only(camera if camera is not None else options.get("camera_"), calibration)
+        return render_spectral(scene, prevailing, **options)
     camera = _camera_of(camera, options, "render")
-    from .face.scene import FaceScene
+    from .kinds import scene_kind
 
-    scene = load_scene(scene)
-    if isinstance(scene, FaceScene):
-        from .face.render import render_face
-
-        kind, function = "face", render_face
-        arguments = {"camera_": camera, "scene": scene, "prevailing": prevailing, "calibration": calibration}
-    else:
-        from .balance import render as render_chart
-
-        _chart_lights(prevailing, calibration, "render")
-        kind, function = "chart", render_chart
-        arguments = {"scene": scene, "camera_": camera, "prevailing": prevailing, "calibration": calibration}
-    _check_options(function, arguments, options, kind, "render")
-    return function(**arguments, **options)
-
-
-def _render_spectral(scene, camera, prevailing, calibration, options: dict):
-    """``render(…, spectral=True)``: no camera, no calibration (both applied by ``.through``), the options
-    checked against the spectral renderer of the scene's kind."""
-    for name, value in (("camera", camera if camera is not None else options.get("camera_")),
-                        ("calibration", calibration)):
-        if value is not None:
-            raise SkinrenderError(f"{name}: a spectral render takes no {name}; see it through one afterwards: "
-                                  "SpectralImage.through(camera, calibration=K)")
-    from .face.scene import FaceScene
-
-    scene = load_scene(scene)
-    if isinstance(scene, FaceScene):
-        from .face.spectral_face import render_face_spectral as function
-
-        kind = "face"
-    else:
-        from .spectral_chart import render_chart_spectral as function
-
-        kind = "chart"
-        _chart_lights(prevailing, 0, "spectral render")
-    _check_options(function, {"scene": scene, "prevailing": prevailing}, options, kind, "render")
-    return render_spectral(scene, prevailing, **options)
+    kind = scene_kind(scene)
+    scene = kind.load(scene)
+    _lights(kind, prevailing, calibration, "render")
+    _check_options(kind.render_options, {}, options, kind.name, "render")
+    after = {name: options.pop(name) for name in ("cache",) if name in options}  # the render's, not the request's
+    return kind.render(kind.request(scene, camera, prevailing, calibration, **options), **after)
 
 
 def validate(scene, camera=None, prevailing=None, calibration=None, **options):
@@ -243,58 +198,49 @@ def validate(scene, camera=None, prevailing=None, calibration=None, **options):
     """
 
     camera = _camera_of(camera, options, "validate")
-    from .face.scene import FaceScene
+    from .kinds import scene_kind
 
-    scene = load_scene(scene)
-    if isinstance(scene, FaceScene):
-        from .face.validation import validate_face
+    kind = scene_kind(scene)
+    scene = kind.load(scene)
+    _lights(kind, prevailing, calibration, "validation")
+    _check_options(kind.validate_options, {}, options, kind.name, "validate")
+    return kind.validate_of(scene, camera, prevailing, calibration, **options)
 
-        from .face.render import render_face
 
-        kind, function, forwards_to = "face", validate_face, render_face
-    else:
-        from .balance import render as render_chart
-        from .validation import validate as validate_chart
-
-        _chart_lights(prevailing, calibration, "validation")
-        kind, function, forwards_to = "chart", validate_chart, render_chart
-    arguments = {"scene": scene, "camera_": camera, "prevailing": prevailing, "calibration": calibration}
-    _check_options(function, arguments, options, kind, "validate", forwards_to)
-    return function(**arguments, **options)
+SPECTRAL_OMITTED = ("normalization", "knee", "cache", "channels", "imager", "exposure", "illuminance")
+"""A chart's render options a spectral render does not take (a face's sensor options it does: ``noise``)."""
 
 
 def render_spectral(scene, prevailing=None, bands=BANDS_DEFAULT, **options):
     """
     Render a chart or a face once with the bands as its film (no camera, no calibration: both applied by
-    :meth:`~skinrender.rendering.spectral_image.SpectralImage.through`).
+    :meth:`~skinrender.rendering.spectral_image.SpectralImage.through`): the kind's request with ``bands``,
+    rendered by the kind.
 
     Parameters
     ----------
     scene
         A chart or a face: a bundled name, a TOML path or a parsed scene.
     prevailing
-        The light: kelvin, ``A`` or ``H`` (a chart needs it; a face keeps its scene's key light where
-        ``None``).
+        The light: kelvin, ``A`` or ``H`` (a chart needs it; a face keeps its scene's key light where ``None``).
     bands
         ``START:END:STEP`` nm or a :class:`~skinrender.spectra.WavelengthGrid` (default 400:700:5).
     **options
         A chart's: ``spp``, ``seed``, ``sampler``, ``variant`` (or ``settings``), ``grid``, ``emitter``,
-        ``physics`` (``direct``) (:func:`~skinrender.rendering.spectral_chart.render_chart_spectral`). A face's:
-        ``skin``, ``physics``, ``spp``, ``seed``, ``size``, ``sampler``, ``variant``, ``grid``, ``imager``,
-        ``exposure``, ``illuminance`` (:func:`~skinrender.rendering.face.spectral_face.render_face_spectral`).
+        ``physics`` (``direct``). A face's: ``skin``, ``physics``, ``spp``, ``seed``, ``size``, ``sampler``,
+        ``variant``, ``grid``, ``imager``, ``exposure``, ``illuminance`` (the ``noise`` sensor, applied per camera).
     """
-    from .face.scene import FaceScene
+    from .kinds import scene_kind
 
-    scene = load_scene(scene)
-    if isinstance(scene, FaceScene):
-        from .face.spectral_face import render_face_spectral
-
-        return render_face_spectral(scene, prevailing, bands=bands, **options)
-    from .spectral_chart import render_chart_spectral
-
-    if prevailing is None:
-        raise SkinrenderError("prevailing: a chart's spectral render needs its light (kelvin, A or H)")
-    return render_chart_spectral(scene, prevailing, bands, **options)
+    kind = scene_kind(scene)
+    scene = kind.load(scene)
+    names = tuple(name for name in kind.render_options
+                  if not (kind.lights_required and name in SPECTRAL_OMITTED) and name != "channels")
+    _check_options(names, {}, options, kind.name, "spectral render")
+    if kind.lights_required and prevailing is None:
+        raise SkinrenderError(f"prevailing: a {kind.name}'s spectral render needs its light (kelvin, A or H)",
+                              role="prevailing")
+    return kind.render(kind.request(scene, None, prevailing, None, bands=bands, **options))
 
 
 def render_cameras(scene, cameras, prevailing=None, calibration=None, bands=BANDS_DEFAULT, **options) -> list:
@@ -310,8 +256,8 @@ def render_cameras(scene, cameras, prevailing=None, calibration=None, bands=BAND
     cameras
         Cameras or specs (at least one).
     calibration
-        The white balance's light (kelvin, ``A``, ``H``); ``None``: the prevailing light. The chart's
-        ``normalization`` and ``knee`` go in ``options`` too.
+        The white balance's light (kelvin, ``A``, ``H``); ``None``: the prevailing light. A chart's
+        ``normalization`` and ``knee`` go in ``options`` too (applied by each ``through``).
 
     Examples
     --------
@@ -322,18 +268,18 @@ def render_cameras(scene, cameras, prevailing=None, calibration=None, bands=BAND
     ['gbell:9@450,540,610', 'Nikon 5100 (NPL)']
     """
     from ..model.camera import camera
-    from ..model.illuminant import illuminant
     from ..spectra import GRID_DEFAULT
     from .bands import parse_bands, projection
+    from .request import planckian
 
     cams = [camera(cam) for cam in cameras] if not isinstance(cameras, (str, bytes)) else [camera(cameras)]
     if not cams:
-        raise SkinrenderError("cameras: name at least one camera")
+        raise SkinrenderError("cameras: name at least one camera", role="camera")
     bands = parse_bands(bands)
     for cam in cams:  # every camera checked against the bands before the render
         projection(cam, bands, options.get("grid", GRID_DEFAULT))
-    if calibration is not None and illuminant(calibration).temperature is None:
-        raise SkinrenderError(f"calibration: a Planckian light (kelvin, A or H), got {calibration!r}")
+    if calibration is not None:
+        planckian(calibration, "calibration")
     balance = {key: options.pop(key) for key in ("normalization", "knee") if key in options}
     spectral = render_spectral(scene, prevailing, bands, **options)
     return [spectral.through(cam, calibration, **balance) for cam in cams]

@@ -37,13 +37,14 @@ from ..methods import validate_method
 from ..model.camera import camera
 from ..model.response import NORMALISATIONS
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
-from .balance import CHART_PHYSICS, Eq4Options, Rendering, _temperature, patch_statistics
-from .bands import BANDS_DEFAULT, band_integrals, bands_text, check_bands, estimate, parse_bands, projection
+from .balance import Eq4Options, Rendering, patch_statistics
+from .request import planckian
+from .bands import BANDS_DEFAULT, band_integrals, bands_text, estimate, projection
 from .renderer import RENDERERS_KEPT, ChartRenderer, RawRender, emitter_grid
-from .scene import ChartScene, load_chart_scene
+from .scene import ChartScene
 from .settings import RenderSettings
 
-__all__ = ["render_chart_spectral", "chart_through", "calibration_white"]
+__all__ = ["render_chart_spectral", "render_chart_spectral_request", "chart_through", "calibration_white"]
 
 
 @functools.lru_cache(maxsize=RENDERERS_KEPT)
@@ -74,27 +75,43 @@ def render_chart_spectral(scene, prevailing, bands: WavelengthGrid | str = BANDS
     -------
     :class:`~skinrender.rendering.spectral_image.SpectralImage`
     """
+    from .request import chart_request
+
+    request = chart_request(scene, None, prevailing, None, settings=settings, grid=grid, emitter=emitter,
+                            physics=physics, bands=bands, **options)
+    return render_chart_spectral_request(request)
+
+
+def render_chart_spectral_request(request):
+    """
+    The :class:`~skinrender.rendering.spectral_image.SpectralImage` of a spectral chart request (its ``bands``
+    set): refused at another level than the base (``subsurface`` renders each patch as a slab through the
+    camera), through an image sensor (it records a camera's channels) or with channel passes.
+    """
     from .spectral_image import SpectralImage
 
-    settings = RenderSettings.of(settings, **options)
+    if not request.spectral:
+        raise SkinrenderError("bands: this request renders a camera's channels; a spectral render needs bands",
+                              role="bands")
+    settings, chart, bands, grid = request.settings, request.scene, request.bands, request.grid
     if settings.channels != "auto":
         raise SkinrenderError(f"channels: a spectral render records its bands in one pass, got {settings.channels!r}",
                               role="channels")
-    validate_method(physics, CHART_PHYSICS, "physics (of a chart)", role="physics")
-    if physics != "direct":
-        raise SkinrenderError(f"physics: a chart's spectral render is at the direct level; {physics!r} renders each "
-                              "patch as its own slab through a camera (render it per camera)", role="physics")
-    chart = load_chart_scene(scene)
-    bands = parse_bands(bands)
-    check_bands(bands, grid, "the chart's light and reflectances")
+    if request.level.names:
+        raise SkinrenderError(f"physics: a chart's spectral render is at the direct level; {request.level.name!r} "
+                              "renders each patch as its own slab through a camera (render it per camera)",
+                              role="physics")
+    if request.sensor is not None:
+        raise SkinrenderError("imager: a chart's image sensor records one camera's channels: apply it to a render of "
+                              "that camera", role="imager")
     chart.reflectances(grid)  # every patch's data cover the grid, before the render
-    p = _temperature(prevailing)
     width, height = chart.size
     estimate(bands, width * height, 0.0)  # refused beyond the memory cap
-    raw = _renderer(chart, bands, settings.replace(seed=0), grid, emitter).raw(p, settings.seed)
-    return SpectralImage("chart", chart, bands, raw.image, raw.emitter_scale, p, physics, raw.spp, settings.spp,
-                         settings.seed, raw.sampler, raw.variant, raw.seconds, grid, info={"emitter": emitter},
-                         seen_through=chart_through)
+    raw = _renderer(chart, bands, settings.replace(seed=0), grid, request.emitter).raw(request.prevailing,
+                                                                                        settings.seed)
+    return SpectralImage("chart", chart, bands, raw.image, raw.emitter_scale, request.prevailing, request.level.name,
+                         raw.spp, settings.spp, settings.seed, raw.sampler, raw.variant, raw.seconds, grid,
+                         info={"emitter": request.emitter}, request=request, seen_through=chart_through)
 
 
 def calibration_white(chart: ChartScene, matrix: NDArrayFloat, bands: WavelengthGrid, grid: WavelengthGrid,
@@ -123,7 +140,7 @@ def chart_through(spectral, camera_, calibration=None, normalization: str = "whi
     chart, bands, grid = spectral.scene, spectral.bands, spectral.grid
     matrix = projection(cam, bands, grid)
     p = spectral.prevailing
-    c = p if calibration is None else _temperature(calibration)
+    c = p if calibration is None else planckian(calibration, "calibration")
     radiance = spectral.radiance @ matrix.T
     stats = patch_statistics(radiance, chart)
     white = chart.white_index

@@ -25,19 +25,18 @@ __all__ = ["read_spectral"]
 
 def read_spectral(path) -> SpectralImage:
     """
-    A spectral EXR written by :meth:`SpectralImage.save`, read back: its bands, label channel and settings;
-    its scene loaded again from the header (a bundled scene by name, another from its file) so that
-    ``through`` works as on the render.
+    A spectral EXR written by :meth:`~skinrender.rendering.spectral_image.SpectralImage.save`, read back: its
+    bands, label channel and settings; its request built again from the header (a bundled scene by name, another
+    from its file; a ``noise`` level's sensor by its preset's name) so that ``through`` works as on the render.
 
     Raises
     ------
     SkinrenderError
-        Not a regular file, not an EXR, no spectral header, a band channel missing, or a scene that cannot
-        be loaded again (named).
+        Not a regular file, not an EXR, no spectral header, a band channel missing, or a scene or sensor that
+        cannot be loaded again (named).
     """
-    from .exr import read_exr, read_exr_attributes
-
     from ..files import EXR_BYTES_MAX, check_input
+    from .exr import read_exr, read_exr_attributes
 
     check_input(path, EXR_BYTES_MAX, "a spectral EXR")
     try:
@@ -49,40 +48,36 @@ def read_spectral(path) -> SpectralImage:
                               "header; write one with SpectralImage.save or render --spectral)")
     bands, grid = WavelengthGrid.parse(header["bands_nm"]), WavelengthGrid.parse(header["grid_nm"])
     face = header["kind"] == "face"
-    names = band_names(bands) + (("label",) if face else ())
-    stack = read_exr(path, names)
-    values = {key: header[key] for key in ("physics", "sampler", "variant")}
-    numbers = dict(prevailing=float(header["prevailing_K"]), spp=int(header["spp"]),
-                   spp_requested=int(header["spp_requested"]), seed=int(header["seed"]))
+    stack = read_exr(path, band_names(bands) + (("label",) if face else ()))
+    common = dict(physics=header["physics"], spp=int(header["spp_requested"]), seed=int(header["seed"]),
+                  sampler=header["sampler"], grid=grid, bands=bands)
+    if header.get("imager") is not None:  # the noise level's sensor
+        common.update(imager=header["imager"] or None, exposure=_exposure(header["exposure"]),
+                      illuminance=float(header["illuminance_lx"]) if header["illuminance_lx"] else None)
+    prevailing = float(header["prevailing_K"])
     if not face:
-        from .scene import load_chart_scene
-
-        scene = load_chart_scene(header["scene"])
+        from .request import chart_request
         from .spectral_chart import chart_through
 
-        return SpectralImage("chart", scene, bands, stack, float(header["scale"]), numbers["prevailing"],
-                             values["physics"], numbers["spp"], numbers["spp_requested"], numbers["seed"],
-                             values["sampler"], values["variant"], 0.0, grid, info={"emitter": header["emitter"]},
-                             seen_through=chart_through)
-    from dataclasses import replace
-
-    from .face.render import plan_face
+        request = chart_request(header["scene"], None, prevailing, None, emitter=header["emitter"], **common)
+        return SpectralImage("chart", request.scene, bands, stack, float(header["scale"]), prevailing,
+                             header["physics"], int(header["spp"]), request.settings.spp, request.settings.seed,
+                             header["sampler"], header["variant"], 0.0, grid, info={"emitter": header["emitter"]},
+                             request=request, seen_through=chart_through)
+    from .face.request import face_request
     from .face.spectral_face import face_through
 
     width, height = (int(v) for v in header["size"].split("x"))
-    plan = plan_face(header["scene"], numbers["prevailing"], header["skin"], values["physics"],
-                     numbers["spp_requested"], numbers["seed"], (width, height), values["sampler"], None, grid,
-                     float(header["illuminance_lx"]))
-    plan = replace(plan, variant=values["variant"])
+    request = face_request(header["scene"], None, prevailing, None, skin=header["skin"], size=(width, height),
+                           **common)
     labels = stack[..., -1].astype(np.int32)
     label_names = {k.strip(): int(v) for k, v in (item.split("=") for item in header["labels"].split(","))}
-    info = {"imager": header["imager"] or None, "exposure": _exposure(header["exposure"]),
-            "lights": {k: {"temperature_K": v.temperature, "illuminance_lx": v.illuminance}
-                       for k, v in plan.lights.items()}}
-    return SpectralImage("face", plan.scene, bands, np.ascontiguousarray(stack[..., :-1]), float(header["scale"]),
-                         numbers["prevailing"], values["physics"], numbers["spp"], numbers["spp_requested"],
-                         numbers["seed"], values["sampler"], values["variant"], 0.0, grid, labels, label_names,
-                         header["skin"], info, plan, face_through)
+    lights = {k: {"temperature_K": v.temperature, "illuminance_lx": v.illuminance}
+              for k, v in request.level.lights(request.scene).items()}
+    return SpectralImage("face", request.scene, bands, np.ascontiguousarray(stack[..., :-1]), float(header["scale"]),
+                         prevailing, header["physics"], int(header["spp"]), request.settings.spp,
+                         request.settings.seed, header["sampler"], header["variant"], 0.0, grid, labels, label_names,
+                         header["skin"], {"lights": lights}, request, face_through)
 
 
 def _exposure(text: str):

@@ -81,10 +81,11 @@ class SpectralImage:
     labels, label_names, skin
         A face's label image ``(height, width)`` int32, ``{name: label}`` and skin spec; ``None`` for a chart.
     info
-        A face's ``lights``, ``imager`` and ``exposure`` (the ``noise`` level's sensor, applied per camera);
-        a chart's ``emitter``.
-    plan
-        A face's :class:`~skinrender.rendering.face.render.FacePlan` (what ``through`` needs).
+        A face's ``lights``; a chart's ``emitter``.
+    request
+        The spectral request rendered (:class:`~skinrender.rendering.request.ChartRequest` or
+        :class:`~skinrender.rendering.face.request.FaceRequest` with ``bands``; its options, e.g. the ``noise``
+        sensor applied per camera): what ``through`` needs.
     seen_through
         ``(image, camera, calibration, **options) → result``: the kind's projection
         (:func:`~skinrender.rendering.spectral_chart.chart_through`,
@@ -109,7 +110,7 @@ class SpectralImage:
     label_names: dict = field(default_factory=dict)
     skin: str | None = None
     info: dict = field(default_factory=dict)
-    plan: object = field(default=None, repr=False, compare=False)
+    request: object = field(default=None, repr=False, compare=False)
     seen_through: Callable | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -172,23 +173,21 @@ def _scene_text(scene) -> str:
 def spectral_attributes(image: SpectralImage) -> dict:
     """The EXR header of a spectral image (module docstring), every value text."""
     attributes = {"skinrender_spectral": FORMAT, "kind": image.kind, "basis": "hat",
-                  "bands_nm": bands_text(image.bands),
-                  "grid_nm": f"{image.grid.start:g}:{image.grid.end:g}:{image.grid.step:g}",
+                  "bands_nm": bands_text(image.bands), "grid_nm": bands_text(image.grid),
                   "scene": _scene_text(image.scene), "prevailing_K": repr(float(image.prevailing)),
                   "physics": image.physics, "spp": image.spp, "spp_requested": image.spp_requested,
                   "seed": image.seed, "sampler": image.sampler, "variant": image.variant,
                   "scale": repr(float(image.scale)),
                   "units": "per band: the integral of L(λ) h_j(λ) dλ over the band's hat, W m^-2 sr^-1, divided by "
                            "scale"}
+    sensor = None if image.request is None else image.request.sensor
+    if sensor is not None:  # the noise effect's options, applied per camera
+        attributes.update({"imager": "" if sensor.imager is None else sensor.imager.name,
+                           "exposure": str(sensor.exposure),
+                           "illuminance_lx": "" if sensor.illuminance is None else repr(float(sensor.illuminance))})
     if image.kind == "face":
-        key = image.plan.scene if image.plan is not None else image.scene
-        from .face.scene import prevailing_name
-
-        light = getattr(key, prevailing_name(key))
-        attributes.update({"skin": image.skin, "size": f"{key.camera.width}x{key.camera.height}",
-                           "illuminance_lx": repr(float(light.illuminance)),
-                           "imager": "" if image.info.get("imager") is None else str(image.info["imager"]),
-                           "exposure": str(image.info.get("exposure", "auto")),
+        scene = image.scene
+        attributes.update({"skin": image.skin, "size": f"{scene.camera.width}x{scene.camera.height}",
                            "labels": ", ".join(f"{k}={v}" for k, v in image.label_names.items())})
     else:
         attributes["emitter"] = image.info.get("emitter", "tabulated")

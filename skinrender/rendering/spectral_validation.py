@@ -38,7 +38,8 @@ from ..hints import NDArrayFloat
 from ..model.camera import camera
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .agreement import TOLERANCE_DEFAULT, agreement, check_tolerance
-from .balance import Rendering, _temperature, render
+from .balance import Rendering, render
+from .request import planckian
 from .bands import BANDS_DEFAULT, bands_text
 from .patch_errors import SKEW_MAX, error_law
 from .scene import load_chart_scene
@@ -150,7 +151,7 @@ def validate_spectral(
     tolerance = check_tolerance(tolerance, "tolerance")
     settings = RenderSettings.of(settings, **options)
     chart, cam = load_chart_scene(scene), camera(camera_)
-    p, c = _temperature(prevailing), _temperature(calibration)
+    p, c = planckian(prevailing, "prevailing"), planckian(calibration, "calibration")
     if spectral is None:
         spectral = render_chart_spectral(chart, p, bands, settings, grid)
     rendering = spectral.through(cam, c, normalization=normalization, knee=knee)

@@ -53,7 +53,6 @@ References
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -61,7 +60,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..evaluation.verdict import ALPHA_DIFFERENCE, Verdict, difference, sidak
 from ..hints import NDArrayFloat
-from .replicates import REPLICATES, measure_face, region_values
+from .replicates import measure_face, region_values
 
 __all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
            "Comparison", "scene_kind", "measure", "measure_spectral", "values_of", "setting_notes", "compare"]
@@ -82,7 +81,8 @@ SIZE_FACE = 64
 """Image side of a face check unless given, pixels: a reference of ~60 kB."""
 
 ILLUMINANCE_DEFAULT_LUX = 500.0
-"""A chart's illuminance through an ``imager`` unless given, lx (the command line's default)."""
+"""A chart's illuminance through an ``imager`` unless given, lx (every door's:
+:data:`skinrender.rendering.request.ILLUMINANCE_DEFAULT`)."""
 
 
 @dataclass(frozen=True)
@@ -127,16 +127,16 @@ class Measurement:
 
 def scene_kind(spec) -> str:
     """
-    ``face`` for a face scene (:func:`skinrender.rendering.face.scene.is_face_scene`: a ``FaceScene``, a bundled
-    face name, or a ``.toml`` with ``[camera]`` and ``[mesh]``), else ``chart`` (the chart loader then names any
-    error).
+    The name of a scene's kind (:func:`skinrender.rendering.kinds.scene_kind`): ``face`` for a ``FaceScene``, a
+    bundled face name, or a ``.toml`` with ``[camera]`` and ``[mesh]``, else ``chart`` (the chart loader then names
+    any error).
 
     >>> scene_kind("macbeth"), scene_kind("face")
     ('chart', 'face')
     """
-    from ..rendering.face.scene import is_face_scene
+    from ..rendering.kinds import scene_kind as kind_of
 
-    return "face" if is_face_scene(spec) else "chart"
+    return kind_of(spec).name
 
 
 def _named(name: str, function, *args, **kwargs):
@@ -191,21 +191,14 @@ def _white_relative_variance(rendering) -> NDArrayFloat:
 
 
 def _chart(chart, cam, prevailing, calibration, spp, seed, imager, illuminance, variant) -> Measurement:
-    from ..rendering.balance import render
+    from ..rendering.kinds import CHART
 
-    if imager is None:
-        rendering = render(chart, cam, prevailing, calibration, spp=spp, seed=seed, variant=variant)
-        relative = _white_relative_variance(rendering)
-    else:
-        from ..model.imager import imager as imager_of
-        from ..rendering.imaging import render_imaged
-
-        sensor = _named("imager", imager_of, imager)
-        lux = ILLUMINANCE_DEFAULT_LUX if illuminance is None else illuminance
-        rendering = render_imaged(chart, cam, prevailing, calibration, sensor, lux, spp=spp, seed=seed,
-                                  variant=variant).rendering
-        relative = np.zeros(3)  # the whites of a sensor's balance are noise-free
-    settings = {} if imager is None else {"imager": sensor.name, "illuminance_lux": float(lux)}
+    request = CHART.request(chart, cam, prevailing, calibration, spp=spp, seed=seed, variant=variant, imager=imager,
+                            illuminance=illuminance)  # the one request of every door
+    rendering, imaged = CHART.render_imaged(request)
+    # through a sensor the balance's whites are noise-free; else the rendered whites' noise adds to every patch
+    relative = np.zeros(3) if imaged is not None else _white_relative_variance(rendering)
+    settings = {} if imaged is None else {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux}
     return _chart_values(chart, cam, rendering, relative, settings)
 
 
@@ -239,8 +232,8 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     docstring).
 
     ``camera`` may be a list of cameras: the scene is then rendered once spectrally (a face: once per replicate
-    seed) and seen through each (:func:`measure_spectral`), and a list of measurements returned, one
-    per camera, in their order.
+    seed) and seen through each (:func:`measure_spectral`), and a list of measurements returned, one per camera,
+    in their order.
 
     ``spp`` defaults to :data:`SPP_CHART` or :data:`SPP_FACE`; ``physics``, ``skin`` and ``size`` (pixels,
     default :data:`SIZE_FACE`) go with faces; ``imager`` (and ``illuminance``, lx) put the image sensor's
@@ -251,9 +244,10 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     from ..model.camera import camera as camera_of
     from ..rendering.exr import camera_attributes
     from ..rendering.scene import load_chart_scene
+    from ..rendering.settings import SEED_MAX, SPP_MAX
 
     kind = scene_kind(scene)
-    if kind == "chart":
+    if kind == "chart":  # the plugin's own refusals (it checks a chart at direct, a face at any level)
         chart = _named("scene", load_chart_scene, scene)
         given = [n for n, v in (("physics", physics not in (None, "direct")), ("skin", skin is not None),
                                 ("size", size is not None)) if v]
@@ -271,11 +265,8 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     cam = cams[0]
     p, c = _planckian(prevailing, "prevailing"), _planckian(calibration, "calibration")
     spp = _integer(SPP_CHART if kind == "chart" and spp is None else SPP_FACE if spp is None else spp, "spp", 1,
-                   2**31)
-    seed = _integer(seed, "seed", 0, 2**32 - 1)
-    if illuminance is not None and not (isinstance(illuminance, (int, float)) and math.isfinite(illuminance)
-                                        and illuminance > 0):
-        raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance!r}")
+                   SPP_MAX + 1)
+    seed = _integer(seed, "seed", 0, SEED_MAX + 1)  # the bound of every front door
     size = SIZE_FACE if size is None else size
     if several:
         found = measure_spectral(kind, chart if kind == "chart" else scene, cams, p, c, spp * factor, seed, physics,
@@ -301,34 +292,31 @@ def measure_spectral(kind: str, scene, cameras: list, prevailing: float, calibra
                      physics: str | None, skin: str | None, imager: str | None, illuminance: float | None, size: int,
                      variant: str | None) -> list:
     """
-    One :class:`Measurement` per camera of ``cameras`` from one spectral render
-    of ``scene`` (a loaded chart, or a face spec) with :data:`~skinrender.rendering.bands.BANDS_DEFAULT`
-    (arguments as :func:`measure`; a chart through an ``imager`` is refused: its sensor records a camera's
-    channels). The settings add ``spectral_bands_nm``, so that a reference made one render per camera is told
-    apart in a failure's notes.
+    One :class:`Measurement` per camera of ``cameras`` from one spectral render of ``scene`` (a loaded chart, or a
+    face spec; a face: one per replicate seed) with :data:`~skinrender.rendering.bands.BANDS_DEFAULT` (arguments
+    as :func:`measure`; a chart through an ``imager`` is refused: its sensor records a camera's channels). The
+    settings add ``spectral_bands_nm``, so that a reference made one render per camera is told apart in a
+    failure's notes.
     """
     from ..rendering.bands import BANDS_DEFAULT, bands_text
+    from ..rendering.kinds import CHART, FACE
+    from .replicates import face_check_request, reduce_face, replicate_seeds
 
     bands = {"spectral_bands_nm": bands_text(BANDS_DEFAULT)}
     if kind == "chart":
         if imager is not None:
             raise SkinrenderError("imager: a chart's image sensor records one camera's render; check several cameras "
                                   "without it, or one camera at a time")
-        from ..rendering.spectral_chart import render_chart_spectral
-
-        image = render_chart_spectral(scene, prevailing, BANDS_DEFAULT, spp=spp, seed=seed, variant=variant)
+        image = CHART.render(CHART.request(scene, None, prevailing, None, spp=spp, seed=seed, variant=variant,
+                                           bands=BANDS_DEFAULT))
         out = []
         for cam in cameras:
             rendering = image.through(cam, calibration)
             out.append(_chart_values(scene, cam, rendering, _white_relative_variance(rendering), bands))
         return out
-    from ..rendering.face.spectral_face import render_face_spectral
-    from .replicates import face_effects, reduce_face, replicate_seeds
-
-    effects = face_effects(spp, physics, imager, illuminance)
-    images = [render_face_spectral(scene, prevailing, skin, effects, spp // REPLICATES, s, size, variant=variant,
-                                   bands=BANDS_DEFAULT, imager=imager, illuminance=illuminance)
-              for s in replicate_seeds(seed)]
+    request = face_check_request(scene, None, prevailing, None, spp, seed, physics, skin, imager, illuminance, size,
+                                 variant, BANDS_DEFAULT)
+    images = [FACE.render(request, s) for s in replicate_seeds(seed)]
     out = []
     for cam in cameras:
         found = Measurement("face", *reduce_face([image.through(cam, calibration) for image in images], cam))

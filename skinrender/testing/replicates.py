@@ -35,7 +35,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 
-__all__ = ["REPLICATES", "replicate_seeds", "region_values", "measure_face", "face_effects", "reduce_face"]
+__all__ = ["REPLICATES", "replicate_seeds", "region_values", "measure_face", "face_check_request", "reduce_face"]
 
 REPLICATES = 4
 """Independent replicates a face is rendered as, for its per-pixel Monte Carlo covariance."""
@@ -98,27 +98,27 @@ def measure_face(scene, cam, prevailing: float, calibration: float, spp: int, se
     standard_error, dof, settings)`` as :class:`~skinrender.testing.regression.Measurement` holds them.
     ``imager`` adds physics ``noise``; ``illuminance`` without it or ``noise`` is refused.
     """
-    from ..rendering.face import render_face
+    from ..rendering.kinds import FACE
 
-    effects = face_effects(spp, physics, imager, illuminance)
-    renders = [render_face(cam, scene, prevailing, calibration, skin=skin, physics=effects, spp=spp // REPLICATES,
-                           seed=s, size=size, variant=variant, imager=imager, illuminance=illuminance)
-               for s in replicate_seeds(seed)]
-    return reduce_face(renders, cam)
+    request = face_check_request(scene, cam, prevailing, calibration, spp, seed, physics, skin, imager, illuminance,
+                                 size, variant)
+    return reduce_face([FACE.render(request, s) for s in replicate_seeds(seed)], cam)
 
 
-def face_effects(spp: int, physics: str | None, imager: str | None, illuminance: float | None) -> str:
-    """A face check's level (``imager`` adds ``noise``), ``spp`` and ``illuminance`` checked (module docstring)."""
+def face_check_request(scene, cam, prevailing: float, calibration: float, spp: int, seed: int, physics: str | None,
+                       skin: str | None, imager: str | None, illuminance: float | None, size, variant: str | None,
+                       bands=None):
+    """A face check's request (the one request of every door: an imager adds noise there; illuminance without it
+    or noise is refused), its ``spp`` split over :data:`REPLICATES`; ``bands``: a spectral one (``cam``
+    ``None``)."""
+    from ..rendering.kinds import FACE
+
     if spp < REPLICATES:
         raise SkinrenderError(f"spp: a face check renders {REPLICATES} replicates, so spp must be at least "
                               f"{REPLICATES}, got {spp}")
-    effects = physics or "direct"
-    if imager is not None and "noise" not in effects.split("+"):
-        effects = "noise" if effects == "direct" else effects + "+noise"
-    elif illuminance is not None and "noise" not in effects.split("+"):
-        raise SkinrenderError("illuminance sets the image sensor's exposure: it goes with imager (or physics "
-                              "'noise')")
-    return effects
+    return FACE.request(scene, cam, prevailing, calibration, skin=skin, physics=physics or "direct", size=size,
+                        spp=spp // REPLICATES, seed=seed, variant=variant, imager=imager, illuminance=illuminance,
+                        **({} if bands is None else {"bands": bands}))
 
 
 def reduce_face(renders: list, cam) -> tuple:

@@ -8,7 +8,8 @@ camera's three channels at a level of physics
 with a label image from the geometry.
 
 -   :func:`render_face`, :class:`FaceRendering`: one render (``.save()``,
-    ``.figure()``).
+    ``.figure()``); :func:`render_face_request`: the render of a
+    :class:`~skinrender.rendering.face.request.FaceRequest`.
 -   :func:`white_references`: the channel responses to a white under the
     prevailing and the calibration light.
 -   :func:`write_face_exr`: the float32 EXR, with a ``label`` channel.
@@ -41,31 +42,29 @@ from __future__ import annotations
 
 import functools
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from ...constants import CONSTANT_OUTPUT_SCALE
-from ...errors import SkinrenderError, flag_of
+from ...errors import SkinrenderError
 from ...files import Output, write_outputs
 from ...hints import NDArrayFloat
-from ...methods import validate_method
-from ...model.camera import Camera, camera
-from ...model.illuminant import illuminant
+from ...model.camera import Camera
 from ...model.response import gain
 from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
 from ..exr import camera_attributes, write_exr, write_preview
 from ..outputs import draw_figure, save_result
-from ..renderer import SAMPLERS, SAMPLES_MAX, CameraKey, channel_names
+from ..renderer import CameraKey, channel_names
 from ..variants import mitsuba
 from .document import channel_groups, channel_integral, face_document, light_irradiance
-from .effects import Frame, Level, physics_level
+from .effects import Frame, Level
 from .labels import label_names, render_labels, shape_labels
-from .scene import MESH_HEAD, FaceScene, load_face_scene, prevailing_name, skin_reflectance_of
+from .scene import MESH_HEAD, FaceScene, prevailing_name
 
-__all__ = ["FaceRendering", "FacePlan", "planckian_temperature", "white_references", "plan_face", "render_face",
-           "finish_face", "face_exr", "write_face_exr"]
+__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "render_face_request", "finish_face",
+           "face_exr", "write_face_exr"]
 
 LOADED_KEPT = 6
 """Face documents kept loaded in Mitsuba (the least recently used goes first)."""
@@ -150,16 +149,14 @@ class FaceRendering:
 def planckian_temperature(spec, name: str) -> float:
     """
     The temperature, K, of a Planckian light spec (kelvin, ``A`` or ``H``); a one-line error naming ``name``
-    for any other light (a face's lights are Planckian).
+    for any other light (:func:`skinrender.rendering.request.planckian`).
 
     >>> planckian_temperature("A", "prevailing")
     2856.0
     """
-    item = illuminant(spec)
-    if item.temperature is None:
-        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}",
-                              flag=flag_of(name))
-    return float(item.temperature)
+    from ..request import planckian
+
+    return planckian(spec, name)
 
 
 def white_references(scene: FaceScene, cam: Camera, calibration: float, grid: WavelengthGrid = GRID_DEFAULT,
@@ -194,8 +191,8 @@ def white_references(scene: FaceScene, cam: Camera, calibration: float, grid: Wa
 class _Document:
     """
     A face's Mitsuba document as a cache key: what it depends on (the camera by its curves, or a spectral
-    render's bands; the level by the effects that change the document, the lights by name); the level and the
-    lights themselves ride along, outside the key.
+    render's bands on its grid; the level by the effects that change the document, the lights by name); the level
+    and the lights themselves ride along, outside the key.
     """
 
     scene: FaceScene
@@ -233,95 +230,12 @@ def _load(document: _Document):
                               f"{reason}") from None
 
 
-@dataclass(frozen=True)
-class FacePlan:
-    """
-    What a face render renders, checked once, before any camera: the ``scene`` (resized, its lights set to the
-    prevailing temperature and illuminance), the ``level``, the ``skin`` spec, the key light's temperature
-    ``prevailing`` (K), the level's ``lights``, the emitters' ``scale`` (W·m⁻²·nm⁻¹), the Mitsuba ``variant``,
-    ``spp``, ``seed``, ``sampler`` and ``grid`` (nm).
-    """
-
-    scene: FaceScene
-    level: Level
-    skin: str
-    prevailing: float | None
-    lights: dict
-    scale: float
-    variant: str
-    spp: int
-    seed: int
-    sampler: str
-    grid: WavelengthGrid
-
-    def loaded(self, cam: Camera | None = None, group: tuple[int, ...] = (), bands: WavelengthGrid | None = None):
-        """The Mitsuba scene of this plan through ``cam``'s ``group`` channels, or with ``bands`` as its film,
-        reused across renders that share it (:data:`LOADED_KEPT` kept)."""
-        key = None if cam is None else CameraKey.of(cam, self.grid)
-        return _load(_Document(self.scene, key, self.grid, bands, self.level.document_key, self.skin, group,
-                               self.spp, self.sampler, self.variant, tuple(sorted(self.lights.items())), self.scale,
-                               self.level, self.lights))
-
-    def render(self, loaded) -> tuple[NDArrayFloat, int]:
-        """One render of ``loaded`` with the plan's seed: its channels ``(height, width, n)`` float64 in absolute
-        units (the emitters' ``scale`` restored), and the spp the sampler used."""
-        mi = mitsuba(self.variant)
-        width, height = self.scene.camera.width, self.scene.camera.height
-        values = np.array(mi.render(loaded, seed=int(self.seed)), dtype=np.float64)
-        spp = int(loaded.sensors()[0].sampler().sample_count())
-        return values.reshape(height, width, -1) * self.scale, spp
-
-    def labels(self, loaded) -> NDArrayFloat:
-        """The label image (:func:`~skinrender.rendering.face.labels.render_labels`) through ``loaded``."""
-        mi = mitsuba(self.variant)
-        return render_labels(mi, loaded, self.scene.camera.width, self.scene.camera.height, shape_labels(self.scene))
-
-
-def _whole(value, low: int = 1, high: float = np.inf) -> bool:
-    return isinstance(value, (int, np.integer)) and not isinstance(value, bool) and low <= value < high
-
-
-def plan_face(scene: FaceScene | str = "face", prevailing=None, skin: str | None = None,
-              physics: str | Level = "direct", spp: int = 64, seed: int = 0, size=None,
-              sampler: str = "multijitter", variant: str | None = None, grid: WavelengthGrid = GRID_DEFAULT,
-              illuminance: float | None = None) -> FacePlan:
-    """
-    A face render's :class:`FacePlan`, every argument checked with a one-line error naming it (arguments as
-    :func:`render_face`).
-    """
-    face = load_face_scene(scene)
-    if size is not None:
-        width, height = (size, size) if np.ndim(size) == 0 else size
-        if not (_whole(width) and _whole(height)):
-            raise SkinrenderError(f"size must be a positive number of pixels (or two), got {size!r}")
-        face = face.resized(int(width), int(height))
-    level = physics_level(physics)
-    skin = face.skin if skin is None else str(skin).strip()
-    skin_reflectance_of(skin, grid, "skin")
-    validate_method(sampler, SAMPLERS, "sampler")
-    if not _whole(spp):
-        raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
-    if not _whole(seed, 0, 2**32):
-        raise SkinrenderError(f"seed must be an integer in [0, 2^32) (Mitsuba's seeds are 32-bit), got {seed!r}")
-    pixels = face.camera.width * face.camera.height
-    if spp * pixels > SAMPLES_MAX:
-        raise SkinrenderError(f"spp {spp} × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
-                              f"{SAMPLES_MAX:.3g}; at most {SAMPLES_MAX // pixels} spp at this size")
-    name = prevailing_name(face)
-    if illuminance is not None and getattr(face, name) is not None:
-        if not (isinstance(illuminance, (int, float)) and np.isfinite(illuminance) and illuminance > 0):
-            raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance!r}")
-        ratio = float(illuminance) / getattr(face, name).illuminance
-        face = replace(face, **{k: replace(getattr(face, k), illuminance=getattr(face, k).illuminance * ratio)
-                                for k in ("key", "fill", "environment") if getattr(face, k) is not None})
-    if prevailing is not None and getattr(face, name) is not None:
-        light = replace(getattr(face, name), temperature=planckian_temperature(prevailing, "prevailing"))
-        face = replace(face, **{name: light})
-    p = getattr(face, name).temperature if getattr(face, name) is not None else None
-    lights = level.lights(face)
-    scale = max(float(np.max(light_irradiance(light, grid)[1])) for light in lights.values())
-    return FacePlan(face, level, skin, p, lights, scale, level.choose_variant(variant), int(spp), int(seed), sampler,
-                    grid)
+def _loaded(scene, cam, grid, level: Level, skin, group, spp, sampler, variant, lights, scale, bands=None):
+    """The face's document loaded into Mitsuba, reused across renders that share it (:data:`LOADED_KEPT` kept);
+    ``bands``: a spectral render's film (``cam`` ``None``)."""
+    key = None if cam is None else CameraKey.of(cam, grid)
+    return _load(_Document(scene, key, grid, bands, level.document_key, skin, group, spp, sampler, variant,
+                           tuple(sorted(lights.items())), scale, level, lights))
 
 
 def render_face(
@@ -339,7 +253,7 @@ def render_face(
     grid: WavelengthGrid = GRID_DEFAULT,
     channels: str = "auto",
     imager: str | None = None,
-    exposure="auto",
+    exposure=None,
     illuminance: float | None = None,
 ) -> FaceRendering:
     """
@@ -366,56 +280,85 @@ def render_face(
         As :func:`skinrender.rendering.renderer.render_raw`.
     size
         Image size in pixels (``N`` or ``(width, height)``); ``None`` keeps the scene's.
-    imager, exposure
-        For ``noise``: the image sensor (a preset or TOML; default
-        :data:`~skinrender.rendering.face.effects.noise.IMAGER_DEFAULT`) and ``auto`` or seconds.
-    illuminance
-        The key light's illuminance at the target, lx (every light scaled
-        with it); ``None`` keeps the scene's. Only ``noise`` sees it: Eq. 4
-        cancels a common scale of the lights.
+    imager, exposure, illuminance
+        The ``noise`` effect's options (:class:`~skinrender.rendering.sensor.NoiseOptions`): the image sensor (a
+        preset or TOML; default :data:`~skinrender.rendering.face.effects.noise.IMAGER_DEFAULT`; an imager adds
+        ``noise`` to the level), ``auto`` or seconds, and the key light's illuminance at the target, lx (every
+        light scaled with it; ``None`` keeps the scene's; Eq. 4 cancels a common scale of the lights). Without
+        ``noise`` (or an imager) ``exposure`` and ``illuminance`` are refused.
 
     Returns
     -------
     :class:`FaceRendering`
+
+    Raises
+    ------
+    SkinrenderError
+        A bad argument, named, before any render (:func:`~skinrender.rendering.face.request.face_request`).
     """
 
+    from .request import face_request
+
+    request = face_request(scene, camera_, prevailing, calibration, skin=skin, physics=physics, size=size, spp=spp,
+                           seed=seed, sampler=sampler, variant=variant, grid=grid, channels=channels, imager=imager,
+                           exposure=exposure, illuminance=illuminance)
+    return render_face_request(request)
+
+
+def render_face_request(request, seed: int | None = None) -> FaceRendering:
+    """
+    Render a :class:`~skinrender.rendering.face.request.FaceRequest` (module docstring): its scene at its level,
+    through its camera, white balanced to its calibration light. ``seed``: a seed derived from the request's
+    (a replicate's, :func:`~skinrender.rendering.settings.seed_at`; any 32-bit integer), else the request's.
+    """
     start = time.perf_counter()
-    plan = plan_face(scene, prevailing, skin, physics, spp, seed, size, sampler, variant, grid, illuminance)
-    cam = camera(camera_)
-    c = plan.prevailing if calibration is None else planckian_temperature(calibration, "calibration")
-    white_p, white_c = white_references(plan.scene, cam, c, grid)
-    groups = channel_groups(cam, grid, channels)
-    width, height = plan.scene.camera.width, plan.scene.camera.height
+    face, cam, grid, level, settings = request.scene, request.camera, request.grid, request.level, request.settings
+    seed = settings.seed if seed is None else int(seed)
+    if not 0 <= seed < 2**32:
+        raise SkinrenderError(f"seed must be a 32-bit integer, got {seed}", role="seed")
+    spp, sampler, skin = settings.spp, settings.sampler, request.skin
+    c = request.calibration
+    lights = level.lights(face)
+    white_p, white_c = white_references(face, cam, c, grid)
+    scale = max(float(np.max(light_irradiance(light, grid)[1])) for light in lights.values())
+    variant = level.choose_variant(settings.variant)
+    mi = mitsuba(variant)
+    groups = channel_groups(cam, grid, settings.channels)
+    width, height = face.camera.width, face.camera.height
     radiance = np.zeros((height, width, 3))
     spp_used, first = int(spp), None
     for group in groups:
-        loaded = plan.loaded(cam, group)
+        loaded = _loaded(face, cam, grid, level, skin, group, int(spp), sampler, variant, lights, scale)
         first = first or loaded
-        radiance[:, :, list(group)], spp_used = plan.render(loaded)
-    return finish_face(plan, cam, c, radiance, white_p, white_c, plan.labels(first), spp_used, len(groups), start,
-                       imager, exposure)
+        spp_used = int(loaded.sensors()[0].sampler().sample_count())
+        values = np.array(mi.render(loaded, seed=seed), dtype=np.float64)
+        radiance[:, :, list(group)] = values.reshape(height, width, len(group)) * scale
+    labels = render_labels(mi, first, width, height, shape_labels(face))
+    return finish_face(request, cam, c, radiance, white_p, white_c, labels, spp_used, len(groups), seed, variant,
+                       start)
 
 
-def finish_face(plan: FacePlan, cam: Camera, calibration: float, radiance: NDArrayFloat, white_p: NDArrayFloat,
-                white_c: NDArrayFloat, labels: NDArrayFloat, spp_used: int, passes: int, start: float,
-                imager=None, exposure="auto", info: dict | None = None) -> FaceRendering:
+def finish_face(request, cam: Camera, calibration: float, radiance: NDArrayFloat, white_p: NDArrayFloat,
+                white_c: NDArrayFloat, labels: NDArrayFloat, spp_used: int, passes: int, seed: int, variant: str,
+                start: float, info: dict | None = None) -> FaceRendering:
     """
-    A face render from its ``radiance`` through ``cam`` (``(height, width, 3)``, specfilm units) and the whites:
-    the level's post-processing (``noise``: one frame through the image sensor), Eq. 4's gain (WP, Eq. 8) to
-    ``calibration`` (K), the :class:`FaceRendering` (``start``: when the work began, ``time.perf_counter()``;
-    ``info``: keys added to its ``info``).
+    A face render of ``request`` from its ``radiance`` through ``cam`` (``(height, width, 3)``, specfilm units)
+    and the whites: the level's post-processing (``noise``: one frame through the sensor, seeded from ``seed``),
+    Eq. 4's gain (WP, Eq. 8) to ``calibration`` (K), the :class:`FaceRendering` (``start``: when the work began,
+    ``time.perf_counter()``; ``info``: keys added to its ``info``). A spectral render's projection ends here too.
     """
+    face, level, grid = request.scene, request.level, request.grid
+    lights = level.lights(face)
     extra = {"lights": {k: {"temperature_K": v.temperature, "illuminance_lx": v.illuminance}
-                        for k, v in plan.lights.items()}, **(info or {})}
-    after = plan.level.setup(plan.scene, cam, plan.grid, plan.lights, calibration=calibration, seed=plan.seed,
-                             imager=imager, exposure=exposure)
-    frame = plan.level.post(Frame(radiance, white_p, white_c, extra), after)  # e.g. noise: one frame, a sensor
+                        for k, v in lights.items()}, **(info or {})}
+    after = level.setup(face, cam, grid, lights, calibration=calibration, seed=seed, options=request.options)
+    frame = level.post(Frame(radiance, white_p, white_c, extra), after)  # e.g. noise: one frame through a sensor
     applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
     image = applied * frame.signal
-    return FaceRendering(plan.scene, cam, plan.level.name, plan.skin, float(plan.prevailing), float(calibration),
-                         image.astype(np.float32), radiance, labels, label_names(plan.scene), int(spp_used),
-                         plan.spp, plan.seed, plan.sampler, plan.variant, time.perf_counter() - start, passes,
-                         white_p, white_c, applied, frame.info)
+    return FaceRendering(face, cam, level.name, request.skin, float(request.prevailing), float(calibration),
+                         image.astype(np.float32), radiance, labels, label_names(face), int(spp_used),
+                         request.settings.spp, seed, request.settings.sampler, variant, time.perf_counter() - start,
+                         passes, white_p, white_c, applied, frame.info)
 
 
 def face_exr(rendering: FaceRendering) -> tuple[NDArrayFloat, tuple[str, ...], dict]:

@@ -45,7 +45,7 @@ from ...spectra import WavelengthGrid
 from ..variants import mitsuba
 from .document import light_documents, skin_material
 from .labels import SHAPE_SKIN
-from .render import FacePlan, _Document, _load
+from .render import _Document, _load
 
 __all__ = ["KEPT", "spectral_loaded", "flattened", "release"]
 
@@ -69,7 +69,7 @@ def release() -> int:
     return count
 
 
-def _structure(plan: FacePlan, bands: WavelengthGrid) -> tuple:
+def _structure(plan, bands: WavelengthGrid) -> tuple:
     """What a document's structure depends on: everything but the lights' temperatures and illuminances and the
     skin (its values)."""
     def neutral(light):
@@ -107,7 +107,7 @@ def _flatten(prefix: str, node, out: dict) -> None:
             out[f"{prefix}.{name}"] = np.array(value, dtype=np.float64)
 
 
-def flattened(plan: FacePlan) -> dict:
+def flattened(plan) -> dict:
     """
     The value parameters of the plan's document, by their names without ``value`` wrappers
     (``light_key.intensity.values``, ``skin.bsdf.brdf_0.reflectance.values``, ``skin.interior_medium.scale``):
@@ -127,7 +127,7 @@ def _values(loaded, variant: str) -> dict:
             if not any(part in key for part in _FIXED)}
 
 
-def _matches(loaded, plan: FacePlan) -> bool:
+def _matches(loaded, plan) -> bool:
     """Whether :func:`flattened` finds every value parameter of ``loaded`` (built from ``plan``) with its value."""
     found, mine = flattened(plan), _values(loaded, plan.variant)
     if set(found) != set(mine):
@@ -136,7 +136,7 @@ def _matches(loaded, plan: FacePlan) -> bool:
                for key, (_, value) in mine.items())
 
 
-def _revalue(loaded, plan: FacePlan) -> None:
+def _revalue(loaded, plan) -> None:
     """Copy the plan's values into ``loaded`` (a document of its structure, whose flattening matched)."""
     mi = mitsuba(plan.variant)
     params = mi.traverse(loaded)
@@ -152,14 +152,14 @@ def _revalue(loaded, plan: FacePlan) -> None:
     params.update()
 
 
-def _fresh(plan: FacePlan, bands: WavelengthGrid):
+def _fresh(plan, bands: WavelengthGrid):
     """The plan's document loaded anew (outside the face renderer's cache: its values will change)."""
     return _load.__wrapped__(_Document(plan.scene, None, plan.grid, bands, plan.level.document_key, plan.skin, (),
                                        plan.spp, plan.sampler, plan.variant, tuple(sorted(plan.lights.items())),
                                        plan.scale, plan.level, plan.lights))
 
 
-def spectral_loaded(plan: FacePlan, bands: WavelengthGrid):
+def spectral_loaded(plan, bands: WavelengthGrid):
     """
     The plan's document with ``bands`` as its film, and its label image: in a JIT variant the kept document of
     its structure given the plan's values (module docstring), else (or the first time) a fresh one.

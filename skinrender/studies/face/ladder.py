@@ -47,13 +47,15 @@ from ...hints import NDArrayFloat
 from ...model.camera import camera
 from ...model.chromaticity import ncc
 from ...rendering.face import planckian_temperature
-from ...rendering.face.effects import LEVELS_LADDER, parse_physics, physics_level
+from ...rendering.face.effects import LEVELS_LADDER, PHYSICS_REGISTRY, Level
 from ...rendering.face.labels import LABEL_SKIN
 from ...rendering.face.limits import REPLICATES
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
 from ...rendering.face.shift import face_budget
+from ...rendering.settings import seed_at
+from ...rendering.face.request import face_request
 from ...rendering.bands import BANDS_DEFAULT, parse_bands, projection
-from ...rendering.face.validation import mean_rendering, render_replicates, replicated_of, shift_against
+from ...rendering.face.validation import mean_rendering, render_replicates_request, replicated_of, shift_against
 from ...rendering.validation import analytic_reference
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 from ...workload import duration_text
@@ -222,7 +224,7 @@ def score_rendering(result, locus) -> dict:
     return score_frame(result, locus)[0]
 
 
-def _level_row(level: str, replicated, mean, scores: dict, shift, rates: dict | None) -> dict:
+def _level_row(level: Level, replicated, mean, scores: dict, shift, rates: dict | None) -> dict:
     """One level's row: its scores, ``eq4_shift`` against the budget, and what the budget does to its pixels."""
     undefined = dict(scores.pop("undefined"))
     within = shift.details.get("within_budget")
@@ -232,7 +234,7 @@ def _level_row(level: str, replicated, mean, scores: dict, shift, rates: dict | 
         undefined["eq4_shift"] = shift.reason
     if rates is None:
         undefined.update({key: "no detection budget" for key in ("budget_tpr_change", "budget_fpr_change")})
-    row = {"name": mean.physics if level != "direct" else "direct", "seconds": replicated.seconds,
+    row = {"name": level.name, "seconds": replicated.seconds,
            "spp": mean.spp, "replicates": len(replicated.renders), "spp_per_replicate": replicated.first.spp,
            **scores, "eq4_shift": shift.statistic, "eq4_shift_bound": shift.bound, "eq4_verdict": shift.outcome,
            "eq4_ncc_mean": shift.details.get("ncc_mean"), "budget": shift.tolerance, "within_budget": within,
@@ -245,7 +247,7 @@ def _level_row(level: str, replicated, mean, scores: dict, shift, rates: dict | 
 
 def _changes(rows: list[dict]) -> None:
     """Each row's ``tpr_change`` and ``fpr_change`` from the ``direct`` row's (``None`` with a reason without one)."""
-    base = next((row for row in rows if row["name"] == "direct"), None)
+    base = next((row for row in rows if row["name"] == PHYSICS_REGISTRY.base.name), None)
     for row in rows:
         for key in ("tpr", "fpr"):
             if base is None or base[key] is None or row[key] is None:
@@ -261,7 +263,7 @@ def ladder(
     prevailing,
     calibration,
     skin: str | None = None,
-    levels: Sequence[str] = LEVELS_DEFAULT,
+    levels: Sequence[str | Level] = LEVELS_DEFAULT,
     spp: int = 64,
     seed: int = 0,
     size: int | None = 128,
@@ -286,7 +288,8 @@ def ladder(
     skin
         The skin spec (``SET:SAMPLE``, ``SET:#N``, ``skin-model:…``); ``None``: the scene's.
     levels
-        Physics levels (:data:`skinrender.rendering.face.PHYSICS`, effects joined by ``+``).
+        Physics levels (:data:`skinrender.rendering.face.PHYSICS`, effects joined by ``+``), or
+        :class:`~skinrender.rendering.face.effects.Level` objects.
     spp
         Samples per pixel of a level in all, split over ``replicates`` renders (each ``⌈spp / K⌉``).
     seed, variant, grid
@@ -298,7 +301,8 @@ def ladder(
         A face scene name or path.
     imager, illuminance
         The image sensor of ``noise`` (default :data:`skinrender.rendering.face.IMAGER_DEFAULT`) and the
-        key light's illuminance, lx (``None``: the scene's; only ``noise`` sees it).
+        key light's illuminance, lx (``None``: the scene's): the options of the levels with ``noise`` (the others
+        are rendered without them).
     progress
         Called with a line before each level (e.g. to print it on stderr).
     replicates
@@ -311,6 +315,7 @@ def ladder(
     -------
     :class:`Ladder`
     """
+
     return ladders([camera_], prevailing, calibration, skin, levels, spp, seed, size, scene, variant, grid, imager,
                    illuminance, progress, replicates, budget_fraction, bands=None)[0]
 
@@ -319,7 +324,7 @@ def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: S
             spp: int = 64, seed: int = 0, size: int | None = 128, scene="face", variant: str | None = None,
             grid: WavelengthGrid = GRID_DEFAULT, imager: str | None = None, illuminance: float | None = None,
             progress: Callable[[str], None] | None = None, replicates: int = REPLICATES_LADDER,
-            budget_fraction: float = BUDGET_FRACTION, bands: WavelengthGrid | str | None = BANDS_DEFAULT) -> list:
+            budget_fraction: float = BUDGET_FRACTION, bands=BANDS_DEFAULT) -> list:
     """
     :func:`ladder` for every camera of ``cameras`` (arguments as there): each level's replicates rendered once
     spectrally with ``bands`` (``START:END:STEP`` nm; one render per seed, seen through every camera:
@@ -334,40 +339,39 @@ def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: S
     face = load_face_scene(scene)
     skin = face.skin if skin is None else str(skin).strip()
     rho = skin_reflectance_of(skin, grid, "skin")
-    levels = list(levels)
+    levels = [PHYSICS_REGISTRY.level(level) for level in levels]  # each spec parsed once, here
     if not levels:
         raise SkinrenderError("levels: name at least one level of physics")
-    for level in levels:
-        parse_physics(level)
     if isinstance(replicates, bool) or not isinstance(replicates, int) or replicates < 3:
         raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}")
     if bands is not None:
         bands = parse_bands(bands)
         for cam in cams:
             projection(cam, bands, grid)
-    side = (face.camera.width, face.camera.height) if size is None else (size, size)
     each = max(1, -(-int(spp) // replicates))
-    renders = 1 if bands is not None else len(cams)
-    seconds = renders * sum(physics_level(level).seconds(side[0] * side[1] * each * replicates) for level in levels)
+    sensor = {"imager": imager, "illuminance": illuminance}
+    ways = [None] if bands is not None else cams  # a spectral request per level, or one per camera and level
+    requests = {(way and way.name, level.name): face_request(
+        face, way, p, None if way is None else c, skin=skin, physics=level, size=size, spp=each, seed=seed,
+        variant=variant, grid=grid, bands=None if way is not None else bands,
+        **PHYSICS_REGISTRY.options_for(level, sensor)) for way in ways for level in levels}  # checked first
+    seconds = sum(request.level.seconds(request.pixels * each * replicates) for request in requests.values())
     if progress is not None and seconds > 60:  # subsurface: minutes (the command line refuses beyond --max-minutes)
         progress(f"the {len(levels)} levels should take about {duration_text(seconds)} on one core")
-    seeds = [(int(seed) + k) % 2**32 for k in range(replicates)]
     studied = []
     for cam in cams:
         analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
         studied.append((cam, analytic, *face_budget(cam, analytic, c, budget_fraction, grid)))
+    seeds = [seed_at(seed, k) for k in range(replicates)]
     rows, frames, verdicts = [[] for _ in cams], [[] for _ in cams], [[] for _ in cams]
     means = [None] * len(cams)
-    options = {"variant": variant, "imager": imager, "illuminance": illuminance, "grid": grid}
     for level in levels:
-        effects = physics_level(level)
         if progress is not None:
             how = "" if bands is None else f", spectral ({bands.size} bands) for {len(cams)} cameras"
-            progress(f"rendering the face: {level} ({replicates} × {each} spp{how}) …")
-        for index, replicated in enumerate(_replicated(cams, face, p, c, skin, effects, each, seeds, size, bands,
-                                                       options)):
+            progress(f"rendering the face: {level.name} ({replicates} × {each} spp{how}) …")
+        for index, replicated in enumerate(_replicated(cams, requests, level, seeds, c, bands is not None)):
             _, _, budget, locus = studied[index]
-            mean = means[index] = mean_rendering(replicated, imager)
+            mean = means[index] = mean_rendering(replicated)
             scores, frame = score_frame(mean, locus)
             shift = shift_against(replicated, budget, locus, mean.image)
             rows[index].append(_level_row(level, replicated, mean, scores, shift, shift.details["budget_rates"]))
@@ -382,22 +386,20 @@ def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: S
     return out
 
 
-def _replicated(cams, face, p, c, skin, level, spp, seeds, size, bands, options) -> list:
+def _replicated(cams, requests: dict, level, seeds, calibration: float, spectral: bool) -> list:
     """One level's replicates for each camera: rendered per camera, or once per seed spectrally and seen through
     each camera (the renders' seconds shared equally)."""
-    if bands is None:
-        return [render_replicates(cam, face, p, c, skin, level, spp, seeds, size, **options) for cam in cams]
-    from ...rendering.face.spectral_face import render_face_spectral
+    if not spectral:
+        return [render_replicates_request(requests[(cam.name, level.name)], seeds) for cam in cams]
+    from ...rendering.face.spectral_face import render_face_spectral_request
 
-    grid = options["grid"]
+    request = requests[(None, level.name)]
     start = time.perf_counter()
-    spectral = [render_face_spectral(face, p, skin, level, spp, s, size, variant=options["variant"], grid=grid,
-                                     bands=bands, imager=options["imager"], illuminance=options["illuminance"])
-                for s in seeds]
+    images = [render_face_spectral_request(request, seed) for seed in seeds]
     share = (time.perf_counter() - start) / len(cams)
     out = []
     for cam in cams:
         begin = time.perf_counter()
-        renders = [image.through(cam, c) for image in spectral]
-        out.append(replicated_of(renders, level, grid, options["imager"], share + time.perf_counter() - begin))
+        renders = [image.through(cam, calibration) for image in images]
+        out.append(replicated_of(renders, request, share + time.perf_counter() - begin))
     return out

@@ -12,8 +12,8 @@ from skinrender.rendering.bands import WavelengthGrid
 from skinrender.rendering.validation import FLOAT32_FLOOR
 from skinrender.rendering.face import revalue
 from skinrender.rendering.face.effects import LEVELS_EACH
-from skinrender.rendering.face.render import plan_face
-from skinrender.rendering.face.spectral_face import render_face_spectral
+from skinrender.rendering.face.request import face_request
+from skinrender.rendering.face.spectral_face import FacePlan, render_face_spectral
 
 pytest.importorskip("mitsuba")
 
@@ -26,7 +26,8 @@ def test_every_value_parameter_is_found_in_the_dictionaries(level):
     """Each level's loaded document (JIT variant) against :func:`revalue.flattened`: the same names, the same
     values to float32 rounding; a level that did not match would be loaded anew for every render (slower, not
     wrong). ``subsurface`` renders in ``scalar_spectral``, which compiles nothing and is never revalued."""
-    plan = plan_face("face", 2856, "skin-model:melanin=0.02", level, 1, 0, 4, variant="llvm_ad_spectral")
+    plan = FacePlan.of(face_request("face", None, 2856, skin="skin-model:melanin=0.02", physics=level, spp=1, size=4,
+                                    variant="llvm_ad_spectral", bands=BANDS))
     assert revalue._matches(revalue._fresh(plan, BANDS), plan)
 
 

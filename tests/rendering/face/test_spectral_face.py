@@ -65,14 +65,18 @@ def test_the_sensor_is_applied_per_camera():
     assert np.allclose(a.image, np.round(a.image / a.gain) * a.gain, rtol=1e-5)  # whole DN above black, balanced
 
 
-def test_a_sensor_without_the_noise_level_is_refused():
-    with pytest.raises(SkinrenderError, match="noise"):
-        render_face_spectral("face", 2856, physics="direct", spp=1, size=8, imager="sony-icx418")
+def test_an_imager_adds_the_noise_level_and_a_sensor_option_needs_it():
+    """As every front door builds a request: an imager adds ``noise``; an exposure without it is refused."""
+    image = render_face_spectral("face", 2856, physics="direct", spp=1, size=8, imager="sony-icx418",
+                                 bands="400:700:50")
+    assert image.physics == "noise"
+    with pytest.raises(SkinrenderError, match="exposure"):
+        render_face_spectral("face", 2856, physics="direct", spp=1, size=8, exposure=0.01, bands="400:700:50")
 
 
-def test_an_image_without_its_plan_cannot_be_seen_through():
+def test_an_image_without_its_request_cannot_be_seen_through():
     image = render_face_spectral("face", 2856, spp=1, size=8, bands="400:700:50")
     from dataclasses import replace
 
     with pytest.raises(SkinrenderError, match="no face scene"):
-        face_through(replace(image, plan=None), CAM)
+        face_through(replace(image, request=None), CAM)
