@@ -33,8 +33,10 @@ SECONDS_PER_TRIPLET_DETECTION = 0.03
 """One triplet's detection criterion (the Munsell set in its skin locus at every calibration) on one core, s
 (measured: 455 triplets in 13 s of CPU, ``search --sensor 9 --positions 400:700:20 --detection``)."""
 
-SECONDS_DETECTION_RATES = 0.15
-"""One camera's detection rates on one scene (its locus, the noise separation on the half-samples), s."""
+SECONDS_DETECTION_RATES = 0.3
+"""One camera on one scene: its projections through the spectral replicates and its detection rates (its locus,
+the noise separation on the half-samples), s (measured ~0.64 s of CPU per camera and scene with renders per camera,
+whose renders took about half)."""
 
 
 def add_parsers(commands) -> None:
@@ -142,13 +144,16 @@ def _checked(args: argparse.Namespace) -> dict:
     cores = min(check_workers(workers), os.cpu_count() or 1) if args.dask is None else os.cpu_count() or 1
     candidates = top + len(extra)
     each = -(-spp // REPLICATES)
-    renders = candidates * len(pairs) * len(skins) * len(levels) * REPLICATES
+    from ..rendering.bands import BANDS_DEFAULT
+
+    renders = len(pairs) * len(skins) * len(levels) * REPLICATES  # spectral: one render serves every candidate
     seconds = (count * SECONDS_PER_TRIPLET_DETECTION * (top > 0)
                + estimate_seconds(renders, size * size, each, 1,
-                                  [level for level in levels for _ in range(renders // len(levels))])
+                                  [level for level in levels for _ in range(renders // len(levels))], BANDS_DEFAULT)
                + candidates * len(pairs) * len(skins) * len(levels) * SECONDS_DETECTION_RATES) / cores
-    check_work(seconds, "--top", f"{candidates} candidates × {len(pairs) * len(skins)} scenes × {len(levels)} levels "
-               f"× {REPLICATES} replicates of {size}×{size} px at {each} spp (and {count} triplets searched)"
+    check_work(seconds, "--top", f"{candidates} candidates through {len(pairs) * len(skins)} scenes × {len(levels)} "
+               f"levels × {REPLICATES} spectral replicates of {size}×{size} px at {each} spp (and {count} triplets "
+               "searched)"
                f" on {cores} core{'s' * (cores != 1)}", args.max_minutes,
                fewer="lower --top, --size or --spp, or name fewer --lights, --skin or --levels")
     return {"top": top, "sensor": sensor, "slope": slope, "positions": args.positions, "extra": extra,
@@ -209,8 +214,10 @@ def command_rank(args: argparse.Namespace) -> None:
     emit(args, document, "\n".join(lines))
 
 
-def command_bench_rank(args: argparse.Namespace) -> None:
-    """``bench rank [--quick] [--workers N]``: the ranking's speed on the issue's configuration."""
+def command_bench_rank(args: argparse.Namespace, refuse_foreign_flags) -> None:
+    """``bench rank [--quick] [--workers N]``: the ranking's speed on the issue's configuration (``bench``'s other
+    flags refused by ``refuse_foreign_flags``)."""
+    refuse_foreign_flags(args)
     from ..execution import check_workers
     from ..studies.benchmarks.bench_rank import bench_rank
 

@@ -84,11 +84,9 @@ def add_parsers(commands) -> None:
                             help="speed and accuracy figures; calibration: the validation's false-alarm "
                             "rates over seeds; validate: seconds, bound and false alarms per spp")
     p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate", "rank"],
-                   help="which benchmark (rank: skinrender rank on 20 candidates, 4 light pairs, 3 skins and the "
-                   "five fast levels at 64 px, 16 spp, against 10 minutes on 2 cores)")
+                   help="which benchmark (rank: the issue's ranking, against 10 minutes on 2 cores)")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant); search: "
-                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep; rank: 4 "
-                   "candidates, 1 light pair, 1 skin, 2 levels")
+                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep; rank: small")
     p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG; calibration: the "
                    "observed false-alarm rates with their 95 %% intervals against the nominal α")
     p.add_argument("--repeat", type=int, help="analytic: timed repetitions, best kept (default 3)")
@@ -115,8 +113,10 @@ def add_parsers(commands) -> None:
                     "--seeds × --spp; validate: --seeds × --spp-list; render --scene: the levels × --spp-list × "
                     "--size²")
     from .calibration import add_bench_arguments
+    from .spectral_commands import add_bench_spectral_arguments
 
     add_bench_arguments(p)
+    add_bench_spectral_arguments(p)
     add_common(p)
 
 
@@ -214,9 +214,9 @@ def command_table1(args: argparse.Namespace) -> None:
 FACE_BENCH_FLAGS = ("levels", "spp_list", "reference_spp")
 """``bench`` flags that go with ``render --scene``."""
 
-BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",),
-               "workers": ("search", "sweep", "rank"), "positions": ("sweep",), "quick": ("render", "search", "rank"), "plot": ("render", "calibration"),
-               "scene": ("render", "calibration", "validate"), "size": ("render", "calibration"),
+BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "positions": ("sweep",),
+               "workers": ("search", "sweep", "rank"), "quick": ("render", "search", "rank"), "plot": ("render", "calibration"),
+               "scene": ("render", "calibration", "validate"), "size": ("render", "calibration"), "spectral": ("render",), "cameras": ("render",),
                "max_minutes": ("analytic", "search", "sweep", "calibration", "validate", "render")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
 :data:`FACE_BENCH_FLAGS`, the verdict benchmarks' :data:`skinrender.cli.calibration.VERDICT_BENCH_FLAGS`."""
@@ -361,11 +361,9 @@ def _camera_spec(spec: str) -> str:
 def command_bench(args: argparse.Namespace) -> None:
     from ..studies.benchmarks.bench import bench_analytic, bench_search, bench_sweep
 
-    if args.what == "rank":
+    if args.what == "rank":  # skinrender.cli.ranking's, with the flags bench rank does not take refused
         from .ranking import command_bench_rank
-
-        refuse_foreign_flags(args)
-        return command_bench_rank(args)
+        return command_bench_rank(args, refuse_foreign_flags)
 
     if args.what in ("calibration", "validate"):
         from .calibration import command_bench_verdicts
@@ -381,6 +379,13 @@ def command_bench(args: argparse.Namespace) -> None:
         if spps is not None and len(set(spps)) < len(spps):
             raise SkinrenderError(f"--spp-list: each spp once, got {args.spp_list!r}", flag="--spp-list")
         return command_bench_verdicts(args, spps)
+    if args.what == "render" and args.spectral:
+        from .spectral_commands import command_bench_spectral
+
+        refuse_foreign_flags(args)
+        return command_bench_spectral(args)
+    if args.cameras is not None:
+        raise SkinrenderError("--cameras goes with 'bench render --spectral'", flag="--cameras")
     face = face_bench_options(args)
     if face is not None:
         from ..studies.benchmarks.bench_face import bench_face

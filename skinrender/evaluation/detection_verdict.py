@@ -54,12 +54,14 @@ RATES = ("tpr", "fpr")
 
 def check_tolerance(value, flag: str = "tolerance") -> float:
     """
-    A detection tolerance: a fraction in (0, 1), or a one-line :class:`~skinrender.errors.SkinrenderError`
-    naming ``flag``.
+    A detection tolerance: a fraction in (0, 1) (``None``: :data:`DETECTION_TOLERANCE`), or a one-line
+    :class:`~skinrender.errors.SkinrenderError` naming ``flag``.
 
-    >>> check_tolerance("0.05", "--detection-tolerance")
-    0.05
+    >>> check_tolerance("0.05", "--detection-tolerance"), check_tolerance(None)
+    (0.05, 0.02)
     """
+    if value is None:
+        return DETECTION_TOLERANCE
     try:
         number = float(value)
     except (TypeError, ValueError):

@@ -43,7 +43,7 @@ def test_a_rate_without_pixels_is_none_with_its_reason():
     assert verdict.outcome == "not_applicable"
 
 
-@pytest.mark.parametrize("value", [0, 1, -0.1, 2, "x", True, None])
+@pytest.mark.parametrize("value", [0, 1, -0.1, 2, "x", True, float("nan")])
 def test_a_tolerance_outside_the_unit_interval_is_refused(value):
     with pytest.raises(SkinrenderError, match="--detection-tolerance: a rate as a fraction in"):
         check_tolerance(value, "--detection-tolerance")

@@ -73,7 +73,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ...errors import SkinrenderError
-from ...evaluation.detection_verdict import DETECTION_TOLERANCE, check_tolerance
+from ...evaluation.detection_verdict import check_tolerance
 from ...evaluation.verdict import EXIT_STATUS, Verdict, combine, samples_needed
 from ...model.chromaticity import ncc
 from ...spectra import GRID_DEFAULT
@@ -89,7 +89,7 @@ from .scene import skin_reflectance_of
 from .shift import budget_rates, eq4_shift, face_budget, skin_set_name
 
 __all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "RENDER_OPTIONS",
-           "FaceValidation", "Replicated", "render_replicates", "render_replicates_request", "mean_rendering",
+           "FaceValidation", "Replicated", "replicated_of", "render_replicates", "render_replicates_request", "mean_rendering",
            "shift_against", "validate_face", "validate_face_request"]
 
 LIMITS_SCENE_FREE = {
@@ -165,12 +165,18 @@ def render_replicates_request(request: FaceRequest, seeds) -> Replicated:
     """
     start = time.perf_counter()
     renders = [render_face_request(request, seed) for seed in seeds]
+    return replicated_of(renders, request, time.perf_counter() - start)
+
+
+def replicated_of(renders: list, request, seconds: float = 0.0) -> Replicated:
+    """Replicate renders of one camera (e.g. seen through a spectral render per seed) of ``request`` (its level,
+    grid and options), measured as the level's checks see them; ``seconds``: the time they took."""
     first, grid, level = renders[0], request.grid, request.level
     images = np.array([r.image for r in renders], dtype=np.float64)
     rho = skin_reflectance_of(first.skin, grid, "skin")
     expected = ncc(analytic_reference(first.camera, rho[None], first.prevailing, first.calibration, grid=grid))[0]
     measured = level.measure(images, first, request.options)  # through a sensor: dark signal, clipping, codes
-    return Replicated(renders, level, measured, expected, time.perf_counter() - start, grid, request.options)
+    return Replicated(renders, level, measured, expected, seconds, grid, request.options)
 
 
 def render_replicates(camera_, scene, prevailing, calibration, skin, level: Level, spp: int, seeds, size=None,
@@ -414,12 +420,10 @@ def validate_face_request(request: FaceRequest, spp: int | None = None, replicat
         if row is not None and row.outcome == "inconclusive":
             checks[0] = replace(row, reason=f"{row.reason}; {measured.note}")
         checks = [replace(c, details={**c.details, **measured.excluded}) for c in checks]
-    tolerance = DETECTION_TOLERANCE if detection_tolerance is None else detection_tolerance
-    tolerance = check_tolerance(tolerance, "detection_tolerance")
+    tolerance = check_tolerance(detection_tolerance, "detection_tolerance")  # None: the default
     fraction = BUDGET_FRACTION if budget_fraction is None else budget_fraction
-    rho_skin = skin_reflectance_of(first.skin, replicated.grid, "skin")
     budget, locus = face_budget(first.camera, replicated.expected, first.calibration, fraction, replicated.grid,
-                                skin_set, rho_skin)
+                                skin_set, skin_reflectance_of(first.skin, replicated.grid, "skin"))
     detection, check_row = detection_check(replicated, locus, tolerance, seed=request.settings.seed)
     checks.append(check_row)
     checks.append(replace(shift_against(replicated, budget, locus), applies=False))  # a diagnostic
@@ -440,9 +444,7 @@ def validate_face_request(request: FaceRequest, spp: int | None = None, replicat
     if each > math.ceil(int(spp) / replicates):
         info["spp_note"] = (f"each replicate rendered at {each} spp, the least a replicate takes "
                             f"(SPP_REPLICATE_MIN); {spp} spp over {replicates} would give fewer")
-    info["budget"] = budget.document()
-    info["detection"] = detection
-    info["skin_set"] = skin_set_name(skin_set)
+    info.update(budget=budget.document(), detection=detection, skin_set=skin_set_name(skin_set))
     renders = replicated.renders
     return FaceValidation(first, checks, int(sum(r.spp for r in renders)), int(spp), int(replicates),
                           int(request.settings.seed), time.perf_counter() - start, info)

@@ -23,7 +23,8 @@ scene): a bootstrap with replacement would count a replicate twice, and the
 noise separation reads a repeated replicate as less noise.
 
 Every candidate's rendered image comes from one function,
-:func:`candidate_renders` (one render per camera and seed today).
+:func:`candidate_renders`: one spectral render per scene, level and seed, seen
+through every camera (their differences estimated with common random numbers).
 
 -   :func:`rank`, :class:`Ranking`: the study; :func:`search_candidates`.
 -   :data:`LEVELS_RANK`, :data:`TOP_OVERLAP`, :data:`HALVES_RANK`.
@@ -49,7 +50,9 @@ from ...rendering.face.effects import PHYSICS_REGISTRY, Level
 from ...rendering.face.limits import REPLICATES
 from ...rendering.face.scene import load_face_scene
 from ...rendering.face.shift import skin_set_name
-from ...rendering.face.validation import render_replicates
+from ...rendering.bands import BANDS_DEFAULT, parse_bands, projection
+from ...rendering.face.request import face_request
+from ...rendering.face.validation import render_replicates, replicated_of
 from ...rendering.settings import seed_at
 from ...rendering.variants import choose_variant
 from ...spectra import GRID_DEFAULT
@@ -111,16 +114,25 @@ def search_candidates(top: int, sensor: float, positions="400:700:10", slope: fl
 
 
 def candidate_renders(cameras, scene, prevailing: float, calibration: float, skin, level: Level, spp: int, seeds,
-                      size, variant=None, grid=GRID_DEFAULT, sensor=None) -> list:
+                      size, variant=None, grid=GRID_DEFAULT, sensor=None, bands=BANDS_DEFAULT) -> list:
     """
     Every candidate's replicates of one scene, the one place a ranking gets its images: a
     :class:`~skinrender.rendering.face.validation.Replicated` per camera of ``cameras`` (their order), each
-    rendered at ``spp`` per seed of ``seeds`` (``sensor``: the sensor's keywords, ``imager``, ``illuminance``, for
-    a level with ``noise``; dropped at the others).
+    replicate at ``spp`` per seed of ``seeds``: one spectral render per seed with ``bands`` as its film, seen
+    through every camera (:mod:`~skinrender.rendering.face.spectral_face`: the cameras share its light paths), or,
+    ``bands=None``, one render per camera and seed. ``sensor``: the sensor's keywords (``imager``,
+    ``illuminance``) for a level with ``noise``; dropped at the others.
     """
     options = PHYSICS_REGISTRY.options_for(level, dict(sensor or {}))
-    return [render_replicates(cam, scene, prevailing, calibration, skin, level, spp, seeds, size, grid=grid,
-                              variant=variant, **options) for cam in cameras]
+    if bands is None:
+        return [render_replicates(cam, scene, prevailing, calibration, skin, level, spp, seeds, size, grid=grid,
+                                  variant=variant, **options) for cam in cameras]
+    from ...rendering.face.spectral_face import render_face_spectral_request
+
+    request = face_request(scene, None, prevailing, None, skin=skin, physics=level, size=size, spp=spp,
+                           seed=seeds[0], variant=variant, grid=grid, bands=parse_bands(bands), **options)
+    images = [render_face_spectral_request(request, seed) for seed in seeds]
+    return [replicated_of([image.through(cam, calibration) for image in images], request) for cam in cameras]
 
 
 def rank_tasks(lights, skins, levels) -> list[tuple]:
@@ -145,6 +157,7 @@ class _Settings:
     imager: str | None
     illuminance: float | None
     halves: int
+    bands: object = BANDS_DEFAULT
 
 
 def _scene_task(task: tuple, settings: _Settings) -> dict:
@@ -155,7 +168,8 @@ def _scene_task(task: tuple, settings: _Settings) -> dict:
     seeds = [seed_at(settings.seed, k) for k in range(REPLICATES)]
     each = -(-settings.spp // REPLICATES)
     renders = candidate_renders(settings.cameras, settings.scene, p, c, skin, level, each, seeds, settings.size,
-                                settings.variant, sensor={"imager": settings.imager, "illuminance": settings.illuminance})
+                                settings.variant, sensor={"imager": settings.imager, "illuminance": settings.illuminance},
+                                bands=settings.bands)
     scores = []
     for cam, replicated in zip(settings.cameras, renders):
         locus = skin_locus(cam, settings.skin_set, calibration=c)
@@ -266,7 +280,7 @@ class Ranking:
 def rank(cameras, lights, skins, levels=LEVELS_RANK, size: int = 64, spp: int = 16, seed: int = 0, scene="face",
          skin_set="skin", variant: str | None = None, imager: str | None = None, illuminance: float | None = None,
          workers: int | None = None, dask=None, progress=None, halves: int = HALVES_RANK,
-         candidates_from: dict | None = None) -> Ranking:
+         candidates_from: dict | None = None, bands=BANDS_DEFAULT) -> Ranking:
     """
     Rank ``cameras`` by Eq. 4 and by the rendered face at each level (see the module).
 
@@ -293,6 +307,9 @@ def rank(cameras, lights, skins, levels=LEVELS_RANK, size: int = 64, spp: int = 
         Half-samples of the replicates for τ's interval and ``same_best``.
     candidates_from
         How the candidates were chosen (reported).
+    bands
+        The film of the one spectral render per scene, level and replicate every candidate is seen through
+        (``START:END:STEP`` nm, default 400:700:5); ``None``: one render per candidate.
 
     Returns
     -------
@@ -310,8 +327,12 @@ def rank(cameras, lights, skins, levels=LEVELS_RANK, size: int = 64, spp: int = 
     from ...execution import check_workers
 
     workers = check_workers(workers, "workers")
+    if bands is not None:
+        bands = parse_bands(bands)
+        for cam in cams:  # every camera checked against the bands before any render
+            projection(cam, bands, GRID_DEFAULT)
     settings = _Settings(tuple(cams), load_face_scene(scene), int(size), int(spp), int(seed), choose_variant(variant),
-                         skin_set, imager, illuminance, int(halves))
+                         skin_set, imager, illuminance, int(halves), bands)
     start = time.perf_counter()
     done = run_renders(partial(_scene_task, settings=settings), rank_tasks(pairs, skins, levels), settings.variant,
                        int(workers), dask, progress, "rank")
