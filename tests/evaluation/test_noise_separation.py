@@ -25,7 +25,7 @@ def noisy(centre, physics_sd, noise_sd, n, seed):
 
 def test_noise_alone_goes_back_to_the_materials_chromaticity():
     """No physics spread (the analytic model's world): 30 seeds, every pixel goes to its material's mean, which is
-    within 4 standard errors of the truth; no direction's excess passes the test (z = 3, one-sided: 0.13 % each)."""
+    within 4 standard errors of the truth; no direction's excess passes the test (z = 5, one-sided)."""
     for seed in range(30):
         _, seen, covariance = noisy([0.6, 0.3], 0.0, 0.004, 900, seed)
         separated, spreads = separate_noise(seen, covariance, np.ones(900, int))
