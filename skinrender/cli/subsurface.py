@@ -30,9 +30,10 @@ def check_chart_subsurface(args: argparse.Namespace, inputs, settings):
     :class:`~skinrender.rendering.settings.RenderSettings` of the flags). At ``direct``, ``settings``. At
     ``subsurface``, ``settings`` with :data:`~skinrender.rendering.subsurface_chart.SAMPLER_SUBSURFACE` unless
     ``--sampler`` is given, after refusing, naming the flag, what a subsurface chart does not take (``--imager``
-    and its settings, ``--gamut``, ``--spp auto``), a chart without a skin patch, and a render whose estimate
+    and its settings, ``--gamut``, ``--spp auto``), a chart without a skin patch, a render whose estimate
     (:func:`~skinrender.rendering.subsurface_chart.estimate_seconds` on every core) exceeds ``--max-minutes``
-    (:func:`skinrender.workload.check_work`, naming ``--spp``).
+    (:func:`skinrender.workload.check_work`, naming ``--spp``), and a skin patch that is not skin (its measured
+    reflectance fitted now, :func:`~skinrender.rendering.subsurface_chart.subsurface_chart`, naming the patch).
     """
     if inputs.physics != "subsurface":
         return settings
@@ -62,6 +63,9 @@ def check_chart_subsurface(args: argparse.Namespace, inputs, settings):
                f"the {sum(p.skin for p in scene.patches)} skin patches of {scene.name} as media at {settings.spp} "
                f"spp ({SAMPLES_PER_S_SLAB:g} samples/s per core, {cores} core{'s' * (cores > 1)})",
                getattr(args, "max_minutes", None), fewer="lower --spp")
+    from ..rendering.subsurface_chart import subsurface_chart
+
+    subsurface_chart(scene, inputs.grid)  # its skin patches' layers (cached): one that is not skin refused now
     return settings
 
 
