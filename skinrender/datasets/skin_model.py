@@ -23,10 +23,10 @@ melanin volume fraction. The layers' optical properties (absorbers in
 The background. Reflectance fixes the dermis' absorption relative to its
 scattering, not either alone: a semi-infinite dermis of ``k μa`` and ``k μs`` reflects
 the same. Only an absorber of known absolute strength sets the scale of the fitted
-scattering. Water alone (0.002–0.006 cm⁻¹ in the red) puts the NIST skins' fitted
-``a`` near 7 cm⁻¹, Jacques 1998's bloodless baseline (0.244 cm⁻¹ in the red) near
-110 cm⁻¹ (``docs/skin-model.md``); neither is the literature's skin (Jacques 2013:
-46 cm⁻¹). ``background`` (default :data:`BACKGROUND_PER_CM`) is the absorption at
+scattering. Water alone (0.002–0.006 cm⁻¹ in the red) puts most NIST skins' fitted
+``a`` on its lower bound 10 cm⁻¹, Jacques 1998's bloodless baseline (0.244 cm⁻¹ in the
+red) near 107 cm⁻¹ (``docs/skin-model.md``); neither is the literature's skin
+(Jacques 2013: 46 cm⁻¹). ``background`` (default :data:`BACKGROUND_PER_CM`) is the absorption at
 which the fits to the 100 NIST skins, their scattering held at Jacques 2013's
 46 cm⁻¹, agree (their median): the scale is taken from the literature, the rest
 (b, blood, saturation, melanin) from the spectra. It stands for what the composition
