@@ -261,10 +261,12 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     from ..studies.face.ladder import REPLICATES_LADDER
     from ..workload import check_work
 
-    renders = len(levels) * REPLICATES_LADDER * (len(skins or SKIN_TONES) if args.effects else 1)
+    tones = len(skins or SKIN_TONES) if args.effects else 1
+    renders = len(levels) * REPLICATES_LADDER * tones
     each = -(-spp // REPLICATES_LADDER)
     check_work(estimate_seconds(renders, size * size, each, 1, [level for level in levels
-                                                                for _ in range(renders // len(levels))]), "--spp",
+                                                                for _ in range(renders // len(levels))], tones),
+               "--spp",
                f"{len(levels)} levels of {REPLICATES_LADDER} × {size}×{size} px at {each} spp"
                + (f" for {len(skins or SKIN_TONES)} skins" if args.effects else ""), args.max_minutes,
                fewer="lower --spp or --size, or name fewer --levels")

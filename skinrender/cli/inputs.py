@@ -67,8 +67,9 @@ class ChartInputs:
     grid
         ``--grid``, nm.
     physics
-        ``--physics``: ``direct`` or ``subsurface`` (:data:`~skinrender.rendering.balance.CHART_PHYSICS`; the
-        checks of ``subsurface`` are :func:`~skinrender.cli.subsurface.check_chart_subsurface`'s).
+        ``--physics``: ``direct``, ``subsurface`` or ``subsurface-volume``
+        (:data:`~skinrender.rendering.balance.CHART_PHYSICS`; the checks of the two subsurface levels are
+        :func:`~skinrender.cli.subsurface.check_chart_subsurface`'s).
     """
 
     scene: ChartScene
@@ -154,7 +155,7 @@ def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
     given = [name for name, on in (("--physics", physics not in CHART_PHYSICS),
                                    ("--skin", skin and args.skin is not None), ("--size", args.size is not None)) if on]
     if given:
-        levels = f" (a chart takes --physics {' or '.join(CHART_PHYSICS)})" if "--physics" in given else ""
+        levels = f" (a chart takes --physics {', '.join(CHART_PHYSICS)})" if "--physics" in given else ""
         raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
                               f"(e.g. 'face'), not a chart{levels}", flag=given[0])
 

@@ -45,8 +45,12 @@ __all__ = ["PatchStatistics", "patch_statistics", "Rendering", "Eq4Options", "pa
 
 CHART_PHYSICS = {
     "direct": "Lambertian patches under the directional light along the view axis (the analytic model's world)",
-    "subsurface": "the skin patches as the skin model's two layers under a dielectric boundary, lit by a uniform "
-                  "sky, against their slab's adding-doubling reflectance",
+    "subsurface": "the skin patches as the skin model's layers, a flat slab's angular reflectance from "
+                  "adding-doubling as a BSDF (fast; no lateral transport), lit by a uniform sky, against the slab's "
+                  "adding-doubling reflectance",
+    "subsurface-volume": "the skin patches as the skin model's two layers of participating media under a dielectric "
+                         "boundary, path traced (the volumetric reference; minutes), lit by a uniform sky, against "
+                         "their slab's adding-doubling reflectance",
 }
 """Levels of physics of a chart, name → meaning."""
 
@@ -239,11 +243,13 @@ def render(
     cache
         A dict to reuse raw renders across calls, keyed by temperature.
     physics
-        ``direct`` (Lambertian patches under the directional light) or ``subsurface``: the skin patches as the
-        skin model's layers under a sky (:mod:`skinrender.rendering.subsurface_chart`; the calibration render
-        renders the Lambertian patches only, the white balance reading the white alone; the sampler
+        ``direct`` (Lambertian patches under the directional light); ``subsurface``: the skin patches as the
+        skin model's layers, the slab's angular reflectance as a BSDF, under a sky
+        (:mod:`skinrender.rendering.slab_chart`); ``subsurface-volume``: the same layers as media, path traced
+        (:mod:`skinrender.rendering.subsurface_chart`; the calibration render renders the Lambertian patches
+        only, the white balance reading the white alone; the sampler
         :data:`~skinrender.rendering.subsurface_chart.SAMPLER_SUBSURFACE` unless ``settings`` or ``options``
-        name one). ``info`` then has ``physics``, ``reflectances`` (per patch, what Eq. 4 is checked with: the
+        name one). At both ``info`` has ``physics``, ``reflectances`` (per patch, what Eq. 4 is checked with: the
         slab's adding-doubling reflectance for a skin patch) and ``skin_model`` (per patch its layers' source, or
         ``None``).
     **options
@@ -256,7 +262,7 @@ def render(
     """
 
     validate_method(physics, CHART_PHYSICS, "physics (of a chart)", role="physics")
-    if physics == "subsurface" and settings is None:
+    if physics == "subsurface-volume" and settings is None:
         from .subsurface_chart import SAMPLER_SUBSURFACE
 
         options = {"sampler": SAMPLER_SUBSURFACE, **options}
@@ -267,10 +273,11 @@ def render(
     p, c = _temperature(prevailing), _temperature(calibration)
     cache = {} if cache is None else cache
     info = {}
-    if physics == "subsurface":
+    if physics != "direct":
+        from .slab_chart import slab_renderer
         from .subsurface_chart import subsurface_renderer
 
-        renderer = subsurface_renderer(chart, cam, settings, grid)
+        renderer = (slab_renderer if physics == "subsurface" else subsurface_renderer)(chart, cam, settings, grid)
         info = {"physics": physics, "reflectances": renderer.chart.reflectances, "skin_model": renderer.chart.rows()}
 
     def raw(temperature: float, offset: int, skins: bool = True) -> RawRender:

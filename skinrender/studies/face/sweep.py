@@ -129,12 +129,14 @@ def sweep_tasks(cameras, lights, skins, levels) -> list[tuple]:
     return [(cam, p, c, skin, level) for cam, (p, c), skin, level in itertools.product(cameras, lights, skins, levels)]
 
 
-def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels=None) -> float:
+def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels=None, skins: int = 1) -> float:
     """
     Wall time of ``renders`` face renders of ``pixels`` pixels at ``spp`` on ``cores`` cores, s (from
     :data:`SECONDS_PER_RENDER` and :data:`SAMPLES_PER_S`, per core; a worker's start, a few seconds, aside);
     ``levels``, one per render, each render at its level's rate
-    (:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`: ``subsurface`` is far slower).
+    (:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`: ``subsurface-volume`` is far slower) and
+    each distinct level's one-off work once per skin of the ``skins``
+    (:attr:`~skinrender.rendering.face.effects.Level.setup_seconds`: ``subsurface``'s table).
 
     Examples
     --------
@@ -142,7 +144,8 @@ def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels
     71
     """
     rates = [SAMPLES_PER_S] * renders if levels is None else [physics_level(level).samples_per_s for level in levels]
-    return sum(SECONDS_PER_RENDER + pixels * spp / rate for rate in rates) / max(1, cores)
+    setup = 0.0 if levels is None else sum(physics_level(level).setup_seconds for level in set(levels)) * skins
+    return (sum(SECONDS_PER_RENDER + pixels * spp / rate for rate in rates) + setup) / max(1, cores)
 
 
 @dataclass(frozen=True)
@@ -195,15 +198,16 @@ class FaceSweep:
 
 
 def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples: float, cores: int,
-                levels=None) -> None:
-    """Refuse a sweep too large (``levels``: each render's level; a slower level's samples count at its cost)."""
+                levels=None, skins: int = 1) -> None:
+    """Refuse a sweep too large (``levels``: each render's level; a slower level's samples count at its cost;
+    ``skins``: how many)."""
     pixels = size * size
     if pixels > PIXELS_MAX:
         raise SkinrenderError(f"size {size} pixels gives {pixels} pixels per image, more than {PIXELS_MAX}")
     if spp * pixels > SAMPLES_MAX:
         raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
                               f"most {SAMPLES_MAX // pixels} spp at this size")
-    seconds, on = estimate_seconds(renders, pixels, spp, cores, levels), f"on {cores} core{'s' * (cores > 1)}"
+    seconds, on = estimate_seconds(renders, pixels, spp, cores, levels, skins), f"on {cores} core{'s' * (cores > 1)}"
     about = f"about {duration_text(seconds)} {on}"
     if renders > max_renders:
         raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} ({about}); raise "
@@ -293,7 +297,8 @@ def face_sweep(
     workers = check_workers(workers, "workers")
     tasks = sweep_tasks(cams, pairs, skins, levels)
     _check_size(len(tasks), int(size), int(spp), max_renders, max_samples,
-                min(workers, os.cpu_count() or 1) if dask is None else os.cpu_count() or 1, [t[-1] for t in tasks])
+                min(workers, os.cpu_count() or 1) if dask is None else os.cpu_count() or 1, [t[-1] for t in tasks],
+                len(set(skins)))
     face = load_face_scene(scene)
     settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance)
     start = time.perf_counter()

@@ -16,6 +16,8 @@ registry every part of skinrender reads.
 -   :mod:`~skinrender.rendering.face.effects.direct` (the base),
     :mod:`~skinrender.rendering.face.effects.interreflection`,
     :mod:`~skinrender.rendering.face.effects.sheen`,
+    :mod:`~skinrender.rendering.face.effects.subsurface_table` (``subsurface``),
+    :mod:`~skinrender.rendering.face.effects.subsurface` (``subsurface-volume``),
     :mod:`~skinrender.rendering.face.effects.mixed`,
     :mod:`~skinrender.rendering.face.effects.noise`: the effects.
 
@@ -25,9 +27,9 @@ How to add one: ``docs/effects.md``.
 from __future__ import annotations
 
 from .base import Effect, Frame, Limits, Measured, Replicates, Setup
-from .levels import (EFFECTS, LEVELS_EACH, LEVELS_LADDER, PHYSICS, PHYSICS_BASE, PHYSICS_EFFECTS, Level, active_lights,
-                     parse_physics, physics_level)
+from .levels import (EFFECTS, EFFECTS_DEFAULT, LEVELS_EACH, LEVELS_LADDER, PHYSICS, PHYSICS_BASE, PHYSICS_EFFECTS,
+                     Level, active_lights, parse_physics, physics_level)
 
 __all__ = ["Effect", "Limits", "Setup", "Frame", "Replicates", "Measured", "PHYSICS_EFFECTS", "PHYSICS_BASE",
-           "PHYSICS", "EFFECTS", "LEVELS_EACH", "LEVELS_LADDER", "Level", "parse_physics", "physics_level",
-           "active_lights"]
+           "PHYSICS", "EFFECTS", "EFFECTS_DEFAULT", "LEVELS_EACH", "LEVELS_LADDER", "Level", "parse_physics",
+           "physics_level", "active_lights"]

@@ -182,6 +182,16 @@ class Effect:
         ``(requested) → variant``: the Mitsuba variant the effect renders best with (``requested``: the one the
         user named, or ``None``), or ``None`` to leave the choice to
         :func:`~skinrender.rendering.variants.choose_variant`.
+    setup_seconds
+        One-off seconds on one core before a process's first render of a skin at a level with this effect (the
+        fast ``subsurface``: the skin's table, a fit of the skin model to a measured skin and its kernel's
+        compilation), measured: the estimates add it once per level and skin.
+    excludes
+        Effects it cannot be combined with (two transports of the same skin: ``subsurface`` and
+        ``subsurface-volume``); a level naming both is refused.
+    by_default
+        Whether the default levels (``ladder``, ``face-sweep``, the effects table, the face bench) include it;
+        ``False`` for a reference too slow for them (``subsurface-volume``), which a user names.
     """
 
     name: str
@@ -196,6 +206,9 @@ class Effect:
     samples_per_s: float | None = None
     scene_scale: float = 1.0
     variant: Callable | None = None
+    setup_seconds: float = 0.0
+    excludes: tuple[str, ...] = ()
+    by_default: bool = True
 
     @property
     def changes_document(self) -> bool:

@@ -13,9 +13,10 @@ all read this table; nothing else lists the levels.
 -   :data:`PHYSICS_EFFECTS`, :data:`PHYSICS_BASE`: the registry.
 -   :data:`PHYSICS`: name → description (read from the registry);
     :data:`EFFECTS`: the names that add to the base.
--   :data:`LEVELS_EACH`, :data:`LEVELS_LADDER`: the base and each effect
-    alone (``bench render --scene``), and then all together (``ladder``,
-    ``face-sweep``).
+-   :data:`EFFECTS_DEFAULT`, :data:`LEVELS_EACH`, :data:`LEVELS_LADDER`: the
+    effects of the default levels (all but the volumetric reference,
+    ``subsurface-volume``), the base and each of them alone (``bench render
+    --scene``), and then all together (``ladder``, ``face-sweep``).
 -   :func:`parse_physics`: a spec's effects as names (a tuple);
     :func:`physics_level`: a spec as a :class:`Level`.
 -   :func:`active_lights`: the lights a level adds to a scene.
@@ -39,9 +40,10 @@ from .interreflection import INTERREFLECTION
 from .mixed import MIXED
 from .noise import NOISE
 from .sheen import SHEEN
-from .subsurface import SUBSURFACE
+from .subsurface import SUBSURFACE_VOLUME
+from .subsurface_table import SUBSURFACE
 
-__all__ = ["PHYSICS_EFFECTS", "PHYSICS_BASE", "PHYSICS", "EFFECTS", "LEVELS_EACH", "LEVELS_LADDER", "Level",
+__all__ = ["PHYSICS_EFFECTS", "PHYSICS_BASE", "PHYSICS", "EFFECTS", "EFFECTS_DEFAULT", "LEVELS_EACH", "LEVELS_LADDER", "Level",
            "parse_physics", "physics_level", "active_lights"]
 
 PHYSICS_EFFECTS: dict[str, Effect] = {effect.name: effect for effect in (
@@ -49,6 +51,7 @@ PHYSICS_EFFECTS: dict[str, Effect] = {effect.name: effect for effect in (
     INTERREFLECTION,
     SHEEN,
     SUBSURFACE,
+    SUBSURFACE_VOLUME,
     MIXED,
     NOISE,
 )}
@@ -82,11 +85,15 @@ add one effect to it and combine with ``+`` (``interreflection+sheen+mixed``).""
 EFFECTS = tuple(name for name in PHYSICS_EFFECTS if name != PHYSICS_BASE)
 """The effects that add to ``direct``, in ladder order."""
 
-LEVELS_EACH = (PHYSICS_BASE, *EFFECTS)
-"""The base and each effect alone (the face bench's levels)."""
+EFFECTS_DEFAULT = tuple(name for name in EFFECTS if PHYSICS_EFFECTS[name].by_default)
+"""The effects of the default levels (:attr:`~.base.Effect.by_default`: all but ``subsurface-volume``, the
+volumetric reference, which a user names)."""
 
-LEVELS_LADDER = (*LEVELS_EACH, "+".join(EFFECTS))
-"""The base, each effect alone, then all of them (the ladder's and the face sweep's levels)."""
+LEVELS_EACH = (PHYSICS_BASE, *EFFECTS_DEFAULT)
+"""The base and each default effect alone (the face bench's and the effects table's levels)."""
+
+LEVELS_LADDER = (*LEVELS_EACH, "+".join(EFFECTS_DEFAULT))
+"""The base, each default effect alone, then all of them (the ladder's and the face sweep's levels)."""
 
 
 @dataclass(frozen=True)
@@ -146,8 +153,15 @@ class Level:
         return min(effect.samples_per_s for effect in self.effects if effect.samples_per_s is not None)
 
     def seconds(self, samples: float) -> float:
-        """Seconds ``samples`` (pixels × spp) take at this level on one core (:attr:`samples_per_s`)."""
-        return float(samples) / self.samples_per_s
+        """Seconds ``samples`` (pixels × spp) of one skin take at this level on one core (:attr:`samples_per_s`,
+        and :attr:`setup_seconds` once)."""
+        return float(samples) / self.samples_per_s + self.setup_seconds
+
+    @property
+    def setup_seconds(self) -> float:
+        """One-off seconds on one core before the first render of a skin at this level (its effects'
+        :attr:`~.base.Effect.setup_seconds`)."""
+        return float(sum(effect.setup_seconds for effect in self.effects))
 
     @property
     def scene_scale(self) -> float:
@@ -223,6 +237,11 @@ def parse_physics(spec: str) -> tuple[str, ...]:
     twice = sorted({part for part in parts if parts.count(part) > 1})
     if twice:
         raise SkinrenderError(f"physics: {', '.join(twice)} named twice in {text!r}; name each effect once")
+    for part in parts:
+        clash = [other for other in PHYSICS_EFFECTS[part].excludes if other in parts]
+        if clash:
+            raise SkinrenderError(f"physics: {part!r} and {clash[0]!r} are two transports of the same skin and do "
+                                  f"not combine, got {text!r}; name one")
     return tuple(name for name in PHYSICS_EFFECTS if name in parts and name != PHYSICS_BASE)
 
 

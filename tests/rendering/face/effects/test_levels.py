@@ -7,13 +7,14 @@ only and rendered with.
 from __future__ import annotations
 
 import itertools
+import re
 from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.rendering.face.effects import (EFFECTS, LEVELS_EACH, LEVELS_LADDER, PHYSICS, PHYSICS_BASE,
+from skinrender.rendering.face.effects import (EFFECTS, EFFECTS_DEFAULT, LEVELS_EACH, LEVELS_LADDER, PHYSICS, PHYSICS_BASE,
                                                PHYSICS_EFFECTS, Effect, Limits, active_lights, parse_physics,
                                                physics_level)
 from skinrender.rendering.face.effects.direct import DIRECT
@@ -33,7 +34,7 @@ class TestParsePhysics:
     def test_levels_and_combinations(self):
         assert parse_physics("direct") == ()
         assert parse_physics(" noise + mixed ") == ("mixed", "noise")
-        assert parse_physics("+".join(reversed(EFFECTS))) == EFFECTS
+        assert parse_physics("+".join(reversed(EFFECTS_DEFAULT))) == EFFECTS_DEFAULT
         assert set(EFFECTS) | {"direct"} == set(PHYSICS)
 
     @pytest.mark.parametrize("spec", ["", "glossy", "direct+noise", "sheen+", "bssrdf"])
@@ -65,7 +66,7 @@ class TestRegistry:
         parts = ("integrator", "skin", "prop", "lights", "post")
         assert next(iter(PHYSICS_EFFECTS)) == PHYSICS_BASE == "direct"
         for name, effect in PHYSICS_EFFECTS.items():
-            assert isinstance(effect, Effect) and effect.name == name and name.isidentifier()
+            assert isinstance(effect, Effect) and effect.name == name and re.fullmatch(r"[a-z]+(-[a-z]+)*", name)
             assert effect.description.strip() and "\n" not in effect.description and PHYSICS[name] == effect.description
             assert all(getattr(effect, part) is None or callable(getattr(effect, part)) for part in parts)
             assert isinstance(effect.limits, Limits)
@@ -81,11 +82,14 @@ class TestRegistry:
         assert base.limits.check is not None and base.limits.holds
 
     def test_level_lists_are_read_from_the_registry(self):
-        assert EFFECTS == tuple(PHYSICS_EFFECTS)[1:] == ("interreflection", "sheen", "subsurface", "mixed", "noise")
-        assert LEVELS_EACH == ("direct", *EFFECTS)
+        """Every effect is registered; the default levels leave out the volumetric reference (by_default), and
+        the face bench those slower per sample than the base (none of the default ones)."""
+        assert EFFECTS == tuple(PHYSICS_EFFECTS)[1:] == ("interreflection", "sheen", "subsurface", "subsurface-volume",
+                                                         "mixed", "noise")
+        assert EFFECTS_DEFAULT == ("interreflection", "sheen", "subsurface", "mixed", "noise")
+        assert LEVELS_EACH == ("direct", *EFFECTS_DEFAULT)
         assert LEVELS_LADDER == (*LEVELS_EACH, "interreflection+sheen+subsurface+mixed+noise")
-        assert LEVELS_DEFAULT is LEVELS_LADDER and LEVELS_BENCH == tuple(level for level in LEVELS_EACH
-                                                                         if level != "subsurface")
+        assert LEVELS_DEFAULT is LEVELS_LADDER and LEVELS_BENCH == LEVELS_EACH
         assert list(PHYSICS) == list(PHYSICS_EFFECTS) and dict(PHYSICS)["noise"] == NOISE.description
 
 
@@ -93,9 +97,11 @@ class TestRefusals:
     """Unknown and duplicate effects are refused with the messages they had before the registry."""
 
     @pytest.mark.parametrize("spec, message", [
-        ("glossy", "physics ('glossy') must be one of direct, interreflection, sheen, subsurface, mixed, noise, got 'glossy'"),
-        ("", "physics ('') must be one of direct, interreflection, sheen, subsurface, mixed, noise, got ''"),
-        ("sheen+", "physics ('sheen+') must be one of direct, interreflection, sheen, subsurface, mixed, noise, got ''"),
+        ("glossy", "physics ('glossy') must be one of direct, interreflection, sheen, subsurface, subsurface-volume, mixed, noise, got 'glossy'"),
+        ("", "physics ('') must be one of direct, interreflection, sheen, subsurface, subsurface-volume, mixed, noise, got ''"),
+        ("sheen+", "physics ('sheen+') must be one of direct, interreflection, sheen, subsurface, subsurface-volume, mixed, noise, got ''"),
+        ("subsurface-volume+subsurface", "physics: 'subsurface-volume' and 'subsurface' are two transports of the same "
+                                         "skin and do not combine, got 'subsurface-volume+subsurface'; name one"),
         ("direct+noise", "physics: 'direct' is the base and combines with nothing, got 'direct+noise'"),
         ("sheen+interreflection+sheen",
          "physics: sheen named twice in 'sheen+interreflection+sheen'; name each effect once"),
@@ -135,7 +141,8 @@ def _old_lights(scene, effects: tuple[str, ...]) -> dict:
 
 
 EFFECTS_BEFORE = ("interreflection", "sheen", "mixed", "noise")
-"""The effects registered when the registry replaced the branches (``subsurface`` came later: its own tests)."""
+"""The effects registered when the registry replaced the branches (``subsurface`` and ``subsurface-volume`` came
+later: their own tests)."""
 
 LEVELS_ALL = ["+".join(c) for n in range(len(EFFECTS_BEFORE) + 1) for c in itertools.combinations(EFFECTS_BEFORE, n)]
 """Every level of those: direct (the empty combination) and each of the 15 combinations of the four effects."""

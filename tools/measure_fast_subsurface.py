@@ -1,0 +1,184 @@
+"""
+Measure the fast subsurface transport (``--physics subsurface``, the slab's table as a BSDF) for
+docs/subsurface.md, each figure with the load average beside it:
+
+    PYTHONPATH=$PWD python tools/measure_fast_subsurface.py table     # the table against adding-doubling at 64 points
+    PYTHONPATH=$PWD python tools/measure_fast_subsurface.py setup     # its one-off cost and its cost per sample
+    PYTHONPATH=$PWD python tools/measure_fast_subsurface.py ladder    # the default ladder: estimated and measured
+    PYTHONPATH=$PWD python tools/measure_fast_subsurface.py chart     # validate skin_patches --physics subsurface
+    PYTHONPATH=$PWD python tools/measure_fast_subsurface.py calibration [SEEDS SPP]  # its difference test's false alarms
+    PYTHONPATH=$PWD python tools/measure_fast_subsurface.py face [SIZE SPP]   # fast vs volumetric on the face
+
+``face`` runs ``skinrender ladder --effects --levels direct,subsurface,subsurface-volume`` (light, medium and
+dark skin) and prints, per tone, each level's eq4_shift (with its 95 % upper bound) and TPR, and the fast level's
+differences from the volumetric reference.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+CAMERA = "gbell:9@450,540,610"
+SKINS = {"light": 0.02, "medium": 0.13, "dark": 0.3}
+
+
+def _load() -> str:
+    return "load average " + ", ".join(f"{v:.2f}" for v in os.getloadavg())
+
+
+def _skinrender(*arguments: str) -> tuple[dict, float]:
+    """Run the command line with ``--json``; its document and wall seconds."""
+    start = time.perf_counter()
+    done = subprocess.run([sys.executable, "-m", "skinrender", *arguments, "--json"], capture_output=True, text=True)
+    seconds = time.perf_counter() - start
+    if done.returncode not in (0, 1, 3):
+        raise SystemExit(f"skinrender {' '.join(arguments)} failed ({done.returncode}): {done.stderr.strip()[-400:]}")
+    return json.loads(done.stdout), seconds
+
+
+def table() -> None:
+    """The table (32 points, 64 cosines) against adding-doubling at 64 points, at its nodes."""
+    from skinrender.datasets.adding_doubling import Slab, angular_reflectance
+    from skinrender.datasets.skin_model import SkinParameters, reflectance_of_layers, skin_layers
+    from skinrender.rendering.slab_table import table_of_layers
+
+    lam = np.arange(400.0, 701.0, 5.0)
+    for tone, melanin in SKINS.items():
+        layers = skin_layers(lam, SkinParameters(melanin=melanin))
+        tab = table_of_layers(layers, lam)
+        fine = angular_reflectance([Slab(a.mu_a_per_mm, a.mu_s_per_mm, a.g, a.thickness_mm) for a in layers],
+                                   quad_pts=64)
+        mo, mi = np.meshgrid(fine.mu, fine.mu, indexing="ij")
+        f = tab.value(mo, mi)
+        rel = np.abs(f - fine.brdf) / fine.brdf
+        inner = (mo > 0.2) & (mi > 0.2)
+        albedo = np.pi * np.einsum("loi,o->li", f, fine.weights)
+        exact = np.pi * np.einsum("loi,o->li", fine.brdf, fine.weights)
+        x = np.linspace(0.0, 1.0, 20001)
+        normal = np.pi * np.trapezoid(tab.value(x, 1.0) * 2 * x, x, axis=-1) + tab.nodes.specular[-1]
+        q16 = reflectance_of_layers(layers)
+        print(f"{tone} (melanin {melanin}): f vs 64 points: median |rel| {np.median(rel):.1e}, max {rel.max():.1e} "
+              f"(both angles within 78° of the normal: max {rel[:, inner].max():.1e}); directional-hemispherical "
+              f"reflectance max |rel| {np.max(np.abs(albedo / exact - 1)):.1e} (at normal incidence "
+              f"{np.max(np.abs(albedo[:, -1] / exact[:, -1] - 1)):.1e}); the table integrated at normal incidence "
+              f"vs its UR1 max |rel| {np.max(np.abs(normal / tab.ur1 - 1)):.1e}; UR1 at 32 vs 16 points max "
+              f"|Δ| {np.max(np.abs(tab.ur1 - q16)):.1e}")
+
+
+def setup() -> None:
+    """A face render's first and later seconds at direct and subsurface, 128 px, 64 spp, the face's own skin."""
+    from skinrender.rendering.face.render import render_face
+
+    print(_load())
+    for level in ("direct", "subsurface"):
+        seconds = []
+        for seed in range(4):
+            start = time.perf_counter()
+            render_face(CAMERA, "face", 2856, 5900, None, level, spp=64, seed=seed, size=128)
+            seconds.append(time.perf_counter() - start)
+        later = float(np.median(seconds[1:]))
+        print(f"{level}: first render {seconds[0]:.2f} s, later {later:.2f} s ({128 * 128 * 64 / later:.3g} "
+              "samples/s on the machine)")
+    print(_load())
+
+
+def ladder() -> None:
+    """The default ladder (128 px, 64 spp, every default level): the estimate and the wall time."""
+    from skinrender.rendering.face.effects import LEVELS_LADDER
+    from skinrender.studies.face.ladder import REPLICATES_LADDER
+    from skinrender.studies.face.sweep import estimate_seconds
+
+    each = -(-64 // REPLICATES_LADDER)
+    levels = [level for level in LEVELS_LADDER for _ in range(REPLICATES_LADDER)]
+    estimate = estimate_seconds(len(levels), 128 * 128, each, 1, levels)
+    before = _load()
+    document, seconds = _skinrender("ladder", "--camera", CAMERA, "--prevailing", "2200", "--calibration", "5900")
+    rows = ", ".join(f"{row['name']} {row['seconds']:.1f} s" for row in document["levels"])
+    print(f"default ladder ({len(LEVELS_LADDER)} levels): estimated {estimate:.0f} s, measured {seconds:.0f} s "
+          f"({before}; after: {_load()}); {rows}")
+
+
+def chart(spp: int = 64) -> None:
+    """validate skin_patches at subsurface: the verdicts, the largest relative error and the seconds."""
+    before = _load()
+    for tolerance in ("0.05", "0.02"):
+        document, seconds = _skinrender("validate", "skin_patches", "--camera", CAMERA, "--prevailing", "2856",
+                                        "--calibration", "5900", "--physics", "subsurface", "--spp", str(spp),
+                                        "--tolerance", tolerance)
+        errors = [abs(r - a) / a for p in document["patches"] if p.get("skin_model") is not None
+                  for r, a in zip(p["rendered"], p["analytic"])]
+        print(f"validate skin_patches --physics subsurface --spp {spp} --tolerance {tolerance}: "
+              f"{document['verdict']}, equivalence {document['equivalence']['outcome']} (bound "
+              f"{document['equivalence'].get('bound')}), difference {document['difference']['outcome']}; largest "
+              f"|relative error| of a skin value {max(errors):.4f}; {seconds:.0f} s ({before})")
+
+
+SLABS = """
+name = "slabs"
+columns = 3
+patch_px = 8
+gap_px = 2
+border_px = 0
+""" + "".join(f'[[patch]]\nname = "{tone}"\nreflectance = "skin-model:melanin={melanin}"\nskin = true\n'
+              for tone, melanin in SKINS.items())
+
+
+def calibration(seeds: int = 200, spp: int = 16) -> None:
+    """validate's difference test (α 0.01) over independent seeds of three slabs where the renderer is right:
+    its false alarms, with the multijitter sampler (the chart's default at subsurface)."""
+    import tempfile
+    from pathlib import Path
+
+    from skinrender.evaluation.verdict import binomial_interval
+    from skinrender.rendering.validation import validate
+
+    before = _load()
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "slabs.toml"
+        path.write_text(SLABS)
+        start, alarms, worst = time.perf_counter(), 0, []
+        for seed in range(0, 2 * seeds, 2):  # the calibration render takes seed + 1
+            result = validate(str(path), CAMERA, 2856, 5900, spp=spp, seed=seed, physics="subsurface",
+                              tolerance=0.05)
+            alarms += result.difference.outcome == "fail"
+            worst.append(float(np.nanmax(np.abs(result.rendered - result.analytic) / result.sigma)))
+    low, high = binomial_interval(alarms, seeds)
+    print(f"difference test (α 0.01), 3 slabs at 8 × 8 px, {spp} spp, multijitter: {alarms}/{seeds} false alarms "
+          f"(95 % interval {low:.3f}–{high:.3f}); largest |z| median {np.median(worst):.2f}, max {max(worst):.2f}; "
+          f"{time.perf_counter() - start:.0f} s ({before})")
+
+
+def face(size: int = 32, spp: int = 48) -> None:
+    """The fast level against the volumetric reference on the face, per skin tone."""
+    before = _load()
+    document, seconds = _skinrender("ladder", "--effects", "--levels", "direct,subsurface,subsurface-volume",
+                                    "--camera", CAMERA, "--prevailing", "2856", "--calibration", "5900",
+                                    "--size", str(size), "--spp", str(spp), "--max-minutes", "120")
+    rows = {(row["tone"], row["level"]): row for row in document["rows"]}
+    print(f"ladder --effects, {size} px, {spp} spp, {seconds:.0f} s ({before}; after: {_load()})")
+    for tone in SKINS:
+        line = [tone]
+        for level in ("direct", "subsurface", "subsurface-volume"):
+            row = rows[(tone, level)]
+            line.append(f"{level}: eq4_shift {row['eq4_shift']:.4f} (≤ {row['eq4_shift_bound']:.4f}), "
+                        f"TPR {row['tpr']:.3f}, {row['seconds']:.1f} s")
+        fast, volume = rows[(tone, "subsurface")], rows[(tone, "subsurface-volume")]
+        line.append(f"fast − volume: eq4_shift {fast['eq4_shift'] - volume['eq4_shift']:+.4f}, "
+                    f"TPR {fast['tpr'] - volume['tpr']:+.3f}")
+        print("; ".join(line))
+
+
+if __name__ == "__main__":
+    what = sys.argv[1] if len(sys.argv) > 1 else ""
+    numbers = [int(v) for v in sys.argv[2:]]
+    tasks = {"table": table, "setup": setup, "ladder": ladder, "chart": chart, "calibration": calibration,
+             "face": face}
+    if what not in tasks:
+        raise SystemExit(__doc__)
+    tasks[what](*numbers)
