@@ -110,7 +110,7 @@ def _plugin_class(mi):
         def __init__(self, props):
             mi.BSDF.__init__(self, props)
             table = table_of_key(props["table"])
-            self.alpha = float(props["alpha"]) if props.has_property("alpha") else 0.0
+            self.alpha = float(props["alpha"]) if "alpha" in props else 0.0
             self.n = float(table.n)
             lam = table.wavelengths
             self.start, self.step = float(lam[0]), float(lam[1] - lam[0]) if lam.size > 1 else 1.0

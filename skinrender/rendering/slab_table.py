@@ -25,7 +25,8 @@ from air, which falls to 0 at grazing angles; ``h``, the light under the
 surface, is smooth in both cosines. The table interpolates ``h`` along each
 axis with a shape-preserving cubic (PCHIP: never negative, no overshoot)
 onto :data:`COSINE_STEPS` cosines evenly spaced on [0, 1] and multiplies by
-the exact ``T`` there. Below the smallest node (μ ≈ 0.068, 86° from the
+the exact ``T`` there, symmetrised (reciprocity; PCHIP along one axis and then
+the other differs from the other order by ~1e-5 relative). Below the smallest node (μ ≈ 0.068, 86° from the
 normal, ~0.5 % of a cosine-weighted hemisphere) ``h`` is held at its value
 there: the only values not between nodes, where ``T`` takes ``f`` to 0
 anyway. How far the interpolated table is from adding-doubling at twice the
@@ -160,6 +161,7 @@ def table_of_layers(layers, wavelengths: NDArrayFloat, quad_pts: int = QUAD_PTS_
     t_nodes, t_grid = 1.0 - nodes.specular, 1.0 - fresnel_from_air(mu, n)
     under = nodes.brdf / (t_nodes[:, None] * t_nodes[None, :])  # h: the light under the surface
     under = _along(nodes.mu, _along(nodes.mu, under, mu, -1), mu, -2)
+    under = (under + np.swapaxes(under, -1, -2)) / 2  # PCHIP is not linear: one axis first breaks symmetry by ~1e-5
     brdf = np.clip(under, 0.0, None) * t_grid[:, None] * t_grid[None, :]
     albedo_nodes = np.pi * np.einsum("...oi,o->...i", nodes.brdf, nodes.weights)
     albedo = _along(nodes.mu, albedo_nodes / t_nodes, mu, -1) * t_grid
