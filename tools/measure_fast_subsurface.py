@@ -8,10 +8,12 @@ docs/subsurface.md, each figure with the load average beside it:
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py chart     # validate skin_patches --physics subsurface
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py calibration [SEEDS SPP]  # its difference test's false alarms
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py face [SIZE SPP]   # fast vs volumetric on the face
+    PYTHONPATH=$PWD python tools/measure_fast_subsurface.py effective [SIZE SPP]  # two layers vs one medium, fast
 
-``face`` runs ``skinrender ladder --effects --levels direct,subsurface,subsurface-volume`` (light, medium and
-dark skin) and prints, per tone, each level's eq4_shift (with its 95 % upper bound) and TPR, and the fast level's
-differences from the volumetric reference.
+``face`` runs ``skinrender ladder --levels direct,subsurface,interreflection+subsurface,subsurface-volume`` for the
+light, medium and dark skin of ``ladder --effects`` and prints, per tone, each level's eq4_shift (with its 95 %
+upper bound) and TPR, and the fast levels' differences from the volumetric reference (eq4_shift, TPR, the skin's
+mean NCC): the volumetric level path traces every bounce, so ``interreflection+subsurface`` is its like for like.
 """
 
 from __future__ import annotations
@@ -113,10 +115,11 @@ def chart(spp: int = 64) -> None:
                                         "--tolerance", tolerance)
         errors = [abs(r - a) / a for p in document["patches"] if p.get("skin_model") is not None
                   for r, a in zip(p["rendered"], p["analytic"])]
+        checks = document["checks"]
         print(f"validate skin_patches --physics subsurface --spp {spp} --tolerance {tolerance}: "
-              f"{document['verdict']}, equivalence {document['equivalence']['outcome']} (bound "
-              f"{document['equivalence'].get('bound')}), difference {document['difference']['outcome']}; largest "
-              f"|relative error| of a skin value {max(errors):.4f}; {seconds:.0f} s ({before})")
+              f"{document['verdict']}, equivalence {checks['equivalence']['verdict']} (bound "
+              f"{document['bound']:.4f}), difference {checks['difference']['verdict']}; largest |relative error| of "
+              f"a skin value {max(errors):.4f}; {seconds:.0f} s, rendering {document['elapsed_s']:.1f} s ({before})")
 
 
 SLABS = """
@@ -154,31 +157,75 @@ def calibration(seeds: int = 200, spp: int = 16) -> None:
           f"{time.perf_counter() - start:.0f} s ({before})")
 
 
+FACE_LEVELS = ("direct", "subsurface", "interreflection+subsurface", "subsurface-volume")
+"""The levels compared on the face: the volumetric level path traces every bounce (light from the props and the
+face itself reaches the skin), so the fast transport's like for like is ``interreflection+subsurface``."""
+
+
 def face(size: int = 32, spp: int = 48) -> None:
-    """The fast level against the volumetric reference on the face, per skin tone."""
-    before = _load()
-    document, seconds = _skinrender("ladder", "--effects", "--levels", "direct,subsurface,subsurface-volume",
-                                    "--camera", CAMERA, "--prevailing", "2856", "--calibration", "5900",
-                                    "--size", str(size), "--spp", str(spp), "--max-minutes", "120")
-    rows = {(row["tone"], row["level"]): row for row in document["rows"]}
-    print(f"ladder --effects, {size} px, {spp} spp, {seconds:.0f} s ({before}; after: {_load()})")
-    for tone in SKINS:
-        line = [tone]
-        for level in ("direct", "subsurface", "subsurface-volume"):
-            row = rows[(tone, level)]
+    """The fast level against the volumetric reference on the face, per skin tone (a ladder each)."""
+    from skinrender.studies.face.effects_table import SKIN_TONES
+
+    print(f"ladder --levels {','.join(FACE_LEVELS)} --size {size} --spp {spp}, per tone ({_load()})")
+    for tone, skin in SKIN_TONES.items():
+        document, seconds = _skinrender("ladder", "--skin", skin, "--levels", ",".join(FACE_LEVELS),
+                                        "--camera", CAMERA, "--prevailing", "2856", "--calibration", "5900",
+                                        "--size", str(size), "--spp", str(spp), "--max-minutes", "120")
+        rows = {row["name"]: row for row in document["levels"]}
+        line = [f"{tone} ({skin}, budget {document['budget']['budget']:.4f})"]
+        for level in FACE_LEVELS:
+            row = rows[level]
             line.append(f"{level}: eq4_shift {row['eq4_shift']:.4f} (≤ {row['eq4_shift_bound']:.4f}), "
                         f"TPR {row['tpr']:.3f}, {row['seconds']:.1f} s")
-        fast, volume = rows[(tone, "subsurface")], rows[(tone, "subsurface-volume")]
-        line.append(f"fast − volume: eq4_shift {fast['eq4_shift'] - volume['eq4_shift']:+.4f}, "
-                    f"TPR {fast['tpr'] - volume['tpr']:+.3f}")
-        print("; ".join(line))
+        volume = rows["subsurface-volume"]
+        for level in FACE_LEVELS[1:3]:
+            fast = rows[level]
+            apart = np.subtract(fast["skin_ncc_mean"], volume["skin_ncc_mean"])[:2]
+            line.append(f"{level} − volume: eq4_shift {fast['eq4_shift'] - volume['eq4_shift']:+.4f}, TPR "
+                        f"{fast['tpr'] - volume['tpr']:+.3f}, mean skin NCC (r, g) {apart[0]:+.4f} {apart[1]:+.4f}")
+        print("; ".join(line) + f" [{seconds:.0f} s, {_load()}]")
+
+
+def effective(size: int = 64, spp: int = 64) -> None:
+    """The fast level on the face with the table of the skin's two layers and with the table of the volumetric
+    level's one effective medium (the same UR1), at interreflection+subsurface: what the effective medium alone
+    moves the skin's mean NCC by."""
+    from unittest import mock
+
+    from skinrender.model.chromaticity import ncc
+    from skinrender.rendering.face import render_face
+    from skinrender.rendering.face.effects import subsurface_table
+    from skinrender.rendering.loaded import release_scenes
+    from skinrender.rendering.slab_table import slab_table, table_of_layers
+    from skinrender.rendering.subsurface import effective_layer, skin_media_of
+    from skinrender.studies.face.effects_table import SKIN_TONES
+
+    print(f"interreflection+subsurface, {size} px, {spp} spp, two layers vs one effective medium ({_load()})")
+    for tone, skin in SKIN_TONES.items():
+        means = {}
+        for name in ("two layers", "one medium"):
+            def table(spec, grid, where="skin"):
+                if name == "two layers":
+                    return slab_table(spec, grid, where)
+                media = skin_media_of(spec, grid, where)
+                return table_of_layers((effective_layer(media.layers),), grid.wavelengths)
+
+            release_scenes()  # the face's loaded document holds the other table
+            with mock.patch.object(subsurface_table, "slab_table", table):
+                result = render_face(CAMERA, "face", 2856, 5900, skin, "interreflection+subsurface", spp=spp,
+                                     seed=0, size=size)
+            skin_pixels = result.image[result.labels == 1]
+            means[name] = ncc(skin_pixels).mean(axis=0)[:2]
+        apart = means["two layers"] - means["one medium"]
+        print(f"{tone} ({skin}): mean skin NCC (r, g) two layers {means['two layers'].round(4).tolist()}, one medium "
+              f"{means['one medium'].round(4).tolist()}, two − one {apart[0]:+.4f} {apart[1]:+.4f}")
 
 
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else ""
     numbers = [int(v) for v in sys.argv[2:]]
     tasks = {"table": table, "setup": setup, "ladder": ladder, "chart": chart, "calibration": calibration,
-             "face": face}
+             "face": face, "effective": effective}
     if what not in tasks:
         raise SystemExit(__doc__)
     tasks[what](*numbers)

@@ -68,8 +68,9 @@ def check_chart_subsurface(args: argparse.Namespace, inputs, settings):
     if physics == "subsurface":
         from ..rendering.slab_chart import SAMPLES_PER_S_TABLE, estimate_seconds
 
-        seconds = estimate_seconds(scene, settings.spp, fits=_fits(scene), cores=cores)
-        what = (f"{scene.name} at {settings.spp} spp with {skins} skin patches' tables "
+        fits = _fits(scene)
+        seconds = estimate_seconds(scene, settings.spp, fits=fits, cores=cores)
+        what = (f"{scene.name} at {settings.spp} spp with {skins} skin patches' tables and {fits} fits "
                 f"({SAMPLES_PER_S_TABLE:g} samples/s per core, {plural})")
     else:
         from ..rendering.subsurface_chart import SAMPLES_PER_S_SLAB, estimate_seconds

@@ -89,11 +89,12 @@ def test_what_does_not_go_with_it_is_refused(chart, physics, extra, names, capsy
     assert_refused(["validate", chart, "--camera", CAM, *LIGHTS, "--physics", physics, *extra], names, capsys)
 
 
-@pytest.mark.parametrize("physics, spp", [("subsurface", "10000000"), ("subsurface-volume", "100000")])
-def test_too_many_samples_are_refused_with_the_estimate(chart, physics, spp, capsys):
+@pytest.mark.parametrize("physics, spp, minutes", [("subsurface", "1000000", "0.5"),
+                                                  ("subsurface-volume", "100000", "30")])
+def test_too_many_samples_are_refused_with_the_estimate(chart, physics, spp, minutes, capsys):
     """Each level's estimate (its own rate) refuses beyond --max-minutes, before anything renders."""
-    assert_refused(["validate", chart, "--camera", CAM, *LIGHTS, "--physics", physics, "--spp", spp],
-                   ("--spp", f"{spp} spp", "--max-minutes"), capsys)
+    assert_refused(["validate", chart, "--camera", CAM, *LIGHTS, "--physics", physics, "--spp", spp,
+                    "--max-minutes", minutes], ("--spp", f"{spp} spp", "--max-minutes"), capsys)
 
 
 @pytest.mark.parametrize("physics", ["subsurface", "subsurface-volume"])
@@ -113,7 +114,7 @@ def test_the_default_spp_of_skin_patches_is_refused_with_its_estimate(capsys):
     assert "30 skin patches" in line and "estimated" in line
     line = assert_refused(["validate", "skin_patches", "--camera", CAM, *LIGHTS, "--physics", "subsurface",
                            "--max-minutes", "0.1"], ("--spp", "256 spp", "--max-minutes"), capsys)
-    assert "30 skin patches' tables" in line and "about 1 min" in line
+    assert "30 skin patches' tables and 30 fits" in line and "about 1.1 min" in line
 
 
 SKIN_PATCHES_TWO = """
