@@ -9,6 +9,7 @@ docs/subsurface.md, each figure with the load average beside it:
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py calibration [SEEDS SPP]  # its difference test's false alarms
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py face [SIZE SPP]   # fast vs volumetric on the face
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py effective [SIZE SPP]  # two layers vs one medium, fast
+    PYTHONPATH=$PWD python tools/measure_fast_subsurface.py sums [SIZE SPP]  # the skin's NCC of summed pixels
 
 ``face`` runs ``skinrender ladder --levels direct,subsurface,interreflection+subsurface,subsurface-volume`` for the
 light, medium and dark skin of ``ladder --effects`` and prints, per tone, each level's eq4_shift (with its 95 %
@@ -221,11 +222,29 @@ def effective(size: int = 64, spp: int = 64) -> None:
               f"{means['one medium'].round(4).tolist()}, two − one {apart[0]:+.4f} {apart[1]:+.4f}")
 
 
+def sums(size: int = 32, spp: int = 128) -> None:
+    """The skin's NCC from its summed pixels (ratio of sums, which per-pixel noise does not bias) beside the mean of
+    its pixels' NCC, at interreflection+subsurface and subsurface-volume, light and dark skin, one render each."""
+    from skinrender.model.chromaticity import ncc
+    from skinrender.rendering.face import render_face
+    from skinrender.studies.face.effects_table import SKIN_TONES
+
+    print(f"{size} px, {spp} spp, seed 0 ({_load()})")
+    for tone in ("light", "dark"):
+        for level in ("interreflection+subsurface", "subsurface-volume"):
+            start = time.perf_counter()
+            result = render_face(CAMERA, "face", 2856, 5900, SKIN_TONES[tone], level, spp=spp, seed=0, size=size)
+            pixels = result.image[result.labels == 1]
+            print(f"{tone}, {level}: NCC (r, g) of the summed skin pixels {ncc(pixels.sum(axis=0))[:2].round(4).tolist()}"
+                  f", mean of the pixels' {ncc(pixels).mean(axis=0)[:2].round(4).tolist()}; "
+                  f"{time.perf_counter() - start:.0f} s")
+
+
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else ""
     numbers = [int(v) for v in sys.argv[2:]]
     tasks = {"table": table, "setup": setup, "ladder": ladder, "chart": chart, "calibration": calibration,
-             "face": face, "effective": effective}
+             "face": face, "effective": effective, "sums": sums}
     if what not in tasks:
         raise SystemExit(__doc__)
     tasks[what](*numbers)
