@@ -82,7 +82,7 @@ from ...subsurface import (INTEGRATOR_SUBSURFACE, check_truncation, effective_la
                            subsurface_variant)
 from .base import Effect, Limits, Setup
 
-__all__ = ["SUBSURFACE_VOLUME", "SUBSURFACE_ALPHA", "SCENE_SCALE_SUBSURFACE", "SAMPLES_PER_S_SUBSURFACE", "face_medium"]
+__all__ = ["EFFECT", "SUBSURFACE_VOLUME", "SUBSURFACE_ALPHA", "SCENE_SCALE_SUBSURFACE", "SAMPLES_PER_S_SUBSURFACE", "face_medium"]
 
 SUBSURFACE_ALPHA = 0.35
 """GGX roughness α of the skin's boundary, as ``sheen``'s coat (Weyrich et al. 2006 fit 0.3–0.45 to faces)."""
@@ -133,5 +133,9 @@ SUBSURFACE_VOLUME = Effect(
                                    "shading no longer cancels: no analytic limit on the face (the flat slab is "
                                    "checked against adding-doubling: validate a chart with --physics subsurface-volume)"),
     samples_per_s=SAMPLES_PER_S_SUBSURFACE, scene_scale=SCENE_SCALE_SUBSURFACE, variant=subsurface_variant,
+    order=35,
 )
 """The skin as a medium (module docstring)."""
+
+EFFECT = SUBSURFACE_VOLUME
+"""This module's effect (the registry takes it: :mod:`.levels`)."""

@@ -13,7 +13,7 @@ the :mod:`~skinrender.rendering.slab_bsdf` plugin renders it as the skin's
 BSDF. Level ``subsurface``; the volumetric reference is
 ``subsurface-volume`` (:mod:`~skinrender.rendering.face.effects.subsurface`).
 
--   :data:`SUBSURFACE`: the effect; :data:`SETUP_SECONDS_TABLE`.
+-   :data:`SUBSURFACE` (this module's ``EFFECT``): the effect; :data:`SETUP_SECONDS_TABLE`.
 
 What it keeps and what it leaves out
 ------------------------------------
@@ -55,7 +55,7 @@ from ...slab_table import slab_table
 from .base import Effect, Limits, Setup, twosided
 from .subsurface import SUBSURFACE_ALPHA
 
-__all__ = ["SUBSURFACE", "SETUP_SECONDS_TABLE"]
+__all__ = ["EFFECT", "SUBSURFACE", "SETUP_SECONDS_TABLE"]
 
 SETUP_SECONDS_TABLE = 2.5
 """One-off seconds on one core before a process's first render of a skin at this level: the fit of the skin model
@@ -79,6 +79,9 @@ SUBSURFACE = Effect(
                                    "skin's colour changes with the geometry and the shading no longer cancels: no "
                                    "analytic limit on the face (the flat patch under a uniform sky is checked "
                                    "against adding-doubling: validate a chart with --physics subsurface)"),
-    setup_seconds=SETUP_SECONDS_TABLE,
+    setup_seconds=SETUP_SECONDS_TABLE, order=30,
 )
 """The skin as the slab's table (module docstring)."""
+
+EFFECT = SUBSURFACE
+"""This module's effect (the registry takes it: :mod:`.levels`)."""
