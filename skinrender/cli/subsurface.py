@@ -1,6 +1,6 @@
 """
 ``--physics subsurface`` and ``subsurface-volume`` on a chart (``render``, ``validate``, ``detect``)
-===================================================================================================
+====================================================================================================
 
 The chart commands take ``--physics direct`` (the default), ``subsurface`` or
 ``subsurface-volume`` (the chart's registry of effects,

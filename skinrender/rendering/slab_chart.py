@@ -34,9 +34,9 @@ reciprocity (``f`` symmetric), which for the slab is its total reflectance for
 collimated normal incidence, specular part included: adding-doubling's
 ``UR1`` (:attr:`~skinrender.rendering.slab_table.SlabTable.ur1`, the
 reflectance Eq. 4 is checked with; the surface reflection here is smooth).
-What separates the render from it is the table's interpolation between
-adding-doubling's angles (a few 1e-4 at normal incidence, measured in
-``docs/subsurface.md``) and the render's noise. The integrator samples the
+The table's grid is scaled so that it returns exactly that, as the BSDF
+reads it (:mod:`~skinrender.rendering.slab_table`: to 3e-10), so what
+separates the render from it is float32 and the render's noise. The integrator samples the
 BSDF only (``direct``, no emitter samples): a Lambertian patch under the sky
 then has no noise but the wavelengths', and a skin patch only the table's
 variation with the angle of incidence.
@@ -52,15 +52,14 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..model.camera import camera
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .renderer import CameraKey, ChartRenderer, scene_dict
 from .scene import ChartScene, load_chart_scene
 from .settings import RenderSettings
-from .slab_table import SlabTable, slab_table
-from .subsurface import SkinMedia, skin_media_of
+from .slab_table import slab_table
+from .subsurface import chart_skin_media
 
 __all__ = ["SAMPLES_PER_S_TABLE", "SECONDS_PER_TABLE", "SlabChart", "slab_chart", "SlabChartRenderer",
            "slab_renderer", "estimate_seconds"]
@@ -109,23 +108,14 @@ def slab_chart(scene, grid: WavelengthGrid = GRID_DEFAULT) -> SlabChart:
 
 @lru_cache(maxsize=8)
 def _slab_chart(chart: ChartScene, grid: WavelengthGrid) -> SlabChart:
-    if not any(p.skin for p in chart.patches):
-        raise SkinrenderError(f"{chart.source or chart.name}: physics 'subsurface' renders a chart's skin patches "
-                              "(skin = true) as the skin model's layers, and this chart has none")
+    media, wheres = chart_skin_media(chart, grid, "subsurface")
+    tables = tuple(None if item is None else slab_table(item.spec, grid, where) for item, where in zip(media, wheres))
     reflectances = chart.reflectances(grid).copy()
-    media: list[SkinMedia | None] = []
-    tables: list[SlabTable | None] = []
-    for index, patch in enumerate(chart.patches):
-        if not patch.skin:
-            media.append(None)
-            tables.append(None)
-            continue
-        where = f"{chart.source}: patch {patch.name!r}"
-        media.append(skin_media_of(patch.reflectance, grid, where))
-        tables.append(slab_table(patch.reflectance, grid, where))
-        reflectances[index] = tables[-1].ur1
+    for index, table in enumerate(tables):
+        if table is not None:
+            reflectances[index] = table.ur1
     reflectances.setflags(write=False)
-    return SlabChart(chart, grid, tuple(media), tuple(tables), reflectances)
+    return SlabChart(chart, grid, media, tables, reflectances)
 
 
 def estimate_seconds(scene: ChartScene, spp: int, fits: int = 0, cores: int = 1) -> float:

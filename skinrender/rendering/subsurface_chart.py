@@ -82,8 +82,8 @@ from .renderer import (SAMPLES_MAX, CameraKey, RawRender, _peak, _separate, _spe
                        emitter_grid)
 from .scene import ChartScene, load_chart_scene
 from .settings import RenderSettings
-from .subsurface import (INTEGRATOR_SUBSURFACE, SLAB_DERMIS_MM, SkinMedia, check_truncation, medium_dict,
-                         skin_media_of, slab_reflectance, subsurface_variant)
+from .subsurface import (INTEGRATOR_SUBSURFACE, SLAB_DERMIS_MM, SkinMedia, chart_skin_media, check_truncation,
+                         medium_dict, slab_reflectance, subsurface_variant)
 from .variants import mitsuba
 
 __all__ = ["FOOTPRINT_MM", "SLAB_HALF_WIDTH_MM", "SAMPLES_PER_S_SLAB", "SAMPLER_SUBSURFACE", "SECONDS_PER_FIT",
@@ -153,22 +153,14 @@ def subsurface_chart(scene, grid: WavelengthGrid = GRID_DEFAULT) -> SubsurfaceCh
 
 @lru_cache(maxsize=8)
 def _subsurface_chart(chart: ChartScene, grid: WavelengthGrid) -> SubsurfaceChart:
-    if not any(p.skin for p in chart.patches):
-        raise SkinrenderError(f"{chart.source or chart.name}: physics 'subsurface-volume' renders a chart's skin patches "
-                              "(skin = true) as the skin model's layers, and this chart has none")
+    media, wheres = chart_skin_media(chart, grid, "subsurface-volume")
     reflectances = chart.reflectances(grid).copy()
-    media: list[SkinMedia | None] = []
-    for index, patch in enumerate(chart.patches):
-        if not patch.skin:
-            media.append(None)
-            continue
-        where = f"{chart.source}: patch {patch.name!r}"
-        item = skin_media_of(patch.reflectance, grid, where)
-        check_truncation(item, where)
-        media.append(item)
-        reflectances[index] = slab_reflectance(item.layers)
+    for index, item in enumerate(media):
+        if item is not None:
+            check_truncation(item, wheres[index])
+            reflectances[index] = slab_reflectance(item.layers)
     reflectances.setflags(write=False)
-    return SubsurfaceChart(chart, grid, tuple(media), reflectances)
+    return SubsurfaceChart(chart, grid, media, reflectances)
 
 
 def estimate_seconds(scene: ChartScene, spp: int, fits: int = 0) -> float:

@@ -21,8 +21,10 @@ TOLERANCE_IADPYTHON = 1e-8
 semi-infinite layers stop doubling on slightly different criteria)."""
 
 
-def iad_two_layers(top: tuple, bottom: tuple, thickness_top: float, g: float, n: float, quad_pts: int = 16) -> float:
-    """iadpython's total reflectance (UR1) of a layer ``(mu_a, mu_s)`` over a semi-infinite one, under air."""
+def iad_two_layers_matrices(top: tuple, bottom: tuple, thickness_top: float, g: float, n: float,
+                            quad_pts: int = 16) -> tuple:
+    """iadpython's sample and reflection matrix (from air, boundary included) of a layer ``(mu_a, mu_s)`` over a
+    semi-infinite one, and the stack's transmission matrix."""
     iad = pytest.importorskip("iadpython")
     sample = iad.Sample(a=0.5, b=1, g=g, n=n, n_above=1, n_below=1, quad_pts=quad_pts)
     sample.update_quadrature()
@@ -34,7 +36,12 @@ def iad_two_layers(top: tuple, bottom: tuple, thickness_top: float, g: float, n:
     (r1, t1), (r2, t2) = matrices
     r02, r20, t02, t20 = iad.add_layers(sample, r1, r1, t1, t1, r2, r2, t2, t2)
     b01, b10, c01, c10 = iad.boundary_matrices(sample, top=True)
-    total = iad.add_layers(sample, b01, b10, c01, c10, r02, r20, t02, t20)[0]
+    return sample, iad.add_layers(sample, b01, b10, c01, c10, r02, r20, t02, t20)[0], t02
+
+
+def iad_two_layers(top: tuple, bottom: tuple, thickness_top: float, g: float, n: float, quad_pts: int = 16) -> float:
+    """iadpython's total reflectance (UR1) of a layer ``(mu_a, mu_s)`` over a semi-infinite one, under air."""
+    sample, total, t02 = iad_two_layers_matrices(top, bottom, thickness_top, g, n, quad_pts)
     return float(sample.UX1_and_UXU(total, t02)[0])
 
 
@@ -152,21 +159,9 @@ def iad_two_layers_brdf(top: tuple, bottom: tuple, thickness_top: float, g: floa
                         quad_pts: int = 16) -> np.ndarray:
     """iadpython's reflection matrix of a layer over a semi-infinite one under air, as a BRDF on the nodes that
     leave into air: (total − the boundary's Fresnel term) / (π n²) (angular_reflectance's docstring)."""
-    iad = pytest.importorskip("iadpython")
-    sample = iad.Sample(a=0.5, b=1, g=g, n=n, n_above=1, n_below=1, quad_pts=quad_pts)
-    sample.update_quadrature()
-    matrices = []
-    for (mu_a, mu_s), thickness in ((top, thickness_top), (bottom, np.inf)):
-        layer = copy.deepcopy(sample)
-        layer.a, layer.b = mu_s / (mu_a + mu_s), (mu_a + mu_s) * thickness
-        matrices.append(iad.simple_layer_matrices(layer))
-    (r1, t1), (r2, t2) = matrices
-    r02, r20, t02, t20 = iad.add_layers(sample, r1, r1, t1, t1, r2, r2, t2, t2)
-    b01, b10, c01, c10 = iad.boundary_matrices(sample, top=True)
-    total = iad.add_layers(sample, b01, b10, c01, c10, r02, r20, t02, t20)[0]
+    sample, total, _ = iad_two_layers_matrices(top, bottom, thickness_top, g, n, quad_pts)
     above = sample.nu > np.sqrt(1 - 1 / n**2)
-    fresnel = fresnel_reflectance(sample.nu, n)
-    body = total - np.diag(fresnel / sample.twonuw)
+    body = total - np.diag(fresnel_reflectance(sample.nu, n) / sample.twonuw)
     return body[above][:, above] / (np.pi * n**2)
 
 
