@@ -54,7 +54,7 @@ REQUEST_FLAGS = {"scene": "SCENE", "camera": "--camera", "prevailing": "--prevai
                  "physics": "--physics", "spp": "--spp", "seed": "--seed", "sampler": "--sampler",
                  "variant": "--variant", "channels": "--channels", "imager": "--imager", "illuminance": "--illuminance",
                  "exposure": "--exposure", "skin": "--skin", "size": "--size", "normalization": "--normalization",
-                 "knee": "--knee", "grid": "--grid"}
+                 "knee": "--knee", "grid": "--grid", "bands": "--bands"}
 """The flag of each argument of a request (an error's ``role`` → the flag a refusal names)."""
 
 

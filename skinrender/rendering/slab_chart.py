@@ -151,13 +151,13 @@ class SlabChartRenderer(ChartRenderer):
         super().__init__(scene, camera_, settings, grid)
         self.chart = slab_chart(self.scene, grid)
 
-    def document(self, mi, temperature: float, group: tuple[int, ...]) -> dict:
+    def document(self, mi, temperature: float, group: tuple[int, ...], film: dict | None = None) -> dict:
         """The chart's document (module docstring): the sky for the light, the skin patches' tables."""
         from .slab_bsdf import register, slab_bsdf_dict
 
         register(mi)
         document = scene_dict(self.scene, self.camera, temperature, self.requested_spp, 0, self.sampler, self.grid,
-                              group, self.variant, self.emitter)
+                              group, self.variant, self.emitter, film)
         sky = document.pop("light")["irradiance"]
         document["light"] = {"type": "constant", "radiance": sky}
         document["integrator"] = {"type": "direct", "emitter_samples": 0, "bsdf_samples": 1, "hide_emitters": True}
