@@ -65,12 +65,14 @@ __all__ = ["SAMPLES_PER_S_TABLE", "SECONDS_PER_TABLE", "SlabChart", "slab_chart"
            "slab_renderer", "estimate_seconds"]
 
 SAMPLES_PER_S_TABLE = 4e5
-"""Samples per second of a chart at ``subsurface`` on one core (llvm_ad_spectral), the estimates' rate:
-measured (``docs/subsurface.md``)."""
+"""Samples per second of a chart at ``subsurface`` on one core (llvm_ad_spectral), the estimates' rate: set below
+what was measured (``skin_patches`` at 256 spp, its two renders' 4.9e6 samples in 2.4 s on the 2-core machine at a
+load of ~16, ``docs/subsurface.md``): the renders are a small part of the estimate, its tables and fits the rest."""
 
 SECONDS_PER_TABLE = 0.6
-"""Seconds to build one skin patch's table on one core (adding-doubling at 32 points on 301 wavelengths,
-measured), beside any fit of the model to a measured skin (``subsurface_chart.SECONDS_PER_FIT``)."""
+"""Seconds to build one skin patch's table on one core (adding-doubling at 32 points on 301 wavelengths: 0.4–0.7 s
+measured at a load of ~3, 1.4 s at ~10), beside any fit of the model to a measured skin
+(``subsurface_chart.SECONDS_PER_FIT``)."""
 
 
 @dataclass(frozen=True, eq=False)
