@@ -98,6 +98,16 @@ def test_too_many_samples_are_refused_with_the_estimate(chart, physics, spp, min
 
 
 @pytest.mark.parametrize("physics", ["subsurface", "subsurface-volume"])
+def test_a_black_patch_marked_skin_is_refused_naming_it(tmp_path, physics, capsys):
+    """Issue 36: grey:0 marked skin fitted to RMS 0.029 with every parameter on a bound and rendered as a slab."""
+    path = tmp_path / "black.toml"
+    path.write_text('name = "black"\ncolumns = 1\npatch_px = 4\n[[patch]]\nname = "coal"\n'
+                    'reflectance = "grey:0"\nskin = true\n')
+    assert_refused(["validate", str(path), "--camera", CAM, *LIGHTS, "--physics", physics, "--spp", "4"],
+                   ("patch 'coal'", "'grey:0'", "not skin", "parameters on a bound"), capsys)
+
+
+@pytest.mark.parametrize("physics", ["subsurface", "subsurface-volume"])
 def test_a_chart_without_skin_and_other_levels(physics, capsys):
     assert_refused(["validate", "macbeth", "--camera", CAM, *LIGHTS, "--physics", physics],
                    (f"--physics {physics}", "macbeth has none"), capsys)
