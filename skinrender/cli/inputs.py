@@ -251,10 +251,10 @@ def check_request_work(args: argparse.Namespace, request, renders: int = 1, spp:
                               "for this scene", flag="--spp")
     seconds, what = scene_kind(request.scene).workload(request, renders, os.cpu_count() or 1)
     check_work(seconds, "--spp", what, getattr(args, "max_minutes", None), fewer="lower --spp")
-    if "subsurface" in request.level.names and hasattr(request.scene, "patches"):
-        from ..rendering.subsurface_chart import subsurface_chart
+    if hasattr(request.scene, "patches"):
+        from ..rendering.chart_effects import prepare_slabs
 
-        subsurface_chart(request.scene, request.grid)
+        prepare_slabs(request)
 
 
 def imaging_document(imaged) -> dict:

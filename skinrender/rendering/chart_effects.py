@@ -20,7 +20,7 @@ the validation's options).
 
 -   :data:`CHART_REGISTRY`, :data:`CHART_EFFECTS`: the registry and its table.
 -   :data:`CHART_DIRECT`, :data:`CHART_SUBSURFACE`, :data:`CHART_SUBSURFACE_VOLUME`, :data:`CHART_NOISE`: the
-    effects.
+    effects; :func:`prepare_slabs`: a subsurface chart's skin patches' layers before any render.
 
 Units: temperatures K, illuminance lx, exposure s, times s.
 """
@@ -34,7 +34,7 @@ from .sensor import NoiseOptions
 from .subsurface_chart import SAMPLER_SUBSURFACE, SAMPLES_PER_S_SLAB
 
 __all__ = ["CHART_DIRECT", "CHART_SUBSURFACE", "CHART_SUBSURFACE_VOLUME", "CHART_NOISE", "CHART_EFFECTS",
-           "CHART_REGISTRY"]
+           "CHART_REGISTRY", "prepare_slabs"]
 
 
 class _Lambertian:
@@ -68,6 +68,22 @@ class _Slabs:
 
     def raw(self, temperature: float, seed: int, skins: bool = True):
         return self.renderer.raw(temperature, seed, skins)
+
+
+def prepare_slabs(request) -> None:
+    """
+    Where the request's level renders a chart's skin patches as slabs, their layers now (measured reflectances
+    fitted, the tables built at ``subsurface``; cached for the render): a patch that is not skin, or that the
+    volumetric level's depth cap cannot render, refused naming it, before anything renders. Nothing at ``direct``.
+    """
+    if CHART_SUBSURFACE_VOLUME.name in request.level:
+        from .subsurface_chart import subsurface_chart
+
+        subsurface_chart(request.scene, request.grid)
+    elif CHART_SUBSURFACE.name in request.level:
+        from .slab_chart import slab_chart
+
+        slab_chart(request.scene, request.grid)
 
 
 def _skin_patches(request) -> None:

@@ -32,13 +32,25 @@ def tables(request):
 
 class TestAgainstAddingDoubling:
     def test_the_brdf_at_64_points_angles(self, tables):
-        """At the 32 angles of a 64-point adding-doubling (none of the table's own), the table is within 0.03 %
-        (median) and 2 % (worst: dark skin, blue, near the normal, where 32 and 64 points themselves differ most)
-        (docs/subsurface.md has the measured 1.1e-4 to 2.2e-4 and 7.3e-3 to 1.4e-2)."""
-        table, fine, _ = tables
+        """
+        At the 32 angles of a 64-point adding-doubling (none of the table's own but the normal), the table is
+        within 0.03 % (median). Its largest differences are adding-doubling's own: at the normal, where both
+        quadratures have a node, 32 points differ from 64 by up to 2.4 % (dark skin, blue: the phase function's
+        delta-M truncation to as many terms as points) while the table is 32 points' to 0.1 % (its grid's
+        scaling); between its nodes it is within that difference and 0.5 % more, and below its last angle (μ
+        0.068, 86°, where it holds the light under the surface, ~0.5 % of a cosine-weighted hemisphere) within 2 %
+        (measured: 0.65 % light, 1.0 % dark; docs/subsurface.md has the figures).
+        """
+        table, fine, layers = tables
+        coarse = angular_reflectance([Slab(a.mu_a_per_mm, a.mu_s_per_mm, a.g, a.thickness_mm) for a in layers],
+                                     quad_pts=QUAD_PTS_TABLE)
+        np.testing.assert_allclose(table.brdf[:, -1, -1], coarse.brdf[:, -1, -1], rtol=1e-3)
+        own = np.max(np.abs(coarse.brdf[:, -1, -1] / fine.brdf[:, -1, -1] - 1))
         mo, mi = np.meshgrid(fine.mu, fine.mu, indexing="ij")
         relative = np.abs(table.value(mo, mi) / fine.brdf - 1)
-        assert np.median(relative) < 3e-4 and relative.max() < 0.02
+        held = (mo < coarse.mu[0]) | (mi < coarse.mu[0])
+        assert np.median(relative) < 3e-4 and relative[:, ~held].max() < own + 5e-3, (relative[:, ~held].max(), own)
+        assert relative[:, held].max() < 0.02
 
     def test_the_light_returned_from_each_angle(self, tables):
         """The table's directional-hemispherical reflectance (its albedo, from the nodes) at the 64-point angles,
