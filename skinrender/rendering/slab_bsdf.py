@@ -14,6 +14,12 @@ would call it per ray.
     the variant set; :func:`slab_bsdf_dict` the dictionary of one table.
 -   :func:`table_key`, :func:`table_of_key`: how a dictionary names its table.
 
+The table is named by a key, not carried in the dictionary, and the plugin
+exposes no parameter to ``mi.traverse``: another skin is another document,
+loaded anew (the spectral face renders' copy of new values into a kept
+document, :mod:`skinrender.rendering.face.revalue`, finds no match for it and
+loads it anew).
+
 Two lobes
 ---------
 -   **The surface** (component 0): the smooth boundary's Fresnel reflection,
