@@ -7,9 +7,11 @@ docs/subsurface.md, each figure with the load average beside it:
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py ladder    # the default ladder: estimated and measured
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py chart     # validate skin_patches --physics subsurface
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py calibration [SEEDS SPP]  # its difference test's false alarms
+    PYTHONPATH=$PWD python tools/measure_fast_subsurface.py patches [SEEDS SPP]  # the same on skin_patches
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py face [SIZE SPP]   # fast vs volumetric on the face
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py effective [SIZE SPP]  # two layers vs one medium, fast
     PYTHONPATH=$PWD python tools/measure_fast_subsurface.py sums [SIZE SPP]  # the skin's NCC of summed pixels
+    PYTHONPATH=$PWD python tools/measure_fast_subsurface.py rough [SPP]     # media under a rough boundary, a sky
 
 ``face`` runs ``skinrender ladder --levels direct,subsurface,interreflection+subsurface,subsurface-volume`` for the
 light, medium and dark skin of ``ladder --effects`` and prints, per tone, each level's eq4_shift (with its 95 %
@@ -163,6 +165,22 @@ FACE_LEVELS = ("direct", "subsurface", "interreflection+subsurface", "subsurface
 face itself reaches the skin), so the fast transport's like for like is ``interreflection+subsurface``."""
 
 
+def patches(seeds: int = 40, spp: int = 64) -> None:
+    """validate skin_patches --physics subsurface over seeds 0, 2, …: the difference test's alarms (family-wise
+    α 0.01 over the chart's 93 values) where the renderer is right, in one process (the fits once)."""
+    from skinrender.rendering.validation import validate
+
+    before, start, alarms, worst = _load(), time.perf_counter(), [], []
+    for seed in range(0, 2 * seeds, 2):
+        result = validate("skin_patches", CAMERA, 2856, 5900, spp=spp, seed=seed, physics="subsurface",
+                          tolerance=0.02)
+        worst.append(float(np.nanmax(np.abs(result.rendered - result.analytic) / result.sigma)))
+        if result.difference.outcome == "fail":
+            alarms.append((seed, round(worst[-1], 2)))
+    print(f"skin_patches at subsurface, {spp} spp, {seeds} seeds: difference alarms {alarms or 'none'}; largest |z| "
+          f"median {np.median(worst):.2f}, max {max(worst):.2f}; {time.perf_counter() - start:.0f} s ({before})")
+
+
 def face(size: int = 32, spp: int = 48) -> None:
     """The fast level against the volumetric reference on the face, per skin tone (a ladder each)."""
     from skinrender.studies.face.effects_table import SKIN_TONES
@@ -240,11 +258,50 @@ def sums(size: int = 32, spp: int = 128) -> None:
                   f"{time.perf_counter() - start:.0f} s")
 
 
+def rough(spp: int = 64) -> None:
+    """
+    The volumetric slab of the chart (two layers, at the origin, under a uniform sky, seen along the normal) with
+    its top boundary smooth (the chart's: its pixel is UR1) and rough (GGX α 0.35, the face's): each channel's mean
+    over adding-doubling's UR1, minus 1. A rough dielectric of one scattering off microfacets loses light at every
+    crossing and internal reflection, and light in skin meets its boundary from inside many times.
+    """
+    from skinrender.datasets.skin_model import SkinParameters, skin_layers
+    from skinrender.model.camera import camera
+    from skinrender.rendering.face.document import channel_integral
+    from skinrender.rendering.face.effects.subsurface import SUBSURFACE_ALPHA
+    from skinrender.rendering.renderer import emitter_grid
+    from skinrender.rendering.subsurface import SkinMedia, slab_reflectance
+    from skinrender.rendering.subsurface_chart import slab_document
+    from skinrender.rendering.variants import mitsuba
+    from skinrender.spectra import GRID_DEFAULT, planck
+
+    mi, grid, cam = mitsuba("scalar_spectral"), GRID_DEFAULT, camera(CAMERA)
+    sky = planck(emitter_grid(grid), 2856.0)
+    sky = sky / sky.max()
+    print(f"the chart's slab at the origin under a uniform sky, 16 × 16 px, {spp} spp ({_load()})")
+    for tone, melanin in SKINS.items():
+        layers = skin_layers(grid.wavelengths, SkinParameters(melanin=melanin))
+        media = SkinMedia(f"melanin {melanin}", None, None, layers, grid.wavelengths)
+        lam = emitter_grid(grid)
+        expected = channel_integral(cam, grid, lam, np.interp(lam, grid.wavelengths, slab_reflectance(layers)) * sky)
+        for alpha in (0.0, SUBSURFACE_ALPHA):
+            document = slab_document(mi, media, None, cam, grid, (0, 1, 2), 16, spp, "independent", sky)
+            if alpha > 0:
+                document["top"]["bsdf"] = {"type": "roughdielectric", "distribution": "ggx", "alpha": alpha,
+                                           "int_ior": float(layers[0].n), "ext_ior": 1.0}
+            start = time.perf_counter()
+            image = np.array(mi.render(mi.load_dict(document), seed=1), dtype=np.float64).reshape(-1, 3)
+            mean, se = image.mean(axis=0), image.std(axis=0, ddof=1) / np.sqrt(len(image))
+            print(f"{tone}, top boundary {'smooth' if alpha == 0 else f'GGX α {alpha}'}: mean/UR1 − 1 "
+                  f"{np.round(mean / expected - 1, 4).tolist()} (± {np.round(2 * se / expected, 4).tolist()} at 2 SE); "
+                  f"{time.perf_counter() - start:.0f} s")
+
+
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else ""
     numbers = [int(v) for v in sys.argv[2:]]
     tasks = {"table": table, "setup": setup, "ladder": ladder, "chart": chart, "calibration": calibration,
-             "face": face, "effective": effective, "sums": sums}
+             "patches": patches, "face": face, "effective": effective, "sums": sums, "rough": rough}
     if what not in tasks:
         raise SystemExit(__doc__)
     tasks[what](*numbers)
