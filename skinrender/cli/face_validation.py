@@ -101,7 +101,7 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     check_samples(settings.spp, face_pixels(scene, None if size is None else integer_in(size, "--size", 1, SIZE_MAX)))
     each = max(-(-int(settings.spp) // REPLICATES), SPP_REPLICATE_MIN)  # a replicate's spp
     request = face_request_of(args, scene, settings, spp=each)
-    check_request_work(args, request, REPLICATES)  # at its level's rate (subsurface: far slower)
+    check_request_work(args, request, REPLICATES)  # at its level's rate (subsurface-volume: far slower)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     detection = {"detection_tolerance": check_tolerance(
         getattr(args, "detection_tolerance", None) or DETECTION_TOLERANCE, "--detection-tolerance")}
