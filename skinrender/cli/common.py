@@ -17,7 +17,7 @@ import sys
 from pathlib import Path
 
 from ..errors import SkinrenderError, naming
-from ..files import check_output_path, shown
+from ..files import check_output_path, shown, write_stdout
 
 __all__ = [
     "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
@@ -152,13 +152,14 @@ def check_render_work(args: argparse.Namespace, pixels: int, spp: int, renders: 
 def emit(args: argparse.Namespace, document: dict, text: str) -> None:
     """
     Print ``document`` as one JSON document (``--json``) or ``text``. The document is made whole before a
-    byte is written: one that cannot be (a NaN or infinity left in it) prints nothing, never half of it.
+    byte is written: one that cannot be (a NaN or infinity left in it) prints nothing, never half of it; every
+    byte's write is checked (:func:`skinrender.files.write_stdout`: a full disk under ``> out.json`` is an error
+    naming standard output, exit status 1, never a short document and status 0).
     """
     if args.json:
-        whole = json.dumps(document, indent=2, allow_nan=False)
-        sys.stdout.write(whole + "\n")
+        write_stdout(json.dumps(document, indent=2, allow_nan=False) + "\n")
     else:
-        sys.stdout.write(text.rstrip("\n") + "\n")
+        write_stdout(text.rstrip("\n") + "\n")
 
 
 def table(rows: list[list[str]], header: list[str]) -> str:
@@ -224,6 +225,12 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message: str):  # noqa: D102 - argparse's hook
         self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
+
+    def _print_message(self, message: str, file=None) -> None:  # argparse's hook: --help and usage
+        if message and (file is None or file is sys.stdout):
+            write_stdout(message)  # checked: a full disk under `--help > f` is an error, not a short file
+        elif message:
+            super()._print_message(message, file)
 
 
 flag = naming

@@ -28,12 +28,17 @@ inequality ``P(X − μ ≥ kσ) ≤ 1 / (1 + k²)`` for the equivalence, Chebys
 — which needs the standard error alone.
 
 A tolerance is relative: each channel's allowed ``|error|`` is ``tolerance ×
-max(|analytic|, DARK_LEVEL × v)`` with ``v`` = :data:`~skinrender.constants.CONSTANT_OUTPUT_SCALE`
-(255, white at p = c), so a channel darker than :data:`DARK_LEVEL` of white is
-held to the absolute floor ``tolerance × DARK_LEVEL × v`` output units rather
-than to a relative error of a near-zero value.
+max(|analytic|, DARK_LEVEL × v)`` with ``v`` the white level of the values'
+units (``scale``: a perfect white's brightest channel in the render, e.g.
+:func:`~skinrender.rendering.validation.white_level`; 255 =
+:data:`~skinrender.constants.CONSTANT_OUTPUT_SCALE` at p = c with the white
+normalisation), so a channel darker than :data:`DARK_LEVEL` of white is held
+to the absolute floor ``tolerance × DARK_LEVEL × v`` rather than to a relative
+error of a near-zero value. The floor follows the white actually rendered: with
+``--normalization none`` a white is a few output units, and a floor of 1 % of
+255 there let a black patch's channel err by several times its value.
 
--   :data:`TOLERANCE_DEFAULT`, :data:`DARK_LEVEL`, :func:`check_tolerance`,
+-   :data:`TOLERANCE_DEFAULT`, :data:`TOLERANCE_MIN`, :data:`DARK_LEVEL`, :func:`check_tolerance`,
     :func:`tolerance_scale`, :func:`agreement`.
 
 Units: output units (255 for white at p = c) unless said; tolerances and
@@ -57,7 +62,7 @@ from ..evaluation.verdict import (ALPHA_DIFFERENCE, ALPHA_EQUIVALENCE, critical_
                                   samples_needed, sidak)
 from ..hints import ArrayLike, NDArrayFloat
 
-__all__ = ["TOLERANCE_DEFAULT", "DARK_LEVEL", "check_tolerance", "tolerance_scale", "agreement"]
+__all__ = ["TOLERANCE_DEFAULT", "TOLERANCE_MIN", "DARK_LEVEL", "check_tolerance", "tolerance_scale", "agreement"]
 
 TOLERANCE_DEFAULT = 0.01
 """Default relative tolerance of ``validate``: 1 % of each lit channel. At the default 256 spp a Macbeth
@@ -65,23 +70,34 @@ chart's bound is ~0.05 % (measured, docs/verdicts.md), so a correct render passe
 ~6 %) it is inconclusive."""
 
 DARK_LEVEL = 0.01
-"""A channel below this fraction of white (``v`` = 255 output units) is dark: its tolerance is absolute,
-``tolerance × DARK_LEVEL × v`` output units (2.55 × tolerance)."""
+"""A channel below this fraction of white (``v``: a perfect white's brightest channel, 255 output units at p = c
+with the white normalisation) is dark: its tolerance is absolute, ``tolerance × DARK_LEVEL × v`` (2.55 ×
+tolerance at v = 255)."""
+
+
+TOLERANCE_MIN = 2.0**-24
+"""Smallest relative tolerance, ≈ 6e-8: float32's unit round-off. Renders are float32, so a smaller relative error
+cannot be resolved (and a tolerance of 5e-324 overflowed the bounds' ratios to infinity)."""
 
 
 def check_tolerance(value, name: str = "tolerance") -> float:
     """
-    A relative tolerance in (0, 1), else a one-line :class:`SkinrenderError` naming ``name``.
+    A relative tolerance in [:data:`TOLERANCE_MIN`, 1), else a one-line :class:`SkinrenderError` naming ``name``.
 
     >>> check_tolerance("0.01")
     0.01
+    >>> check_tolerance(5e-324, "--tolerance")
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: --tolerance must be a relative error in [5.96e-08, 1) ...
     """
     try:
         tolerance = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         tolerance = math.nan
-    if isinstance(value, bool) or not (0 < tolerance < 1):
-        raise SkinrenderError(f"{name} must be a relative error in (0, 1), e.g. 0.01 for 1 %, got {value!r}",
+    if isinstance(value, bool) or not (TOLERANCE_MIN <= tolerance < 1):
+        raise SkinrenderError(f"{name} must be a relative error in [{TOLERANCE_MIN:.3g}, 1) (its lower end is "
+                              f"float32's resolution: renders are float32), e.g. 0.01 for 1 %, got {value!r}",
                               role="tolerance", flag=flag_of(name))
     return tolerance
 
@@ -120,6 +136,9 @@ def agreement(rendered: ArrayLike, analytic: ArrayLike, sigma: ArrayLike, tolera
         A known systematic allowance (the float32 floor), left out of the difference test only.
     what
         The values, in words, for the tests' statements.
+    scale
+        The white level ``v`` of the values' units (a perfect white's brightest channel; 255 output units at
+        p = c with the white normalisation): a value below ``DARK_LEVEL × v`` is held to that absolute floor.
     skewness, skew_max
         Each error's skewness and the largest at which its normal law is trusted: a value beyond is held to
         distribution-free bounds (Cantelli's one-sided for the equivalence, Chebyshev's two-sided for the
