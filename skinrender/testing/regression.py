@@ -63,14 +63,41 @@ from ..evaluation.verdict import ALPHA_DIFFERENCE, Verdict, difference, sidak
 from ..hints import NDArrayFloat
 from .replicates import REPLICATES, measure_face, region_values
 
-__all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
+__all__ = ["REFERENCE_SPP_FACTOR", "SEED_MAX", "reference_seed", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
            "Comparison", "scene_kind", "measure", "values_of", "setting_notes", "compare"]
 
 REFERENCE_SPP_FACTOR = 4
-"""A reference is rendered at this many times the check's spp (and the same seed): its own noise then moves
-every later check's z by at most ``1/√5`` of its deviation (``1/√2`` at equal spp), so that one unlucky
-reference does not raise the false-alarm rate of all the checks against it, as Mitsuba's high-spp references
-do not."""
+"""A reference is rendered at this many times the check's spp (with its own seed, :func:`reference_seed`): its
+own noise then moves every later check's z by at most ``1/√5`` of its deviation (``1/√2`` at equal spp), so that
+one unlucky reference does not raise the false-alarm rate of all the checks against it, as Mitsuba's high-spp
+references do not."""
+
+SEED_MAX = 2**32 - 2
+"""Largest seed a measurement takes: Mitsuba's seeds are 32-bit and a chart's calibration render uses seed + 1."""
+
+
+def reference_seed(seed: int) -> int:
+    """
+    The seed a check's reference renders with, drawn from the check's ``seed`` by numpy's ``SeedSequence`` (a
+    hash: the reference's sample streams are independent of the check's).
+
+    Mitsuba seeds each pixel's sample stream from (seed, pixel): a reference rendered with the check's own seed
+    at 4× its spp began with the check's very samples (on the scalar variants exactly, on LLVM in one pixel of
+    four), so the difference's variance was 0.55–0.97 of what the test assumes, its family-wise false-alarm rate
+    fell from 0.01 to 6e-5–0.003 and a shift had to be 1.1–1.3× larger to be caught. Never within one of
+    ``seed`` (each measurement's calibration render takes seed + 1), and at most :data:`SEED_MAX`.
+
+    >>> reference_seed(0), reference_seed(0) == reference_seed(0), reference_seed(1) == reference_seed(0)
+    (..., True, False)
+    """
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed <= SEED_MAX:
+        raise SkinrenderError(f"seed must be an integer in [0, {SEED_MAX}], got {seed!r}", role="seed")
+    seed = int(seed)
+    for candidate in np.random.SeedSequence([seed, 0x2EFE2E]).generate_state(8):
+        candidate = int(candidate)
+        if candidate <= SEED_MAX and abs(candidate - seed) > 1:
+            return candidate
+    raise SkinrenderError(f"seed {seed}: no independent reference seed found")  # 8 draws all within 1: never
 
 SPP_CHART = 64
 """Samples per pixel of a chart check unless given (a check ~0.2 s after the first; a 2 nm shift at z > 10)."""
@@ -224,7 +251,8 @@ def _integer(value, name: str, low: int, high: int) -> int:
 
 def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed: int = 0, physics: str | None = None,
             skin: str | None = None, imager: str | None = None, illuminance: float | None = None,
-            size: int | None = None, variant: str | None = None, factor: int = 1) -> Measurement:
+            size: int | None = None, variant: str | None = None, factor: int = 1,
+            render_seed: int | None = None) -> Measurement:
     """
     Render ``scene`` (a chart or a face) through ``camera`` under the Planckian ``prevailing`` light (K),
     white balanced to ``calibration`` (K), and reduce it to the values a regression compares (module
@@ -233,8 +261,9 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     ``spp`` defaults to :data:`SPP_CHART` or :data:`SPP_FACE`; ``physics``, ``skin`` and ``size`` (pixels,
     default :data:`SIZE_FACE`) go with faces; ``imager`` (and ``illuminance``, lx) put the image sensor's
     noise in (a face: physics ``noise``). ``factor``: render at ``factor × spp`` (a reference,
-    :data:`REFERENCE_SPP_FACTOR`); the settings keep ``spp_requested`` the check's. Any bad argument raises a
-    one-line :class:`SkinrenderError` naming it.
+    :data:`REFERENCE_SPP_FACTOR`); the settings keep ``spp_requested`` the check's. ``render_seed``: render with
+    this seed rather than ``seed`` (a reference, :func:`reference_seed`); the settings keep ``seed`` the check's
+    and add ``reference_seed``. Any bad argument raises a one-line :class:`SkinrenderError` naming it.
     """
     from ..model.camera import camera as camera_of
     from ..rendering.exr import camera_attributes
@@ -255,21 +284,23 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     p, c = _planckian(prevailing, "prevailing"), _planckian(calibration, "calibration")
     spp = _integer(SPP_CHART if kind == "chart" and spp is None else SPP_FACE if spp is None else spp, "spp", 1,
                    2**31)
-    seed = _integer(seed, "seed", 0, 2**32 - 1)
+    seed = _integer(seed, "seed", 0, SEED_MAX + 1)
+    renders = seed if render_seed is None else _integer(render_seed, "render_seed", 0, SEED_MAX + 1)
     if illuminance is not None and not (isinstance(illuminance, (int, float)) and math.isfinite(illuminance)
                                         and illuminance > 0):
         raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance!r}")
     if kind == "chart":
-        found = _chart(chart, cam, p, c, spp * factor, seed, imager, illuminance, variant)
+        found = _chart(chart, cam, p, c, spp * factor, renders, imager, illuminance, variant)
         name = chart.name
     else:
-        found = Measurement("face", *measure_face(scene, cam, p, c, spp * factor, seed, physics, skin, imager,
+        found = Measurement("face", *measure_face(scene, cam, p, c, spp * factor, renders, physics, skin, imager,
                                                   illuminance, SIZE_FACE if size is None else size, variant))
         name = found.settings.pop("scene_name")
     from .. import __version__
 
     settings = {"kind": kind, "scene": name, **camera_attributes(cam), "prevailing_K": p, "calibration_K": c,
-                "spp_requested": spp, "seed": seed, **found.settings, "skinrender_version": __version__}
+                "spp_requested": spp, "seed": seed, **({} if render_seed is None else {"reference_seed": renders}),
+                **found.settings, "skinrender_version": __version__}
     return Measurement(found.kind, found.image, found.labels, found.channels, found.regions, found.items,
                        found.mean, found.standard_error, found.dof, settings, chart if kind == "chart" else None)
 
