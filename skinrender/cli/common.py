@@ -23,7 +23,7 @@ __all__ = [
     "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "settings_of", "choices_help", "coverage_hint",
-    "interruptible", "check_render_work", "add_max_minutes",
+    "interruptible", "check_render_work", "add_max_minutes", "check_dask",
 ]
 
 HELP_CAMERA = (
@@ -86,6 +86,23 @@ def add_search(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--workers", type=int, help="processes (default: every core)")
     parser.add_argument("--dask", metavar="ADDRESS", help="run on a Dask cluster (scheduler address, tcp://host:8786)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
+
+
+def check_dask(args: argparse.Namespace) -> str | None:
+    """
+    ``--dask`` checked before any work: ``None`` where not given, else the address once a Dask scheduler answered
+    there with Dask's handshake within :data:`~skinrender.execution.DASK_TIMEOUT_S` s
+    (:func:`~skinrender.execution.check_dask_address`); an empty address, another kind of server (an HTTP one) or
+    none at all is a one-line refusal naming ``--dask``.
+    """
+    address = getattr(args, "dask", None)
+    if address is None:
+        return None
+    from ..execution import check_dask_address
+    from ..extras import require
+
+    require("dask", "--dask")
+    return check_dask_address(address, "--dask")
 
 
 def add_render(parser: argparse.ArgumentParser, spp_auto: bool = False) -> None:

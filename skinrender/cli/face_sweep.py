@@ -17,7 +17,7 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
+from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_dask, check_output, emit, flag, integer_in,
                      interruptible, positive_number, table, variant_of)
 from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
 
@@ -135,8 +135,7 @@ def _checked(args: argparse.Namespace) -> dict:
     variant_of(args.variant)
     lux = noise_sensor(args, levels)
     max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
-    if args.dask is not None and not str(args.dask).strip():
-        raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one", flag="--dask")
+    check_dask(args)  # an empty address, another server or none there: refused before any render
     return {
         "cameras": cams, "lights": pairs, "skins": skins, "levels": levels, "scene": args.scene,
         "size": integer_in(args.size, "--size", 1, SIZE_MAX), "spp": integer_in(args.spp, "--spp", 1, SPP_MAX),

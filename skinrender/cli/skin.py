@@ -14,6 +14,7 @@ import sys
 import numpy as np
 
 from ..errors import SkinrenderError
+from ..files import write_output
 from .common import add_common, check_output, emit, flag, integer_in, table
 
 PARAMETER_FLAGS = {
@@ -52,7 +53,7 @@ def add_parsers(commands) -> None:
                    help="reflectance method: " + "; ".join(f"{k}: {v}" for k, v in METHOD_MEANINGS.items()))
     p.add_argument("--grid", default="400:700:1", help="wavelengths START:END:STEP in nm (default 400:700:1)")
     p.add_argument("--plot", help="write R(λ) beside the measured skin spectra's range (--compare) to this PNG")
-    p.add_argument("--compare", default="skin",
+    p.add_argument("--compare", default=None,
                    help="with --plot: comma-separated measured skin sets (names or CSV paths) drawn as ranges "
                         "(default skin, the 30 Vrhel skins; e.g. skin,../shared/data/skin_nist.csv)")
     p.add_argument("--fit", metavar="FILE.csv",
@@ -106,7 +107,7 @@ def command_skin(args: argparse.Namespace) -> None:
 
     method = _method(args)
     check_output(args.plot, "--plot", (".png",))
-    if args.plot is None and args.compare != "skin":
+    if args.plot is None and args.compare is not None:  # given at all: even its default's value is a request
         raise SkinrenderError("--compare names the measured sets drawn with --plot: give --plot FILE.png",
                               flag="--compare")
     compare = _compare_sets(args) if args.plot else []
@@ -128,8 +129,9 @@ def command_skin(args: argparse.Namespace) -> None:
     if args.plot:
         from ..studies.figures import figure_skin_model
 
-        figure_skin_model(lam, reflectance, f"skin model ({method}), melanin {parameters.melanin:g}, "
-                          f"blood {parameters.blood:g}", compare, args.plot)
+        write_output(args.plot, lambda stream: figure_skin_model(  # whole or not at all, its failure naming --plot
+            lam, reflectance, f"skin model ({method}), melanin {parameters.melanin:g}, blood {parameters.blood:g}",
+            compare, stream), "--plot")
         document["plot"] = args.plot
     emit(args, document, _text(method, parameters, lam, reflectance, layers, args.plot))
 
@@ -138,7 +140,7 @@ def _compare_sets(args: argparse.Namespace) -> list[tuple]:
     """The measured sets of ``--compare``: ``(name, wavelengths nm, values)`` each, checked before any work."""
     from ..datasets import reflectances
 
-    items = [item.strip() for item in str(args.compare).split(",")]
+    items = [item.strip() for item in str("skin" if args.compare is None else args.compare).split(",")]
     if not all(items):
         raise SkinrenderError(f"--compare: expected comma-separated reflectance sets, got {args.compare!r}",
                               flag="--compare")
@@ -174,7 +176,7 @@ def _command_fit(args: argparse.Namespace) -> None:
     for name, (option, _) in PARAMETER_FLAGS.items():
         if name not in HELD_IN_FIT and getattr(args, name) is not None:
             raise SkinrenderError(f"{option} is fitted with --fit; only --epidermis-mm and --n are held", flag=option)
-    if args.plot is not None or args.compare != "skin":
+    if args.plot is not None or args.compare is not None:
         raise SkinrenderError("--plot and --compare draw the forward model; they do not go with --fit", flag="--plot")
     if args.grid != "400:700:1":
         raise SkinrenderError("--grid sets the forward model's wavelengths; --fit uses the table's own "

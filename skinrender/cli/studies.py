@@ -11,7 +11,7 @@ from ..constants import SENSOR_RULE
 from ..errors import SkinrenderError
 from ..workload import check_work
 from ..files import write_output
-from .common import (HELP_CAMERA, add_common, add_max_minutes, add_grid, add_search, check_output, flag, integer_in,
+from .common import (HELP_CAMERA, add_common, add_max_minutes, add_grid, add_search, check_dask, check_output, flag, integer_in,
                      emit, positive_number, table)
 
 
@@ -142,6 +142,7 @@ def command_reproduce(args: argparse.Namespace) -> None:
         raise SkinrenderError(f"--stage1-camera is the camera of --illuminants auto; got --illuminants {args.illuminants!r}",
                               flag="--stage1-camera")
     check_sweep_flags(args)
+    check_dask(args)
     if args.sweep:
         from ..studies.paper.sweep import reproduce_sweep
         from ..studies.paper.unknowns import Setting

@@ -163,7 +163,11 @@ def check_parameters(parameters: SkinParameters) -> None:
     >>> check_parameters(SkinParameters(melanin=5))
     Traceback (most recent call last):
     ...
-    skinrender.errors.SkinrenderError: melanin must be in [0, 1] (a volume fraction), got 5
+    skinrender.errors.SkinrenderError: melanin must be in [0, 1] (a volume fraction), got 5.0
+    >>> check_parameters(SkinParameters(melanin=1.0000001))
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: melanin must be in [0, 1] (a volume fraction), got 1.0000001
     """
     for name, (low, high, open_low, what) in PARAMETER_RANGES.items():
         value = getattr(parameters, name)
@@ -172,10 +176,11 @@ def check_parameters(parameters: SkinParameters) -> None:
         try:
             value = float(value)
         except (TypeError, ValueError):
-            raise SkinrenderError(f"{name} must be a number, got {value!r}") from None
+            raise SkinrenderError(f"{name} must be a number, got {value!r}", role=name) from None
         if not (math.isfinite(value) and (value > low if open_low else value >= low) and value <= high):
             interval = f"({low:g}, {high:g}]" if open_low else f"[{low:g}, {high:g}]"
-            raise SkinrenderError(f"{name} must be in {interval} ({what}), got {value:g}")
+            # repr, not :g: 1.0000001 is not 1 (it was shown as "got 1", a value inside the range)
+            raise SkinrenderError(f"{name} must be in {interval} ({what}), got {value!r}", role=name)
 
 
 @lru_cache(maxsize=1)
