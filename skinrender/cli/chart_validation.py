@@ -150,6 +150,13 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     if args.gamut and args.imager is not None:
         raise SkinrenderError("--gamut compares the noise-free render's gamut volumes: it goes without --imager",
                               flag="--gamut")
+    if args.gamut and (args.normalization != "white" or args.knee):  # its volumes were taken with WP, no knee
+        given = "--knee" if args.knee else f"--normalization {args.normalization}"
+        raise SkinrenderError(f"--gamut compares the volumes of Eq. 4 with the white normalisation and no knee; "
+                              f"{given} would not apply to them: drop one of the two", flag="--gamut")
+    if args.knee and args.imager is not None:  # the sensor's tests compare linear codes with its model
+        raise SkinrenderError("--knee: validate --imager tests the sensor's linear codes (DN) against its model; "
+                              "drop --knee", flag="--knee")
     settings = settings_of(args, auto)
     requested = "auto" if auto else settings.spp
     inputs = chart_inputs(args, scene)

@@ -23,7 +23,7 @@ __all__ = [
     "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "settings_of", "choices_help", "coverage_hint",
-    "interruptible", "check_render_work", "add_max_minutes", "check_dask",
+    "interruptible", "check_render_work", "add_max_minutes", "check_dask", "check_render_lights",
 ]
 
 HELP_CAMERA = (
@@ -330,6 +330,23 @@ def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = ()) ->
     if suffixes and Path(path).suffix.lower() not in suffixes:
         raise SkinrenderError(f"{name}: {shown(path)} must end in {' or '.join(suffixes)}", flag=name)
     return target
+
+
+def check_render_lights(cam, temperatures: dict, grid=None) -> None:
+    """
+    Each render light gives the camera light on ``grid`` (``temperatures``: ``{"prevailing": K, "calibration": K}``),
+    else a one-line error naming its flag and the light by its role (``--calibration: calibration illuminant 1K
+    gives no light …``).
+    """
+    from ..model.illuminant import illuminants_array
+    from ..model.response import check_light, spds_on
+    from ..spectra import GRID_DEFAULT
+
+    grid = grid or GRID_DEFAULT
+    for name, kelvin in temperatures.items():
+        items, _ = illuminants_array([kelvin])
+        flag({"camera": "--camera", None: f"--{name}"}, check_light, cam, items, spds_on(items, grid), grid,
+             f"{name} illuminant")
 
 
 def check_lights(args: argparse.Namespace, cam, temperatures, grid=None, name: str = "--illuminants") -> None:

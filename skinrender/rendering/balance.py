@@ -34,8 +34,8 @@ from ..hints import NDArrayFloat
 from ..methods import validate_method
 from ..model.camera import Camera, camera
 from ..model.illuminant import illuminant
-from ..model.response import NORMALISATIONS, gain, knee as apply_knee, normalisation_factor
-from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..model.response import NORMALISATIONS, check_light, gain, knee as apply_knee, normalisation_factor, spds_on
+from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid
 from .renderer import RawRender, render_raw
 from .scene import ChartScene, load_chart_scene
 from .settings import RenderSettings
@@ -131,10 +131,22 @@ class Rendering:
         return draw_figure("chart", self, path, **options)
 
 
-def _temperature(spec) -> float:
-    item = illuminant(spec)
+def _temperature(spec, role: str = "illuminant", cam: Camera | None = None,
+                 grid: WavelengthGrid = GRID_DEFAULT) -> float:
+    """A Planckian light's temperature (K); with ``cam``, checked to give it light on ``grid`` before anything
+    renders (a calibration light of 1 K was refused only after the prevailing render), the argument named."""
+    try:
+        item = illuminant(spec)
+    except SkinrenderError as error:
+        raise error.reworded(f"{role}: {error.message}", role=role) from None
     if item.temperature is None:
-        raise SkinrenderError(f"rendering needs a Planckian illuminant (kelvin, A or H), got {spec!r}")
+        raise SkinrenderError(f"{role}: rendering needs a Planckian illuminant (kelvin, A or H), got {spec!r}",
+                              role=role)
+    if cam is not None:
+        try:
+            check_light(cam, [item], spds_on([item], grid), grid, f"{role} illuminant")
+        except SkinrenderError as error:
+            raise error.reworded(role=role if error.role == "illuminant" else error.role) from None
     return float(item.temperature)
 
 def pair_gain(white_p: NDArrayFloat, white_c: NDArrayFloat, normalization: str, prevailing: float,
@@ -264,7 +276,9 @@ def render(
     chart = load_chart_scene(scene)
     cam = camera(camera_)
     validate_method(normalization, NORMALISATIONS, "normalization")
-    p, c = _temperature(prevailing), _temperature(calibration)
+    grid = as_grid(grid)
+    p, c = (_temperature(light, role, cam, grid) for light, role in ((prevailing, "prevailing"),
+                                                                     (calibration, "calibration")))
     cache = {} if cache is None else cache
     info = {}
     if physics == "subsurface":

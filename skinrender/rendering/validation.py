@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
+from ..errors import SkinrenderError
 from ..evaluation.gamut import gamut
 from ..evaluation.verdict import ALPHA_DIFFERENCE, ALPHA_EQUIVALENCE, Verdict
 from ..hints import NDArrayFloat
@@ -369,6 +370,9 @@ def validate_gamut(
     """
 
     tolerance = check_tolerance(tolerance, "tolerance")
+    if isinstance(draws, bool) or not isinstance(draws, (int, np.integer)) or not 2 <= draws <= 100_000:
+        raise SkinrenderError(f"draws must be an integer in [2, 100000] (redraws of the patch means), got {draws!r}",
+                              role="draws")
     settings = RenderSettings.of(settings, **options)
     seed = settings.seed
     chart = load_chart_scene(scene)

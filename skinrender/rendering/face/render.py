@@ -53,7 +53,7 @@ from ...hints import NDArrayFloat
 from ...methods import validate_method
 from ...model.camera import Camera, camera
 from ...model.illuminant import illuminant
-from ...model.response import gain
+from ...model.response import check_light, gain, spds_on
 from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
 from ..exr import camera_attributes, write_exr, write_preview
 from ..outputs import draw_figure, save_result
@@ -316,6 +316,13 @@ def render_face(
         face = replace(face, **{name: light})
     p = getattr(face, name).temperature if getattr(face, name) is not None else None
     c = p if calibration is None else planckian_temperature(calibration, "calibration")
+    for role, kelvin in (("prevailing", p), ("calibration", c)):  # before anything renders, the light named
+        if kelvin is not None:
+            item = illuminant(kelvin)
+            try:
+                check_light(cam, [item], spds_on([item], grid), grid, f"{role} illuminant")
+            except SkinrenderError as error:
+                raise error.reworded(role=role if error.role == "illuminant" else error.role) from None
     lights = level.lights(face)
     white_p, white_c = white_references(face, cam, c, grid)
     scale = max(float(np.max(light_irradiance(light, grid)[1])) for light in lights.values())
