@@ -19,6 +19,13 @@ check's): the z spread then falls below 1.
     PYTHONPATH=. python tools/calibrate_render_regression.py aa --variant llvm_ad_spectral --seeds 200
     PYTHONPATH=. python tools/calibrate_render_regression.py aa --variant scalar_spectral --seeds 200
     PYTHONPATH=. python tools/calibrate_render_regression.py aa --variant scalar_spectral --seeds 50 --same-seed
+
+``se`` (are the standard errors right?): ``--seeds`` checks (seeds 1, 3, …) of the same chart; per value the
+variance of its mean across seeds over the mean of its stated SE², averaged per channel and overall (1 where
+they are right; < 1 where they overstate the noise, which makes the test conservative), at A → 5000 K and at
+A → A.
+
+    PYTHONPATH=. python tools/calibrate_render_regression.py se --seeds 40
 """
 
 from __future__ import annotations
@@ -96,9 +103,28 @@ def aa(variant: str, seeds: int, first: int, same_seed: bool, scene: str) -> dic
     return out
 
 
+def se_spread(seeds: int, scene: str) -> None:
+    """The observed spread of each value across seeds against its stated standard error (module docstring)."""
+    folder = Path(tempfile.mkdtemp())
+    camera = csv_camera(folder / "camera.csv")
+    for calibration in (5000, "A"):
+        found = [measure(scene, camera, "A", calibration, seed=2 * s + 1) for s in range(seeds)]
+        mean = np.array([m.mean for m in found])
+        se = np.array([m.standard_error for m in found])
+        ratio = mean.var(axis=0, ddof=1) / (se**2).mean(axis=0)
+        per = ratio.reshape(-1, 3)
+        out = {"scene": scene, "prevailing": "A", "calibration": calibration, "seeds": seeds,
+               "variance_ratio": float(np.mean(ratio)), "per_channel": per.mean(axis=0).tolist(),
+               "white_patch": per[-1].tolist(), "other_patches": per[:-1].mean(axis=0).tolist()}
+        print(f"{scene}, A → {calibration}: observed / stated variance {out['variance_ratio']:.3f} (channels "
+              + ", ".join(f"{v:.2f}" for v in out["per_channel"]) + "; white patch "
+              + ", ".join(f"{v:.2f}" for v in out["white_patch"]) + f") over {seeds} seeds")
+        print(json.dumps(out))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("mode", choices=["chart", "face", "aa"], nargs="?", default="chart")
+    parser.add_argument("mode", choices=["chart", "face", "aa", "se"], nargs="?", default="chart")
     parser.add_argument("--variant", default="llvm_ad_spectral", help="aa: the Mitsuba variant")
     parser.add_argument("--seeds", type=int, default=200, help="aa: seeds (checks, each with its reference)")
     parser.add_argument("--first", type=int, default=1, help="aa: the first seed")
@@ -108,6 +134,8 @@ def main() -> None:
     args = parser.parse_args()
     if args.mode == "aa":
         aa(args.variant, args.seeds, args.first, args.same_seed, args.scene)
+    elif args.mode == "se":
+        se_spread(args.seeds, args.scene)
     else:
         power(args.mode)
 

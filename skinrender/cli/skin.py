@@ -100,7 +100,8 @@ def _method(args: argparse.Namespace) -> str:
 def command_skin(args: argparse.Namespace) -> None:
     if args.fit is not None:
         return _command_fit(args)
-    for option, default in (("fit_range", "400:700"), ("workers", None), ("max_spectra", str(SPECTRA_MAX))):
+    for option, default in (("fit_range", "400:700"), ("workers", None), ("max_spectra", str(SPECTRA_MAX)),
+                            ("quiet", False)):  # --quiet silences the fit's progress: nothing else has one
         if getattr(args, option) != default:
             raise SkinrenderError(f"--{option.replace('_', '-')} goes with --fit", flag=f"--{option.replace('_', '-')}")
     from ..datasets.skin_model import skin_layers, skin_reflectance
@@ -115,6 +116,9 @@ def command_skin(args: argparse.Namespace) -> None:
     if parameters.surface is not None and method != "kubelka-munk":
         raise SkinrenderError("--surface is the kubelka-munk method's flat surface reflectance; adding-doubling's "
                               "surface is its Fresnel boundary (--n)", flag="--surface")
+    if args.n is not None and method == "kubelka-munk":  # it changed nothing there: no boundary refracts
+        raise SkinrenderError("--n is the refractive index of adding-doubling's Fresnel boundary; kubelka-munk has "
+                              "none (its surface is --surface's flat reflectance)", flag="--n")
     from .common import grid_of
 
     grid = grid_of(args)
