@@ -295,6 +295,10 @@ def render_face(
     skin = face.skin if skin is None else str(skin).strip()
     skin_reflectance_of(skin, grid, "skin")
     validate_method(sampler, SAMPLERS, "sampler")
+    if exposure is not None:  # checked before anything renders (it was refused after the white references)
+        from ..imaging import check_exposure
+
+        check_exposure(exposure)
     if not (isinstance(spp, (int, np.integer)) and not isinstance(spp, bool) and spp >= 1):
         raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
     if not (isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and 0 <= seed < 2**32):
