@@ -49,6 +49,8 @@ def run(scene, camera, prevailing, calibration, spp, seed, physics, normalizatio
         with np.errstate(divide="ignore", invalid="ignore"):
             kurtosis[i] = np.where(var > 0, (centred**4).mean(axis=0) / var**2 - 3.0, 0.0)
     return {"error": error, "half": half, "sigma": v.sigma, "kurtosis": kurtosis,
+            "skewness": np.zeros(error.shape) if v.skewness is None else np.asarray(v.skewness),
+            "dof": float(np.min(v.rendering.patches.count) - 1),
             "skewed": int(v.verdict.details.get("skewed", 0)), "outcome": v.verdict.outcome,
             "white_level": v.white_level, "critical": v.verdict.details.get("critical")}
 
@@ -96,6 +98,7 @@ def main() -> None:
     parser.add_argument("--physics", default="direct")
     parser.add_argument("--normalization", default="white")
     parser.add_argument("--tolerance", type=float, default=0.01)
+    parser.add_argument("--save", help="write every run's errors, bounds, SEs and skewnesses to this .npz")
     args = parser.parse_args()
     from skinrender.model.illuminant import illuminant
 
@@ -107,6 +110,9 @@ def main() -> None:
            "physics": args.physics, "normalization": args.normalization, "seeds": args.seeds,
            "first_seed": args.first, **coverage(runs), "elapsed_s": time.perf_counter() - start}
     print(json.dumps(out))
+    if args.save:
+        np.savez(args.save, **{key: np.array([r[key] for r in runs]) for key in
+                                ("error", "half", "sigma", "kurtosis", "skewness", "critical", "dof")})
     print(f"{args.scene} ({args.physics}) through {args.camera}, {p:g} K / {c:g} K, {args.spp} spp, {args.seeds} "
           f"seeds: coverage at a truth above every value {out['truth_above']['coverage']:.3f}, below "
           f"{out['truth_below']['coverage']:.3f} (nominal ≥ 0.95 each); pixels' excess kurtosis up to "

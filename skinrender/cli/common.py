@@ -20,10 +20,10 @@ from ..errors import SkinrenderError, naming
 from ..files import check_output_path, shown, write_stdout
 
 __all__ = [
-    "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
+    "Parser", "flag", "imaging_options", "camera_of", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "settings_of", "choices_help", "coverage_hint",
-    "interruptible", "check_render_work", "add_max_minutes", "check_dask", "check_render_lights",
+    "interruptible", "check_render_work", "add_max_minutes",
 ]
 
 HELP_CAMERA = (
@@ -86,23 +86,6 @@ def add_search(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--workers", type=int, help="processes (default: every core)")
     parser.add_argument("--dask", metavar="ADDRESS", help="run on a Dask cluster (scheduler address, tcp://host:8786)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
-
-
-def check_dask(args: argparse.Namespace) -> str | None:
-    """
-    ``--dask`` checked before any work: ``None`` where not given, else the address once a Dask scheduler answered
-    there with Dask's handshake within :data:`~skinrender.execution.DASK_TIMEOUT_S` s
-    (:func:`~skinrender.execution.check_dask_address`); an empty address, another kind of server (an HTTP one) or
-    none at all is a one-line refusal naming ``--dask``.
-    """
-    address = getattr(args, "dask", None)
-    if address is None:
-        return None
-    from ..execution import check_dask_address
-    from ..extras import require
-
-    require("dask", "--dask")
-    return check_dask_address(address, "--dask")
 
 
 def add_render(parser: argparse.ArgumentParser, spp_auto: bool = False) -> None:
@@ -330,34 +313,6 @@ def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = ()) ->
     if suffixes and Path(path).suffix.lower() not in suffixes:
         raise SkinrenderError(f"{name}: {shown(path)} must end in {' or '.join(suffixes)}", flag=name)
     return target
-
-
-def check_render_lights(cam, temperatures: dict, grid=None) -> None:
-    """
-    Each render light gives the camera light on ``grid`` (``temperatures``: ``{"prevailing": K, "calibration": K}``),
-    else a one-line error naming its flag and the light by its role (``--calibration: calibration illuminant 1K
-    gives no light …``).
-    """
-    from ..model.illuminant import illuminants_array
-    from ..model.response import check_light, spds_on
-    from ..spectra import GRID_DEFAULT
-
-    grid = grid or GRID_DEFAULT
-    for name, kelvin in temperatures.items():
-        items, _ = illuminants_array([kelvin])
-        flag({"camera": "--camera", None: f"--{name}"}, check_light, cam, items, spds_on(items, grid), grid,
-             f"{name} illuminant")
-
-
-def check_lights(args: argparse.Namespace, cam, temperatures, grid=None, name: str = "--illuminants") -> None:
-    """Every illuminant of a set gives the camera light on the grid; otherwise a one-line error naming ``name``."""
-    from ..model.illuminant import illuminants_array
-    from ..model.response import check_light, spds_on
-    from ..spectra import GRID_DEFAULT
-
-    grid = grid or GRID_DEFAULT
-    items, _ = illuminants_array(temperatures)
-    flag({"camera": "--camera", None: name}, check_light, cam, items, spds_on(items, grid), grid, "illuminant")
 
 
 SEED_MAX = 2**32 - 2

@@ -12,8 +12,9 @@ import sys
 from ..constants import SENSOR_RULE
 from ..errors import SkinrenderError
 from ..workload import check_work
-from .common import (add_common, add_max_minutes, add_grid, add_search, check_dask, check_output, flag, imaging_options, integer_in,
+from .common import (add_common, add_max_minutes, add_grid, add_search, check_output, flag, imaging_options, integer_in,
                      emit, grid_of)
+from .preflight import check_dask
 
 
 def add_noisy(parser) -> None:

@@ -116,7 +116,7 @@ def _planckian(args: argparse.Namespace, name: str) -> float:
 
 def _check_light(cam, temperatures: dict) -> None:
     """Each light gives the camera light on the grid (else a one-line error naming the flag)."""
-    from .common import check_render_lights
+    from .preflight import check_render_lights
 
     check_render_lights(cam, temperatures)
 

@@ -17,8 +17,9 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_dask, check_output, emit, flag, integer_in,
+from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
                      interruptible, positive_number, table, variant_of)
+from .preflight import check_dask
 from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
 
 __all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]

@@ -117,7 +117,7 @@ def chart_inputs(args: argparse.Namespace, scene: ChartScene) -> ChartInputs:
     anything renders; ``scene``: the chart :func:`scene_of` loaded.
     """
     from ..model.illuminant import illuminant
-    from .common import check_render_lights
+    from .preflight import check_render_lights
 
     grid = grid_of(args)
     cam = camera_of(args, grid)

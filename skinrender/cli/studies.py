@@ -11,8 +11,9 @@ from ..constants import SENSOR_RULE
 from ..errors import SkinrenderError
 from ..workload import check_work
 from ..files import write_output
-from .common import (HELP_CAMERA, add_common, add_max_minutes, add_grid, add_search, check_dask, check_output, flag, integer_in,
+from .common import (HELP_CAMERA, add_common, add_max_minutes, add_grid, add_search, check_output, flag, integer_in,
                      emit, positive_number, table)
+from .preflight import check_dask
 
 
 def _g(value) -> str:
