@@ -35,8 +35,8 @@ def test_a_light_the_camera_cannot_see_is_refused_before_any_render(scene, role,
     import skinrender.rendering.balance as balance
 
     stop = lambda *a, **k: pytest.fail("rendered before the light was checked")  # noqa: E731
-    monkeypatch.setattr(balance, "render_raw", stop)
-    monkeypatch.setattr(face_render, "white_references", stop)
+    monkeypatch.setattr(balance, "render_balanced", stop)
+    monkeypatch.setattr(face_render, "render_face_request", stop)
     lights = {"prevailing": "A", "calibration": 5900, role: 1}
     with pytest.raises(sr.SkinrenderError, match=f"^{role} illuminant 1K gives no light") as error:
         sr.render(scene, "gbell:9@450,540,610", lights["prevailing"], lights["calibration"], spp=4,

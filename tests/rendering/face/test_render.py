@@ -210,9 +210,9 @@ def test_a_bad_exposure_is_refused_before_any_render(exposure, monkeypatch):
     import skinrender as sr
     import skinrender.rendering.face.render as face_render
 
-    monkeypatch.setattr(face_render, "white_references",
+    monkeypatch.setattr(face_render, "render_face_request",
                         lambda *a, **k: pytest.fail("rendered before the exposure was checked"))
-    with pytest.raises(sr.SkinrenderError, match="exposure must be 'auto' or") as error:
+    with pytest.raises(sr.SkinrenderError, match="exposure must be .?auto.? or") as error:
         sr.render("face", "gbell:9@450,540,610", "A", "A", spp=4, size=8, physics="noise", imager="sony-imx174",
                   exposure=exposure)
     assert error.value.role == "exposure"
