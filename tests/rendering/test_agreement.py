@@ -8,7 +8,7 @@ import pytest
 
 from skinrender.errors import SkinrenderError
 from skinrender.evaluation.verdict import binomial_interval
-from skinrender.rendering.agreement import DARK_LEVEL, agreement, check_tolerance, tolerance_scale
+from skinrender.rendering.agreement import DARK_LEVEL, SKEW_SPREAD, agreement, check_tolerance, tolerance_scale
 
 
 class TestTolerance:
@@ -96,7 +96,7 @@ class TestHeavyTails:
         error, sigma, skew, n = np.array([0.0, 0.0]), np.array([1.0, 1.0]), np.array([0.0, 0.2]), 64
         out = agreement([10.0, 10.0], 10.0 - error, sigma, 0.5, spp=1, dof=n - 1, skewness=skew, skew_max=0.5)
         c = critical_z(0.05, 2, sides=1, dof=n - 1)
-        g = skew + np.sqrt(6) / n  # one standard error above the estimate
+        g = skew + SKEW_SPREAD * np.sqrt(6) / n  # standard errors above the estimate
         np.testing.assert_allclose(out["upper"], sigma * (c + g * (2 * c**2 + 1) / 6))
         plain = agreement([10.0, 10.0], 10.0, sigma, 0.5, spp=1, dof=n - 1)
         np.testing.assert_allclose(plain["upper"], sigma * c)  # no skewness given: the normal law's bound
@@ -104,8 +104,8 @@ class TestHeavyTails:
     def test_coverage_of_a_skewed_estimate_rises(self):
         """Nine values, each the mean of 64 lognormal pixels (σ 0.3: skewness 0.95, as a subsurface slab's worst
         channels), the truth known; 500 seeded trials. The bounds' family-wise coverage at a truth above every
-        value (every ``e ≥ −h``) was 0.90 with the normal law; with the widening 0.945 (1000 trials; 500 here) (synthetic pixels more
-        skewed still, exponential ones, go from 0.82 to 0.91: docs/verdicts.md says so)."""
+        value (every ``e ≥ −h``) was 0.89 with the normal law and is 0.95 with the widening (pixels more skewed
+        still, exponential ones, stay short of 0.95: docs/verdicts.md says so)."""
         rng = np.random.default_rng(1)
         n, m, truth = 64, 9, np.exp(0.3**2 / 2)
         covered = {True: 0, False: 0}
@@ -120,4 +120,4 @@ class TestHeavyTails:
                                 skewness=skew if widened else None, skew_max=0.5 if widened else None)
                 half = out["upper"] - np.abs(out["error"])
                 covered[widened] += bool(np.all(out["error"] >= -half))
-        assert covered[False] < 465 and covered[True] > covered[False] + 12 and covered[True] >= 467  # 446, 469
+        assert covered[False] < 465 and covered[True] > covered[False] + 20 and covered[True] >= 470  # 446, 475
