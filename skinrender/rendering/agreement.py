@@ -79,7 +79,8 @@ from ..evaluation.verdict import (ALPHA_DIFFERENCE, ALPHA_EQUIVALENCE, critical_
                                   samples_needed, sidak)
 from ..hints import ArrayLike, NDArrayFloat
 
-__all__ = ["TOLERANCE_DEFAULT", "TOLERANCE_MIN", "SKEW_SPREAD", "DARK_LEVEL", "check_tolerance", "tolerance_scale", "agreement"]
+__all__ = ["TOLERANCE_DEFAULT", "TOLERANCE_MIN", "SKEW_SPREAD", "DARK_LEVEL", "check_tolerance", "tolerance_scale",
+           "agreement"]
 
 TOLERANCE_DEFAULT = 0.01
 """Default relative tolerance of ``validate``: 1 % of each lit channel. At the default 256 spp a Macbeth
@@ -202,7 +203,7 @@ def agreement(rendered: ArrayLike, analytic: ArrayLike, sigma: ArrayLike, tolera
     cantelli = math.sqrt(1 / sidak(alpha, m) - 1) / c
     chebyshev = math.sqrt(1 / sidak(alpha_difference, m)) / critical_z(alpha_difference, m, sides=2, dof=dof)
     # a trusted value's bound moved by its skewness (the studentized mean's one-sided quantile, module notes), the
-    # skewness taken two standard errors (√6 / n each, for the mean of n draws) above its estimate: it is estimated
+    # skewness taken SKEW_SPREAD standard errors (√6 / n each, the mean of n draws) above its estimate
     g = np.zeros(r.shape)
     if skewness is not None:
         spread = SKEW_SPREAD * math.sqrt(6.0) / (dof + 1.0) if dof is not None and np.isfinite(dof) else 0.0
