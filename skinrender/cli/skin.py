@@ -186,6 +186,9 @@ def _command_fit(args: argparse.Namespace) -> None:
         raise SkinrenderError("--grid sets the forward model's wavelengths; --fit uses the table's own "
                               "wavelengths in --fit-range", flag="--grid")
     method = _method(args)
+    if args.n is not None and method == "kubelka-munk":  # held, it would change nothing: no boundary refracts
+        raise SkinrenderError("--n is the refractive index of adding-doubling's Fresnel boundary; kubelka-munk has "
+                              "none", flag="--n")
     held = parameters_of(args, HELD_IN_FIT)
     start, end = _fit_range(args.fit_range)
     workers = check_workers(None if args.workers is None else integer_in(args.workers, "--workers", 1), "--workers")

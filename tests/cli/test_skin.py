@@ -150,6 +150,7 @@ def test_no_column_converged_exits_1_with_the_whole_document(tmp_path, capsys, m
     (["--blood=-1e-9"], ("--blood", "got -1e-09")),
     (["--quiet"], ("--quiet", "--fit")),  # issue 36: accepted, and nothing it could silence
     (["--method", "kubelka-munk", "--n", "1.4"], ("--n", "kubelka-munk")),  # issue 36: changed nothing
+    (["--fit", "skin", "--method", "kubelka-munk", "--n", "1.4"], ("--n", "kubelka-munk")),
     (["--workers", "2"], "--workers"),
     (["--fit", "nosuch.csv"], ("--fit", "no such file")),
     (["--fit", "skin", "--melanin", "0.1"], ("--melanin", "--fit")),
