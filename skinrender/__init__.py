@@ -72,9 +72,11 @@ from .model.response import (
 )
 from .model.stage1 import illuminant_selection, illuminant_set, illuminant_track, select_illuminants
 from .rendering.balance import Rendering
-from .rendering.dispatch import load_scene, render, validate
+from .rendering.dispatch import load_scene, render, render_cameras, validate
 from .rendering.scene import ChartScene
 from .rendering.settings import RenderSettings
+from .rendering.spectral_files import read_spectral
+from .rendering.spectral_image import SpectralImage
 from .rendering.validation import Validation, validate_gamut
 from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse, planck, resample
 from .studies import labelled as _labelled  # noqa: F401 (registers the figures of Rendering and FaceRendering)
@@ -98,6 +100,7 @@ __all__ = [
     "SearchResult",
     "SkinLocus",
     "SkinrenderError",
+    "SpectralImage",
     "SpectralSet",
     "Validation",
     "Verdict",
@@ -124,8 +127,10 @@ __all__ = [
     "normalisation_factor",
     "optimise_camera",
     "planck",
+    "read_spectral",
     "reflectances",
     "render",
+    "render_cameras",
     "resample",
     "response",
     "response_raw",
