@@ -39,7 +39,8 @@ from pathlib import Path
 import numpy as np
 
 from skinrender.evaluation.verdict import ALPHA_DIFFERENCE, binomial_interval
-from skinrender.testing.regression import REFERENCE_SPP_FACTOR, compare, measure, reference_seed
+from skinrender.testing.reference import reference_seed
+from skinrender.testing.regression import REFERENCE_SPP_FACTOR, compare, measure
 
 
 def csv_camera(path: Path, shift: float = 0.0) -> str:

@@ -162,6 +162,8 @@ class Request:
         from ..model.illuminant import illuminant
         from ..model.response import check_light, spds_on
 
+        if self.camera is None:  # a spectral render: no camera yet (each is checked where it sees the render)
+            return
         for role in ("prevailing", "calibration"):
             item = illuminant(getattr(self, role))
             try:

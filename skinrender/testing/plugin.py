@@ -37,8 +37,8 @@ import pytest
 from ..errors import SkinrenderError
 from ..evaluation.verdict import ALPHA_DIFFERENCE
 from ..files import Output, write_outputs
-from .reference import ReferenceProblem, read_reference, shown, sidecar_of, state, write_reference
-from .regression import REFERENCE_SPP_FACTOR, Comparison, compare, measure, reference_seed, setting_notes
+from .reference import ReferenceProblem, read_reference, reference_seed, shown, sidecar_of, state, write_reference
+from .regression import REFERENCE_SPP_FACTOR, Comparison, compare, measure, setting_notes
 
 __all__ = ["RenderRegression", "render_regression", "pytest_addoption", "pytest_terminal_summary", "safe_name",
            "claim_across_workers", "pytest_configure_node", "pytest_sessionfinish"]
@@ -110,7 +110,7 @@ class RenderRegression:
         spp, seed
             Samples per pixel (default 64 for a chart, 64 over the 4 replicates of a face) and the sampler's
             seed. The reference is rendered at 4× the spp with its own seed, drawn from this one
-            (:func:`~skinrender.testing.regression.reference_seed`: independent of the check's samples).
+            (:func:`~skinrender.testing.reference.reference_seed`: independent of the check's samples).
         physics, skin, size
             A face's level of physics (``direct`` or effects joined by ``+``), skin spec and image side in
             pixels (default 64).

@@ -36,18 +36,43 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..files import EXR_BYTES_MAX, Output, read_input, write_outputs
 from ..hints import NDArrayFloat
+from ..rendering.settings import SEED_MAX
 from .regression import Measurement, values_of
 
-__all__ = ["FORMAT", "FORMATS_KNOWN", "statistics_sha256", "Reference", "ReferenceProblem", "shown", "sidecar_of", "state", "write_reference",
+__all__ = ["FORMAT", "FORMATS_KNOWN", "reference_seed", "statistics_sha256", "Reference", "ReferenceProblem", "shown", "sidecar_of", "state", "write_reference",
            "read_reference"]
 
 FORMAT = 2
 """The sidecar format (key ``skinrender_reference``). 2: the reference rendered with its own seed
-(:func:`~skinrender.testing.regression.reference_seed`), its statistics hashed into the EXR's header, a CSV
+(:func:`reference_seed`), its statistics hashed into the EXR's header, a CSV
 camera's path relative to the test file. A format-1 reference is refused with the command that rewrites it."""
 
 FORMATS_KNOWN = (1, 2)
 """Sidecar formats that are skinrender's: ``--skinrender-regen`` may rewrite them; a check reads :data:`FORMAT`."""
+
+
+def reference_seed(seed: int) -> int:
+    """
+    The seed a check's reference renders with, drawn from the check's ``seed`` by numpy's ``SeedSequence`` (a
+    hash: the reference's sample streams are independent of the check's).
+
+    Mitsuba seeds each pixel's sample stream from (seed, pixel): a reference rendered with the check's own seed
+    at 4× its spp began with the check's very samples (on the scalar variants exactly, on LLVM in one pixel of
+    four), so the difference's variance was 0.55–0.97 of what the test assumes, its family-wise false-alarm rate
+    fell from 0.01 to 6e-5–0.003 and a shift had to be 1.1–1.3× larger to be caught. Never within one of
+    ``seed`` (each measurement's calibration render takes seed + 1), and at most :data:`SEED_MAX`.
+
+    >>> reference_seed(0), reference_seed(0) == reference_seed(0), reference_seed(1) == reference_seed(0)
+    (..., True, False)
+    """
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed <= SEED_MAX:
+        raise SkinrenderError(f"seed must be an integer in [0, {SEED_MAX}], got {seed!r}", role="seed")
+    seed = int(seed)
+    for candidate in np.random.SeedSequence([seed, 0x2EFE2E]).generate_state(8):
+        candidate = int(candidate)
+        if candidate <= SEED_MAX and abs(candidate - seed) > 1:
+            return candidate
+    raise SkinrenderError(f"seed {seed}: no independent reference seed found")  # 8 draws all within 1: never
 
 
 class ReferenceProblem(SkinrenderError):

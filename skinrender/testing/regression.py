@@ -62,41 +62,16 @@ from ..evaluation.verdict import ALPHA_DIFFERENCE, Verdict, difference, sidak
 from ..hints import NDArrayFloat
 from .replicates import measure_face, region_values
 
-__all__ = ["REFERENCE_SPP_FACTOR", "SEED_MAX", "reference_seed", "SPP_CHART", "SPP_FACE", "SIZE_FACE",
+__all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE",
            "ILLUMINANCE_DEFAULT_LUX", "Measurement", "Comparison", "scene_kind", "measure", "measure_spectral",
            "values_of", "setting_notes", "compare"]
 
 REFERENCE_SPP_FACTOR = 4
-"""A reference is rendered at this many times the check's spp (with its own seed, :func:`reference_seed`): its
+"""A reference is rendered at this many times the check's spp (with its own seed,
+:func:`~skinrender.testing.reference.reference_seed`): its
 own noise then moves every later check's z by at most ``1/√5`` of its deviation (``1/√2`` at equal spp), so that
 one unlucky reference does not raise the false-alarm rate of all the checks against it, as Mitsuba's high-spp
 references do not."""
-
-from ..rendering.settings import SEED_MAX  # noqa: E402 - every front door's bound (re-exported)
-
-
-def reference_seed(seed: int) -> int:
-    """
-    The seed a check's reference renders with, drawn from the check's ``seed`` by numpy's ``SeedSequence`` (a
-    hash: the reference's sample streams are independent of the check's).
-
-    Mitsuba seeds each pixel's sample stream from (seed, pixel): a reference rendered with the check's own seed
-    at 4× its spp began with the check's very samples (on the scalar variants exactly, on LLVM in one pixel of
-    four), so the difference's variance was 0.55–0.97 of what the test assumes, its family-wise false-alarm rate
-    fell from 0.01 to 6e-5–0.003 and a shift had to be 1.1–1.3× larger to be caught. Never within one of
-    ``seed`` (each measurement's calibration render takes seed + 1), and at most :data:`SEED_MAX`.
-
-    >>> reference_seed(0), reference_seed(0) == reference_seed(0), reference_seed(1) == reference_seed(0)
-    (..., True, False)
-    """
-    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed <= SEED_MAX:
-        raise SkinrenderError(f"seed must be an integer in [0, {SEED_MAX}], got {seed!r}", role="seed")
-    seed = int(seed)
-    for candidate in np.random.SeedSequence([seed, 0x2EFE2E]).generate_state(8):
-        candidate = int(candidate)
-        if candidate <= SEED_MAX and abs(candidate - seed) > 1:
-            return candidate
-    raise SkinrenderError(f"seed {seed}: no independent reference seed found")  # 8 draws all within 1: never
 
 SPP_CHART = 64
 """Samples per pixel of a chart check unless given (a check ~0.2 s after the first; a 2 nm shift at z > 10)."""
@@ -267,7 +242,8 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     default :data:`SIZE_FACE`) go with faces; ``imager`` (and ``illuminance``, lx) put the image sensor's
     noise in (a face: physics ``noise``). ``factor``: render at ``factor × spp`` (a reference,
     :data:`REFERENCE_SPP_FACTOR`); the settings keep ``spp_requested`` the check's. ``render_seed``: render with
-    this seed rather than ``seed`` (a reference, :func:`reference_seed`); the settings keep ``seed`` the check's
+    this seed rather than ``seed`` (a reference, :func:`~skinrender.testing.reference.reference_seed`); the settings
+    keep ``seed`` the check's
     and add ``reference_seed``. Any bad argument raises a one-line :class:`SkinrenderError` naming it.
     """
     from ..model.camera import camera as camera_of
