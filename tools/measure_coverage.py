@@ -18,7 +18,7 @@ values the skewness guard held to Cantelli's bound.
 
     PYTHONPATH=. python tools/measure_coverage.py --seeds 100 --scene macbeth --camera gbell:9@450,540,610 \\
         --prevailing A --calibration 5900 --spp 16
-    PYTHONPATH=. python tools/measure_coverage.py --seeds 100 --scene slabs.toml --physics subsurface --spp 16
+    PYTHONPATH=. python tools/measure_coverage.py --seeds 100 --scene slabs.toml --physics subsurface-volume --spp 16
 """
 
 from __future__ import annotations

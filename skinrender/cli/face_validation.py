@@ -97,7 +97,7 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     check_samples(settings.spp, face_pixels(scene, None if size is None else integer_in(size, "--size", 1, SIZE_MAX)))
     each = max(-(-int(settings.spp) // REPLICATES), SPP_REPLICATE_MIN)  # a replicate's spp
     request = face_request_of(args, scene, settings, spp=each)
-    check_request_work(args, request, REPLICATES)  # at its level's rate (subsurface: far slower)
+    check_request_work(args, request, REPLICATES)  # at its level's rate (subsurface-volume: far slower)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", FACE.validate, request, spp=settings.spp, limits=limits,
                   progress=lambda line: print(line, file=sys.stderr))

@@ -94,8 +94,8 @@ class ChartInputs:
     grid
         ``--grid``, nm.
     physics
-        ``--physics`` as given: ``direct`` or ``subsurface``, parsed into a level where the request is built
-        (:meth:`request`).
+        ``--physics`` as given: ``direct``, ``subsurface`` or ``subsurface-volume``, parsed into a level where the
+        request is built (:meth:`request`).
     """
 
     scene: ChartScene
@@ -195,7 +195,7 @@ def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
     given = [name for name, on in (("--physics", not chart_level), ("--skin", skin and args.skin is not None),
                                    ("--size", args.size is not None)) if on]
     if given:
-        levels = f" (a chart takes --physics {' or '.join(CHART_REGISTRY.named)})" if "--physics" in given else ""
+        levels = f" (a chart takes --physics {', '.join(CHART_REGISTRY.named)})" if "--physics" in given else ""
         raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
                               f"(e.g. 'face'), not a chart{levels}", flag=given[0])
 
@@ -247,10 +247,10 @@ def check_request_work(args: argparse.Namespace, request, renders: int = 1, spp:
                               "for this scene", flag="--spp")
     seconds, what = scene_kind(request.scene).workload(request, renders, os.cpu_count() or 1)
     check_work(seconds, "--spp", what, getattr(args, "max_minutes", None), fewer="lower --spp")
-    if "subsurface" in request.level.names and hasattr(request.scene, "patches"):
-        from ..rendering.subsurface_chart import subsurface_chart
+    if hasattr(request.scene, "patches"):
+        from ..rendering.chart_effects import prepare_slabs
 
-        subsurface_chart(request.scene, request.grid)
+        prepare_slabs(request)
 
 
 def imaging_document(imaged) -> dict:
