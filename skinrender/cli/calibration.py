@@ -14,6 +14,7 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
+from ..files import write_output
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, check_output, emit, flag, imaging_options,
                      integer_in, interruptible, table)
 
@@ -282,7 +283,8 @@ def _run(wrapped: argparse.Namespace) -> None:
         if options["plot"] is not None:
             from ..studies.figures import figure_calibration
 
-            result["plot"] = str(figure_calibration(result, options["plot"]))
+            result["plot"] = str(write_output(options["plot"], lambda stream: figure_calibration(result, stream),
+                                                  "--plot"))
         emit(args, result, _calibration_text(result))
         return
     if options.get("kind") == "detection":  # the detection verdict alone, at any spp
@@ -312,7 +314,8 @@ def _run(wrapped: argparse.Namespace) -> None:
         if options["plot"] is not None:
             from ..studies.figures import figure_calibration
 
-            result["plot"] = str(figure_calibration(result, options["plot"]))
+            result["plot"] = str(write_output(options["plot"], lambda stream: figure_calibration(result, stream),
+                                                  "--plot"))
         text = _calibration_text(result)
     elif args.what == "calibration":
         result = bench_calibration(options["run"], spp=options["spps"][0], seeds=options["seeds"],
@@ -321,7 +324,8 @@ def _run(wrapped: argparse.Namespace) -> None:
         if options["plot"] is not None:  # written whole or not at all
             from ..studies.figures import figure_calibration
 
-            result["plot"] = str(figure_calibration(result, options["plot"]))
+            result["plot"] = str(write_output(options["plot"], lambda stream: figure_calibration(result, stream),
+                                                  "--plot"))
         text = _calibration_text(result)
     else:
         result = bench_validate(options["run"], spps=options["spps"], seeds=options["seeds"], **common)

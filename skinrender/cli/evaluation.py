@@ -10,8 +10,9 @@ import numpy as np
 
 from ..errors import SkinrenderError
 from ..files import write_output
-from .common import HELP_CAMERA, camera_of, check_lights, add_common, check_output, emit, flag
+from .common import HELP_CAMERA, camera_of, add_common, check_output, emit, flag
 from .detection_options import HELP_SKIN_SET
+from .preflight import check_lights
 
 
 def add_parsers(commands) -> None:

@@ -123,13 +123,9 @@ def _planckian(args: argparse.Namespace, name: str) -> float:
 
 def _check_light(cam, temperatures: dict) -> None:
     """Each light gives the camera light on the grid (else a one-line error naming the flag)."""
-    import numpy as np
+    from .preflight import check_render_lights
 
-    from ..model.response import response
-    from ..spectra import GRID_DEFAULT
-
-    for name, t in temperatures.items():
-        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
+    check_render_lights(cam, temperatures)
 
 
 def check_figure(args: argparse.Namespace, *taken) -> Path | None:
