@@ -1,6 +1,4 @@
-"""
-The paper's studies and benchmarks: ``reproduce``, ``table1``, ``bench``.
-"""
+"""The paper's studies and benchmarks: ``reproduce``, ``table1``, ``bench`` (``bench rank``: :mod:`.ranking`'s)."""
 
 from __future__ import annotations
 
@@ -14,6 +12,7 @@ from ..files import write_output
 from .common import (HELP_CAMERA, add_common, add_max_minutes, add_grid, add_search, check_output, flag, integer_in,
                      emit, positive_number, table)
 from .preflight import check_dask
+from .ranking import command_bench_rank
 
 
 def _g(value) -> str:
@@ -52,9 +51,8 @@ def add_parsers(commands) -> None:
                    help="Stage 2 camera for Figs. 3–7 (the paper's Sony is not public); " + HELP_CAMERA)
     p.add_argument("--slope", type=float, default=2.0, help="gbell slope b, not given by the paper (default 2)")
     add_grid(p)
-    p.add_argument("--illuminants", default="paper",
-                   help="illuminant set: 'paper' (its ten, default), 'auto' (Stage 1 for --stage1-camera) or "
-                        "comma-separated kelvin")
+    p.add_argument("--illuminants", default="paper", help="illuminant set: 'paper' (its ten, default), 'auto' "
+                   "(Stage 1 for --stage1-camera) or comma-separated kelvin")
     p.add_argument("--stage1-camera", help="camera of --illuminants auto (default: --camera); " + HELP_CAMERA)
     p.add_argument("--no-figures", action="store_true", help="the tables only (no Stage 2 figures)")
     p.add_argument("--sweep", action="store_true",
@@ -365,10 +363,8 @@ def _camera_spec(spec: str) -> str:
 def command_bench(args: argparse.Namespace) -> None:
     from ..studies.benchmarks.bench import bench_analytic, bench_search, bench_sweep
 
-    if args.what == "rank":  # skinrender.cli.ranking's, with the flags bench rank does not take refused
-        from .ranking import command_bench_rank
+    if args.what == "rank":  # bench's other flags refused there
         return command_bench_rank(args, refuse_foreign_flags)
-
     if args.what in ("calibration", "validate"):
         from .calibration import command_bench_verdicts
         from .common import SPP_MAX

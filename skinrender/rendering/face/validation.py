@@ -355,8 +355,7 @@ def validate_face(
     budget_fraction
         The share of the margin to the locus's boundary Eq. 4's error may use (``eq4_shift``, a diagnostic).
     skin_set, detection_tolerance
-        The skin locus's reflectance set (``skin``), and how far Eq. 4 may be off in TPR and FPR (fractions;
-        0.02): the ``detection`` check (:func:`~skinrender.rendering.face.detection.face_detection`).
+        The locus's skin set (``skin``) and the ``detection`` check's tolerance in TPR and FPR (0.02).
     **render_options
         The render's own, to each replicate's :func:`skinrender.rendering.face.render_face`: ``skin``,
         ``size`` (image side, pixels; ``None``: the scene's), ``sampler``, ``variant``, ``channels``, ``grid``
@@ -427,8 +426,7 @@ def validate_face_request(request: FaceRequest, spp: int | None = None, replicat
     budget, locus = face_budget(first.camera, replicated.expected, first.calibration, fraction, replicated.grid,
                                 skin_set, skin_reflectance_of(first.skin, replicated.grid, "skin"))
     detection, check_row = detection_check(replicated, locus, tolerance, seed=request.settings.seed)
-    checks.append(check_row)
-    checks.append(replace(shift_against(replicated, budget, locus), applies=False))  # a diagnostic
+    checks += [check_row, replace(shift_against(replicated, budget, locus), applies=False)]  # eq4_shift: a diagnostic
     cam = first.camera
     if "furnace" in limits:
         say(f"white furnace ({FURNACE_SIZE}² px, {replicates} × {FURNACE_SPP} spp) …")
