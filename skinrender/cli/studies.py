@@ -1,4 +1,4 @@
-"""The paper's studies and benchmarks: ``reproduce``, ``table1``, ``bench`` (``bench rank``: :mod:`.ranking`'s)."""
+"""The paper's studies and benchmarks: ``reproduce``, ``table1``, ``bench`` (``bench rank``: :mod:`skinrender.cli.ranking`'s)."""
 
 from __future__ import annotations
 
