@@ -299,11 +299,13 @@ def _imaged_report(result, imaged, requested) -> tuple[dict, str]:
                 "spp_needed": result.spp_needed, "spp_needed_reason": result.spp_reason or None,
                 "mc_variance": result.mc_variance,
                 "test": result.difference.test, "alpha_per_test": result.level,
-                "checks": {name: v.document() for name, v in checks.items()}, "patches": patches,
+                "checks": {name: v.document() for name, v in checks.items()},
+                "saturation": result.saturation.document(), "patches": patches,
                 "verdict": result.verdict.outcome, "passed": result.passed}
     names = channel_names(rendering.camera)
     rows = [[p["name"], names[k], _number(p["analytic"][k]), _number(p["rendered"][k]), f"{p['error'][k]:+.3g}",
-             f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", f"{p['rendered_std'][k]:.3g}",
+             *((f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}") if not p["saturated"][k] else ("saturated", "—")),
+             f"{p['rendered_std'][k]:.3g}",
              f"{p['predicted_std'][k]:.3g}", f"{p['p_mean'][k]:.2g}", f"{p['p_variance'][k]:.2g}"]
             for p in patches for k in range(3)]
     lines = [f"{rendering.scene.name} through {rendering.camera.name} and {imaged.imager.name}, "
@@ -313,8 +315,11 @@ def _imaged_report(result, imaged, requested) -> tuple[dict, str]:
                           "predicted std", "p mean", "p variance"])]
     for name in ("equivalence", "variance", "mean"):
         lines += _summary(name, result.checks[name])
+    if result.saturation.outcome != "not_applicable":
+        lines += _summary("saturation", result.saturation)
     needed = result.spp_needed if result.spp_needed is not None else f"— ({result.spp_reason})"
-    lines.append(f"bound {result.bound:.3g} (the smallest relative tolerance the means would pass); spp needed ≈ "
+    bound = "—" if result.bound is None else f"{result.bound:.3g}"
+    lines.append(f"bound {bound} (the smallest relative tolerance the means would pass); spp needed ≈ "
                  f"{needed}")
     return document, "\n".join(lines) + imaging_notes(imaged)
 

@@ -157,6 +157,8 @@ class ImagedRendering:
         :func:`~skinrender.model.noise.clipping_counts` of the frame: pixels clipped at the full well and at the ADC range, per channel.
     notes
         What was capped or clipped (an ``auto`` exposure stopped by :data:`AUTO_EXPOSURE_MAX_S`, clipped pixels).
+    exposure_auto
+        Whether the exposure was ``auto`` (it then follows the light).
     """
 
     rendering: Rendering
@@ -169,6 +171,7 @@ class ImagedRendering:
     gains: NDArrayFloat
     clipping: dict = field(default_factory=dict)
     notes: tuple[str, ...] = ()
+    exposure_auto: bool = False
 
 
 def render_imaged(
@@ -238,7 +241,8 @@ def render_imaged_request(request) -> ImagedRendering:
                           {"white_ratio": white["p"] / white["c"], "imager": im.name,
                            "illuminance_lux": float(illuminance_lux), "exposure_s": t, "clipping": clipping,
                            "notes": list(notes)})
-    return ImagedRendering(rendering, dn, electrons, im, float(illuminance_lux), t, int(seed), gains, clipping, notes)
+    return ImagedRendering(rendering, dn, electrons, im, float(illuminance_lux), t, int(seed), gains, clipping, notes,
+                           _is_auto(exposure))
 
 
 def predicted_electrons(imaged: ImagedRendering, reference_ratio: NDArrayFloat,

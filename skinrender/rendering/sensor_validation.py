@@ -26,7 +26,9 @@ rate :data:`ALPHA_FAMILY`, measured by ``skinrender bench calibration``.
 
 The verdict combines the equivalence of the means (they have a tolerance)
 with the variance tests (the noise model has none: a difference test is all
-there is); the mean's difference test is reported beside it.
+there is); the mean's difference test is reported beside it. A patch channel
+that saturates (:mod:`~skinrender.rendering.saturation`) is left out of every
+test, and the verdict is then at best inconclusive, naming it.
 
 -   :data:`ALPHA_FAMILY`, :data:`MC_VARIANCE`, :class:`ImagedValidation`,
     :func:`validate_imaged`.
@@ -55,6 +57,8 @@ from ..model.noise import code_probabilities, simulate_dn_clipped, statistics_dn
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .agreement import TOLERANCE_DEFAULT, agreement, check_tolerance
 from .imaging import ImagedRendering, electrons_per_radiance, predicted_electrons, predicted_patches
+from .renderer import channel_names
+from .saturation import saturated_values, saturation_verdict
 
 __all__ = ["ALPHA_FAMILY", "MC_VARIANCE", "ImagedValidation", "validate_imaged"]
 
@@ -112,6 +116,8 @@ class ImagedValidation:
     spp_needed: int | None = None
     mc_variance: str = "frames"
     spp_reason: str = ""
+    saturated: NDArrayFloat | None = None
+    saturation: Verdict | None = None
 
     @property
     def passed(self) -> bool:
@@ -138,13 +144,19 @@ class ImagedValidation:
                 "predicted_std": (self.predicted_std[i] * gains).tolist(),
                 "sensor_std": (self.sensor_std[i] * gains).tolist(),
                 "render_std": (self.render_std[i] * gains).tolist(),
-                "error": error.tolist(), "bound": self.upper[i].tolist(), "tolerance": self.tolerance[i].tolist(),
+                "error": error.tolist(), "bound": _or_none(self.upper[i]), "tolerance": _or_none(self.tolerance[i]),
                 "z_mean": self.z[i].tolist(), "p_mean": self.p_mean[i].tolist(),
                 "p_variance": self.p_variance[i].tolist(),
                 "test": ["exact" if self.exact is not None and self.exact[i, k] else "normal" for k in range(3)],
+                "saturated": [bool(self.saturated is not None and self.saturated[i, k]) for k in range(3)],
                 "passed": bool(np.all(self.upper[i] <= self.tolerance[i]) and np.all(self.p_variance[i] >= self.level)),
             })
         return rows
+
+
+def _or_none(values: NDArrayFloat) -> list:
+    """JSON values: ``None`` where not tested (a saturated patch channel: NaN)."""
+    return [None if np.isnan(v) else float(v) for v in values]
 
 
 def _two_sided(law: NDArrayFloat, below: NDArrayFloat, above: NDArrayFloat) -> float:
@@ -242,6 +254,8 @@ def _model_electrons(imaged: ImagedRendering, model: Imager, grid: WavelengthGri
 
 def _verdict(name: str, p_values: NDArrayFloat, level: float, alpha: float, tests: int, what: str) -> Verdict:
     """A difference verdict of p-values at the Šidák ``level`` (statistic: the smallest p-value)."""
+    if p_values.size == 0:
+        return Verdict(name, "not_applicable", alpha, what, reason="every patch channel saturates: nothing to test")
     smallest = float(np.min(p_values))
     rejected = int(np.sum(p_values < level))
     test = (f"{what}: every p-value ≥ {level:.3g}, the Šidák level of {tests} tests at family-wise α = {alpha:g} "
@@ -362,27 +376,44 @@ def validate_imaged(imaged: ImagedRendering, reference_ratio: NDArrayFloat, mode
                 electrons[rows, columns, k].ravel(), pixel_mean[rows, columns, k].ravel(),
                 pixel_variance[rows, columns, k].ravel(), mean[i, k], variance[i, k], expected[i, k], model_im,
                 mc_variance)
-    tests = 2 * mean.size
-    level = 1.0 - (1.0 - alpha) ** (1.0 / tests)
-    checks = {"mean": _verdict("mean", p_mean, level, alpha, tests, "each patch channel's pixel mean, DN"),
-              "variance": _verdict("variance", p_var, level, alpha, tests,
+    # a patch channel at the sensor's ceiling is no evidence about Eq. 4: left out of every test (saturation.py)
+    pixels = [electrons[scene.patch_pixels(i)].reshape(-1, 3) for i in range(mean.shape[0])]
+    saturated = saturated_values(model_im, pixels, expected)
+    tested = ~saturated
+    tests = 2 * int(tested.sum())
+    level = 1.0 - (1.0 - alpha) ** (1.0 / max(tests, 1))
+    checks = {"mean": _verdict("mean", p_mean[tested], level, alpha, tests, "each patch channel's pixel mean, DN"),
+              "variance": _verdict("variance", p_var[tested], level, alpha, tests,
                                    "each patch channel's temporal pixel variance, DN²")}
-    difference_all = _verdict("difference", np.concatenate([p_mean.ravel(), p_var.ravel()]), level, alpha, tests,
+    difference_all = _verdict("difference", np.concatenate([p_mean[tested], p_var[tested]]), level, alpha, tests,
                               "every patch channel's pixel mean and variance")
     gains, black = imaged.gains, model_im.black_level_dn
     # the dark floor is a fraction of the white this render shows (a perfect white's brightest channel, output units)
     white_dn = (predicted_electrons(imaged, np.ones((1, 3)), grid)[0]
                 - model_im.dark_current_e_per_s * imaged.exposure_s) * model_im.gain_dn_per_e
-    out = agreement((rendered_mean - black) * gains, (mean - black) * gains, np.sqrt((variance + mc) / count) * gains,
-                    tolerance, imaged.rendering.raw[0].spp, None, 0.0, alpha_equivalence, alpha,
-                    "patch channel means through the sensor", scale=float(np.max(white_dn * gains)))
     spp = imaged.rendering.raw[0].spp
-    needed, reason = _spp_needed(out, spp, variance, mc)
-    checks["equivalence"] = replace(out["equivalence"], details={**out["equivalence"].details, "spp_needed": needed})
-    verdict = combine([checks["equivalence"], checks["variance"]], "validation")
+    upper, allowed = np.full(mean.shape, np.nan), np.full(mean.shape, np.nan)
+    if tested.any():
+        out = agreement(((rendered_mean - black) * gains)[tested], ((mean - black) * gains)[tested],
+                        (np.sqrt((variance + mc) / count) * gains)[tested], tolerance, spp, None, 0.0,
+                        alpha_equivalence, alpha, "patch channel means through the sensor",
+                        scale=float(np.max(white_dn * gains)))
+        upper[tested], allowed[tested] = out["upper"], out["tolerance"]
+        needed, reason = _spp_needed(out, spp, variance[tested], mc[tested])
+        checks["equivalence"] = replace(out["equivalence"],
+                                        details={**out["equivalence"].details, "spp_needed": needed})
+    else:
+        needed, reason = None, "every patch channel saturates: nothing to test"
+        checks["equivalence"] = Verdict("equivalence", "not_applicable", alpha_equivalence,
+                                        "patch channel means through the sensor", tolerance=tolerance, reason=reason)
+    r = imaged.rendering
+    brightest = float(max(np.max(p) for p in pixels + [expected]))
+    saturation = saturation_verdict(saturated, [p.name for p in scene.patches], channel_names(r.camera), model_im,
+                                    brightest, imaged.exposure_s, imaged.illuminance_lux, imaged.exposure_auto)
+    verdict = combine([checks["equivalence"], checks["variance"], saturation], "validation")
     return ImagedValidation(imaged, rendered_mean, mean, np.sqrt(rendered_var), np.sqrt(variance + mc), z, p_mean,
                             p_var, level, exact, np.sqrt(variance), np.sqrt(mc), difference_all, checks, verdict,
-                            out["upper"], out["tolerance"], needed, mc_variance, reason)
+                            upper, allowed, needed, mc_variance, reason, saturated, saturation)
 
 
 def _spp_needed(out: dict, spp: int, sensor: NDArrayFloat, mc: NDArrayFloat) -> tuple[int | None, str]:
