@@ -27,6 +27,17 @@ def run_error(capsys, *argv):
     return captured.err
 
 
+def test_every_help_text_prints(capsys):
+    """The top-level help and each command's format their help strings (a bare '%' in one, as in 'the 95 % interval'
+    of rank's, made `skinrender --help` an internal error)."""
+    from skinrender.cli import _subparsers, build_parser
+
+    assert main(["--help"]) == 0
+    assert "rank" in capsys.readouterr().out
+    for name, command in _subparsers(build_parser()).items():
+        assert command.format_help().startswith("usage:"), name
+
+
 class TestCommands:
     def test_cameras(self, capsys):
         document = run_json(capsys, "cameras")

@@ -49,7 +49,7 @@ def add_parsers(commands) -> None:
     p = commands.add_parser("rank", run=command_rank,
                             help="the camera decision under physics: the Stage 3 search's top triplets and any "
                             "--camera scored on rendered faces and by Eq. 4 (Youden's J = TPR − FPR) and ranked both "
-                            "ways, per level: Kendall's τ with its 95 % interval, the top-k overlap, whether Eq. 4's "
+                            "ways, per level: Kendall's τ with its 95 %% interval, the top-k overlap, whether Eq. 4's "
                             "best camera stays best")
     p.add_argument("--top", metavar="K", default=str(TOP_DEFAULT),
                    help=f"candidates from the Stage 3 search: its best K triplets by Eq. 4's detection criterion "
