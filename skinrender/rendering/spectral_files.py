@@ -13,6 +13,8 @@ Units: band values W·m⁻²·sr⁻¹ (after ``scale``); temperatures K; illumin
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 from ..errors import SkinrenderError
@@ -38,14 +40,20 @@ def read_spectral(path) -> SpectralImage:
     from ..files import EXR_BYTES_MAX, check_input
     from .exr import read_exr, read_exr_attributes
 
-    check_input(path, EXR_BYTES_MAX, "a spectral EXR")
+    if isinstance(path, bytes) or not isinstance(path, (str, os.PathLike)):
+        raise SkinrenderError(f"path: expected the path of a spectral EXR (a str or os.PathLike), got "
+                              f"{type(path).__name__}", role="path")
+    try:
+        check_input(path, EXR_BYTES_MAX, "a spectral EXR")
+    except SkinrenderError as error:
+        raise error.reworded(f"path {error.message}", role="path") from None
     try:
         header = read_exr_attributes(path)
     except (OSError, RuntimeError, ValueError) as error:
-        raise SkinrenderError(f"{path}: not a readable EXR ({error})") from None
+        raise SkinrenderError(f"path {path}: not a readable EXR ({error})", role="path") from None
     if header.get("skinrender_spectral") != FORMAT:
-        raise SkinrenderError(f"{path}: not a skinrender spectral EXR (no skinrender_spectral = {FORMAT} in its "
-                              "header; write one with SpectralImage.save or render --spectral)")
+        raise SkinrenderError(f"path {path}: not a skinrender spectral EXR (no skinrender_spectral = {FORMAT} in "
+                              "its header; write one with SpectralImage.save or render --spectral)", role="path")
     bands, grid = WavelengthGrid.parse(header["bands_nm"]), WavelengthGrid.parse(header["grid_nm"])
     face = header["kind"] == "face"
     stack = read_exr(path, band_names(bands) + (("label",) if face else ()))

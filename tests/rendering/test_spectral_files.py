@@ -43,3 +43,13 @@ def test_other_files_are_refused(tmp_path):
         sr.read_spectral(text)
     with pytest.raises(SkinrenderError):
         sr.read_spectral(tmp_path / "missing.exr")
+
+
+@pytest.mark.parametrize("path", [None, 42, b"x.exr", "missing.exr", "folder"])
+def test_a_bad_path_is_refused_naming_the_argument(tmp_path, path):
+    """Any path that is not a spectral EXR — not a path at all (None raised a bare TypeError), missing, a folder —
+    is a SkinrenderError whose role is ``path``."""
+    (tmp_path / "folder").mkdir()
+    with pytest.raises(SkinrenderError, match="^path") as raised:
+        sr.read_spectral(tmp_path / path if isinstance(path, str) else path)
+    assert raised.value.role == "path"
