@@ -33,6 +33,10 @@ SMALL = ["--lights", "2856/5900", "--skin", "skin-model:melanin=0.02", "--levels
     (["--imager", "sony-icx418", "--levels", "direct"], "--imager"),
     (["--plot", "rank.txt"], "--plot"),
     (["--max-minutes", "0.01"], ("--top", "estimated", "--max-minutes")),
+    (["--seed", "-3"], "--seed"),                                         # issue 36's second round of bad inputs
+    (["--lights", "2856/0"], "--lights"),
+    (["--size", "0"], "--size"),
+    (["--top", "1e9"], "--top"),
 ])
 def test_refusals_name_the_flag(argv, names, capsys, tmp_path):
     assert_refused(["rank", *argv], names, capsys, output=tmp_path)
