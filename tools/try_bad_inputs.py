@@ -248,7 +248,10 @@ def main(argv: list[str]) -> int:
                 continue
             got, ok = _judge(label, what, names, expected, out_dir)
             failures += not ok
-            want = f"exit {expected}, one line naming {' / '.join(names)}"
+            api = isinstance(what, str) and what.startswith("import")
+            want = (f"SkinrenderError naming {' / '.join(names)}" if api
+                    else f"exit {expected}, one line naming {' / '.join(names)}")
+            got = got.replace("exit 2: SkinrenderError:", "SkinrenderError:") if api else got
             got = got.replace(tmp, "$TMP").replace("|", "\\|")
             print(f"| {number} | `{label}` | {want} | {got} | {'yes' if ok else '**no**'} |" if markdown
                   else f"{number:3d} {'ok ' if ok else 'BAD'} {label}: {got}", flush=True)
