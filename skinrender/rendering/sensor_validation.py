@@ -120,6 +120,11 @@ class ImagedValidation:
     saturation: Verdict | None = None
 
     @property
+    def rendering(self):
+        """The render the sensor recorded (its Eq. 4 image, raw passes and seconds), as a chart validation has it."""
+        return self.imaged.rendering
+
+    @property
     def passed(self) -> bool:
         """The verdict is a pass (means shown within the tolerance, no variance test rejects)."""
         return self.verdict is not None and self.verdict.outcome == "pass"

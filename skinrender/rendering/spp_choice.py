@@ -117,8 +117,9 @@ def spp_for_tolerance(validate_at, tolerance: float, seed: int = 0, pilots: tupl
     last = runs[-1]
     if hasattr(last, "spp_reason"):  # through a sensor: the bound has the sensor's floor
         if last.spp_needed is None:
+            bound = " has no bound" if last.bound is None else f"'s bound is {last.bound:.3g}"  # None: saturated
             raise SkinrenderError(f"--tolerance {tolerance:g}: no spp is expected to pass it: {last.spp_reason} "
-                                  f"(the {rows[-1]['spp']}-spp pilot's bound is {last.bound:.3g})", flag="--tolerance")
+                                  f"(the {rows[-1]['spp']}-spp pilot{bound})", flag="--tolerance")
         chosen = square_spp(last.spp_needed * SPP_AUTO_MARGIN, sampler)
         exponent = None
         why = (f"the {rows[-1]['spp']}-spp pilot's bound {last.bound:.3g} (sensor and render noise) is expected to "

@@ -101,3 +101,13 @@ def test_the_safe_exposure_keeps_the_brightest_pixel_five_sigma_below_the_well()
     assert charge + 5 * np.sqrt(charge + IMX.read_noise_e**2) <= IMX.full_well_e
     assert not saturated_values(IMX, [np.array([[charge] * 3])], np.array([[charge] * 3])).any()
     assert saturated_values(IMX, [np.array([[charge * 1.01] * 3])], np.array([[0.0] * 3])).all()
+
+
+def test_spp_auto_on_a_saturated_chart_is_refused_in_one_line(imaged, ratio):
+    """Every patch channel saturated: no bound, no spp to choose; refused naming --tolerance and the reason (its
+    message had formatted the missing bound: a TypeError)."""
+    from skinrender.errors import SkinrenderError
+    from skinrender.rendering.spp_choice import spp_for_tolerance
+
+    with pytest.raises(SkinrenderError, match="--tolerance 0.05: no spp .* saturates.* has no bound"):
+        spp_for_tolerance(lambda spp, seed: validate_imaged(_exposed(imaged, 1e4), ratio), 0.05)

@@ -222,3 +222,12 @@ def test_sub_dn_noise_wrong_model_fails(sub_dn, field, factor):
     model = imager("sony-icx418")
     wrong = dataclasses.replace(model, **{field: getattr(model, field) * factor})
     assert validate_imaged(imaged, ratio, model=wrong).difference.outcome == "fail"
+
+
+def test_spp_auto_reads_a_sensor_validation(bright):
+    """``validate --imager --spp auto`` read the pilots' ``rendering``, which a sensor validation did not have (an
+    internal error): the pilots here are the fixture's frame validated again (no render)."""
+    from skinrender.rendering.spp_choice import spp_for_tolerance
+
+    choice = spp_for_tolerance(lambda spp, seed: validate_imaged(bright, RATIO, tolerance=0.2), 0.2)
+    assert choice["spp"] >= 1 and choice["pilots"][0]["spp"] == bright.rendering.raw[0].spp
