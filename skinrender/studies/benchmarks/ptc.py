@@ -193,7 +193,9 @@ def measure(im: Imager, rate: np.ndarray, seed: int, points: int = 24) -> dict:
     """
     The EMVA 1288 measurement of ``im`` recording the electron ``rate`` (e⁻/s ``(H, W, 3)``, from
     :func:`electron_rates`) with sensor-noise ``seed``: :func:`photon_transfer`'s keys but the render's, each fit with
-    its ``standard_error`` (the sampling one, propagated from every point's own: see the module's Notes).
+    its ``standard_error`` (the sampling one, propagated from every point's own: see the module's Notes) and the
+    fits' ``correlation`` per channel (``gain_read_noise``, ``gain_dark_current``, ``read_noise_dark_current``: the
+    read noise divides by the gain and shares its dark variances, the dark current divides by it; delta method).
     """
     fill = im.full_well_e / float(rate.mean(axis=(0, 1)).max())
     exposures = np.linspace(0.0, 1.3 * fill, points)
@@ -233,6 +235,14 @@ def measure(im: Imager, rate: np.ndarray, seed: int, points: int = 24) -> dict:
             intercept_var / (4 * excess**2) + gain_var / gain**2 - covariance / (excess * gain), 0.0))
     measurable = dark_std >= DARK_NOISE_MIN_DN
     dark_current_se = np.sqrt(dark_current_var)
+    with np.errstate(divide="ignore", invalid="ignore"):  # the fits share data: their correlations (delta method)
+        cov_rn_k = read_noise * (covariance / (2 * excess) - gain_var / gain)
+        cov_dc_k = -dark_current * gain_var / gain
+        cov_rn_dc = read_noise * dark_current / gain * (gain_var / gain - covariance / (2 * excess))
+        gain_se = np.sqrt(gain_var)
+        correlation = {"gain_read_noise": cov_rn_k / (read_noise_se * gain_se),
+                       "gain_dark_current": cov_dc_k / (dark_current_se * gain_se),
+                       "read_noise_dark_current": cov_rn_dc / (read_noise_se * dark_current_se)}
     current, why = _dark_current(dark_current, dark_current_se, measurable, dark_std, float(exposures[-1]))
     undefined = {} if measurable.all() else {
         "read_noise_e": f"the dark noise ({dark_std.min():.2g} DN) is below {DARK_NOISE_MIN_DN} DN: quantisation "
@@ -250,6 +260,8 @@ def measure(im: Imager, rate: np.ndarray, seed: int, points: int = 24) -> dict:
         "linearity_error": linearity,
         "stated": {"gain_dn_per_e": im.gain_dn_per_e, "read_noise_e": im.read_noise_e, "full_well_e": im.full_well_e,
                    "dark_current_e_per_s": im.dark_current_e_per_s},
+        "correlation": {key: [float(v) if np.isfinite(v) else None for v in np.clip(value, -1.0, 1.0)]
+                        for key, value in correlation.items()},
         "standard_error": {"gain_dn_per_e": np.sqrt(gain_var).tolist(),
                            "read_noise_e": kept(read_noise_se, measurable),
                            "dark_current_e_per_s": kept(dark_current_se, [c is not None for c in current])},

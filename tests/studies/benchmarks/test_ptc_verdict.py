@@ -91,3 +91,28 @@ def test_calibration_counts_false_alarms():
     lo, hi = rows["fits"]["interval"]
     assert lo <= rows["fits"]["rate"] <= hi
     assert np.all(np.isfinite(result["z"]["gain_dn_per_e"]["mean"]))
+
+
+def test_the_critical_value_follows_the_fits_correlation():
+    """Šidák's critical value assumes the nine values independent; the read noise and the dark current divide by the
+    gain (correlations to ±0.96 at 20 lx), so the family's exact value is lower, down to Šidák's over the three
+    channels where each channel's values are one (within the fixed draws' error)."""
+    from skinrender.evaluation.verdict import critical_z
+    from skinrender.studies.benchmarks.ptc_verdict import _critical
+
+    assert _critical([np.ones((3, 3))] * 3, 0.01) == pytest.approx(critical_z(0.01, 3, sides=2), abs=0.02)
+    measured = np.array([[1, -0.93, -0.96], [-0.93, 1, 0.89], [-0.96, 0.89, 1]])  # imx174, 20 lx
+    assert critical_z(0.01, 3, sides=2) < _critical([measured] * 3, 0.01) < critical_z(0.01, 9, sides=2) - 0.1
+
+
+def test_a_verdict_of_correlated_fits_names_its_critical_value():
+    doc = {"gain_dn_per_e": [0.1] * 3, "read_noise_e": [5.0] * 3, "dark_current_e_per_s": [None] * 3,
+           "standard_error": {"gain_dn_per_e": [0.001] * 3, "read_noise_e": [0.1] * 3,
+                              "dark_current_e_per_s": [None] * 3},
+           "correlation": {"gain_read_noise": [-0.95] * 3, "gain_dark_current": [None] * 3,
+                           "read_noise_dark_current": [None] * 3},
+           "stated": {"gain_dn_per_e": 0.1031, "read_noise_e": 5.0, "dark_current_e_per_s": 1.0}}
+    fits = ptc_verdict(doc)["checks"]["fits"]  # three channels of two values correlated −0.95: c ≈ 3.03
+    assert fits["threshold"] < 3.14 - 0.05 and "Šidák's, for independent values, would be 3.14" in fits["test"]
+    assert fits["statistic"] == pytest.approx(3.1)  # under Šidák's 3.14, beyond the exact value: the test now sees it
+    assert fits["verdict"] == "fail"
