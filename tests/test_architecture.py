@@ -201,3 +201,18 @@ def test_the_doctest_server_children_start_alike(doctest_server, doctest_example
     for name in ("with_colour", "without_colour", "sets_an_attribute", "sees_no_attribute", "with_colour"):
         result = doctest_server(name)
         assert (result["failed"], result["attempted"] > 0) == (0, True), result
+
+
+def test_the_pytest_plugin_imports_neither_mitsuba_nor_the_renderer():
+    """Every pytest session of a user with skinrender installed loads the plugin (its ``pytest11`` entry point):
+    importing it, in a fresh interpreter, imports neither Mitsuba nor ``skinrender.rendering`` (its fixture
+    imports what a check needs), and ``import skinrender`` alone imports nothing of the package but itself."""
+    code = ("import json, sys; import {module}; "
+            "print(json.dumps(sorted(m for m in sys.modules if m.split('.')[0] in ('skinrender', 'mitsuba', 'drjit'))))")
+    seen = {module: json.loads(subprocess.run([sys.executable, "-c", code.format(module=module)], check=True,
+                                              capture_output=True, text=True).stdout)
+            for module in ("skinrender.testing.plugin", "skinrender")}
+    plugin = seen["skinrender.testing.plugin"]
+    assert "skinrender.testing.plugin" in plugin
+    assert [m for m in plugin if m.startswith(("mitsuba", "drjit", "skinrender.rendering"))] == []
+    assert seen["skinrender"] == ["skinrender"]

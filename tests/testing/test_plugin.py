@@ -49,6 +49,7 @@ def warm(tmp_path_factory):
     measure("face", "gbell:9@450,540,610", "A", "A", spp=4, size=8)
     measure("macbeth", "gbell:9@450,540,610", "A", "A", spp=4)
     import matplotlib.pyplot  # noqa: F401  (the difference figure's)
+    import scipy.stats  # noqa: F401  (the comparison's; ``import skinrender`` imports it no more, nor numpy.fft)
 
     # contourpy too: imported first inside a run, it is unloaded after it and, compiled, cannot be imported again
     # (later tests of the same pytest-xdist worker drawing a contour failed)
