@@ -320,7 +320,7 @@ def search(
         if noisy is not None:
             noisy_rates[chunk] = result[2]
 
-    execution.map(partial(_volumes_chunk, method=method, detection=detection), [(index[c], c) for c in chunks],
+    execution.map_tasks(partial(_volumes_chunk, method=method, detection=detection), [(index[c], c) for c in chunks],
                   workers=workers, dask=dask, shared=(banks, pack), progress=progress, label=label, unit="triplet",
                   sizes=[len(c) for c in chunks], on_result=store)
     elapsed = time.perf_counter() - start

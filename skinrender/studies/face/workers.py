@@ -5,7 +5,7 @@ Face renders on every core or a Dask cluster
 How the face studies (:mod:`~skinrender.studies.face.sweep`,
 :mod:`~skinrender.studies.face.locus`) run a list of tasks, each one render,
 in this process, in a pool of worker processes, or on a Dask cluster: on
-:func:`skinrender.execution.map`, as the Stage 3 search spreads its triplets,
+:func:`skinrender.execution.map_tasks`, as the Stage 3 search spreads its triplets,
 with workers set up for Mitsuba and the same numbers every way.
 
 -   :func:`run_renders`: the results of ``function(task)`` in task order.
@@ -82,7 +82,7 @@ def _threaded(function: Callable, task):
 def run_renders(function: Callable, tasks: Sequence, variant: str, workers: int = 1, dask=None, progress=None,
                 label: str = "renders") -> list:
     """
-    ``function(task)`` for every task, in task order (:func:`skinrender.execution.map`).
+    ``function(task)`` for every task, in task order (:func:`skinrender.execution.map_tasks`).
 
     Parameters
     ----------
@@ -110,7 +110,7 @@ def run_renders(function: Callable, tasks: Sequence, variant: str, workers: int 
     """
     before = set_threads(RENDER_THREADS) if dask is None and workers == 1 else None
     try:
-        return execution.map(partial(_threaded, function), tasks, workers=workers, dask=dask,
+        return execution.map_tasks(partial(_threaded, function), tasks, workers=workers, dask=dask,
                              initializer=_init_worker, initargs=(variant,), start="spawn", progress=progress,
                              label=label, unit="render")
     finally:
