@@ -182,9 +182,9 @@ def map_tasks(function: Callable, tasks: Sequence, *, workers: int = 1, dask=Non
     --------
     >>> from functools import partial
     >>> import operator
-    >>> map(partial(operator.mul, 3), [5, 1, 4])
+    >>> map_tasks(partial(operator.mul, 3), [5, 1, 4])
     [15, 3, 12]
-    >>> map(operator.add, [1, 2], shared=10)
+    >>> map_tasks(operator.add, [1, 2], shared=10)
     [11, 12]
     """
     results: list = [None] * len(tasks)

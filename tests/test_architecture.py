@@ -216,3 +216,47 @@ def test_the_pytest_plugin_imports_neither_mitsuba_nor_the_renderer():
     assert "skinrender.testing.plugin" in plugin
     assert [m for m in plugin if m.startswith(("mitsuba", "drjit", "skinrender.rendering"))] == []
     assert seen["skinrender"] == ["skinrender"]
+
+
+def _parsed_modules():
+    """Every module of the package, parsed: ``(dotted name, syntax tree)``."""
+    import ast
+
+    return [(module, ast.parse(source_of(module).read_text(encoding="utf-8"))) for module in ["skinrender", *modules()]]
+
+
+def test_no_private_name_is_imported_from_another_module():
+    """A name another module needs is public (in its module's ``__all__``); ``_name`` stays in its module. Only a
+    compiled kernel's own wrapper imports it (``evaluation.hull`` ← ``_hull3d``)."""
+    import ast
+
+    found = []
+    for module, tree in _parsed_modules():
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.module != "__future__":
+                found += [f"{module}: from {'.' * node.level}{node.module or ''} import {alias.name}"
+                          for alias in node.names if alias.name.startswith("_") and not alias.name.startswith("__")
+                          and not (module == "skinrender.evaluation.hull" and alias.name == "_hull3d")]
+    assert found == []
+
+
+def test_no_builtin_is_shadowed():
+    """No module defines a name of Python's builtins at its top level (``execution.map`` became ``map_tasks``)."""
+    import ast
+    import builtins
+
+    names = set(dir(builtins))
+    found = []
+    for module, tree in _parsed_modules():
+        for node in tree.body:
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+                defined = [node.name]
+            elif isinstance(node, (ast.Assign, ast.AnnAssign)):
+                targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+                defined = [target.id for target in targets if isinstance(target, ast.Name)]
+            elif isinstance(node, (ast.Import, ast.ImportFrom)):
+                defined = [(alias.asname or alias.name).split(".")[0] for alias in node.names]
+            else:
+                continue
+            found += [f"{module}: {name}" for name in defined if name in names]
+    assert found == []

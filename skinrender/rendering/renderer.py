@@ -72,6 +72,9 @@ __all__ = [
     "EMITTERS",
     "channel_names",
     "render_passes",
+    "mitsuba_spectrum",
+    "emitter_peak",
+    "channels_separate",
     "scene_dict",
     "RawRender",
     "render_raw",
@@ -101,7 +104,7 @@ def channel_names(cam: Camera) -> tuple[str, str, str]:
     return tuple(f"{c}_{p:g}nm" for c, p in zip(cam.channels, cam.peaks))
 
 
-def _spectrum(wavelengths: NDArrayFloat, values: NDArrayFloat) -> dict:
+def mitsuba_spectrum(wavelengths: NDArrayFloat, values: NDArrayFloat) -> dict:
     """A Mitsuba spectrum: ``irregular`` on the wavelengths (nm), or ``uniform`` 0 for an all-zero one (a black
     patch), which Mitsuba refuses as an irregular spectrum ("no probability mass found")."""
     if not np.any(np.asarray(values) != 0):
@@ -149,7 +152,7 @@ def scene_dict(
     film = {"type": "specfilm", "width": width, "height": height, "component_format": "float32",
             "rfilter": {"type": "box"}}
     for k in channels:
-        film[names[k]] = _spectrum(wavelengths, curves[k])
+        film[names[k]] = mitsuba_spectrum(wavelengths, curves[k])
     transform = mi.ScalarTransform4f
     document = {
         "type": "scene",
@@ -172,7 +175,7 @@ def scene_dict(
         document[f"patch_{index:03d}"] = {
             "type": "rectangle",
             "to_world": transform().translate(centre) @ transform().scale([half, half, 1]),
-            "bsdf": {"type": "diffuse", "reflectance": _spectrum(wavelengths, values[index])},
+            "bsdf": {"type": "diffuse", "reflectance": mitsuba_spectrum(wavelengths, values[index])},
         }
     return document
 
@@ -198,10 +201,12 @@ def _emitter(temperature: float, grid: WavelengthGrid, kind: str) -> dict:
     validate_method(kind, EMITTERS, "emitter")
     lam = emitter_grid(grid)
     values = planck(lam, temperature)
-    return _spectrum(lam, values / _peak(values))
+    return mitsuba_spectrum(lam, values / emitter_peak(values))
 
 
-def _peak(values: NDArrayFloat) -> float:
+def emitter_peak(values: NDArrayFloat) -> float:
+    """The largest value of a Planck emitter's spectrum on the grid (W·m⁻²·sr⁻¹·nm⁻¹), which scales it; a
+    refusal where it is zero or not finite."""
     peak = float(np.max(values))
     if not (np.isfinite(peak) and peak > 0):
         raise SkinrenderError("the Planck emitter is zero (or not finite) over the whole grid at this temperature")
@@ -237,7 +242,9 @@ class RawRender:
         return self.image.astype(np.float64) * self.emitter_scale
 
 
-def _separate(cam: Camera, grid: WavelengthGrid, channels: str) -> bool:
+def channels_separate(cam: Camera, grid: WavelengthGrid, channels: str) -> bool:
+    """Whether ``cam``'s three channels are rendered in separate passes on ``grid`` (``channels``: one of
+    :data:`CHANNEL_GROUPINGS`; ``auto``: the impulse, a narrow gbell or very unequal channel areas)."""
     validate_method(channels, CHANNEL_GROUPINGS, "channels")
     if channels != "auto":
         return channels == "separate"
@@ -254,7 +261,7 @@ def render_passes(cam: Camera, grid: WavelengthGrid = GRID_DEFAULT, channels: st
     >>> render_passes(camera("gbell:9@450,540,610")), render_passes(camera("impulse@450,550,650"))
     (1, 3)
     """
-    return 3 if _separate(camera(cam), grid, channels) else 1
+    return 3 if channels_separate(camera(cam), grid, channels) else 1
 
 
 class ChartRenderer:
@@ -283,7 +290,7 @@ class ChartRenderer:
         validate_method(emitter, EMITTERS, "emitter")
         self.sampler, self.grid, self.emitter = settings.sampler, grid, emitter
         self.variant = choose_variant(settings.variant)
-        self.groups = [(0,), (1,), (2,)] if _separate(self.camera, grid, settings.channels) else [(0, 1, 2)]
+        self.groups = [(0,), (1,), (2,)] if channels_separate(self.camera, grid, settings.channels) else [(0, 1, 2)]
         self.requested_spp = spp
         self._loaded: list = []
         self.spp = spp
@@ -309,7 +316,7 @@ class ChartRenderer:
         scale = 1.0
         if self.emitter == "tabulated":
             radiance = planck(emitter_grid(self.grid), temperature)
-            scale = _peak(radiance)
+            scale = emitter_peak(radiance)
         if not self._loaded or self.emitter == "blackbody":
             self._load(temperature)
         if self.emitter == "tabulated":

@@ -62,7 +62,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..spectra import WavelengthGrid
-from .renderer import _spectrum
+from .renderer import mitsuba_spectrum
 from .scene import reflectance_of, skin_parameters_of
 from .variants import choose_variant
 
@@ -250,8 +250,8 @@ def medium_dict(layer, grid: WavelengthGrid, mm_per_unit: float = 1.0) -> dict:
     mu_t = mu_a + mu_s
     if not (np.all(np.isfinite(mu_t)) and np.all(mu_t > 0)):
         raise SkinrenderError(f"layer {layer.name}: extinction μa + μs must be finite and > 0 mm⁻¹")
-    return {"type": "homogeneous", "sigma_t": _spectrum(grid.wavelengths, mu_t),
-            "albedo": _spectrum(grid.wavelengths, mu_s / mu_t), "scale": float(mm_per_unit),
+    return {"type": "homogeneous", "sigma_t": mitsuba_spectrum(grid.wavelengths, mu_t),
+            "albedo": mitsuba_spectrum(grid.wavelengths, mu_s / mu_t), "scale": float(mm_per_unit),
             "phase": {"type": "hg", "g": float(layer.g)}}
 
 

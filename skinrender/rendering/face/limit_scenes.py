@@ -45,7 +45,7 @@ from ...spectra import GRID_DEFAULT
 from ..validation import FLOAT32_FLOOR
 from .document import channel_groups, channel_integral, film_dict, light_irradiance
 from .labels import LABEL_SKIN
-from .limits import ALPHA, LimitCheck, _ratio, critical_t, jackknife, rg, sphere_emission, two_part
+from .limits import ALPHA, LimitCheck, deviation_ratio, critical_t, jackknife, rg, sphere_emission, two_part
 from .scene import FaceScene, Light, load_face_scene
 
 __all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "furnace_radiance", "sphere_channels", "check_furnace",
@@ -91,7 +91,7 @@ def sphere_channels(cam: Camera | str, rho: NDArrayFloat, depth: int, seeds=rang
     Mean channels of a closed emitting Lambertian sphere of reflectance ``rho`` (on the default grid),
     rendered from its centre to path depth ``depth`` (−1: every bounce); one row per seed, specfilm units.
     """
-    from ..renderer import _spectrum
+    from ..renderer import mitsuba_spectrum
     from ..variants import choose_variant, mitsuba
 
     mi = mitsuba(choose_variant(variant))
@@ -106,8 +106,8 @@ def sphere_channels(cam: Camera | str, rho: NDArrayFloat, depth: int, seeds=rang
                        "sampler": {"type": "independent", "sample_count": int(spp)},
                        "film": film_dict(cam, GRID_DEFAULT, group, size, size)},
             "sphere": {"type": "sphere", "radius": 1.0, "flip_normals": True,
-                       "emitter": {"type": "area", "radiance": _spectrum(lam, emission)},
-                       "bsdf": {"type": "diffuse", "reflectance": _spectrum(GRID_DEFAULT.wavelengths, rho)}},
+                       "emitter": {"type": "area", "radiance": mitsuba_spectrum(lam, emission)},
+                       "bsdf": {"type": "diffuse", "reflectance": mitsuba_spectrum(GRID_DEFAULT.wavelengths, rho)}},
         })
         for row, seed in enumerate(seeds):
             image = np.array(mi.render(scene, seed=int(seed)), dtype=np.float64)
@@ -129,10 +129,10 @@ def check_furnace(radiance: NDArrayFloat, labels: NDArrayFloat, expected: NDArra
     head = labels == LABEL_SKIN
     mean = radiance.mean(axis=0)
     error = radiance.std(axis=0, ddof=1) / np.sqrt(k)
-    t_pixel = _ratio(np.abs(mean - expected), np.hypot(error, FLOAT32_FLOOR * expected))
+    t_pixel = deviation_ratio(np.abs(mean - expected), np.hypot(error, FLOAT32_FLOOR * expected))
     pooled = radiance[:, head].mean(axis=1) if head.any() else radiance.reshape(k, -1, 3).mean(axis=1)
     pooled_error = pooled.std(axis=0, ddof=1) / np.sqrt(k)
-    t_pooled = _ratio(np.abs(pooled.mean(axis=0) - expected), np.hypot(pooled_error, FLOAT32_FLOOR * expected))
+    t_pooled = deviation_ratio(np.abs(pooled.mean(axis=0) - expected), np.hypot(pooled_error, FLOAT32_FLOOR * expected))
     outcome, statistic, test, details = two_part("white_furnace", t_pixel, t_pooled, k,
                                                  "each pixel's channels against the sky's",
                                                  "the head's mean channels")
