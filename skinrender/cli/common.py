@@ -38,8 +38,11 @@ HELP_GRID = "integration grid START:END:STEP in nm (default 400:700:1)"
 
 
 def choices_help(methods: dict) -> str:
-    """``name (meaning), …`` of a method table, for a flag's help."""
-    return "; ".join(f"{name}: {meaning}" for name, meaning in methods.items()).replace("%", "%%")
+    """``name: meaning; …`` of a method table (each method's :func:`~skinrender.methods.describe`), for a flag's
+    help."""
+    from ..methods import describe
+
+    return "; ".join(f"{name}: {describe(method)}" for name, method in methods.items()).replace("%", "%%")
 
 
 def add_common(parser: argparse.ArgumentParser) -> None:

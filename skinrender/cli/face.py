@@ -149,7 +149,9 @@ def check_face_flags(args: argparse.Namespace) -> tuple:
     cam = camera_of(args)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
     _check_light(cam, temperatures)
-    if getattr(args, "normalization", "white") != "white":
+    from ..model.response import uses_whites
+
+    if not uses_whites(getattr(args, "normalization", "white")):
         raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
                               f"got {args.normalization!r}", flag="--normalization")
     if str(getattr(args, "grid", "400:700:1")).strip() != "400:700:1":

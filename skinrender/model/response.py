@@ -6,7 +6,10 @@ The paper's Eqs. 1–11 for a :class:`~skinrender.model.camera.Camera`: the raw
 response of Eq. 1, the white-balanced response of Eq. 4 with the illuminant
 normalisations of Eqs. 5–8 (the Eq. 10 factor), and the knee of Eq. 11.
 
--   :data:`NORMALISATIONS`, :func:`normalisation_factor`, :func:`white_coefficient`.
+-   :data:`NORMALISATIONS` (Eqs. 5–8, name → the factor of each illuminant: :func:`factor_none`,
+    :func:`factor_560nm`, :func:`factor_euclidean`, :func:`factor_white`) and its dispatcher
+    :func:`illuminant_factors`; :func:`normalisation_factor` (Eqs. 5–7), :func:`white_coefficient`.
+-   :data:`QUADRATURES` (name → the samples' weights: :func:`sum_weights`, :func:`trapezoid_weights`).
 -   :func:`gain`: the one implementation of the Eq. 4 gain ``v · F / W_c``
     (white balance and Eq. 10 factor), used by the analytic model, the
     Stage 3 search, the renderer's white balance and the validation.
@@ -37,7 +40,7 @@ from ..constants import (
 from ..datasets import SpectralSet, reflectances
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, Literal, NDArrayFloat
-from ..methods import validate_method
+from ..methods import method_of, validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .camera import Camera, camera
 from .illuminant import Illuminant, illuminants_array
@@ -45,6 +48,14 @@ from .illuminant import Illuminant, illuminants_array
 __all__ = [
     "NORMALISATIONS",
     "QUADRATURES",
+    "factor_none",
+    "factor_560nm",
+    "factor_euclidean",
+    "factor_white",
+    "sum_weights",
+    "trapezoid_weights",
+    "illuminant_factors",
+    "uses_whites",
     "normalisation_factor",
     "white_coefficient",
     "white_coefficient_from_whites",
@@ -56,24 +67,104 @@ __all__ = [
     "knee",
 ]
 
-NORMALISATIONS = {
-    "none": "Eq. 5: the absolute Planck SPD",
-    "560nm": "Eq. 6: SPD scaled to 100 at 560 nm",
-    "euclidean": "Eq. 7: SPD of unit Euclidean norm over the grid samples",
-    "white": "Eq. 8: the white coefficient WP (default)",
-}
-"""Illuminant normalisations (Eqs. 5–8), name → meaning."""
+def factor_none(illuminants: list[Illuminant], grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
+    """Eq. 5: the absolute Planck SPD
 
-QUADRATURES = {
-    "sum": "the paper's Σ over the grid samples",
-    "trapezoid": "end samples weighted ½: the integral of the linearly interpolated spectra (what a renderer estimates)",
-}
-"""Quadrature rules of :func:`response`, name → meaning."""
+    ``F = 1`` for each illuminant."""
+    return np.ones(len(illuminants))
+
+
+def factor_560nm(illuminants: list[Illuminant], grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
+    """Eq. 6: SPD scaled to 100 at 560 nm
+
+    ``F = 100 / SPD(560 nm)`` for each illuminant; refused for one without light there."""
+    level = np.array([i.spd(np.array([560.0]))[0] for i in illuminants])
+    dark = [str(i) for i, v in zip(illuminants, level) if not (np.isfinite(v) and v > 1e-300)]
+    if dark:
+        raise SkinrenderError(f"illuminant {dark[0]} has no light at 560 nm (Planck underflows): the 560nm "
+                              "normalisation (Eq. 6) is undefined for it")
+    return 100.0 / level
+
+
+def factor_euclidean(illuminants: list[Illuminant], grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
+    """Eq. 7: SPD of unit Euclidean norm over the grid samples
+
+    ``F = 1 / sqrt(Σ SPD²)`` over the samples of ``grid`` for each illuminant (so it depends on the grid as the
+    paper's sum does); refused for one without light on the grid."""
+    norm = np.linalg.norm(spds_on(illuminants, grid), axis=-1)
+    dark = [str(i) for i, v in zip(illuminants, norm) if not (np.isfinite(v) and v > 1e-300)]
+    if dark:
+        raise SkinrenderError(f"illuminant {dark[0]} has no light on the grid {grid}: the euclidean "
+                              "normalisation (Eq. 7) is undefined for it")
+    return 1.0 / norm
+
+
+def factor_white(illuminants: list[Illuminant], grid: WavelengthGrid = GRID_DEFAULT) -> None:
+    """Eq. 8: the white coefficient WP (default)
+
+    ``None``: WP is no factor of one illuminant but of a pair, from the camera's whites under both
+    (:func:`white_coefficient_from_whites`), which :func:`gain` computes where it is given no factors."""
+    return None
+
+
+NORMALISATIONS = {"none": factor_none, "560nm": factor_560nm, "euclidean": factor_euclidean, "white": factor_white}
+"""Illuminant normalisations (Eqs. 5–8), name → the function ``(illuminants, grid) → F`` of each illuminant
+(``I_n = F · I_0``; ``None`` for WP, a pair's); :func:`illuminant_factors` dispatches, :func:`gain` applies."""
+
+
+def sum_weights(grid: WavelengthGrid) -> NDArrayFloat:
+    """the paper's Σ over the grid samples
+
+    Every sample weighted 1."""
+    return np.ones(grid.size)
+
+
+def trapezoid_weights(grid: WavelengthGrid) -> NDArrayFloat:
+    """end samples weighted ½: the integral of the linearly interpolated spectra (what a renderer estimates)
+
+    The trapezoid rule's weights (in units of the step): 1, the two end samples ½."""
+    weights = np.ones(grid.size)
+    weights[[0, -1]] = 0.5
+    return weights
+
+
+QUADRATURES = {"sum": sum_weights, "trapezoid": trapezoid_weights}
+"""Quadrature rules of :func:`response`, name → the weights of the grid's samples ``(grid) → (grid.size,)``."""
 
 
 def spds_on(illuminants: list[Illuminant], grid: WavelengthGrid) -> NDArrayFloat:
     """SPDs of illuminants on ``grid``, shape ``(len(illuminants), grid.size)``, W·m⁻²·sr⁻¹·nm⁻¹."""
     return np.array([illuminant.spd(grid.wavelengths) for illuminant in illuminants])
+
+
+def illuminant_factors(
+    illuminants: ArrayLike | Illuminant | str,
+    normalization: str = "white",
+    grid: WavelengthGrid = GRID_DEFAULT,
+) -> NDArrayFloat | None:
+    """
+    The factor *F_n* of each illuminant (``I_n = F_n · I_0``) of a normalisation: the dispatcher of
+    :data:`NORMALISATIONS` (the name checked, its function called); ``None`` for ``white``, whose WP is a pair's.
+
+    Returns
+    -------
+    :class:`numpy.ndarray` or None
+        Shape of ``illuminants``; unit the inverse of the SPD's.
+    """
+    items, shape = illuminants_array(illuminants)
+    factor = method_of(normalization, NORMALISATIONS, "normalization")(items, grid)
+    return None if factor is None else np.asarray(factor, dtype=np.float64).reshape(shape)
+
+
+def uses_whites(normalization: str) -> bool:
+    """
+    Whether a normalisation's factor is WP, the pair's, from the camera's whites under both lights (Eq. 8:
+    ``white``), rather than one factor per illuminant (Eqs. 5–7).
+
+    >>> uses_whites("white"), uses_whites("560nm")
+    (True, False)
+    """
+    return method_of(normalization, NORMALISATIONS, "normalization") is factor_white
 
 
 def normalisation_factor(
@@ -82,7 +173,8 @@ def normalisation_factor(
     grid: WavelengthGrid = GRID_DEFAULT,
 ) -> NDArrayFloat:
     """
-    The factor *F_n* with ``I_n = F_n · I_0`` (Eqs. 5–7).
+    The factor *F_n* with ``I_n = F_n · I_0`` (Eqs. 5–7): :func:`illuminant_factors` of a normalisation that
+    has one per illuminant.
 
     Parameters
     ----------
@@ -98,27 +190,12 @@ def normalisation_factor(
     :class:`numpy.ndarray`
         Shape of ``illuminants``; unit the inverse of the SPD's.
     """
-
-    items, shape = illuminants_array(illuminants)
-    if method == "none":
-        return np.ones(shape)
-    if method == "560nm":
-        level = np.array([i.spd(np.array([560.0]))[0] for i in items])
-        dark = [str(i) for i, v in zip(items, level) if not (np.isfinite(v) and v > 1e-300)]
-        if dark:
-            raise SkinrenderError(f"illuminant {dark[0]} has no light at 560 nm (Planck underflows): the 560nm "
-                                  "normalisation (Eq. 6) is undefined for it")
-        return (100.0 / level).reshape(shape)
-    if method == "euclidean":
-        norm = np.linalg.norm(spds_on(items, grid), axis=-1)
-        dark = [str(i) for i, v in zip(items, norm) if not (np.isfinite(v) and v > 1e-300)]
-        if dark:
-            raise SkinrenderError(f"illuminant {dark[0]} has no light on the grid {grid}: the euclidean "
-                                  "normalisation (Eq. 7) is undefined for it")
-        return (1.0 / norm).reshape(shape)
-    raise SkinrenderError(
-        f"normalization must be one of none, 560nm, euclidean (white has no per-illuminant factor), got {method!r}"
-    )
+    factor = illuminant_factors(illuminants, method, grid) if method in NORMALISATIONS else None
+    if factor is None:
+        per = ", ".join(name for name in NORMALISATIONS if not uses_whites(name))
+        raise SkinrenderError(f"normalization must be one of {per} (white has no per-illuminant factor), "
+                              f"got {method!r}")
+    return factor
 
 
 def check_light(cam: Camera, items: list[Illuminant], spds: NDArrayFloat, grid: WavelengthGrid, role: str) -> None:
@@ -186,9 +263,8 @@ def gain(
     [255.0, 127.5, 63.75]
     """
 
-    validate_method(normalization, NORMALISATIONS, "normalization")
     white_p, white_c = np.asarray(white_p, dtype=np.float64), np.asarray(white_c, dtype=np.float64)
-    if normalization == "white":
+    if uses_whites(normalization):  # WP (Eq. 8): the pair's, from the whites
         factor = white_coefficient_from_whites(white_p, white_c)
     else:
         if factor_p is None or factor_c is None:
@@ -371,18 +447,16 @@ def response(
     x = cam.sensitivities(grid)
     spd_p = spds_on(p_items, grid)
     spd_c = spds_on(c_items, grid)
-    if validate_method(quadrature, QUADRATURES, "quadrature") == "trapezoid":
-        weights = np.ones(grid.size)
-        weights[[0, -1]] = 0.5
-        spd_p, spd_c = spd_p * weights, spd_c * weights
+    weights = method_of(quadrature, QUADRATURES, "quadrature")(grid)
+    spd_p, spd_c = spd_p * weights, spd_c * weights
     signal = np.einsum("...w,pkw->p...k", o, spd_p[:, None, :] * x[None, :, :])  # (P, ..., 3)
     white_p = spd_p @ x.T  # (P, 3)
     white_c = spd_c @ x.T  # (C, 3)
     check_light(cam, p_items, spd_p, grid, "prevailing illuminant")
     check_light(cam, c_items, spd_c, grid, "calibration illuminant")
     pi, ci = np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape))
-    factors = (None, None) if normalization == "white" else (
-        normalisation_factor(p_items, normalization, grid)[pi], normalisation_factor(c_items, normalization, grid)[ci])
+    factor_p, factor_c = (illuminant_factors(items, normalization, grid) for items in (p_items, c_items))
+    factors = (None, None) if factor_p is None else (factor_p[pi], factor_c[ci])  # None: WP, from the whites
     gains = gain(white_p[pi], white_c[ci], normalization, *factors, scale=scale)
     gains = gains.reshape(*gains.shape[:-1], *((1,) * (o.ndim - 1)), 3)
     out = signal[pi] * gains

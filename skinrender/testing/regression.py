@@ -172,6 +172,8 @@ def _white_relative_variance(rendering) -> NDArrayFloat:
     it is ``Σ_C[k, k]``. Measured: adding the terms in quadrature without the covariances, as
     :mod:`~skinrender.rendering.validation` does for its 5 σ, overstated the G channel's standard errors by ~16 %.
     """
+    from ..model.response import uses_whites
+
 
     def relative_covariance(raw) -> NDArrayFloat:
         rows, columns = rendering.scene.patch_pixels(rendering.scene.white_index)
@@ -180,7 +182,7 @@ def _white_relative_variance(rendering) -> NDArrayFloat:
         return np.cov(pixels, rowvar=False) / len(pixels) / np.outer(mean, mean)
 
     sigma_c = relative_covariance(rendering.raw[-1])
-    if rendering.normalization != "white" or rendering.prevailing == rendering.calibration:
+    if not uses_whites(rendering.normalization) or rendering.prevailing == rendering.calibration:
         return np.diagonal(sigma_c).copy()
     sigma_w = relative_covariance(rendering.raw[0])
     ratio = rendering.info["white_ratio"]
