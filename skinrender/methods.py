@@ -17,6 +17,7 @@ positions, Stage 1's candidate temperatures) in one place.
 -   :func:`validate_method`: a name of a method table, or a one-line error.
 -   :func:`method_of`: the method of a name, checked (what a dispatcher calls).
 -   :func:`describe`: a method's one-line description.
+-   :func:`takes`: whether a method takes an option (what it does not take, it refuses).
 -   :func:`parse_range`: ``START:END:STEP`` as three finite numbers.
 -   :func:`range_steps`, :class:`RangeWords`, :class:`Steps`: the steps of a
     range, END included, or a refusal worded for its kind of range.
@@ -31,7 +32,7 @@ from typing import NamedTuple
 
 from .errors import SkinrenderError
 
-__all__ = ["validate_method", "method_of", "describe", "parse_range", "Steps", "RangeWords", "range_steps"]
+__all__ = ["validate_method", "method_of", "describe", "takes", "parse_range", "Steps", "RangeWords", "range_steps"]
 
 
 def validate_method(name: object, methods: Mapping[str, object], what: str, role: str | None = None) -> str:
@@ -83,6 +84,19 @@ def describe(method: object) -> str:
         return method
     text = (getattr(method, "__doc__", None) or "").strip()
     return text.splitlines()[0].strip() if text else getattr(method, "__name__", str(method))
+
+
+def takes(method: Callable, option: str) -> bool:
+    """
+    Whether ``method`` takes the keyword ``option``: the one question a caller asks of a method beside calling it
+    (an option only some methods of a family take is a parameter of those, and the others are refused it).
+
+    >>> takes(lambda banks, noisy=None: 0, "noisy"), takes(lambda banks: 0, "noisy")
+    (True, False)
+    """
+    import inspect
+
+    return option in inspect.signature(method).parameters
 
 
 def parse_range(text: str, what: str, example: str = "400:700:10") -> tuple[float, float, float]:
