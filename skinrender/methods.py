@@ -8,7 +8,7 @@ name a user types to the function that does it (as colour-science's
 ``CCT_TO_XY_METHODS``), with one dispatcher that checks the name
 (:func:`validate_method`, which words the error the same way everywhere) and
 calls the function: nothing else compares a value with a method's name. A
-method's one-line description is its docstring's first line
+method's one-line description is its docstring's first paragraph
 (:func:`describe`), from which the command line words its choices' help. :func:`parse_range`
 reads the ``START:END:STEP`` ranges (nm) of grids and sensor positions, and
 :func:`range_steps` checks every such range (wavelength grids, sensor
@@ -71,19 +71,23 @@ def method_of(name: object, methods: Mapping[str, Callable], what: str, role: st
 
 def describe(method: object) -> str:
     """
-    The one-line description of a method: the first line of its docstring (a string is its own description).
+    The one-line description of a method: the first paragraph of its docstring, on one line (a string is its own
+    description).
 
     Examples
     --------
     >>> def zero(values):
-    ...     \"\"\"0 outside the measured range\"\"\"
+    ...     \"\"\"0 outside the
+    ...     measured range
+    ...
+    ...     The values, 0 where no sample is.\"\"\"
     >>> describe(zero), describe("an error")
     ('0 outside the measured range', 'an error')
     """
     if isinstance(method, str):
         return method
     text = (getattr(method, "__doc__", None) or "").strip()
-    return text.splitlines()[0].strip() if text else getattr(method, "__name__", str(method))
+    return " ".join(text.split("\n\n")[0].split()) if text else getattr(method, "__name__", str(method))
 
 
 def takes(method: Callable, option: str) -> bool:
