@@ -63,7 +63,8 @@ _WHERE = {
     **dict.fromkeys(("CHANNELS", "Camera", "camera"), "model.camera"),
     **dict.fromkeys(("Illuminant", "illuminant"), "model.illuminant"),
     **dict.fromkeys(("measure", "ncc"), "model.chromaticity"),
-    **dict.fromkeys(("NORMALISATIONS", "gain", "knee", "normalisation_factor", "response", "response_raw",
+    "NORMALISATIONS": "model.factors",
+    **dict.fromkeys(("gain", "knee", "normalisation_factor", "response", "response_raw",
                      "white_coefficient"), "model.response"),
     **dict.fromkeys(("illuminant_selection", "illuminant_set", "illuminant_track", "select_illuminants"),
                     "model.stage1"),
@@ -110,8 +111,9 @@ if TYPE_CHECKING:  # the names for type checkers and editors, as they are import
     from .model.camera import CHANNELS, Camera, camera  # noqa: F401
     from .model.chromaticity import measure, ncc  # noqa: F401
     from .model.illuminant import Illuminant, illuminant  # noqa: F401
-    from .model.response import (NORMALISATIONS, gain, knee, normalisation_factor, response,  # noqa: F401
-                                 response_raw, white_coefficient)
+    from .model.factors import NORMALISATIONS  # noqa: F401
+    from .model.response import (gain, knee, normalisation_factor, response, response_raw,  # noqa: F401
+                                 white_coefficient)
     from .model.stage1 import (illuminant_selection, illuminant_set, illuminant_track,  # noqa: F401
                                select_illuminants)
     from .rendering.balance import Rendering  # noqa: F401

@@ -194,8 +194,7 @@ class ChartRequest(Request):
         validate_method(self.normalization, NORMALISATIONS, "normalization", role="normalization")
         if not isinstance(self.knee, bool):
             raise SkinrenderError(f"knee must be True or False, got {self.knee!r}", role="knee")
-        if self.emitter != "blackbody":
-            validate_method(self.emitter, EMITTERS, "emitter", role="emitter")
+        validate_method(self.emitter, EMITTERS, "emitter", role="emitter")
 
     @property
     def pixels(self) -> int:
