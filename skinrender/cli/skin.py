@@ -111,7 +111,10 @@ def command_skin(args: argparse.Namespace) -> None:
                               flag="--compare")
     compare = _compare_sets(args) if args.plot else []
     parameters = parameters_of(args)
-    if parameters.surface is not None and method != "kubelka-munk":
+    from ..datasets.skin_fit import FIT_MODELS
+    from ..methods import takes
+
+    if parameters.surface is not None and not takes(FIT_MODELS[method], "surface"):
         raise SkinrenderError("--surface is the kubelka-munk method's flat surface reflectance; adding-doubling's "
                               "surface is its Fresnel boundary (--n)", flag="--surface")
     from .common import grid_of
