@@ -72,21 +72,26 @@ def _or(value, default):
 def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     """Every flag of ``bench calibration`` / ``bench validate`` checked before anything renders (``spp_list``:
     ``--spp-list`` as parsed by ``bench``, ``None`` when not given)."""
-    from ..model.camera import camera
-    from ..model.illuminant import illuminant
-    from ..rendering.renderer import SAMPLES_MAX, render_passes
-    from ..rendering.scene import load_chart_scene
-    from ..studies.benchmarks.calibration import calibration_path, estimate_seconds, renders_of
-    from ..rendering.kinds import FACE, scene_kind
-    from ..workload import check_work
+    from ..rendering.kinds import scene_kind
+    from ..studies.benchmarks.calibration import calibration_path
+    from .inputs import by_kind
 
     scene_spec = _or(args.scene, "macbeth")
     if scene_spec == "ptc":
         return _checked_ptc(args)
-    kind = scene_kind(scene_spec)
-    run = calibration_path(kind.name, args.level)
-    if kind is FACE:
-        return _checked_face(args, run, scene_spec)
+    run = calibration_path(scene_kind(scene_spec).name, args.level)
+    return by_kind(scene_spec, chart=_checked_chart, face=_checked_face)(args, run, scene_spec, spp_list)
+
+
+def _checked_chart(args: argparse.Namespace, run, scene_spec: str, spp_list: list[int] | None) -> dict:
+    """A chart's calibration or validation flags, checked (:func:`_checked`)."""
+    from ..model.camera import camera
+    from ..model.illuminant import illuminant
+    from ..rendering.renderer import SAMPLES_MAX, render_passes
+    from ..rendering.scene import load_chart_scene
+    from ..studies.benchmarks.calibration import estimate_seconds, renders_of
+    from ..workload import check_work
+
     scene = flag("--scene", load_chart_scene, scene_spec)
     cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))
     lights = {}
@@ -127,7 +132,7 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
             "level": args.level}
 
 
-def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
+def _checked_face(args: argparse.Namespace, run, scene_spec: str, spp_list: list[int] | None = None) -> dict:
     """``bench calibration --scene FACE [--level L]``'s flags checked (``bench validate`` and ``--mc-variance``
     refused: the face's checks have no tolerance, and no sensor prediction to correct)."""
     from ..model.camera import camera
@@ -161,7 +166,7 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
     seconds = estimate_face_seconds(seeds, scene.camera.width * scene.camera.height, spp, level)
     check_work(seconds, "--seeds", f"{seeds} validations of the face at {spp} spp", args.max_minutes,
                fewer="run fewer --seeds")
-    return {"run": run, "kind": "face", "scene": scene, "camera_": cam, **lights, "spps": [spp], "seeds": seeds,
+    return {"run": run, "study": _study_face, "scene": scene, "camera_": cam, **lights, "spps": [spp], "seeds": seeds,
             "first_seed": first, "imaging": imaging, "mc_variance": None, "plot": plot, "estimate_s": seconds,
             "level": level}
 
@@ -209,59 +214,63 @@ def _checked_ptc(args: argparse.Namespace) -> dict:
     seconds = estimate_ptc_seconds(seeds, spp=spp)
     check_work(seconds, "--seeds", f"{seeds} photon-transfer measurements", args.max_minutes,
                fewer="run fewer --seeds")
-    return {"kind": "ptc", "camera_": cam, "imager_": sensor, "illuminance_lux": lux, "temperature": temperature,
+    return {"study": _study_ptc, "camera_": cam, "imager_": sensor, "illuminance_lux": lux, "temperature": temperature,
             "seeds": seeds, "first_seed": first, "spp": spp, "plot": plot, "estimate_s": seconds}
+
+
+def _study_ptc(args: argparse.Namespace, options: dict, progress) -> tuple[dict, str]:
+    """``bench calibration --scene ptc``: the photon transfer's fits over the seeds."""
+    from ..studies.benchmarks.ptc import ptc_calibration
+
+    result = ptc_calibration(options["camera_"], options["imager_"], options["temperature"],
+                             options["illuminance_lux"], options["seeds"], options["first_seed"],
+                             spp=options["spp"], progress=progress)
+    return _plotted(result, options), _calibration_text(result)
+
+
+def _study_face(args: argparse.Namespace, options: dict, progress) -> tuple[dict, str]:
+    """A face's calibration: the face's own study (it knows where Eq. 4's null holds)."""
+    from ..studies.benchmarks.face_calibration import face_calibration
+
+    result = face_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
+                              options["prevailing"], options["calibration"], options["spps"][0],
+                              first_seed=options["first_seed"], imaging=options["imaging"], progress=progress)
+    return _plotted(result, options), _calibration_text(result)
+
+
+def _study_chart(args: argparse.Namespace, options: dict, progress) -> tuple[dict, str]:
+    """A chart's ``bench calibration`` (its verdicts' false alarms) or ``bench validate`` (over the spp)."""
+    from ..studies.benchmarks.calibration import bench_calibration, bench_validate
+
+    common = {"scene": options["scene"], "camera_": options["camera_"], "prevailing": options["prevailing"],
+              "calibration": options["calibration"], "first_seed": options["first_seed"],
+              "imaging": options["imaging"], "mc_variance": options["mc_variance"], "progress": progress}
+    if args.what == "calibration":
+        result = bench_calibration(options["run"], spp=options["spps"][0], seeds=options["seeds"],
+                                   level=options["level"], **common)
+        return _plotted(result, options), _calibration_text(result)
+    result = bench_validate(options["run"], spps=options["spps"], seeds=options["seeds"], **common)
+    result["estimate_s"] = options["estimate_s"]
+    return result, _validate_text(result)
+
+
+def _plotted(result: dict, options: dict) -> dict:
+    """A calibration's result with its estimate, and its figure written (whole or not at all) where asked."""
+    result["estimate_s"] = options["estimate_s"]
+    if options["plot"] is not None:
+        from ..studies.figures import figure_calibration
+
+        result["plot"] = str(figure_calibration(result, options["plot"]))
+    return result
 
 
 @interruptible
 def _run(wrapped: argparse.Namespace) -> None:
-    from ..studies.benchmarks.calibration import bench_calibration, bench_validate
-
     args = wrapped.args
     options = _checked(args, wrapped.spp_list)
     print(f"bench {args.what}: about {options['estimate_s']:.0f} s (estimated) …", file=sys.stderr)
     progress = lambda line: print(line, file=sys.stderr)  # noqa: E731
-    if options.get("kind") == "ptc":
-        from ..studies.benchmarks.ptc import ptc_calibration
-
-        result = ptc_calibration(options["camera_"], options["imager_"], options["temperature"],
-                                 options["illuminance_lux"], options["seeds"], options["first_seed"],
-                                 spp=options["spp"], progress=progress)
-        result["estimate_s"] = options["estimate_s"]
-        if options["plot"] is not None:
-            from ..studies.figures import figure_calibration
-
-            result["plot"] = str(figure_calibration(result, options["plot"]))
-        emit(args, result, _calibration_text(result))
-        return
-    common = {"scene": options["scene"], "camera_": options["camera_"], "prevailing": options["prevailing"],
-              "calibration": options["calibration"], "first_seed": options["first_seed"],
-              "imaging": options["imaging"], "mc_variance": options["mc_variance"], "progress": progress}
-    if options.get("kind") == "face":  # the face's own study: it knows where Eq. 4's null holds
-        from ..studies.benchmarks.face_calibration import face_calibration
-
-        result = face_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
-                                  options["prevailing"], options["calibration"], options["spps"][0],
-                                  first_seed=options["first_seed"], imaging=options["imaging"], progress=progress)
-        result["estimate_s"] = options["estimate_s"]
-        if options["plot"] is not None:
-            from ..studies.figures import figure_calibration
-
-            result["plot"] = str(figure_calibration(result, options["plot"]))
-        text = _calibration_text(result)
-    elif args.what == "calibration":
-        result = bench_calibration(options["run"], spp=options["spps"][0], seeds=options["seeds"],
-                                   level=options["level"], **common)
-        result["estimate_s"] = options["estimate_s"]
-        if options["plot"] is not None:  # written whole or not at all
-            from ..studies.figures import figure_calibration
-
-            result["plot"] = str(figure_calibration(result, options["plot"]))
-        text = _calibration_text(result)
-    else:
-        result = bench_validate(options["run"], spps=options["spps"], seeds=options["seeds"], **common)
-        result["estimate_s"] = options["estimate_s"]
-        text = _validate_text(result)
+    result, text = options.get("study", _study_chart)(args, options, progress)
     emit(args, result, text)
 
 

@@ -46,16 +46,29 @@ from ..validation import FLOAT32_FLOOR
 from .document import channel_groups, channel_integral, film_dict, light_irradiance
 from .labels import LABEL_SKIN
 from .limits import ALPHA, LimitCheck, deviation_ratio, critical_t, jackknife, rg, sphere_emission, two_part
-from .scene import FaceScene, Light, load_face_scene
+from .scene import FaceScene, Light, load_face_scene, skin_reflectance_of
 
-__all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "furnace_radiance", "sphere_channels", "check_furnace",
-           "check_sphere"]
+__all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP",
+           "furnace_radiance", "sphere_channels", "check_furnace", "check_sphere", "limit_furnace", "limit_sphere",
+           "LIMITS_SCENE_FREE"]
 
 FURNACE_SKY = Light(temperature=5000.0, illuminance=500.0)
 """The white furnace's uniform environment: a 5000 K Planckian, 500 lx on a surface open to it."""
 
 REPLICATES_DEFAULT = 12
 """Seeds rendered unless named (:data:`skinrender.rendering.face.limits.REPLICATES`)."""
+
+FURNACE_SIZE = 32
+"""Image side of the white furnace, pixels (~300 head pixels in the bundled scene)."""
+
+FURNACE_SPP = 16
+"""Samples per pixel of each white-furnace replicate."""
+
+SPHERE_SIZE = 16
+"""Image side of the closed sphere, pixels (their mean is tested)."""
+
+SPHERE_SPP = 16
+"""Samples per pixel of each closed-sphere replicate."""
 
 
 def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=range(REPLICATES_DEFAULT),
@@ -180,3 +193,32 @@ def check_sphere(cam: Camera | str, rho: NDArrayFloat, every: NDArrayFloat, one:
                       {"worst_t": worst, "critical": critical, "saturation_t": saturation_t,
                        "distance_from_light": [float(far), float(near)]}, outcome="pass" if passed else "fail",
                       test=test)
+
+
+def limit_furnace(first, seeds, variant: str | None = None, say=lambda line: None) -> LimitCheck:
+    """white furnace: the scene's mesh, reflectance 1, every bounce, in a uniform sky
+
+    The check of the scene (and camera) of a validation's ``first`` render (a
+    :class:`~skinrender.rendering.face.render.FaceRendering`), ``seeds`` one per replicate, small
+    (:data:`FURNACE_SIZE`, :data:`FURNACE_SPP`); ``say``: a progress line."""
+    say(f"white furnace ({FURNACE_SIZE}² px, {len(seeds)} × {FURNACE_SPP} spp) …")
+    return check_furnace(*furnace_radiance(first.camera, first.scene, seeds, FURNACE_SIZE, FURNACE_SPP,
+                                           variant=variant))
+
+
+def limit_sphere(first, seeds, variant: str | None = None, say=lambda line: None) -> LimitCheck:
+    """closed Lambertian sphere of the skin's reflectance seen from inside, every bounce and one
+
+    The check of the skin of a validation's ``first`` render, as :func:`limit_furnace` (:data:`SPHERE_SIZE`,
+    :data:`SPHERE_SPP`)."""
+    say(f"closed sphere ({SPHERE_SIZE}² px, {len(seeds)} × {SPHERE_SPP} spp, two depths) …")
+    rho = skin_reflectance_of(first.skin, GRID_DEFAULT, "skin")
+    every = sphere_channels(first.camera, rho, -1, seeds, SPHERE_SPP, SPHERE_SIZE, variant)
+    one = sphere_channels(first.camera, rho, 2, seeds, SPHERE_SPP, SPHERE_SIZE, variant)
+    return check_sphere(first.camera, rho, every, one)
+
+
+LIMITS_SCENE_FREE = {"furnace": limit_furnace, "sphere": limit_sphere}
+"""The limits that hold whatever the level, name → the function ``(first, seeds, variant, say) → LimitCheck`` of
+a validation's first render; run small beside the level's own
+(:func:`~skinrender.rendering.face.validation.validate_face_request` dispatches)."""
