@@ -382,6 +382,9 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
     cmap = ListedColormap([colours[i % len(colours)] for i in range(max(labels_max, *names) + 1)])
     figure, axes = plt.subplots(len(levels), 4, figsize=(12, 3.0 * len(levels) + 0.6), squeeze=False)
     shown = lambda v: "—" if v is None else f"{v:.3f}"  # noqa: E731
+    from ..rendering.face.effects import PHYSICS_REGISTRY
+
+    base = PHYSICS_REGISTRY.base.name  # the level the changes are from
     for row, level in zip(axes, levels):
         labels = np.asarray(level["labels"])
         row[0].imshow(display_srgb(level["image"]), interpolation="nearest")
@@ -391,7 +394,7 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
         row[1].set_title("labels (the ground truth)", fontsize=9)
         row[2].imshow(np.asarray(level["detected"]), cmap="gray", vmin=0, vmax=1, interpolation="nearest")
         changes = ""
-        if level.get("tpr_change") is not None and level["name"] != "direct":
+        if level.get("tpr_change") is not None and level["name"] != base:  # the base: no change from itself
             changes = f" (Δ {level['tpr_change']:+.3f}, {level['fpr_change']:+.3f})" if level.get(
                 "fpr_change") is not None else f" (Δ {level['tpr_change']:+.3f})"
         row[2].set_title(f"detected: TPR {shown(level['tpr'])}, FPR {shown(level['fpr'])}{changes}", fontsize=9)
