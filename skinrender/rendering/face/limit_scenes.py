@@ -36,6 +36,7 @@ References
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -47,6 +48,9 @@ from .document import channel_groups, channel_integral, film_dict, light_irradia
 from .labels import LABEL_SKIN
 from .limits import ALPHA, LimitCheck, deviation_ratio, critical_t, jackknife, rg, sphere_emission, two_part
 from .scene import FaceScene, Light, load_face_scene, skin_reflectance_of
+
+if TYPE_CHECKING:
+    from ..physics import Level
 
 __all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP",
            "furnace_radiance", "sphere_channels", "check_furnace", "check_sphere", "limit_furnace", "limit_sphere",
@@ -73,7 +77,7 @@ SPHERE_SPP = 16
 
 def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=range(REPLICATES_DEFAULT),
                      size: int = 32,
-                     spp: int = 16, physics: str = "interreflection", variant: str | None = None,
+                     spp: int = 16, physics: str | Level = "interreflection", variant: str | None = None,
                      sky: Light = FURNACE_SKY, smooth: bool = False) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat]:
     """
     The white furnace rendered: the scene's mesh alone, reflectance 1, inside a uniform sky, flat shading
@@ -86,12 +90,13 @@ def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=r
         size, 3)`` and the label image (specfilm units), and ``∫ (E / π) x_k dλ``,
         the sky's radiance through the camera, ``(3,)``.
     """
-    from .render import render_face
+    from .render import render_face_request
+    from .request import face_request
 
     furnace = replace(load_face_scene(scene), props=(), key=None, fill=None, environment=sky,
                       mesh_smooth=bool(smooth))
-    renders = [render_face(cam, furnace, skin="perfect", physics=physics, size=size, spp=spp, seed=int(s),
-                           variant=variant) for s in seeds]
+    request = face_request(furnace, cam, skin="perfect", physics=physics, size=size, spp=spp, variant=variant)
+    renders = [render_face_request(request, int(s)) for s in seeds]
     lam, irradiance = light_irradiance(sky, GRID_DEFAULT)
     expected = channel_integral(camera(cam), GRID_DEFAULT, lam, irradiance / np.pi)
     return np.array([r.radiance for r in renders]), renders[0].labels, expected
@@ -201,8 +206,12 @@ def limit_furnace(first, seeds, variant: str | None = None, say=lambda line: Non
     The check of the scene (and camera) of a validation's ``first`` render (a
     :class:`~skinrender.rendering.face.render.FaceRendering`), ``seeds`` one per replicate, small
     (:data:`FURNACE_SIZE`, :data:`FURNACE_SPP`); ``say``: a progress line."""
+    from .effects import PHYSICS_REGISTRY, Level
+    from .effects.interreflection import INTERREFLECTION
+
     say(f"white furnace ({FURNACE_SIZE}² px, {len(seeds)} × {FURNACE_SPP} spp) …")
-    return check_furnace(*furnace_radiance(first.camera, first.scene, seeds, FURNACE_SIZE, FURNACE_SPP,
+    every_bounce = Level((PHYSICS_REGISTRY.base, INTERREFLECTION))
+    return check_furnace(*furnace_radiance(first.camera, first.scene, seeds, FURNACE_SIZE, FURNACE_SPP, every_bounce,
                                            variant=variant))
 
 
