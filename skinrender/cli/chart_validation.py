@@ -21,9 +21,10 @@ import dataclasses
 import sys
 
 from ..errors import SkinrenderError
-from .common import emit, interruptible, settings_of, table
+from .common import emit, interruptible, settings_from, table
 
-__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_check_arguments", "add_verdict_arguments", "tolerance_of", "spp_of", "command_validate",
+__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_check_arguments", "add_verdict_arguments", "tolerance_of",
+           "tolerance_from", "spp_of", "spp_auto_from", "command_validate",
            "command_validate_chart"]
 
 HELP_TOLERANCE = (
@@ -59,40 +60,40 @@ def add_verdict_arguments(p) -> None:
 def command_validate(args: argparse.Namespace) -> None:
     """``validate``: a face (:mod:`skinrender.cli.face_validation`) or a chart (:func:`command_validate_chart`),
     the scene loaded once."""
-    from .inputs import by_kind, scene_of
-
-    scene = scene_of(args)
-    return by_kind(scene, chart=command_validate_chart, face=_validate_face)(args, scene)
-
-
-def _validate_face(args: argparse.Namespace, scene) -> None:
-    """``validate`` on a face: the analytic limits that hold at its level of physics
-    (:mod:`skinrender.cli.face_validation`); the chart's verdict flags refused."""
     from .face_validation import command_validate_face
+    from .inputs import by_kind, scene_from
 
-    for name, option, given in (("--spp auto", "--spp", str(args.spp).strip().lower() == "auto"),
-                                ("--tolerance", "--tolerance", args.tolerance is not None)):
-        if given:
-            raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts",
-                                  flag=option)
-    return command_validate_face(args, scene)
+    scene = scene_from(args.scene)
+    return by_kind(scene, chart=command_validate_chart, face=command_validate_face)(args, scene)
 
 
 def tolerance_of(args: argparse.Namespace) -> float:
+    """:func:`tolerance_from` ``--tolerance``."""
+    return tolerance_from(args.tolerance)
+
+
+def tolerance_from(text) -> float:
     """``--tolerance`` checked (in (0, 1)), or the default."""
     from ..rendering.agreement import TOLERANCE_DEFAULT, check_tolerance
 
-    return TOLERANCE_DEFAULT if args.tolerance is None else check_tolerance(args.tolerance, "--tolerance")
+    return TOLERANCE_DEFAULT if text is None else check_tolerance(text, "--tolerance")
 
 
 def spp_of(args: argparse.Namespace) -> bool:
+    """:func:`spp_auto_from` ``--spp`` and ``--tolerance``."""
+    return spp_auto_from(args.spp, args.tolerance)
+
+
+def spp_auto_from(spp, tolerance) -> bool:
     """
     Whether ``--spp`` is ``auto`` (then ``--tolerance`` must be given); any other ``--spp`` is
-    :func:`~skinrender.cli.common.settings_of`'s.
+    :func:`~skinrender.cli.common.settings_from`'s.
     """
-    if args.spp is None or str(args.spp).strip().lower() != "auto":
+    from .inputs import is_auto
+
+    if not is_auto(spp):
         return False
-    if args.tolerance is None:
+    if tolerance is None:
         raise SkinrenderError("--spp auto picks the smallest spp expected to pass --tolerance: give --tolerance "
                               "REL as well", flag="--spp")
     return True
@@ -144,16 +145,16 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     from ..rendering.kinds import CHART
     from ..rendering.sensor_validation import ImagedValidation
     from ..rendering.spp_choice import PILOT_SPP
-    from .inputs import chart_only, chart_request_of, check_request_work
+    from .inputs import chart_flags, chart_request_from, check_request_work, refuse_face_flags
 
-    tolerance = tolerance_of(args)
-    auto = spp_of(args)
-    chart_only(args)
+    tolerance = tolerance_from(args.tolerance)
+    auto = spp_auto_from(args.spp, args.tolerance)
+    refuse_face_flags(args.physics, args.skin, args.size)
     if args.limits is not None:
         raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart", flag="--limits")
-    settings = settings_of(args, auto)
+    settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels, auto)
     requested = "auto" if auto else settings.spp
-    request = chart_request_of(args, scene, settings)
+    request = chart_request_from(scene, settings, **chart_flags(args))
     if args.gamut:  # the gamut volumes of the Lambertian, noise-free chart
         _refused(request, "gamut", "--gamut", "--gamut (the chart's gamut volumes under the paper's lights)")
     if auto:
@@ -161,10 +162,10 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     renders = 11 if args.gamut else 1  # --gamut: ten more, one per paper illuminant
     choice = None
     if auto:
-        check_request_work(args, request, len(PILOT_SPP), max(PILOT_SPP))
+        check_request_work(args.max_minutes, request, len(PILOT_SPP), max(PILOT_SPP))
         choice = _auto_spp(request, tolerance)
         request = dataclasses.replace(request, settings=request.settings.replace(spp=choice["spp"]))
-    check_request_work(args, request, renders)
+    check_request_work(args.max_minutes, request, renders)
     settings = request.settings
     print(f"rendering {request.scene.name} at {settings.spp} spp and validating …", file=sys.stderr)
     result = CHART.validate(request, tolerance=tolerance)
@@ -184,7 +185,7 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
         text = f"spp auto: {choice['spp']} spp — {choice['why']}\n" + text
     document["exit_status"] = EXIT_STATUS[verdict.outcome]
     text += f"\nverdict: {verdict.outcome.upper().replace('_', ' ')} (exit status {document['exit_status']})"
-    emit(args, document, text)
+    emit(args.json, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])
 

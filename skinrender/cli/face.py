@@ -10,21 +10,20 @@ fractions.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from pathlib import Path
 
 from ..errors import SkinrenderError
-from ..files import TOML_BYTES_MAX, Output, exists, read_input, write_output, write_outputs
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_of,
-                     check_output, check_seed, choices_help, emit, flag, flagged, integer_in, interruptible,
-                     positive_number, settings_of, table, variant_of)
+from ..files import Output, write_output, write_outputs
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_from,
+                     check_output, check_seed, choices_help, emit, flag, integer_in, interruptible, settings_from,
+                     table, variant_of)
+from .face_inputs import (SIZE_MAX, check_lights_seen, face_flags_from, face_pixels, face_request_from,  # noqa: F401
+                          level_names, levels_of, noise_sensor_from, planckian_flag)
+from .inputs import check_request_work, figure_from
 
 __all__ = ["add_parsers", "add_face_arguments", "check_figure", "check_face_flags", "face_request_of", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
-
-SIZE_MAX = 2000
-"""Largest image side, pixels (the chart scenes' 4 000 000-pixel cap)."""
 
 LADDER_SPP_DEFAULT = 64
 """``ladder --spp`` unless given."""
@@ -40,13 +39,6 @@ def _physics_help() -> str:
     from ..rendering.face.effects import PHYSICS
 
     return "level of physics: " + choices_help(PHYSICS) + "; effects combine with '+'"
-
-
-def level_names(short: bool = False) -> str:
-    """The registered levels of physics, comma-separated (``short``: as words for prose, ``mixed light``)."""
-    from ..rendering.face.effects import PHYSICS_EFFECTS
-
-    return ", ".join(effect.short or name if short else name for name, effect in PHYSICS_EFFECTS.items())
 
 
 def add_face_arguments(parser: argparse.ArgumentParser) -> None:
@@ -103,127 +95,35 @@ def add_parsers(commands) -> None:
     add_common(p)
 
 
-def planckian_flag(spec: str, name: str) -> float:
-    """The temperature, K, of the Planckian light ``spec`` given to flag ``name``; a one-line error otherwise."""
-    from ..rendering.face import planckian_temperature
-
-    return flag(name, planckian_temperature, spec, name)
-
-
-def _planckian(args: argparse.Namespace, name: str) -> float:
-    return planckian_flag(getattr(args, name), f"--{name}")
-
-
-def _check_light(cam, temperatures: dict) -> None:
-    """Each light gives the camera light on the grid (else a one-line error naming the flag)."""
-    import numpy as np
-
-    from ..model.response import response
-    from ..spectra import GRID_DEFAULT
-
-    for name, t in temperatures.items():
-        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
-
-
 def check_figure(args: argparse.Namespace, *taken) -> Path | None:
-    """
-    ``--figure`` checked before any work (:func:`~skinrender.cli.common.check_output`, a ``.png``), and refused
-    when it is one of the command's other outputs ``taken``; ``None`` when the flag is not given.
-    """
-    figure = check_output(getattr(args, "figure", None), "--figure", (".png",))
-    if figure is not None and any(figure.resolve() == Path(other).resolve() for other in taken):
-        raise SkinrenderError(f"--figure: {figure} is also another output of the command; name another PNG",
-                              flag="--figure")
-    return figure
+    """:func:`~skinrender.cli.inputs.figure_from` ``--figure``."""
+    return figure_from(getattr(args, "figure", None), *taken)
+
+
+def face_flags(args) -> dict:
+    """The flags of a face render (``render``, ``validate``, ``detect``) by the keywords of
+    :func:`~skinrender.cli.face_inputs.face_request_from` (absent ones their defaults)."""
+    names = ("normalization", "grid", "physics", "size", "skin", "imager", "illuminance", "exposure", "sampler")
+    return {"camera": args.camera, "prevailing": args.prevailing, "calibration": args.calibration,
+            **{name: getattr(args, name) for name in names if hasattr(args, name)}}
 
 
 def check_face_flags(args: argparse.Namespace) -> tuple:
-    """
-    What only the command line checks of a face render's flags, each refusal naming its flag: ``--camera`` (with
-    its curves on the default grid), ``--prevailing`` and ``--calibration`` (Planckian, K; the camera sees each),
-    ``--normalization`` (``white`` only: a face is balanced with WP), ``--grid`` (the default: a face renders on
-    400:700:1 nm), ``--physics`` (not empty) and ``--size`` (an integer in [1, :data:`SIZE_MAX`]). Returns
-    ``(camera, {prevailing, calibration} K, size px or None)``; the rest is the request's
-    (:func:`face_request_of`).
-    """
-    cam = camera_of(args)
-    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
-    _check_light(cam, temperatures)
-    from ..model.response import uses_whites
-
-    if not uses_whites(getattr(args, "normalization", "white")):
-        raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
-                              f"got {args.normalization!r}", flag="--normalization")
-    if str(getattr(args, "grid", "400:700:1")).strip() != "400:700:1":
-        raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}", flag="--grid")
-    physics = getattr(args, "physics", None)
-    if physics is not None and not str(physics).strip():
-        raise SkinrenderError(f"--physics: name a level ({level_names()}; '+' combines them), got ''", flag="--physics")
-    size = getattr(args, "size", None)
-    size = None if size is None else integer_in(size, "--size", 1, SIZE_MAX)
-    return cam, temperatures, size
+    """:func:`~skinrender.cli.face_inputs.face_flags_from` the flags of ``args``."""
+    flags = face_flags(args)
+    return face_flags_from(*(flags.get(name) for name in ("camera", "prevailing", "calibration")),
+                           **{name: flags[name] for name in ("normalization", "grid", "physics", "size")
+                              if name in flags})
 
 
 def face_request_of(args: argparse.Namespace, scene, settings, **changes):
-    """
-    A face command's :class:`~skinrender.rendering.face.request.FaceRequest` from the flags of ``render``,
-    ``validate``, ``detect`` (absent ones take their defaults), as every front door builds it
-    (:meth:`~skinrender.rendering.kinds.FaceKind.request`), each refusal naming its flag; ``changes``: keywords
-    replaced (``spp``: a validation's per replicate). What only the command line has is checked first: the
-    camera sees each light (:func:`check_face_flags`), ``--normalization`` is ``white``,
-    ``--grid`` the default, ``--physics`` names a level, ``--size`` an integer.
-    """
-    from ..rendering.kinds import FACE
-    from .inputs import REQUEST_FLAGS, sensor_flags, settings_fields
-
-    cam, temperatures, size = check_face_flags(args)
-    keywords = {"skin": getattr(args, "skin", None), "physics": getattr(args, "physics", None) or "direct",
-                "size": size, **sensor_flags(args), **settings_fields(args, settings), **changes}
-    return flagged(REQUEST_FLAGS, FACE.request, scene, cam, temperatures["prevailing"], temperatures["calibration"],
-                   **keywords)
-
-
-def face_pixels(scene, size: int | None) -> int:
-    """The pixels of a face render: ``size`` squared where given, else the scene camera's."""
-    return size * size if size is not None else scene.camera.width * scene.camera.height
-
-
-def levels_of(text: str) -> list:
-    """
-    ``--levels``: comma-separated levels of physics, none empty and none twice (``a+b`` and ``b+a`` are one
-    level), each parsed once into its :class:`~skinrender.rendering.physics.Level`; a one-line error naming the
-    flag otherwise.
-    """
-    from ..rendering.face.effects import PHYSICS_REGISTRY
-
-    specs = [level.strip() for level in str(text).split(",")]
-    if not any(specs) or not all(specs):
-        raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {text!r}", flag="--levels")
-    levels = [flag("--levels", PHYSICS_REGISTRY.level, spec) for spec in specs]
-    if len({level.name for level in levels}) < len(levels):
-        raise SkinrenderError(f"--levels: a level is named twice in {text!r}; name each once", flag="--levels")
-    return levels
+    """:func:`~skinrender.cli.face_inputs.face_request_from` the flags of ``args``."""
+    return face_request_from(scene, settings, **face_flags(args), **changes)
 
 
 def noise_sensor(args: argparse.Namespace, levels: list) -> tuple:
-    """
-    The sensor's options of a study over ``levels`` (:class:`~skinrender.rendering.physics.Level` objects):
-    ``(imager, lux)``, ``--imager`` loaded once (``None``: the effect's default) and ``--illuminance`` in lx
-    (``None``: the scene's), each checked as a request checks it; either is refused where no level has an effect
-    that takes it (nothing would see it).
-    """
-    from ..rendering.face.effects import PHYSICS_REGISTRY
-    from ..rendering.sensor import NoiseOptions
-
-    options = flagged({"imager": "--imager", "illuminance": "--illuminance"}, NoiseOptions, args.imager,
-                      None if args.illuminance is None else positive_number(args.illuminance, "--illuminance", "lx"))
-    for name in ("imager", "illuminance"):
-        if getattr(args, name) is not None and not any(PHYSICS_REGISTRY.options_for(level, {name: True})
-                                                       for level in levels):
-            raise SkinrenderError(f"--{name} is the noise level's: add a level with noise to --levels "
-                                  f"(e.g. noise or interreflection+noise), got "
-                                  f"{','.join(level.name for level in levels)!r}", flag=f"--{name}")
-    return options.imager, options.illuminance
+    """:func:`~skinrender.cli.face_inputs.noise_sensor_from` ``--imager`` and ``--illuminance``."""
+    return noise_sensor_from(args.imager, args.illuminance, levels)
 
 
 def is_face_scene(spec: str) -> bool:
@@ -240,9 +140,10 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
 
-    cam = camera_of(args)
-    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
-    _check_light(cam, temperatures)
+    cam = camera_from(args.camera)
+    temperatures = {"prevailing": planckian_flag(args.prevailing, "--prevailing"),
+                    "calibration": planckian_flag(args.calibration, "--calibration")}
+    check_lights_seen(cam, temperatures)
     size = integer_in(args.size, "--size", 1, SIZE_MAX)
     spp = integer_in(args.spp, "--spp", 1, SPP_MAX)
     seed = check_seed(integer_in(args.seed, "--seed", 0, SEED_MAX))
@@ -258,7 +159,7 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
         raise SkinrenderError(f"--levels: the effects table compares each effect with direct; add it, got "
                               f"{','.join(level.name for level in levels)!r}")
     variant_of(args.variant)
-    imager, lux = noise_sensor(args, levels)
+    imager, lux = noise_sensor_from(args.imager, args.illuminance, levels)
     from ..studies.face.effects_table import SKIN_TONES
     from ..studies.face.sweep import estimate_seconds
     from ..studies.face.ladder import REPLICATES_LADDER
@@ -320,7 +221,7 @@ def command_ladder(args: argparse.Namespace) -> None:
         document["plot"] = str(plot)
         text += f"\nfigure: {plot}"
     text += f"\nverdict: {document['verdict'].upper().replace('_', ' ')} (exit status {document['exit_status']})"
-    emit(args, document, text)
+    emit(args.json, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])
 
@@ -336,14 +237,13 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
     from ..rendering.face.render import face_exr
 
     from ..rendering.kinds import FACE
-    from .inputs import check_request_work
 
-    settings = settings_of(args)
+    settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels)
     output = check_output(getattr(args, "output", "render.exr"), "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
-    figure = check_figure(args, output.with_suffix(".png"))
-    request = face_request_of(args, scene, settings)
-    check_request_work(args, request)
+    figure = figure_from(args.figure, output.with_suffix(".png"))
+    request = face_request_from(scene, settings, **face_flags(args))
+    check_request_work(args.max_minutes, request)
     print(f"rendering the face ({request.level.name}) at {settings.spp} spp …", file=sys.stderr)
     result = FACE.render(request)
     if getattr(args, "knee", False):
@@ -372,7 +272,7 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
     text = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
             f"{result.prevailing:g} K white-balanced to {result.calibration:g} K: {path} (+ {preview}, "
             f"label channel: {labels}), {result.spp} spp, {result.variant}, {result.seconds:.2f} s")
-    emit(args, document, text)
+    emit(args.json, document, text)
 
 
 def command_detect_face(args: argparse.Namespace, scene) -> None:
@@ -388,18 +288,17 @@ def command_detect_face(args: argparse.Namespace, scene) -> None:
     from ..studies.face.ladder import score_frame
 
     from ..rendering.kinds import FACE
-    from .inputs import check_request_work
 
-    settings = settings_of(args)
+    settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
-    figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
-    request = face_request_of(args, scene, settings)
+    figure = figure_from(args.figure, output, output.with_name(output.stem + "_preview.png"))
+    request = face_request_from(scene, settings, **face_flags(args))
     cam, scene = request.camera, request.scene
     temperatures = {"prevailing": request.prevailing, "calibration": request.calibration}
     locus_skin = getattr(args, "locus_skin", None) or "skin"
     skin = flag("--locus-skin", reflectances, locus_skin)
-    check_request_work(args, request)
+    check_request_work(args.max_minutes, request)
     print(f"rendering the face ({request.level.name}) at {settings.spp} spp …", file=sys.stderr)
     result = FACE.render(request)
     locus = skin_locus(cam, skin, calibration=temperatures["calibration"], boundary=args.boundary)
@@ -438,5 +337,5 @@ def command_detect_face(args: argparse.Namespace, scene) -> None:
         document["figure"] = str(figure)
     write_outputs(*outputs)  # every file whole, or none of them
     rows = [[row["name"][:30], "skin" if row["is_skin"] else "", shown(row["detected_fraction"])] for row in per_label]
-    emit(args, document, table(rows, ["region", "", "detected"]) + f"\nTPR {shown(tpr)}, FPR {shown(fpr)}; mask {output}"
+    emit(args.json, document, table(rows, ["region", "", "detected"]) + f"\nTPR {shown(tpr)}, FPR {shown(fpr)}; mask {output}"
          + (f"; figure {figure}" if figure is not None else ""))

@@ -21,7 +21,7 @@ import sys
 
 from ..errors import SkinrenderError
 
-__all__ = ["command_validate_face", "check_samples", "limits_of"]
+__all__ = ["command_validate_face", "check_samples", "limits_of", "refuse_chart_verdict_flags"]
 
 
 def limits_of(text: str | None) -> tuple[str, ...]:
@@ -75,6 +75,18 @@ def check_samples(spp: int, pixels: int) -> None:
                               flag="--spp")
 
 
+def refuse_chart_verdict_flags(spp, tolerance) -> None:
+    """``validate`` on a face: the chart's verdict flags (``--spp auto``, ``--tolerance``) refused (the face's
+    checks have their own verdicts)."""
+    from .inputs import is_auto
+
+    for name, option, given in (("--spp auto", "--spp", is_auto(spp)), ("--tolerance", "--tolerance",
+                                                                       tolerance is not None)):
+        if given:
+            raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts",
+                                  flag=option)
+
+
 def command_validate_face(args: argparse.Namespace, scene) -> None:
     """
     ``validate SCENE …`` for a face scene: the ``validate`` flags (``--camera``, ``--prevailing``,
@@ -83,11 +95,13 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     """
     from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
     from ..rendering.kinds import FACE
-    from .common import emit, flag, integer_in, settings_of, table
-    from .face import SIZE_MAX, face_pixels, face_request_of
+    from .common import emit, flag, integer_in, settings_from, table
+    from .face import face_flags
+    from .face_inputs import SIZE_MAX, face_pixels, face_request_from
     from .inputs import check_request_work
 
-    settings = settings_of(args)
+    refuse_chart_verdict_flags(args.spp, getattr(args, "tolerance", None))
+    settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels)
     if getattr(args, "knee", False):
         raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee", flag="--knee")
     if getattr(args, "gamut", False):
@@ -96,8 +110,8 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     size = getattr(args, "size", None)
     check_samples(settings.spp, face_pixels(scene, None if size is None else integer_in(size, "--size", 1, SIZE_MAX)))
     each = max(-(-int(settings.spp) // REPLICATES), SPP_REPLICATE_MIN)  # a replicate's spp
-    request = face_request_of(args, scene, settings, spp=each)
-    check_request_work(args, request, REPLICATES)  # at its level's rate (subsurface: far slower)
+    request = face_request_from(scene, settings, **face_flags(args), spp=each)
+    check_request_work(getattr(args, "max_minutes", None), request, REPLICATES)  # at its level's rate (subsurface: far slower)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", FACE.validate, request, spp=settings.spp, limits=limits,
                   progress=lambda line: print(line, file=sys.stderr))
@@ -118,6 +132,6 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
             "of the skin's mean NCC against the detection budget, bound its 95 % upper bound"
             + ("" if result.spp_needed is None else
                f"\nspp needed for eq4_shift to pass: about {result.spp_needed} in all (--spp)"))
-    emit(args, document, text)
+    emit(args.json, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])

@@ -57,7 +57,6 @@ from ..model.exposure import (AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S, auto_
                               auto_exposure_note, electrons_mean, irradiance_planck)
 from ..model.imager import Imager, imager
 from ..model.noise import clipping_counts, clipping_note, simulate_dn_clipped, statistics_dn
-from ..model.response import gain
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .balance import Rendering, pair_gain, patch_statistics
 from .renderer import RawRender, emitter_grid, render_raw

@@ -82,8 +82,7 @@ from ...spectra import GRID_DEFAULT
 from ..validation import analytic_reference
 from ..settings import seed_at
 from .effects import Frame, Level, Measured, Replicates
-from .limit_scenes import (FURNACE_SIZE, FURNACE_SPP, LIMITS_SCENE_FREE, SPHERE_SIZE, SPHERE_SPP,  # noqa: F401
-                           limit_furnace, limit_sphere)
+from .limit_scenes import FURNACE_SIZE, FURNACE_SPP, LIMITS_SCENE_FREE, SPHERE_SIZE, SPHERE_SPP  # noqa: F401
 from .limits import REPLICATES, SPP_REPLICATE_MIN, LimitCheck
 from .render import FaceRendering, render_face_request
 from .request import FaceRequest, face_request
