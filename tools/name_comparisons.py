@@ -11,8 +11,9 @@ Every module of the package is parsed (nothing runs); reported are
     ``auto`` compared with an exposure or an spp is a value's spelling, not a method's name, and is not counted);
 -   ``isinstance(x, ChartScene)``, ``isinstance(x, FaceScene)`` (and tuples holding them).
 
-Comparisons inside the tables' own modules' dispatchers and registries (:data:`ALLOWED`) are where a name is
-meant to be read and are listed apart.
+Where a name is meant to be read — the tables' validator, the registries and kinds, the loaders and requests
+checking their own objects, the argument parsers (:data:`ALLOWED`, each with its reason) — a comparison is listed
+apart, with the reason.
 
     .venv/bin/python tools/name_comparisons.py          # the table
     .venv/bin/python tools/name_comparisons.py --json   # one JSON document
@@ -50,8 +51,21 @@ the scene kinds): a comparison of one of its names with an expression holding su
 
 SCENE_CLASSES = {"ChartScene", "FaceScene"}
 
-ALLOWED = {"skinrender.methods", "skinrender.rendering.registry", "skinrender.rendering.kinds"}
-"""The modules where names are read by design: the tables' validator, the registries, the kinds."""
+ALLOWED = {
+    ("skinrender.methods", None): "the method tables' validator",
+    ("skinrender.rendering.registry", None): "a scene kind's registry of effects: the one parser of a physics spec",
+    ("skinrender.rendering.kinds", None): "the scene kinds: the one place a scene is told to be a chart or a face",
+    ("skinrender.rendering.scene", "load_chart_scene"): "the chart loader: a chart given parsed is returned as it is",
+    ("skinrender.rendering.face.scene", "load_face_scene"): "the face loader: a face given parsed is returned as it is",
+    ("skinrender.rendering.face.scene", "is_face_scene"): "the face kind's owns (a parsed face, a bundled name, a TOML)",
+    ("skinrender.rendering.request", "_check"): "a chart request checks its own field's type",
+    ("skinrender.rendering.face.request", "_check"): "a face request checks its own field's type",
+    ("skinrender.cli.common", "coverage_hint"): "an argument parser: the advice a refusal gives for --extrapolation",
+    ("skinrender.cli.design", "command_search"): "an argument parser: --extrapolation's default keeps a named set's rule",
+    ("skinrender.studies.paper.unknowns", "resolve_setting"): "the sweep's settings parser: as search's --extrapolation",
+}
+"""(module, function; ``None``: every function) where a name is read by design, and why: the tables' validator,
+the registries and kinds, the loaders and requests checking their own objects, and the argument parsers."""
 
 
 def tables() -> dict[str, tuple[set[str], tuple[str, ...]]]:
@@ -126,7 +140,8 @@ def scan(root: Path, known: dict[str, tuple[set[str], tuple[str, ...]]]) -> list
             if hits:
                 found.append({"module": module, "line": node.lineno, "function": function_of(node), "kind": kind,
                               "names": sorted(set(hits)), "of": sorted(of),
-                              "allowed": module in ALLOWED, "text": ast.get_source_segment(
+                              "allowed": ALLOWED.get((module, None), ALLOWED.get((module, function_of(node)))),
+                              "text": ast.get_source_segment(
                                   path.read_text(encoding="utf-8"), node)[:100]})
     return found
 
@@ -144,9 +159,9 @@ def main() -> int:
         print(json.dumps({"outside": len(outside), "allowed": len(found) - len(outside), "found": found}, indent=2))
         return 0
     print(f"{len(outside)} comparisons with a method, level or kind name (or scene-class tests) outside the "
-          f"registries; {len(found) - len(outside)} inside them")
-    for f in found:
-        mark = "  (registry)" if f["allowed"] else ""
+          f"registries and argument parsers; {len(found) - len(outside)} where a name is read by design")
+    for f in sorted(found, key=lambda f: (bool(f["allowed"]), f["module"], f["line"])):
+        mark = f"  (allowed: {f['allowed']})" if f["allowed"] else ""
         print(f"{f['module']}:{f['line']} {f['function']}: {f['text']}  [{', '.join(f['of'])}]{mark}")
     return 0
 
