@@ -69,7 +69,9 @@ _WHERE = {
     **dict.fromkeys(("illuminant_selection", "illuminant_set", "illuminant_track", "select_illuminants"),
                     "model.stage1"),
     "Rendering": "rendering.balance",
-    **dict.fromkeys(("load_scene", "render", "validate"), "rendering.dispatch"),
+    **dict.fromkeys(("load_scene", "render", "render_cameras", "validate"), "rendering.dispatch"),
+    "read_spectral": "rendering.spectral_files",
+    "SpectralImage": "rendering.spectral_image",
     "ChartScene": "rendering.scene",
     "RenderSettings": "rendering.settings",
     **dict.fromkeys(("Validation", "validate_gamut"), "rendering.validation"),
@@ -117,7 +119,9 @@ if TYPE_CHECKING:  # the names for type checkers and editors, as they are import
     from .model.stage1 import (illuminant_selection, illuminant_set, illuminant_track,  # noqa: F401
                                select_illuminants)
     from .rendering.balance import Rendering  # noqa: F401
-    from .rendering.dispatch import load_scene, render, validate  # noqa: F401
+    from .rendering.dispatch import load_scene, render, render_cameras, validate  # noqa: F401
+    from .rendering.spectral_files import read_spectral  # noqa: F401
+    from .rendering.spectral_image import SpectralImage  # noqa: F401
     from .rendering.scene import ChartScene  # noqa: F401
     from .rendering.settings import RenderSettings  # noqa: F401
     from .rendering.validation import Validation, validate_gamut  # noqa: F401
@@ -142,6 +146,7 @@ __all__ = [
     "SearchResult",
     "SkinLocus",
     "SkinrenderError",
+    "SpectralImage",
     "SpectralSet",
     "Validation",
     "Verdict",
@@ -168,8 +173,10 @@ __all__ = [
     "normalisation_factor",
     "optimise_camera",
     "planck",
+    "read_spectral",
     "reflectances",
     "render",
+    "render_cameras",
     "resample",
     "response",
     "response_raw",

@@ -60,6 +60,7 @@ ALLOWED = {
     ("skinrender.rendering.face.scene", "is_face_scene"): "the face kind's owns (a parsed face, a bundled name, a TOML)",
     ("skinrender.rendering.request", "_check"): "a chart request checks its own field's type",
     ("skinrender.rendering.face.request", "_check"): "a face request checks its own field's type",
+    ("skinrender.rendering.spectral_files", "read_spectral"): "a spectral EXR's reader: its header names its kind",
     ("skinrender.cli.common", "coverage_hint"): "an argument parser: the advice a refusal gives for --extrapolation",
     ("skinrender.cli.design", "command_search"): "an argument parser: --extrapolation's default keeps a named set's rule",
     ("skinrender.studies.paper.unknowns", "resolve_setting"): "the sweep's settings parser: as search's --extrapolation",

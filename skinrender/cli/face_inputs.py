@@ -57,22 +57,25 @@ def check_lights_seen(cam, temperatures: dict) -> None:
         flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
 
 
-def face_flags_from(camera: str, prevailing: str, calibration: str, normalization: str = "white",
-                    grid: str | None = GRID_FACE, physics: str | None = None, size: str | None = None) -> tuple:
+def face_flags_from(camera: str | None, prevailing: str, calibration: str | None, normalization: str = "white",
+                    grid: str | None = GRID_FACE, physics: str | None = None, size: str | None = None,
+                    spectral: bool = False) -> tuple:
     """
     What only the command line checks of a face render's flags, each refusal naming its flag: ``--camera`` (with
     its curves on the default grid), ``--prevailing`` and ``--calibration`` (Planckian, K; the camera sees each),
     ``--normalization`` (one whose factor is WP: a face is balanced with it), ``--grid`` (the default: a face
-    renders on 400:700:1 nm), ``--physics`` (not empty) and ``--size`` (an integer in [1, :data:`SIZE_MAX`]).
-    Returns ``(camera, {prevailing, calibration} K, size px or None)``; the rest is the request's
+    renders on 400:700:1 nm), ``--physics`` (not empty) and ``--size`` (an integer in [1, :data:`SIZE_MAX`]);
+    ``spectral``: a spectral render's, with no camera and no calibration (applied afterwards). Returns
+    ``(camera or None, {prevailing, calibration} K or None, size px or None)``; the rest is the request's
     (:func:`face_request_from`).
     """
     from ..model.response import uses_whites
 
-    cam = camera_from(camera)
+    cam = None if spectral else camera_from(camera)
     temperatures = {"prevailing": planckian_flag(prevailing, "--prevailing"),
-                    "calibration": planckian_flag(calibration, "--calibration")}
-    check_lights_seen(cam, temperatures)
+                    "calibration": None if spectral else planckian_flag(calibration, "--calibration")}
+    if cam is not None:
+        check_lights_seen(cam, temperatures)
     if not uses_whites(normalization):
         raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, got {normalization!r}",
                               flag="--normalization")
@@ -83,7 +86,7 @@ def face_flags_from(camera: str, prevailing: str, calibration: str, normalizatio
     return cam, temperatures, None if size is None else integer_in(size, "--size", 1, SIZE_MAX)
 
 
-def face_request_from(scene, settings, *, camera: str, prevailing: str, calibration: str,
+def face_request_from(scene, settings, *, camera: str | None, prevailing: str, calibration: str | None,
                       normalization: str = "white", grid: str | None = GRID_FACE, physics: str | None = None,
                       size: str | None = None, skin: str | None = None, imager: str | None = None,
                       illuminance=None, exposure=None, sampler: str | None = None, **changes):
@@ -92,12 +95,14 @@ def face_request_from(scene, settings, *, camera: str, prevailing: str, calibrat
     their defaults), as every front door builds it (:meth:`~skinrender.rendering.kinds.FaceKind.request`), each
     refusal naming its flag; ``settings``: the render settings (the sampler left to the level where ``sampler``,
     ``--sampler``, was not given); ``changes``: keywords replaced (``spp``: a validation's per replicate). What only
-    the command line has is checked first (:func:`face_flags_from`).
+    the command line has is checked first (:func:`face_flags_from`; a spectral render's, ``bands`` among the
+    changes, without a camera and a calibration).
     """
     from ..rendering.kinds import FACE
     from .inputs import REQUEST_FLAGS, settings_keywords
 
-    cam, temperatures, size = face_flags_from(camera, prevailing, calibration, normalization, grid, physics, size)
+    cam, temperatures, size = face_flags_from(camera, prevailing, calibration, normalization, grid, physics, size,
+                                              spectral=changes.get("bands") is not None)
     keywords = {"skin": skin, "physics": physics or "direct", "size": size, "imager": imager,
                 "illuminance": illuminance, "exposure": exposure, **settings_keywords(settings, sampler),
                 **changes}

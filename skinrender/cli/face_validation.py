@@ -75,11 +75,15 @@ def check_samples(spp: int, pixels: int) -> None:
                               flag="--spp")
 
 
-def refuse_chart_verdict_flags(spp, tolerance) -> None:
-    """``validate`` on a face: the chart's verdict flags (``--spp auto``, ``--tolerance``) refused (the face's
-    checks have their own verdicts)."""
+def refuse_chart_verdict_flags(spp, tolerance, spectral: bool = False) -> None:
+    """``validate`` on a face: the chart's flags (``--spectral``, ``--spp auto``, ``--tolerance``) refused (the
+    face's checks have their own verdicts)."""
     from .inputs import is_auto
 
+    if spectral:
+        raise SkinrenderError("--spectral validates a chart (e.g. macbeth) against Eq. 4 and a direct render; a "
+                              "face's spectral render is seen through cameras by face-sweep and ladder",
+                              flag="--spectral")
     for name, option, given in (("--spp auto", "--spp", is_auto(spp)), ("--tolerance", "--tolerance",
                                                                        tolerance is not None)):
         if given:
@@ -100,7 +104,7 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     from .face_inputs import SIZE_MAX, face_pixels, face_request_from
     from .inputs import check_request_work
 
-    refuse_chart_verdict_flags(args.spp, getattr(args, "tolerance", None))
+    refuse_chart_verdict_flags(args.spp, getattr(args, "tolerance", None), getattr(args, "spectral", False))
     settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels)
     if getattr(args, "knee", False):
         raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee", flag="--knee")

@@ -58,22 +58,16 @@ REQUEST_FLAGS = {"scene": "SCENE", "camera": "--camera", "prevailing": "--prevai
                  "physics": "--physics", "spp": "--spp", "seed": "--seed", "sampler": "--sampler",
                  "variant": "--variant", "channels": "--channels", "imager": "--imager", "illuminance": "--illuminance",
                  "exposure": "--exposure", "skin": "--skin", "size": "--size", "normalization": "--normalization",
-                 "knee": "--knee", "grid": "--grid"}
+                 "knee": "--knee", "grid": "--grid", "bands": "--bands"}
 """The flag of each argument of a request (an error's ``role`` → the flag a refusal names)."""
 
 
 def by_kind(scene, **commands):
-    """
-    The function of ``scene``'s kind among ``commands`` (kind name → function, every kind of
-    :data:`~skinrender.rendering.kinds.SCENE_KINDS` given): the command line's one dispatch on a scene's kind
-    (:func:`~skinrender.rendering.kinds.scene_kind`).
-    """
-    from ..rendering.kinds import SCENE_KINDS, scene_kind
+    """The function of ``scene``'s kind among ``commands``: :func:`skinrender.rendering.kinds.by_kind`, the
+    command line's one dispatch on a scene's kind."""
+    from ..rendering.kinds import by_kind as of_kind
 
-    missing = sorted(set(SCENE_KINDS) - set(commands))
-    if missing:
-        raise TypeError(f"by_kind: no function for {', '.join(missing)}")
-    return commands[scene_kind(scene).name]
+    return of_kind(scene, **commands)
 
 
 def scene_of(args: argparse.Namespace, name: str = "SCENE") -> ChartScene | FaceScene:

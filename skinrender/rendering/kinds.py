@@ -26,7 +26,7 @@ from typing import Protocol
 
 from .physics import SECONDS_PER_RENDER
 
-__all__ = ["SceneKind", "ChartKind", "FaceKind", "CHART", "FACE", "SCENE_KINDS", "scene_kind"]
+__all__ = ["SceneKind", "ChartKind", "FaceKind", "CHART", "FACE", "SCENE_KINDS", "scene_kind", "by_kind"]
 
 
 class SceneKind(Protocol):
@@ -152,7 +152,12 @@ class ChartKind(_Kind):
 
     def render(self, request, cache: dict | None = None):
         """The :class:`~skinrender.rendering.balance.Rendering` of a request (its level's raw renders balanced;
-        through an image sensor: the Eq. 4 image of the noisy DN, the sensor's settings in ``info``)."""
+        through an image sensor: the Eq. 4 image of the noisy DN, the sensor's settings in ``info``); a spectral
+        request's (``bands``) :class:`~skinrender.rendering.spectral_image.SpectralImage`."""
+        if request.spectral:
+            from .spectral_chart import render_chart_spectral_request
+
+            return render_chart_spectral_request(request)
         return self.render_imaged(request, cache)[0]
 
     def render_imaged(self, request, cache: dict | None = None) -> tuple:
@@ -236,7 +241,12 @@ class FaceKind(_Kind):
         return face_request(scene, camera, prevailing, calibration, **options)
 
     def render(self, request, seed: int | None = None):
-        """The :class:`~skinrender.rendering.face.render.FaceRendering` of a request (``seed``: a derived seed)."""
+        """The :class:`~skinrender.rendering.face.render.FaceRendering` of a request (``seed``: a derived seed); a
+        spectral request's (``bands``) :class:`~skinrender.rendering.spectral_image.SpectralImage`."""
+        if request.spectral:
+            from .face.spectral_face import render_face_spectral_request
+
+            return render_face_spectral_request(request, seed)
         from .face.render import render_face_request
 
         return render_face_request(request, seed)
@@ -264,6 +274,21 @@ FACE = FaceKind()
 SCENE_KINDS: dict[str, SceneKind] = {"face": FACE, "chart": CHART}
 """The kinds of scene, name → kind, in the order a spec is tried (a face TOML has ``[camera]`` and ``[mesh]``;
 anything else is a chart's, whose loader names what is wrong)."""
+
+
+def by_kind(scene, **functions):
+    """
+    The function of ``scene``'s kind (a scene or a spec) among ``functions`` (kind name → function, every kind of
+    :data:`SCENE_KINDS` given): the one way code outside the kinds takes a kind's road (the command line's
+    commands, the pytest plugin's checks).
+
+    >>> by_kind("face", chart="a chart's", face="a face's")
+    "a face's"
+    """
+    missing = sorted(set(SCENE_KINDS) - set(functions))
+    if missing:
+        raise TypeError(f"by_kind: no function for {', '.join(missing)}")
+    return functions[scene_kind(scene).name]
 
 
 def scene_kind(spec) -> SceneKind:

@@ -32,7 +32,7 @@ from ..model.imager import is_integer
 
 __all__ = ["SAMPLERS", "CHANNEL_GROUPINGS", "QUALITY_PRESETS", "sampler_independent", "sampler_stratified",
            "sampler_multijitter", "sampler_orthogonal", "sampler_ldsampler", "passes_auto", "passes_together",
-           "passes_separate", "FWHM_SEPARATE", "CHANNEL_AREA_RATIO_SEPARATE", "SEED_MAX", "SPP_MAX", "check_seed", "seed_at",
+           "passes_separate", "CHANNELS_DEFAULT", "FWHM_SEPARATE", "CHANNEL_AREA_RATIO_SEPARATE", "SEED_MAX", "SPP_MAX", "check_seed", "seed_at",
            "RenderSettings"]
 
 SEED_MAX = 2**32 - 2
@@ -149,6 +149,8 @@ def passes_separate(cam, grid) -> bool:
 
 
 CHANNEL_GROUPINGS = {"auto": passes_auto, "together": passes_together, "separate": passes_separate}
+CHANNELS_DEFAULT = "auto"
+"""The channel grouping unless one is named (a spectral render, one pass of bands, takes no other)."""
 """How the three channels are rendered, name → the function ``(camera, grid) → bool``: whether each channel has
 a pass of its own (:func:`~skinrender.rendering.renderer.channels_separate` dispatches)."""
 
@@ -199,7 +201,7 @@ class RenderSettings:
     seed: int = 0
     sampler: str = "multijitter"
     variant: str | None = None
-    channels: str = "auto"
+    channels: str = CHANNELS_DEFAULT
 
     def __post_init__(self) -> None:
         if not (is_integer(self.spp) and 1 <= self.spp <= SPP_MAX):

@@ -63,7 +63,7 @@ from ..hints import NDArrayFloat
 from .replicates import measure_face, region_values
 
 __all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
-           "Comparison", "scene_kind", "measure", "values_of", "setting_notes", "compare"]
+           "Comparison", "scene_kind", "measure", "measure_spectral", "values_of", "setting_notes", "compare"]
 
 REFERENCE_SPP_FACTOR = 4
 """A reference is rendered at this many times the check's spp (and the same seed): its own noise then moves
@@ -181,7 +181,8 @@ def _white_relative_variance(rendering) -> NDArrayFloat:
         mean = pixels.mean(axis=0)
         return np.cov(pixels, rowvar=False) / len(pixels) / np.outer(mean, mean)
 
-    sigma_c = relative_covariance(rendering.raw[-1])
+    analytic = rendering.info.get("white_calibration") == "analytic"  # a spectral render's: computed, exact
+    sigma_c = 0.0 * relative_covariance(rendering.raw[-1]) if analytic else relative_covariance(rendering.raw[-1])
     if not uses_whites(rendering.normalization) or rendering.prevailing == rendering.calibration:
         return np.diagonal(sigma_c).copy()
     sigma_w = relative_covariance(rendering.raw[0])
@@ -193,20 +194,27 @@ def _white_relative_variance(rendering) -> NDArrayFloat:
 
 def _chart(chart, cam, prevailing, calibration, spp, seed, imager, illuminance, variant) -> Measurement:
     from ..rendering.kinds import CHART
-    from ..rendering.renderer import channel_names
 
     request = CHART.request(chart, cam, prevailing, calibration, spp=spp, seed=seed, variant=variant, imager=imager,
                             illuminance=illuminance)  # the one request of every door
     rendering, imaged = CHART.render_imaged(request)
     # through a sensor the balance's whites are noise-free; else the rendered whites' noise adds to every patch
     relative = np.zeros(3) if imaged is not None else _white_relative_variance(rendering)
+    settings = {} if imaged is None else {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux}
+    return _chart_values(chart, cam, rendering, relative, settings)
+
+
+def _chart_values(chart, cam, rendering, relative, settings: dict) -> Measurement:
+    """A chart render reduced to its patch means with their standard errors (``relative``: the whites' relative
+    variance per channel)."""
+    from ..rendering.renderer import channel_names
+
     stats = rendering.patches
     se = np.sqrt(stats.standard_error**2 + stats.mean**2 * relative[None, :])
     dof = np.broadcast_to(stats.count[:, None] - 1.0, se.shape)
     names = tuple(p.name for p in chart.patches)
     items = tuple(f"{n} / {c}" for n in names for c in cam.channels)
-    settings = {"spp": int(rendering.raw[0].spp), "variant": rendering.variant,
-                **({} if imaged is None else {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux})}
+    settings = {"spp": int(rendering.raw[0].spp), "variant": rendering.variant, **settings}
     return Measurement("chart", rendering.image, None, channel_names(cam), names, items, stats.mean.ravel(),
                        se.ravel(), np.where(se.ravel() > 0, dof.ravel(), np.inf), settings)
 
@@ -225,6 +233,10 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     white balanced to ``calibration`` (K), and reduce it to the values a regression compares (module
     docstring).
 
+    ``camera`` may be a list of cameras: the scene is then rendered once spectrally (a face: once per replicate
+    seed) and seen through each (:func:`measure_spectral`), and a list of measurements returned, one per camera,
+    in their order.
+
     ``spp`` defaults to :data:`SPP_CHART` or :data:`SPP_FACE`; ``physics``, ``skin`` and ``size`` (pixels,
     default :data:`SIZE_FACE`) go with faces; ``imager`` (and ``illuminance``, lx) put the image sensor's
     noise in (a face: physics ``noise``). ``factor``: render at ``factor × spp`` (a reference,
@@ -233,44 +245,145 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     """
     from ..model.camera import camera as camera_of
     from ..rendering.exr import camera_attributes
-    from ..rendering.scene import load_chart_scene
+    from ..rendering.kinds import by_kind, scene_kind
     from ..rendering.settings import SEED_MAX, SPP_MAX
 
-    kind = scene_kind(scene)
-    if kind == "chart":  # the plugin's own refusals (it checks a chart at direct, a face at any level)
-        chart = _named("scene", load_chart_scene, scene)
-        given = [n for n, v in (("physics", physics not in (None, "direct")), ("skin", skin is not None),
+    kind = scene_kind(scene).name
+    checks = by_kind(scene, chart=_ChartChecks, face=_FaceChecks)(scene, physics, skin, size, imager, illuminance)
+    several = isinstance(camera, (list, tuple))
+    cams = [_named("camera", camera_of, one) for one in (camera if several else [camera])]
+    if not cams:
+        raise SkinrenderError("camera: name at least one camera")
+    for cam in cams:
+        _named("camera", cam.sensitivities)
+    p, c = _planckian(prevailing, "prevailing"), _planckian(calibration, "calibration")
+    spp = _integer(checks.spp_default if spp is None else spp, "spp", 1, SPP_MAX + 1)
+    seed = _integer(seed, "seed", 0, SEED_MAX + 1)  # the bound of every front door
+    size = SIZE_FACE if size is None else size
+    if several:
+        found = checks.spectral(cams, p, c, spp * factor, seed, physics, skin, imager, illuminance, size, variant)
+    else:
+        found = [checks.one(cams[0], p, c, spp * factor, seed, physics, skin, imager, illuminance, size, variant)]
+    from .. import __version__
+
+    out = []
+    for cam, one in zip(cams, found):
+        settings = {"kind": kind, "scene": checks.name(one), **camera_attributes(cam), "prevailing_K": p,
+                    "calibration_K": c, "spp_requested": spp, "seed": seed, **one.settings,
+                    "skinrender_version": __version__}
+        out.append(Measurement(one.kind, one.image, one.labels, one.channels, one.regions, one.items, one.mean,
+                               one.standard_error, one.dof, settings, checks.chart))
+    return out if several else out[0]
+
+
+class _ChartChecks:
+    """What a check of a chart renders and refuses (:func:`measure`'s by the scene's kind): the plugin checks a
+    chart at its base level, through a camera or an image sensor."""
+
+    spp_default = SPP_CHART
+
+    def __init__(self, scene, physics, skin, size, imager, illuminance):
+        from ..rendering.chart_effects import CHART_REGISTRY
+        from ..rendering.scene import load_chart_scene
+
+        self.chart = _named("scene", load_chart_scene, scene)
+        given = [n for n, v in (("physics", _beyond(CHART_REGISTRY, physics)), ("skin", skin is not None),
                                 ("size", size is not None)) if v]
         if given:
             raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
                                   "(e.g. 'face'), not a chart")
         if illuminance is not None and imager is None:
             raise SkinrenderError("illuminance sets the image sensor's exposure: it goes with imager")
-    cam = _named("camera", camera_of, camera)
-    _named("camera", cam.sensitivities)
-    p, c = _planckian(prevailing, "prevailing"), _planckian(calibration, "calibration")
-    spp = _integer(SPP_CHART if kind == "chart" and spp is None else SPP_FACE if spp is None else spp, "spp", 1,
-                   SPP_MAX + 1)
-    seed = _integer(seed, "seed", 0, SEED_MAX + 1)  # the bound of every front door
-    if kind == "chart":
-        found = _chart(chart, cam, p, c, spp * factor, seed, imager, illuminance, variant)
-        name = chart.name
-    else:
-        found = Measurement("face", *measure_face(scene, cam, p, c, spp * factor, seed, physics, skin, imager,
-                                                  illuminance, SIZE_FACE if size is None else size, variant))
-        name = found.settings.pop("scene_name")
-    from .. import __version__
 
-    settings = {"kind": kind, "scene": name, **camera_attributes(cam), "prevailing_K": p, "calibration_K": c,
-                "spp_requested": spp, "seed": seed, **found.settings, "skinrender_version": __version__}
-    return Measurement(found.kind, found.image, found.labels, found.channels, found.regions, found.items,
-                       found.mean, found.standard_error, found.dof, settings, chart if kind == "chart" else None)
+    def name(self, found) -> str:
+        return self.chart.name
+
+    def one(self, cam, p, c, spp, seed, physics, skin, imager, illuminance, size, variant) -> Measurement:
+        return _chart(self.chart, cam, p, c, spp, seed, imager, illuminance, variant)
+
+    def spectral(self, cams, p, c, spp, seed, physics, skin, imager, illuminance, size, variant) -> list:
+        """One measurement per camera from one spectral render (:func:`measure_spectral`)."""
+        from ..rendering.bands import BANDS_DEFAULT, bands_text
+        from ..rendering.kinds import CHART
+
+        if imager is not None:
+            raise SkinrenderError("imager: a chart's image sensor records one camera's render; check several cameras "
+                                  "without it, or one camera at a time")
+        image = CHART.render(CHART.request(self.chart, None, p, None, spp=spp, seed=seed, variant=variant,
+                                           bands=BANDS_DEFAULT))
+        bands = {"spectral_bands_nm": bands_text(BANDS_DEFAULT)}
+        out = []
+        for cam in cams:
+            rendering = image.through(cam, c)
+            out.append(_chart_values(self.chart, cam, rendering, _white_relative_variance(rendering), bands))
+        return out
+
+
+class _FaceChecks:
+    """What a check of a face renders (:func:`measure`'s by the scene's kind): replicates at any level."""
+
+    spp_default = SPP_FACE
+    chart = None
+
+    def __init__(self, scene, physics, skin, size, imager, illuminance):
+        self.scene = scene
+
+    def name(self, found) -> str:
+        return found.settings.pop("scene_name")
+
+    def one(self, cam, p, c, spp, seed, physics, skin, imager, illuminance, size, variant) -> Measurement:
+        return Measurement("face", *measure_face(self.scene, cam, p, c, spp, seed, physics, skin, imager,
+                                                 illuminance, size, variant))
+
+    def spectral(self, cams, p, c, spp, seed, physics, skin, imager, illuminance, size, variant) -> list:
+        """One measurement per camera from one spectral render per replicate seed (:func:`measure_spectral`)."""
+        from ..rendering.bands import BANDS_DEFAULT, bands_text
+        from ..rendering.kinds import FACE
+        from .replicates import face_check_request, reduce_face, replicate_seeds
+
+        request = face_check_request(self.scene, None, p, None, spp, seed, physics, skin, imager, illuminance, size,
+                                     variant, BANDS_DEFAULT)
+        images = [FACE.render(request, s) for s in replicate_seeds(seed)]
+        bands = {"spectral_bands_nm": bands_text(BANDS_DEFAULT)}
+        out = []
+        for cam in cams:
+            found = Measurement("face", *reduce_face([image.through(cam, c) for image in images], cam))
+            out.append(Measurement(found.kind, found.image, found.labels, found.channels, found.regions, found.items,
+                                   found.mean, found.standard_error, found.dof, {**found.settings, **bands}))
+        return out
+
+
+def _beyond(registry, physics) -> bool:
+    """Whether ``physics`` names more than the registry's base level (a spec of another registry does)."""
+    if physics is None:
+        return False
+    try:
+        return bool(registry.names(physics))
+    except SkinrenderError:
+        return True
+
+
+def measure_spectral(kind: str, scene, cameras: list, prevailing: float, calibration: float, spp: int, seed: int,
+                     physics: str | None, skin: str | None, imager: str | None, illuminance: float | None, size: int,
+                     variant: str | None) -> list:
+    """
+    One :class:`Measurement` per camera of ``cameras`` from one spectral render of ``scene`` (a chart, or a face
+    spec; a face: one per replicate seed) with :data:`~skinrender.rendering.bands.BANDS_DEFAULT` (arguments as
+    :func:`measure`; a chart through an ``imager`` is refused: its sensor records a camera's channels). The
+    settings add ``spectral_bands_nm``, so that a reference made one render per camera is told apart in a
+    failure's notes. ``kind``: the scene's (its checks are the kind's; kept for callers that name it).
+    """
+    from ..rendering.kinds import by_kind
+
+    checks = by_kind(scene, chart=_ChartChecks, face=_FaceChecks)(scene, physics, skin, None, imager, illuminance)
+    return checks.spectral(cameras, prevailing, calibration, spp, seed, physics, skin, imager, illuminance, size,
+                           variant)
 
 
 def values_of(kind: str, image: NDArrayFloat, labels: NDArrayFloat | None, regions, scene=None) -> NDArrayFloat:
     """The compared means of a stored image: a chart's patch means (``scene`` its chart) or a face's region means
     and skin NCC (``regions`` ``{name: label}``), in :attr:`Measurement.items` order."""
-    if kind == "chart":
+    if labels is None:  # a chart's (a face's image has its labels)
         from ..rendering.balance import patch_statistics
 
         return patch_statistics(image, scene).mean.ravel()
@@ -323,7 +436,8 @@ class Comparison:
 NOTED = {"camera_sha256": "the camera's curves", "variant": "the Mitsuba variant", "spp_requested": "spp",
          "seed": "the seed", "skinrender_version": "the skinrender version", "physics": "the physics",
          "skin": "the skin", "imager": "the imager", "prevailing_K": "the prevailing light (K)",
-         "calibration_K": "the calibration light (K)", "size": "the image size"}
+         "calibration_K": "the calibration light (K)", "size": "the image size",
+         "spectral_bands_nm": "the spectral bands (nm; none: one render per camera)"}
 """Settings whose change against the reference is noted in a failure message, key → words."""
 
 

@@ -49,6 +49,7 @@ class FaceRequest(Request):
     """
 
     skin: str = ""
+    bands: WavelengthGrid | None = None
 
     def _check(self) -> None:
         from ..renderer import SAMPLES_MAX
@@ -81,7 +82,7 @@ def _sized(face: FaceScene, size) -> FaceScene:
 def face_request(scene="face", camera=None, prevailing=None, calibration=None, *, skin: str | None = None,
                  physics="direct", size=None, settings: RenderSettings | None = None,
                  grid: WavelengthGrid = GRID_DEFAULT, imager=None, illuminance=None, exposure=None,
-                 spp: int | None = None, **fields) -> FaceRequest:
+                 spp: int | None = None, bands=None, **fields) -> FaceRequest:
     """
     A face's :class:`FaceRequest`, each argument parsed once and checked, a refusal naming it (its ``role``).
 
@@ -106,12 +107,23 @@ def face_request(scene="face", camera=None, prevailing=None, calibration=None, *
     imager, illuminance, exposure
         The ``noise`` effect's options (:class:`~skinrender.rendering.sensor.NoiseOptions`); an ``imager`` adds
         ``noise`` to the level; ``illuminance`` (lx) and ``exposure`` (s or ``auto``) go with it.
+    bands
+        A spectral render's band grid (``START:END:STEP`` nm or a grid, :mod:`~skinrender.rendering.bands`):
+        then no camera and no calibration (``None``; applied afterwards, the sensor of ``noise`` per camera).
     """
     face = named("scene", load_face_scene, scene)
-    if camera is None:
+    if bands is not None:
+        from ..bands import parse_bands
+        from ..request import spectral_only
+
+        bands = parse_bands(bands)
+        spectral_only(camera, calibration)
+        cam = None
+    elif camera is None:
         raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)",
                               role="camera")
-    cam = named("camera", camera_of, camera)
+    else:
+        cam = named("camera", camera_of, camera)
     level = PHYSICS_REGISTRY.level(physics if isinstance(physics, Level) else str(physics).strip())
     level, options = PHYSICS_REGISTRY.with_options(level, {"imager": imager, "illuminance": illuminance,
                                                            "exposure": exposure})
@@ -130,4 +142,4 @@ def face_request(scene="face", camera=None, prevailing=None, calibration=None, *
     p = light.temperature
     c = p if calibration is None else planckian(calibration, "calibration")
     skin = face.skin if skin is None else str(skin).strip()
-    return FaceRequest(face, cam, p, c, level, settings, grid, options, skin)
+    return FaceRequest(face, cam, p, c, level, settings, grid, options, skin, bands)
