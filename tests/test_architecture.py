@@ -260,3 +260,17 @@ def test_no_builtin_is_shadowed():
                 continue
             found += [f"{module}: {name}" for name in defined if name in names]
     assert found == []
+
+
+def test_no_method_level_or_kind_name_is_compared_outside_the_registries():
+    """A choice among named methods is made by its table's dispatcher, a level or a kind by its registry: no other
+    code compares a value with such a name or tests a scene's class (``tools/name_comparisons.py``, whose
+    ``ALLOWED`` says where a name is read by design, and why)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("name_comparisons", REPOSITORY / "tools" / "name_comparisons.py")
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)
+    found = tool.scan(ROOT, tool.tables())
+    assert [f"{f['module']}:{f['line']} {f['text']}" for f in found if not f["allowed"]] == []
+    assert len(tool.tables()) == len(tool.TABLES), "a table the tool reads is gone: update tools/name_comparisons.py"
