@@ -44,11 +44,7 @@ def factor_560nm(illuminants: list[Illuminant], grid: WavelengthGrid = GRID_DEFA
 
     ``F = 100 / SPD(560 nm)`` for each illuminant; refused for one without light there."""
     level = np.array([i.spd(np.array([560.0]))[0] for i in illuminants])
-    dark = [str(i) for i, v in zip(illuminants, level) if not (np.isfinite(v) and v > 1e-300)]
-    if dark:
-        raise SkinrenderError(f"illuminant {dark[0]} has no light at 560 nm (Planck underflows): the 560nm "
-                              "normalisation (Eq. 6) is undefined for it")
-    return 100.0 / level
+    return 100.0 / _lit(illuminants, level, "at 560 nm (Planck underflows)", "560nm normalisation (Eq. 6)")
 
 
 def factor_euclidean(illuminants: list[Illuminant], grid: WavelengthGrid = GRID_DEFAULT) -> NDArrayFloat:
@@ -57,11 +53,15 @@ def factor_euclidean(illuminants: list[Illuminant], grid: WavelengthGrid = GRID_
     ``F = 1 / sqrt(Σ SPD²)`` over the samples of ``grid`` for each illuminant (so it depends on the grid as the
     paper's sum does); refused for one without light on the grid."""
     norm = np.linalg.norm(spds_on(illuminants, grid), axis=-1)
-    dark = [str(i) for i, v in zip(illuminants, norm) if not (np.isfinite(v) and v > 1e-300)]
+    return 1.0 / _lit(illuminants, norm, f"on the grid {grid}", "euclidean normalisation (Eq. 7)")
+
+
+def _lit(illuminants: list[Illuminant], values: NDArrayFloat, where: str, what: str) -> NDArrayFloat:
+    """``values`` (one per illuminant), refused where an illuminant has no light ``where``: ``what`` is undefined."""
+    dark = [str(i) for i, v in zip(illuminants, values) if not (np.isfinite(v) and v > 1e-300)]
     if dark:
-        raise SkinrenderError(f"illuminant {dark[0]} has no light on the grid {grid}: the euclidean "
-                              "normalisation (Eq. 7) is undefined for it")
-    return 1.0 / norm
+        raise SkinrenderError(f"illuminant {dark[0]} has no light {where}: the {what} is undefined for it")
+    return values
 
 
 def factor_white(illuminants: list[Illuminant], grid: WavelengthGrid = GRID_DEFAULT) -> None:

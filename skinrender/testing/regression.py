@@ -24,7 +24,7 @@ standard error is the pixel standard deviation over √n
 (:func:`~skinrender.rendering.balance.patch_statistics`), with ``n − 1``
 degrees of freedom. Every patch is divided by the rendered white reference
 (Eq. 4 with WP, Eq. 8), so the whites' relative standard errors add
-(:func:`_white_relative_variance`): ``SE² = SE_patch² + mean² ·
+(:func:`~skinrender.testing.kind_checks.white_relative_variance`): ``SE² = SE_patch² + mean² ·
 relative_k``.
 
 **Faces** (:func:`skinrender.rendering.face.render.render_face`): each labelled
@@ -53,14 +53,16 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import SkinrenderError
 from ..evaluation.verdict import ALPHA_DIFFERENCE, Verdict, difference, sidak
 from ..hints import NDArrayFloat
-from .replicates import measure_face, region_values
+from .kind_checks import SPP_CHART, SPP_FACE, ChartChecks, FaceChecks, white_relative_variance  # noqa: F401
+from .measurement import Measurement, named_argument
+from .replicates import region_values
 
 __all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
            "Comparison", "scene_kind", "measure", "measure_spectral", "values_of", "setting_notes", "compare"]
@@ -71,58 +73,12 @@ every later check's z by at most ``1/√5`` of its deviation (``1/√2`` at equa
 reference does not raise the false-alarm rate of all the checks against it, as Mitsuba's high-spp references
 do not."""
 
-SPP_CHART = 64
-"""Samples per pixel of a chart check unless given (a check ~0.2 s after the first; a 2 nm shift at z > 10)."""
-
-SPP_FACE = 64
-"""Samples per pixel of a face check unless given, over all :data:`REPLICATES` (16 each)."""
-
 SIZE_FACE = 64
 """Image side of a face check unless given, pixels: a reference of ~60 kB."""
 
 ILLUMINANCE_DEFAULT_LUX = 500.0
 """A chart's illuminance through an ``imager`` unless given, lx (every door's:
 :data:`skinrender.rendering.request.ILLUMINANCE_DEFAULT`)."""
-
-
-@dataclass(frozen=True)
-class Measurement:
-    """
-    A render reduced to the values a regression compares.
-
-    Attributes
-    ----------
-    kind
-        ``chart`` or ``face``.
-    image
-        ``(height, width, 3)`` float32, output units (a face: the mean of its replicates).
-    labels
-        ``(height, width)`` int32 region labels of a face; ``None`` for a chart.
-    channels
-        The image's EXR channel names (by the camera).
-    regions
-        Patch names (chart) or ``{name: label}`` of the regions present (face).
-    items
-        One name per value: ``"<patch or region> / <channel>"``, ``"skin NCC / r"``.
-    mean, standard_error, dof
-        Per value (output units; NCC fractions); ``dof`` inf where the standard error is 0.
-    settings
-        What made it, JSON-ready: scene, camera and its curves' hash, temperatures, spp, seed, variant, …
-    scene
-        The :class:`~skinrender.rendering.scene.ChartScene` of a chart (its patch layout); ``None`` for a face.
-    """
-
-    kind: str
-    image: NDArrayFloat
-    labels: NDArrayFloat | None
-    channels: tuple[str, ...]
-    regions: tuple[str, ...] | dict
-    items: tuple[str, ...]
-    mean: NDArrayFloat
-    standard_error: NDArrayFloat
-    dof: NDArrayFloat
-    settings: dict = field(default_factory=dict)
-    scene: object = None
 
 
 def scene_kind(spec) -> str:
@@ -139,84 +95,13 @@ def scene_kind(spec) -> str:
     return kind_of(spec).name
 
 
-def _named(name: str, function, *args, **kwargs):
-    """``function(*args)``, its :class:`SkinrenderError` prefixed with the argument ``name`` unless it names it
-    already (its ``role`` is ``name``: ``camera 'x': …``)."""
-    try:
-        return function(*args, **kwargs)
-    except SkinrenderError as error:
-        if error.role == name:
-            raise
-        raise error.reworded(f"{name}: {error.message}", role=name) from None
-
-
 def _planckian(spec, name: str) -> float:
     from ..model.illuminant import illuminant
 
-    light = _named(name, illuminant, spec)
+    light = named_argument(name, illuminant, spec)
     if light.temperature is None:
         raise SkinrenderError(f"{name}: rendering needs a Planckian illuminant (kelvin, A or H), got {light}")
     return float(light.temperature)
-
-
-def _white_relative_variance(rendering) -> NDArrayFloat:
-    """
-    Per channel ``k``, the relative variance every patch of a chart render takes from its rendered whites.
-
-    The image is ``v · WP · P_k / C_k`` with ``WP = 3 / Σ_j r_j``, ``r_j = W_j / C_j`` (the white reference's
-    means under the prevailing and the calibration light), so ``δ ln image_k = δ ln P_k − Σ_j w_j δ ln W_j +
-    Σ_j (w_j − [j = k]) δ ln C_j`` with ``w_j = r_j / Σ r``: ``wᵀ Σ_W w + a_kᵀ Σ_C a_k``, ``a_k = w − e_k``, where
-    ``Σ_W``, ``Σ_C`` are the relative covariances of the whites' channel means (from their pixels: the channels
-    of a pixel share its wavelength samples and are correlated, and the calibration white enters twice and partly
-    cancels). At p = c (one render, ``WP = 1`` exactly) and for the other normalisations (a fixed ``F_p / F_c``)
-    it is ``Σ_C[k, k]``. Measured: adding the terms in quadrature without the covariances, as
-    :mod:`~skinrender.rendering.validation` does for its 5 σ, overstated the G channel's standard errors by ~16 %.
-    """
-    from ..model.response import uses_whites
-
-
-    def relative_covariance(raw) -> NDArrayFloat:
-        rows, columns = rendering.scene.patch_pixels(rendering.scene.white_index)
-        pixels = raw.radiance[rows, columns].reshape(-1, 3)
-        mean = pixels.mean(axis=0)
-        return np.cov(pixels, rowvar=False) / len(pixels) / np.outer(mean, mean)
-
-    analytic = rendering.info.get("white_calibration") == "analytic"  # a spectral render's: computed, exact
-    sigma_c = 0.0 * relative_covariance(rendering.raw[-1]) if analytic else relative_covariance(rendering.raw[-1])
-    if not uses_whites(rendering.normalization) or rendering.prevailing == rendering.calibration:
-        return np.diagonal(sigma_c).copy()
-    sigma_w = relative_covariance(rendering.raw[0])
-    ratio = rendering.info["white_ratio"]
-    w = ratio / ratio.sum()
-    a = w[None, :] - np.eye(3)
-    return w @ sigma_w @ w + np.einsum("ki,ij,kj->k", a, sigma_c, a)
-
-
-def _chart(chart, cam, prevailing, calibration, spp, seed, imager, illuminance, variant) -> Measurement:
-    from ..rendering.kinds import CHART
-
-    request = CHART.request(chart, cam, prevailing, calibration, spp=spp, seed=seed, variant=variant, imager=imager,
-                            illuminance=illuminance)  # the one request of every door
-    rendering, imaged = CHART.render_imaged(request)
-    # through a sensor the balance's whites are noise-free; else the rendered whites' noise adds to every patch
-    relative = np.zeros(3) if imaged is not None else _white_relative_variance(rendering)
-    settings = {} if imaged is None else {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux}
-    return _chart_values(chart, cam, rendering, relative, settings)
-
-
-def _chart_values(chart, cam, rendering, relative, settings: dict) -> Measurement:
-    """A chart render reduced to its patch means with their standard errors (``relative``: the whites' relative
-    variance per channel)."""
-    from ..rendering.renderer import channel_names
-
-    stats = rendering.patches
-    se = np.sqrt(stats.standard_error**2 + stats.mean**2 * relative[None, :])
-    dof = np.broadcast_to(stats.count[:, None] - 1.0, se.shape)
-    names = tuple(p.name for p in chart.patches)
-    items = tuple(f"{n} / {c}" for n in names for c in cam.channels)
-    settings = {"spp": int(rendering.raw[0].spp), "variant": rendering.variant, **settings}
-    return Measurement("chart", rendering.image, None, channel_names(cam), names, items, stats.mean.ravel(),
-                       se.ravel(), np.where(se.ravel() > 0, dof.ravel(), np.inf), settings)
 
 
 def _integer(value, name: str, low: int, high: int) -> int:
@@ -249,13 +134,13 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     from ..rendering.settings import SEED_MAX, SPP_MAX
 
     kind = scene_kind(scene).name
-    checks = by_kind(scene, chart=_ChartChecks, face=_FaceChecks)(scene, physics, skin, size, imager, illuminance)
+    checks = by_kind(scene, chart=ChartChecks, face=FaceChecks)(scene, physics, skin, size, imager, illuminance)
     several = isinstance(camera, (list, tuple))
-    cams = [_named("camera", camera_of, one) for one in (camera if several else [camera])]
+    cams = [named_argument("camera", camera_of, one) for one in (camera if several else [camera])]
     if not cams:
         raise SkinrenderError("camera: name at least one camera")
     for cam in cams:
-        _named("camera", cam.sensitivities)
+        named_argument("camera", cam.sensitivities)
     p, c = _planckian(prevailing, "prevailing"), _planckian(calibration, "calibration")
     spp = _integer(checks.spp_default if spp is None else spp, "spp", 1, SPP_MAX + 1)
     seed = _integer(seed, "seed", 0, SEED_MAX + 1)  # the bound of every front door
@@ -276,93 +161,6 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     return out if several else out[0]
 
 
-class _ChartChecks:
-    """What a check of a chart renders and refuses (:func:`measure`'s by the scene's kind): the plugin checks a
-    chart at its base level, through a camera or an image sensor."""
-
-    spp_default = SPP_CHART
-
-    def __init__(self, scene, physics, skin, size, imager, illuminance):
-        from ..rendering.chart_effects import CHART_REGISTRY
-        from ..rendering.scene import load_chart_scene
-
-        self.chart = _named("scene", load_chart_scene, scene)
-        given = [n for n, v in (("physics", _beyond(CHART_REGISTRY, physics)), ("skin", skin is not None),
-                                ("size", size is not None)) if v]
-        if given:
-            raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
-                                  "(e.g. 'face'), not a chart")
-        if illuminance is not None and imager is None:
-            raise SkinrenderError("illuminance sets the image sensor's exposure: it goes with imager")
-
-    def name(self, found) -> str:
-        return self.chart.name
-
-    def one(self, cam, p, c, spp, seed, physics, skin, imager, illuminance, size, variant) -> Measurement:
-        return _chart(self.chart, cam, p, c, spp, seed, imager, illuminance, variant)
-
-    def spectral(self, cams, p, c, spp, seed, physics, skin, imager, illuminance, size, variant) -> list:
-        """One measurement per camera from one spectral render (:func:`measure_spectral`)."""
-        from ..rendering.bands import BANDS_DEFAULT, bands_text
-        from ..rendering.kinds import CHART
-
-        if imager is not None:
-            raise SkinrenderError("imager: a chart's image sensor records one camera's render; check several cameras "
-                                  "without it, or one camera at a time")
-        image = CHART.render(CHART.request(self.chart, None, p, None, spp=spp, seed=seed, variant=variant,
-                                           bands=BANDS_DEFAULT))
-        bands = {"spectral_bands_nm": bands_text(BANDS_DEFAULT)}
-        out = []
-        for cam in cams:
-            rendering = image.through(cam, c)
-            out.append(_chart_values(self.chart, cam, rendering, _white_relative_variance(rendering), bands))
-        return out
-
-
-class _FaceChecks:
-    """What a check of a face renders (:func:`measure`'s by the scene's kind): replicates at any level."""
-
-    spp_default = SPP_FACE
-    chart = None
-
-    def __init__(self, scene, physics, skin, size, imager, illuminance):
-        self.scene = scene
-
-    def name(self, found) -> str:
-        return found.settings.pop("scene_name")
-
-    def one(self, cam, p, c, spp, seed, physics, skin, imager, illuminance, size, variant) -> Measurement:
-        return Measurement("face", *measure_face(self.scene, cam, p, c, spp, seed, physics, skin, imager,
-                                                 illuminance, size, variant))
-
-    def spectral(self, cams, p, c, spp, seed, physics, skin, imager, illuminance, size, variant) -> list:
-        """One measurement per camera from one spectral render per replicate seed (:func:`measure_spectral`)."""
-        from ..rendering.bands import BANDS_DEFAULT, bands_text
-        from ..rendering.kinds import FACE
-        from .replicates import face_check_request, reduce_face, replicate_seeds
-
-        request = face_check_request(self.scene, None, p, None, spp, seed, physics, skin, imager, illuminance, size,
-                                     variant, BANDS_DEFAULT)
-        images = [FACE.render(request, s) for s in replicate_seeds(seed)]
-        bands = {"spectral_bands_nm": bands_text(BANDS_DEFAULT)}
-        out = []
-        for cam in cams:
-            found = Measurement("face", *reduce_face([image.through(cam, c) for image in images], cam))
-            out.append(Measurement(found.kind, found.image, found.labels, found.channels, found.regions, found.items,
-                                   found.mean, found.standard_error, found.dof, {**found.settings, **bands}))
-        return out
-
-
-def _beyond(registry, physics) -> bool:
-    """Whether ``physics`` names more than the registry's base level (a spec of another registry does)."""
-    if physics is None:
-        return False
-    try:
-        return bool(registry.names(physics))
-    except SkinrenderError:
-        return True
-
-
 def measure_spectral(kind: str, scene, cameras: list, prevailing: float, calibration: float, spp: int, seed: int,
                      physics: str | None, skin: str | None, imager: str | None, illuminance: float | None, size: int,
                      variant: str | None) -> list:
@@ -375,7 +173,7 @@ def measure_spectral(kind: str, scene, cameras: list, prevailing: float, calibra
     """
     from ..rendering.kinds import by_kind
 
-    checks = by_kind(scene, chart=_ChartChecks, face=_FaceChecks)(scene, physics, skin, None, imager, illuminance)
+    checks = by_kind(scene, chart=ChartChecks, face=FaceChecks)(scene, physics, skin, None, imager, illuminance)
     return checks.spectral(cameras, prevailing, calibration, spp, seed, physics, skin, imager, illuminance, size,
                            variant)
 
