@@ -43,12 +43,12 @@ def add_spectral_arguments(parser: argparse.ArgumentParser, command: str) -> Non
 
 def add_cameras_arguments(parser: argparse.ArgumentParser) -> None:
     """``--direct`` and ``--bands`` of a command whose ``--camera`` repeats (``face-sweep``, ``ladder``)."""
-    parser.add_argument("--direct", action="store_true",
-                        help="render every camera on its own (the default for one --camera); without it several "
-                        "cameras are seen through one spectral render per light, skin and level")
-    parser.add_argument("--bands", metavar="START:END:STEP",
-                        help="the spectral renders' band grid in nm (default 400:700:5): a hat per band, a camera on "
-                        "this grid seen exactly")
+    direct = ("render every camera on its own (the default for one --camera); without it several cameras are seen "
+              "through one spectral render per light, skin and level")
+    bands = ("the spectral renders' band grid in nm (default 400:700:5): a hat per band, a camera on this grid seen "
+             "exactly")
+    parser.add_argument("--direct", action="store_true", help=direct)
+    parser.add_argument("--bands", metavar="START:END:STEP", help=bands)
 
 
 

@@ -108,6 +108,7 @@ class Replicates:
     labels: NDArrayFloat
     expected: NDArrayFloat
     first: object
+    """A :class:`~skinrender.rendering.face.render.FaceRendering`."""
     lights: Mapping[str, Light]
     usable: NDArrayFloat | None = None
     bias: NDArrayFloat | None = None

@@ -101,10 +101,11 @@ class SpectralImage:
     physics: str
     spp: int
     spp_requested: int
+    """The spp asked (``spp``: the count the sampler took)."""
     seed: int
     sampler: str
     variant: str
-    seconds: float
+    seconds: float  # the render's, s
     grid: WavelengthGrid
     labels: NDArrayFloat | None = None
     label_names: dict = field(default_factory=dict)
