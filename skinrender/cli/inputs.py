@@ -301,7 +301,9 @@ def check_request_work(args, request, renders: int = 1, spp: int | None = None) 
     Refuse, naming ``--spp``, ``renders`` renders of ``request`` (at ``spp`` each where given) whose samples per
     pass exceed Mitsuba's 32-bit wavefront or whose estimate
     (:meth:`~skinrender.rendering.kinds.SceneKind.workload` on every core) exceeds ``--max-minutes`` (``args``:
-    the parsed arguments or what a command made of them, its ``max_minutes`` in minutes; or the minutes).
+    the parsed arguments or what a command made of them, its ``max_minutes`` in minutes; or the minutes); then what
+    the level's effects prepare before any render (:meth:`~skinrender.rendering.physics.Level.prepare`: a
+    subsurface chart's skin patches fitted, one that is not skin refused, naming it and why).
     """
     import dataclasses
     import os
@@ -320,6 +322,7 @@ def check_request_work(args, request, renders: int = 1, spp: int | None = None) 
     seconds, what = scene_kind(request.scene).workload(request, renders, os.cpu_count() or 1)
     minutes = args if args is None or isinstance(args, (int, float)) else getattr(args, "max_minutes", None)
     check_work(seconds, "--spp", what, minutes, fewer="lower --spp")
+    request.level.prepare(request)
 
 
 def imaging_document(imaged) -> dict:

@@ -72,6 +72,14 @@ def _skin_patches(request) -> None:
                               "use physics direct)", role="imager")
 
 
+def _fit_skin_patches(request) -> None:
+    """The chart's skin patches as the skin model's layers, fitted now (cached for the render): a patch that is not
+    skin is refused, naming it and why, before anything renders."""
+    from .subsurface_chart import subsurface_chart
+
+    subsurface_chart(request.scene, request.grid)
+
+
 def _slab_seconds(request, cores: int) -> tuple[float, str]:
     """A subsurface chart's render on ``cores`` cores: its skin patches' paths (the Lambertian ones are free)."""
     from .subsurface_chart import estimate_seconds
@@ -94,7 +102,7 @@ CHART_SUBSURFACE = Effect(
     "the skin patches as the skin model's two layers under a dielectric boundary, lit by a uniform sky, against "
     "their slab's adding-doubling reflectance",
     chart=_Slabs, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches, samples_per_s=SAMPLES_PER_S_SLAB,
-    estimate=_slab_seconds, order=30,
+    estimate=_slab_seconds, prepare=_fit_skin_patches, order=30,
     refuses={"gamut": "the gamut volumes are compared on the Lambertian chart",
              "spp_auto": "it picks spp from the Lambertian chart's pilot renders; give spp N"},
 )

@@ -209,6 +209,9 @@ class Effect:
         ``(request, cores) → (seconds, what)``: one render on ``cores`` cores and what it is in words, where
         pixels × spp / :attr:`samples_per_s` does not give it (a subsurface chart: its skin patches only), or
         ``None``.
+    prepare
+        ``(request) → None``: work done once the request's time is accepted, before any render, that may still
+        refuse it (a subsurface chart fits its skin patches' layers: one that is not skin is refused), or ``None``.
     refuses
         What a validation at a level with it does not take, option → why (a subsurface chart's ``gamut`` and
         ``spp_auto``).
@@ -235,6 +238,7 @@ class Effect:
     refuse: Callable | None = None
     chart: Callable | None = None
     estimate: Callable | None = None
+    prepare: Callable | None = None
     refuses: Mapping[str, str] = field(default_factory=dict, compare=False, hash=False)
 
     def __repr__(self) -> str:
@@ -362,6 +366,12 @@ class Level:
         for effect in self.effects:
             if effect.refuse is not None:
                 effect.refuse(request)
+
+    def prepare(self, request) -> None:
+        """What its effects do before any render, once the request's time is accepted (each effect's ``prepare``)."""
+        for effect in self.effects:
+            if effect.prepare is not None:
+                effect.prepare(request)
 
     def scene(self, scene, options: Mapping[str, object]):
         """The scene as the render sees it: each effect's ``scene`` part with its options."""
