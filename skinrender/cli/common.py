@@ -104,7 +104,7 @@ def add_render(parser: argparse.ArgumentParser, spp_auto: bool = False) -> None:
     else:
         parser.add_argument("--spp", type=int, help="samples per pixel (overrides --quality)")
     parser.add_argument("--sampler", choices=list(SAMPLERS), help="Mitsuba sampler: " + choices_help(SAMPLERS)
-                        + "; default multijitter (independent for a chart at --physics subsurface)")
+                        + "; default multijitter (independent for a chart at --physics subsurface-volume)")
     parser.add_argument("--seed", type=int, default=0, help="sampler seed; the same seed gives the same image (default 0)")
     parser.add_argument("--variant", help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral); "
                         "default: the fastest that works here")

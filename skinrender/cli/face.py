@@ -176,12 +176,14 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     from ..workload import check_work
 
     bands = bands_for_cameras(args.bands, args.direct, cams)
-    renders = len(levels) * REPLICATES_LADDER * (len(skins or SKIN_TONES) if args.effects else 1)
+    tones = len(skins or SKIN_TONES) if args.effects else 1
+    renders = len(levels) * REPLICATES_LADDER * tones
     renders *= len(cams) if bands is None else 1
     each = -(-spp // REPLICATES_LADDER)
     check_work(estimate_seconds(renders, size * size, each, 1, [level for level in levels
-                                                                for _ in range(renders // len(levels))], bands),
-               "--spp", f"{len(levels)} levels of {REPLICATES_LADDER} × {size}×{size} px at {each} spp"
+                                                                for _ in range(renders // len(levels))], bands,
+                                tones), "--spp",
+               f"{len(levels)} levels of {REPLICATES_LADDER} × {size}×{size} px at {each} spp"
                + (f" for {len(skins or SKIN_TONES)} skins" if args.effects else ""), args.max_minutes,
                fewer="lower --spp or --size, or name fewer --levels")
     return {"cameras": cams, "bands": bands, "prevailing": temperatures["prevailing"],

@@ -115,7 +115,8 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     check_samples(settings.spp, face_pixels(scene, None if size is None else integer_in(size, "--size", 1, SIZE_MAX)))
     each = max(-(-int(settings.spp) // REPLICATES), SPP_REPLICATE_MIN)  # a replicate's spp
     request = face_request_from(scene, settings, **face_flags(args), spp=each)
-    check_request_work(getattr(args, "max_minutes", None), request, REPLICATES)  # at its level's rate (subsurface: far slower)
+    # at its level's rate (subsurface-volume: far slower)
+    check_request_work(getattr(args, "max_minutes", None), request, REPLICATES)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
     result = flag("validate", FACE.validate, request, spp=settings.spp, limits=limits,
                   progress=lambda line: print(line, file=sys.stderr))

@@ -114,8 +114,8 @@ class ChartInputs:
     grid
         ``--grid``, nm.
     physics
-        ``--physics`` as given: ``direct`` or ``subsurface``, parsed into a level where the request is built
-        (:meth:`request`).
+        ``--physics`` as given: ``direct``, ``subsurface`` or ``subsurface-volume``, parsed into a level where the
+        request is built (:meth:`request`).
     """
 
     scene: ChartScene
@@ -233,7 +233,7 @@ def refuse_face_flags(physics: str, skin: str | None, size: str | None, skin_ref
     given = [name for name, on in (("--physics", not chart_level), ("--skin", skin_refused and skin is not None),
                                    ("--size", size is not None)) if on]
     if given:
-        levels = f" (a chart takes --physics {' or '.join(CHART_REGISTRY.named)})" if "--physics" in given else ""
+        levels = f" (a chart takes --physics {', '.join(CHART_REGISTRY.named)})" if "--physics" in given else ""
         raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
                               f"(e.g. 'face'), not a chart{levels}", flag=given[0])
 

@@ -321,7 +321,7 @@ def check_face_bench_work(args: argparse.Namespace, levels: list, pixels: int, s
     Refuse the face bench when its estimate exceeds ``--max-minutes``: per level one reference render at
     ``reference`` spp and, per spp of the curve, a warm-up and a timed render (``2 × Σ spps``), all of ``pixels``
     pixels (:func:`~skinrender.studies.face.sweep.estimate_seconds` on every core, each level at its own rate:
-    ``subsurface`` is far slower), naming ``--spp-list``.
+    ``subsurface-volume`` is far slower), naming ``--spp-list``.
     """
     import os
 

@@ -18,9 +18,8 @@ never the spec.
 
 -   :class:`Effect`, :class:`Limits`: an effect and its analytic limits.
 -   :class:`Level`: a composition of effects.
--   :class:`Setup`, :class:`Frame`, :class:`Replicates`, :class:`Measured`:
-    what an effect's functions read and return (a face's; their parts:
-    :mod:`skinrender.rendering.face.effects.base`).
+-   :class:`~skinrender.rendering.effect_inputs.Setup`, ``Frame``, ``Replicates``, ``Measured``: what an
+    effect's functions read and return (:mod:`skinrender.rendering.effect_inputs`, importable here).
 -   :data:`SAMPLES_PER_S_DIRECT`, :data:`SECONDS_PER_RENDER`: the base's
     rate and a render's fixed cost, the estimates'.
 
@@ -35,12 +34,10 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from ..errors import SkinrenderError
-from ..hints import NDArrayFloat
+from .effect_inputs import Frame, Measured, Replicates, Setup  # noqa: F401 (their home before)
 from .variants import choose_variant
 
 if TYPE_CHECKING:
-    from ..model.camera import Camera
-    from ..spectra import WavelengthGrid
     from .face.scene import FaceScene, Light
 
 __all__ = ["SAMPLES_PER_S_DIRECT", "SECONDS_PER_RENDER", "Setup", "Frame", "Replicates", "Measured", "Effect",
@@ -57,79 +54,6 @@ SECONDS_PER_RENDER = 0.15
 fitted with :data:`SAMPLES_PER_S_DIRECT` to two measured sweeps of 54 renders (direct, sheen, all effects) with one
 worker at 64 px, 32 spp and 128 px, 64 spp (the measurements and their commands: docs/speed.md, "The rates
 behind the estimates")."""
-
-
-@dataclass(frozen=True)
-class Setup:
-    """
-    What an effect's functions may read about the render.
-
-    ``scene``, ``camera``, ``grid`` and the level's ``lights`` (``{name: Light}``) for the Mitsuba
-    document, and the ``skin`` spec rendered (its reflectance is the ``skin`` part's argument; an effect that
-    needs more of it, as the skin model's layers, reads the spec); ``calibration`` (K), ``seed``
-    and ``options`` (effect name → its options, :attr:`Effect.options`) for ``post``, ``None`` while the
-    document is built.
-    """
-
-    scene: FaceScene
-    camera: Camera
-    grid: WavelengthGrid
-    lights: Mapping[str, Light]
-    calibration: float | None = None
-    seed: int | None = None
-    options: Mapping[str, object] = field(default_factory=dict)
-    skin: str | None = None
-
-
-@dataclass(frozen=True)
-class Frame:
-    """
-    A rendered frame before Eq. 4's gain: ``signal`` ``(height, width, 3)`` (the specfilm's radiance,
-    or DN after a sensor), the whites in the same units that the gain is formed from, ``(3,)`` each,
-    and the rendering's ``info`` (JSON-ready).
-    """
-
-    signal: NDArrayFloat
-    white_prevailing: NDArrayFloat
-    white_calibration: NDArrayFloat
-    info: dict
-
-
-@dataclass(frozen=True)
-class Replicates:
-    """
-    What a limit's check reads: the replicate images ``(K, height, width, 3)`` (balanced, output units,
-    after any ``measure``), the ``labels``, Eq. 4's NCC of the skin ``expected``, the ``first`` replicate
-    (a :class:`~skinrender.rendering.face.render.FaceRendering`), the level's ``lights`` in its scene,
-    and a sensor's ``usable`` pixels, ``bias`` bound and standard-error ``floor`` (``None`` without one).
-    """
-
-    images: NDArrayFloat
-    labels: NDArrayFloat
-    expected: NDArrayFloat
-    first: object
-    """A :class:`~skinrender.rendering.face.render.FaceRendering`."""
-    lights: Mapping[str, Light]
-    usable: NDArrayFloat | None = None
-    bias: NDArrayFloat | None = None
-    floor: NDArrayFloat | None = None
-
-
-@dataclass(frozen=True)
-class Measured:
-    """
-    The replicate images as the checks see them, after a ``measure`` step (a sensor's: its dark signal
-    removed), with the ``usable`` pixels, the ``bias`` bound and the standard-error ``floor``
-    (:class:`Replicates`), the pixels it left out (``excluded``, ``{name: count}``, added to the check's
-    details) and a ``note`` added to the reason of a check left undecided.
-    """
-
-    images: NDArrayFloat
-    usable: NDArrayFloat | None = None
-    bias: NDArrayFloat | None = None
-    floor: NDArrayFloat | None = None
-    excluded: dict = field(default_factory=dict)
-    note: str = ""
 
 
 @dataclass(frozen=True)
@@ -207,7 +131,7 @@ class Effect:
         See :mod:`skinrender.rendering.face.effects.base`.
     estimate
         ``(request, cores) → (seconds, what)``: one render on ``cores`` cores and what it is in words, where
-        pixels × spp / :attr:`samples_per_s` does not give it (a subsurface chart: its skin patches only), or
+        pixels × spp / :attr:`samples_per_s` does not give it (a subsurface chart: its skin patches, or its tables), or
         ``None``.
     prepare
         ``(request) → None``: work done once the request's time is accepted, before any render, that may still
@@ -215,6 +139,12 @@ class Effect:
     refuses
         What a validation at a level with it does not take, option → why (a subsurface chart's ``gamut`` and
         ``spp_auto``).
+    setup_seconds
+        One-off seconds on one core before a process's first render of a skin with it (the fast ``subsurface``'s
+        table), measured: the estimates add it once per level and skin.
+    excludes, by_default
+        Effects it does not combine with (two transports of one skin); whether the default levels (``ladder``,
+        ``face-sweep``, the face bench) hold it (``False``: ``subsurface-volume``, which a user names).
     """
 
     name: str
@@ -240,6 +170,9 @@ class Effect:
     estimate: Callable | None = None
     prepare: Callable | None = None
     refuses: Mapping[str, str] = field(default_factory=dict, compare=False, hash=False)
+    setup_seconds: float = 0.0
+    excludes: tuple[str, ...] = ()
+    by_default: bool = True
 
     def __repr__(self) -> str:
         return f"Effect({self.name!r})"
@@ -386,8 +319,14 @@ class Level:
         return min(effect.samples_per_s for effect in self.effects if effect.samples_per_s is not None)
 
     def seconds(self, samples: float) -> float:
-        """Seconds ``samples`` (pixels × spp) take at this level on one core (:attr:`samples_per_s`)."""
-        return float(samples) / self.samples_per_s
+        """Seconds ``samples`` (pixels × spp) of one skin take at this level on one core (:attr:`samples_per_s`,
+        and :attr:`setup_seconds` once)."""
+        return float(samples) / self.samples_per_s + self.setup_seconds
+
+    @property
+    def setup_seconds(self) -> float:
+        """One-off seconds on one core before a skin's first render (its effects' :attr:`Effect.setup_seconds`)."""
+        return float(sum(effect.setup_seconds for effect in self.effects))
 
     @property
     def scene_scale(self) -> float:

@@ -82,7 +82,7 @@ def settings_for(level: Level, settings: RenderSettings | None = None, **fields)
     """
     The render settings of a request at ``level``: ``settings`` (the defaults where ``None``) with ``fields``
     (``spp``, ``seed``, ``sampler``, ``variant``, ``channels``; ``None`` values not given); the level's own sampler
-    (:attr:`~skinrender.rendering.physics.Level.sampler`: a subsurface chart's) where neither names one.
+    (:attr:`~skinrender.rendering.physics.Level.sampler`: a subsurface-volume chart's) where neither names one.
     """
     fields = {key: value for key, value in fields.items() if value is not None}
     if settings is None and "sampler" not in fields and level.sampler is not None:
@@ -245,9 +245,10 @@ def chart_request(scene, camera, prevailing, calibration, *, normalization: str 
         Eq. 4's normalisation and knee (Eq. 10), the grid (nm), the emitter.
     settings, **fields
         A :class:`~skinrender.rendering.settings.RenderSettings`, or its fields one by one (``spp``, ``seed``,
-        ``sampler``, ``variant``, ``channels``); at ``subsurface`` the sampler is that level's unless named.
+        ``sampler``, ``variant``, ``channels``); at ``subsurface-volume`` the sampler is that level's unless named.
     physics
-        ``direct`` or ``subsurface`` (:data:`~skinrender.rendering.chart_effects.CHART_REGISTRY`), or a level.
+        ``direct``, ``subsurface`` or ``subsurface-volume`` (:data:`~skinrender.rendering.chart_effects.CHART_REGISTRY`),
+        or a level.
     imager, illuminance, exposure
         The sensor's options (:class:`~skinrender.rendering.sensor.NoiseOptions`): an ``imager`` records the
         chart through an image sensor at ``illuminance`` lx (default :data:`ILLUMINANCE_DEFAULT`) and

@@ -1,8 +1,10 @@
 """
-Charts with subsurface scattering
-=================================
+Charts with subsurface scattering: the volumetric reference
+===========================================================
 
-A chart rendered at ``--physics subsurface``: each skin patch (``skin =
+A chart rendered at ``--physics subsurface-volume`` (named ``subsurface``
+until issue 34, which gave that name to the fast transport of
+:mod:`skinrender.rendering.slab_chart`): each skin patch (``skin =
 true``) is the skin model's two layers (:func:`~skinrender.rendering.subsurface.skin_media_of`:
 its ``skin-model:`` parameters, or the model fitted to its measured
 reflectance) rendered as media under a smooth dielectric boundary, and
@@ -80,8 +82,8 @@ from .renderer import (SAMPLES_MAX, CameraKey, RawRender, emitter_peak, channels
                        emitter_grid)
 from .scene import ChartScene, load_chart_scene
 from .settings import RenderSettings
-from .subsurface import (INTEGRATOR_SUBSURFACE, SLAB_DERMIS_MM, SkinMedia, check_truncation, medium_dict,
-                         skin_media_of, slab_reflectance, subsurface_variant)
+from .subsurface import (INTEGRATOR_SUBSURFACE, SLAB_DERMIS_MM, SkinMedia, chart_skin_media, check_truncation,
+                         medium_dict, slab_reflectance, subsurface_variant)
 from .variants import mitsuba
 
 __all__ = ["FOOTPRINT_MM", "SLAB_HALF_WIDTH_MM", "SAMPLES_PER_S_SLAB", "SAMPLER_SUBSURFACE", "SECONDS_PER_FIT",
@@ -99,7 +101,7 @@ SAMPLES_PER_S_SLAB = 500.0
 (``docs/subsurface.md``) on this shared 2-core machine."""
 
 SAMPLER_SUBSURFACE = "independent"
-"""The sampler of a subsurface chart unless one is named (``validate``, ``render``, ``detect``; Python: where no
+"""The sampler of a subsurface-volume chart unless one is named (``validate``, ``render``, ``detect``; Python: where no
 settings are given): its pixels are independent samples by construction, so a patch's standard error from its
 pixels' spread holds whatever the paths, and validate's difference test was calibrated with it (2 false alarms in
 100 seeds at α 0.01, ``docs/subsurface.md``). Over 150 seeds of a slab (8 × 8 px, 16 spp, the skin fitted to Vrhel
@@ -138,7 +140,7 @@ class SubsurfaceChart:
 
 def subsurface_chart(scene, grid: WavelengthGrid = GRID_DEFAULT) -> SubsurfaceChart:
     """
-    The chart's patches at ``subsurface`` (:class:`SubsurfaceChart`): its skin patches' layers (fitting those
+    The chart's patches at ``subsurface-volume`` (:class:`SubsurfaceChart`): its skin patches' layers (fitting those
     given as measured reflectances, ~1.3 s each) and the reflectances Eq. 4 is checked with. Cached.
 
     Raises
@@ -151,22 +153,14 @@ def subsurface_chart(scene, grid: WavelengthGrid = GRID_DEFAULT) -> SubsurfaceCh
 
 @lru_cache(maxsize=8)
 def _subsurface_chart(chart: ChartScene, grid: WavelengthGrid) -> SubsurfaceChart:
-    if not any(p.skin for p in chart.patches):
-        raise SkinrenderError(f"{chart.source or chart.name}: physics 'subsurface' renders a chart's skin patches "
-                              "(skin = true) as the skin model's layers, and this chart has none")
+    media, wheres = chart_skin_media(chart, grid)
     reflectances = chart.reflectances(grid).copy()
-    media: list[SkinMedia | None] = []
-    for index, patch in enumerate(chart.patches):
-        if not patch.skin:
-            media.append(None)
-            continue
-        where = f"{chart.source}: patch {patch.name!r}"
-        item = skin_media_of(patch.reflectance, grid, where)
-        check_truncation(item, where)
-        media.append(item)
-        reflectances[index] = slab_reflectance(item.layers)
+    for index, item in enumerate(media):
+        if item is not None:
+            check_truncation(item, wheres[index])
+            reflectances[index] = slab_reflectance(item.layers)
     reflectances.setflags(write=False)
-    return SubsurfaceChart(chart, grid, tuple(media), reflectances)
+    return SubsurfaceChart(chart, grid, media, reflectances)
 
 
 def estimate_seconds(scene: ChartScene, spp: int, fits: int = 0) -> float:
@@ -238,7 +232,7 @@ def _patch_seed(seed: int, index: int) -> int:
 
 class SubsurfaceChartRenderer:
     """
-    A chart at ``subsurface`` through a camera (:class:`SubsurfaceChart`), rendered at any temperature.
+    A chart at ``subsurface-volume`` through a camera (:class:`SubsurfaceChart`), rendered at any temperature.
 
     Each patch is its own Mitsuba scene (module docstring). ``settings``
     (:class:`~skinrender.rendering.settings.RenderSettings`) gives the spp, sampler, variant and channel passes

@@ -198,7 +198,7 @@ def test_work_and_its_flag_are_named(argv, names, capsys):
 
 
 def test_the_face_bench_estimates_each_level_at_its_own_rate():
-    """A subsurface level in the face bench is estimated at its own (far slower) rate, as render and ladder do."""
+    """A subsurface-volume level in the face bench is estimated at its own (far slower) rate, as render and ladder do."""
     import argparse
     import re
 
@@ -211,7 +211,7 @@ def test_the_face_bench_estimates_each_level_at_its_own_rate():
         value, unit = re.search(r"about ([\d.]+) (s|min|h)", str(error.value)).groups()
         return float(value) * {"s": 1 / 60, "min": 1, "h": 60}[unit]
 
-    assert minutes(["direct", "subsurface"]) > 10 * minutes(["direct", "sheen"])
+    assert minutes(["direct", "subsurface-volume"]) > 10 * minutes(["direct", "sheen"])
 
 
 def test_reproduce_on_a_full_disk_leaves_no_folder_and_names_o(tmp_path, capsys, monkeypatch):

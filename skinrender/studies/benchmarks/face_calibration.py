@@ -59,7 +59,7 @@ def estimate_face_seconds(seeds: int, pixels: int, spp: int, level: str | None =
     """
     Wall time of ``seeds`` validations of a face of ``pixels`` pixels at ``spp`` (split over the replicates, each at
     least :data:`~skinrender.rendering.face.limits.SPP_REPLICATE_MIN`), s: the replicates
-    (:func:`skinrender.studies.face.sweep.estimate_seconds` on one core, at ``level``'s rate: ``subsurface`` is far
+    (:func:`skinrender.studies.face.sweep.estimate_seconds` on one core, at ``level``'s rate: ``subsurface-volume`` is far
     slower; ``None``: the base's) and the scene-free limits.
 
     >>> round(estimate_face_seconds(10, 256 * 256, 256))  # measured: 68–140 s (6.8–14 s a validation, 2 cores)

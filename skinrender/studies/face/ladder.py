@@ -356,7 +356,7 @@ def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: S
         variant=variant, grid=grid, bands=None if way is not None else bands,
         **PHYSICS_REGISTRY.options_for(level, sensor)) for way in ways for level in levels}  # checked first
     seconds = sum(request.level.seconds(request.pixels * each * replicates) for request in requests.values())
-    if progress is not None and seconds > 60:  # subsurface: minutes (the command line refuses beyond --max-minutes)
+    if progress is not None and seconds > 60:  # subsurface-volume: minutes (the command line refuses beyond --max-minutes)
         progress(f"the {len(levels)} levels should take about {duration_text(seconds)} on one core")
     studied = []
     for cam in cams:

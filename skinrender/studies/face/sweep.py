@@ -77,7 +77,7 @@ SECONDS_PER_RENDER = SECONDS_PER_RENDER_DIRECT
 SAMPLES_PER_S = SAMPLES_PER_S_DIRECT
 """Samples per second of the face on one core (one drjit thread), the estimates' rate (see
 :data:`SECONDS_PER_RENDER`) at every level but those whose effects are slower (a level's own rate:
-:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`, e.g. ``subsurface``'s)."""
+:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`, e.g. ``subsurface-volume``'s)."""
 
 CSV_COLUMNS = ("camera", "prevailing_K", "calibration_K", "skin", "level", "seconds", "spp",
                "skin_ncc_mean_r", "skin_ncc_mean_g", "skin_ncc_mean_b", "skin_ncc_std_r", "skin_ncc_std_g",
@@ -172,12 +172,15 @@ def sweep_tasks(cameras, lights, skins, levels) -> list[tuple]:
     return [(cam, p, c, skin, level) for cam, (p, c), skin, level in itertools.product(cameras, lights, skins, levels)]
 
 
-def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels=None, bands=None) -> float:
+def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels=None, bands=None,
+                     skins: int = 1) -> float:
     """
     Wall time of ``renders`` face renders of ``pixels`` pixels at ``spp`` on ``cores`` cores, s (from
     :data:`SECONDS_PER_RENDER` and :data:`SAMPLES_PER_S`, per core; a worker's start, a few seconds, aside);
     ``levels``, one per render, each render at its level's rate
-    (:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`: ``subsurface`` is far slower); ``bands``:
+    (:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`: ``subsurface-volume`` is far slower) and
+    each distinct level's one-off work once per skin of the ``skins``
+    (:attr:`~skinrender.rendering.face.effects.Level.setup_seconds`: ``subsurface``'s table); ``bands``:
     spectral renders of those bands (each sample costs more: :data:`~skinrender.rendering.bands.BAND_COST`).
 
     Examples
@@ -191,7 +194,8 @@ def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels
         from ...rendering.bands import BAND_COST
 
         factor = 1.0 + BAND_COST[0] * bands.size ** BAND_COST[1]
-    return sum(SECONDS_PER_RENDER + factor * pixels * spp / rate for rate in rates) / max(1, cores)
+    setup = 0.0 if levels is None else sum(physics_level(level).setup_seconds for level in set(levels)) * skins
+    return (sum(SECONDS_PER_RENDER + factor * pixels * spp / rate for rate in rates) + setup) / max(1, cores)
 
 
 @dataclass(frozen=True)
@@ -246,16 +250,17 @@ class FaceSweep:
 
 
 def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples: float, cores: int,
-                levels=None, bands=None) -> None:
+                levels=None, bands=None, skins: int = 1) -> None:
     """Refuse a sweep too large (``levels``: each render's level; a slower level's samples count at its cost;
-    ``bands``: spectral renders, each sample at the bands' cost)."""
+    ``bands``: spectral renders, each sample at the bands' cost; ``skins``: how many)."""
     pixels = size * size
     if pixels > PIXELS_MAX:
         raise SkinrenderError(f"size {size} pixels gives {pixels} pixels per image, more than {PIXELS_MAX}")
     if spp * pixels > SAMPLES_MAX:
         raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
                               f"most {SAMPLES_MAX // pixels} spp at this size")
-    seconds, on = estimate_seconds(renders, pixels, spp, cores, levels, bands), f"on {cores} core{'s' * (cores > 1)}"
+    seconds = estimate_seconds(renders, pixels, spp, cores, levels, bands, skins)
+    on = f"on {cores} core{'s' * (cores > 1)}"
     about = f"about {duration_text(seconds)} {on}"
     if renders > max_renders:
         raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} ({about}); raise "
@@ -359,9 +364,10 @@ def face_sweep(
             projection(cam, bands, grid)
         renders = spectral_tasks(cams, pairs, skins, levels)
         _check_size(len(renders), int(size), int(spp), max_renders, max_samples, cores, [t[2] for t in renders],
-                    bands)
+                    bands, len(set(skins)))
     else:
-        _check_size(len(tasks), int(size), int(spp), max_renders, max_samples, cores, [t[-1] for t in tasks])
+        _check_size(len(tasks), int(size), int(spp), max_renders, max_samples, cores, [t[-1] for t in tasks],
+                    skins=len(set(skins)))
     face = load_face_scene(scene)
     settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance)
     start = time.perf_counter()

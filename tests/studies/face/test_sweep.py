@@ -144,18 +144,23 @@ def test_estimate_grows_with_samples():
 
 
 def test_estimate_and_cap_count_each_level_at_its_cost():
-    """A subsurface render costs its own rate (samples/s): its estimate and its share of max_samples are larger."""
+    """A subsurface-volume render costs its own rate (samples/s): its estimate and its share of max_samples are larger;
+    a fast subsurface render costs the base's rate and its table once per skin."""
     from skinrender.rendering.face.effects import physics_level
 
-    ratio = physics_level("direct").samples_per_s / physics_level("subsurface").samples_per_s
+    ratio = physics_level("direct").samples_per_s / physics_level("subsurface-volume").samples_per_s
     base = estimate_seconds(2, 64 * 64, 32, levels=["direct", "direct"])
     assert base == pytest.approx(estimate_seconds(2, 64 * 64, 32))
-    slow = estimate_seconds(2, 64 * 64, 32, levels=["direct", "sheen+subsurface"])
+    slow = estimate_seconds(2, 64 * 64, 32, levels=["direct", "sheen+subsurface-volume"])
     assert slow > 100 * base and ratio > 100
     arguments = {"cameras": [CAMERA], "lights": [(2856, 5900)], "skins": SKINS[:1], "size": 16, "spp": 4,
                  "max_samples": 16 * 16 * 4 * 10}
-    with pytest.raises(SkinrenderError, match=r"at subsurface a sample counts as \d+ at the base's rate.*max-samples"):
-        face_sweep(levels=["direct", "subsurface"], **arguments)
+    with pytest.raises(SkinrenderError, match=r"at subsurface-volume a sample counts as \d+ at the base's rate.*max-samples"):
+        face_sweep(levels=["direct", "subsurface-volume"], **arguments)
+    fast = physics_level("subsurface")
+    assert fast.samples_per_s == physics_level("direct").samples_per_s and fast.setup_seconds > 0
+    assert estimate_seconds(4, 64 * 64, 32, cores=1, levels=["subsurface"] * 4, skins=3) == pytest.approx(
+        estimate_seconds(4, 64 * 64, 32, cores=1) + 3 * fast.setup_seconds)
 
 
 @pytest.mark.parametrize("kwargs, match", [

@@ -1,12 +1,14 @@
 """
-Subsurface scattering
-=====================
+Subsurface scattering, volumetric: the reference
+================================================
 
-The skin as a participating medium inside a rough dielectric boundary
+Level ``subsurface-volume`` (until issue 34 it was named ``subsurface``,
+which is now the fast transport of
+:mod:`~skinrender.rendering.face.effects.subsurface_table`). The skin as a participating medium inside a rough dielectric boundary
 (Mitsuba 3 has no BSSRDF), path traced by ``volpathmis``: light enters the
 skin, scatters under it and leaves it elsewhere.
 
--   :data:`SUBSURFACE`: the effect; :data:`SUBSURFACE_ALPHA`,
+-   :data:`SUBSURFACE_VOLUME`: the effect; :data:`SUBSURFACE_ALPHA`,
     :data:`SCENE_SCALE_SUBSURFACE`, :data:`SAMPLES_PER_S_SUBSURFACE`.
 -   :func:`face_medium`: the one medium the face renders for a skin spec.
 
@@ -58,15 +60,16 @@ length and depth depend on where it entered and in which direction, so its
 spectrum changes with the angles of incidence and view, and the shading no
 longer cancels in NCC (a prototype slab's NCC at 60° incidence minus at 0°:
 Δr −0.020, Δg +0.010, z ≈ 4). The flat slab against adding-doubling is the
-check of this physics (``validate CHART --physics subsurface``,
+check of this physics (``validate CHART --physics subsurface-volume``,
 :mod:`skinrender.rendering.subsurface_chart`).
 
 Cost
 ----
 Light scatters hundreds of times in skin before it leaves: a face render at
 this level costs ~:data:`SAMPLES_PER_S_SUBSURFACE` samples per second on one
-core, against ~9e5 without it; the ladder's last level and the face bench's
-levels include it. :attr:`~skinrender.rendering.face.effects.base.Effect.samples_per_s`
+core, against ~9e5 without it, so the default levels (``ladder``,
+``face-sweep``, the face bench) leave it out (:attr:`~skinrender.rendering.face.effects.base.Effect.by_default`):
+name it (``--levels subsurface-volume``). :attr:`~skinrender.rendering.face.effects.base.Effect.samples_per_s`
 gives the estimates this rate.
 """
 
@@ -79,7 +82,7 @@ from ...subsurface import (INTEGRATOR_SUBSURFACE, check_truncation, effective_la
                            subsurface_variant)
 from .base import Effect, Limits, Setup
 
-__all__ = ["EFFECT", "SUBSURFACE", "SUBSURFACE_ALPHA", "SCENE_SCALE_SUBSURFACE", "SAMPLES_PER_S_SUBSURFACE", "face_medium"]
+__all__ = ["EFFECT", "SUBSURFACE_VOLUME", "SUBSURFACE_ALPHA", "SCENE_SCALE_SUBSURFACE", "SAMPLES_PER_S_SUBSURFACE", "face_medium"]
 
 SUBSURFACE_ALPHA = 0.35
 """GGX roughness α of the skin's boundary, as ``sheen``'s coat (Weyrich et al. 2006 fit 0.3–0.45 to faces)."""
@@ -119,19 +122,20 @@ def _skin(material: dict, reflectance, setup: Setup) -> dict:
     return {**material, "bsdf": boundary, "interior": medium_dict(layer, setup.grid, 1000.0 / SCENE_SCALE_SUBSURFACE)}
 
 
-SUBSURFACE = Effect(
-    "subsurface",
-    "the skin as the skin model's layers (one effective medium) under a rough dielectric boundary, path traced "
-    "(volpathmis): light scatters under the skin and leaves it elsewhere",
+SUBSURFACE_VOLUME = Effect(
+    "subsurface-volume",
+    "the volumetric reference: the skin as the skin model's layers (one effective medium) under a rough dielectric "
+    "boundary, path traced (volpathmis; minutes): light scatters under the skin and leaves it elsewhere",
+    short="volumetric subsurface scattering", excludes=("subsurface",), by_default=False,
     integrator=_integrator, skin=_skin,
     limits=Limits(holds=False, why="light leaves the skin after paths under it whose length depends on the angles "
                                    "of incidence and view, so the skin's colour changes with the geometry and the "
                                    "shading no longer cancels: no analytic limit on the face (the flat slab is "
-                                   "checked against adding-doubling: validate a chart with --physics subsurface)"),
+                                   "checked against adding-doubling: validate a chart with --physics subsurface-volume)"),
     samples_per_s=SAMPLES_PER_S_SUBSURFACE, scene_scale=SCENE_SCALE_SUBSURFACE, variant=subsurface_variant,
-    order=30,
+    order=35,
 )
 """The skin as a medium (module docstring)."""
 
-EFFECT = SUBSURFACE
+EFFECT = SUBSURFACE_VOLUME
 """This module's effect (the registry takes it: :mod:`.levels`)."""
