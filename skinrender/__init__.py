@@ -45,7 +45,11 @@ Examples
 
 from __future__ import annotations
 
-import importlib as _importlib
+from ._interrupt import quiet_while_starting as _quiet_while_starting
+
+_quiet_while_starting()  # the command line only: Ctrl-C while it imports is one line and status 130, no traceback
+
+import importlib as _importlib  # noqa: E402 - after the Ctrl-C guard
 import importlib.util as _importlib_util
 from typing import TYPE_CHECKING
 

@@ -206,7 +206,8 @@ def test_the_doctest_server_children_start_alike(doctest_server, doctest_example
 def test_the_pytest_plugin_imports_neither_mitsuba_nor_the_renderer():
     """Every pytest session of a user with skinrender installed loads the plugin (its ``pytest11`` entry point):
     importing it, in a fresh interpreter, imports neither Mitsuba nor ``skinrender.rendering`` (its fixture
-    imports what a check needs), and ``import skinrender`` alone imports nothing of the package but itself."""
+    imports what a check needs), and ``import skinrender`` alone imports nothing of the package but itself and its
+    Ctrl-C guard."""
     code = ("import json, sys; import {module}; "
             "print(json.dumps(sorted(m for m in sys.modules if m.split('.')[0] in ('skinrender', 'mitsuba', 'drjit'))))")
     seen = {module: json.loads(subprocess.run([sys.executable, "-c", code.format(module=module)], check=True,
@@ -215,7 +216,7 @@ def test_the_pytest_plugin_imports_neither_mitsuba_nor_the_renderer():
     plugin = seen["skinrender.testing.plugin"]
     assert "skinrender.testing.plugin" in plugin
     assert [m for m in plugin if m.startswith(("mitsuba", "drjit", "skinrender.rendering"))] == []
-    assert seen["skinrender"] == ["skinrender"]
+    assert seen["skinrender"] == ["skinrender", "skinrender._interrupt"]  # and the Ctrl-C guard (standard library)
 
 
 def _parsed_modules():

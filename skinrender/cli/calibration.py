@@ -14,6 +14,7 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
+from ..files import write_output
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, check_output, emit, flag, imaging_options,
                      integer_in, interruptible, table)
 
@@ -260,7 +261,8 @@ def _plotted(result: dict, options: dict) -> dict:
     if options["plot"] is not None:
         from ..studies.figures import figure_calibration
 
-        result["plot"] = str(figure_calibration(result, options["plot"]))
+        result["plot"] = str(write_output(options["plot"], lambda stream: figure_calibration(result, stream),
+                                          "--plot"))
     return result
 
 

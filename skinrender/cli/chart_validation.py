@@ -21,17 +21,24 @@ import dataclasses
 import sys
 
 from ..errors import SkinrenderError
-from .common import emit, flag, interruptible, settings_from, table
+from .common import SPP_MAX, emit, flag, interruptible, settings_from, table
 
-__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_check_arguments", "add_verdict_arguments", "tolerance_of",
-           "tolerance_from", "spp_of", "spp_auto_from", "command_validate", "command_validate_chart",
+__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "SIGMAS_DEPRECATED", "add_check_arguments", "add_verdict_arguments",
+           "tolerance_of", "tolerance_from", "spp_of", "spp_auto_from", "command_validate", "command_validate_chart",
            "command_validate_spectral"]
 
 HELP_TOLERANCE = (
-    "relative tolerance REL in (0, 1) on each lit patch channel (default 0.01, 1 %%); a channel darker than 1 %% of "
-    "white is held to the absolute floor REL × 2.55 output units. pass: every patch channel shown within it at "
+    "relative tolerance REL in [6e-8, 1) on each lit patch channel (default 0.01, 1 %%); a channel darker than 1 %% of "
+    "white (a perfect white's brightest channel under the prevailing light: 255 output units at p = c with the "
+    "white normalisation) is held to the absolute floor REL × 1 %% of that white. pass: every patch channel shown within it at "
     "family-wise 95 %% confidence; fail: one shown outside it; inconclusive: the samples cannot tell (spp_needed "
     "says how many would)")
+
+SIGMAS_DEPRECATED = (
+    "deprecated, to be removed in a later release: the tolerance is no longer k standard errors (k was 5) but "
+    "relative (--tolerance); 'sigmas' is now the equivalence's critical value c, the standard errors added in each "
+    "bound |error| + c·SE: read checks.equivalence.critical")
+"""The JSON's ``deprecated.sigmas``: why ``sigmas`` is kept and what to read instead."""
 
 EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the verdict of --tolerance; a face: its "
                    "checks' verdicts combined, eq4_shift held to the detection budget), 2 a refused input, 130 "
@@ -123,7 +130,8 @@ def _auto_spp(request, tolerance) -> dict:
         return CHART.validate(pilot, tolerance=tolerance)
 
     print(f"spp auto: pilot renders of {request.scene.name} …", file=sys.stderr)
-    choice = spp_for_tolerance(at, tolerance, settings.seed, spp_max=SAMPLES_MAX // request.pixels,
+    # the choice is held to both limits --spp has: SPP_MAX, and one pass's samples (Mitsuba's 32-bit wavefront)
+    choice = spp_for_tolerance(at, tolerance, settings.seed, spp_max=min(SPP_MAX, SAMPLES_MAX // request.pixels),
                                sampler=settings.sampler)
     print(f"spp auto: {choice['spp']} spp ({choice['why']})", file=sys.stderr)
     return choice
@@ -145,6 +153,7 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     from ..rendering.kinds import CHART
     from ..rendering.sensor_validation import ImagedValidation
     from ..rendering.spp_choice import PILOT_SPP
+    from ..model.response import uses_whites
     from .inputs import chart_flags, chart_request_from, check_request_work, refuse_face_flags
 
     tolerance = tolerance_from(args.tolerance)
@@ -152,6 +161,13 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     refuse_face_flags(args.physics, args.skin, args.size)
     if args.limits is not None:
         raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart", flag="--limits")
+    if args.gamut and (not uses_whites(args.normalization) or args.knee):  # its volumes were taken with WP, no knee
+        given = "--knee" if args.knee else f"--normalization {args.normalization}"
+        raise SkinrenderError(f"--gamut compares the volumes of Eq. 4 with the white normalisation and no knee; "
+                              f"{given} would not apply to them: drop one of the two", flag="--gamut")
+    if args.knee and args.imager is not None:  # the sensor's tests compare linear codes with its model
+        raise SkinrenderError("--knee: validate --imager tests the sensor's linear codes (DN) against its model; "
+                              "drop --knee", flag="--knee")
     settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels, auto)
     requested = "auto" if auto else settings.spp
     request = chart_request_from(scene, settings, **chart_flags(args))
@@ -199,7 +215,6 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
 
 def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict, list[str]]:
     """A chart validation's document and text lines: per patch and channel the values, error, bound, tolerance."""
-    from ..constants import CONSTANT_OUTPUT_SCALE
     from ..rendering.agreement import DARK_LEVEL
     from ..rendering.renderer import channel_names
     from .common import SPP_MAX
@@ -211,7 +226,8 @@ def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict,
                 "calibration_K": r.calibration, "normalization": inputs.normalization, "knee": inputs.knee,
                 "spp": r.raw[0].spp, "spp_requested": requested, "sampler": settings.sampler,
                 "seed": settings.seed, "variant": r.variant, "elapsed_s": r.seconds, "tolerance": tolerance,
-                "dark_floor_output": tolerance * DARK_LEVEL * CONSTANT_OUTPUT_SCALE,
+                "white_level": result.white_level, "dark_floor_output": tolerance * DARK_LEVEL * result.white_level,
+                "sigmas": result.verdict.details.get("critical"), "deprecated": {"sigmas": SIGMAS_DEPRECATED},
                 "bound": result.bound, "spp_needed": result.spp_needed,
                 "checks": {name: v.document() for name, v in checks.items()}, "patches": result.patches(),
                 "worst": result.worst(), "max_rel_error": float(result.rel_error.max()),
@@ -222,8 +238,9 @@ def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict,
              f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", p["shown"][k]]
             for p in document["patches"] for k in range(3)]
     lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
-             f"{r.raw[0].spp} spp {settings.sampler}, {r.variant}, {r.seconds:.2f} s; output units "
-             "(white = 255 at p = c); bound: the upper 95 % (family-wise) confidence bound of |error|",
+             f"{r.raw[0].spp} spp {settings.sampler}, {r.variant}, {r.seconds:.2f} s; output units (a perfect "
+             f"white's brightest channel: {result.white_level:.4g}); bound: the upper 95 % (family-wise) confidence "
+             "bound of |error|",
              *subsurface_lines(r), table(rows, ["patch", "channel", "analytic", "rendered", "error", "bound", "tolerance", "shown"])]
     lines += _summary("equivalence", result.verdict)
     needed = "—" if result.spp_needed is None else (result.spp_needed if result.spp_needed <= SPP_MAX

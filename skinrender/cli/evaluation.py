@@ -10,7 +10,8 @@ import numpy as np
 
 from ..errors import SkinrenderError
 from ..files import write_output
-from .common import HELP_CAMERA, camera_of, check_lights, add_common, check_output, emit, flag
+from .common import HELP_CAMERA, camera_of, add_common, check_output, emit, flag
+from .preflight import check_lights
 
 
 def add_parsers(commands) -> None:

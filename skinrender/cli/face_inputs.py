@@ -47,14 +47,11 @@ def planckian_flag(spec: str, name: str) -> float:
 
 
 def check_lights_seen(cam, temperatures: dict) -> None:
-    """Each light (flag name → K) gives the camera light on the grid (else a one-line error naming the flag)."""
-    import numpy as np
+    """Each light (flag name → K) gives the camera light on the grid (else a one-line error naming the flag and
+    the light by its role: :func:`~skinrender.cli.preflight.check_render_lights`)."""
+    from .preflight import check_render_lights
 
-    from ..model.response import response
-    from ..spectra import GRID_DEFAULT
-
-    for name, t in temperatures.items():
-        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
+    check_render_lights(cam, temperatures)
 
 
 def face_flags_from(camera: str | None, prevailing: str, calibration: str | None, normalization: str = "white",

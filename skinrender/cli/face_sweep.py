@@ -19,6 +19,7 @@ import sys
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
                      interruptible, positive_number, table, variant_of)
+from .preflight import check_dask
 from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
 
 __all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
@@ -134,11 +135,10 @@ def _checked(args: argparse.Namespace) -> dict:
     variant_of(args.variant)
     lux = noise_sensor(args, levels)
     max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
-    if args.dask is not None and not str(args.dask).strip():
-        raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one", flag="--dask")
     from .bands_flags import bands_for
 
     bands = bands_for(args, cams)
+    check_dask(args)  # an empty address, another server or none there: refused before any render
     return {
         "spectral": bands is not None, **({"bands": bands} if bands is not None else {}),
         "cameras": cams, "lights": pairs, "skins": skins, "levels": levels, "scene": args.scene,

@@ -186,10 +186,8 @@ def chart_inputs_from(scene: ChartScene, camera: str, prevailing: str, calibrati
     named in any error, and checked to give the camera light on the grid (``--grid`` parsed once too) before
     anything renders; ``scene``: the chart :func:`scene_from` loaded.
     """
-    import numpy as np
-
     from ..model.illuminant import illuminant
-    from ..model.response import response
+    from .preflight import check_render_lights
 
     grid = grid_from(grid)
     cam = camera_from(camera, extrapolation, grid)
@@ -200,9 +198,7 @@ def chart_inputs_from(scene: ChartScene, camera: str, prevailing: str, calibrati
             raise SkinrenderError(f"--{name}: rendering needs a Planckian illuminant (kelvin, A or H), got {light}",
                                   flag=f"--{name}")
         temperatures[name] = light.temperature
-    for name, kelvin in temperatures.items():  # each light seen by the camera, the one at fault named
-        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, grid.size)), kelvin, kelvin,
-             grid=grid)
+    check_render_lights(cam, temperatures, grid)  # each light seen by the camera, the one at fault named
     try:  # every patch's data covers the grid, before the render needs it
         scene.reflectances(grid)
     except SkinrenderError as error:  # the chart's own data: --extrapolation (CSV cameras') does not apply

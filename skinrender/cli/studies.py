@@ -13,6 +13,7 @@ from ..workload import check_work
 from ..files import write_output
 from .common import (HELP_CAMERA, add_common, add_max_minutes, add_grid, add_search, check_output, flag, integer_in,
                      emit, positive_number, table)
+from .preflight import check_dask
 
 
 def _g(value) -> str:
@@ -144,6 +145,7 @@ def command_reproduce(args: argparse.Namespace) -> None:
         raise SkinrenderError(f"--stage1-camera is the camera of --illuminants auto; got --illuminants {args.illuminants!r}",
                               flag="--stage1-camera")
     check_sweep_flags(args)
+    check_dask(args)
     if args.sweep:
         from ..studies.paper.sweep import reproduce_sweep
         from ..studies.paper.unknowns import Setting
@@ -189,9 +191,11 @@ def command_table1(args: argparse.Namespace) -> None:
     spp = integer_in(args.spp, "--spp", 1, SPP_MAX)  # each flag checked on its own, so that its error names it
     settings = RenderSettings(spp=spp, seed=check_seed(args.seed))
     tolerance = TABLE1_TOLERANCE if args.tolerance is None else positive_number(args.tolerance, "--tolerance", "NCC")
-    if tolerance >= 1:
-        raise SkinrenderError(f"--tolerance must be an NCC difference in (0, 1), got {args.tolerance!r}",
-                              flag="--tolerance")
+    from ..rendering.agreement import TOLERANCE_MIN
+
+    if not TOLERANCE_MIN <= tolerance < 1:  # below float32's resolution: 1e-320 ended in an internal error
+        raise SkinrenderError(f"--tolerance must be an NCC difference in [{TOLERANCE_MIN:.3g}, 1) (its lower end is "
+                              f"float32's resolution), got {args.tolerance!r}", flag="--tolerance")
     cam = flag("--camera", camera, args.camera)
     result = flag({"spp": "--spp", None: "--camera"}, table1, cam, settings, tolerance=tolerance)
     rows = [[r["model"], r["case"], f"{r['mean']:.5f}", f"{r['std']:.5f}"] for r in result["rows"]]

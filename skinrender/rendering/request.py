@@ -147,9 +147,29 @@ class Request:
                 raise SkinrenderError(f"{name} must be a temperature, a finite number of kelvin > 0, got {value!r}",
                                       role=name)
             object.__setattr__(self, name, float(value))
+        self._check_lights()
         object.__setattr__(self, "options", MappingProxyType(self.level.default_options(self.options)))
         self._check()
         self.level.refuse(self)
+
+    def _check_lights(self) -> None:
+        """
+        Each light gives the camera light on the grid, the one at fault named by its role (``calibration
+        illuminant 1K gives no light …``, ``role`` ``calibration``): a chart's calibration light of 1 K had been
+        refused only after the prevailing render ("the Planck emitter is zero", no argument named), a face's after
+        its white references (~9 s, then a NaN).
+        """
+        from ..model.illuminant import illuminant
+        from ..model.response import check_light, spds_on
+
+        if self.camera is None:  # a spectral render: no camera yet (each is checked where it sees the render)
+            return
+        for role in ("prevailing", "calibration"):
+            item = illuminant(getattr(self, role))
+            try:
+                check_light(self.camera, [item], spds_on([item], self.grid), self.grid, f"{role} illuminant")
+            except SkinrenderError as error:
+                raise error.reworded(role=role if error.role == "illuminant" else error.role) from None
 
     def _check(self) -> None:
         """The checks of a scene kind's request (its own fields)."""

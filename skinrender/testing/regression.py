@@ -64,14 +64,16 @@ from .kind_checks import SPP_CHART, SPP_FACE, ChartChecks, FaceChecks, white_rel
 from .measurement import Measurement, named_argument
 from .replicates import region_values
 
-__all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
-           "Comparison", "scene_kind", "measure", "measure_spectral", "values_of", "setting_notes", "compare"]
+__all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE",
+           "ILLUMINANCE_DEFAULT_LUX", "Measurement", "Comparison", "scene_kind", "measure", "measure_spectral",
+           "values_of", "setting_notes", "compare"]
 
 REFERENCE_SPP_FACTOR = 4
-"""A reference is rendered at this many times the check's spp (and the same seed): its own noise then moves
-every later check's z by at most ``1/√5`` of its deviation (``1/√2`` at equal spp), so that one unlucky
-reference does not raise the false-alarm rate of all the checks against it, as Mitsuba's high-spp references
-do not."""
+"""A reference is rendered at this many times the check's spp (with its own seed,
+:func:`~skinrender.testing.reference.reference_seed`): its
+own noise then moves every later check's z by at most ``1/√5`` of its deviation (``1/√2`` at equal spp), so that
+one unlucky reference does not raise the false-alarm rate of all the checks against it, as Mitsuba's high-spp
+references do not."""
 
 SIZE_FACE = 64
 """Image side of a face check unless given, pixels: a reference of ~60 kB."""
@@ -112,7 +114,8 @@ def _integer(value, name: str, low: int, high: int) -> int:
 
 def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed: int = 0, physics: str | None = None,
             skin: str | None = None, imager: str | None = None, illuminance: float | None = None,
-            size: int | None = None, variant: str | None = None, factor: int = 1) -> Measurement:
+            size: int | None = None, variant: str | None = None, factor: int = 1,
+            render_seed: int | None = None) -> Measurement:
     """
     Render ``scene`` (a chart or a face) through ``camera`` under the Planckian ``prevailing`` light (K),
     white balanced to ``calibration`` (K), and reduce it to the values a regression compares (module
@@ -125,8 +128,10 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     ``spp`` defaults to :data:`SPP_CHART` or :data:`SPP_FACE`; ``physics``, ``skin`` and ``size`` (pixels,
     default :data:`SIZE_FACE`) go with faces; ``imager`` (and ``illuminance``, lx) put the image sensor's
     noise in (a face: physics ``noise``). ``factor``: render at ``factor × spp`` (a reference,
-    :data:`REFERENCE_SPP_FACTOR`); the settings keep ``spp_requested`` the check's. Any bad argument raises a
-    one-line :class:`SkinrenderError` naming it.
+    :data:`REFERENCE_SPP_FACTOR`); the settings keep ``spp_requested`` the check's. ``render_seed``: render with
+    this seed rather than ``seed`` (a reference, :func:`~skinrender.testing.reference.reference_seed`); the settings
+    keep ``seed`` the check's
+    and add ``reference_seed``. Any bad argument raises a one-line :class:`SkinrenderError` naming it.
     """
     from ..model.camera import camera as camera_of
     from ..rendering.exr import camera_attributes
@@ -144,17 +149,19 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     p, c = _planckian(prevailing, "prevailing"), _planckian(calibration, "calibration")
     spp = _integer(checks.spp_default if spp is None else spp, "spp", 1, SPP_MAX + 1)
     seed = _integer(seed, "seed", 0, SEED_MAX + 1)  # the bound of every front door
+    renders = seed if render_seed is None else _integer(render_seed, "render_seed", 0, SEED_MAX + 1)
     size = SIZE_FACE if size is None else size
     if several:
-        found = checks.spectral(cams, p, c, spp * factor, seed, physics, skin, imager, illuminance, size, variant)
+        found = checks.spectral(cams, p, c, spp * factor, renders, physics, skin, imager, illuminance, size, variant)
     else:
-        found = [checks.one(cams[0], p, c, spp * factor, seed, physics, skin, imager, illuminance, size, variant)]
+        found = [checks.one(cams[0], p, c, spp * factor, renders, physics, skin, imager, illuminance, size, variant)]
     from .. import __version__
 
     out = []
     for cam, one in zip(cams, found):
         settings = {"kind": kind, "scene": checks.name(one), **camera_attributes(cam), "prevailing_K": p,
-                    "calibration_K": c, "spp_requested": spp, "seed": seed, **one.settings,
+                    "calibration_K": c, "spp_requested": spp, "seed": seed,
+                    **({} if render_seed is None else {"reference_seed": renders}), **one.settings,
                     "skinrender_version": __version__}
         out.append(Measurement(one.kind, one.image, one.labels, one.channels, one.regions, one.items, one.mean,
                                one.standard_error, one.dof, settings, checks.chart))

@@ -170,7 +170,9 @@ def test_face_bench_marks_extrapolated_presets(monkeypatch, capsys):
 
 
 @pytest.mark.parametrize("argv, names", [(["--tolerance", "0"], "--tolerance"), (["--tolerance", "2"], "--tolerance"),
-                                         (["--tolerance", "x"], "--tolerance")])
+                                         (["--tolerance", "x"], "--tolerance"),
+                                         # issue 36: an internal error (the bounds overflowed to infinity)
+                                         (["--tolerance", "1e-320"], ("--tolerance", "float32"))])
 def test_table1_tolerance_refused(argv, names, capsys):
     assert_refused(["table1", *argv], names, capsys)
 

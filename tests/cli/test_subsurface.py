@@ -143,9 +143,11 @@ border_px = 1
 def test_skin_patches_pass_for_two_cameras_and_two_light_pairs(camera, lights, tmp_path, capsys):
     """
     Issue 22's done-when at a small size: skin_patches' lightest and darkest Vrhel skins (measured spectra, each
-    fitted by the skin model and rendered as its layers) at 10 × 10 px and 32 spp pass validate --physics
+    fitted by the skin model and rendered as its layers) at 10 × 10 px and 40 spp pass validate --physics
     subsurface-volume (both checks) through two cameras and two light pairs, and the JSON gives each patch's analytic
     value: Eq. 4 of its slab's adding-doubling reflectance. (The whole chart at 48 spp: docs/subsurface.md.)
+    At 32 spp the dark skin's blue was inconclusive once its bound carried its skewness (issue 36: 0.21 against
+    0.2, the bound 12 % wider on these 8 × 8 pixels); at 40 spp every bound is 0.13–0.14.
     """
     from skinrender.rendering.subsurface_chart import subsurface_chart
     from skinrender.rendering.validation import analytic_reference
@@ -154,7 +156,7 @@ def test_skin_patches_pass_for_two_cameras_and_two_light_pairs(camera, lights, t
     chart.write_text(SKIN_PATCHES_TWO)
     prevailing, calibration = lights
     status, out, err = run(["validate", chart, "--camera", camera, "--prevailing", prevailing, "--calibration",
-                            calibration, "--physics", "subsurface-volume", "--spp", "32", "--tolerance", "0.2",
+                            calibration, "--physics", "subsurface-volume", "--spp", "40", "--tolerance", "0.2",
                             "--json"],
                            capsys)
     assert status == 0, err[-500:]

@@ -356,6 +356,8 @@ def validate_face(
 
     if isinstance(replicates, bool) or not isinstance(replicates, (int, np.integer)) or replicates < 3:
         raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}", role="replicates")
+    if isinstance(limits, str):  # "furnace,sphere" as the command line gives it, not its letters one by one
+        limits = [name.strip() for name in limits.split(",") if name.strip()] if limits.strip() != "none" else []
     unknown = [name for name in limits if name not in LIMITS_SCENE_FREE]
     if unknown:
         raise SkinrenderError(f"limits: unknown {', '.join(map(repr, unknown))}; known: "

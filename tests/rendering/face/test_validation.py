@@ -149,3 +149,11 @@ def test_the_mean_of_the_replicates_is_one_render_of_all_their_samples():
             assert np.allclose(mean.image, np.mean([r.image for r in replicated.renders], axis=0), rtol=1e-5)
         else:
             assert mean.info["imager"] and not np.allclose(mean.image, replicated.renders[0].image)
+
+
+def test_limits_given_as_text_are_named_whole():
+    """Issue 36: ``limits="bogus"`` was read letter by letter ("unknown 'b', 'o', 'g', …")."""
+    import skinrender as sr
+
+    with pytest.raises(sr.SkinrenderError, match=r"^limits: unknown 'bogus'; known: furnace, sphere$"):
+        sr.validate("face", "gbell:9@450,540,610", "A", "A", spp=24, size=8, limits="furnace,bogus")
