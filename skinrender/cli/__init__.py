@@ -12,7 +12,7 @@ One module per command group (:data:`GROUPS`): :mod:`~skinrender.cli.data`,
 :mod:`~skinrender.cli.model`, :mod:`~skinrender.cli.evaluation`,
 :mod:`~skinrender.cli.design`, :mod:`~skinrender.cli.rendering` (with
 :mod:`~skinrender.cli.chart_validation`), :mod:`~skinrender.cli.studies`, :mod:`~skinrender.cli.face`,
-:mod:`~skinrender.cli.face_sweep`, :mod:`~skinrender.cli.skin`; :mod:`~skinrender.cli.common` holds what
+:mod:`~skinrender.cli.face_sweep`, :mod:`~skinrender.cli.ranking`, :mod:`~skinrender.cli.skin`; :mod:`~skinrender.cli.common` holds what
 they share, :mod:`~skinrender.cli.inputs` the objects a render command parses its flags into.
 
 The command registry is the parser: a group's ``add_parsers(commands)`` registers each of its commands in one
@@ -32,12 +32,12 @@ from collections.abc import Sequence
 from .. import files
 from .._interrupt import INTERRUPTED_STATUS, hand_back
 from ..errors import SkinrenderError
-from . import data, design, evaluation, face, face_sweep, imaging, model, rendering, skin, studies
+from . import data, design, evaluation, face, face_sweep, imaging, model, ranking, rendering, skin, studies
 from .common import Parser, coverage_hint
 
 __all__ = ["main", "build_parser", "commands", "GROUPS"]
 
-GROUPS = (data, model, design, studies, rendering, evaluation, imaging, face, face_sweep, skin)
+GROUPS = (data, model, design, studies, rendering, evaluation, imaging, face, face_sweep, ranking, skin)
 """The command groups, in the order of ``skinrender --help``: each registers its commands (``add_parsers``)."""
 
 

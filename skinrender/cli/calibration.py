@@ -25,6 +25,8 @@ VERDICT_BENCH_FLAGS = {"camera": ("render", "calibration", "validate"), "prevail
                        "seeds": ("calibration", "validate"), "seed": ("calibration", "validate"),
                        "imager": ("calibration", "validate"), "illuminance": ("calibration", "validate"),
                        "exposure": ("calibration", "validate"), "level": ("calibration",),
+                       "checks": ("calibration",), "skin": ("calibration",), "skin_set": ("calibration",),
+                       "detection_tolerance": ("calibration",),
                        "mc_variance": ("calibration", "validate")}
 """``bench`` flags of the verdict benchmarks (``dest``: the benchmarks they go with)."""
 
@@ -60,6 +62,16 @@ def add_bench_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--exposure", help="calibration, validate with --imager: seconds or auto (default)")
     p.add_argument("--level", help="calibration: a face's level of physics (default direct; faces only: refused for "
                    "charts); eq4_shift's failures count as false alarms only where Eq. 4 holds (direct, noise)")
+    p.add_argument("--checks", choices=["all", "detection"],
+                   help="calibration --scene face: every check of validate face (all, default) or the detection "
+                   "verdict alone (detection: at any spp, no floor per replicate; with --size, --skin, --skin-set, "
+                   "--detection-tolerance)")
+    p.add_argument("--skin", help="calibration --scene face --checks detection: the face's skin (default the "
+                   "scene's)")
+    p.add_argument("--skin-set", metavar="SET", help="calibration --scene face --checks detection: the locus's "
+                   "reflectance set (default skin)")
+    p.add_argument("--detection-tolerance", metavar="RATE", help="calibration --scene face --checks detection: "
+                   "the verdict's tolerance in TPR and FPR, a fraction (default 0.02)")
     p.add_argument("--mc-variance", choices=list(MC_VARIANCE),
                    help="calibration, validate with --imager: how the render's own variance enters the sensor's "
                    "predictions: " + choices_help(MC_VARIANCE))
@@ -93,6 +105,10 @@ def _checked_chart(args: argparse.Namespace, run, scene_spec: str, spp_list: lis
     from ..studies.benchmarks.calibration import estimate_seconds, renders_of
     from ..workload import check_work
 
+    for name in DETECTION_FLAGS + ("size",):
+        if getattr(args, name, None) is not None:
+            option = "--" + name.replace("_", "-")
+            raise SkinrenderError(f"{option} goes with 'bench calibration --scene face', not a chart", flag=option)
     scene = flag("--scene", load_chart_scene, scene_spec)
     cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))
     lights = {}
@@ -162,8 +178,17 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str, spp_list: list
     if first + SEED_STEP * seeds - 1 > SEED_MAX:
         raise SkinrenderError(f"--seed: the runs use seeds {first} to {first + SEED_STEP * seeds - 1}, beyond "
                               f"{SEED_MAX}")
-    spp = integer_in(_or(args.spp, 256), "--spp", 1, SPP_MAX)
+    detection = _or(args.checks, "all") == "detection"
+    if not detection:
+        for name in DETECTION_FLAGS[1:] + ("size",):
+            if getattr(args, name, None) is not None:
+                option = "--" + name.replace("_", "-")
+                raise SkinrenderError(f"{option} goes with --checks detection (validate face's own checks run at "
+                                      "the scene's size, skin and locus)", flag=option)
+    spp = integer_in(_or(args.spp, 16 if detection else 256), "--spp", 1, SPP_MAX)
     plot = check_output(args.plot, "--plot", (".png",))
+    if detection:
+        return _checked_detection(args, scene, level, cam, lights, imaging, seeds, first, spp, plot)
     seconds = estimate_face_seconds(seeds, scene.camera.width * scene.camera.height, spp, level)
     check_work(seconds, "--seeds", f"{seeds} validations of the face at {spp} spp", args.max_minutes,
                fewer="run fewer --seeds")
@@ -172,7 +197,33 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str, spp_list: list
             "level": level}
 
 
-PTC_REFUSED = ("calibration", "exposure", "level", "mc_variance")
+DETECTION_FLAGS = ("checks", "skin", "skin_set", "detection_tolerance")
+"""``bench calibration`` flags of the face's detection verdict (``--checks detection``)."""
+
+
+def _checked_detection(args, scene, level, cam, lights, imaging, seeds, first, spp, plot) -> dict:
+    """``bench calibration --scene face --checks detection``'s flags checked (``--size`` default 64)."""
+    from ..rendering.face.scene import skin_reflectance_of
+    from ..spectra import GRID_DEFAULT
+    from ..studies.benchmarks.detection_calibration import estimate_detection_seconds
+    from ..workload import check_work
+    from .detection_options import detection_tolerance_from, skin_set_from
+    from .face_inputs import SIZE_MAX
+
+    size = integer_in(_or(args.size, 64), "--size", 1, SIZE_MAX)
+    if args.skin is not None:
+        skin_reflectance_of(args.skin, GRID_DEFAULT, "--skin")
+    skins = skin_set_from(args.skin_set, cam, [lights["calibration"]])
+    tolerance = detection_tolerance_from(args.detection_tolerance)
+    seconds = estimate_detection_seconds(seeds, size * size, spp, level)
+    check_work(seconds, "--seeds", f"{seeds} detection verdicts of the face at {spp} spp", args.max_minutes,
+               fewer="run fewer --seeds")
+    return {"study": _study_detection, "scene": scene, "camera_": cam, **lights, "spp": spp, "size": size,
+            "skin": args.skin, "skin_set": skins, "tolerance": tolerance, "seeds": seeds,
+            "first_seed": first, "imaging": imaging, "plot": plot, "estimate_s": seconds, "level": level}
+
+
+PTC_REFUSED = ("calibration", "exposure", "level", "mc_variance", *DETECTION_FLAGS)
 """``bench`` flags that ``--scene ptc`` refuses: the photon transfer has one light, its own exposure series, no
 level of physics and no render variance in its predictions (its two-frame differences cancel it)."""
 
@@ -236,6 +287,17 @@ def _study_face(args: argparse.Namespace, options: dict, progress) -> tuple[dict
     result = face_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
                               options["prevailing"], options["calibration"], options["spps"][0],
                               first_seed=options["first_seed"], imaging=options["imaging"], progress=progress)
+    return _plotted(result, options), _calibration_text(result)
+
+
+def _study_detection(args: argparse.Namespace, options: dict, progress) -> tuple[dict, str]:
+    """A face's detection verdict alone over the seeds, at any spp (``--checks detection``)."""
+    from ..studies.benchmarks.detection_calibration import detection_calibration
+
+    result = detection_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
+                                   options["prevailing"], options["calibration"], options["spp"],
+                                   options["size"], options["skin"], options["skin_set"], options["tolerance"],
+                                   options["first_seed"], options["imaging"], progress=progress)
     return _plotted(result, options), _calibration_text(result)
 
 

@@ -41,8 +41,8 @@ SIGMAS_DEPRECATED = (
 """The JSON's ``deprecated.sigmas``: why ``sigmas`` is kept and what to read instead."""
 
 EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the verdict of --tolerance; a face: its "
-                   "checks' verdicts combined, eq4_shift held to the detection budget), 2 a refused input, 130 "
-                   "interrupted")
+                   "checks' verdicts combined, detection held to --detection-tolerance; eq4_shift against the "
+                   "detection budget is a diagnostic), 2 a refused input, 130 interrupted")
 
 
 def add_check_arguments(p) -> None:
@@ -55,6 +55,12 @@ def add_check_arguments(p) -> None:
     p.add_argument("--limits", metavar="LIST",
                    help="face scenes: the scene-free limits run beside the level's own: furnace, sphere "
                    "(comma-separated) or none (default: both)")
+    p.add_argument("--detection-tolerance", metavar="RATE",
+                   help="face scenes: how far Eq. 4 may be off in TPR and in FPR, a fraction in (0, 1), for the "
+                   "detection check (default 0.02)")
+    p.add_argument("--skin-set", metavar="SET",
+                   help="face scenes: the reflectance set of the skin locus the detection check classifies with "
+                   "(default skin; skin-tones spans very light to very dark)")
 
 
 def add_verdict_arguments(p) -> None:
@@ -159,8 +165,10 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     tolerance = tolerance_from(args.tolerance)
     auto = spp_auto_from(args.spp, args.tolerance)
     refuse_face_flags(args.physics, args.skin, args.size)
-    if args.limits is not None:
-        raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart", flag="--limits")
+    for option, given in (("--limits", args.limits), ("--detection-tolerance", args.detection_tolerance),
+                          ("--skin-set", args.skin_set)):
+        if given is not None:
+            raise SkinrenderError(f"{option} goes with a face scene (e.g. 'face'), not a chart", flag=option)
     if args.gamut and (not uses_whites(args.normalization) or args.knee):  # its volumes were taken with WP, no knee
         given = "--knee" if args.knee else f"--normalization {args.normalization}"
         raise SkinrenderError(f"--gamut compares the volumes of Eq. 4 with the white normalisation and no knee; "

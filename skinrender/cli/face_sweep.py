@@ -19,10 +19,12 @@ import sys
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
                      interruptible, positive_number, table, variant_of)
+from .detection_options import add_detection_tolerance, add_skin_set, detection_tolerance_from, skin_set_from
 from .preflight import check_dask
 from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
 
-__all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
+__all__ = ["add_parsers", "command_face_sweep", "light_pairs", "refuse_repeated", "LIGHTS_DEFAULT", "SIZE_DEFAULT",
+           "SPP_DEFAULT"]
 
 LIGHTS_DEFAULT = "2300/5900,2856/5900,5900/5900,10000/5900"
 """``--lights`` unless given: horizon sunlight to blue sky, balanced to daylight (as the face loci)."""
@@ -77,10 +79,12 @@ def add_parsers(commands) -> None:
     p.add_argument("--max-samples", metavar="N", default=f"{SWEEP_SAMPLES_MAX:g}",
                    help=f"refuse sweeps of more samples (renders × pixels × spp) than this (default "
                    f"{SWEEP_SAMPLES_MAX:g})")
+    add_skin_set(p)
+    add_detection_tolerance(p)
     add_common(p)
 
 
-def _lights(values: list[str]) -> list[tuple[float, float]]:
+def light_pairs(values: list[str]) -> list[tuple[float, float]]:
     """The (prevailing, calibration) pairs of every ``--lights``, K."""
     pairs = []
     for value in values:
@@ -95,11 +99,11 @@ def _lights(values: list[str]) -> list[tuple[float, float]]:
             pairs.append((planckian_flag(parts[0].strip(), "--lights"), planckian_flag(parts[1].strip(), "--lights")))
     if not pairs:
         raise SkinrenderError("--lights: name at least one PREVAILING/CALIBRATION pair", flag="--lights")
-    _once("--lights", [f"{p:g}/{c:g} K" for p, c in pairs])
+    refuse_repeated("--lights", [f"{p:g}/{c:g} K" for p, c in pairs])
     return pairs
 
 
-def _once(name: str, items: list[str]) -> None:
+def refuse_repeated(name: str, items: list[str]) -> None:
     """Refuse a sweep that names one camera, light pair or skin twice (it would render it twice), naming ``name``."""
     twice = sorted({item for item in items if items.count(item) > 1})
     if twice:
@@ -120,7 +124,7 @@ def _checked(args: argparse.Namespace) -> dict:
     from .bands_flags import cameras_of
 
     cams = cameras_of(args.camera)
-    pairs = _lights(args.lights or [LIGHTS_DEFAULT])
+    pairs = light_pairs(args.lights or [LIGHTS_DEFAULT])
     for cam in cams:
         for t in sorted({t for pair in pairs for t in pair}):
             flag({"camera": "--camera", None: "--lights"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
@@ -129,11 +133,11 @@ def _checked(args: argparse.Namespace) -> dict:
         if not skin:
             raise SkinrenderError("--skin: expected a skin spec, got an empty one", flag="--skin")
         skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
-    _once("--skin", skins)
+    refuse_repeated("--skin", skins)
     levels = levels_of(args.levels)
     flag("--scene", load_face_scene, args.scene)
     variant_of(args.variant)
-    lux = noise_sensor(args, levels)
+    imager, lux = noise_sensor(args, levels)  # (the imager loaded once, the lux checked)
     max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
     from .bands_flags import bands_for
 
@@ -143,12 +147,21 @@ def _checked(args: argparse.Namespace) -> dict:
         "spectral": bands is not None, **({"bands": bands} if bands is not None else {}),
         "cameras": cams, "lights": pairs, "skins": skins, "levels": levels, "scene": args.scene,
         "size": integer_in(args.size, "--size", 1, SIZE_MAX), "spp": integer_in(args.spp, "--spp", 1, SPP_MAX),
-        "seed": integer_in(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": args.imager,
+        "seed": integer_in(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": imager,
         "illuminance": lux,
         "workers": None if args.workers is None else integer_in(args.workers, "--workers", 1, WORKERS_MAX),
         "dask": args.dask, "max_renders": integer_in(args.max_renders, "--max-renders", 1, 10**9),
-        "max_samples": max_samples,
+        "max_samples": max_samples, "detection_tolerance": detection_tolerance_from(args.detection_tolerance),
+        "skin_set": _skin_set(args.skin_set, cams, pairs),
     }
+
+
+def _skin_set(spec: str | None, cams, pairs):
+    """``--skin-set`` (``spec``) checked for every camera at every calibration (K, ``pairs``' second)."""
+    skins = None
+    for cam in cams:
+        skins = skin_set_from(spec, cam, [c for _, c in pairs])
+    return skins
 
 
 def command_face_sweep(args: argparse.Namespace) -> None:
@@ -182,12 +195,18 @@ def _face_sweep(args: argparse.Namespace) -> None:
         return "—" if value is None else f"{value:.3f}"
 
     rows = [[row["camera"], f"{row['prevailing_K']:g}/{row['calibration_K']:g}", row["skin"], row["level"],
-             f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]), rate(row["tpr"]), rate(row["fpr"])]
+             f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]), rate(row["tpr"]), rate(row["fpr"]),
+             f"{rate(row['detection']['tpr'])} ({rate(row['detection']['tpr_eq4'])})",
+             f"{rate(row['detection']['fpr'])} ({rate(row['detection']['fpr_eq4'])})", row["detection"]["verdict"]]
             for row in document["combinations"]]
     spectral = result.spectral
-    how = ("" if spectral is None else f" seen through {spectral['renders']} spectral render"
+    how = ("" if spectral is None else f" seen through {spectral['renders']} × 12 spectral render"
            f"{'s' * (spectral['renders'] != 1)} of {spectral['bands']} bands ({spectral['bands_nm']} nm)")
-    text = (table(rows, ["camera", "P/C K", "skin", "level", "s", "spp", "skin NCC r g b", "TPR", "FPR"])
+    text = (table(rows, ["camera", "P/C K", "skin", "level", "s", "spp", "skin NCC r g b", "TPR seen", "FPR seen",
+                         "TPR (Eq. 4)", "FPR (Eq. 4)", "detection"])
+            + f"\n(the {document['combinations'][0]['skin_set']} skin locus; seen: as rendered; TPR, FPR: the "
+            "renderer's noise separated, Eq. 4's in brackets; detection: the changes held to "
+            f"±{args.detection_tolerance})"
             + f"\n{len(rows)} {'render' if spectral is None else 'combination'}{'s' * (len(rows) != 1)}{how} of "
             f"{result.size}×{result.size} px at "
             f"{document['spp']} spp in "

@@ -1,6 +1,4 @@
-"""
-The paper's studies and benchmarks: ``reproduce``, ``table1``, ``bench``.
-"""
+"""The paper's studies and benchmarks: ``reproduce``, ``table1``, ``bench`` (``bench rank``: :mod:`skinrender.cli.ranking`'s)."""
 
 from __future__ import annotations
 
@@ -14,6 +12,7 @@ from ..files import write_output
 from .common import (HELP_CAMERA, add_common, add_max_minutes, add_grid, add_search, check_output, flag, integer_in,
                      emit, positive_number, table)
 from .preflight import check_dask
+from .ranking import command_bench_rank
 
 
 def _g(value) -> str:
@@ -52,9 +51,8 @@ def add_parsers(commands) -> None:
                    help="Stage 2 camera for Figs. 3–7 (the paper's Sony is not public); " + HELP_CAMERA)
     p.add_argument("--slope", type=float, default=2.0, help="gbell slope b, not given by the paper (default 2)")
     add_grid(p)
-    p.add_argument("--illuminants", default="paper",
-                   help="illuminant set: 'paper' (its ten, default), 'auto' (Stage 1 for --stage1-camera) or "
-                        "comma-separated kelvin")
+    p.add_argument("--illuminants", default="paper", help="illuminant set: 'paper' (its ten, default), 'auto' "
+                   "(Stage 1 for --stage1-camera) or comma-separated kelvin")
     p.add_argument("--stage1-camera", help="camera of --illuminants auto (default: --camera); " + HELP_CAMERA)
     p.add_argument("--no-figures", action="store_true", help="the tables only (no Stage 2 figures)")
     p.add_argument("--sweep", action="store_true",
@@ -84,10 +82,10 @@ def add_parsers(commands) -> None:
     p = commands.add_parser("bench", run=command_bench,
                             help="speed and accuracy figures; calibration: the validation's false-alarm "
                             "rates over seeds; validate: seconds, bound and false alarms per spp")
-    p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate"],
-                   help="which benchmark")
+    p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate", "rank"],
+                   help="which benchmark (rank: the issue's ranking, against 10 minutes on 2 cores)")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant); search: "
-                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep")
+                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep; rank: small")
     p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG; calibration: the "
                    "observed false-alarm rates with their 95 %% intervals against the nominal α")
     p.add_argument("--repeat", type=int, help="analytic: timed repetitions, best kept (default 3)")
@@ -215,12 +213,12 @@ def command_table1(args: argparse.Namespace) -> None:
         raise SystemExit(result["exit_status"])
 
 
-FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
+FACE_BENCH_FLAGS = ("levels", "spp_list", "reference_spp")
 """``bench`` flags that go with ``render --scene``."""
 
-BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
-               "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render", "calibration"),
-               "scene": ("render", "calibration", "validate"), "spectral": ("render",), "cameras": ("render",),
+BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "positions": ("sweep",),
+               "workers": ("search", "sweep", "rank"), "quick": ("render", "search", "rank"), "plot": ("render", "calibration"),
+               "scene": ("render", "calibration", "validate"), "size": ("render", "calibration"), "spectral": ("render",), "cameras": ("render",),
                "max_minutes": ("analytic", "search", "sweep", "calibration", "validate", "render")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
 :data:`FACE_BENCH_FLAGS`, the verdict benchmarks' :data:`skinrender.cli.calibration.VERDICT_BENCH_FLAGS`."""
@@ -269,7 +267,7 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     The face bench's options from ``bench render --scene …`` (checked, one-line errors naming the flag), or
     ``None`` for the chart bench; the face flags without ``--scene`` are refused.
     """
-    given = [name for name in FACE_BENCH_FLAGS if getattr(args, name, None) is not None]
+    given = [name for name in (*FACE_BENCH_FLAGS, "size") if getattr(args, name, None) is not None]
     if args.scene is not None and args.what != "render":
         raise SkinrenderError(f"--scene goes with 'bench render', 'bench calibration' or 'bench validate', not "
                               f"'bench {args.what}'", flag="--scene")
@@ -365,6 +363,8 @@ def _camera_spec(spec: str) -> str:
 def command_bench(args: argparse.Namespace) -> None:
     from ..studies.benchmarks.bench import bench_analytic, bench_search, bench_sweep
 
+    if args.what == "rank":  # bench's other flags refused there
+        return command_bench_rank(args, refuse_foreign_flags)
     if args.what in ("calibration", "validate"):
         from .calibration import command_bench_verdicts
         from .common import SPP_MAX

@@ -378,3 +378,26 @@ def test_subsurface_volume_is_estimated_at_its_own_rate(capsys, monkeypatch):
     status, out, err = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--levels",
                             "direct", "--size", "8", "--spp", "1", "--max-minutes", "5", "--json"], capsys)
     assert status != 2, err[-400:]  # not refused at direct (its verdict aside)
+
+
+@pytest.mark.parametrize("argv, name", [
+    (["--detection-tolerance", "0"], "--detection-tolerance"), (["--detection-tolerance", "1"], "--detection-tolerance"),
+    (["--detection-tolerance", "two"], "--detection-tolerance"), (["--skin-set", ""], "--skin-set"),
+    (["--skin-set", "nothing-such"], "--skin-set"), (["--levels", "glossy"], "--levels"),
+])
+def test_the_detection_flags_are_refused_by_name(argv, name, capsys):
+    from .refusal import assert_refused
+
+    assert_refused(["ladder", "--camera", "gbell:9@450,540,610", "--prevailing", "2856", "--calibration", "5900",
+                    "--size", "8", *argv], name, capsys)
+
+
+def test_the_ladders_last_lines_say_what_it_found(capsys):
+    """The finding in words, then the verdict with what it means (issue 32: a FAIL is a finding, not a broken run)."""
+    from .refusal import run
+
+    status, out, err = run(["ladder", "--camera", "gbell:9@450,540,610", "--prevailing", "2856", "--calibration",
+                            "5900", "--size", "48", "--spp", "16", "--levels", "direct,mixed"], capsys)
+    lines = out.strip().splitlines()
+    assert status == 1 and lines[-2].startswith("finding: Eq. 4 mispredicts detection (by more than 0.02) at: mixed")
+    assert lines[-1].startswith("verdict: FAIL (exit status 1): a finding, not an error of the run")

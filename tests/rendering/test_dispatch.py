@@ -68,8 +68,8 @@ def test_validate_a_face_from_python_with_its_verdict_bound_and_spp_needed():
 
     result = sr.validate("face", CAMERA, 2856, 2856, physics="direct", spp=48, size=16, seed=3, limits=())
     assert isinstance(result, FaceValidation)
-    assert [c.name for c in result.checks] == ["shading_cancels", "eq4_shift"]
-    shift = result.checks[-1]
+    assert [c.name for c in result.checks] == ["shading_cancels", "detection", "eq4_shift"]
+    shift = result.checks[-1]  # the NCC budget's diagnostic: the bound and spp_needed are still its
     assert result.bound == shift.bound and result.bound >= shift.statistic
     document = result.document()
     assert document["bound"] == result.bound and document["spp_needed"] == result.spp_needed

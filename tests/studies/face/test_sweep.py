@@ -55,7 +55,9 @@ class TestFaceSweep:
                                 "skin_ncc_mean", "skin_ncc_std", "tpr", "fpr", "undefined"}
             assert row["undefined"] == {}  # the ladder's reasons for a None score: none here
             assert row["camera"] == CAMERA and row["prevailing_K"] == 2856 and row["calibration_K"] == 5900
-            assert row["spp"] == 4 and row["seconds"] > 0 and row["skin_pixels"] > 0
+            # 12 replicates of ⌈4 / 12⌉ spp, each scored with its detection verdict on the Vrhel locus
+            assert row["spp"] == 12 and row["replicates"] == 12 and row["seconds"] > 0 and row["skin_pixels"] > 0
+            assert row["skin_set"] == "skin" and row["detection"]["verdict"] in ("pass", "fail", "inconclusive")
             assert abs(sum(row["skin_ncc_mean"]) - 1) < 1e-9 and 0 <= row["tpr"] <= 1 and 0 <= row["fpr"] <= 1
         # at the direct level each skin's NCC is Eq. 4's (shading cancels), so the rendered skins move apart
         # as the analytic ones do; the dark skin has fewer pixels bright enough to score
@@ -82,19 +84,16 @@ class TestFaceSweep:
         assert numbers(remote.combinations) == numbers(split_work.combinations[:1])
 
     def test_the_ladders_scores(self, one_worker):
-        """The sweep scores a render exactly as the ladder scores a level (score_frame, the ladder's locus); the
-        ladder's level is the mean of its replicates, the sweep's one render at the same settings."""
-        from skinrender.evaluation.locus import skin_locus
-        from skinrender.rendering.face import render_face
+        """The sweep scores a combination exactly as the ladder scores a level: the same replicates (seeds seed,
+        seed + 1, … at ⌈spp / 12⌉), their mean scored by score_frame against the ladder's locus, and the same
+        detection verdict."""
         from skinrender.studies.face.ladder import ladder
 
-        render = render_face(CAMERA, "face", 2856, 5900, SKINS[1], LEVELS[0], TINY["spp"], TINY["seed"], TINY["size"])
-        theirs = score_rendering(render, skin_locus(CAMERA, "skin", calibration=5900))
-        mine = one_worker.combinations[2]
-        for key in ("skin_ncc_mean", "skin_ncc_std", "tpr", "fpr", "skin_pixels", "prop_pixels"):
-            assert mine[key] == theirs[key], key
-        assert mine["spp"] == render.spp
         result = ladder(CAMERA, 2856, 5900, SKINS[1], levels=LEVELS[:1], **TINY)
+        theirs, mine = result.levels[0], one_worker.combinations[2]
+        for key in ("skin_ncc_mean", "skin_ncc_std", "tpr", "fpr", "skin_pixels", "prop_pixels", "spp"):
+            assert mine[key] == theirs[key], key
+        assert mine["detection"] == theirs["detection"]
         assert mine["skin_ncc_analytic"] == pytest.approx(result.skin_ncc_analytic, abs=1e-15)
 
     def test_csv_whole(self, one_worker, tmp_path):

@@ -243,7 +243,7 @@ def test_a_toy_effect_registered_for_a_test_only_renders_and_validates(monkeypat
     assert (direct.image[skin].max(axis=-1) == 0).any(), "the key light alone leaves some skin pixel black"
     assert (lit.image[skin].min(axis=-1) > 0).all(), "the sky reaches every skin pixel"
     result = validate_face(CAM, dark, physics="sky", size=32, spp=48, limits=(), prevailing=2856, calibration=2856)
-    assert [c.name for c in result.checks] == ["shading_cancels", "eq4_shift"]
+    assert [c.name for c in result.checks] == ["shading_cancels", "detection", "eq4_shift"]
     assert result.checks[0].passed is True, result.checks[0]
     assert "sky" not in PHYSICS_EFFECTS or PHYSICS_EFFECTS["sky"] is SKY
 
