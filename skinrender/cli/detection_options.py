@@ -14,7 +14,8 @@ import argparse
 from ..errors import SkinrenderError
 from .common import flag
 
-__all__ = ["HELP_SKIN_SET", "add_skin_set", "add_detection_tolerance", "skin_set_from", "detection_tolerance_from"]
+__all__ = ["HELP_SKIN_SET", "add_skin_set", "add_detection_tolerance", "add_detection_options", "skin_set_from",
+           "detection_tolerance_from"]
 
 HELP_SKIN_SET = ("reflectance set the skin locus is built from: skin (the 30 Vrhel skins, default), skin-tones (very "
                  "light to very dark: the skin model fitted to measured colours, and its dark end), skin-model, "
@@ -33,6 +34,13 @@ def add_detection_tolerance(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--detection-tolerance", metavar="RATE", default=str(DETECTION_TOLERANCE),
                         help="how far Eq. 4 may be off in TPR and in FPR, as a fraction in (0, 1), for the detection "
                         f"verdict (default {DETECTION_TOLERANCE:g}: two percentage points)")
+
+
+def add_detection_options(parser: argparse.ArgumentParser) -> None:
+    """The detection verdict's flags of a face study (``ladder``, ``face-sweep``): :func:`add_skin_set` and
+    :func:`add_detection_tolerance`."""
+    add_skin_set(parser)
+    add_detection_tolerance(parser)
 
 
 def detection_tolerance_from(text: str | float | None) -> float:

@@ -18,7 +18,7 @@ from ..files import Output, write_output, write_outputs
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_from,
                      check_output, check_seed, choices_help, emit, flag, integer_in, interruptible, settings_from,
                      table, variant_of)
-from .detection_options import add_detection_tolerance, add_skin_set, detection_tolerance_from, skin_set_from
+from .detection_options import add_detection_options, detection_tolerance_from, skin_set_from
 from .face_inputs import (SIZE_MAX, check_lights_seen, face_flags_from, face_pixels, face_request_from,  # noqa: F401
                           level_names, levels_of, noise_sensor_from, planckian_flag)
 from .inputs import check_request_work, figure_from
@@ -94,8 +94,7 @@ def add_parsers(commands) -> None:
                    help="write the ladder's figure to this PNG: per level the render, the label mask, the "
                    "detected mask and the skin pixels' NCC over the analytic skin locus with the budget; with "
                    "--effects, the table's bars")
-    add_skin_set(p)
-    add_detection_tolerance(p)
+    add_detection_options(p)
     add_max_minutes(p, "the levels × --size² × --spp (with --effects, × the skins)")
     from .bands_flags import add_cameras_arguments
 

@@ -11,7 +11,8 @@ every refusal:
     :class:`~skinrender.rendering.face.request.FaceRequest`, built by the face kind as every front door builds it.
 -   :func:`planckian_flag`, :func:`check_lights_seen`: a light's temperature (K) and the camera's view of it.
 -   :func:`levels_of`: ``--levels`` as :class:`~skinrender.rendering.physics.Level` objects;
-    :func:`noise_sensor_from`: the sensor's options of a study over levels.
+    :func:`noise_sensor_from`: the sensor's options of a study over levels; :func:`skins_from`: a study's
+    ``--skin`` specs, each checked; :func:`refuse_repeated`: a flag's items each named once.
 -   :func:`level_names`, :func:`face_pixels`, :data:`SIZE_MAX`.
 
 Units: temperatures K, illuminance lx, sizes pixels.
@@ -23,7 +24,7 @@ from ..errors import SkinrenderError
 from .common import camera_from, flag, flagged, integer_in, positive_number
 
 __all__ = ["SIZE_MAX", "level_names", "planckian_flag", "check_lights_seen", "face_flags_from", "face_request_from",
-           "face_pixels", "levels_of", "noise_sensor_from"]
+           "face_pixels", "levels_of", "noise_sensor_from", "skins_from", "refuse_repeated"]
 
 SIZE_MAX = 2000
 """Largest image side, pixels (the chart scenes' 4 000 000-pixel cap)."""
@@ -147,3 +148,25 @@ def noise_sensor_from(imager: str | None, illuminance, levels: list) -> tuple:
                                   f"(e.g. noise or interreflection+noise), got "
                                   f"{','.join(level.name for level in levels)!r}", flag=f"--{name}")
     return options.imager, options.illuminance
+
+
+def refuse_repeated(name: str, items: list[str]) -> None:
+    """Refuse a study that names one camera, light pair or skin twice (it would render it twice), naming ``name``."""
+    twice = sorted({item for item in items if items.count(item) > 1})
+    if twice:
+        raise SkinrenderError(f"{name}: each once, got {', '.join(twice)} more than once", flag=name)
+
+
+def skins_from(specs) -> list[str]:
+    """A study's ``--skin`` specs, each stripped, none empty, parsed on the default grid and named once; a one-line
+    error naming ``--skin`` otherwise."""
+    from ..rendering.face.scene import skin_reflectance_of
+    from ..spectra import GRID_DEFAULT
+
+    skins = [str(spec).strip() for spec in specs]
+    for skin in skins:
+        if not skin:
+            raise SkinrenderError("--skin: expected a skin spec, got an empty one", flag="--skin")
+        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
+    refuse_repeated("--skin", skins)
+    return skins

@@ -19,12 +19,12 @@ import sys
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
                      interruptible, positive_number, table, variant_of)
-from .detection_options import add_detection_tolerance, add_skin_set, detection_tolerance_from, skin_set_from
+from .detection_options import add_detection_options, detection_tolerance_from, skin_set_from
 from .preflight import check_dask
 from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
+from .face_inputs import refuse_repeated, skins_from
 
-__all__ = ["add_parsers", "command_face_sweep", "light_pairs", "refuse_repeated", "LIGHTS_DEFAULT", "SIZE_DEFAULT",
-           "SPP_DEFAULT"]
+__all__ = ["add_parsers", "command_face_sweep", "light_pairs", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
 
 LIGHTS_DEFAULT = "2300/5900,2856/5900,5900/5900,10000/5900"
 """``--lights`` unless given: horizon sunlight to blue sky, balanced to daylight (as the face loci)."""
@@ -79,8 +79,7 @@ def add_parsers(commands) -> None:
     p.add_argument("--max-samples", metavar="N", default=f"{SWEEP_SAMPLES_MAX:g}",
                    help=f"refuse sweeps of more samples (renders × pixels × spp) than this (default "
                    f"{SWEEP_SAMPLES_MAX:g})")
-    add_skin_set(p)
-    add_detection_tolerance(p)
+    add_detection_options(p)
     add_common(p)
 
 
@@ -103,19 +102,12 @@ def light_pairs(values: list[str]) -> list[tuple[float, float]]:
     return pairs
 
 
-def refuse_repeated(name: str, items: list[str]) -> None:
-    """Refuse a sweep that names one camera, light pair or skin twice (it would render it twice), naming ``name``."""
-    twice = sorted({item for item in items if items.count(item) > 1})
-    if twice:
-        raise SkinrenderError(f"{name}: each once, got {', '.join(twice)} more than once", flag=name)
-
-
 def _checked(args: argparse.Namespace) -> dict:
     """Every flag checked, before any render: the arguments of :func:`~skinrender.studies.face.sweep.face_sweep`."""
     import numpy as np
 
     from ..model.response import response
-    from ..rendering.face.scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face.scene import load_face_scene
     from ..spectra import GRID_DEFAULT
     from ..studies.face.locus import SKIN_TONES
     from ..execution import WORKERS_MAX
@@ -128,12 +120,7 @@ def _checked(args: argparse.Namespace) -> dict:
     for cam in cams:
         for t in sorted({t for pair in pairs for t in pair}):
             flag({"camera": "--camera", None: "--lights"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
-    skins = [s.strip() for s in (args.skin or SKIN_TONES)]
-    for skin in skins:
-        if not skin:
-            raise SkinrenderError("--skin: expected a skin spec, got an empty one", flag="--skin")
-        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
-    refuse_repeated("--skin", skins)
+    skins = skins_from(args.skin or SKIN_TONES)
     levels = levels_of(args.levels)
     flag("--scene", load_face_scene, args.scene)
     variant_of(args.variant)
