@@ -166,7 +166,7 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str, spp_list: list
         raise SkinrenderError("--mc-variance corrects a chart's sensor predictions; a face's checks through a sensor "
                               "take their noise from the replicates")
     scene = flag("--scene", load_face_scene, scene_spec)
-    level = flag("--level", physics_level, _or(args.level, PHYSICS_BASE)).name
+    level = flag("--level", physics_level, _or(args.level, PHYSICS_BASE))  # parsed once: the studies take it
     cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))
     lights = {name: planckian_flag(_or(getattr(args, name), default), f"--{name}")
               for name, default in (("prevailing", "2856"), ("calibration", "5900"))}
