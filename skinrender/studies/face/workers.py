@@ -10,6 +10,8 @@ with workers set up for Mitsuba and the same numbers every way.
 
 -   :func:`run_renders`: the results of ``function(task)`` in task order.
 -   :data:`RENDER_THREADS`, :func:`set_threads`: one drjit thread per render.
+-   :class:`RenderRun`: how a study's renders ran (size, spp, seed, variant, workers, time, Dask), the fields the
+    sweep's and the ranking's results share.
 
 Determinism: every render uses the Mitsuba variant chosen once by the caller
 and :data:`RENDER_THREADS` drjit thread (the LLVM backend's sums over a
@@ -32,17 +34,50 @@ from __future__ import annotations
 import os
 import sys
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from functools import partial
 
 from ... import execution
 from ...execution import dask_name
 from ...rendering.variants import choose_variant, libllvm_path, mitsuba
 
-__all__ = ["RENDER_THREADS", "run_renders", "set_threads", "dask_name"]
+__all__ = ["RENDER_THREADS", "RenderRun", "run_renders", "set_threads", "dask_name"]
 
 RENDER_THREADS = 1
 """drjit threads per render, in every worker and in this process (restored after a one-worker run): the same
 split of the work everywhere gives the same numbers."""
+
+
+@dataclass(frozen=True, kw_only=True)
+class RenderRun:
+    """
+    How a face study's renders ran; its fields are keywords, after the study's own.
+
+    Attributes
+    ----------
+    size
+        Image side, pixels.
+    spp
+        Samples per pixel of each render (as the study reports it).
+    seed
+        The first seed.
+    variant
+        The Mitsuba variant every render used.
+    workers
+        Worker processes (1 on a Dask cluster).
+    elapsed_s
+        Wall time of the renders, s.
+    dask
+        The Dask scheduler's address, or ``None``.
+    """
+
+    size: int
+    spp: int
+    seed: int
+    variant: str
+    workers: int
+    elapsed_s: float
+    dask: str | None = None
 
 
 def set_threads(count: int = RENDER_THREADS) -> int:
