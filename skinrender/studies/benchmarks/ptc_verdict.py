@@ -7,7 +7,8 @@ states, as one difference test (:func:`~skinrender.evaluation.verdict.difference
 where they do (its calibration over seeds).
 
 -   :func:`ptc_verdict`: per tested figure and channel ``z = (fit − stated) / SE``; the largest ``|z|`` against the
-    two-sided Šidák critical value of a family-wise α of 0.01 over the figures tested.
+    two-sided critical value of a family-wise α of 0.01 over the figures tested: exact for the fits' correlation
+    within each channel (``result["correlation"]``), Šidák's where each channel tests one value.
 -   :func:`false_alarm_rows`, :func:`estimate_ptc_seconds`: for
     :func:`~skinrender.studies.benchmarks.ptc.ptc_calibration`, ``seeds`` measurements of one render (the sensor noise's seed changes, the chart's
     render is shared: its Monte Carlo noise is a fixed pattern the two-frame differences cancel), the observed
@@ -55,8 +56,11 @@ def ptc_verdict(result: dict, alpha: float = ALPHA_DIFFERENCE) -> dict:
     The difference test of a photon transfer ``result`` (``gain_dn_per_e``, ``read_noise_e``,
     ``dark_current_e_per_s``, ``standard_error``, ``stated``): per figure of :data:`TESTED` and channel the
     deviation ``fit − stated`` over its standard error, ``z``; ``fail`` when the largest ``|z|`` exceeds the
-    two-sided Šidák critical value of family-wise ``alpha`` over the values tested (normal law: each standard
-    error is propagated from thousands of pixel pairs' own moments, so its own error is a few percent).
+    two-sided critical value of family-wise ``alpha`` over the values tested (normal law: each standard error is
+    propagated from thousands of pixel pairs' own moments, so its own error is a few percent; measured over
+    seeds, z is normal). The values are correlated within a channel (the read noise and the dark current divide
+    by the gain): the critical value is the exact one for ``result["correlation"]`` where present, lower than
+    Šidák's for independent values.
 
     Returns
     -------
@@ -108,7 +112,7 @@ def ptc_verdict(result: dict, alpha: float = ALPHA_DIFFERENCE) -> dict:
 
 CORRELATED_DRAWS = 1 << 18
 """Normal draws (a fixed seed: the same critical value every time) that give the family's critical value where the
-fits are correlated: P(max |z| > c) of a channel's block is known to ±4 % of its 0.0033 (binomial)."""
+fits are correlated: the probability that a channel's largest ``|z|`` exceeds c is known to ±4 % of its 0.0033 (binomial)."""
 
 _PAIRS = {("gain_dn_per_e", "read_noise_e"): "gain_read_noise", ("gain_dn_per_e", "dark_current_e_per_s"):
           "gain_dark_current", ("read_noise_e", "dark_current_e_per_s"): "read_noise_dark_current"}
@@ -138,13 +142,13 @@ def _draws(dimension: int) -> np.ndarray:
 
 @lru_cache(maxsize=256)
 def _block_maxima(block: tuple) -> np.ndarray:
-    """The sorted max |z| of the fixed draws with this correlation (a tuple of rows)."""
+    """The sorted largest ``|z|`` of the fixed draws with this correlation (a tuple of rows)."""
     w, v = np.linalg.eigh(np.array(block))
     return np.sort(np.abs(_draws(len(block)) @ (v * np.sqrt(np.clip(w, 0, None))).T).max(axis=1))
 
 
 def _critical(blocks: list[np.ndarray], alpha: float) -> float:
-    """c with P(every |z| ≤ c) = 1 − α for z normal, independent between the blocks, each block's correlation as
+    """c with P(every ``|z|`` ≤ c) = 1 − α for z normal, independent between the blocks, each block's correlation as
     given, rounded to 0.01 (:data:`CORRELATED_DRAWS` fixed draws per block of two or more)."""
     from scipy.stats import norm
 
