@@ -3,14 +3,15 @@
 Measure the skin model's fits to measured skin (``docs/skin-model.md``): the numbers behind its defaults.
 
     python tools/measure_skin_fits.py background [--every N]   # the background calibration
-    python tools/measure_skin_fits.py variants [--every N]     # the absorption variants compared
+    python tools/measure_skin_fits.py variants [--every N] [--only NAME,…]   # the alternatives compared
     python tools/measure_skin_fits.py refit [--every N]        # = skinrender skin --fit (summary)
 
 ``background``: the 100 NIST skins fitted with the dermis' scattering held at Jacques 2013's skin average
 (a = 46 cm⁻¹) and ``background`` fitted with melanin, blood, oxygenation and b: the median of the fitted
-background is ``BACKGROUND_PER_CM``. ``variants``: the full fit (a, b free) under other absorption choices —
-water only (background 0), Jacques 1998's bloodless baseline's red level (0.244 cm⁻¹), one vessel radius, and
-epidermal scattering 1.6× — to show what the scattering follows. ``refit``: the fit at the defaults, the
+background is ``BACKGROUND_PER_CM``. ``variants``: the full fit (a, b free) at the defaults and under
+sourced alternatives (:data:`VARIANTS`, from ``skin_alternatives.py`` beside this file: other absorption levels,
+vessel radii, melanin and blood spectra, fat, a Rayleigh part of the scattering, the instrument's lateral loss) —
+to show what the fitted parameters follow; ``--only`` picks some by name. ``refit``: the fit at the defaults, the
 medians ``SkinParameters``' defaults are taken from. Each prints medians, ranges, RMS and the bounds hit.
 Needs ``../shared/data/skin_nist.csv`` and the ``skin`` extra; uses every core.
 """
@@ -57,8 +58,10 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[1])
     parser.add_argument("what", choices=("background", "variants", "refit"))
     parser.add_argument("--every", type=int, default=1, help="fit every Nth NIST skin (default 1: all 100)")
+    parser.add_argument("--only", default="", help="variants: comma-separated names (default: all)")
     args = parser.parse_args(argv)
     sys.path.insert(0, str(ROOT))
+    sys.path.insert(0, str(ROOT / "tools"))
     from skinrender.datasets import reflectances
     from skinrender.datasets.skin_model import SkinParameters
 
@@ -73,12 +76,17 @@ def main(argv=None) -> int:
         _fit("background fitted, a held at 46 cm⁻¹", lam, values, names, SkinParameters(scattering=46.0),
              ("melanin", "blood", "oxygenation", "scattering_power", "background"))
     elif args.what == "variants":
-        base = SkinParameters()
-        for label, held in (("water only (background 0)", replace(base, background=0.0)),
-                            ("background 0.244 cm⁻¹ (Jacques 1998's red level)", replace(base, background=0.244)),
-                            ("one vessel radius 8 µm", replace(base, vessel_min_um=8.0, vessel_max_um=8.0)),
-                            ("epidermal scattering 1.6×", replace(base, epidermis_scattering=1.6))):
-            _fit(label, lam, values, names, held)
+        from skin_alternatives import VARIANTS, substituted
+
+        chosen = [n for n in args.only.split(",") if n] or list(VARIANTS)
+        unknown = sorted(set(chosen) - set(VARIANTS))
+        if unknown:
+            print(f"--only: unknown variants {unknown}; choose from {sorted(VARIANTS)}", file=sys.stderr)
+            return 2
+        for name in chosen:
+            label, changes, substitution = VARIANTS[name]
+            with substituted(substitution):
+                _fit(f"{name}: {label}", lam, values, names, replace(SkinParameters(), **changes))
     else:
         _fit("refit at the defaults", lam, values, names, SkinParameters())
     return 0
