@@ -5,6 +5,7 @@ Measure the skin model's fits to measured skin (``docs/skin-model.md``): the num
     python tools/measure_skin_fits.py background [--every N]   # the background calibration
     python tools/measure_skin_fits.py variants [--every N] [--only NAME,…]   # the alternatives compared
     python tools/measure_skin_fits.py refit [--every N]        # = skinrender skin --fit (summary)
+    python tools/measure_skin_fits.py diagnose [--subjects S006,…]   # what the fits on a bound ask for
 
 ``background``: the 100 NIST skins fitted with the dermis' scattering held at Jacques 2013's skin average
 (a = 46 cm⁻¹) and ``background`` fitted with melanin, blood, oxygenation and b: the median of the fitted
@@ -12,7 +13,9 @@ background is ``BACKGROUND_PER_CM``. ``variants``: the full fit (a, b free) at t
 sourced alternatives (:data:`VARIANTS`, from ``skin_alternatives.py`` beside this file: other absorption levels,
 vessel radii, melanin and blood spectra, fat, a Rayleigh part of the scattering, the instrument's lateral loss) —
 to show what the fitted parameters follow; ``--only`` picks some by name. ``refit``: the fit at the defaults, the
-medians ``SkinParameters``' defaults are taken from. Each prints medians, ranges, RMS and the bounds hit.
+medians ``SkinParameters``' defaults are taken from. ``diagnose``: named subjects fitted with b
+allowed down to −3 (a diagnostic: b < 0 is not physical), then with the melanosome's power law's exponent
+changed (its value at 500 nm kept). Each prints medians, ranges, RMS and the bounds hit.
 Needs ``../shared/data/skin_nist.csv`` and the ``skin`` extra; uses every core.
 """
 
@@ -56,7 +59,9 @@ def _fit(label, lam, values, names, held, fitted=None):
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[1])
-    parser.add_argument("what", choices=("background", "variants", "refit"))
+    parser.add_argument("what", choices=("background", "variants", "refit", "diagnose"))
+    parser.add_argument("--subjects", default="S006,S061,S096,S011,S051",
+                        help="diagnose: NIST subjects (default: three on b = 0 and two light ones)")
     parser.add_argument("--every", type=int, default=1, help="fit every Nth NIST skin (default 1: all 100)")
     parser.add_argument("--only", default="", help="variants: comma-separated names (default: all)")
     args = parser.parse_args(argv)
@@ -87,6 +92,10 @@ def main(argv=None) -> int:
             label, changes, substitution = VARIANTS[name]
             with substituted(substitution):
                 _fit(f"{name}: {label}", lam, values, names, replace(SkinParameters(), **changes))
+    elif args.what == "diagnose":
+        from skin_alternatives import diagnose
+
+        diagnose(lam, measured.values[:, keep], measured.names, args.subjects.split(","))
     else:
         _fit("refit at the defaults", lam, values, names, SkinParameters())
     return 0

@@ -204,3 +204,41 @@ VARIANTS = {
     "lateral-loss-3.48": ("the same, melanin 1.70e12 λ^−3.48", {"background": 0.0}, "lateral-loss-3.48"),
 }
 """name → (label, held parameter changes, substitution name or None)."""
+
+
+def diagnose(lam, values, names, subjects) -> None:
+    """Print, for each NIST subject (``S006`` …), its fit with b down to −3, then its fits with the melanosome's
+    exponent 4, 3.33 (the model's), 2.5, 2, 1.5 (6.6e11 λ^−3.33 at 500 nm kept)."""
+    from skinrender.datasets import skin_absorbers, skin_fit, skin_model
+
+    rows = [list(names).index(f"NIST_{s}_avg") for s in subjects]
+
+    def fits():
+        out = []
+        for row, subject in zip(rows, subjects):
+            f = skin_fit.fit_skin_spectrum(lam, values[row], name=subject, scan=True)
+            p = f.parameters
+            out.append(f"{subject} b {p.scattering_power:.2f} a {p.scattering:.0f} blood {100 * p.blood:.1f} % "
+                       f"RMS {f.rms:.4f}")
+        return " | ".join(out)
+
+    low, limits = skin_fit.FIT_BOUNDS["scattering_power"], skin_model.PARAMETER_RANGES["scattering_power"]
+    skin_fit.FIT_BOUNDS["scattering_power"] = (-3.0, 4.0, "diagnostic")
+    skin_model.PARAMETER_RANGES["scattering_power"] = (-3.0, 4.0, False, "diagnostic")
+    try:
+        with substituted(None):
+            print("b down to -3:", fits(), flush=True)
+    finally:
+        skin_fit.FIT_BOUNDS["scattering_power"], skin_model.PARAMETER_RANGES["scattering_power"] = low, limits
+    at_500 = float(skin_absorbers.melanosome_absorption(500.0))
+    for power in (4.0, 3.33, 2.5, 2.0, 1.5):
+        def melanin(wavelength, power=power):
+            return at_500 * (np.asarray(wavelength, dtype=np.float64) / 500.0) ** -power
+
+        skin_model.melanosome_absorption, saved = melanin, skin_model.melanosome_absorption
+        skin_model._cached.cache_clear()
+        try:
+            print(f"melanin exponent {power}:", fits(), flush=True)
+        finally:
+            skin_model.melanosome_absorption = saved
+            skin_model._cached.cache_clear()
