@@ -2,7 +2,7 @@
 """
 Measure the skin model's fits to measured skin (``docs/skin-model.md``): the numbers behind its defaults.
 
-    python tools/measure_skin_fits.py background [--every N]   # the background calibration
+    python tools/measure_skin_fits.py background [--every N] [--only NAME]   # the background calibration
     python tools/measure_skin_fits.py variants [--every N] [--only NAME,…]   # the alternatives compared
     python tools/measure_skin_fits.py refit [--every N]        # = skinrender skin --fit (summary)
     python tools/measure_skin_fits.py diagnose [--subjects S006,…]   # what the fits on a bound ask for
@@ -63,7 +63,7 @@ def main(argv=None) -> int:
     parser.add_argument("--subjects", default="S006,S061,S096,S011,S051",
                         help="diagnose: NIST subjects (default: three on b = 0 and two light ones)")
     parser.add_argument("--every", type=int, default=1, help="fit every Nth NIST skin (default 1: all 100)")
-    parser.add_argument("--only", default="", help="variants: comma-separated names (default: all)")
+    parser.add_argument("--only", default="", help="variants: comma-separated names (default: all); background: one")
     args = parser.parse_args(argv)
     sys.path.insert(0, str(ROOT))
     sys.path.insert(0, str(ROOT / "tools"))
@@ -77,9 +77,17 @@ def main(argv=None) -> int:
     keep = (measured.wavelengths >= 400) & (measured.wavelengths <= 700)
     lam, values = measured.wavelengths[keep], measured.values[::args.every, keep]
     names = measured.names[::args.every]
-    if args.what == "background":
-        _fit("background fitted, a held at 46 cm⁻¹", lam, values, names, SkinParameters(scattering=46.0),
-             ("melanin", "blood", "oxygenation", "scattering_power", "background"))
+    if args.what == "background":  # --only: one variant's substitution (its held changes but the background)
+        from skin_alternatives import VARIANTS, substituted
+
+        if args.only and args.only not in VARIANTS:
+            print(f"--only: unknown variant {args.only!r}; choose from {sorted(VARIANTS)}", file=sys.stderr)
+            return 2
+        label, changes, substitution = VARIANTS[args.only] if args.only else ("", {}, None)
+        held = replace(SkinParameters(), **{k: v for k, v in changes.items() if k != "background"}, scattering=46.0)
+        with substituted(substitution):
+            _fit(f"background fitted, a held at 46 cm⁻¹ {label}", lam, values, names, held,
+                 ("melanin", "blood", "oxygenation", "scattering_power", "background"))
     elif args.what == "variants":
         from skin_alternatives import VARIANTS, substituted
 
