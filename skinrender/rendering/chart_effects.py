@@ -52,22 +52,48 @@ class _Lambertian:
 
 
 class _Slabs:
-    """The raw renders of a chart whose skin patches are slabs: their tables as BSDFs at ``subsurface``
-    (:func:`~skinrender.rendering.slab_chart.slab_renderer`), media at ``subsurface-volume``
-    (:func:`~skinrender.rendering.subsurface_chart.subsurface_renderer`)."""
+    """The raw renders of a chart whose skin patches are slabs, by its level's slab renderer (a subclass's
+    ``renderer_of``; ``slabs_as``: how it renders them, in words)."""
+
+    slabs_as = ""
 
     def __init__(self, request):
-        from .slab_chart import slab_renderer
-        from .subsurface_chart import subsurface_renderer
-
-        volume = CHART_SUBSURFACE_VOLUME.name in request.level
-        self.renderer = (subsurface_renderer if volume else slab_renderer)(request.scene, request.camera,
-                                                                           request.settings, request.grid)
+        self.renderer = self.renderer_of(request.scene, request.camera, request.settings, request.grid)
         chart = self.renderer.chart
-        self.info = {"physics": request.level.name, "reflectances": chart.reflectances, "skin_model": chart.rows()}
+        self.info = {"physics": request.level.name, "reflectances": chart.reflectances, "skin_model": chart.rows(),
+                     "slabs_as": self.slabs_as}
+
+    @staticmethod
+    def renderer_of(scene, camera, settings, grid):
+        raise NotImplementedError
 
     def raw(self, temperature: float, seed: int, skins: bool = True):
         return self.renderer.raw(temperature, seed, skins)
+
+
+class _SlabTables(_Slabs):
+    """At ``subsurface``: the skin patches' tables as BSDFs (:func:`~skinrender.rendering.slab_chart.slab_renderer`)."""
+
+    slabs_as = "their slab's angular reflectance (a BSDF)"
+
+    @staticmethod
+    def renderer_of(scene, camera, settings, grid):
+        from .slab_chart import slab_renderer
+
+        return slab_renderer(scene, camera, settings, grid)
+
+
+class _SlabMedia(_Slabs):
+    """At ``subsurface-volume``: the skin patches as media
+    (:func:`~skinrender.rendering.subsurface_chart.subsurface_renderer`)."""
+
+    slabs_as = "media, path traced"
+
+    @staticmethod
+    def renderer_of(scene, camera, settings, grid):
+        from .subsurface_chart import subsurface_renderer
+
+        return subsurface_renderer(scene, camera, settings, grid)
 
 
 def prepare_slabs(request) -> None:
@@ -76,14 +102,7 @@ def prepare_slabs(request) -> None:
     fitted, the tables built at ``subsurface``; cached for the render): a patch that is not skin, or that the
     volumetric level's depth cap cannot render, refused naming it, before anything renders. Nothing at ``direct``.
     """
-    if CHART_SUBSURFACE_VOLUME.name in request.level:
-        from .subsurface_chart import subsurface_chart
-
-        subsurface_chart(request.scene, request.grid)
-    elif CHART_SUBSURFACE.name in request.level:
-        from .slab_chart import slab_chart
-
-        slab_chart(request.scene, request.grid)
+    request.level.prepare(request)  # each effect's (Effect.prepare): the slabs' at either subsurface level
 
 
 def _skin_patches(request) -> None:
@@ -115,6 +134,22 @@ def _table_seconds(request, cores: int) -> tuple[float, str]:
     return estimate_seconds(scene, spp, fits=fits, cores=cores), what
 
 
+def _fit_skin_patches(request) -> None:
+    """``subsurface-volume``'s prepare: the chart's skin patches as the skin model's layers, fitted now (cached for
+    the render): a patch that is not skin, or that the depth cap cannot render, refused naming it."""
+    from .subsurface_chart import subsurface_chart
+
+    subsurface_chart(request.scene, request.grid)
+
+
+def _prepare_tables(request) -> None:
+    """``subsurface``'s prepare: the skin patches' layers fitted and their slabs' tables built now (cached for the
+    render): a patch that is not skin refused naming it."""
+    from .slab_chart import slab_chart
+
+    slab_chart(request.scene, request.grid)
+
+
 def _slab_seconds(request, cores: int) -> tuple[float, str]:
     """A subsurface-volume chart's render on ``cores`` cores: its skin patches' paths (the Lambertian ones are
     free)."""
@@ -140,7 +175,8 @@ CHART_SUBSURFACE = Effect(
     "subsurface",
     "the skin patches as the skin model's layers, a flat slab's angular reflectance from adding-doubling as a BSDF "
     "(fast; no lateral transport), lit by a uniform sky, against the slab's adding-doubling reflectance",
-    chart=_Slabs, refuse=_skin_patches, estimate=_table_seconds, order=30, refuses=_REFUSES_SLABS,
+    chart=_SlabTables, refuse=_skin_patches, estimate=_table_seconds, prepare=_prepare_tables, order=30,
+    refuses=_REFUSES_SLABS,
 )
 """The skin patches as their slab's table (:mod:`~skinrender.rendering.slab_chart`); the chart's default sampler."""
 
@@ -149,8 +185,9 @@ CHART_SUBSURFACE_VOLUME = Effect(
     "the skin patches as the skin model's two layers of participating media under a dielectric boundary, path "
     "traced (the volumetric reference; minutes), lit by a uniform sky, against their slab's adding-doubling "
     "reflectance",
-    short="volumetric subsurface scattering", chart=_Slabs, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches,
-    samples_per_s=SAMPLES_PER_S_SLAB, estimate=_slab_seconds, order=35, refuses=_REFUSES_SLABS,
+    short="volumetric subsurface scattering", chart=_SlabMedia, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches,
+    samples_per_s=SAMPLES_PER_S_SLAB, estimate=_slab_seconds, prepare=_fit_skin_patches, order=35,
+    refuses=_REFUSES_SLABS,
     excludes=("subsurface",), by_default=False,
 )
 """The skin patches as slabs of media (:mod:`~skinrender.rendering.subsurface_chart`)."""
