@@ -198,6 +198,8 @@ def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict,
                 "worst": result.worst(), "max_rel_error": float(result.rel_error.max()),
                 "quadrature_rel_difference": result.quadrature}
     document.update(subsurface_keys(r, document["patches"]))  # subsurface: each skin patch's slab
+    if inputs.translate_mm is not None:
+        document["translate_mm"] = list(inputs.translate_mm)
     names = channel_names(r.camera)
     rows = [[p["name"], names[k], _number(p["analytic"][k]), _number(p["rendered"][k]), f"{p['error'][k]:+.3g}",
              f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", p["shown"][k]]

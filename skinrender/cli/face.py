@@ -16,6 +16,7 @@ from pathlib import Path
 
 from ..errors import SkinrenderError
 from ..files import TOML_BYTES_MAX, Output, exists, read_input, write_output, write_outputs
+from .placement import add_translate, translate_key, translated_face
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_of,
                      check_output, check_render_work, check_seed, choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
                      sensor_settings, settings_of, table, variant_of)
@@ -99,6 +100,7 @@ def add_parsers(commands) -> None:
                    help="write the ladder's figure to this PNG: per level the render, the label mask, the "
                    "detected mask and the skin pixels' NCC over the analytic skin locus with the budget; with "
                    "--effects, the table's bars")
+    add_translate(p)
     add_max_minutes(p, "the levels × --size² × --spp (with --effects, × the skins)")
     add_common(p)
 
@@ -176,6 +178,7 @@ def face_inputs(args: argparse.Namespace, scene) -> tuple:
     if imager is None and "noise" not in parse_physics(physics):
         refuse_sensor_settings(args, "--imager or a noise level (--physics noise)")
     lux, exposure = sensor_settings(args, default_lux=None)  # None: the scene's illuminance
+    scene = translated_face(args, scene, [physics], skin)  # --translate-mm, float32's range checked at the level
     return scene, cam, temperatures, physics, skin, size, imager, exposure, lux
 
 
@@ -257,6 +260,9 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     variant_of(args.variant)
     lux = noise_sensor(args, levels)
     from ..studies.face.effects_table import SKIN_TONES
+
+    for skin in skins or (list(SKIN_TONES.values()) if args.effects else [None]):
+        moved = translated_face(args, scene, levels, skin)  # the same scene for every skin; checked for each
     from ..studies.face.sweep import estimate_seconds
     from ..studies.face.ladder import REPLICATES_LADDER
     from ..workload import check_work
@@ -269,7 +275,7 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
                + (f" for {len(skins or SKIN_TONES)} skins" if args.effects else ""), args.max_minutes,
                fewer="lower --spp or --size, or name fewer --levels")
     return {"camera_": cam, "prevailing": temperatures["prevailing"], "calibration": temperatures["calibration"],
-            "levels": levels, "spp": spp, "seed": seed, "size": size, "scene": scene, "variant": args.variant,
+            "levels": levels, "spp": spp, "seed": seed, "size": size, "scene": moved, "variant": args.variant,
             "imager": args.imager, "illuminance": lux, "skins": skins}
 
 
@@ -312,6 +318,7 @@ def command_ladder(args: argparse.Namespace) -> None:
                 f"{triple(result.skin_ncc_analytic)}; detection budget {_shown(budget['budget'])} "
                 f"({budget['reason']}):\n"
                 + table(rows, ["level", "s", "spp", "skin NCC r g b", "shift", "within", "TPR", "FPR"]))
+    document.update(translate_key(args))
     if plot is not None:
         write_output(plot, result.figure, "--plot")
         document["plot"] = str(plot)
@@ -361,7 +368,8 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
                 "calibration_K": result.calibration, "normalization": "white",
                 "knee": bool(getattr(args, "knee", False)),
                 "labels": result.label_names, "physics": result.physics, "skin": result.skin,
-                "size": [result.scene.camera.width, result.scene.camera.height], **result.info}
+                "size": [result.scene.camera.width, result.scene.camera.height], **result.info,
+                **translate_key(args)}
     if figure is not None:
         document["figure"] = str(figure)
     labels = ", ".join(f"{k}={v}" for k, v in result.label_names.items())

@@ -95,6 +95,7 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     from ..rendering.face.validation import validate_face
     from .common import emit, flag, settings_of, table
     from .face import face_inputs
+    from .placement import translate_key
 
     settings = settings_of(args)
     if getattr(args, "knee", False):
@@ -112,7 +113,7 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
                   progress=lambda line: print(line, file=sys.stderr), skin=skin, size=size, sampler=settings.sampler,
                   variant=settings.variant, channels=settings.channels, imager=imager, exposure=exposure,
                   illuminance=lux)
-    document = result.document()
+    document = {**result.document(), **translate_key(args)}
     rows = [[c.name, c.outcome.replace("_", " "), _number(c.statistic), _number(c.tolerance), _number(c.bound),
              f"{c.alpha:g}", c.pixels] for c in result.checks]
     r, verdict = result.rendering, result.verdict

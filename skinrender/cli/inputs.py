@@ -34,6 +34,7 @@ from typing import TYPE_CHECKING
 
 from ..errors import SkinrenderError
 from .common import camera_of, flag, grid_of
+from .placement import translate_of
 
 if TYPE_CHECKING:
     from ..model.camera import Camera
@@ -69,6 +70,8 @@ class ChartInputs:
     physics
         ``--physics``: ``direct`` or ``subsurface`` (:data:`~skinrender.rendering.balance.CHART_PHYSICS`; the
         checks of ``subsurface`` are :func:`~skinrender.cli.subsurface.check_chart_subsurface`'s).
+    translate_mm
+        ``--translate-mm`` (x, y, z mm; ``subsurface`` only), or ``None``.
     """
 
     scene: ChartScene
@@ -79,13 +82,15 @@ class ChartInputs:
     normalization: str = "white"
     knee: bool = False
     physics: str = "direct"
+    translate_mm: tuple[float, float, float] | None = None
 
     def keywords(self) -> dict:
         """The arguments of :func:`~skinrender.rendering.balance.render` and
         :func:`~skinrender.rendering.validation.validate` they give."""
+        moved = {} if self.translate_mm is None else {"translate_mm": self.translate_mm}
         return {"scene": self.scene, "camera_": self.camera, "prevailing": self.prevailing,
                 "calibration": self.calibration, "normalization": self.normalization, "knee": self.knee,
-                "grid": self.grid, "physics": self.physics}
+                "grid": self.grid, "physics": self.physics, **moved}
 
     @property
     def pixels(self) -> int:
@@ -140,9 +145,14 @@ def chart_inputs(args: argparse.Namespace, scene: ChartScene) -> ChartInputs:
             raise error.reworded(f"SCENE: {error.message}", flag="SCENE") from None
         raise error.reworded(f"--grid: {error.message}", flag="--grid", cause=None,
                              hint="choose a --grid inside the chart's data") from None
+    physics = str(getattr(args, "physics", "direct")).strip()
+    translate = translate_of(args)
+    if translate is not None and physics != "subsurface":
+        raise SkinrenderError("--translate-mm moves a face, or a chart at --physics subsurface (its slabs are in mm); "
+                              f"a chart at --physics {physics} is laid out in pixels", flag="--translate-mm")
     return ChartInputs(scene, cam, temperatures["prevailing"], temperatures["calibration"], grid,
-                       getattr(args, "normalization", "white"), bool(getattr(args, "knee", False)),
-                       str(getattr(args, "physics", "direct")).strip())
+                       getattr(args, "normalization", "white"), bool(getattr(args, "knee", False)), physics,
+                       translate)
 
 
 def chart_only(args: argparse.Namespace, skin: bool = True) -> None:

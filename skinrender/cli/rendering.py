@@ -18,6 +18,7 @@ from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options
 from .face import check_figure
 from .chart_validation import add_check_arguments, add_verdict_arguments, command_validate
 from .inputs import chart_inputs, chart_only, imaging_document, imaging_notes, scene_of
+from .placement import add_translate, translate_key
 from .subsurface import check_chart_subsurface, subsurface_keys
 
 
@@ -45,6 +46,7 @@ def add_parsers(commands) -> None:
         from .face import add_face_arguments
 
         add_face_arguments(p)
+        add_translate(p)
         if name == "render":
             p.add_argument("-o", "--output", default="render.exr",
                            help="output EXR (float32, Eq. 4 output units, channels named by the camera); a PNG "
@@ -125,7 +127,7 @@ def command_render(args: argparse.Namespace) -> None:
                 "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
                 "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged),
-                **subsurface_keys(result)}
+                **subsurface_keys(result), **translate_key(args)}
     if figure is not None:
         document["figure"] = str(figure)
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "

@@ -218,6 +218,7 @@ def render(
     cache: dict | None = None,
     emitter: str = "tabulated",
     physics: str = "direct",
+    translate_mm=None,
     **options,
 ) -> Rendering:
     """
@@ -246,6 +247,9 @@ def render(
         name one). ``info`` then has ``physics``, ``reflectances`` (per patch, what Eq. 4 is checked with: the
         slab's adding-doubling reflectance for a skin patch) and ``skin_model`` (per patch its layers' source, or
         ``None``).
+    translate_mm
+        With ``subsurface``: every patch's scene moved ``(x, y, z)`` mm from the origin (``None``: at it); refused
+        with ``direct``, whose chart is laid out in pixels.
     **options
         ``spp``, ``seed``, ``sampler``, ``variant``, ``channels``: the settings one by one
         (:meth:`~skinrender.rendering.settings.RenderSettings.of`).
@@ -267,14 +271,19 @@ def render(
     p, c = _temperature(prevailing), _temperature(calibration)
     cache = {} if cache is None else cache
     info = {}
+    if translate_mm is not None and physics != "subsurface":
+        raise SkinrenderError(f"translate_mm moves a chart at physics 'subsurface' (its slabs are in mm); a chart at "
+                              f"{physics!r} is laid out in pixels", role="translate_mm")
     if physics == "subsurface":
         from .subsurface_chart import subsurface_renderer
 
-        renderer = subsurface_renderer(chart, cam, settings, grid)
+        renderer = subsurface_renderer(chart, cam, settings, grid, (0.0, 0.0, 0.0) if translate_mm is None
+                                       else translate_mm)
         info = {"physics": physics, "reflectances": renderer.chart.reflectances, "skin_model": renderer.chart.rows()}
 
     def raw(temperature: float, offset: int, skins: bool = True) -> RawRender:
-        key = (temperature, offset) if physics == "direct" else (temperature, offset, physics, skins)
+        key = (temperature, offset) if physics == "direct" else (temperature, offset, physics, skins,
+                                                                  renderer.translate_mm)
         if key not in cache:
             seed = settings.seed + offset
             cache[key] = (render_raw(chart, cam, temperature, settings.replace(seed=seed), grid, emitter)

@@ -58,10 +58,13 @@ from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
 from ..exr import camera_attributes, write_exr, write_preview
 from ..outputs import draw_figure, save_result
 from ..renderer import SAMPLERS, SAMPLES_MAX, CameraKey, channel_names
+from ..placement import translation
+from ..skin_integrator import PLUGIN, register
 from ..variants import mitsuba
 from .document import channel_groups, channel_integral, face_document, light_irradiance
 from .effects import Frame, Level, physics_level
 from .labels import label_names, render_labels, shape_labels
+from .reach import check_face_range
 from .scene import MESH_HEAD, FaceScene, load_face_scene, prevailing_name, skin_reflectance_of
 
 __all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "face_exr",
@@ -210,6 +213,8 @@ def _load(document: _Document):
     scene = document.scene
     built = face_document(mi, scene, document.camera.camera, document.camera.grid, document.level, document.skin,
                           document.group, document.spp, 0, document.sampler, document.lights, document.scale)
+    if built["integrator"]["type"] == PLUGIN:
+        register(mi)
     try:
         return mi.load_dict(built)
     except RuntimeError as error:  # the checks of load_face_scene passed, yet Mitsuba refused the user's mesh
@@ -243,6 +248,7 @@ def render_face(
     imager: str | None = None,
     exposure="auto",
     illuminance: float | None = None,
+    translate_mm=None,
 ) -> FaceRendering:
     """
     Render a face scene through a camera, white balanced to ``calibration``.
@@ -275,6 +281,11 @@ def render_face(
         The key light's illuminance at the target, lx (every light scaled
         with it); ``None`` keeps the scene's. Only ``noise`` sees it: Eq. 4
         cancels a common scale of the lights.
+    translate_mm
+        ``(x, y, z)`` mm (or ``X,Y,Z`` text): the whole scene moved that far
+        (:meth:`~skinrender.rendering.face.scene.FaceScene.translated`); ``None``: where it is. A scene beyond
+        float32's useful range at its level is refused, naming it
+        (:func:`~skinrender.rendering.face.reach.check_face_range`).
 
     Returns
     -------
@@ -290,10 +301,13 @@ def render_face(
         if not all(whole):
             raise SkinrenderError(f"size must be a positive number of pixels (or two), got {size!r}")
         face = face.resized(int(width), int(height))
+    if translate_mm is not None:
+        face = face.translated(translation(translate_mm, "translate_mm"))
     cam = camera(camera_)
     level = physics_level(physics)
     skin = face.skin if skin is None else str(skin).strip()
     skin_reflectance_of(skin, grid, "skin")
+    check_face_range(face, level, skin, grid)
     validate_method(sampler, SAMPLERS, "sampler")
     if not (isinstance(spp, (int, np.integer)) and not isinstance(spp, bool) and spp >= 1):
         raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")

@@ -50,9 +50,11 @@ from ...rendering.face import planckian_temperature
 from ...rendering.face.effects import LEVELS_LADDER, parse_physics, physics_level
 from ...rendering.face.labels import LABEL_SKIN
 from ...rendering.face.limits import REPLICATES
+from ...rendering.face.reach import check_face_range
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
 from ...rendering.face.shift import face_budget
 from ...rendering.face.validation import mean_rendering, render_replicates, shift_against
+from ...rendering.placement import translation
 from ...rendering.validation import analytic_reference
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 from ...workload import duration_text
@@ -272,6 +274,7 @@ def ladder(
     progress: Callable[[str], None] | None = None,
     replicates: int = REPLICATES_LADDER,
     budget_fraction: float = BUDGET_FRACTION,
+    translate_mm=None,
 ) -> Ladder:
     """
     Render the face at each level of physics, score skin detection there and test Eq. 4's error.
@@ -305,6 +308,9 @@ def ladder(
     budget_fraction
         The share of the margin to the locus's boundary Eq. 4's error may use
         (:data:`~skinrender.evaluation.budget.BUDGET_FRACTION`).
+    translate_mm
+        ``(x, y, z)`` mm: the whole scene moved that far from the origin (``None``: where it is); a scene beyond
+        float32's useful range at any of the levels is refused before anything renders.
 
     Returns
     -------
@@ -314,6 +320,8 @@ def ladder(
     cam = camera(camera_)
     p, c = planckian_temperature(prevailing, "prevailing"), planckian_temperature(calibration, "calibration")
     face = load_face_scene(scene)
+    if translate_mm is not None:
+        face = face.translated(translation(translate_mm, "translate_mm"))
     skin = face.skin if skin is None else str(skin).strip()
     rho = skin_reflectance_of(skin, grid, "skin")
     levels = list(levels)
@@ -321,6 +329,7 @@ def ladder(
         raise SkinrenderError("levels: name at least one level of physics")
     for level in levels:
         parse_physics(level)
+        check_face_range(face, level, skin, grid)
     if isinstance(replicates, bool) or not isinstance(replicates, int) or replicates < 3:
         raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}")
     side = (face.camera.width, face.camera.height) if size is None else (size, size)

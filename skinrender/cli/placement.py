@@ -1,0 +1,57 @@
+"""
+``--translate-mm X,Y,Z`` (``render``, ``validate``, ``ladder``)
+===============================================================
+
+The whole scene moved away from the origin (a face: its camera, mesh, props
+and point lights; a chart at ``--physics subsurface``: each patch's slab,
+floor and camera), to test a render where float32 positions are coarsest. A
+scene beyond float32's useful range is refused, naming it, before anything
+renders (:mod:`skinrender.rendering.placement`).
+
+-   :func:`add_translate`: the flag.
+-   :func:`translate_of`: its value, checked (``None`` when not given).
+-   :func:`translated_face`: a face scene moved and checked at its level.
+-   :func:`translate_key`: what it adds to a command's JSON.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+__all__ = ["add_translate", "translate_of", "translated_face", "translate_key"]
+
+
+def add_translate(parser: argparse.ArgumentParser) -> None:
+    """Add ``--translate-mm``."""
+    parser.add_argument("--translate-mm", metavar="X,Y,Z",
+                        help="move the whole scene X, Y, Z mm away from the origin (a face; a chart at --physics "
+                        "subsurface) to test it where float32 is coarsest; refused beyond float32's useful range")
+
+
+def translate_of(args: argparse.Namespace) -> tuple[float, float, float] | None:
+    """``--translate-mm`` as ``(x, y, z)`` mm, or ``None`` when not given; a one-line error naming it otherwise."""
+    from ..rendering.placement import translation
+
+    value = getattr(args, "translate_mm", None)
+    return None if value is None else translation(value, "--translate-mm")
+
+
+def translated_face(args: argparse.Namespace, scene, levels, skin: str | None):
+    """
+    The face ``scene`` moved by ``--translate-mm`` (unchanged without it), refused, naming it, where it lies
+    beyond float32's useful range at any of ``levels`` with ``skin`` (``None``: the scene's).
+    """
+    from ..rendering.face.reach import check_face_range
+    from ..spectra import GRID_DEFAULT
+
+    translate = translate_of(args)
+    moved = scene if translate is None else scene.translated(translate)
+    for level in levels:
+        check_face_range(moved, level, moved.skin if skin is None else skin, GRID_DEFAULT)
+    return moved
+
+
+def translate_key(args: argparse.Namespace) -> dict:
+    """``{"translate_mm": [x, y, z]}`` where ``--translate-mm`` was given, else ``{}``."""
+    translate = translate_of(args)
+    return {} if translate is None else {"translate_mm": list(translate)}

@@ -1,0 +1,367 @@
+"""
+The skin's path tracer
+======================
+
+``skinvolpath``: a Mitsuba 3 integrator, written in Python and traced by
+Dr.Jit into one kernel, for skin as the skin model's layers under a
+dielectric boundary (:mod:`skinrender.rendering.subsurface`). It replaces
+``volpathmis`` for skin because Mitsuba offsets a ray leaving a surface by
+``(1 + max|p|) · 8.9e-5`` scene units along the normal and a ray leaving a
+medium interaction not at all, so a path entering the skin, or reflected
+inside it, skips that much of it: 6–16 % of a slab's light 100 mm from the
+origin (``docs/subsurface.md``).
+
+-   :func:`register`: the plugin registered for the variant set (JIT variants).
+-   :data:`PLUGIN`, :data:`RR_WEIGHT`, :data:`WALK_MAX`.
+
+What it does
+------------
+In air it is a path tracer (emitter sampling and BSDF sampling combined by
+multiple importance sampling, Russian roulette from ``rr_depth`` bounces,
+``hide_emitters``). A shape with an ``interior`` medium is skin's outer
+surface. Where a path refracts into it, the **walk** starts:
+
+-   **Free flights from the true point.** Each flight starts at the exact
+    point the path is at (the surface point, or the last scattering point);
+    the intersection query that finds the boundary starts at Mitsuba's offset
+    origin (after a surface event) or a few float32 steps behind the point
+    (:func:`_margin`), and the boundary's distance is measured from the true
+    point. No skin is skipped, at any distance from the origin.
+-   **Layers by depth** (``epidermis_thickness`` > 0): the depth below the
+    outer surface is tracked along the normal of the last point where the
+    path touched it, layers locally flat; the epidermis is ``depth <
+    epidermis_thickness``, the dermis below. Exact for flat skin; on curved
+    skin the boundary between the layers is misplaced by ``r² / 2R`` (``r``
+    the path's lateral distance from that point, ``R`` the radius of
+    curvature). Without it (``0``) a shape with a ``null`` BSDF inside the
+    skin is the layers' boundary (an offset surface).
+-   **Spectral MIS over the path.** Each path draws one of its four
+    wavelengths (the hero) and samples every flight by the hero's extinction;
+    each wavelength's value is weighted by the balance heuristic over the
+    four wavelengths' densities of the *whole* walk (Wilkie et al. 2014), so
+    a wavelength's weight never exceeds four times its survival
+    (product of its albedos).
+-   **Fresnel splitting at a smooth boundary**: where a path meets a smooth
+    (``dielectric``) skin surface, from air or from inside, the light
+    straight along the branch not taken (reflected, or refracted) is added
+    with its Fresnel weight, and that branch, when the path takes it, skips
+    the light it meets first: a dark skin's specular reflection is not a
+    lottery of 3 % of its paths. At a rough boundary it samples the BSDF and
+    the emitters.
+-   **Russian roulette on the weight**: a walk whose largest weight over its
+    wavelengths falls below :data:`RR_WEIGHT` survives with probability
+    weight / :data:`RR_WEIGHT` (its weight divided by it): unbiased, and, unlike
+    Mitsuba's roulette (at most 0.95 a bounce), harmless to the hundreds of
+    scatterings of light in skin. A walk ends at ``max_walk`` events at the most.
+
+The walk uses neither Mitsuba's media nor its medium pointers: the integrator
+takes the two layers' media (``epidermis``, ``dermis``: their extinction,
+albedo and Henyey–Greenstein ``g``) and the boundary's ``eta``; the skin
+shape's ``interior`` only marks it as skin.
+
+References
+----------
+-   :cite:`Jakob2022` : W. Jakob et al. (2022). Mitsuba 3 renderer.
+-   :cite:`Wilkie2014` : A. Wilkie et al. (2014). Hero wavelength spectral sampling.
+"""
+
+from __future__ import annotations
+
+from ..errors import SkinrenderError
+
+__all__ = ["PLUGIN", "RR_WEIGHT", "WALK_MAX", "register"]
+
+PLUGIN = "skinvolpath"
+"""The integrator's name in a Mitsuba document."""
+
+RR_WEIGHT = 0.1
+"""A walk's weight (largest over its wavelengths) below which Russian roulette plays (``docs/subsurface.md``)."""
+
+WALK_MAX = 2**16
+"""Events (scatterings and boundary contacts) a walk may have."""
+
+_REGISTERED: set[str] = set()
+mi = dr = None  # the mitsuba and drjit modules, set by register (imported late: variants.mitsuba sets libLLVM first)
+
+
+def register(module) -> None:
+    """
+    Register :data:`PLUGIN` for the variant set in ``module`` (``mitsuba``) (once per variant). A JIT variant only: the walk is traced into
+    one kernel; in a scalar variant Python would run per sample.
+
+    Raises
+    ------
+    SkinrenderError
+        A scalar variant.
+    """
+    global mi, dr
+    import drjit
+
+    mi, dr = module, drjit
+    variant = mi.variant()
+    if variant in _REGISTERED:
+        return
+    if variant.startswith("scalar"):
+        raise SkinrenderError(f"variant {variant}: the subsurface level's integrator runs in llvm_ad_spectral or "
+                              "cuda_ad_spectral (one traced kernel), not in a scalar variant", role="variant")
+    cls = _integrator_class()
+    mi.register_integrator(PLUGIN, lambda props: cls(props))
+    _REGISTERED.add(variant)
+
+
+def _g(medium) -> float:
+    """The Henyey–Greenstein ``g`` of a medium's phase function."""
+    return float(mi.traverse(medium.phase_function())["g"][0])
+
+
+def component(spectrum, index):
+    """``spectrum[index]`` per lane."""
+    return dr.select(index == 0, spectrum[0], dr.select(index == 1, spectrum[1],
+                                                        dr.select(index == 2, spectrum[2], spectrum[3])))
+
+def power(a, b):
+    """The power heuristic's weight of a density ``a`` against ``b``."""
+    a2, b2 = dr.square(a), dr.square(b)
+    return dr.select(a2 + b2 > 0, a2 / (a2 + b2), 0.0)
+
+def spectral(log_a, log_r):
+    """Per wavelength: its survival times its density over the mean of the four (the MIS'd weight)."""
+    top = dr.max(log_r)
+    return dr.exp(log_a + log_r - top) / dr.mean(dr.exp(log_r - top))
+
+def coefficients(medium, wavelengths):
+    mei = dr.zeros(mi.MediumInteraction3f)
+    mei.wavelengths = wavelengths
+    sigma_s, _, sigma_t = medium.get_scattering_coefficients(mei)
+    return mi.Spectrum(sigma_s), mi.Spectrum(sigma_t)
+
+def flat(si, active, wi_world):
+    """At a skin surface, the triangle's own normal as the shading frame (``wi`` recomputed): with interpolated
+    normals a path's side of the surface and its BSDF's could disagree (energy from nowhere: fireflies)."""
+    frame, shading = mi.Frame3f(si.n), si.sh_frame
+    shading.s, shading.t, shading.n = (dr.select(active, a, b) for a, b in
+                                       ((frame.s, shading.s), (frame.t, shading.t), (frame.n, shading.n)))
+    si.sh_frame = shading
+    si.wi = dr.select(active, frame.to_local(wi_world), si.wi)
+
+
+def margin(p):
+    """A few float32 steps at ``p``: how far behind a scattering point its intersection query starts."""
+    return (1.0 + dr.max(dr.abs(p))) * 2.0**-21
+
+
+def _integrator_class():
+    class SkinVolpath(mi.SamplingIntegrator):
+        def __init__(self, props):
+            super().__init__(props)
+            self.dermis = props["dermis"]
+            self.epidermis = props["epidermis"] if "epidermis" in props.keys() else self.dermis
+            self.thickness = float(props.get("epidermis_thickness", 0.0))
+            self.g = (_g(self.epidermis), _g(self.dermis))
+            self.eta = float(props.get("eta", 1.4))
+            self.max_walk = int(props.get("max_walk", WALK_MAX))
+            depth = int(props.get("max_depth", -1))
+            self.max_depth = 2**32 - 1 if depth < 0 else depth
+            self.rr_depth = int(props.get("rr_depth", 5))
+            self.rr_weight = float(props.get("rr_weight", RR_WEIGHT))
+            self.hide_emitters = bool(props.get("hide_emitters", False))
+            self.debug_nee = bool(props.get("debug_nee", True))
+
+        def aov_names(self):
+            return []
+
+        def to_string(self):
+            return f"SkinVolpath[epidermis_thickness={self.thickness}, eta={self.eta}]"
+
+        @dr.syntax
+        def sample(self, scene, sampler, ray, medium=None, active=True):
+            ray = mi.Ray3f(ray)
+            lam = ray.wavelengths
+            media = coefficients(self.epidermis, lam), coefficients(self.dermis, lam)
+            hero = dr.minimum(mi.UInt32(sampler.next_1d() * 4), 3)
+            ctx = mi.BSDFContext()
+            L, beta = mi.Spectrum(0.0), mi.Spectrum(1.0)
+            log_a, log_r = mi.Spectrum(0.0), mi.Spectrum(0.0)
+            depth = mi.UInt32(0)
+            active = mi.Bool(active)
+            prev = dr.zeros(mi.SurfaceInteraction3f)
+            prev_pdf, prev_delta, first = mi.Float(1.0), mi.Bool(True), mi.Float(1.0)
+
+            while active:
+                si = scene.ray_intersect(ray, active)
+                weight = beta * spectral(log_a, log_r)
+                # light met along the ray (by BSDF sampling)
+                emitter = si.emitter(scene)
+                seen = active & (emitter != None)  # noqa: E711
+                if self.hide_emitters:
+                    seen &= depth > 0
+                ds = mi.DirectionSample3f(scene, si, prev)
+                pdf_e = scene.pdf_emitter_direction(prev, ds, seen & ~prev_delta)
+                L[seen] += weight * first * emitter.eval(si, seen) * dr.select(prev_delta, 1.0, power(prev_pdf, pdf_e))
+                active &= si.is_valid() & (depth < self.max_depth)
+                skin = active & (si.shape.interior_medium() != None)  # noqa: E711
+                flat(si, skin, -ray.d)
+                bsdf = si.bsdf(ray)
+                # emitter sampling
+                nee = active & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Smooth)
+                ds, em = scene.sample_emitter_direction(si, sampler.next_2d(nee), True, nee)
+                nee &= ds.pdf != 0
+                value, pdf_b = bsdf.eval_pdf(ctx, si, si.to_local(ds.d), nee)
+                L[nee] += weight * value * em * dr.select(ds.delta, 1.0, power(ds.pdf, pdf_b))
+                # the next direction: Fresnel splitting at smooth skin, else the BSDF's sample
+                smooth = skin & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Delta)
+                outside = si.wi.z > 0
+                split, chance, emitted = self._split(scene, si, sampler, smooth)
+                L[smooth] += weight * emitted
+                bs, b_weight = bsdf.sample(ctx, si, sampler.next_1d(active), sampler.next_2d(active), active)
+                wo = si.to_world(bs.wo)
+                wo[smooth] = split
+                b_weight[smooth] = 1.0
+                bs.pdf[smooth] = 1.0
+                active &= bs.pdf > 0
+                beta[active] *= b_weight
+                prev[active] = si
+                prev_pdf[active] = bs.pdf
+                prev_delta[active] = smooth | mi.has_flag(bs.sampled_type, mi.BSDFFlags.Delta)
+                first = dr.select(smooth, chance, 1.0)
+                ray[active] = si.spawn_ray(wo)
+                depth[active] += 1
+                if depth >= self.rr_depth:
+                    q = dr.minimum(dr.max(beta * spectral(log_a, log_r)), 0.95)
+                    active &= sampler.next_1d(active) < q
+                    beta[active] /= q
+                enter = active & skin & outside & (dr.dot(wo, si.n) < 0)
+                walk = self._walk(scene, sampler, si, wo, lam, media, hero, enter, beta, log_a, log_r)
+                L[enter] += walk[0]
+                beta, log_a, log_r = walk[1], walk[2], walk[3]
+                out = walk[4]
+                ray[enter] = out[0]
+                prev[enter] = out[1]
+                prev_pdf[enter] = out[2]
+                prev_delta[enter] = out[3]
+                first[enter] = out[4]
+                active &= ~enter | out[5]
+            return L, mi.Bool(True), []
+
+        def _split(self, scene, si, sampler, active):
+            """At a smooth boundary: the branch taken (world direction), the other branch's, and the light met
+            straight along the other branch times its Fresnel weight."""
+            r, cos_t, _, eta_ti = mi.fresnel(mi.Frame3f.cos_theta(si.wi), mi.Float(self.eta))
+            reflected = si.to_world(mi.reflect(si.wi))
+            refracted = si.to_world(mi.refract(si.wi, cos_t, eta_ti))
+            take_reflection = sampler.next_1d(active) < r
+            taken = dr.select(take_reflection, reflected, refracted)
+            other = dr.select(take_reflection, refracted, reflected)
+            other_weight = dr.select(take_reflection, 1.0 - r, r)
+            look = active & (other_weight > 0)
+            there = scene.ray_intersect(si.spawn_ray(other), look)
+            emitter = there.emitter(scene)
+            emitted = mi.Spectrum(0.0)
+            emitted[look & (emitter != None)] = emitter.eval(there, look) * other_weight  # noqa: E711
+            return taken, dr.select(take_reflection, r, 1.0 - r), emitted
+
+        @dr.syntax
+        def _walk(self, scene, sampler, si, d, lam, media, hero, active, beta, log_a, log_r):
+            """The walk under the skin from ``si`` along ``d``: (light, beta, log_a, log_r, (ray out, its
+            surface interaction, BSDF pdf, delta, light already counted, left the skin))."""
+            (epi_s, epi_t), (der_s, der_t) = media
+            e = self.thickness
+            ctx = mi.BSDFContext()
+            L = mi.Spectrum(0.0)
+            walking = mi.Bool(active)
+            x, origin, from_surface = mi.Point3f(si.p), si.spawn_ray(d).o, mi.Bool(True)
+            anchor, z = mi.Vector3f(si.n), mi.Float(0.0)
+            in_epi = mi.Bool(True)
+            events = mi.UInt32(0)
+            left = mi.Bool(False)
+            ray_out = si.spawn_ray(d)
+            out_si = dr.zeros(mi.SurfaceInteraction3f)
+            out_pdf, out_delta, out_first = mi.Float(1.0), mi.Bool(True), mi.Float(1.0)
+            while walking:
+                s_1, t_1 = dr.select(in_epi, epi_s, der_s), dr.select(in_epi, epi_t, der_t)
+                s_2, t_2 = dr.select(in_epi, der_s, epi_s), dr.select(in_epi, der_t, epi_t)
+                rate = -dr.dot(d, anchor)  # depth gained per unit length
+                crosses = (e > 0) & dr.select(in_epi, rate > 0, rate < 0)
+                t_cross = dr.select(crosses, dr.maximum((e - z) / rate, 0.0), dr.inf)
+                tau = -dr.log(1.0 - sampler.next_1d(walking))
+                m_1, m_2 = component(t_1, hero), component(t_2, hero)
+                flight = dr.select(tau < m_1 * t_cross, tau / m_1, t_cross + (tau - m_1 * t_cross) / m_2)
+                back = margin(x)
+                start = dr.select(from_surface, origin, x - back * d)
+                probe = mi.Ray3f(start, d, 0.0, lam)
+                probe.maxt = flight + dr.norm(start - x)
+                hit = scene.ray_intersect(probe, walking)
+                t_hit = dr.maximum(dr.dot(hit.p - x, d), 0.0)
+                met = walking & hit.is_valid() & (t_hit < flight)
+                end = dr.select(met, t_hit, flight)
+                l_1 = dr.minimum(end, t_cross)
+                second = end > t_cross
+                log_p = -(t_1 * l_1 + t_2 * (end - l_1))
+                t_end, s_end = dr.select(second, t_2, t_1), dr.select(second, s_2, s_1)
+                log_p[~met] += dr.log(t_end)
+                log_r[walking] += log_p - component(log_p, hero)
+                scatter = walking & ~met
+                log_a[scatter] += dr.log(s_end / t_end)
+                z[walking] += rate * end
+                in_epi[walking & second] = ~in_epi
+                x[scatter] = dr.fma(d, end, x)
+                from_surface[scatter] = False
+                d_in = mi.Vector3f(d)
+                # Henyey–Greenstein
+                g = dr.select(in_epi, self.g[0], self.g[1])
+                u = sampler.next_2d(scatter)
+                sq = (1.0 - g * g) / (1.0 - g + 2.0 * g * u.x)
+                cos_t = dr.select(dr.abs(g) > 1e-3, (1.0 + g * g - sq * sq) / (2.0 * g), 1.0 - 2.0 * u.x)
+                cos_t = dr.clip(cos_t, -1.0, 1.0)
+                sin_t = dr.safe_sqrt(1.0 - cos_t * cos_t)
+                sin_p, cos_p = dr.sincos(2.0 * dr.pi * u.y)
+                d[scatter] = mi.Frame3f(d).to_world(mi.Vector3f(sin_t * cos_p, sin_t * sin_p, cos_t))
+                events[walking] += 1
+                # a surface: passed through (a null BSDF: the layers' boundary; or met from outside, a float32
+                # rounding's doing), or the skin's boundary met from inside
+                flat(hit, met, -d_in)
+                bsdf = hit.bsdf(probe)
+                through = met & (mi.has_flag(bsdf.flags(), mi.BSDFFlags.Null) | (dr.dot(d, hit.n) <= 0))
+                boundary = met & ~through
+                x[met] = hit.p
+                origin[met] = hit.spawn_ray(d).o
+                from_surface[met] = True
+                in_epi[through & (e <= 0) & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Null)] = dr.dot(d, hit.n) > 0
+                outer = boundary & (hit.shape.interior_medium() != None)  # noqa: E711
+                anchor[outer] = hit.n
+                z[outer] = 0.0
+                in_epi[outer & (e > 0)] = True
+                weight = beta * spectral(log_a, log_r)
+                nee = boundary & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Smooth) & self.debug_nee
+                ds, em = scene.sample_emitter_direction(hit, sampler.next_2d(nee), True, nee)
+                nee &= ds.pdf != 0
+                value, pdf_b = bsdf.eval_pdf(ctx, hit, hit.to_local(ds.d), nee)
+                L[nee] += weight * value * em * dr.select(ds.delta, 1.0, power(ds.pdf, pdf_b))
+                smooth = boundary & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Delta)
+                split, chance, emitted = self._split(scene, hit, sampler, smooth)
+                L[smooth] += weight * emitted
+                bs, b_weight = bsdf.sample(ctx, hit, sampler.next_1d(boundary), sampler.next_2d(boundary), boundary)
+                wo = hit.to_world(bs.wo)
+                wo[smooth] = split
+                b_weight[smooth] = 1.0
+                bs.pdf[smooth] = 1.0
+                ok = boundary & (bs.pdf > 0)
+                beta[ok] *= b_weight
+                leaves = ok & (dr.dot(wo, hit.n) > 0)
+                stays = ok & ~leaves
+                d[stays] = wo
+                origin[stays] = hit.spawn_ray(wo).o
+                left |= leaves
+                ray_out[leaves] = hit.spawn_ray(wo)
+                out_si[leaves] = hit
+                out_pdf[leaves] = bs.pdf
+                out_delta[leaves] = smooth | mi.has_flag(bs.sampled_type, mi.BSDFFlags.Delta)
+                out_first[leaves] = dr.select(smooth, chance, 1.0)
+                walking &= ~boundary | stays
+                # Russian roulette on the weight
+                q = dr.minimum(dr.max(beta * spectral(log_a, log_r)) / self.rr_weight, 1.0)
+                walking &= (sampler.next_1d(walking) < q) & (events < self.max_walk)
+                beta[walking] /= q
+            return L, beta, log_a, log_r, (ray_out, out_si, out_pdf, out_delta, out_first, left)
+
+    return SkinVolpath
