@@ -55,6 +55,10 @@ def check_chart_subsurface(args: argparse.Namespace, inputs, settings):
     if str(getattr(args, "spp", None)).strip().lower() == "auto":
         raise SkinrenderError("--spp auto picks spp from the Lambertian chart's pilot renders; give --spp N with "
                               "--physics subsurface", flag="--spp")
+    if inputs.translate_mm is not None:  # float32's range: the skins' fits are the render's, made once (cached)
+        from ..rendering.subsurface_chart import check_chart_range, subsurface_chart
+
+        check_chart_range(subsurface_chart(scene, inputs.grid), inputs.translate_mm)
     if getattr(args, "sampler", None) is None:  # the pixels' errors honest (SAMPLER_SUBSURFACE's measurement)
         settings = settings.replace(sampler=SAMPLER_SUBSURFACE)
     cores = os.cpu_count() or 1

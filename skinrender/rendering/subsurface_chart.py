@@ -90,7 +90,7 @@ from .variants import mitsuba
 
 __all__ = ["FOOTPRINT_MM", "SLAB_HALF_WIDTH_MM", "SAMPLES_PER_S_SLAB", "SAMPLER_SUBSURFACE", "SECONDS_PER_FIT",
            "SubsurfaceChart", "subsurface_chart", "SubsurfaceChartRenderer", "subsurface_renderer",
-           "estimate_seconds", "slab_document"]
+           "estimate_seconds", "slab_document", "check_chart_range"]
 
 FOOTPRINT_MM = 1.0
 """Width of the scene a patch's film sees, mm."""
@@ -98,9 +98,10 @@ FOOTPRINT_MM = 1.0
 SLAB_HALF_WIDTH_MM = 1000.0
 """Half the width of the slab's (and the floor's) rectangles, mm: laterally infinite for light in skin."""
 
-SAMPLES_PER_S_SLAB = 500.0
-"""Samples (paths) per second of a skin slab on one core (scalar_spectral), the estimates' rate: measured
-(``docs/subsurface.md``) on this shared 2-core machine."""
+SAMPLES_PER_S_SLAB = 10000.0
+"""Samples (paths) per second of a skin slab on one core (``llvm_ad_spectral``), the estimates' rate: the 30 slabs of
+``skin_patches`` at 32 spp, 1.4 × 10⁵ paths in 12 CPU seconds with every patch's own scene (``docs/subsurface.md``;
+a light slab alone 2.4 × 10⁴ paths per CPU second, a dark one 6.6 × 10⁴)."""
 
 SAMPLER_SUBSURFACE = "independent"
 """The sampler of a subsurface chart unless one is named (``validate``, ``render``, ``detect``; Python: where no
@@ -173,13 +174,26 @@ def _subsurface_chart(chart: ChartScene, grid: WavelengthGrid) -> SubsurfaceChar
     return SubsurfaceChart(chart, grid, tuple(media), reflectances)
 
 
+def check_chart_range(chart: SubsurfaceChart, translate_mm) -> None:
+    """
+    Refuse ``chart``'s patches moved by ``translate_mm`` (x, y, z mm) beyond float32's useful range for any of
+    its skins (:func:`~skinrender.rendering.placement.check_float32_range`: the slab's top, where its walks start,
+    and the camera 10 mm above it, against the skin's mean free path), naming the chart.
+    """
+    reach = max(abs(float(v)) for v in translate_mm) + 10.0 + FOOTPRINT_MM
+    for media in chart.media:
+        if media is not None:
+            check_float32_range(chart.scene.source or chart.scene.name, reach, mean_free_path(media.layers),
+                                f"the mean free path of its skin {media.spec!r}")
+
+
 def estimate_seconds(scene: ChartScene, spp: int, fits: int = 0) -> float:
     """
     Seconds one subsurface render of ``scene`` should take on one core: its skin patches' paths at
     :data:`SAMPLES_PER_S_SLAB` and ``fits`` fits at :data:`SECONDS_PER_FIT` (the Lambertian patches are free).
 
-    >>> round(estimate_seconds(load_chart_scene("skin_patches"), 16))
-    188
+    >>> round(estimate_seconds(load_chart_scene("skin_patches"), 16), 1)
+    6.9
     """
     skins = sum(p.skin for p in scene.patches)
     return skins * scene.patch_px**2 * int(spp) / SAMPLES_PER_S_SLAB + fits * SECONDS_PER_FIT
@@ -265,11 +279,7 @@ class SubsurfaceChartRenderer:
                                   "samples per pass", role="spp")
         self.translate_mm = translation(translate_mm, "translate_mm")
         self.chart = subsurface_chart(self.scene, grid)
-        for media in self.chart.media:
-            if media is not None:  # the farthest a path goes: the slab's bottom, under the footprint
-                reach = max(abs(v) for v in self.translate_mm) + 10.0 + FOOTPRINT_MM  # the camera, 10 mm above
-                check_float32_range(self.scene.source or self.scene.name, reach, mean_free_path(media.layers),
-                                    f"the mean free path of its skin {media.spec!r}")
+        check_chart_range(self.chart, self.translate_mm)
         self.sampler, self.grid, self.requested_spp = settings.sampler, grid, spp
         self.variant = subsurface_variant(settings.variant)
         self.groups = [(0,), (1,), (2,)] if _separate(self.camera, grid, settings.channels) else [(0, 1, 2)]
