@@ -77,15 +77,15 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     from ..rendering.renderer import SAMPLES_MAX, render_passes
     from ..rendering.scene import load_chart_scene
     from ..studies.benchmarks.calibration import calibration_path, estimate_seconds, renders_of
+    from ..rendering.kinds import FACE, scene_kind
     from ..workload import check_work
-    from .face import is_face_scene
 
     scene_spec = _or(args.scene, "macbeth")
     if scene_spec == "ptc":
         return _checked_ptc(args)
-    kind = "face" if is_face_scene(scene_spec) else "chart"
-    run = calibration_path(kind, args.level)
-    if kind == "face":
+    kind = scene_kind(scene_spec)
+    run = calibration_path(kind.name, args.level)
+    if kind is FACE:
         return _checked_face(args, run, scene_spec)
     scene = flag("--scene", load_chart_scene, scene_spec)
     cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))

@@ -17,10 +17,12 @@ Units: output units (255 for white at p = c), temperatures K, times s.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import sys
 
 from ..errors import SkinrenderError
-from .common import emit, imaging_options, interruptible, settings_of, table
+from .common import emit, interruptible, settings_of, table
+from .placement import translate_key
 
 __all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_check_arguments", "add_verdict_arguments", "tolerance_of", "spp_of", "command_validate",
            "command_validate_chart"]
@@ -58,20 +60,23 @@ def add_verdict_arguments(p) -> None:
 def command_validate(args: argparse.Namespace) -> None:
     """``validate``: a face (:mod:`skinrender.cli.face_validation`) or a chart (:func:`command_validate_chart`),
     the scene loaded once."""
-    from ..rendering.face.scene import FaceScene
-    from .inputs import scene_of
+    from .inputs import by_kind, scene_of
 
     scene = scene_of(args)
-    if isinstance(scene, FaceScene):  # the face: the analytic limits that hold at its level of physics
-        from .face_validation import command_validate_face
+    return by_kind(scene, chart=command_validate_chart, face=_validate_face)(args, scene)
 
-        for name, option, given in (("--spp auto", "--spp", str(args.spp).strip().lower() == "auto"),
-                                    ("--tolerance", "--tolerance", args.tolerance is not None)):
-            if given:
-                raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts",
-                                      flag=option)
-        return command_validate_face(args, scene)
-    return command_validate_chart(args, scene)
+
+def _validate_face(args: argparse.Namespace, scene) -> None:
+    """``validate`` on a face: the analytic limits that hold at its level of physics
+    (:mod:`skinrender.cli.face_validation`); the chart's verdict flags refused."""
+    from .face_validation import command_validate_face
+
+    for name, option, given in (("--spp auto", "--spp", str(args.spp).strip().lower() == "auto"),
+                                ("--tolerance", "--tolerance", args.tolerance is not None)):
+        if given:
+            raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts",
+                                  flag=option)
+    return command_validate_face(args, scene)
 
 
 def tolerance_of(args: argparse.Namespace) -> float:
@@ -103,68 +108,76 @@ def _summary(name: str, verdict) -> list[str]:
     return [f"{name}: {verdict.outcome.upper().replace('_', ' ')} — {verdict.reason}", f"  test: {verdict.test}"]
 
 
-def _auto_spp(inputs, settings, imaging, tolerance) -> dict:
+def _auto_spp(request, tolerance) -> dict:
     """``--spp auto``: the pilots and the spp chosen (:func:`~skinrender.rendering.spp_choice.spp_for_tolerance`)."""
+    import dataclasses
+
+    from ..rendering.kinds import CHART
     from ..rendering.renderer import SAMPLES_MAX
     from ..rendering.spp_choice import spp_for_tolerance
-    from ..rendering.validation import validate
 
-    width, height = inputs.scene.size
+    settings = request.settings
 
     def at(spp, seed):
-        pilot = settings.replace(spp=spp, seed=seed)
-        if imaging is None:
-            return validate(**inputs.keywords(), tolerance=tolerance, settings=pilot)
-        return _imaged(inputs, pilot, imaging, tolerance)[0]
+        pilot = dataclasses.replace(request, settings=settings.replace(spp=spp, seed=seed))
+        return CHART.validate(pilot, tolerance=tolerance)
 
-    print(f"spp auto: pilot renders of {inputs.scene.name} …", file=sys.stderr)
-    choice = spp_for_tolerance(at, tolerance, settings.seed, spp_max=SAMPLES_MAX // (width * height),
+    print(f"spp auto: pilot renders of {request.scene.name} …", file=sys.stderr)
+    choice = spp_for_tolerance(at, tolerance, settings.seed, spp_max=SAMPLES_MAX // request.pixels,
                                sampler=settings.sampler)
     print(f"spp auto: {choice['spp']} spp ({choice['why']})", file=sys.stderr)
     return choice
+
+
+def _refused(request, option: str, flag: str, words: str) -> None:
+    """Refuse a validation ``option`` (its ``flag``) that an effect of the request's level does not take."""
+    refused = request.level.refused(option)
+    if refused is not None:
+        effect, why = refused
+        given = [f"--physics {effect.name}"] * effect.named + [f"--{name}" for name in effect.added_by]
+        raise SkinrenderError(f"{words} does not go with {' or '.join(given)}: {why}", flag=flag)
 
 
 def command_validate_chart(args: argparse.Namespace, scene) -> None:
     """``validate`` on a chart ``scene`` (loaded by :func:`command_validate`; the face is
     :mod:`skinrender.cli.face_validation`)."""
     from ..evaluation.verdict import EXIT_STATUS
+    from ..rendering.kinds import CHART
+    from ..rendering.sensor_validation import ImagedValidation
     from ..rendering.spp_choice import PILOT_SPP
-    from ..rendering.validation import validate
-    from .common import check_render_work
-    from .inputs import chart_inputs, chart_only
-    from .subsurface import check_chart_subsurface
+    from .inputs import chart_only, chart_request_of, check_request_work
 
     tolerance = tolerance_of(args)
     auto = spp_of(args)
     chart_only(args)
     if args.limits is not None:
         raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart", flag="--limits")
-    if args.gamut and args.imager is not None:
-        raise SkinrenderError("--gamut compares the noise-free render's gamut volumes: it goes without --imager",
-                              flag="--gamut")
     settings = settings_of(args, auto)
     requested = "auto" if auto else settings.spp
-    inputs = chart_inputs(args, scene)
-    settings = check_chart_subsurface(args, inputs, settings)
-    imaging = imaging_options(args)
+    request = chart_request_of(args, scene, settings)
+    if args.gamut:  # the gamut volumes of the Lambertian, noise-free chart
+        _refused(request, "gamut", "--gamut", "--gamut (the chart's gamut volumes under the paper's lights)")
+    if auto:
+        _refused(request, "spp_auto", "--spp", "--spp auto")
     renders = 11 if args.gamut else 1  # --gamut: ten more, one per paper illuminant
     choice = None
     if auto:
-        check_render_work(args, inputs.pixels, max(PILOT_SPP), len(PILOT_SPP))
-        choice = _auto_spp(inputs, settings, imaging, tolerance)
-        settings = settings.replace(spp=choice["spp"])
-    check_render_work(args, inputs.pixels, settings.spp, renders)
-    print(f"rendering {inputs.scene.name} at {settings.spp} spp and validating …", file=sys.stderr)
-    if imaging is not None:
-        result, imaged = _imaged(inputs, settings, imaging, tolerance)
-        document, text = _imaged_report(result, imaged, requested)
+        check_request_work(args, request, len(PILOT_SPP), max(PILOT_SPP))
+        choice = _auto_spp(request, tolerance)
+        request = dataclasses.replace(request, settings=request.settings.replace(spp=choice["spp"]))
+    check_request_work(args, request, renders)
+    settings = request.settings
+    print(f"rendering {request.scene.name} at {settings.spp} spp and validating …", file=sys.stderr)
+    result = CHART.validate(request, tolerance=tolerance)
+    if isinstance(result, ImagedValidation):  # through the image sensor: the sensor's checks too
+        document, text = _imaged_report(result, result.imaged, requested)
         verdict = result.verdict
     else:
-        result = validate(**inputs.keywords(), tolerance=tolerance, settings=settings)
-        document, lines = _chart_report(inputs, result, settings, requested, tolerance)
+        document, lines = _chart_report(request, result, settings, requested, tolerance)
+        document.update(translate_key(args))
         verdict = result.verdict
         if args.gamut:
-            verdict = _gamut(inputs, settings, tolerance, document, lines, verdict)
+            verdict = _gamut(request, settings, tolerance, document, lines, verdict)
         text = "\n".join(lines)
         document["verdict"] = verdict.outcome
         document["passed"] = verdict.outcome == "pass"
@@ -198,8 +211,6 @@ def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict,
                 "worst": result.worst(), "max_rel_error": float(result.rel_error.max()),
                 "quadrature_rel_difference": result.quadrature}
     document.update(subsurface_keys(r, document["patches"]))  # subsurface: each skin patch's slab
-    if inputs.translate_mm is not None:
-        document["translate_mm"] = list(inputs.translate_mm)
     names = channel_names(r.camera)
     rows = [[p["name"], names[k], _number(p["analytic"][k]), _number(p["rendered"][k]), f"{p['error'][k]:+.3g}",
              f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", p["shown"][k]]
@@ -237,17 +248,6 @@ def _gamut(inputs, settings, tolerance, document, lines, verdict):
     lines.append(f"gamut difference: {gamuts['difference']['verdict']} — {gamuts['difference']['reason']}")
     gamut_verdict = Verdict("gamut", doc["verdict"], doc["alpha"], doc["test"], reason=doc["reason"])
     return combine([verdict, gamut_verdict], "validation")
-
-
-def _imaged(inputs, settings, imaging, tolerance):
-    """The render through the sensor and its validation: (validation, imaged)."""
-    from ..rendering.sensor_validation import validate_imaged
-    from ..rendering.validation import analytic_reference
-    rendering, imaged = inputs.render(settings, imaging)
-    grid = inputs.grid
-    ratio = analytic_reference(rendering.camera, rendering.scene.reflectances(grid), rendering.prevailing,
-                               rendering.prevailing, grid=grid) / 255.0
-    return validate_imaged(imaged, ratio, grid=grid, tolerance=tolerance), imaged
 
 
 def _imaged_report(result, imaged, requested) -> tuple[dict, str]:

@@ -20,10 +20,10 @@ from ..errors import SkinrenderError, naming
 from ..files import check_output_path, shown
 
 __all__ = [
-    "Parser", "flag", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
+    "Parser", "flag", "flagged", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "settings_of", "choices_help", "coverage_hint",
-    "interruptible", "check_render_work", "add_max_minutes",
+    "interruptible", "add_max_minutes",
 ]
 
 HELP_CAMERA = (
@@ -127,28 +127,6 @@ def add_max_minutes(parser: argparse.ArgumentParser, what: str) -> None:
                         f"estimate, from {what}, is printed with the refusal)")
 
 
-def check_render_work(args: argparse.Namespace, pixels: int, spp: int, renders: int = 1, levels=None) -> None:
-    """
-    Refuse, before anything renders, ``renders`` renders of ``pixels`` pixels at ``spp`` that one pass cannot hold
-    (:data:`~skinrender.rendering.renderer.SAMPLES_MAX`) or whose estimated time exceeds ``--max-minutes``
-    (:func:`~skinrender.studies.face.sweep.estimate_seconds` on every core; ``levels``, one per render, at each
-    level's rate: ``subsurface`` is far slower), naming ``--spp``.
-    """
-    import os
-
-    from ..rendering.renderer import SAMPLES_MAX
-    from ..studies.face.sweep import estimate_seconds
-    from ..workload import check_work
-
-    if spp * pixels > SAMPLES_MAX:
-        raise SkinrenderError(f"--spp: {spp} spp × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
-                              f"{SAMPLES_MAX:.3g} (Mitsuba's 32-bit wavefront); at most {SAMPLES_MAX // pixels} spp "
-                              "for this scene", flag="--spp")
-    what = f"{renders} renders" if renders > 1 else "a render"
-    check_work(estimate_seconds(renders, pixels, spp, os.cpu_count() or 1, levels), "--spp",
-               f"{what} of {pixels} pixels at {spp} spp", getattr(args, "max_minutes", None), fewer="lower --spp")
-
-
 def emit(args: argparse.Namespace, document: dict, text: str) -> None:
     """
     Print ``document`` as one JSON document (``--json``) or ``text``. The document is made whole before a
@@ -207,8 +185,7 @@ def settings_of(args: argparse.Namespace, auto: bool = False):
                           args.channels)
 
 
-SPP_MAX = 1 << 20
-"""Most samples per pixel a render may ask for (the reference preset uses 4096)."""
+from ..rendering.settings import SEED_MAX, SPP_MAX  # noqa: E402 - every door's bounds (re-exported)
 
 
 class Parser(argparse.ArgumentParser):
@@ -228,6 +205,34 @@ class Parser(argparse.ArgumentParser):
 
 flag = naming
 """``function(*args, **kwargs)`` with its error naming the flag: :func:`skinrender.errors.naming`."""
+
+
+def flagged(flags: dict, function, *args, **kwargs):
+    """
+    ``function(*args, **kwargs)``, its :class:`SkinrenderError` worded with the flag of its ``role`` (``flags``:
+    role → flag, the key ``None`` for any other role): a message that starts with the argument's name (``seed must
+    be …``, ``imager: …``) starts with the flag instead (``--seed must be …``), any other is prefixed with it. An
+    error that names its flag already, or whose role has no flag, is passed on as it is. How the command line
+    words the refusals of a request (:mod:`skinrender.rendering.request`), which name the arguments from Python.
+
+    >>> from skinrender.rendering.settings import RenderSettings
+    >>> flagged({"seed": "--seed"}, RenderSettings, seed=-1)
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: --seed must be an integer in [0, 2^32) and at most 4294967294 (Mitsuba's seeds are 32-bit, and a chart's calibration render uses seed + 1), got -1
+    """
+    try:
+        return function(*args, **kwargs)
+    except SkinrenderError as error:
+        name = flags.get(error.role, flags.get(None))
+        if error.flag is not None or name is None:
+            raise
+        role, message = error.role or "", error.message
+        if role and message.startswith(role) and message[len(role):len(role) + 1] in (" ", ":"):
+            words = name + message[len(role):]
+        else:
+            words = f"{name}: {message}"
+        raise error.reworded(words, flag=name) from None
 
 
 def integer_in(text, name: str, low: int, high: int | None = None) -> int:
@@ -267,12 +272,7 @@ def positive_number(text, name: str, unit: str, high: float | None = None) -> fl
     return value
 
 
-EXPOSURE_MAX = 1e5
-"""Longest ``--exposure``, s (about 28 h): far beyond it the electron counts overflow."""
-
-ILLUMINANCE_MAX = 1e15
-"""Largest ``--illuminance``, lx: ten orders of magnitude above direct sunlight (~1.2e5 lx); far beyond it the
-electron counts overflow."""
+from ..rendering.sensor import EXPOSURE_MAX, ILLUMINANCE_MAX  # noqa: E402, F401 - the sensor's bounds (re-exported)
 
 
 def variant_of(name: str | None) -> str | None:
@@ -319,16 +319,12 @@ def check_lights(args: argparse.Namespace, cam, temperatures, grid=None, name: s
     flag({"camera": "--camera", None: name}, check_light, cam, items, spds_on(items, grid), grid, "illuminant")
 
 
-SEED_MAX = 2**32 - 2
-"""Largest sampler seed: Mitsuba takes 32-bit seeds and the calibration render uses ``seed + 1``."""
-
-
 def check_seed(seed: int, name: str = "--seed") -> int:
-    """A seed in ``[0, SEED_MAX]``, else a one-line error naming the flag."""
-    if not 0 <= seed <= SEED_MAX:
-        raise SkinrenderError(f"{name} must be an integer in [0, {SEED_MAX}] (32-bit, and the calibration render "
-                              f"uses seed + 1), got {seed}", flag=name)
-    return seed
+    """A seed in ``[0, SEED_MAX]`` (:func:`skinrender.rendering.settings.check_seed`, every door's rule), else a
+    one-line error naming the flag."""
+    from ..rendering.settings import check_seed as checked
+
+    return flagged({"seed": name}, checked, seed)
 
 
 def camera_of(args: argparse.Namespace, grid=None, name: str = "--camera"):
@@ -368,8 +364,7 @@ def coverage_hint(error, args: argparse.Namespace) -> str:
     return message + "; this command integrates over that grid: give spectra that cover it"
 
 
-ILLUMINANCE_DEFAULT = 500.0
-"""``--illuminance`` of a chart through ``--imager`` unless given, lx (an office)."""
+from ..rendering.request import ILLUMINANCE_DEFAULT  # noqa: E402 - a chart's, through --imager (re-exported)
 
 
 def sensor_settings(args: argparse.Namespace, default_lux: float | None = ILLUMINANCE_DEFAULT) -> tuple:
@@ -381,20 +376,12 @@ def sensor_settings(args: argparse.Namespace, default_lux: float | None = ILLUMI
     >>> sensor_settings(argparse.Namespace(illuminance=None, exposure="0.01"))
     (500.0, 0.01)
     """
+    from ..rendering.sensor import NoiseOptions
+
     lux = default_lux if args.illuminance is None else args.illuminance
-    if lux is not None and not (math.isfinite(lux) and 0 < lux <= ILLUMINANCE_MAX):
-        raise SkinrenderError(f"--illuminance must be a finite number of lux > 0 and ≤ {ILLUMINANCE_MAX:g}, got "
-                              f"{args.illuminance}", flag="--illuminance")
-    exposure = "auto" if args.exposure is None else str(args.exposure).strip().lower()
-    if exposure != "auto":
-        try:
-            exposure = float(exposure)
-        except ValueError:
-            raise SkinrenderError(f"--exposure must be auto or seconds > 0, got {args.exposure!r}",
-                                  flag="--exposure") from None
-        if not (math.isfinite(exposure) and 0 < exposure <= EXPOSURE_MAX):
-            raise SkinrenderError(f"--exposure must be auto or a finite number of seconds > 0 and ≤ {EXPOSURE_MAX:g}, "
-                                  f"got {args.exposure!r}", flag="--exposure")
+    options = flagged({"illuminance": "--illuminance", "exposure": "--exposure"}, NoiseOptions,
+                      illuminance=lux, exposure="auto" if args.exposure is None else args.exposure)
+    lux, exposure = options.illuminance, options.exposure
     return lux, exposure
 
 

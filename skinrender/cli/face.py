@@ -16,12 +16,12 @@ from pathlib import Path
 
 from ..errors import SkinrenderError
 from ..files import TOML_BYTES_MAX, Output, exists, read_input, write_output, write_outputs
-from .placement import add_translate, translate_key, translated_face
+from .placement import add_translate, translate_key, translate_of, translated_face
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_of,
-                     check_output, check_render_work, check_seed, choices_help, emit, flag, integer_in, interruptible, positive_number, refuse_sensor_settings,
-                     sensor_settings, settings_of, table, variant_of)
+                     check_output, check_seed, choices_help, emit, flag, flagged, integer_in, interruptible,
+                     positive_number, settings_of, table, variant_of)
 
-__all__ = ["add_parsers", "add_face_arguments", "check_figure", "face_inputs", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
+__all__ = ["add_parsers", "add_face_arguments", "check_figure", "check_face_flags", "face_request_of", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
 
 SIZE_MAX = 2000
@@ -139,17 +139,15 @@ def check_figure(args: argparse.Namespace, *taken) -> Path | None:
     return figure
 
 
-def face_inputs(args: argparse.Namespace, scene) -> tuple:
+def check_face_flags(args: argparse.Namespace) -> tuple:
     """
-    The inputs of a face render from the flags of ``render``/``validate``, each checked with a one-line error
-    naming its flag: ``(scene, camera, temperatures {prevailing, calibration} K, physics, skin, size px or None,
-    imager, exposure, illuminance lx)``; with ``--imager`` the level gains ``noise``. ``scene``: the face scene
-    the command loaded (:func:`~skinrender.cli.inputs.scene_of`).
+    What only the command line checks of a face render's flags, each refusal naming its flag: ``--camera`` (with
+    its curves on the default grid), ``--prevailing`` and ``--calibration`` (Planckian, K; the camera sees each),
+    ``--normalization`` (``white`` only: a face is balanced with WP), ``--grid`` (the default: a face renders on
+    400:700:1 nm), ``--physics`` (not empty) and ``--size`` (an integer in [1, :data:`SIZE_MAX`]). Returns
+    ``(camera, {prevailing, calibration} K, size px or None)``; the rest is the request's
+    (:func:`face_request_of`).
     """
-    from ..rendering.face.effects import parse_physics
-    from ..rendering.face.scene import skin_reflectance_of
-    from ..spectra import GRID_DEFAULT
-
     cam = camera_of(args)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
     _check_light(cam, temperatures)
@@ -159,27 +157,31 @@ def face_inputs(args: argparse.Namespace, scene) -> tuple:
     if str(getattr(args, "grid", "400:700:1")).strip() != "400:700:1":
         raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}", flag="--grid")
     physics = getattr(args, "physics", None)
-    physics = "direct" if physics is None else physics
-    if not str(physics).strip():
+    if physics is not None and not str(physics).strip():
         raise SkinrenderError(f"--physics: name a level ({level_names()}; '+' combines them), got ''", flag="--physics")
-    flag("--physics", parse_physics, physics)
-    skin = getattr(args, "skin", None)
-    if skin is not None:
-        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
     size = getattr(args, "size", None)
     size = None if size is None else integer_in(size, "--size", 1, SIZE_MAX)
-    imager = None
-    if getattr(args, "imager", None) is not None:  # a sensor records the face: the noise level
-        from ..model.imager import imager as load_imager
+    return cam, temperatures, size
 
-        imager = flag("--imager", load_imager, args.imager)
-        if "noise" not in parse_physics(physics):
-            physics = "noise" if physics.strip() == "direct" else f"{physics}+noise"
-    if imager is None and "noise" not in parse_physics(physics):
-        refuse_sensor_settings(args, "--imager or a noise level (--physics noise)")
-    lux, exposure = sensor_settings(args, default_lux=None)  # None: the scene's illuminance
-    scene = translated_face(args, scene, [physics], skin)  # --translate-mm, float32's range checked at the level
-    return scene, cam, temperatures, physics, skin, size, imager, exposure, lux
+
+def face_request_of(args: argparse.Namespace, scene, settings, **changes):
+    """
+    A face command's :class:`~skinrender.rendering.face.request.FaceRequest` from the flags of ``render``,
+    ``validate``, ``detect`` (absent ones take their defaults), as every front door builds it
+    (:meth:`~skinrender.rendering.kinds.FaceKind.request`), each refusal naming its flag; ``changes``: keywords
+    replaced (``spp``: a validation's per replicate). What only the command line has is checked first: the
+    camera sees each light (:func:`check_face_flags`), ``--normalization`` is ``white``,
+    ``--grid`` the default, ``--physics`` names a level, ``--size`` an integer.
+    """
+    from ..rendering.kinds import FACE
+    from .inputs import REQUEST_FLAGS, sensor_flags, settings_fields
+
+    cam, temperatures, size = check_face_flags(args)
+    keywords = {"skin": getattr(args, "skin", None), "physics": getattr(args, "physics", None) or "direct",
+                "size": size, "translate_mm": translate_of(args), **sensor_flags(args),
+                **settings_fields(args, settings), **changes}
+    return flagged(REQUEST_FLAGS, FACE.request, scene, cam, temperatures["prevailing"], temperatures["calibration"],
+                   **keywords)
 
 
 def face_pixels(scene, size: int | None) -> int:
@@ -187,54 +189,55 @@ def face_pixels(scene, size: int | None) -> int:
     return size * size if size is not None else scene.camera.width * scene.camera.height
 
 
-def levels_of(text: str) -> list[str]:
+def levels_of(text: str) -> list:
     """
     ``--levels``: comma-separated levels of physics, none empty and none twice (``a+b`` and ``b+a`` are one
-    level), each checked; a one-line error naming the flag otherwise.
+    level), each parsed once into its :class:`~skinrender.rendering.physics.Level`; a one-line error naming the
+    flag otherwise.
     """
-    from ..rendering.face.effects import parse_physics
+    from ..rendering.face.effects import PHYSICS_REGISTRY
 
-    levels = [level.strip() for level in str(text).split(",")]
-    if not any(levels) or not all(levels):
+    specs = [level.strip() for level in str(text).split(",")]
+    if not any(specs) or not all(specs):
         raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {text!r}", flag="--levels")
-    effects = [flag("--levels", parse_physics, level) for level in levels]
-    if len(set(effects)) < len(effects):
+    levels = [flag("--levels", PHYSICS_REGISTRY.level, spec) for spec in specs]
+    if len({level.name for level in levels}) < len(levels):
         raise SkinrenderError(f"--levels: a level is named twice in {text!r}; name each once", flag="--levels")
     return levels
 
 
-def noise_sensor(args: argparse.Namespace, levels: list[str]) -> float | None:
+def noise_sensor(args: argparse.Namespace, levels: list) -> tuple:
     """
-    The noise level's ``--imager`` checked and its ``--illuminance`` in lx (``None``: the scene's); either is
-    refused where no level of ``levels`` has noise (nothing would see it).
+    The sensor's options of a study over ``levels`` (:class:`~skinrender.rendering.physics.Level` objects):
+    ``(imager, lux)``, ``--imager`` loaded once (``None``: the effect's default) and ``--illuminance`` in lx
+    (``None``: the scene's), each checked as a request checks it; either is refused where no level has an effect
+    that takes it (nothing would see it).
     """
-    from ..rendering.face.effects import parse_physics
+    from ..rendering.face.effects import PHYSICS_REGISTRY
+    from ..rendering.sensor import NoiseOptions
 
-    if args.imager is not None:
-        from ..model.imager import imager
-
-        flag("--imager", imager, args.imager)
-    lux = None if args.illuminance is None else positive_number(args.illuminance, "--illuminance", "lx")
-    if not any("noise" in parse_physics(level) for level in levels):
-        for name in ("imager", "illuminance"):
-            if getattr(args, name) is not None:
-                raise SkinrenderError(f"--{name} is the noise level's: add a level with noise to --levels "
-                                      f"(e.g. noise or interreflection+noise), got {','.join(levels)!r}",
-                                      flag=f"--{name}")
-    return lux
+    options = flagged({"imager": "--imager", "illuminance": "--illuminance"}, NoiseOptions, args.imager,
+                      None if args.illuminance is None else positive_number(args.illuminance, "--illuminance", "lx"))
+    for name in ("imager", "illuminance"):
+        if getattr(args, name) is not None and not any(PHYSICS_REGISTRY.options_for(level, {name: True})
+                                                       for level in levels):
+            raise SkinrenderError(f"--{name} is the noise level's: add a level with noise to --levels "
+                                  f"(e.g. noise or interreflection+noise), got "
+                                  f"{','.join(level.name for level in levels)!r}", flag=f"--{name}")
+    return options.imager, options.illuminance
 
 
 def is_face_scene(spec: str) -> bool:
     """Whether a ``render`` SCENE is a face scene: bundled, or a TOML with ``[camera]`` and ``[mesh]``."""
-    from ..rendering.face.scene import is_face_scene as face_scene
+    from ..rendering.kinds import FACE
 
-    return face_scene(spec)
+    return FACE.owns(spec)
 
 
 def _ladder_inputs(args: argparse.Namespace) -> dict:
     """The ladder's flags, each checked with a one-line error naming it (``--skin`` repeats only with
     ``--effects``; ``--levels`` defaults to the base and each effect alone there)."""
-    from ..rendering.face.effects import LEVELS_EACH
+    from ..rendering.face.effects import levels_each, levels_ladder
     from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
 
@@ -250,19 +253,17 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
         raise SkinrenderError(f"--skin: one skin for the ladder (several go with --effects), got {len(skins)}")
     for skin in skins:
         skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
-    from ..studies.face.ladder import LEVELS_DEFAULT
-
-    default = ",".join(LEVELS_EACH if args.effects else LEVELS_DEFAULT)
+    default = ",".join(levels_each() if args.effects else levels_ladder())  # as registered now
     levels = levels_of(default if args.levels is None else args.levels)
-    if args.effects and "direct" not in levels:
+    if args.effects and all(level.names for level in levels):
         raise SkinrenderError(f"--levels: the effects table compares each effect with direct; add it, got "
-                              f"{','.join(levels)!r}")
+                              f"{','.join(level.name for level in levels)!r}")
     variant_of(args.variant)
-    lux = noise_sensor(args, levels)
+    imager, lux = noise_sensor(args, levels)
     from ..studies.face.effects_table import SKIN_TONES
 
     for skin in skins or (list(SKIN_TONES.values()) if args.effects else [None]):
-        moved = translated_face(args, scene, levels, skin)  # the same scene for every skin; checked for each
+        moved = translated_face(args, scene, levels, skin)  # every level and skin checked: float32's range
     from ..studies.face.sweep import estimate_seconds
     from ..studies.face.ladder import REPLICATES_LADDER
     from ..workload import check_work
@@ -276,7 +277,7 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
                fewer="lower --spp or --size, or name fewer --levels")
     return {"camera_": cam, "prevailing": temperatures["prevailing"], "calibration": temperatures["calibration"],
             "levels": levels, "spp": spp, "seed": seed, "size": size, "scene": moved, "variant": args.variant,
-            "imager": args.imager, "illuminance": lux, "skins": skins}
+            "imager": imager, "illuminance": lux, "skins": skins}
 
 
 def _shown(value, digits: str = ".4f") -> str:
@@ -337,18 +338,19 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
     """
     from ..model.response import knee as apply_knee
     from ..rendering.exr import write_exr, write_preview
-    from ..rendering.face.render import face_exr, render_face
+    from ..rendering.face.render import face_exr
+
+    from ..rendering.kinds import FACE
+    from .inputs import check_request_work
 
     settings = settings_of(args)
     output = check_output(getattr(args, "output", "render.exr"), "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
-    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
-    check_render_work(args, face_pixels(scene, size), settings.spp, levels=[physics])
-    print(f"rendering the face ({physics}) at {settings.spp} spp …", file=sys.stderr)
-    result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], skin, physics,
-                         settings.spp, settings.seed, size, settings.sampler, settings.variant,
-                         channels=settings.channels, imager=imager, exposure=exposure, illuminance=lux)
+    request = face_request_of(args, scene, settings)
+    check_request_work(args, request)
+    print(f"rendering the face ({request.level.name}) at {settings.spp} spp …", file=sys.stderr)
+    result = FACE.render(request)
     if getattr(args, "knee", False):
         import dataclasses
 
@@ -389,21 +391,23 @@ def command_detect_face(args: argparse.Namespace, scene) -> None:
     from ..evaluation.detection import SCORED_MIN_OUTPUT
     from ..evaluation.locus import skin_locus
     from ..rendering.exr import write_png, write_preview
-    from ..rendering.face import render_face
     from ..studies.face.ladder import score_frame
+
+    from ..rendering.kinds import FACE
+    from .inputs import check_request_work
 
     settings = settings_of(args)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
-    scene, cam, temperatures, physics, face_skin, size, imager, exposure, lux = face_inputs(args, scene)
+    request = face_request_of(args, scene, settings)
+    cam, scene = request.camera, request.scene
+    temperatures = {"prevailing": request.prevailing, "calibration": request.calibration}
     locus_skin = getattr(args, "locus_skin", None) or "skin"
     skin = flag("--locus-skin", reflectances, locus_skin)
-    check_render_work(args, face_pixels(scene, size), settings.spp, levels=[physics])
-    print(f"rendering the face ({physics}) at {settings.spp} spp …", file=sys.stderr)
-    result = render_face(cam, scene, temperatures["prevailing"], temperatures["calibration"], face_skin, physics,
-                         settings.spp, settings.seed, size, settings.sampler, settings.variant,
-                         channels=settings.channels, imager=imager, exposure=exposure, illuminance=lux)
+    check_request_work(args, request)
+    print(f"rendering the face ({request.level.name}) at {settings.spp} spp …", file=sys.stderr)
+    result = FACE.render(request)
     locus = skin_locus(cam, skin, calibration=temperatures["calibration"], boundary=args.boundary)
     scores, frame = score_frame(result, locus, clip_negative=True)  # scored as the ladder: too dark has no chromaticity
     mask, scored = frame["inside"], frame["scored"]

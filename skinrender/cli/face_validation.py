@@ -75,26 +75,17 @@ def check_samples(spp: int, pixels: int) -> None:
                               flag="--spp")
 
 
-def check_replicates_work(args: argparse.Namespace, spp: int, pixels: int, level: str | None = None) -> None:
-    """Refuse, naming ``--spp``, a face validation whose replicate renders (:data:`REPLICATES` of ``pixels`` pixels
-    at ``⌈spp / REPLICATES⌉`` spp, at least :data:`SPP_REPLICATE_MIN`) are estimated beyond ``--max-minutes``, at
-    ``level``'s rate (``subsurface`` is far slower; ``None``: the base's)."""
-    from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
-    from .common import check_render_work
-
-    check_render_work(args, pixels, max(-(-int(spp) // REPLICATES), SPP_REPLICATE_MIN), REPLICATES,
-                      levels=None if level is None else [level] * REPLICATES)
-
-
 def command_validate_face(args: argparse.Namespace, scene) -> None:
     """
     ``validate SCENE …`` for a face scene: the ``validate`` flags (``--camera``, ``--prevailing``,
     ``--calibration``, the render options) and the face's (``--physics``, ``--skin``, ``--size``);
     every flag is checked before anything renders; ``scene``: the face scene loaded.
     """
-    from ..rendering.face.validation import validate_face
-    from .common import emit, flag, settings_of, table
-    from .face import face_inputs
+    from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
+    from ..rendering.kinds import FACE
+    from .common import emit, flag, integer_in, settings_of, table
+    from .face import SIZE_MAX, face_pixels, face_request_of
+    from .inputs import check_request_work
     from .placement import translate_key
 
     settings = settings_of(args)
@@ -103,16 +94,14 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     if getattr(args, "gamut", False):
         raise SkinrenderError("--gamut compares a chart's gamut volumes; it does not apply to a face scene",
                               flag="--gamut")
-    scene, cam, temperatures, physics, skin, size, imager, exposure, lux = face_inputs(args, scene)
-    pixels = scene.camera.width * scene.camera.height if size is None else size * size
-    check_samples(settings.spp, pixels)
-    check_replicates_work(args, settings.spp, pixels, physics)  # subsurface: its own rate
+    size = getattr(args, "size", None)
+    check_samples(settings.spp, face_pixels(scene, None if size is None else integer_in(size, "--size", 1, SIZE_MAX)))
+    each = max(-(-int(settings.spp) // REPLICATES), SPP_REPLICATE_MIN)  # a replicate's spp
+    request = face_request_of(args, scene, settings, spp=each)
+    check_request_work(args, request, REPLICATES)  # at its level's rate (subsurface: far slower)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
-    result = flag("validate", validate_face, cam, scene, temperatures["prevailing"], temperatures["calibration"],
-                  physics=physics, spp=settings.spp, seed=settings.seed, limits=limits,
-                  progress=lambda line: print(line, file=sys.stderr), skin=skin, size=size, sampler=settings.sampler,
-                  variant=settings.variant, channels=settings.channels, imager=imager, exposure=exposure,
-                  illuminance=lux)
+    result = flag("validate", FACE.validate, request, spp=settings.spp, limits=limits,
+                  progress=lambda line: print(line, file=sys.stderr))
     document = {**result.document(), **translate_key(args)}
     rows = [[c.name, c.outcome.replace("_", " "), _number(c.statistic), _number(c.tolerance), _number(c.bound),
              f"{c.alpha:g}", c.pixels] for c in result.checks]

@@ -15,7 +15,12 @@ everything below the command line takes those objects (never the strings):
     normalisation and knee of a chart render, each checked against the others
     before anything renders;
 -   :func:`chart_only`: the face's flags refused on a chart (``--physics``
-    but a chart's levels, :data:`~skinrender.rendering.balance.CHART_PHYSICS`);
+    but a chart's levels, :data:`~skinrender.rendering.chart_effects.CHART_REGISTRY`);
+-   :func:`chart_request_of` (a face's: :func:`~skinrender.cli.face.face_request_of`): the request of a render
+    command (:mod:`skinrender.rendering.request`), built by its scene kind's
+    ``request`` as every front door builds it, each refusal naming its flag
+    (:data:`REQUEST_FLAGS`); :func:`check_request_work`: its estimate against
+    ``--max-minutes``;
 -   :func:`imaging_document`, :func:`imaging_notes`: what a render through
     ``--imager`` adds to a command's JSON and text.
 
@@ -33,7 +38,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from ..errors import SkinrenderError
-from .common import camera_of, flag, grid_of
+from .common import camera_of, flag, flagged, grid_of
 from .placement import translate_of
 
 if TYPE_CHECKING:
@@ -43,7 +48,29 @@ if TYPE_CHECKING:
     from ..rendering.settings import RenderSettings
     from ..spectra import WavelengthGrid
 
-__all__ = ["scene_of", "ChartInputs", "chart_inputs", "chart_only", "imaging_document", "imaging_notes"]
+__all__ = ["REQUEST_FLAGS", "by_kind", "scene_of", "ChartInputs", "chart_inputs", "chart_only", "chart_request_of",
+           "settings_fields", "sensor_flags", "check_request_work", "imaging_document", "imaging_notes"]
+
+REQUEST_FLAGS = {"scene": "SCENE", "camera": "--camera", "prevailing": "--prevailing", "calibration": "--calibration",
+                 "physics": "--physics", "spp": "--spp", "seed": "--seed", "sampler": "--sampler",
+                 "variant": "--variant", "channels": "--channels", "imager": "--imager", "illuminance": "--illuminance",
+                 "exposure": "--exposure", "skin": "--skin", "size": "--size", "normalization": "--normalization",
+                 "knee": "--knee", "grid": "--grid", "translate_mm": "--translate-mm"}
+"""The flag of each argument of a request (an error's ``role`` → the flag a refusal names)."""
+
+
+def by_kind(scene, **commands):
+    """
+    The function of ``scene``'s kind among ``commands`` (kind name → function, every kind of
+    :data:`~skinrender.rendering.kinds.SCENE_KINDS` given): the command line's one dispatch on a scene's kind
+    (:func:`~skinrender.rendering.kinds.scene_kind`).
+    """
+    from ..rendering.kinds import SCENE_KINDS, scene_kind
+
+    missing = sorted(set(SCENE_KINDS) - set(commands))
+    if missing:
+        raise TypeError(f"by_kind: no function for {', '.join(missing)}")
+    return commands[scene_kind(scene).name]
 
 
 def scene_of(args: argparse.Namespace, name: str = "SCENE") -> ChartScene | FaceScene:
@@ -68,10 +95,8 @@ class ChartInputs:
     grid
         ``--grid``, nm.
     physics
-        ``--physics``: ``direct`` or ``subsurface`` (:data:`~skinrender.rendering.balance.CHART_PHYSICS`; the
-        checks of ``subsurface`` are :func:`~skinrender.cli.subsurface.check_chart_subsurface`'s).
-    translate_mm
-        ``--translate-mm`` (x, y, z mm; ``subsurface`` only), or ``None``.
+        ``--physics`` as given: ``direct`` or ``subsurface``, parsed into a level where the request is built
+        (:meth:`request`).
     """
 
     scene: ChartScene
@@ -82,21 +107,34 @@ class ChartInputs:
     normalization: str = "white"
     knee: bool = False
     physics: str = "direct"
-    translate_mm: tuple[float, float, float] | None = None
 
     def keywords(self) -> dict:
         """The arguments of :func:`~skinrender.rendering.balance.render` and
         :func:`~skinrender.rendering.validation.validate` they give."""
-        moved = {} if self.translate_mm is None else {"translate_mm": self.translate_mm}
         return {"scene": self.scene, "camera_": self.camera, "prevailing": self.prevailing,
                 "calibration": self.calibration, "normalization": self.normalization, "knee": self.knee,
-                "grid": self.grid, "physics": self.physics, **moved}
+                "grid": self.grid, "physics": self.physics}
 
     @property
     def pixels(self) -> int:
         """The pixels of the chart's image."""
         width, height = self.scene.size
         return int(width) * int(height)
+
+    def request(self, args: argparse.Namespace, settings: RenderSettings, **changes):
+        """
+        The :class:`~skinrender.rendering.request.ChartRequest` of these inputs, ``settings`` (the sampler left to
+        the level where ``--sampler`` was not given: :func:`settings_fields`) and the sensor's flags
+        (``--imager``, ``--illuminance``, ``--exposure``), as every front door builds it
+        (:meth:`~skinrender.rendering.kinds.ChartKind.request`); ``changes``: keywords replaced (``knee``).
+        """
+        from ..rendering.kinds import CHART
+
+        keywords = {"normalization": self.normalization, "knee": self.knee, "grid": self.grid,
+                    "physics": self.physics, "translate_mm": translate_of(args), **sensor_flags(args),
+                    **settings_fields(args, settings), **changes}
+        return flagged(REQUEST_FLAGS, CHART.request, self.scene, self.camera, self.prevailing, self.calibration,
+                       **keywords)
 
     def render(self, settings: RenderSettings, imaging: dict | None = None, knee: bool = False) -> tuple:
         """
@@ -145,28 +183,74 @@ def chart_inputs(args: argparse.Namespace, scene: ChartScene) -> ChartInputs:
             raise error.reworded(f"SCENE: {error.message}", flag="SCENE") from None
         raise error.reworded(f"--grid: {error.message}", flag="--grid", cause=None,
                              hint="choose a --grid inside the chart's data") from None
-    physics = str(getattr(args, "physics", "direct")).strip()
-    translate = translate_of(args)
-    if translate is not None and physics != "subsurface":
-        raise SkinrenderError("--translate-mm moves a face, or a chart at --physics subsurface (its slabs are in mm); "
-                              f"a chart at --physics {physics} is laid out in pixels", flag="--translate-mm")
     return ChartInputs(scene, cam, temperatures["prevailing"], temperatures["calibration"], grid,
-                       getattr(args, "normalization", "white"), bool(getattr(args, "knee", False)), physics,
-                       translate)
+                       getattr(args, "normalization", "white"), bool(getattr(args, "knee", False)),
+                       str(getattr(args, "physics", "direct")).strip())
 
 
 def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
     """The face-only flags refused on a chart: ``--physics`` but a chart's levels
-    (:data:`~skinrender.rendering.balance.CHART_PHYSICS`), ``--size`` and (but for ``detect``) ``--skin``."""
-    from ..rendering.balance import CHART_PHYSICS
+    (:data:`~skinrender.rendering.chart_effects.CHART_REGISTRY`), ``--size`` and (but for ``detect``) ``--skin``."""
+    from ..rendering.chart_effects import CHART_REGISTRY
 
-    physics = str(args.physics).strip()
-    given = [name for name, on in (("--physics", physics not in CHART_PHYSICS),
-                                   ("--skin", skin and args.skin is not None), ("--size", args.size is not None)) if on]
+    try:
+        CHART_REGISTRY.names(args.physics)
+        chart_level = True
+    except SkinrenderError:
+        chart_level = False
+    given = [name for name, on in (("--physics", not chart_level), ("--skin", skin and args.skin is not None),
+                                   ("--size", args.size is not None)) if on]
     if given:
-        levels = f" (a chart takes --physics {' or '.join(CHART_PHYSICS)})" if "--physics" in given else ""
+        levels = f" (a chart takes --physics {' or '.join(CHART_REGISTRY.named)})" if "--physics" in given else ""
         raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
                               f"(e.g. 'face'), not a chart{levels}", flag=given[0])
+
+
+def settings_fields(args: argparse.Namespace, settings: RenderSettings) -> dict:
+    """``settings``' fields as a request's keywords, the sampler ``None`` (the level's or the default) where
+    ``--sampler`` was not given."""
+    import dataclasses
+
+    fields = dataclasses.asdict(settings)
+    if getattr(args, "sampler", None) is None:
+        fields["sampler"] = None
+    return fields
+
+
+def sensor_flags(args: argparse.Namespace) -> dict:
+    """``--imager``, ``--illuminance`` (lx) and ``--exposure`` (s or ``auto``) as a request's keywords (``None``
+    where not given): the ``noise`` effect's options, checked where the request is built."""
+    return {name: getattr(args, name, None) for name in ("imager", "illuminance", "exposure")}
+
+
+def chart_request_of(args: argparse.Namespace, scene: ChartScene, settings: RenderSettings, **changes):
+    """A chart command's :class:`~skinrender.rendering.request.ChartRequest`: :func:`chart_inputs` (each flag's
+    object, checked against the others) made the request (:meth:`ChartInputs.request`)."""
+    return chart_inputs(args, scene).request(args, settings, **changes)
+
+
+def check_request_work(args: argparse.Namespace, request, renders: int = 1, spp: int | None = None) -> None:
+    """
+    Refuse, naming ``--spp``, ``renders`` renders of ``request`` (at ``spp`` each where given) whose samples per
+    pass exceed Mitsuba's 32-bit wavefront or whose estimate
+    (:meth:`~skinrender.rendering.kinds.SceneKind.workload` on every core) exceeds ``--max-minutes``.
+    """
+    import dataclasses
+    import os
+
+    from ..rendering.kinds import scene_kind
+    from ..rendering.renderer import SAMPLES_MAX
+    from ..workload import check_work
+
+    if spp is not None:
+        request = dataclasses.replace(request, settings=request.settings.replace(spp=spp))
+    spp, pixels = request.settings.spp, request.pixels
+    if spp * pixels > SAMPLES_MAX:
+        raise SkinrenderError(f"--spp: {spp} spp × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
+                              f"{SAMPLES_MAX:.3g} (Mitsuba's 32-bit wavefront); at most {SAMPLES_MAX // pixels} spp "
+                              "for this scene", flag="--spp")
+    seconds, what = scene_kind(request.scene).workload(request, renders, os.cpu_count() or 1)
+    check_work(seconds, "--spp", what, getattr(args, "max_minutes", None), fewer="lower --spp")
 
 
 def imaging_document(imaged) -> dict:

@@ -13,13 +13,14 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..files import Output, write_outputs
 from ..studies.labelled import chart_figure
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, imaging_options, add_common, add_grid, add_model,
-                     add_render, check_output, check_render_work, choices_help, emit, flag, settings_of, table)
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, add_common, add_grid, add_model, add_render,
+                     check_output, choices_help, emit, flag, settings_of, table)
 from .face import check_figure
 from .chart_validation import add_check_arguments, add_verdict_arguments, command_validate
-from .inputs import chart_inputs, chart_only, imaging_document, imaging_notes, scene_of
+from .inputs import (by_kind, chart_only, chart_request_of, check_request_work, imaging_document, imaging_notes,
+                     scene_of)
 from .placement import add_translate, translate_key
-from .subsurface import check_chart_subsurface, subsurface_keys
+from .subsurface import subsurface_keys
 
 
 
@@ -86,28 +87,32 @@ def add_parsers(commands) -> None:
 
 @interruptible
 def command_render(args: argparse.Namespace) -> None:
-    from ..rendering.face.scene import FaceScene
+    """``render``: the scene loaded once, then its kind's command (a chart's, :func:`command_render_chart`; a face's,
+    :func:`~skinrender.cli.face.command_render_face`)."""
     from .face import command_render_face
 
-    scene = scene_of(args)  # loaded once: a face (perspective camera, mesh, lights) takes its own renderer
-    if isinstance(scene, FaceScene):
-        return command_render_face(args, scene)
-    chart_only(args)
+    scene = scene_of(args)
+    return by_kind(scene, chart=command_render_chart, face=command_render_face)(args, scene)
+
+
+def command_render_chart(args: argparse.Namespace, scene) -> None:
+    """``render`` on a chart ``scene``: its request, rendered (through an image sensor with ``--imager``)."""
     from ..rendering.exr import write_preview
+    from ..rendering.kinds import CHART
     from ..rendering.outputs import write_chart_exr
     from ..rendering.renderer import channel_names
 
+    chart_only(args)
     settings = settings_of(args)
     output = check_output(args.output, "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
     figure = check_figure(args, output.with_suffix(".png"))
-    inputs = chart_inputs(args, scene)
-    settings = check_chart_subsurface(args, inputs, settings)
-    imaging = imaging_options(args)
-    check_render_work(args, inputs.pixels, settings.spp)
-    print(f"rendering {inputs.scene.name} at {settings.spp} spp …", file=sys.stderr)
-    result, imaged = inputs.render(settings, imaging, args.knee)
-    if imaged is not None and args.knee:
+    request = chart_request_of(args, scene, settings)
+    check_request_work(args, request)
+    settings = request.settings
+    print(f"rendering {request.scene.name} at {settings.spp} spp …", file=sys.stderr)
+    result, imaged = CHART.render_imaged(request)
+    if imaged is not None and args.knee:  # the knee on the sensor's image (the request's renders it on radiance)
         from dataclasses import replace
 
         from ..model.response import knee
@@ -116,7 +121,7 @@ def command_render(args: argparse.Namespace) -> None:
     spp = result.raw[0].spp
     names = channel_names(result.camera)
     preview = output.with_suffix(".png")
-    outputs = [Output(output, "--output", lambda stream: write_chart_exr(stream, result, settings.seed, inputs.grid)),
+    outputs = [Output(output, "--output", lambda stream: write_chart_exr(stream, result, settings.seed, request.grid)),
                Output(preview, "--output (its PNG preview)", lambda stream: write_preview(stream, result.image))]
     if figure is not None:
         outputs.append(Output(figure, "--figure", lambda stream: chart_figure(result, stream)))
@@ -154,17 +159,20 @@ def locus_skin_of(args: argparse.Namespace, chart: bool) -> str:
 
 @interruptible
 def command_detect(args: argparse.Namespace) -> None:
-    from ..rendering.face.scene import FaceScene
+    """``detect``: the scene loaded once, then its kind's command (the face's label channel is its ground truth)."""
     from .face import command_detect_face
 
     scene = scene_of(args)
-    if isinstance(scene, FaceScene):  # the label channel is the ground truth
-        return command_detect_face(args, scene)
+    return by_kind(scene, chart=command_detect_chart, face=command_detect_face)(args, scene)
 
-    from ..evaluation.detection import SCORED_MIN_OUTPUT, detect
+
+def command_detect_chart(args: argparse.Namespace, scene) -> None:
+    """``detect`` on a chart ``scene``: its request rendered, every pixel classified by the camera's skin locus."""
     from ..datasets import reflectances
+    from ..evaluation.detection import SCORED_MIN_OUTPUT, detect
     from ..evaluation.locus import skin_locus
     from ..rendering.exr import write_png, write_preview
+    from ..rendering.kinds import CHART
 
     chart_only(args, skin=False)
     locus_skin = locus_skin_of(args, chart=True)
@@ -172,13 +180,12 @@ def command_detect(args: argparse.Namespace) -> None:
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
-    inputs = chart_inputs(args, scene)
-    settings = check_chart_subsurface(args, inputs, settings)
-    imaging = imaging_options(args)
+    request = chart_request_of(args, scene, settings)
     skin = flag("--locus-skin" if args.skin is None else "--skin", reflectances, locus_skin)
-    check_render_work(args, inputs.pixels, settings.spp)
-    print(f"rendering {inputs.scene.name} at {settings.spp} spp …", file=sys.stderr)
-    rendering, imaged = inputs.render(settings, imaging)
+    check_request_work(args, request)
+    settings = request.settings
+    print(f"rendering {request.scene.name} at {settings.spp} spp …", file=sys.stderr)
+    rendering, imaged = CHART.render_imaged(request)
     # the camera is white-balanced to the calibration light: the locus of that one balancing
     locus = skin_locus(rendering.camera, skin, calibration=rendering.calibration, boundary=args.boundary)
     result = detect(rendering, locus, scored_min=SCORED_MIN_OUTPUT)  # scored as on a face: too dark has no colour

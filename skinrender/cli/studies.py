@@ -276,14 +276,14 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
             raise SkinrenderError("--max-minutes caps the face bench (bench render --scene SCENE); the charts' render "
                                   "bench does a fixed amount of work", flag="--max-minutes")
         return None
-    from ..rendering.face.effects import active_lights, parse_physics
     from ..rendering.face.scene import load_face_scene
+    from ..rendering.kinds import FACE
     from ..rendering.renderer import SAMPLES_MAX
     from ..studies.benchmarks.bench_face import LEVELS_BENCH, SIZE_BENCH, SPPS_BENCH
     from .common import SPP_MAX, flag
-    from .face import SIZE_MAX, is_face_scene, levels_of
+    from .face import SIZE_MAX, levels_of
 
-    if not is_face_scene(args.scene):
+    if not FACE.owns(args.scene):
         raise SkinrenderError(f"--scene: the render bench times a face scene (face or a .toml with [camera] and "
                               f"[mesh]); the charts' bench runs without --scene, got {args.scene!r}", flag="--scene")
     if args.plot:
@@ -307,13 +307,13 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
             raise SkinrenderError(f"{name}: {spp} spp × {size}² pixels is more than {SAMPLES_MAX} samples a pass",
                                   flag=name)
     levels = levels_of(args.levels if args.levels is not None else ",".join(LEVELS_BENCH))
-    for level in levels:
-        flag("--levels", active_lights, scene, flag("--levels", parse_physics, level))
+    for level in levels:  # each level's lights in the scene (mixed needs a fill light)
+        flag("--levels", level.lights, scene)
     check_face_bench_work(args, levels, size * size, spps, reference)
     return {"scene": scene, "size": size, "spps": spps, "reference_spp": reference, "levels": levels}
 
 
-def check_face_bench_work(args: argparse.Namespace, levels: list[str], pixels: int, spps: list[int],
+def check_face_bench_work(args: argparse.Namespace, levels: list, pixels: int, spps: list[int],
                           reference: int) -> None:
     """
     Refuse the face bench when its estimate exceeds ``--max-minutes``: per level one reference render at

@@ -12,7 +12,8 @@ the Eq. 10 factor, through the one gain of the analytic model
 -   :class:`Eq4Options`: Eq. 4's options (normalisation, knee, grid, scale), taken whole.
 -   :func:`balance`: Eq. 4 on a pair of raw renders.
 -   :func:`render`, :class:`Rendering`: the Eq. 4 image of a (prevailing,
-    calibration) pair.
+    calibration) pair; :func:`render_balanced`: the same of a
+    :class:`~skinrender.rendering.request.ChartRequest`.
 
 Units: raw renders in W·m⁻²·sr⁻¹ times the sensitivity's unit; balanced
 images in output units (255 for white at p = c).
@@ -31,24 +32,23 @@ import numpy as np
 from ..constants import CONSTANT_OUTPUT_SCALE
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
-from ..methods import validate_method
-from ..model.camera import Camera, camera
-from ..model.illuminant import illuminant
-from ..model.response import NORMALISATIONS, gain, knee as apply_knee, normalisation_factor
+from ..model.camera import Camera
+from ..model.response import gain, knee as apply_knee, normalisation_factor
 from ..spectra import GRID_DEFAULT, WavelengthGrid
-from .renderer import RawRender, render_raw
-from .scene import ChartScene, load_chart_scene
-from .settings import RenderSettings
+from .renderer import RawRender
+from .scene import ChartScene
+from .settings import RenderSettings, seed_at
 
 __all__ = ["PatchStatistics", "patch_statistics", "Rendering", "Eq4Options", "pair_gain", "balance", "render",
-           "CHART_PHYSICS"]
+           "render_balanced", "CHART_PHYSICS"]
 
-CHART_PHYSICS = {
-    "direct": "Lambertian patches under the directional light along the view axis (the analytic model's world)",
-    "subsurface": "the skin patches as the skin model's two layers under a dielectric boundary, lit by a uniform "
-                  "sky, against their slab's adding-doubling reflectance",
-}
-"""Levels of physics of a chart, name → meaning."""
+
+def __getattr__(name: str):
+    if name == "CHART_PHYSICS":  # read from the chart's registry of effects (a chart's levels, name → meaning)
+        from .chart_effects import CHART_REGISTRY
+
+        return {effect_name: effect.description for effect_name, effect in CHART_REGISTRY.named.items()}
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 @dataclass(frozen=True)
@@ -131,12 +131,6 @@ class Rendering:
         return draw_figure("chart", self, path, **options)
 
 
-def _temperature(spec) -> float:
-    item = illuminant(spec)
-    if item.temperature is None:
-        raise SkinrenderError(f"rendering needs a Planckian illuminant (kelvin, A or H), got {spec!r}")
-    return float(item.temperature)
-
 def pair_gain(white_p: NDArrayFloat, white_c: NDArrayFloat, normalization: str, prevailing: float,
               calibration: float, grid: WavelengthGrid = GRID_DEFAULT,
               scale: float = CONSTANT_OUTPUT_SCALE) -> NDArrayFloat:
@@ -218,7 +212,6 @@ def render(
     cache: dict | None = None,
     emitter: str = "tabulated",
     physics: str = "direct",
-    translate_mm=None,
     **options,
 ) -> Rendering:
     """
@@ -247,51 +240,54 @@ def render(
         name one). ``info`` then has ``physics``, ``reflectances`` (per patch, what Eq. 4 is checked with: the
         slab's adding-doubling reflectance for a skin patch) and ``skin_model`` (per patch its layers' source, or
         ``None``).
-    translate_mm
-        With ``subsurface``: every patch's scene moved ``(x, y, z)`` mm from the origin (``None``: at it); refused
-        with ``direct``, whose chart is laid out in pixels.
     **options
         ``spp``, ``seed``, ``sampler``, ``variant``, ``channels``: the settings one by one
-        (:meth:`~skinrender.rendering.settings.RenderSettings.of`).
+        (:meth:`~skinrender.rendering.settings.RenderSettings.of`). (Through an image sensor: ``skinrender.render``
+        with ``imager=``, or :func:`~skinrender.rendering.imaging.render_imaged`.)
 
     Returns
     -------
     :class:`Rendering`
+
+    Raises
+    ------
+    SkinrenderError
+        A bad argument, named, before any render (:func:`~skinrender.rendering.request.chart_request`).
     """
 
-    validate_method(physics, CHART_PHYSICS, "physics (of a chart)", role="physics")
-    if physics == "subsurface" and settings is None:
-        from .subsurface_chart import SAMPLER_SUBSURFACE
+    from .request import chart_request
 
-        options = {"sampler": SAMPLER_SUBSURFACE, **options}
-    settings = RenderSettings.of(settings, **options)
-    chart = load_chart_scene(scene)
-    cam = camera(camera_)
-    validate_method(normalization, NORMALISATIONS, "normalization")
-    p, c = _temperature(prevailing), _temperature(calibration)
+    request = chart_request(scene, camera_, prevailing, calibration, normalization=normalization, knee=knee,
+                            settings=settings, grid=grid, emitter=emitter, physics=physics, **options)
+    if request.sensor is not None:
+        raise SkinrenderError("imager: this renders the radiance; through an image sensor: skinrender.render or "
+                              "skinrender.rendering.imaging.render_imaged", role="imager")
+    return render_balanced(request, request.level.chart(request), cache)
+
+
+def render_balanced(request, source, cache: dict | None = None) -> Rendering:
+    """
+    The Eq. 4 image of a :class:`~skinrender.rendering.request.ChartRequest` from ``source``'s raw renders
+    (``source.raw(temperature, seed, skins)``, ``source.info`` added to the rendering's): the prevailing render
+    at the request's seed, the calibration's at :func:`~skinrender.rendering.settings.seed_at` ``(seed, 1)`` (its
+    noise independent; ``skins=False``: a white balance reads the white alone), one render where the lights are
+    equal. ``cache``: a dict to reuse raw renders across calls.
+    """
+    chart, cam, settings = request.scene, request.camera, request.settings
+    p, c = request.prevailing, request.calibration
     cache = {} if cache is None else cache
-    info = {}
-    if translate_mm is not None and physics != "subsurface":
-        raise SkinrenderError(f"translate_mm moves a chart at physics 'subsurface' (its slabs are in mm); a chart at "
-                              f"{physics!r} is laid out in pixels", role="translate_mm")
-    if physics == "subsurface":
-        from .subsurface_chart import subsurface_renderer
-
-        renderer = subsurface_renderer(chart, cam, settings, grid, (0.0, 0.0, 0.0) if translate_mm is None
-                                       else translate_mm)
-        info = {"physics": physics, "reflectances": renderer.chart.reflectances, "skin_model": renderer.chart.rows()}
+    base = not request.level.names
 
     def raw(temperature: float, offset: int, skins: bool = True) -> RawRender:
-        key = (temperature, offset) if physics == "direct" else (temperature, offset, physics, skins,
-                                                                  renderer.translate_mm)
+        key = (temperature, offset) if base else (temperature, offset, request.level.name, skins)
         if key not in cache:
-            seed = settings.seed + offset
-            cache[key] = (render_raw(chart, cam, temperature, settings.replace(seed=seed), grid, emitter)
-                          if physics == "direct" else renderer.raw(temperature, seed, skins))
+            cache[key] = source.raw(temperature, seed_at(settings.seed, offset), skins)
         return cache[key]
 
     raw_p = raw(p, 0)
     raw_c = raw_p if c == p else raw(c, 1, skins=False)
-    image, white_error, white_ratio = balance(raw_p, raw_c, chart, cam, Eq4Options(normalization, knee, grid))
-    return Rendering(chart, cam, p, c, normalization, knee, image, patch_statistics(image, chart), white_error,
-                     (raw_p,) if raw_c is raw_p else (raw_p, raw_c), {"white_ratio": white_ratio, **info})
+    eq4 = Eq4Options(request.normalization, request.knee, request.grid)
+    image, white_error, white_ratio = balance(raw_p, raw_c, chart, cam, eq4)
+    return Rendering(chart, cam, p, c, request.normalization, request.knee, image, patch_statistics(image, chart),
+                     white_error, (raw_p,) if raw_c is raw_p else (raw_p, raw_c),
+                     {"white_ratio": white_ratio, **source.info})

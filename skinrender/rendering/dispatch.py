@@ -28,8 +28,6 @@ Units: temperatures K; images in Eq. 4 output units (255 for white at p = c).
 
 from __future__ import annotations
 
-import inspect
-
 from ..errors import SkinrenderError
 
 __all__ = ["load_scene", "render", "validate"]
@@ -56,43 +54,25 @@ def load_scene(spec):
     >>> type(load_scene("macbeth")).__name__, type(load_scene("face")).__name__
     ('ChartScene', 'FaceScene')
     """
-    from .face.scene import is_face_scene, load_face_scene  # here: importing skinrender need not load the face
-    from .scene import load_chart_scene
+    from .kinds import scene_kind  # here: importing skinrender need not load the face
 
-    return load_face_scene(spec) if is_face_scene(spec) else load_chart_scene(spec)
-
-
-def _options(function) -> list[str]:
-    """The names a renderer takes: its parameters, ``settings`` led by the render settings' fields (which its
-    ``**options`` take one by one)."""
-    from dataclasses import fields
-
-    from .settings import RenderSettings
-
-    names = []
-    for name, parameter in inspect.signature(function).parameters.items():
-        if name == "settings":
-            names += [field.name for field in fields(RenderSettings)]
-        if parameter.kind is not parameter.VAR_KEYWORD:
-            names.append(name)
-    return names
+    return scene_kind(spec).load(spec)
 
 
 def _camera_of(camera, options: dict, what: str):
     """The camera given as ``camera`` or (the chart functions' name) ``camera_``, once."""
     if "camera_" in options:
         if camera is not None:
-            raise SkinrenderError(f"{what}: give the camera once (camera or camera_)")
+            raise SkinrenderError(f"{what}: give the camera once (camera or camera_)", role="camera")
         camera = options.pop("camera_")
     if camera is None:
-        raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)")
+        raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)",
+                              role="camera")
     return camera
 
 
-def _check_options(function, arguments: dict, options: dict, kind: str, what: str, forwards_to=None) -> None:
-    """Refuse, naming them, options that ``function`` (of a ``kind`` scene) does not take, nor ``forwards_to`` (the
-    function its ``**options`` go to)."""
-    names = ([] if forwards_to is None else _options(forwards_to)) + _options(function)  # the render's first
+def _check_options(names: tuple[str, ...], arguments: dict, options: dict, kind: str, what: str) -> None:
+    """Refuse, naming them, options not among a ``kind`` scene's ``names`` (nor given as ``arguments``)."""
     known = [name for name in dict.fromkeys(names) if name not in arguments]
     unknown = sorted(set(options) - set(known))
     if unknown:
@@ -101,10 +81,13 @@ def _check_options(function, arguments: dict, options: dict, kind: str, what: st
                               f"{', '.join(known)}")
 
 
-def _chart_lights(prevailing, calibration, what: str) -> None:
+def _lights(kind, prevailing, calibration, what: str) -> None:
+    """The lights a kind's request cannot do without: a chart needs both (a face keeps its scene's)."""
+    if not kind.lights_required:
+        return
     for name, value in (("prevailing", prevailing), ("calibration", calibration)):
         if value is None:
-            raise SkinrenderError(f"{name}: a chart {what} needs the {name} light (kelvin, A or H)")
+            raise SkinrenderError(f"{name}: a chart {what} needs the {name} light (kelvin, A or H)", role=name)
 
 
 def render(scene, camera=None, prevailing=None, calibration=None, **options):
@@ -149,22 +132,14 @@ def render(scene, camera=None, prevailing=None, calibration=None, **options):
     """
 
     camera = _camera_of(camera, options, "render")
-    from .face.scene import FaceScene
+    from .kinds import scene_kind
 
-    scene = load_scene(scene)
-    if isinstance(scene, FaceScene):
-        from .face.render import render_face
-
-        kind, function = "face", render_face
-        arguments = {"camera_": camera, "scene": scene, "prevailing": prevailing, "calibration": calibration}
-    else:
-        from .balance import render as render_chart
-
-        _chart_lights(prevailing, calibration, "render")
-        kind, function = "chart", render_chart
-        arguments = {"scene": scene, "camera_": camera, "prevailing": prevailing, "calibration": calibration}
-    _check_options(function, arguments, options, kind, "render")
-    return function(**arguments, **options)
+    kind = scene_kind(scene)
+    scene = kind.load(scene)
+    _lights(kind, prevailing, calibration, "render")
+    _check_options(kind.render_options, {}, options, kind.name, "render")
+    after = {name: options.pop(name) for name in ("cache",) if name in options}  # the render's, not the request's
+    return kind.render(kind.request(scene, camera, prevailing, calibration, **options), **after)
 
 
 def validate(scene, camera=None, prevailing=None, calibration=None, **options):
@@ -208,21 +183,10 @@ def validate(scene, camera=None, prevailing=None, calibration=None, **options):
     """
 
     camera = _camera_of(camera, options, "validate")
-    from .face.scene import FaceScene
+    from .kinds import scene_kind
 
-    scene = load_scene(scene)
-    if isinstance(scene, FaceScene):
-        from .face.validation import validate_face
-
-        from .face.render import render_face
-
-        kind, function, forwards_to = "face", validate_face, render_face
-    else:
-        from .balance import render as render_chart
-        from .validation import validate as validate_chart
-
-        _chart_lights(prevailing, calibration, "validation")
-        kind, function, forwards_to = "chart", validate_chart, render_chart
-    arguments = {"scene": scene, "camera_": camera, "prevailing": prevailing, "calibration": calibration}
-    _check_options(function, arguments, options, kind, "validate", forwards_to)
-    return function(**arguments, **options)
+    kind = scene_kind(scene)
+    scene = kind.load(scene)
+    _lights(kind, prevailing, calibration, "validation")
+    _check_options(kind.validate_options, {}, options, kind.name, "validate")
+    return kind.validate_of(scene, camera, prevailing, calibration, **options)

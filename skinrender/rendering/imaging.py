@@ -12,7 +12,9 @@ stated illuminance and exposure, then Eq. 4 as always.
 -   :func:`render_imaged`, :class:`ImagedRendering`: the noisy image of a
     (prevailing, calibration) pair, seeded (the same seed, the same image),
     with what it clipped (:func:`~skinrender.model.noise.clipping_counts`) and
-    a note where the ``auto`` exposure's cap binds.
+    a note where the ``auto`` exposure's cap binds; :func:`render_imaged_request`:
+    the same of a :class:`~skinrender.rendering.request.ChartRequest` (the
+    ``noise`` effect's chart part).
 -   :func:`predicted_electrons`, :func:`predicted_patches`: each patch's
     analytic electrons, e⁻, and its mean and variance, DN.
 
@@ -63,7 +65,7 @@ from .scene import ChartScene, load_chart_scene
 from .settings import RenderSettings
 
 __all__ = ["AUTO_EXPOSURE_FRACTION", "ImagedRendering", "electrons_per_radiance", "exposure_for", "exposure_note",
-           "render_imaged", "predicted_electrons", "predicted_patches"]
+           "render_imaged", "render_imaged_request", "predicted_electrons", "predicted_patches"]
 
 
 def _white_radiance(cam: Camera, temperature: float, grid: WavelengthGrid) -> NDArrayFloat:
@@ -179,14 +181,29 @@ def render_imaged(
     whites: the gain then uses ``F_p / F_c`` as for renders without a sensor.
     """
 
-    settings = RenderSettings.of(settings, **options)
+    from .request import chart_request
+
+    request = chart_request(scene, camera_, prevailing, calibration, normalization=normalization, settings=settings,
+                            grid=grid, imager=imager_, illuminance=illuminance_lux, exposure=exposure, **options)
+    return render_imaged_request(request)
+
+
+def render_imaged_request(request) -> ImagedRendering:
+    """
+    The :class:`ImagedRendering` of a :class:`~skinrender.rendering.request.ChartRequest` whose level records
+    through the sensor (its ``noise`` options: :class:`~skinrender.rendering.sensor.NoiseOptions`; the
+    illuminance :data:`~skinrender.rendering.request.ILLUMINANCE_DEFAULT` unless given).
+    """
+    from .request import ILLUMINANCE_DEFAULT
+    from .renderer import chart_renderer
+
+    sensor, settings, grid = request.sensor, request.settings, request.grid
+    chart, camera_, prevailing, calibration = request.scene, request.camera, request.prevailing, request.calibration
+    im, exposure, normalization = sensor.imager, sensor.exposure, request.normalization
+    illuminance_lux = ILLUMINANCE_DEFAULT if sensor.illuminance is None else sensor.illuminance
     seed = settings.seed
-    chart = load_chart_scene(scene)
-    im = imager(imager_)
-    if not (np.isfinite(illuminance_lux) and illuminance_lux > 0):
-        raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance_lux!r}")
     t = exposure_for(im, camera_, calibration, illuminance_lux, exposure, grid)
-    raw: RawRender = render_raw(chart, camera_, prevailing, settings, grid)
+    raw: RawRender = chart_renderer(chart, camera_, settings, grid, request.emitter).raw(prevailing, seed)
     electrons = (raw.radiance * electrons_per_radiance(im, camera_, prevailing, illuminance_lux, grid)
                  + im.dark_current_e_per_s) * t
     dn, well_full, adc_clipped = simulate_dn_clipped(im, electrons, np.random.default_rng([seed, 0x5EED]))
@@ -205,7 +222,8 @@ def render_imaged(
     image = ((dn - im.black_level_dn) * gains).astype(np.float32)
     rendering = Rendering(chart, camera_, prevailing, calibration, normalization, False, image,
                           patch_statistics(image, chart), np.zeros((2, 3)), (raw,),
-                          {"white_ratio": white["p"] / white["c"], "exposure_s": t, "clipping": clipping,
+                          {"white_ratio": white["p"] / white["c"], "imager": im.name,
+                           "illuminance_lux": float(illuminance_lux), "exposure_s": t, "clipping": clipping,
                            "notes": list(notes)})
     return ImagedRendering(rendering, dn, electrons, im, float(illuminance_lux), t, int(seed), gains, clipping, notes)
 

@@ -12,6 +12,10 @@ it once from ``--quality``, ``--spp``, ``--sampler``, ``--seed``,
 keyword arguments ``spp=``, ``seed=`` … make one (:meth:`RenderSettings.of`).
 
 -   :class:`RenderSettings`: the five settings, checked.
+-   :data:`SEED_MAX`, :data:`SPP_MAX`, :func:`check_seed`, :func:`seed_at`: the
+    bounds of a seed and of spp, the same through every front door (the command
+    line, ``skinrender.render``/``validate``, the pytest plugin), and the one
+    rule for the seeds a render derives from its seed.
 -   :data:`SAMPLERS`, :data:`CHANNEL_GROUPINGS`, :data:`QUALITY_PRESETS`: the
     method tables their names come from.
 """
@@ -25,7 +29,40 @@ from ..errors import SkinrenderError
 from ..methods import validate_method
 from ..model.imager import is_integer
 
-__all__ = ["SAMPLERS", "CHANNEL_GROUPINGS", "QUALITY_PRESETS", "RenderSettings"]
+__all__ = ["SAMPLERS", "CHANNEL_GROUPINGS", "QUALITY_PRESETS", "SEED_MAX", "SPP_MAX", "check_seed", "seed_at",
+           "RenderSettings"]
+
+SEED_MAX = 2**32 - 2
+"""Largest seed a render takes, through every front door: Mitsuba's seeds are 32-bit and a chart's calibration
+render takes ``seed + 1`` (:func:`seed_at`)."""
+
+SPP_MAX = 1 << 20
+"""Most samples per pixel a render may ask for (the reference preset uses 4096)."""
+
+
+def check_seed(seed, name: str = "seed") -> int:
+    """
+    ``seed`` as an int if it is an integer in [0, :data:`SEED_MAX`], else a one-line error naming ``name`` (its
+    ``role``: ``seed``).
+
+    >>> check_seed(7)
+    7
+    """
+    if not (is_integer(seed) and 0 <= seed <= SEED_MAX):
+        raise SkinrenderError(f"{name} must be an integer in [0, 2^32) and at most {SEED_MAX} (Mitsuba's seeds are "
+                              f"32-bit, and a chart's calibration render uses seed + 1), got {seed!r}", role="seed")
+    return int(seed)
+
+
+def seed_at(seed: int, offset: int) -> int:
+    """
+    The seed of a render ``offset`` after one at ``seed``: ``seed + offset`` modulo 2³² (a chart's calibration
+    render: offset 1; replicates and the gamut's lights: 0, 1, 2, …), the one rule for derived seeds.
+
+    >>> seed_at(5, 1), seed_at(2**32 - 2, 3)
+    (6, 1)
+    """
+    return (int(seed) + int(offset)) % 2**32
 
 SAMPLERS = {
     "independent": "independent uniform samples",
@@ -58,11 +95,11 @@ class RenderSettings:
     Parameters
     ----------
     spp
-        Samples per pixel, an integer ≥ 1 (multijitter rounds it up to a product of two integers; a render
+        Samples per pixel, an integer in [1, :data:`SPP_MAX`] (multijitter rounds it up to a product of two integers; a render
         reports the count it used).
     seed
-        Sampler seed, an integer in [0, 2³²) (Mitsuba's seeds are 32-bit): the same seed gives the same image. A chart's
-        calibration render takes ``seed + 1``.
+        Sampler seed, an integer in [0, :data:`SEED_MAX`] (Mitsuba's seeds are 32-bit): the same seed gives the
+        same image. A chart's calibration render takes ``seed + 1`` (:func:`seed_at`).
     sampler
         One of :data:`SAMPLERS`.
     variant
@@ -93,11 +130,9 @@ class RenderSettings:
     channels: str = "auto"
 
     def __post_init__(self) -> None:
-        if not (is_integer(self.spp) and self.spp >= 1):
-            raise SkinrenderError(f"spp must be a positive integer, got {self.spp!r}", role="spp")
-        if not (is_integer(self.seed) and 0 <= self.seed < 2**32):
-            raise SkinrenderError(f"seed must be an integer in [0, 2^32) (Mitsuba's seeds are 32-bit), got "
-                                  f"{self.seed!r}", role="seed")
+        if not (is_integer(self.spp) and 1 <= self.spp <= SPP_MAX):
+            raise SkinrenderError(f"spp must be a positive integer (at most {SPP_MAX}), got {self.spp!r}", role="spp")
+        check_seed(self.seed)
         validate_method(self.sampler, SAMPLERS, "sampler", role="sampler")
         validate_method(self.channels, CHANNEL_GROUPINGS, "channels", role="channels")
         if self.variant is not None and not isinstance(self.variant, str):

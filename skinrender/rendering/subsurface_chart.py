@@ -90,7 +90,7 @@ from .variants import mitsuba
 
 __all__ = ["FOOTPRINT_MM", "SLAB_HALF_WIDTH_MM", "SAMPLES_PER_S_SLAB", "SAMPLER_SUBSURFACE", "SECONDS_PER_FIT",
            "SubsurfaceChart", "subsurface_chart", "SubsurfaceChartRenderer", "subsurface_renderer",
-           "estimate_seconds", "slab_document", "check_chart_range"]
+           "estimate_seconds", "slab_document", "SlabOptions", "check_chart_range"]
 
 FOOTPRINT_MM = 1.0
 """Width of the scene a patch's film sees, mm."""
@@ -172,6 +172,29 @@ def _subsurface_chart(chart: ChartScene, grid: WavelengthGrid) -> SubsurfaceChar
         reflectances[index] = slab_reflectance(item.layers)
     reflectances.setflags(write=False)
     return SubsurfaceChart(chart, grid, tuple(media), reflectances)
+
+
+@dataclass(frozen=True)
+class SlabOptions:
+    """
+    The options of a chart's ``subsurface`` level.
+
+    Parameters
+    ----------
+    translate_mm
+        ``(x, y, z)`` mm, or ``X,Y,Z`` text: every skin patch's scene (slab, floor, camera) moved that far from the
+        origin (:func:`~skinrender.rendering.placement.translation`).
+
+    Examples
+    --------
+    >>> SlabOptions("0,100,0").translate_mm
+    (0.0, 100.0, 0.0)
+    """
+
+    translate_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "translate_mm", translation(self.translate_mm, "translate_mm"))
 
 
 def check_chart_range(chart: SubsurfaceChart, translate_mm) -> None:

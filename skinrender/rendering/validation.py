@@ -7,7 +7,7 @@ Render validation against the analytic model
     exactly, integrated on a refined grid (the paper's Σ differs from this by
     a quadrature term that :func:`quadrature_difference` reports).
 -   :func:`validate`, :class:`Validation`: every patch's rendered mean against
-    the reference: shown within a relative tolerance (equivalence, the verdict)
+    the reference (:func:`validate_rendering`: the check of a render): shown within a relative tolerance (equivalence, the verdict)
     and no difference detected (a calibrated difference test), both from the
     measured noise (:mod:`skinrender.rendering.agreement`).
 -   :func:`validate_gamut`: gamut volumes of a rendered chart against the
@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..constants import CONSTANT_OUTPUT_SCALE, TEMPERATURES_PAPER
+from ..errors import SkinrenderError
 from ..evaluation.gamut import gamut
 from ..evaluation.verdict import ALPHA_DIFFERENCE, ALPHA_EQUIVALENCE, Verdict
 from ..hints import NDArrayFloat
@@ -40,15 +41,16 @@ from ..model.camera import Camera, camera
 from ..model.response import gain, response
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .agreement import TOLERANCE_DEFAULT, agreement, check_tolerance, tolerance_scale
-from .balance import Eq4Options, Rendering, patch_statistics, render
+from .balance import Eq4Options, Rendering, patch_statistics, render_balanced
 from .patch_errors import SKEW_MAX, error_law
 from .renderer import chart_renderer
+from .request import chart_request
 from .scene import ChartScene, load_chart_scene
-from .settings import RenderSettings
+from .settings import RenderSettings, seed_at
 from .spp_choice import square_spp
 
 __all__ = ["FLOAT32_FLOOR", "REFINE", "analytic_reference", "quadrature_difference", "Validation", "validate",
-           "validate_gamut"]
+           "validate_rendering", "validate_gamut"]
 
 FLOAT32_FLOOR = 2e-6
 """Relative floor for float32 accumulation in the renderer (≈ 16 ulp)."""
@@ -285,9 +287,22 @@ def validate(
     """
 
     tolerance = check_tolerance(tolerance, "tolerance")
-    chart = load_chart_scene(scene)
-    if rendering is None:
-        rendering = render(chart, camera_, prevailing, calibration, grid=grid, **render_options)
+    if rendering is not None:
+        return validate_rendering(rendering, tolerance, alpha, alpha_difference, grid)
+    cache = render_options.pop("cache", None)
+    request = chart_request(scene, camera_, prevailing, calibration, grid=grid, **render_options)
+    if request.sensor is not None:
+        raise SkinrenderError("imager: this checks the radiance's render; through an image sensor: "
+                              "skinrender.validate with imager=", role="imager")
+    rendering = render_balanced(request, request.level.chart(request), cache)
+    return validate_rendering(rendering, tolerance, alpha, alpha_difference, grid)
+
+
+def validate_rendering(rendering: Rendering, tolerance: float = TOLERANCE_DEFAULT, alpha: float = ALPHA_EQUIVALENCE,
+                       alpha_difference: float = ALPHA_DIFFERENCE, grid: WavelengthGrid = GRID_DEFAULT) -> Validation:
+    """A chart's render checked patch by patch against the analytic reference (:func:`validate`'s check)."""
+    tolerance = check_tolerance(tolerance, "tolerance")
+    chart = rendering.scene
     reflectance = rendering.info.get("reflectances")  # subsurface: a skin patch's slab (its adding-doubling R)
     reflectance = chart.reflectances(grid) if reflectance is None else reflectance
     r = rendering
@@ -321,7 +336,7 @@ def validate_gamut(
 
     The chart is rendered once per illuminant of the set (``settings``, a
     :class:`~skinrender.rendering.settings.RenderSettings`, or its fields
-    ``spp``, ``seed`` … as ``options``; seed ``seed + i``);
+    ``spp``, ``seed`` … as ``options``; seed ``seed + i`` mod 2³²);
     Eq. 4 (white normalisation) for every (prevailing, calibration) pair is
     applied to the rendered patch means (white reference left out of the
     cloud), and the one-calibration-case and all-calibration volumes are
@@ -352,7 +367,7 @@ def validate_gamut(
     renderer = chart_renderer(chart, cam, settings, grid)
     means, errors, seconds = [], [], 0.0
     for i, t in enumerate(temperatures):
-        raw = renderer.raw(float(t), seed + i)
+        raw = renderer.raw(float(t), seed_at(seed, i))
         stats = patch_statistics(raw.radiance, chart)
         means.append(stats.mean)
         errors.append(stats.standard_error)

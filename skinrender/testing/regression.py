@@ -53,7 +53,6 @@ References
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -61,7 +60,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..evaluation.verdict import ALPHA_DIFFERENCE, Verdict, difference, sidak
 from ..hints import NDArrayFloat
-from .replicates import REPLICATES, measure_face, region_values
+from .replicates import measure_face, region_values
 
 __all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
            "Comparison", "scene_kind", "measure", "values_of", "setting_notes", "compare"]
@@ -82,7 +81,8 @@ SIZE_FACE = 64
 """Image side of a face check unless given, pixels: a reference of ~60 kB."""
 
 ILLUMINANCE_DEFAULT_LUX = 500.0
-"""A chart's illuminance through an ``imager`` unless given, lx (the command line's default)."""
+"""A chart's illuminance through an ``imager`` unless given, lx (every door's:
+:data:`skinrender.rendering.request.ILLUMINANCE_DEFAULT`)."""
 
 
 @dataclass(frozen=True)
@@ -127,16 +127,16 @@ class Measurement:
 
 def scene_kind(spec) -> str:
     """
-    ``face`` for a face scene (:func:`skinrender.rendering.face.scene.is_face_scene`: a ``FaceScene``, a bundled
-    face name, or a ``.toml`` with ``[camera]`` and ``[mesh]``), else ``chart`` (the chart loader then names any
-    error).
+    The name of a scene's kind (:func:`skinrender.rendering.kinds.scene_kind`): ``face`` for a ``FaceScene``, a
+    bundled face name, or a ``.toml`` with ``[camera]`` and ``[mesh]``, else ``chart`` (the chart loader then names
+    any error).
 
     >>> scene_kind("macbeth"), scene_kind("face")
     ('chart', 'face')
     """
-    from ..rendering.face.scene import is_face_scene
+    from ..rendering.kinds import scene_kind as kind_of
 
-    return "face" if is_face_scene(spec) else "chart"
+    return kind_of(spec).name
 
 
 def _named(name: str, function, *args, **kwargs):
@@ -190,28 +190,21 @@ def _white_relative_variance(rendering) -> NDArrayFloat:
 
 
 def _chart(chart, cam, prevailing, calibration, spp, seed, imager, illuminance, variant) -> Measurement:
-    from ..rendering.balance import render
+    from ..rendering.kinds import CHART
     from ..rendering.renderer import channel_names
 
-    if imager is None:
-        rendering = render(chart, cam, prevailing, calibration, spp=spp, seed=seed, variant=variant)
-        relative = _white_relative_variance(rendering)
-    else:
-        from ..model.imager import imager as imager_of
-        from ..rendering.imaging import render_imaged
-
-        sensor = _named("imager", imager_of, imager)
-        lux = ILLUMINANCE_DEFAULT_LUX if illuminance is None else illuminance
-        rendering = render_imaged(chart, cam, prevailing, calibration, sensor, lux, spp=spp, seed=seed,
-                                  variant=variant).rendering
-        relative = np.zeros(3)  # the whites of a sensor's balance are noise-free
+    request = CHART.request(chart, cam, prevailing, calibration, spp=spp, seed=seed, variant=variant, imager=imager,
+                            illuminance=illuminance)  # the one request of every door
+    rendering, imaged = CHART.render_imaged(request)
+    # through a sensor the balance's whites are noise-free; else the rendered whites' noise adds to every patch
+    relative = np.zeros(3) if imaged is not None else _white_relative_variance(rendering)
     stats = rendering.patches
     se = np.sqrt(stats.standard_error**2 + stats.mean**2 * relative[None, :])
     dof = np.broadcast_to(stats.count[:, None] - 1.0, se.shape)
     names = tuple(p.name for p in chart.patches)
     items = tuple(f"{n} / {c}" for n in names for c in cam.channels)
     settings = {"spp": int(rendering.raw[0].spp), "variant": rendering.variant,
-                **({} if imager is None else {"imager": sensor.name, "illuminance_lux": float(lux)})}
+                **({} if imaged is None else {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux})}
     return Measurement("chart", rendering.image, None, channel_names(cam), names, items, stats.mean.ravel(),
                        se.ravel(), np.where(se.ravel() > 0, dof.ravel(), np.inf), settings)
 
@@ -239,9 +232,10 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     from ..model.camera import camera as camera_of
     from ..rendering.exr import camera_attributes
     from ..rendering.scene import load_chart_scene
+    from ..rendering.settings import SEED_MAX, SPP_MAX
 
     kind = scene_kind(scene)
-    if kind == "chart":
+    if kind == "chart":  # the plugin's own refusals (it checks a chart at direct, a face at any level)
         chart = _named("scene", load_chart_scene, scene)
         given = [n for n, v in (("physics", physics not in (None, "direct")), ("skin", skin is not None),
                                 ("size", size is not None)) if v]
@@ -254,11 +248,8 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     _named("camera", cam.sensitivities)
     p, c = _planckian(prevailing, "prevailing"), _planckian(calibration, "calibration")
     spp = _integer(SPP_CHART if kind == "chart" and spp is None else SPP_FACE if spp is None else spp, "spp", 1,
-                   2**31)
-    seed = _integer(seed, "seed", 0, 2**32 - 1)
-    if illuminance is not None and not (isinstance(illuminance, (int, float)) and math.isfinite(illuminance)
-                                        and illuminance > 0):
-        raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance!r}")
+                   SPP_MAX + 1)
+    seed = _integer(seed, "seed", 0, SEED_MAX + 1)  # the bound of every front door
     if kind == "chart":
         found = _chart(chart, cam, p, c, spp * factor, seed, imager, illuminance, variant)
         name = chart.name

@@ -98,21 +98,16 @@ def measure_face(scene, cam, prevailing: float, calibration: float, spp: int, se
     standard_error, dof, settings)`` as :class:`~skinrender.testing.regression.Measurement` holds them.
     ``imager`` adds physics ``noise``; ``illuminance`` without it or ``noise`` is refused.
     """
-    from ..rendering.face import render_face
+    from ..rendering.kinds import FACE
     from ..rendering.renderer import channel_names
 
     if spp < REPLICATES:
         raise SkinrenderError(f"spp: a face check renders {REPLICATES} replicates, so spp must be at least "
                               f"{REPLICATES}, got {spp}")
-    effects = physics or "direct"
-    if imager is not None and "noise" not in effects.split("+"):
-        effects = "noise" if effects == "direct" else effects + "+noise"
-    elif illuminance is not None and "noise" not in effects.split("+"):
-        raise SkinrenderError("illuminance sets the image sensor's exposure: it goes with imager (or physics "
-                              "'noise')")
-    renders = [render_face(cam, scene, prevailing, calibration, skin=skin, physics=effects, spp=spp // REPLICATES,
-                           seed=s, size=size, variant=variant, imager=imager, illuminance=illuminance)
-               for s in replicate_seeds(seed)]
+    # the one request of every door (an imager adds noise there; illuminance without it or noise is refused)
+    request = FACE.request(scene, cam, prevailing, calibration, skin=skin, physics=physics or "direct", size=size,
+                           spp=spp // REPLICATES, seed=seed, variant=variant, imager=imager, illuminance=illuminance)
+    renders = [FACE.render(request, s) for s in replicate_seeds(seed)]
     first = renders[0]
     stack = np.array([r.image for r in renders], dtype=np.float64)
     image = stack.mean(axis=0).astype(np.float32)

@@ -54,7 +54,7 @@ def test_a_malformed_translation_is_refused(command, chart, capsys):
 def test_a_chart_at_direct_is_refused(capsys):
     line = assert_refused(["render", "macbeth", "--camera", CAM, *LIGHTS, "--translate-mm", "100,0,0"],
                           "--translate-mm", capsys)
-    assert "laid out in pixels" in line
+    assert "option of the subsurface" in line and "goes with a level with subsurface" in line
 
 
 def test_a_chart_beyond_float32s_range_is_refused_naming_it(chart, capsys):

@@ -69,7 +69,8 @@ class TestNoisyRendersNoLongerPass:
 def test_bad_tolerance_refused_before_rendering(small, monkeypatch):
     import skinrender.rendering.validation as module
 
-    monkeypatch.setattr(module, "render", lambda *a, **k: pytest.fail("rendered before checking the tolerance"))
+    monkeypatch.setattr(module, "render_balanced",
+                        lambda *a, **k: pytest.fail("rendered before checking the tolerance"))
     for value in (0.0, 1.0, -0.5):
         with pytest.raises(SkinrenderError, match="tolerance must be a relative error in"):
             validate(small, CAMERA, 3300, 4800, spp=4, tolerance=value)

@@ -8,7 +8,8 @@ camera's three channels at a level of physics
 with a label image from the geometry.
 
 -   :func:`render_face`, :class:`FaceRendering`: one render (``.save()``,
-    ``.figure()``).
+    ``.figure()``); :func:`render_face_request`: the render of a
+    :class:`~skinrender.rendering.face.request.FaceRequest`.
 -   :func:`white_references`: the channel responses to a white under the
     prevailing and the calibration light.
 -   :func:`write_face_exr`: the float32 EXR, with a ``label`` channel.
@@ -41,34 +42,30 @@ from __future__ import annotations
 
 import functools
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from ...constants import CONSTANT_OUTPUT_SCALE
-from ...errors import SkinrenderError, flag_of
+from ...errors import SkinrenderError
 from ...files import Output, write_outputs
 from ...hints import NDArrayFloat
-from ...methods import validate_method
-from ...model.camera import Camera, camera
-from ...model.illuminant import illuminant
+from ...model.camera import Camera
 from ...model.response import gain
 from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
 from ..exr import camera_attributes, write_exr, write_preview
 from ..outputs import draw_figure, save_result
-from ..renderer import SAMPLERS, SAMPLES_MAX, CameraKey, channel_names
-from ..placement import translation
+from ..renderer import CameraKey, channel_names
 from ..skin_integrator import PLUGIN, register
 from ..variants import mitsuba
 from .document import channel_groups, channel_integral, face_document, light_irradiance
-from .effects import Frame, Level, physics_level
+from .effects import Frame, Level
 from .labels import label_names, render_labels, shape_labels
-from .reach import check_face_range
-from .scene import MESH_HEAD, FaceScene, load_face_scene, prevailing_name, skin_reflectance_of
+from .scene import MESH_HEAD, FaceScene, prevailing_name
 
-__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "face_exr",
-           "write_face_exr"]
+__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "render_face_request",
+           "face_exr", "write_face_exr"]
 
 LOADED_KEPT = 6
 """Face documents kept loaded in Mitsuba (the least recently used goes first)."""
@@ -153,16 +150,14 @@ class FaceRendering:
 def planckian_temperature(spec, name: str) -> float:
     """
     The temperature, K, of a Planckian light spec (kelvin, ``A`` or ``H``); a one-line error naming ``name``
-    for any other light (a face's lights are Planckian).
+    for any other light (:func:`skinrender.rendering.request.planckian`).
 
     >>> planckian_temperature("A", "prevailing")
     2856.0
     """
-    item = illuminant(spec)
-    if item.temperature is None:
-        raise SkinrenderError(f"{name}: the face is lit by Planckian lights (kelvin, A or H), got {spec!r}",
-                              flag=flag_of(name))
-    return float(item.temperature)
+    from ..request import planckian
+
+    return planckian(spec, name)
 
 
 def white_references(scene: FaceScene, cam: Camera, calibration: float,
@@ -246,7 +241,7 @@ def render_face(
     grid: WavelengthGrid = GRID_DEFAULT,
     channels: str = "auto",
     imager: str | None = None,
-    exposure="auto",
+    exposure=None,
     illuminance: float | None = None,
     translate_mm=None,
 ) -> FaceRendering:
@@ -274,13 +269,12 @@ def render_face(
         As :func:`skinrender.rendering.renderer.render_raw`.
     size
         Image size in pixels (``N`` or ``(width, height)``); ``None`` keeps the scene's.
-    imager, exposure
-        For ``noise``: the image sensor (a preset or TOML; default
-        :data:`~skinrender.rendering.face.effects.noise.IMAGER_DEFAULT`) and ``auto`` or seconds.
-    illuminance
-        The key light's illuminance at the target, lx (every light scaled
-        with it); ``None`` keeps the scene's. Only ``noise`` sees it: Eq. 4
-        cancels a common scale of the lights.
+    imager, exposure, illuminance
+        The ``noise`` effect's options (:class:`~skinrender.rendering.sensor.NoiseOptions`): the image sensor (a
+        preset or TOML; default :data:`~skinrender.rendering.face.effects.noise.IMAGER_DEFAULT`; an imager adds
+        ``noise`` to the level), ``auto`` or seconds, and the key light's illuminance at the target, lx (every
+        light scaled with it; ``None`` keeps the scene's; Eq. 4 cancels a common scale of the lights). Without
+        ``noise`` (or an imager) ``exposure`` and ``illuminance`` are refused.
     translate_mm
         ``(x, y, z)`` mm (or ``X,Y,Z`` text): the whole scene moved that far
         (:meth:`~skinrender.rendering.face.scene.FaceScene.translated`); ``None``: where it is. A scene beyond
@@ -290,52 +284,40 @@ def render_face(
     Returns
     -------
     :class:`FaceRendering`
+
+    Raises
+    ------
+    SkinrenderError
+        A bad argument, named, before any render (:func:`~skinrender.rendering.face.request.face_request`).
     """
 
+    from .request import face_request
+
+    request = face_request(scene, camera_, prevailing, calibration, skin=skin, physics=physics, size=size, spp=spp,
+                           seed=seed, sampler=sampler, variant=variant, grid=grid, channels=channels, imager=imager,
+                           exposure=exposure, illuminance=illuminance, translate_mm=translate_mm)
+    return render_face_request(request)
+
+
+def render_face_request(request, seed: int | None = None) -> FaceRendering:
+    """
+    Render a :class:`~skinrender.rendering.face.request.FaceRequest` (module docstring): its scene at its level,
+    through its camera, white balanced to its calibration light. ``seed``: a seed derived from the request's
+    (a replicate's, :func:`~skinrender.rendering.settings.seed_at`; any 32-bit integer), else the request's.
+    """
     start = time.perf_counter()
-    face = load_face_scene(scene)
-    if size is not None:
-        width, height = (size, size) if np.ndim(size) == 0 else size
-        whole = [isinstance(v, (int, np.integer)) and not isinstance(v, bool) and v >= 1
-                 for v in (width, height)]
-        if not all(whole):
-            raise SkinrenderError(f"size must be a positive number of pixels (or two), got {size!r}")
-        face = face.resized(int(width), int(height))
-    if translate_mm is not None:
-        face = face.translated(translation(translate_mm, "translate_mm"))
-    cam = camera(camera_)
-    level = physics_level(physics)
-    skin = face.skin if skin is None else str(skin).strip()
-    skin_reflectance_of(skin, grid, "skin")
-    check_face_range(face, level, skin, grid)
-    validate_method(sampler, SAMPLERS, "sampler")
-    if not (isinstance(spp, (int, np.integer)) and not isinstance(spp, bool) and spp >= 1):
-        raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
-    if not (isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and 0 <= seed < 2**32):
-        raise SkinrenderError(f"seed must be an integer in [0, 2^32) (Mitsuba's seeds are 32-bit), "
-                              f"got {seed!r}")
-    pixels = face.camera.width * face.camera.height
-    if spp * pixels > SAMPLES_MAX:
-        raise SkinrenderError(f"spp {spp} × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
-                              f"{SAMPLES_MAX:.3g}; at most {SAMPLES_MAX // pixels} spp at this size")
-    name = prevailing_name(face)
-    if illuminance is not None and getattr(face, name) is not None:
-        if not (isinstance(illuminance, (int, float)) and np.isfinite(illuminance) and illuminance > 0):
-            raise SkinrenderError(f"illuminance must be a finite number of lux > 0, got {illuminance!r}")
-        ratio = float(illuminance) / getattr(face, name).illuminance
-        face = replace(face, **{k: replace(getattr(face, k), illuminance=getattr(face, k).illuminance * ratio)
-                                for k in ("key", "fill", "environment") if getattr(face, k) is not None})
-    if prevailing is not None and getattr(face, name) is not None:
-        light = replace(getattr(face, name), temperature=planckian_temperature(prevailing, "prevailing"))
-        face = replace(face, **{name: light})
-    p = getattr(face, name).temperature if getattr(face, name) is not None else None
-    c = p if calibration is None else planckian_temperature(calibration, "calibration")
+    face, cam, grid, level, settings = request.scene, request.camera, request.grid, request.level, request.settings
+    seed = settings.seed if seed is None else int(seed)
+    if not 0 <= seed < 2**32:
+        raise SkinrenderError(f"seed must be a 32-bit integer, got {seed}", role="seed")
+    spp, sampler, skin = settings.spp, settings.sampler, request.skin
+    p, c = request.prevailing, request.calibration
     lights = level.lights(face)
     white_p, white_c = white_references(face, cam, c, grid)
     scale = max(float(np.max(light_irradiance(light, grid)[1])) for light in lights.values())
-    variant = level.choose_variant(variant)
+    variant = level.choose_variant(settings.variant)
     mi = mitsuba(variant)
-    groups = channel_groups(cam, grid, channels)
+    groups = channel_groups(cam, grid, settings.channels)
     width, height = face.camera.width, face.camera.height
     radiance = np.zeros((height, width, 3))
     spp_used, first = int(spp), None
@@ -343,17 +325,17 @@ def render_face(
         loaded = _loaded(face, cam, grid, level, skin, group, int(spp), sampler, variant, lights, scale)
         first = first or loaded
         spp_used = int(loaded.sensors()[0].sampler().sample_count())
-        values = np.array(mi.render(loaded, seed=int(seed)), dtype=np.float64)
+        values = np.array(mi.render(loaded, seed=seed), dtype=np.float64)
         radiance[:, :, list(group)] = values.reshape(height, width, len(group)) * scale
     labels = render_labels(mi, first, width, height, shape_labels(face))
     info = {"lights": {k: {"temperature_K": v.temperature, "illuminance_lx": v.illuminance}
                        for k, v in lights.items()}}
-    after = level.setup(face, cam, grid, lights, calibration=c, seed=int(seed), imager=imager, exposure=exposure)
+    after = level.setup(face, cam, grid, lights, calibration=c, seed=seed, options=request.options)
     frame = level.post(Frame(radiance, white_p, white_c, info), after)  # e.g. noise: one frame through a sensor
     applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
     image = applied * frame.signal
     return FaceRendering(face, cam, level.name, skin, float(p), float(c), image.astype(np.float32), radiance,
-                         labels, label_names(face), spp_used, int(spp), int(seed), sampler, variant,
+                         labels, label_names(face), spp_used, int(spp), seed, sampler, variant,
                          time.perf_counter() - start, len(groups), white_p, white_c, applied, frame.info)
 
 

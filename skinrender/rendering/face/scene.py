@@ -52,7 +52,9 @@ their defaults).
 from __future__ import annotations
 
 import math
+import copy
 import dataclasses
+import functools
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
@@ -206,21 +208,36 @@ def is_face_scene(spec) -> bool:
     >>> is_face_scene("face"), is_face_scene("macbeth")
     (True, False)
     """
-    import tomllib
-
     if isinstance(spec, FaceScene):
         return True
     text = str(spec).strip()
     if text in list_face_scenes():
         return True
-    path = Path(text)
-    try:  # anything but a readable face TOML is left to the chart's loader, which says what is wrong
-        if path.suffix != ".toml" or not exists(path):
-            return False
-        table = tomllib.loads(read_input(path, TOML_BYTES_MAX, "a scene TOML").decode("utf-8"))
-    except (SkinrenderError, UnicodeDecodeError, tomllib.TOMLDecodeError):
-        return False
-    return "camera" in table and "mesh" in table
+    table = _face_toml(Path(text))  # anything but a readable TOML is left to the chart's loader, which words it
+    return table is not None and "camera" in table and "mesh" in table
+
+
+def _face_toml(path: Path) -> dict | None:
+    """
+    The table of a ``.toml`` file (a copy), or ``None`` where it is no readable TOML; parsed once per version of
+    the file (its path, modification time and size): :func:`is_face_scene` asks, :func:`load_face_scene` loads.
+    """
+    import os
+
+    try:
+        if path.suffix != ".toml" or not exists(path) or not path.is_file():
+            return None
+        stat = os.stat(path)
+        return copy.deepcopy(_parsed(str(path.resolve()), stat.st_mtime_ns, stat.st_size))
+    except (SkinrenderError, UnicodeDecodeError, ValueError, OSError):  # tomllib's errors are ValueErrors
+        return None
+
+
+@functools.lru_cache(maxsize=16)
+def _parsed(path: str, mtime_ns: int, size: int) -> dict:
+    import tomllib
+
+    return tomllib.loads(read_input(Path(path), TOML_BYTES_MAX, "a scene TOML").decode("utf-8"))
 
 
 def prevailing_name(scene: FaceScene) -> str:
@@ -360,6 +377,10 @@ def _prop(table: _PropTable, where: str) -> Prop:
 
 
 def _read(spec: str) -> tuple[Path, dict]:
+    path = Path(str(spec).strip())
+    table = _face_toml(path)  # a face TOML that is_face_scene read: parsed once
+    if table is not None:
+        return path, table
     return read_scene_toml(spec, ROOT_FACE_SCENES, "face scene", f"bundled: {', '.join(list_face_scenes())}")
 
 

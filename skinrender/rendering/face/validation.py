@@ -7,8 +7,10 @@ that hold at that level (:mod:`skinrender.rendering.face.limits`), and told
 how far its skin moves from Eq. 4 where none holds.
 
 -   :func:`validate_face`, :class:`FaceValidation`: the checks of one face scene.
--   :func:`render_replicates`, :class:`Replicated`: the replicate renders a
-    validation (and the ladder) measures; :func:`mean_rendering`, their mean
+-   :func:`validate_face_request`: the same of a
+    :class:`~skinrender.rendering.face.request.FaceRequest`.
+-   :func:`render_replicates_request` (of a request), :func:`render_replicates`,
+    :class:`Replicated`: the replicate renders a validation (and the ladder) measures; :func:`mean_rendering`, their mean
     as one render; :func:`shift_against`, their ``eq4_shift`` against the
     detection budget.
 -   :data:`LIMITS_SCENE_FREE`: the limits that hold whatever the level.
@@ -65,7 +67,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -77,15 +79,18 @@ from ...model.chromaticity import ncc
 from ...model.response import gain
 from ...spectra import GRID_DEFAULT
 from ..validation import analytic_reference
-from .effects import Frame, Level, Measured, Replicates, physics_level
+from ..settings import seed_at
+from .effects import Frame, Level, Measured, Replicates
 from .limit_scenes import check_furnace, check_sphere, furnace_radiance, sphere_channels
 from .limits import REPLICATES, SPP_REPLICATE_MIN, LimitCheck
-from .render import FaceRendering, render_face
+from .render import FaceRendering, render_face_request
+from .request import FaceRequest, face_request
 from .scene import skin_reflectance_of
 from .shift import budget_rates, eq4_shift, face_budget
 
 __all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "RENDER_OPTIONS",
-           "FaceValidation", "Replicated", "render_replicates", "mean_rendering", "shift_against", "validate_face"]
+           "FaceValidation", "Replicated", "render_replicates", "render_replicates_request", "mean_rendering",
+           "shift_against", "validate_face", "validate_face_request"]
 
 LIMITS_SCENE_FREE = {
     "furnace": "white furnace: the scene's mesh, reflectance 1, every bounce, in a uniform sky",
@@ -105,7 +110,8 @@ SPHERE_SIZE = 16
 SPHERE_SPP = 16
 """Samples per pixel of each closed-sphere replicate."""
 
-RENDER_OPTIONS = ("skin", "size", "sampler", "variant", "grid", "channels", "imager", "exposure", "illuminance")
+RENDER_OPTIONS = ("skin", "size", "sampler", "variant", "grid", "channels", "imager", "exposure", "illuminance",
+                  "translate_mm")
 """:func:`validate_face`'s keywords that go to each replicate's :func:`~skinrender.rendering.face.render_face`."""
 
 
@@ -127,6 +133,10 @@ class Replicated:
         Eq. 4's NCC of the skin, ``[r, g, b]``.
     seconds
         Wall time of the renders, s.
+    grid
+        The wavelength grid, nm.
+    options
+        The effects' options they were rendered with, by effect name (the request's).
     """
 
     renders: list
@@ -135,6 +145,7 @@ class Replicated:
     expected: np.ndarray
     seconds: float
     grid: object = GRID_DEFAULT
+    options: Mapping = field(default_factory=dict)
 
     @property
     def first(self) -> FaceRendering:
@@ -148,34 +159,53 @@ class Replicated:
                           m.bias, m.floor)
 
 
+def render_replicates_request(request: FaceRequest, seeds) -> Replicated:
+    """
+    The face of ``request`` rendered once per seed of ``seeds`` (derived from the request's, any 32-bit
+    integers), measured as its level's checks see it.
+    """
+    start = time.perf_counter()
+    renders = [render_face_request(request, seed) for seed in seeds]
+    first, grid, level = renders[0], request.grid, request.level
+    images = np.array([r.image for r in renders], dtype=np.float64)
+    rho = skin_reflectance_of(first.skin, grid, "skin")
+    expected = ncc(analytic_reference(first.camera, rho[None], first.prevailing, first.calibration, grid=grid))[0]
+    measured = level.measure(images, first, request.options)  # through a sensor: dark signal, clipping, codes
+    return Replicated(renders, level, measured, expected, time.perf_counter() - start, grid, request.options)
+
+
 def render_replicates(camera_, scene, prevailing, calibration, skin, level: Level, spp: int, seeds, size=None,
                       grid=GRID_DEFAULT, **options) -> Replicated:
     """
     The face rendered once per seed of ``seeds`` at ``spp`` each (arguments as
     :func:`~skinrender.rendering.face.render_face`; ``options``: its ``sampler``, ``variant``, ``channels``,
-    ``imager``, ``exposure``, ``illuminance``), measured as the level's checks see it.
+    ``imager``, ``exposure``, ``illuminance``), measured as the level's checks see it
+    (:func:`render_replicates_request` of their :func:`~skinrender.rendering.face.request.face_request`).
     """
-    start = time.perf_counter()
-    renders = [render_face(camera_, scene, prevailing, calibration, skin, level, spp, s, size, grid=grid, **options)
-               for s in seeds]
-    first = renders[0]
-    images = np.array([r.image for r in renders], dtype=np.float64)
-    rho = skin_reflectance_of(first.skin, grid, "skin")
-    expected = ncc(analytic_reference(first.camera, rho[None], first.prevailing, first.calibration, grid=grid))[0]
-    measured = level.measure(images, first, options.get("imager"))  # through a sensor: dark signal, clipping, codes
-    return Replicated(renders, level, measured, expected, time.perf_counter() - start, grid)
+    request = face_request(scene, camera_, prevailing, calibration, skin=skin, physics=level, size=size, spp=spp,
+                           grid=grid, **options)
+    return render_replicates_request(request, seeds)
 
 
-def mean_rendering(replicated: Replicated, imager=None, exposure="auto") -> FaceRendering:
+def mean_rendering(replicated: Replicated, imager=None, exposure=None) -> FaceRendering:
     """
     The replicates as one render of all their samples: the mean radiance, through the level's ``post`` (one
-    frame through a sensor, the first seed's) and Eq. 4's gain; what one render at the replicates' total spp
-    would give.
+    frame through a sensor, the first seed's, with the replicates' own options; ``imager`` and ``exposure`` are
+    deprecated: they replace the sensor's where given) and Eq. 4's gain; what one render at the replicates'
+    total spp would give.
     """
     renders, level, first = replicated.renders, replicated.level, replicated.first
+    options = dict(replicated.options)
+    if imager is not None or exposure is not None:  # deprecated: the sensor's options of the replicates replaced
+        from ..sensor import NoiseOptions
+
+        for name, noise in options.items():
+            if isinstance(noise, NoiseOptions):
+                options[name] = NoiseOptions(imager if imager is not None else noise.imager, noise.illuminance,
+                                             exposure if exposure is not None else noise.exposure)
     radiance = np.mean([r.radiance for r in renders], axis=0)
     setup = level.setup(first.scene, first.camera, replicated.grid, level.lights(first.scene),
-                        calibration=first.calibration, seed=first.seed, imager=imager, exposure=exposure)
+                        calibration=first.calibration, seed=first.seed, options=options)
     frame = level.post(Frame(radiance, first.white_prevailing, first.white_calibration,
                              {"lights": first.info.get("lights", {})}), setup)
     applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
@@ -324,7 +354,8 @@ def validate_face(
     **render_options
         The render's own, to each replicate's :func:`skinrender.rendering.face.render_face`: ``skin``,
         ``size`` (image side, pixels; ``None``: the scene's), ``sampler``, ``variant``, ``channels``, ``grid``
-        (nm), ``imager``, ``exposure`` (s or ``auto``), ``illuminance`` (lx).
+        (nm), ``imager``, ``exposure`` (s or ``auto``), ``illuminance`` (lx), ``translate_mm`` (the scene moved,
+        x, y, z mm).
 
     Returns
     -------
@@ -336,29 +367,42 @@ def validate_face(
         A bad argument, named; a render option ``render_face`` does not take.
     """
 
-    from ...evaluation.budget import BUDGET_FRACTION
-
-    start = time.perf_counter()
-    say = progress or (lambda line: None)
-    level = physics_level(physics)
     if isinstance(replicates, bool) or not isinstance(replicates, (int, np.integer)) or replicates < 3:
-        raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}")
+        raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}", role="replicates")
     unknown = [name for name in limits if name not in LIMITS_SCENE_FREE]
     if unknown:
         raise SkinrenderError(f"limits: unknown {', '.join(map(repr, unknown))}; known: "
-                              + ", ".join(LIMITS_SCENE_FREE))
+                              + ", ".join(LIMITS_SCENE_FREE), role="limits")
     if isinstance(spp, bool) or not isinstance(spp, (int, np.integer)) or spp < 1:
-        raise SkinrenderError(f"spp must be a positive integer, got {spp!r}")
+        raise SkinrenderError(f"spp must be a positive integer, got {spp!r}", role="spp")
     unknown = sorted(set(render_options) - set(RENDER_OPTIONS))
     if unknown:
         raise SkinrenderError(f"{', '.join(unknown)}: not an option of a face's render; its options: "
                               + ", ".join(RENDER_OPTIONS))
     each = max(SPP_REPLICATE_MIN, math.ceil(int(spp) / replicates))
-    seeds = [(int(seed) + k) % 2**32 for k in range(replicates)]
+    request = face_request(scene, camera_, prevailing, calibration, physics=physics, spp=each, seed=seed,
+                           **render_options)
+    return validate_face_request(request, spp, replicates, limits, progress, budget_fraction)
+
+
+def validate_face_request(request: FaceRequest, spp: int | None = None, replicates: int = REPLICATES,
+                          limits=tuple(LIMITS_SCENE_FREE), progress: Callable[[str], None] | None = None,
+                          budget_fraction: float | None = None) -> FaceValidation:
+    """
+    :func:`validate_face` of a :class:`~skinrender.rendering.face.request.FaceRequest`: ``replicates`` renders at
+    its spp (each replicate's) with seeds ``seed, seed + 1, …`` (mod 2³²); ``spp``: the total asked (default the
+    replicates'); the rest as :func:`validate_face`.
+    """
+    from ...evaluation.budget import BUDGET_FRACTION
+
+    start = time.perf_counter()
+    say = progress or (lambda line: None)
+    level, each = request.level, request.settings.spp
+    spp = each * replicates if spp is None else int(spp)
+    seeds = [seed_at(request.settings.seed, k) for k in range(replicates)]
+    variant = request.settings.variant
     say(f"rendering the face ({level.name}) {replicates} times at {each} spp …")
-    skin, variant = render_options.pop("skin", None), render_options.get("variant")
-    replicated = render_replicates(camera_, scene, prevailing, calibration, skin, level, each, seeds,
-                                   **render_options)
+    replicated = render_replicates_request(request, seeds)
     first, measured = replicated.first, replicated.measured
     checks: list[LimitCheck] = []
     check = level.check  # the level's analytic limit (the last effect's that has one), or none
@@ -391,5 +435,5 @@ def validate_face(
                             f"(SPP_REPLICATE_MIN); {spp} spp over {replicates} would give fewer")
     info["budget"] = budget.document()
     renders = replicated.renders
-    return FaceValidation(first, checks, int(sum(r.spp for r in renders)), int(spp), int(replicates), int(seed),
-                          time.perf_counter() - start, info)
+    return FaceValidation(first, checks, int(sum(r.spp for r in renders)), int(spp), int(replicates),
+                          int(request.settings.seed), time.perf_counter() - start, info)

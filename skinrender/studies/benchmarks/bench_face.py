@@ -203,8 +203,8 @@ def bench_face(
     """
 
     from ...rendering.face import render_face
-    from ...rendering.face.effects import parse_physics
     from ...rendering.face.scene import load_face_scene
+    from ...rendering.settings import seed_at
 
     say = progress or (lambda line: None)
     start = time.perf_counter()
@@ -218,43 +218,42 @@ def bench_face(
     if reference_spp <= max(spps):
         raise SkinrenderError(f"--reference-spp must be more than the largest of --spp-list ({max(spps)}), got "
                               f"{reference_spp}", flag="--reference-spp")
-    levels = list(levels)
-    if not levels:
+    labels = [level if isinstance(level, str) else level.name for level in levels]  # the rows' names, as given
+    if not labels:
         raise SkinrenderError("--levels: name at least one level of physics", flag="--levels")
-    for level in levels:
-        try:
-            parse_physics(level)
-        except SkinrenderError as error:
-            raise SkinrenderError(f"--levels: {error}", flag="--levels") from None
+    try:
+        levels = [physics_level(level) for level in levels]  # each spec parsed once, here
+    except SkinrenderError as error:
+        raise SkinrenderError(f"--levels: {error}", flag="--levels") from None
     cam = camera(camera_spec)
     face = load_face_scene(scene)
     from ...workload import check_work
 
-    for level in levels:  # a level too long is refused before anything renders
-        check_work(physics_level(level).seconds(size * size * reference_spp), "--levels",
-                   f"{level}'s reference ({size}×{size} px at {reference_spp} spp)",
+    for label, level in zip(labels, levels):  # a level too long is refused before anything renders
+        check_work(level.seconds(size * size * reference_spp), "--levels",
+                   f"{label}'s reference ({size}×{size} px at {reference_spp} spp)",
                    fewer="a smaller --size or --reference-spp")
     curve, presets = [], {}
     from ...evaluation.detection import SCORED_MIN_OUTPUT
 
     none_scored = f"no scored skin pixel in the reference (brightest channel ≥ {SCORED_MIN_OUTPUT:g})"
-    for level in levels:
-        say(f"{level}: reference at {reference_spp} spp …")
-        ref = render_face(cam, face, prevailing, calibration, physics=level, spp=reference_spp, seed=seed + 2,
+    for label, level in zip(labels, levels):
+        say(f"{label}: reference at {reference_spp} spp …")
+        ref = render_face(cam, face, prevailing, calibration, physics=level, spp=reference_spp, seed=seed_at(seed, 2),
                           size=size, variant=variant)
         scored = _scored_skin(ref)
         ref_ncc = ncc(ref.image.astype(np.float64))[..., :2][scored]
         rms = []
         for spp in sorted(spps):
-            say(f"{level}: {spp} spp …")
-            render_face(cam, face, prevailing, calibration, physics=level, spp=spp, seed=seed + 1, size=size,
+            say(f"{label}: {spp} spp …")
+            render_face(cam, face, prevailing, calibration, physics=level, spp=spp, seed=seed_at(seed, 1), size=size,
                         variant=variant)  # warm-up: the scene loaded, the kernels compiled
             timed = render_face(cam, face, prevailing, calibration, physics=level, spp=spp, seed=seed, size=size,
                                 variant=variant)
             rg = ncc(np.maximum(timed.image.astype(np.float64), 0.0))[..., :2][scored]
             rg = np.nan_to_num(rg, nan=1.0 / 3.0)  # a pixel black at low spp: the neutral point
             difference = rg - ref_ncc
-            row = {"level": level, "spp": timed.spp, "seconds": timed.seconds,
+            row = {"level": label, "spp": timed.spp, "seconds": timed.seconds,
                    "skin_ncc_error": float(np.hypot(*difference.mean(axis=0))) if scored.any() else None,
                    "skin_ncc_rms": float(np.sqrt(np.mean(np.sum(difference**2, axis=-1)))) if scored.any()
                    else None, "pixels": int(scored.sum()), "variant": timed.variant,
@@ -263,11 +262,11 @@ def bench_face(
             curve.append(row)
             rms.append(row["skin_ncc_rms"])
         if None in rms:
-            presets[level] = {**{name: None for name in PRESET_THRESHOLDS}, "floor": None, "spp_at_floor": None,
+            presets[label] = {**{name: None for name in PRESET_THRESHOLDS}, "floor": None, "spp_at_floor": None,
                               "undefined": {key: none_scored for key in (*PRESET_THRESHOLDS, "floor",
                                                                           "spp_at_floor")}}
             continue
-        presets[level] = {**presets_of(sorted(spps), rms, reference_spp), "reference_seconds": ref.seconds}
+        presets[label] = {**presets_of(sorted(spps), rms, reference_spp), "reference_seconds": ref.seconds}
     return {"machine": machine(), "camera": cam.name, "scene": face.name, "size": [size, size],
             "reference_spp": reference_spp, "prevailing_K": float(prevailing), "calibration_K": float(calibration),
             "curve": curve, "presets": presets, "thresholds": dict(PRESET_THRESHOLDS),

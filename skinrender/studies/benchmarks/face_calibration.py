@@ -43,6 +43,7 @@ from ...evaluation.verdict import binomial_interval
 from ...rendering.face.effects import PHYSICS_BASE, PHYSICS_EFFECTS, physics_level
 from ...rendering.face.limits import REPLICATES
 from ...rendering.face.validation import LIMITS_SCENE_FREE, validate_face
+from ...rendering.settings import seed_at
 from .bench import machine
 
 __all__ = ["SEED_STEP", "SECONDS_LIMITS", "face_run", "face_calibration", "estimate_face_seconds"]
@@ -74,7 +75,7 @@ def estimate_face_seconds(seeds: int, pixels: int, spp: int, level: str | None =
 
 def _eq4_exact(level) -> bool:
     """Whether Eq. 4 holds exactly at ``level``: its check is the base's (nothing in it moves skin from Eq. 4)."""
-    check = physics_level(level).check
+    check = physics_level(level).check  # a Level passes as it is
     return check is not None and check is PHYSICS_EFFECTS[PHYSICS_BASE].limits.check
 
 
@@ -90,7 +91,7 @@ def face_run(scene, camera_, prevailing, calibration, spp, seed, imaging=None, m
     imaging = imaging or {}
     result = validate_face(camera_, scene, prevailing, calibration, physics=level or PHYSICS_BASE, spp=spp,
                            seed=seed, size=size, variant=variant, imager=imaging.get("imager_"),
-                           exposure=imaging.get("exposure", "auto"), illuminance=imaging.get("illuminance_lux"),
+                           exposure=imaging.get("exposure"), illuminance=imaging.get("illuminance_lux"),
                            limits=limits)
     shift = next(c for c in result.checks if c.name == "eq4_shift")
     return {"checks": {c.name: c.verdict for c in result.checks}, "bound": shift.bound, "seconds": result.seconds,
@@ -129,11 +130,11 @@ def face_calibration(level: str = PHYSICS_BASE, seeds: int = 10, camera_="gbell:
     """
     if isinstance(seeds, bool) or not isinstance(seeds, int) or seeds < 1:
         raise SkinrenderError(f"seeds must be an integer ≥ 1, got {seeds!r}")
-    physics_level(level)
+    level = physics_level(level)  # the spec parsed once, here
     begun = time.perf_counter()
     runs, verdicts = [], {}
     for j in range(seeds):
-        seed = (first_seed + j * SEED_STEP) % 2**32
+        seed = seed_at(first_seed, j * SEED_STEP)
         out = face_run(scene, camera_, prevailing, calibration, spp, seed, imaging, level=level, size=size,
                        limits=limits, variant=variant)
         for name, verdict in out["checks"].items():
@@ -162,7 +163,7 @@ def face_calibration(level: str = PHYSICS_BASE, seeds: int = 10, camera_="gbell:
                      "test": found[0].test,
                      **({} if nominal else {"undefined": "Eq. 4 does not hold at this level: a fail is a finding "
                                                          "(the shift beyond the budget), not a false alarm"})})
-    return {"machine": machine(), "level": physics_level(level).name, "scene": getattr(scene, "name", str(scene)),
+    return {"machine": machine(), "level": level.name, "scene": getattr(scene, "name", str(scene)),
             "camera": getattr(camera_, "name", str(camera_)), "prevailing_K": prevailing,
             "calibration_K": calibration, "spp_requested": spp, "spp": runs[0]["spp"], "size": size,
             "seeds": seeds, "first_seed": first_seed, "seed_step": SEED_STEP, "checks": rows, "runs": runs,

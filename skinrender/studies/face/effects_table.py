@@ -27,7 +27,7 @@ from pathlib import Path
 from ...errors import SkinrenderError
 from ...evaluation.budget import BUDGET_FRACTION
 from ...evaluation.verdict import Combined
-from ...rendering.face.effects import LEVELS_EACH
+from ...rendering.face.effects import LEVELS_EACH, PHYSICS_REGISTRY
 from .ladder import REPLICATES_LADDER, ladder
 
 __all__ = ["SKIN_TONES", "ROW_KEYS", "EffectsTable", "effects_table"]
@@ -95,9 +95,11 @@ def effects_table(camera_, prevailing, calibration, skins: Mapping[str, str] | N
     skins = dict(SKIN_TONES if skins is None else skins)
     if not skins:
         raise SkinrenderError("skins: name at least one skin")
-    levels = tuple(levels)
-    if "direct" not in levels:
-        raise SkinrenderError(f"levels: the table compares each effect with 'direct'; add it, got {','.join(levels)!r}")
+    levels = tuple(PHYSICS_REGISTRY.level(level) for level in levels)  # each spec parsed once, here
+    base = PHYSICS_REGISTRY.base.name
+    if all(level.names for level in levels):
+        raise SkinrenderError(f"levels: the table compares each effect with {base!r}; add it, got "
+                              f"{','.join(level.name for level in levels)!r}")
     rows, described, verdicts, result = [], [], [], None
     for tone, skin in skins.items():
         if progress is not None:
@@ -111,5 +113,5 @@ def effects_table(camera_, prevailing, calibration, skins: Mapping[str, str] | N
             rows.append({"tone": tone, "skin": skin, "level": row["name"], **{key: row[key] for key in ROW_KEYS},
                          "undefined": row["undefined"]})
         verdicts.extend(replace(verdict, name=f"{tone} skin, {verdict.name}") for verdict in result.verdicts)
-    return EffectsTable(result.camera, result.prevailing, result.calibration, result.size, int(spp), levels,
-                        described, rows, verdicts)
+    return EffectsTable(result.camera, result.prevailing, result.calibration, result.size, int(spp),
+                        tuple(level.name for level in levels), described, rows, verdicts)

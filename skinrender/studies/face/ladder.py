@@ -32,7 +32,6 @@ Units: temperatures K, times s, NCC and rates fractions.
 
 from __future__ import annotations
 
-import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -47,14 +46,14 @@ from ...hints import NDArrayFloat
 from ...model.camera import camera
 from ...model.chromaticity import ncc
 from ...rendering.face import planckian_temperature
-from ...rendering.face.effects import LEVELS_LADDER, parse_physics, physics_level
+from ...rendering.face.effects import LEVELS_LADDER, PHYSICS_REGISTRY, Level
 from ...rendering.face.labels import LABEL_SKIN
 from ...rendering.face.limits import REPLICATES
-from ...rendering.face.reach import check_face_range
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
 from ...rendering.face.shift import face_budget
-from ...rendering.face.validation import mean_rendering, render_replicates, shift_against
-from ...rendering.placement import translation
+from ...rendering.settings import seed_at
+from ...rendering.face.request import face_request
+from ...rendering.face.validation import mean_rendering, render_replicates_request, shift_against
 from ...rendering.validation import analytic_reference
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 from ...workload import duration_text
@@ -223,7 +222,7 @@ def score_rendering(result, locus) -> dict:
     return score_frame(result, locus)[0]
 
 
-def _level_row(level: str, replicated, mean, scores: dict, shift, rates: dict | None) -> dict:
+def _level_row(level: Level, replicated, mean, scores: dict, shift, rates: dict | None) -> dict:
     """One level's row: its scores, ``eq4_shift`` against the budget, and what the budget does to its pixels."""
     undefined = dict(scores.pop("undefined"))
     within = shift.details.get("within_budget")
@@ -233,7 +232,7 @@ def _level_row(level: str, replicated, mean, scores: dict, shift, rates: dict | 
         undefined["eq4_shift"] = shift.reason
     if rates is None:
         undefined.update({key: "no detection budget" for key in ("budget_tpr_change", "budget_fpr_change")})
-    row = {"name": mean.physics if level != "direct" else "direct", "seconds": replicated.seconds,
+    row = {"name": level.name, "seconds": replicated.seconds,
            "spp": mean.spp, "replicates": len(replicated.renders), "spp_per_replicate": replicated.first.spp,
            **scores, "eq4_shift": shift.statistic, "eq4_shift_bound": shift.bound, "eq4_verdict": shift.outcome,
            "eq4_ncc_mean": shift.details.get("ncc_mean"), "budget": shift.tolerance, "within_budget": within,
@@ -246,7 +245,7 @@ def _level_row(level: str, replicated, mean, scores: dict, shift, rates: dict | 
 
 def _changes(rows: list[dict]) -> None:
     """Each row's ``tpr_change`` and ``fpr_change`` from the ``direct`` row's (``None`` with a reason without one)."""
-    base = next((row for row in rows if row["name"] == "direct"), None)
+    base = next((row for row in rows if row["name"] == PHYSICS_REGISTRY.base.name), None)
     for row in rows:
         for key in ("tpr", "fpr"):
             if base is None or base[key] is None or row[key] is None:
@@ -262,7 +261,7 @@ def ladder(
     prevailing,
     calibration,
     skin: str | None = None,
-    levels: Sequence[str] = LEVELS_DEFAULT,
+    levels: Sequence[str | Level] = LEVELS_DEFAULT,
     spp: int = 64,
     seed: int = 0,
     size: int | None = 128,
@@ -288,7 +287,8 @@ def ladder(
     skin
         The skin spec (``SET:SAMPLE``, ``SET:#N``, ``skin-model:…``); ``None``: the scene's.
     levels
-        Physics levels (:data:`skinrender.rendering.face.PHYSICS`, effects joined by ``+``).
+        Physics levels (:data:`skinrender.rendering.face.PHYSICS`, effects joined by ``+``), or
+        :class:`~skinrender.rendering.face.effects.Level` objects.
     spp
         Samples per pixel of a level in all, split over ``replicates`` renders (each ``⌈spp / K⌉``).
     seed, variant, grid
@@ -300,7 +300,8 @@ def ladder(
         A face scene name or path.
     imager, illuminance
         The image sensor of ``noise`` (default :data:`skinrender.rendering.face.IMAGER_DEFAULT`) and the
-        key light's illuminance, lx (``None``: the scene's; only ``noise`` sees it).
+        key light's illuminance, lx (``None``: the scene's): the options of the levels with ``noise`` (the others
+        are rendered without them).
     progress
         Called with a line before each level (e.g. to print it on stderr).
     replicates
@@ -310,7 +311,8 @@ def ladder(
         (:data:`~skinrender.evaluation.budget.BUDGET_FRACTION`).
     translate_mm
         ``(x, y, z)`` mm: the whole scene moved that far from the origin (``None``: where it is); a scene beyond
-        float32's useful range at any of the levels is refused before anything renders.
+        float32's useful range at any of the levels is refused before anything renders
+        (:func:`~skinrender.rendering.face.request.face_request`).
 
     Returns
     -------
@@ -320,37 +322,34 @@ def ladder(
     cam = camera(camera_)
     p, c = planckian_temperature(prevailing, "prevailing"), planckian_temperature(calibration, "calibration")
     face = load_face_scene(scene)
-    if translate_mm is not None:
-        face = face.translated(translation(translate_mm, "translate_mm"))
     skin = face.skin if skin is None else str(skin).strip()
     rho = skin_reflectance_of(skin, grid, "skin")
-    levels = list(levels)
+    levels = [PHYSICS_REGISTRY.level(level) for level in levels]  # each spec parsed once, here
     if not levels:
         raise SkinrenderError("levels: name at least one level of physics")
-    for level in levels:
-        parse_physics(level)
-        check_face_range(face, level, skin, grid)
     if isinstance(replicates, bool) or not isinstance(replicates, int) or replicates < 3:
         raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}")
-    side = (face.camera.width, face.camera.height) if size is None else (size, size)
     each = max(1, -(-int(spp) // replicates))
-    seconds = sum(physics_level(level).seconds(side[0] * side[1] * each * replicates) for level in levels)
+    sensor = {"imager": imager, "illuminance": illuminance}
+    requests = [face_request(face, cam, p, c, skin=skin, physics=level, size=size, spp=each, seed=seed,
+                             variant=variant, grid=grid, translate_mm=translate_mm,
+                             **PHYSICS_REGISTRY.options_for(level, sensor))
+                for level in levels]  # every bound checked before the first render
+    seconds = sum(request.level.seconds(request.pixels * each * replicates) for request in requests)
     if progress is not None and seconds > 60:  # subsurface: minutes (the command line refuses beyond --max-minutes)
         progress(f"the {len(levels)} levels should take about {duration_text(seconds)} on one core")
     analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
     budget, locus = face_budget(cam, analytic, c, budget_fraction, grid)
-    seeds = [(int(seed) + k) % 2**32 for k in range(replicates)]
+    seeds = [seed_at(seed, k) for k in range(replicates)]
     rows, frames, verdicts, shape, mean = [], [], [], None, None
-    for level in levels:
+    for request in requests:
         if progress is not None:
-            progress(f"rendering the face: {level} ({replicates} × {each} spp) …")
-        effects = physics_level(level)
-        replicated = render_replicates(cam, face, p, c, skin, effects, each, seeds, size, variant=variant,
-                                       imager=imager, illuminance=illuminance, grid=grid)
-        mean = mean_rendering(replicated, imager)
+            progress(f"rendering the face: {request.level.name} ({replicates} × {each} spp) …")
+        replicated = render_replicates_request(request, seeds)
+        mean = mean_rendering(replicated)
         scores, frame = score_frame(mean, locus)
         shift = shift_against(replicated, budget, locus, mean.image)
-        rows.append(_level_row(level, replicated, mean, scores, shift, shift.details["budget_rates"]))
+        rows.append(_level_row(request.level, replicated, mean, scores, shift, shift.details["budget_rates"]))
         frames.append(frame)
         verdicts.append(replace(shift.verdict, name=f"eq4_shift at {rows[-1]['name']}"))
         shape = (mean.scene.camera.width, mean.scene.camera.height)

@@ -45,11 +45,13 @@ from ...files import write_output
 from ...model.camera import camera
 from ...model.chromaticity import ncc
 from ...rendering.face import planckian_temperature, render_face
-from ...rendering.face.effects import parse_physics, physics_level
+from ...rendering.face.effects import PHYSICS_REGISTRY, physics_level
 from ...rendering.face.effects.direct import SAMPLES_PER_S_DIRECT
+from ...rendering.face.effects.direct import SECONDS_PER_RENDER as SECONDS_PER_RENDER_DIRECT
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
 from ...rendering.renderer import SAMPLES_MAX
 from ...rendering.scene import PIXELS_MAX
+from ...rendering.settings import check_seed
 from ...rendering.validation import analytic_reference
 from ...rendering.variants import choose_variant
 from ...spectra import GRID_DEFAULT, WavelengthGrid
@@ -67,11 +69,9 @@ SWEEP_SAMPLES_MAX = 10**11
 """Most samples (renders × pixels × spp) a sweep may ask for unless ``max_samples`` is raised (about 15 h on 2
 cores at :data:`SAMPLES_PER_S`)."""
 
-SECONDS_PER_RENDER = 0.15
-"""Fixed cost of one face render on one core (scene, cached kernels, labels, scoring), s: the estimates' base;
-fitted with :data:`SAMPLES_PER_S` to two measured sweeps of 54 renders (direct, sheen, all effects) with one
-worker at 64 px, 32 spp and 128 px, 64 spp (the measurements and their commands: docs/speed.md, "The rates
-behind the estimates")."""
+SECONDS_PER_RENDER = SECONDS_PER_RENDER_DIRECT
+"""Fixed cost of one face render on one core, s: the estimates' base
+(:data:`skinrender.rendering.face.effects.direct.SECONDS_PER_RENDER`)."""
 
 SAMPLES_PER_S = SAMPLES_PER_S_DIRECT
 """Samples per second of the face on one core (one drjit thread), the estimates' rate (see
@@ -103,9 +103,9 @@ def _render_task(task: tuple, settings: _Settings) -> dict:
     """One combination ``(camera, prevailing K, calibration K, skin, level)`` rendered and scored."""
     cam, p, c, skin, level = task
     start = time.perf_counter()
+    sensor = PHYSICS_REGISTRY.options_for(level, {"imager": settings.imager, "illuminance": settings.illuminance})
     result = render_face(cam, settings.scene, p, c, skin, level, settings.spp, settings.seed, settings.size,
-                         variant=settings.variant, grid=settings.grid, imager=settings.imager,
-                         illuminance=settings.illuminance)
+                         variant=settings.variant, grid=settings.grid, **sensor)
     locus = skin_locus(cam, "skin", calibration=c, grid=settings.grid)
     rho = skin_reflectance_of(skin, settings.grid, "skin")
     analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=settings.grid))[0]
@@ -279,17 +279,16 @@ def face_sweep(
     cams = [camera(c) for c in cameras]
     pairs = [(planckian_temperature(p, "prevailing"), planckian_temperature(c, "calibration")) for p, c in lights]
     skins = [str(s).strip() for s in skins]
-    levels = [str(level).strip() for level in levels]
+    levels = [PHYSICS_REGISTRY.level(level) for level in levels]  # each spec parsed once, here
     for name, values in (("cameras", cams), ("lights", pairs), ("skins", skins), ("levels", levels)):
         if not values:
             raise SkinrenderError(f"{name}: name at least one")
     for skin in skins:
         skin_reflectance_of(skin, grid, "skin")
-    for level in levels:
-        parse_physics(level)
-    for name, value, low in (("size", size, 1), ("spp", spp, 1), ("seed", seed, 0)):  # size in pixels
+    for name, value, low in (("size", size, 1), ("spp", spp, 1)):  # size in pixels
         if not (isinstance(value, (int, np.integer)) and not isinstance(value, bool) and low <= value < 2**32):
-            raise SkinrenderError(f"{name} must be an integer in [{low}, 2^32), got {value!r}")
+            raise SkinrenderError(f"{name} must be an integer in [{low}, 2^32), got {value!r}", role=name)
+    check_seed(seed)  # the bound of every front door
     workers = check_workers(workers, "workers")
     tasks = sweep_tasks(cams, pairs, skins, levels)
     _check_size(len(tasks), int(size), int(spp), max_renders, max_samples,

@@ -67,15 +67,15 @@ def test_through_the_sensor_the_shading_check_runs_and_its_control_fails(monkeyp
     are rendered once: the control gets the first validation's renders, seed for seed, not rendered again.)"""
     import skinrender.rendering.face.validation as module
 
-    rendered, render = {}, module.render_face
+    rendered, render = {}, module.render_face_request
 
-    def render_once(*args, **kwargs):
-        key = repr((args, sorted(kwargs.items())))
+    def render_once(request, seed=None):
+        key = repr((request.level.name, request.settings, request.options, seed))
         if key not in rendered:
-            rendered[key] = render(*args, **kwargs)
+            rendered[key] = render(request, seed)
         return rendered[key]
 
-    monkeypatch.setattr(module, "render_face", render_once)
+    monkeypatch.setattr(module, "render_face_request", render_once)
     kwargs = {"physics": "noise", "size": 64, "spp": 192, "limits": (), "prevailing": 2856, "calibration": 5900}
     check = validate_face(CAM, **kwargs).checks[0]
     assert check.name == "shading_cancels" and check.pixels > 100 and check.passed is True, check

@@ -25,9 +25,26 @@ part            what the function does
                 gain (the image sensor of ``noise``)
 ``limits``      :class:`Limits`: the analytic limit the effect makes the
                 level's test, or that it breaks every limit, and why
+``scene``       ``(scene, options) → scene``: the scene as the render sees it
+                (``noise``: the lights scaled to its illuminance)
+``refuse``      ``(request) → None``: refuses, before any work, what does not
+                go with the effect (naming the argument)
+``chart``       ``(request) → source``: a chart's raw renders at a level
+                whose last chart part is this (``source.raw(temperature,
+                seed, skins)``, ``source.info``; a chart's effects only)
 ==============  ==============================================================
 
--   :class:`Effect`, :class:`Limits`: an effect and its analytic limits.
+An effect **owns its options**: ``options`` is a frozen dataclass whose fields
+are them (``noise``: :class:`~skinrender.rendering.sensor.NoiseOptions`,
+``imager``, ``illuminance``, ``exposure``), each with its default and its
+bounds checked in ``__post_init__``; a request holds one instance per effect
+of its level, by effect name, and the effect's functions read it from
+``setup.options[name]``. ``added_by`` names the options whose presence adds
+the effect to a level (an ``imager`` adds ``noise``).
+
+-   :class:`Effect`, :class:`Limits`: an effect and its analytic limits (the
+    classes every scene kind's physics is made of:
+    :mod:`skinrender.rendering.physics`, where they are defined).
 -   :class:`Setup`, :class:`Frame`: what the functions read, and what ``post``
     works on.
 -   :class:`Replicates`, :class:`Measured`: what a limit's check reads, and
@@ -41,167 +58,12 @@ a sensor, DN; temperatures K; exposure s.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
-
 from ....hints import NDArrayFloat
-from ....model.camera import Camera
 from ....spectra import WavelengthGrid
+from ...physics import Effect, Frame, Limits, Measured, Replicates, Setup
 from ...renderer import _spectrum
-from ..scene import FaceScene, Light
 
 __all__ = ["Effect", "Limits", "Setup", "Frame", "Replicates", "Measured", "twosided", "spectrum"]
-
-
-@dataclass(frozen=True)
-class Setup:
-    """
-    What an effect's functions may read about the render.
-
-    ``scene``, ``camera``, ``grid`` and the level's ``lights`` (``{name: Light}``) for the Mitsuba
-    document, and the ``skin`` spec rendered (its reflectance is the ``skin`` part's argument; an effect that
-    needs more of it, as the skin model's layers, reads the spec); ``calibration`` (K), ``seed``, ``imager``
-    (a preset, a TOML path or ``None``: the default) and ``exposure`` (``auto`` or s) for ``post``, ``None``
-    while the document is built.
-    """
-
-    scene: FaceScene
-    camera: Camera
-    grid: WavelengthGrid
-    lights: Mapping[str, Light]
-    calibration: float | None = None
-    seed: int | None = None
-    imager: object = None
-    exposure: object = "auto"
-    skin: str | None = None
-
-
-@dataclass(frozen=True)
-class Frame:
-    """
-    A rendered frame before Eq. 4's gain: ``signal`` ``(height, width, 3)`` (the specfilm's radiance,
-    or DN after a sensor), the whites in the same units that the gain is formed from, ``(3,)`` each,
-    and the rendering's ``info`` (JSON-ready).
-    """
-
-    signal: NDArrayFloat
-    white_prevailing: NDArrayFloat
-    white_calibration: NDArrayFloat
-    info: dict
-
-
-@dataclass(frozen=True)
-class Replicates:
-    """
-    What a limit's check reads: the replicate images ``(K, height, width, 3)`` (balanced, output units,
-    after any ``measure``), the ``labels``, Eq. 4's NCC of the skin ``expected``, the ``first`` replicate
-    (a :class:`~skinrender.rendering.face.render.FaceRendering`), the level's ``lights`` in its scene,
-    and a sensor's ``usable`` pixels, ``bias`` bound and standard-error ``floor`` (``None`` without one).
-    """
-
-    images: NDArrayFloat
-    labels: NDArrayFloat
-    expected: NDArrayFloat
-    first: object
-    lights: Mapping[str, Light]
-    usable: NDArrayFloat | None = None
-    bias: NDArrayFloat | None = None
-    floor: NDArrayFloat | None = None
-
-
-@dataclass(frozen=True)
-class Measured:
-    """
-    The replicate images as the checks see them, after a ``measure`` step (a sensor's: its dark signal
-    removed), with the ``usable`` pixels, the ``bias`` bound and the standard-error ``floor``
-    (:class:`Replicates`), the pixels it left out (``excluded``, ``{name: count}``, added to the check's
-    details) and a ``note`` added to the reason of a check left undecided.
-    """
-
-    images: NDArrayFloat
-    usable: NDArrayFloat | None = None
-    bias: NDArrayFloat | None = None
-    floor: NDArrayFloat | None = None
-    excluded: dict = field(default_factory=dict)
-    note: str = ""
-
-
-@dataclass(frozen=True)
-class Limits:
-    """
-    An effect's analytic limits.
-
-    Attributes
-    ----------
-    check
-        ``(replicates: Replicates) → LimitCheck``: the test of a level this effect is in (a later
-        effect's check replaces an earlier one's: ``sheen``'s dichromatic plane replaces ``direct``'s
-        shading), or ``None``.
-    holds
-        ``False`` when no analytic limit holds with the effect (``interreflection``, ``mixed``): a level
-        with it has no check, only ``eq4_shift``.
-    why
-        Why the level's check is what it is (or why there is none): ``eq4_shift``'s reason. A level
-        takes it from its first effect that breaks the limits, else from the effect whose check it runs.
-    measure
-        ``(measured: Measured, first, imager) → Measured``: how the replicate images become the values
-        checked (a sensor's dark signal, clipping and quantisation), or ``None``.
-    """
-
-    check: Callable | None = None
-    holds: bool = True
-    why: str | None = None
-    measure: Callable | None = None
-
-
-@dataclass(frozen=True)
-class Effect:
-    """
-    One effect of physics (see the module docstring for what each part does).
-
-    Attributes
-    ----------
-    name
-        What a user types (``--physics NAME``), a key of the registry.
-    description
-        One line: what the effect renders (the CLI's help shows it).
-    short
-        A few words for lists in prose (``mixed light``); default the name.
-    integrator, skin, prop, lights, post
-        What it changes, or ``None``.
-    limits
-        Its analytic limits.
-    samples_per_s
-        Samples per second of a face render with this effect on one core, measured: the estimates' rate
-        (``None``: it costs no more than the base). A level runs at the slowest of its effects' rates.
-    scene_scale
-        Scene units per metre of the Mitsuba document (1: metres). Mitsuba starts a ray leaving a surface
-        ``(1 + max|p|) · 8.9e-5`` scene units off it: in metres, ~0.1 mm at the face; in millimetres (1000),
-        ~0.01 mm. A level writes its document at the largest of its effects' scales.
-    variant
-        ``(requested) → variant``: the Mitsuba variant the effect renders best with (``requested``: the one the
-        user named, or ``None``), or ``None`` to leave the choice to
-        :func:`~skinrender.rendering.variants.choose_variant`.
-    """
-
-    name: str
-    description: str
-    short: str = ""
-    integrator: Callable | None = None
-    skin: Callable | None = None
-    prop: Callable | None = None
-    lights: Callable | None = None
-    post: Callable | None = None
-    limits: Limits = field(default_factory=Limits)
-    samples_per_s: float | None = None
-    scene_scale: float = 1.0
-    variant: Callable | None = None
-
-    @property
-    def changes_document(self) -> bool:
-        """Whether it changes the Mitsuba document (else it acts after rendering only)."""
-        return any(part is not None for part in (self.integrator, self.skin, self.prop, self.lights)) or \
-            self.scene_scale != 1.0
 
 
 def twosided(bsdf: dict) -> dict:

@@ -8,7 +8,8 @@ its illuminance: no pure-black shadow), or, in a scene without a key light,
 the uniform environment; direct lighting only: the analytic model's world,
 shading aside. Every level starts from it.
 
--   :data:`DIRECT`: the effect.
+-   :data:`DIRECT`: the effect; its rate
+    :data:`~skinrender.rendering.physics.SAMPLES_PER_S_DIRECT`.
 
 Its limit: under light of one Planckian spectrum with direct light only a
 skin pixel's radiance is ``ρ(λ) E(λ) G``, the shading ``G`` (the key's and
@@ -18,15 +19,13 @@ the sky's shares included) independent of λ, so its NCC is Eq. 4's
 
 from __future__ import annotations
 
+from ...physics import SAMPLES_PER_S_DIRECT, SECONDS_PER_RENDER
 from ..limits import check_shading
 from .base import Effect, Limits, Replicates, Setup, spectrum, twosided
 
-__all__ = ["DIRECT", "SAMPLES_PER_S_DIRECT"]
-
-SAMPLES_PER_S_DIRECT = 9e5
-"""Samples per second of the face on one core (one drjit thread), the estimates' rate for every level that costs
-no more: fitted with :data:`skinrender.studies.face.sweep.SECONDS_PER_RENDER` to two measured sweeps (the
-measurements and their commands: docs/speed.md, "The rates behind the estimates")."""
+__all__ = ["EFFECT", "DIRECT", "SAMPLES_PER_S_DIRECT", "SECONDS_PER_RENDER"]
+"""(:data:`SAMPLES_PER_S_DIRECT` and :data:`SECONDS_PER_RENDER`, the base's rate and a render's fixed cost, are
+:mod:`skinrender.rendering.physics`'s, here for the code that read them here.)"""
 
 
 def _integrator(integrator: dict | None, setup: Setup) -> dict:
@@ -68,5 +67,9 @@ DIRECT = Effect(
     integrator=_integrator, skin=_lambertian, prop=_lambertian, lights=_lights,
     limits=Limits(check=_check, why="the shading check is the test at this level"),
     samples_per_s=SAMPLES_PER_S_DIRECT,
+    order=0,
 )
 """The base of every level."""
+
+EFFECT = DIRECT
+"""This module's effect (the registry takes it: :mod:`.levels`)."""

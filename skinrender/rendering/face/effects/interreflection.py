@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from .base import Effect, Limits, Setup
 
-__all__ = ["INTERREFLECTION", "RUSSIAN_ROULETTE_DEPTH"]
+__all__ = ["EFFECT", "INTERREFLECTION", "RUSSIAN_ROULETTE_DEPTH"]
 
 RUSSIAN_ROULETTE_DEPTH = 5
 """Path depth from which Russian roulette ends paths (Mitsuba's default; unbiased)."""
@@ -33,4 +33,8 @@ INTERREFLECTION = Effect(
     integrator=_integrator,
     limits=Limits(holds=False, why="light reaches the skin from other surfaces (props, the face itself) and is "
                                    "no longer the light's spectrum: no analytic limit at this level"),
+    order=10,
 )
+
+EFFECT = INTERREFLECTION
+"""This module's effect (the registry takes it: :mod:`.levels`)."""

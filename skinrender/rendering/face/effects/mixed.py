@@ -16,7 +16,7 @@ from __future__ import annotations
 from ....errors import SkinrenderError
 from .base import Effect, Limits
 
-__all__ = ["MIXED"]
+__all__ = ["EFFECT", "MIXED"]
 
 
 def _lights(lights: dict, scene) -> dict:
@@ -34,4 +34,8 @@ MIXED = Effect(
     short="mixed light", lights=_lights,
     limits=Limits(holds=False, why="lights of different temperatures mix by each pixel's geometry: no analytic "
                                    "limit at this level"),
+    order=40,
 )
+
+EFFECT = MIXED
+"""This module's effect (the registry takes it: :mod:`.levels`)."""

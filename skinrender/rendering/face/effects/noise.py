@@ -6,7 +6,10 @@ The render recorded by an image sensor (:func:`skinrender.model.noise.simulate_d
 shot, dark, read and quantisation noise, full well and ADC clipping. It acts
 after rendering, on the frame, and changes nothing in the Mitsuba document.
 
--   :data:`NOISE`: the effect; :data:`IMAGER_DEFAULT`.
+-   :data:`NOISE`: the effect; :data:`IMAGER_DEFAULT`. Its options are
+    :class:`~skinrender.rendering.sensor.NoiseOptions` (imager, illuminance,
+    exposure); an ``imager`` adds it to a level; :func:`relit` scales the
+    scene's lights to its illuminance.
 -   :func:`through_imager`: one noisy frame of a rendered radiance.
 -   :func:`sensor_terms`, :data:`DITHER_SIGMA_DN`: what validation checks
     through the sensor.
@@ -47,10 +50,11 @@ from ....spectra import WavelengthGrid, planck
 from ..document import channel_integral, light_irradiance
 from ..labels import LABEL_SKIN
 from ..limits import rounding_bias
+from ...sensor import NoiseOptions
 from ..scene import FaceScene, Light, prevailing_name
 from .base import Effect, Frame, Limits, Measured, Setup
 
-__all__ = ["NOISE", "IMAGER_DEFAULT", "DITHER_SIGMA_DN", "through_imager", "sensor_terms"]
+__all__ = ["EFFECT", "NOISE", "IMAGER_DEFAULT", "relit", "DITHER_SIGMA_DN", "through_imager", "sensor_terms"]
 
 IMAGER_DEFAULT = "sony-icx418"
 """The image sensor of physics ``noise`` unless one is named: the paper's class of 3-CCD camera, 8-bit."""
@@ -100,11 +104,33 @@ def _white_at(cam: Camera, temperature: float, lux: float, grid: WavelengthGrid)
     return channel_integral(cam, grid, lam, irradiance / np.pi)
 
 
+def _options(setup: Setup) -> NoiseOptions:
+    """The effect's own options in ``setup`` (the defaults where none were given)."""
+    return setup.options.get("noise") or NoiseOptions()
+
+
 def _post(frame: Frame, setup: Setup) -> Frame:
+    options = _options(setup)
     signal, white_p, white_c, settings = through_imager(
         frame.signal, frame.white_prevailing, setup.scene, setup.camera, setup.calibration, setup.grid,
-        setup.imager or IMAGER_DEFAULT, setup.exposure, setup.seed)
+        options.imager or IMAGER_DEFAULT, options.exposure, setup.seed)
     return Frame(signal, white_p, white_c, {**frame.info, **settings})
+
+
+def relit(scene: FaceScene, options: NoiseOptions | None) -> FaceScene:
+    """
+    The face scene with every light scaled so that the prevailing one (the key, or in a scene without a key the
+    environment) gives ``options.illuminance`` lx at the target (``None``: the scene as it is). Only the sensor
+    sees it: Eq. 4 cancels a common scale of the lights.
+    """
+    from dataclasses import replace
+
+    name = prevailing_name(scene)
+    if options is None or options.illuminance is None or getattr(scene, name) is None:
+        return scene
+    ratio = float(options.illuminance) / getattr(scene, name).illuminance
+    return replace(scene, **{k: replace(getattr(scene, k), illuminance=getattr(scene, k).illuminance * ratio)
+                             for k in ("key", "fill", "environment") if getattr(scene, k) is not None})
 
 
 def sensor_terms(first, images: NDArrayFloat, spec) -> tuple[NDArrayFloat, ...]:
@@ -134,8 +160,8 @@ def sensor_terms(first, images: NDArrayFloat, spec) -> tuple[NDArrayFloat, ...]:
     return images - g * dark, unclipped & dithered, g * rounding_bias(sigma), floor, excluded
 
 
-def _measure(measured: Measured, first, imager) -> Measured:
-    images, usable, bias, floor, excluded = sensor_terms(first, measured.images, imager)
+def _measure(measured: Measured, first, options: NoiseOptions | None) -> Measured:
+    images, usable, bias, floor, excluded = sensor_terms(first, measured.images, (options or NoiseOptions()).imager)
     note = (f"the sensor left out {excluded['skin_pixels_clipped']} skin pixels clipped at 0 or saturation and "
             f"{excluded['skin_pixels_undithered']} whose noise is below {DITHER_SIGMA_DN:g} DN in some channel (its "
             "codes too coarse for it: more light, or a sensor of finer codes)")
@@ -147,4 +173,8 @@ NOISE = Effect(
     "through an image sensor (skinrender.model.noise.simulate_dn): shot, dark, read and quantisation noise, full "
     "well and ADC clipping",
     short="sensor noise", post=_post, limits=Limits(measure=_measure),
+    order=50, options=NoiseOptions, added_by=("imager",), scene=relit,
 )
+
+EFFECT = NOISE
+"""This module's effect (the registry takes it: :mod:`.levels`)."""

@@ -67,7 +67,7 @@ from ..limits import check_dichromatic
 from ..scene import Light, skin_reflectance_of
 from .base import Effect, Limits, Replicates, Setup, spectrum, twosided
 
-__all__ = ["SHEEN", "SHEEN_ALPHA", "SHEEN_IOR", "SHEEN_NONLINEAR", "coat_internal_reflectance",
+__all__ = ["EFFECT", "SHEEN", "SHEEN_ALPHA", "SHEEN_IOR", "SHEEN_NONLINEAR", "coat_internal_reflectance",
            "coat_body_reflectance", "dichromatic_colours"]
 
 SHEEN_ALPHA = 0.35
@@ -154,4 +154,8 @@ SHEEN = Effect(
     skin=_coated,
     limits=Limits(check=_check, why="the coat adds the light's colour at highlights: the dichromatic plane is the "
                                     "test"),
+    order=20,
 )
+
+EFFECT = SHEEN
+"""This module's effect (the registry takes it: :mod:`.levels`)."""

@@ -71,7 +71,7 @@ from ....spectra import WavelengthGrid
 from ...subsurface import check_truncation, integrator_dict, medium_dict, skin_media_of, subsurface_variant
 from .base import Effect, Limits, Setup
 
-__all__ = ["SUBSURFACE", "SUBSURFACE_ALPHA", "SCENE_SCALE_SUBSURFACE", "SAMPLES_PER_S_SUBSURFACE", "face_media"]
+__all__ = ["EFFECT", "SUBSURFACE", "SUBSURFACE_ALPHA", "SCENE_SCALE_SUBSURFACE", "SAMPLES_PER_S_SUBSURFACE", "face_media"]
 
 SUBSURFACE_ALPHA = 0.35
 """GGX roughness α of the skin's boundary, as ``sheen``'s coat (Weyrich et al. 2006 fit 0.3–0.45 to faces)."""
@@ -126,5 +126,9 @@ SUBSURFACE = Effect(
                                    "shading no longer cancels: no analytic limit on the face (the flat slab is "
                                    "checked against adding-doubling: validate a chart with --physics subsurface)"),
     samples_per_s=SAMPLES_PER_S_SUBSURFACE, scene_scale=SCENE_SCALE_SUBSURFACE, variant=subsurface_variant,
+    order=30,
 )
 """The skin as a medium (module docstring)."""
+
+EFFECT = SUBSURFACE
+"""This module's effect (the registry takes it: :mod:`.levels`)."""

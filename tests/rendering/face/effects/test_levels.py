@@ -1,7 +1,8 @@
 """
 Tests for :mod:`skinrender.rendering.face.effects.levels`: physics specs, the registry (every effect has its
 parts; levels compose; unknown and duplicate effects refused as before), and a toy effect registered for a test
-only and rendered with.
+only, rendered with and seen by ``ladder --json``. The tests of the registry read it rather than name its levels;
+an effect's own tests (its module's) name it.
 """
 
 from __future__ import annotations
@@ -14,8 +15,9 @@ import pytest
 
 from skinrender.errors import SkinrenderError
 from skinrender.rendering.face.effects import (EFFECTS, LEVELS_EACH, LEVELS_LADDER, PHYSICS, PHYSICS_BASE,
-                                               PHYSICS_EFFECTS, Effect, Limits, active_lights, parse_physics,
-                                               physics_level)
+                                               PHYSICS_EFFECTS, Effect, Limits, active_lights, levels_each,
+                                               levels_ladder, parse_physics, physics_level)
+from skinrender.rendering.face.effects.base import Frame
 from skinrender.rendering.face.effects.direct import DIRECT
 from skinrender.rendering.face.effects.noise import NOISE
 from skinrender.rendering.face.effects.sheen import SHEEN
@@ -31,12 +33,13 @@ CAM = "gbell:9@450,540,610"
 
 class TestParsePhysics:
     def test_levels_and_combinations(self):
-        assert parse_physics("direct") == ()
-        assert parse_physics(" noise + mixed ") == ("mixed", "noise")
+        assert parse_physics(PHYSICS_BASE) == ()
+        last, before = EFFECTS[-1], EFFECTS[-2]
+        assert parse_physics(f" {last} + {before} ") == (before, last)
         assert parse_physics("+".join(reversed(EFFECTS))) == EFFECTS
-        assert set(EFFECTS) | {"direct"} == set(PHYSICS)
+        assert set(EFFECTS) | {PHYSICS_BASE} == set(PHYSICS)
 
-    @pytest.mark.parametrize("spec", ["", "glossy", "direct+noise", "sheen+", "bssrdf"])
+    @pytest.mark.parametrize("spec", ["", "glossy", f"{PHYSICS_BASE}+{EFFECTS[-1]}", f"{EFFECTS[0]}+", "bssrdf"])
     def test_refused(self, spec):
         with pytest.raises(SkinrenderError, match="physics"):
             parse_physics(spec)
@@ -56,7 +59,7 @@ class TestActiveLights:
 
 def test_an_effect_named_twice_is_refused():
     with pytest.raises(SkinrenderError, match="named twice"):
-        parse_physics("sheen+interreflection+sheen")
+        parse_physics(f"{EFFECTS[1]}+{EFFECTS[0]}+{EFFECTS[1]}")
 
 
 class TestRegistry:
@@ -81,24 +84,46 @@ class TestRegistry:
         assert base.limits.check is not None and base.limits.holds
 
     def test_level_lists_are_read_from_the_registry(self):
-        assert EFFECTS == tuple(PHYSICS_EFFECTS)[1:] == ("interreflection", "sheen", "subsurface", "mixed", "noise")
-        assert LEVELS_EACH == ("direct", *EFFECTS)
-        assert LEVELS_LADDER == (*LEVELS_EACH, "interreflection+sheen+subsurface+mixed+noise")
-        assert LEVELS_DEFAULT is LEVELS_LADDER and LEVELS_BENCH == tuple(level for level in LEVELS_EACH
-                                                                         if level != "subsurface")
+        assert EFFECTS == tuple(PHYSICS_EFFECTS)[1:] and len(EFFECTS) >= 2
+        assert LEVELS_EACH == (PHYSICS_BASE, *EFFECTS) == levels_each()
+        assert LEVELS_LADDER == (*LEVELS_EACH, "+".join(EFFECTS)) == levels_ladder()
+        base_rate = PHYSICS_EFFECTS[PHYSICS_BASE].samples_per_s
+        assert LEVELS_DEFAULT is LEVELS_LADDER and LEVELS_BENCH == tuple(
+            level for level in LEVELS_EACH if physics_level(level).samples_per_s >= base_rate)
         assert list(PHYSICS) == list(PHYSICS_EFFECTS) and dict(PHYSICS)["noise"] == NOISE.description
+        orders = [effect.order for effect in PHYSICS_EFFECTS.values()]
+        assert orders == sorted(orders) and len(set(orders)) == len(orders)  # the modules' order, each its own
+
+    def test_every_module_of_the_package_with_an_effect_is_registered(self):
+        """A new effect is one module: the registry takes the ``EFFECT`` of every module of the package."""
+        import importlib
+        import pkgutil
+
+        import skinrender.rendering.face.effects as package
+
+        found = {}
+        for info in pkgutil.iter_modules(package.__path__):
+            effect = getattr(importlib.import_module(f"{package.__name__}.{info.name}"), "EFFECT", None)
+            if effect is not None:
+                found[effect.name] = effect
+        assert found == PHYSICS_EFFECTS
+
+
+ALL = ", ".join(PHYSICS_EFFECTS)
+"""Every registered effect, as a refusal lists them."""
 
 
 class TestRefusals:
     """Unknown and duplicate effects are refused with the messages they had before the registry."""
 
     @pytest.mark.parametrize("spec, message", [
-        ("glossy", "physics ('glossy') must be one of direct, interreflection, sheen, subsurface, mixed, noise, got 'glossy'"),
-        ("", "physics ('') must be one of direct, interreflection, sheen, subsurface, mixed, noise, got ''"),
-        ("sheen+", "physics ('sheen+') must be one of direct, interreflection, sheen, subsurface, mixed, noise, got ''"),
-        ("direct+noise", "physics: 'direct' is the base and combines with nothing, got 'direct+noise'"),
-        ("sheen+interreflection+sheen",
-         "physics: sheen named twice in 'sheen+interreflection+sheen'; name each effect once"),
+        ("glossy", f"physics ('glossy') must be one of {ALL}, got 'glossy'"),
+        ("", f"physics ('') must be one of {ALL}, got ''"),
+        (f"{EFFECTS[1]}+", f"physics ('{EFFECTS[1]}+') must be one of {ALL}, got ''"),
+        (f"{PHYSICS_BASE}+{EFFECTS[-1]}",
+         f"physics: '{PHYSICS_BASE}' is the base and combines with nothing, got '{PHYSICS_BASE}+{EFFECTS[-1]}'"),
+        (f"{EFFECTS[1]}+{EFFECTS[0]}+{EFFECTS[1]}",
+         f"physics: {EFFECTS[1]} named twice in '{EFFECTS[1]}+{EFFECTS[0]}+{EFFECTS[1]}'; name each effect once"),
     ])
     def test_messages(self, spec, message):
         for parse in (parse_physics, physics_level):
@@ -213,3 +238,39 @@ def test_a_toy_effect_registered_for_a_test_only_renders_and_validates(monkeypat
     assert [c.name for c in result.checks] == ["shading_cancels", "eq4_shift"]
     assert result.checks[0].passed is True, result.checks[0]
     assert "sky" not in PHYSICS_EFFECTS or PHYSICS_EFFECTS["sky"] is SKY
+
+
+def _dim(frame: Frame, setup) -> Frame:
+    """The frame and its whites at half their signal: Eq. 4's gain (their ratio) cancels it."""
+    return Frame(frame.signal / 2, frame.white_prevailing / 2, frame.white_calibration / 2, frame.info)
+
+
+DIM = Effect("dim", "the frame and its whites at half their signal (a toy: Eq. 4's gain cancels it)", post=_dim)
+
+
+def test_a_toy_effect_registered_from_a_test_alone_appears_in_the_ladder(monkeypatch, capsys):
+    """
+    Issue 35: a new level is one module and its test, nothing edited elsewhere. The toy, registered here alone
+    (monkeypatch puts the registry back), is a level of ``ladder --json``: parsed by ``--levels``, rendered,
+    scored and judged against the budget as any other, and in the ladder's default levels as registered now. It
+    halves the frame and its whites, which Eq. 4's gain cancels: its rows are direct's (the same seeds). (16 px, 12 spp over the replicates: a small ladder whose skin is scored.)
+    """
+    pytest.importorskip("mitsuba")
+    import json
+
+    from skinrender.cli import main
+
+    monkeypatch.setitem(PHYSICS_EFFECTS, "dim", DIM)
+    assert "dim" in levels_each() and levels_ladder()[-1].endswith("+dim")
+    try:
+        status = main(["ladder", "--camera", CAM, "--prevailing", "2856", "--calibration", "2856", "--levels",
+                       "direct,dim", "--size", "16", "--spp", "12", "--json"])
+    except SystemExit as verdict:  # a command with a verdict exits with its status
+        status = verdict.code
+    out, err = capsys.readouterr()
+    assert status in (0, 1, 3), err[-500:]
+    rows = json.loads(out)["levels"]
+    assert [row["name"] for row in rows] == ["direct", "dim"], rows
+    assert rows[1]["skin_ncc_mean"] == pytest.approx(rows[0]["skin_ncc_mean"], abs=1e-5)  # Eq. 4 cancels the dimming
+    for key in ("tpr", "fpr", "eq4_shift", "within_budget"):
+        assert rows[1][key] == pytest.approx(rows[0][key], abs=1e-6), key

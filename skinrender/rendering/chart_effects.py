@@ -1,0 +1,126 @@
+"""
+A chart's effects of physics
+============================
+
+The chart's registry of effects (:class:`~skinrender.rendering.registry.Registry`,
+the same classes as the face's): ``direct`` (the Lambertian patches under the
+directional light, the analytic model's world), ``subsurface`` (the skin
+patches as the skin model's layers under a sky,
+:mod:`~skinrender.rendering.subsurface_chart`) and the image sensor, ``noise``
+(added by an ``imager``, not named in ``--physics``: a chart records through a
+sensor with ``--imager``). ``subsurface`` has options too
+(:class:`~skinrender.rendering.subsurface_chart.SlabOptions`: ``translate_mm``,
+the slabs moved away from the origin). ``direct`` and ``subsurface`` supply the ``chart``
+part, the source of a level's raw renders (``source.raw(temperature, seed,
+skins)``, ``source.info``) that :func:`~skinrender.rendering.balance.render_balanced`
+balances; the sensor supplies its options, and a request that holds them is
+recorded through it (:func:`~skinrender.rendering.imaging.render_imaged_request`).
+Each says what does not go with it (``refuse`` before any work; ``refuses``:
+the validation's options).
+
+-   :data:`CHART_REGISTRY`, :data:`CHART_EFFECTS`: the registry and its table.
+-   :data:`CHART_DIRECT`, :data:`CHART_SUBSURFACE`, :data:`CHART_NOISE`: the effects.
+
+Units: temperatures K, illuminance lx, exposure s, times s.
+"""
+
+from __future__ import annotations
+
+from ..errors import SkinrenderError
+from .physics import SAMPLES_PER_S_DIRECT, Effect
+from .registry import Registry
+from .sensor import NoiseOptions
+from .subsurface_chart import SAMPLER_SUBSURFACE, SAMPLES_PER_S_SLAB, SlabOptions
+
+__all__ = ["CHART_DIRECT", "CHART_SUBSURFACE", "CHART_NOISE", "CHART_EFFECTS", "CHART_REGISTRY"]
+
+
+class _Lambertian:
+    """The raw renders of the Lambertian chart (:class:`~skinrender.rendering.renderer.ChartRenderer`)."""
+
+    def __init__(self, request):
+        from .renderer import chart_renderer
+
+        self.renderer = chart_renderer(request.scene, request.camera, request.settings, request.grid,
+                                       request.emitter)
+        self.info: dict = {}
+
+    def raw(self, temperature: float, seed: int, skins: bool = True):
+        return self.renderer.raw(temperature, seed)
+
+
+class _Slabs:
+    """The raw renders of a chart whose skin patches are slabs (:func:`~skinrender.rendering.subsurface_chart.subsurface_renderer`)."""
+
+    def __init__(self, request):
+        from .subsurface_chart import subsurface_renderer
+
+        self.renderer = subsurface_renderer(request.scene, request.camera, request.settings, request.grid,
+                                            request.options["subsurface"].translate_mm)
+        chart = self.renderer.chart
+        self.info = {"physics": request.level.name, "reflectances": chart.reflectances, "skin_model": chart.rows()}
+
+    def raw(self, temperature: float, seed: int, skins: bool = True):
+        return self.renderer.raw(temperature, seed, skins)
+
+
+def _skin_patches(request) -> None:
+    """Refuse a chart without a skin patch at ``subsurface`` (nothing would be a slab), and a sensor on it."""
+    scene = request.scene
+    if not any(patch.skin for patch in scene.patches):
+        raise SkinrenderError(f"physics subsurface renders a chart's skin patches (skin = true) as the skin model's "
+                              f"layers; {scene.name} has none", role="physics")
+    if request.sensor is not None:
+        raise SkinrenderError("imager: a chart at physics subsurface is rendered without an image sensor; drop it (or "
+                              "use physics direct)", role="imager")
+    translate = request.options["subsurface"].translate_mm
+    if any(translate):  # float32's range, against its skins' mean free paths (the fits are the render's, cached)
+        from .subsurface_chart import check_chart_range, subsurface_chart
+
+        check_chart_range(subsurface_chart(scene, request.grid), translate)
+
+
+def _slab_seconds(request, cores: int) -> tuple[float, str]:
+    """A subsurface chart's render on ``cores`` cores: its skin patches' paths (the Lambertian ones are free)."""
+    from .subsurface_chart import estimate_seconds
+
+    scene, spp = request.scene, request.settings.spp
+    what = (f"the {sum(p.skin for p in scene.patches)} skin patches of {scene.name} as media at {spp} spp "
+            f"({SAMPLES_PER_S_SLAB:g} samples/s per core, {cores} core{'s' * (cores > 1)})")
+    return estimate_seconds(scene, spp) / cores, what
+
+
+CHART_DIRECT = Effect(
+    "direct",
+    "Lambertian patches under the directional light along the view axis (the analytic model's world)",
+    chart=_Lambertian, samples_per_s=SAMPLES_PER_S_DIRECT, order=0,
+)
+"""The base: the chart the analytic model describes."""
+
+CHART_SUBSURFACE = Effect(
+    "subsurface",
+    "the skin patches as the skin model's two layers under a dielectric boundary, lit by a uniform sky, against "
+    "their slab's adding-doubling reflectance",
+    chart=_Slabs, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches, samples_per_s=SAMPLES_PER_S_SLAB,
+    options=SlabOptions,
+    estimate=_slab_seconds, order=30,
+    refuses={"gamut": "the gamut volumes are compared on the Lambertian chart",
+             "spp_auto": "it picks spp from the Lambertian chart's pilot renders; give spp N"},
+)
+"""The skin patches as slabs (:mod:`~skinrender.rendering.subsurface_chart`)."""
+
+CHART_NOISE = Effect(
+    "noise",
+    "through an image sensor (skinrender.model.noise.simulate_dn): shot, dark, read and quantisation noise, full "
+    "well and ADC clipping",
+    short="sensor noise", options=NoiseOptions, added_by=("imager",), named=False, order=50,
+    refuses={"gamut": "the gamut volumes are compared on the noise-free render"},
+)
+"""The chart recorded by an image sensor (:func:`~skinrender.rendering.imaging.render_imaged_request`: a request
+whose options hold the sensor's, :attr:`~skinrender.rendering.request.Request.sensor`)."""
+
+CHART_EFFECTS: dict[str, Effect] = {effect.name: effect for effect in (CHART_DIRECT, CHART_SUBSURFACE, CHART_NOISE)}
+"""A chart's effects, name → effect, in the order a level applies them, the base first."""
+
+CHART_REGISTRY = Registry(CHART_EFFECTS, "physics (of a chart)")
+"""A chart's registry of effects: its physics specs (``direct``, ``subsurface``) and levels."""
