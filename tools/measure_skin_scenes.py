@@ -30,25 +30,23 @@ def _load() -> str:
 
 
 def _face_at(translate, seeds, size: int, spp: int, skin: str | None = None):
-    """The face at subsurface (12 replicates of ``spp``): eq4_shift's check, the TPR of each replicate and of
-    their mean, seconds."""
+    """The face at subsurface (a replicate per seed, ``spp`` each), moved by ``translate`` mm: eq4_shift's check,
+    the TPR of each replicate and of their mean, seconds."""
     from skinrender.evaluation.budget import BUDGET_FRACTION
     from skinrender.model.chromaticity import ncc
-    from skinrender.rendering.face.effects import physics_level
-    from skinrender.rendering.face.scene import load_face_scene, skin_reflectance_of
+    from skinrender.rendering.face.request import face_request
+    from skinrender.rendering.face.scene import skin_reflectance_of
     from skinrender.rendering.face.shift import face_budget
-    from skinrender.rendering.face.validation import mean_rendering, render_replicates, shift_against
+    from skinrender.rendering.face.validation import mean_rendering, render_replicates_request, shift_against
     from skinrender.rendering.validation import analytic_reference
     from skinrender.studies.face.ladder import score_frame
 
-    face = load_face_scene("face")
-    skin = skin or face.skin
-    level = physics_level("subsurface")
-    analytic = ncc(analytic_reference(CAMERA, skin_reflectance_of(skin)[None], 2856, 5900))[0]
-    budget, locus = face_budget(__import__("skinrender").camera(CAMERA), analytic, 5900, BUDGET_FRACTION)
+    request = face_request("face", CAMERA, 2856, 5900, skin=skin, physics="subsurface", size=size, spp=spp,
+                           translate_mm=translate)
+    analytic = ncc(analytic_reference(CAMERA, skin_reflectance_of(request.skin)[None], 2856, 5900))[0]
+    budget, locus = face_budget(request.camera, analytic, 5900, BUDGET_FRACTION)
     start = time.perf_counter()
-    replicated = render_replicates(CAMERA, face if translate is None else face.translated(translate), 2856, 5900,
-                                   skin, level, spp, seeds, size)
+    replicated = render_replicates_request(request, seeds)
     seconds = time.perf_counter() - start
     mean = mean_rendering(replicated)
     check = shift_against(replicated, budget, locus, mean.image)

@@ -216,7 +216,7 @@ def estimate_seconds(scene: ChartScene, spp: int, fits: int = 0) -> float:
     :data:`SAMPLES_PER_S_SLAB` and ``fits`` fits at :data:`SECONDS_PER_FIT` (the Lambertian patches are free).
 
     >>> round(estimate_seconds(load_chart_scene("skin_patches"), 16), 1)
-    6.9
+    9.4
     """
     skins = sum(p.skin for p in scene.patches)
     return skins * scene.patch_px**2 * int(spp) / SAMPLES_PER_S_SLAB + fits * SECONDS_PER_FIT
