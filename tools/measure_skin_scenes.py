@@ -3,8 +3,9 @@ Scenes for tools/measure_skin_integrator.py (run that script: face, curvature, c
 
 -   face: the face at the subsurface level at its place and moved by +100 mm (x): eq4_shift and TPR, each with
     its interval, and whether the two differ (independent seeds).
--   curvature: a sphere of skin under the uniform sky, seen at its top: the layers by depth (the face's) against
-    the same sphere with an offset sphere as the layers' boundary, and both against the flat slab.
+-   curvature: a sphere of skin under the uniform sky, seen at its top: the layers by depth (re-anchored, the
+    face's; and from the last contact alone) against the same sphere with an offset sphere as the layers'
+    boundary, and that against the flat slab.
 -   chart [SPP]: ``skinrender validate skin_patches --physics subsurface --tolerance 0.05`` timed (wall, CPU).
 -   noise: the face's skin at the spp users run, the ladder's numbers, with and without the connections through
     the boundary to the point lights.
@@ -97,7 +98,9 @@ def _sphere(spec: str, radius: float, layers: str, spp: int, px: int = 16, seed:
     sky = planck(emitter_grid(grid), 2856.0)
     sky = sky / sky.max()
     t = mi.ScalarTransform4f
-    integrator = integrator_dict(media.layers, grid)
+    integrator = integrator_dict(media.layers, grid)  # as the face has it: re-anchored near the epidermis
+    if layers == "depth from the last contact":
+        integrator["reanchor_depth"] = 0.0
     boundary = {"type": "dielectric", "int_ior": 1.4, "ext_ior": 1.0}
     document = {"type": "scene", "integrator": integrator,
                 "sensor": {"type": "orthographic", "near_clip": 1e-3, "far_clip": 1e3,
@@ -122,21 +125,26 @@ def _sphere(spec: str, radius: float, layers: str, spp: int, px: int = 16, seed:
 
 def curvature(argv) -> None:
     spp = int(argv[0]) if argv else 1024
+    ways = ("depth", "depth from the last contact", "offset sphere")
     for name, spec in (("light", "skin-model:melanin=0.02"), ("dark", "skin-model:melanin=0.3")):
         for radius in (2.0, 5.0, 10.0, 20.0, 50.0):
             start = time.perf_counter()
             rows = {}
-            for layers in ("depth", "offset sphere"):
+            for layers in ways:
                 pixels, expected = _sphere(spec, radius, layers, spp)
                 rows[layers] = (pixels.mean(axis=0), pixels.std(axis=0, ddof=1) / np.sqrt(len(pixels)), expected)
-            (d, dse, e), (o, ose, _) = rows["depth"], rows["offset sphere"]
-            error = d / o - 1
-            se = np.hypot(dse / o, ose * d / o**2)
-            print(f"{name} skin, sphere of radius {radius:g} mm (16×16 px × {spp} spp each): layers by depth / offset "
-                  f"sphere − 1 {' '.join(f'{v:+.4f}' for v in error)} ± {' '.join(f'{v:.4f}' for v in se)}; offset "
-                  f"sphere / flat slab (AD) − 1 {' '.join(f'{v:+.4f}' for v in o / e - 1)} ± "
-                  f"{' '.join(f'{v:.4f}' for v in ose / e)}; {time.perf_counter() - start:.0f} s, {_load()}",
-                  flush=True)
+            o, ose, e = rows["offset sphere"]
+
+            def against(way):
+                d, dse, _ = rows[way]
+                return (f"{' '.join(f'{v:+.4f}' for v in d / o - 1)} ± "
+                        f"{' '.join(f'{v:.4f}' for v in np.hypot(dse / o, ose * d / o**2))}")
+
+            print(f"{name} skin, sphere of radius {radius:g} mm (16×16 px × {spp} spp each): layers by depth "
+                  f"(re-anchored, the face's) / offset sphere − 1 {against('depth')}; from the last contact alone "
+                  f"{against('depth from the last contact')}; offset sphere / flat slab (AD) − 1 "
+                  f"{' '.join(f'{v:+.4f}' for v in o / e - 1)} ± {' '.join(f'{v:.4f}' for v in ose / e)}; "
+                  f"{time.perf_counter() - start:.0f} s, {_load()}", flush=True)
 
 
 def chart(argv) -> None:
@@ -162,14 +170,14 @@ def chart(argv) -> None:
 
 def noise(argv) -> None:
     import skinrender.rendering.face.effects.subsurface as effect
-    from skinrender.rendering.face.render import _load
+    from skinrender.rendering.face.render import _load as loaded_documents
     from skinrender.studies.face.ladder import ladder
 
     original = effect.integrator_dict
     for size, spp in ((64, 24), (128, 64), (64, 384)):
         for on in (False, True):
             effect.integrator_dict = lambda *a, **k: {**original(*a, **k), "through": on}  # noqa: B023
-            _load.cache_clear()  # the loaded documents are cached by level, not by integrator
+            loaded_documents.cache_clear()  # the loaded documents are cached by level, not by integrator
             start = time.perf_counter()
             result = ladder(CAMERA, 2856, 5900, levels=["subsurface"], spp=spp, size=size)
             row = result.document()["levels"][0]

@@ -32,9 +32,12 @@ surface. Where a path refracts into it, the **walk** starts:
     outer surface is tracked along the normal of the last point where the
     path touched it, layers locally flat; the epidermis is ``depth <
     epidermis_thickness``, the dermis below. Exact for flat skin; on curved
-    skin the boundary between the layers is misplaced by ``r² / 2R`` (``r``
+    skin the boundary between the layers would drift by ``r² / 2R`` (``r``
     the path's lateral distance from that point, ``R`` the radius of
-    curvature). Without it (``0``) a shape with a ``null`` BSDF inside the
+    curvature), so a scattering within ``reanchor_depth`` of the epidermis
+    measures its depth again, to the surface straight above it, and takes
+    that point's normal: the drift is then over one flight, not the whole
+    walk. Without a thickness (``0``) a shape with a ``null`` BSDF inside the
     skin is the layers' boundary (an offset surface).
 -   **Spectral MIS over the path.** Each path draws one of its four
     wavelengths (the hero) and samples every flight by the hero's extinction;
@@ -57,7 +60,7 @@ surface. Where a path refracts into it, the **walk** starts:
     against it by the balance heuristic. Where a rough boundary's
     transmission lobe is narrow against the skin's near-isotropic light, the
     walk's own way alone is a lottery: fireflies (a slab under a point light:
-    per-path spread 5.4 → 1.7, 7.5 → 1.8 for dark skin, at 1.5–1.7× the cost).
+    per-path spread 5.6 → 1.8, 9.6 → 2.3 for dark skin, at 1.9× the CPU time).
 -   **Russian roulette on the weight**: a walk whose largest weight over its
     wavelengths falls below ``rr_weight`` survives with probability
     weight / ``rr_weight`` (its weight divided by it): unbiased, and, unlike
@@ -84,25 +87,33 @@ from ..errors import SkinrenderError
 from .skin_sampling import (bind, coefficients, component, flat, hg_pdf, hg_sample, inside_direction, layer_lengths,
                             margin, phase_g, power, spectral)
 
-__all__ = ["PLUGIN", "RR_WEIGHT", "WALK_MAX", "THROUGH_DEPTH_MM", "THROUGH_G", "register"]
+__all__ = ["PLUGIN", "RR_WEIGHT", "WALK_MAX", "THROUGH_DEPTH_MM", "THROUGH_G", "REANCHOR_DEPTH_MM", "register"]
 
 PLUGIN = "skinvolpath"
 """The integrator's name in a Mitsuba document."""
 
 RR_WEIGHT = 0.3
-"""A walk's weight (largest over its wavelengths) below which Russian roulette plays (``docs/subsurface.md``)."""
+"""A walk's weight (largest over its wavelengths) below which Russian roulette plays: paths per CPU second over
+the variance per path, 2.1 × 10⁴ for a light slab and 2.2 × 10⁴ for a dark one, against 1.6–1.7 × 10⁴ at 0.1 and
+2.2–2.5 × 10⁴ at 0.6 (whose spread per path is larger) (``docs/subsurface.md``)."""
 
 WALK_MAX = 2**16
 """Events (scatterings and boundary contacts) a walk may have."""
 
 THROUGH_DEPTH_MM = 0.1
 """Scatterings within this depth of the skin's surface, mm, connect to point lights through it (``nee_depth``):
-deeper ones rarely reach it (a slab under a point light: 0.05 mm left the per-path spread 2.1, 0.1 mm 1.7, 0.3 mm
-1.7 at 25 % more cost)."""
+deeper ones rarely reach it (measured while choosing it, a light slab under a point light, 16 × 16 px × 256 spp: the
+per-path spread 2.1 at 0.05 mm, 1.7 at 0.1 mm and 1.7 at 0.3 mm, for 25 % more time)."""
 
 THROUGH_G = 0.95
 """The Henyey–Greenstein ``g`` of the directions drawn about the one leaving towards a point light (``nee_g``;
-per-path spread 1.8, 1.7, 1.9 at 0.9, 0.95, 0.98)."""
+measured as :data:`THROUGH_DEPTH_MM`: the per-path spread 1.8, 1.7, 1.9 at 0.9, 0.95, 0.98)."""
+
+REANCHOR_DEPTH_MM = 1.0
+"""A scattering whose depth by the walk's reckoning is within this of the epidermis, mm, measures it again: the
+distance to the surface straight above it along the last normal, whose normal it takes (``reanchor_depth``). A
+sphere of dark skin 2 mm in radius rendered 22 % too bright in red without it (the layers reckoned from the last
+contact alone), 0.4 % with it, for 13 % more time (``docs/subsurface.md``)."""
 
 _REGISTERED: set[str] = set()
 mi = dr = None  # the mitsuba and drjit modules, set by register (imported late: variants.mitsuba sets libLLVM first)
@@ -110,8 +121,8 @@ mi = dr = None  # the mitsuba and drjit modules, set by register (imported late:
 
 def register(module) -> None:
     """
-    Register :data:`PLUGIN` for the variant set in ``module`` (``mitsuba``) (once per variant). A JIT variant only: the walk is traced into
-    one kernel; in a scalar variant Python would run per sample.
+    Register :data:`PLUGIN` for the variant set in ``module`` (``mitsuba``), once per variant. A JIT variant only:
+    the walk is traced into one kernel; in a scalar variant Python would run per sample.
 
     Raises
     ------
@@ -152,6 +163,7 @@ def _integrator_class():
             self.nee_depth = float(props.get("nee_depth", THROUGH_DEPTH_MM))
             self.nee_g = float(props.get("nee_g", THROUGH_G))
             self.through = bool(props.get("through", True))
+            self.reanchor = float(props.get("reanchor_depth", 0.0))  # 0: by the last contact alone
             self.points = False
 
         def aov_names(self):
@@ -333,6 +345,13 @@ def _integrator_class():
                 x[scatter] = dr.fma(d, end, x)
                 from_surface[scatter] = False
                 d_in = mi.Vector3f(d)
+                if dr.hint(self.reanchor > 0, mode="scalar"):  # the depth measured again: the surface right above
+                    look = scatter & (e > 0) & (z < e + self.reanchor)
+                    up = scene.ray_intersect(mi.Ray3f(x - margin(x) * anchor, anchor, 0.0, lam), look)
+                    found = look & up.is_valid() & (up.shape.interior_medium() != None) & (dr.dot(anchor, up.n) > 0)  # noqa: E711
+                    z[found] = dr.maximum(dr.dot(up.p - x, anchor), 0.0)
+                    anchor[found] = up.n
+                    in_epi[found] = z < e
                 g = dr.select(in_epi, self.g[0], self.g[1])
                 if dr.hint(self.points, mode="scalar"):  # to a point light through the boundary, from a scattering near the surface
                     L += self._through(scene, sampler, x, d_in, g, z, in_epi, anchor, media, lam,
@@ -368,7 +387,7 @@ def _integrator_class():
                     q = dr.select(above & ds.delta & scattered & near_x, hg_pdf(self.nee_g, dr.dot(d_in, aim)), 0.0)
                     top = dr.max(log_r_start)
                     sampled = dr.exp(log_r_start - top) * phase_x * dr.exp(log_p)
-                    share = dr.mean(sampled) / dr.mean(sampled + dr.exp(log_r_start - top) * q)
+                    share = dr.select(q > 0, dr.mean(sampled) / dr.mean(sampled + dr.exp(log_r_start - top) * q), 1.0)
                 L[nee] += weight * value * em * share * dr.select(ds.delta, 1.0, power(ds.pdf, pdf_b))
                 smooth = boundary & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Delta)
                 split, chance, emitted = self._split(scene, hit, sampler, smooth)

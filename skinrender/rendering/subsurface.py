@@ -264,16 +264,18 @@ def integrator_dict(layers, grid: WavelengthGrid, mm_per_unit: float = 1.0, hide
     """
     The Mitsuba integrator of skin (:mod:`~skinrender.rendering.skin_integrator`): the epidermis and the dermis
     of ``layers`` as media (:func:`medium_dict`), the epidermis' thickness in scene units (a scene unit is
-    ``mm_per_unit`` mm), the boundary's index ``n``, walks of at most :data:`DEPTH_MAX_SUBSURFACE` events;
+    ``mm_per_unit`` mm), the boundary's index ``n``, walks of at most :data:`DEPTH_MAX_SUBSURFACE` events, its
+    depths (the re-anchoring's and the point lights' connections') in scene units too;
     ``hide_emitters``: the emitters seen straight from the camera left out (the background black).
     """
-    from .skin_integrator import PLUGIN
+    from .skin_integrator import PLUGIN, REANCHOR_DEPTH_MM, THROUGH_DEPTH_MM
 
     epidermis, dermis = layers
     return {"type": PLUGIN, "epidermis": medium_dict(epidermis, grid, mm_per_unit),
             "dermis": medium_dict(dermis, grid, mm_per_unit),
             "epidermis_thickness": float(epidermis.thickness_mm) / float(mm_per_unit), "eta": float(dermis.n),
-            "max_walk": DEPTH_MAX_SUBSURFACE, "rr_depth": RR_DEPTH_AIR, "hide_emitters": bool(hide_emitters)}
+            "max_walk": DEPTH_MAX_SUBSURFACE, "rr_depth": RR_DEPTH_AIR, "hide_emitters": bool(hide_emitters),
+            "reanchor_depth": REANCHOR_DEPTH_MM / float(mm_per_unit), "nee_depth": THROUGH_DEPTH_MM / float(mm_per_unit)}
 
 
 def mean_free_path(layers) -> float:
