@@ -20,19 +20,23 @@ does not fit): the epidermis (``epidermis_mm``, 0.1 mm by default) over the
 dermis, semi-infinite under the scan's surface. No offset mesh: the
 integrator tracks a path's depth below the skin along the normal where it
 last touched the surface, and the epidermis is what lies within
-``epidermis_mm`` of it (locally flat layers). The condition: where the skin
-curves with radius ``R``, a path ``r`` from where it touched the surface
-finds the boundary between the layers ``r² / 2R`` off, so the layers are
-right where ``r² / 2R`` is small against the epidermis for the ``r`` light
-travels under it, the transport length ``1 / μs'`` (~0.1 mm) to a few of
-them: ``R ≫ 0.05–0.5 mm``, which the face's cheeks, forehead and nose
-(radii of centimetres) meet and its nostrils' and eyelids' rims may not
-(``docs/subsurface.md`` measures spheres against the flat slab).
+``epidermis_mm`` of it (locally flat layers); a scattering within
+:data:`~skinrender.rendering.skin_integrator.REANCHOR_DEPTH_MM` of the
+epidermis measures its depth again, to the surface straight above it. The
+condition: where the skin curves with radius ``R``, the boundary between the
+layers drifts by ``l² / 2R`` over a straight path of length ``l`` from where
+the depth was last measured, so the layers are right where that is small
+against the epidermis for the flights that cross it, a few mean free paths
+(~0.02–0.1 mm): ``R ≫ 0.05 mm`` — every surface of the scan. Measured on
+spheres of skin against the same spheres with an offset sphere as the
+layers' boundary: within 1 % at a radius of 2 mm, where depth from the last
+contact alone was 22 % off (``docs/subsurface.md``).
 
 Every free flight is sampled from the true point the path is at, so the
 render does not depend on where the face is: the face translated by 100 mm
 renders as at its place (``docs/subsurface.md``), where ``volpathmis``, whose
-rays started ~0.01 mm inside the skin, had rendered a slab 6–16 % dark there.
+rays started ~0.01 mm inside the skin, had rendered a slab up to 5 % (light
+skin) and 16 % (dark) dark 100–200 mm away.
 The document is written in millimetres (:data:`SCENE_SCALE_SUBSURFACE`),
 where Mitsuba's ray offsets, which only the intersection queries now see, are
 smallest.
