@@ -68,9 +68,11 @@ from .model.response import (
 )
 from .model.stage1 import illuminant_selection, illuminant_set, illuminant_track, select_illuminants
 from .rendering.balance import Rendering
-from .rendering.dispatch import load_scene, render, validate
+from .rendering.dispatch import load_scene, render, render_cameras, validate
 from .rendering.scene import ChartScene
 from .rendering.settings import RenderSettings
+from .rendering.spectral_files import read_spectral
+from .rendering.spectral_image import SpectralImage
 from .rendering.validation import Validation, validate_gamut
 from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse, planck, resample
 from .studies import labelled as _labelled  # noqa: F401 (registers the figures of Rendering and FaceRendering)
@@ -94,6 +96,7 @@ __all__ = [
     "SearchResult",
     "SkinLocus",
     "SkinrenderError",
+    "SpectralImage",
     "SpectralSet",
     "Validation",
     "Verdict",
@@ -120,8 +123,10 @@ __all__ = [
     "normalisation_factor",
     "optimise_camera",
     "planck",
+    "read_spectral",
     "reflectances",
     "render",
+    "render_cameras",
     "resample",
     "response",
     "response_raw",

@@ -21,11 +21,11 @@ import dataclasses
 import sys
 
 from ..errors import SkinrenderError
-from .common import emit, interruptible, settings_of, table
+from .common import emit, flag, interruptible, settings_of, table
 from .placement import translate_key
 
 __all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_check_arguments", "add_verdict_arguments", "tolerance_of", "spp_of", "command_validate",
-           "command_validate_chart"]
+           "command_validate_chart", "command_validate_spectral"]
 
 HELP_TOLERANCE = (
     "relative tolerance REL in (0, 1) on each lit patch channel (default 0.01, 1 %%); a channel darker than 1 %% of "
@@ -71,6 +71,10 @@ def _validate_face(args: argparse.Namespace, scene) -> None:
     (:mod:`skinrender.cli.face_validation`); the chart's verdict flags refused."""
     from .face_validation import command_validate_face
 
+    if args.spectral:
+        raise SkinrenderError("--spectral validates a chart (e.g. macbeth) against Eq. 4 and a direct render; a "
+                              "face's spectral render is seen through cameras by face-sweep and ladder",
+                              flag="--spectral")
     for name, option, given in (("--spp auto", "--spp", str(args.spp).strip().lower() == "auto"),
                                 ("--tolerance", "--tolerance", args.tolerance is not None)):
         if given:
@@ -155,6 +159,13 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     settings = settings_of(args, auto)
     requested = "auto" if auto else settings.spp
     request = chart_request_of(args, scene, settings)
+    if args.spectral or args.bands is not None:
+        from .bands_flags import bands_of
+
+        bands_of(args)  # --bands without --spectral: refused
+        if auto:
+            raise SkinrenderError("--spp auto goes without --spectral: give --spp N", flag="--spp")
+        return command_validate_spectral(args, request, tolerance)
     if args.gamut:  # the gamut volumes of the Lambertian, noise-free chart
         _refused(request, "gamut", "--gamut", "--gamut (the chart's gamut volumes under the paper's lights)")
     if auto:
@@ -284,3 +295,49 @@ def _imaged_report(result, imaged, requested) -> tuple[dict, str]:
     lines.append(f"bound {result.bound:.3g} (the smallest relative tolerance the means would pass); spp needed ≈ "
                  f"{needed}")
     return document, "\n".join(lines) + imaging_notes(imaged)
+
+
+def command_validate_spectral(args: argparse.Namespace, request, tolerance: float) -> None:
+    """``validate CHART --spectral``: the chart of ``request`` (the camera's) rendered once spectrally, seen
+    through its camera, against Eq. 4 and against a direct render
+    (:func:`~skinrender.rendering.spectral_validation.validate_spectral`)."""
+    from ..evaluation.verdict import EXIT_STATUS, combine
+    from ..rendering.bands import bands_text, check_bands
+    from ..rendering.spectral_validation import validate_spectral
+    from .bands_flags import bands_of, check_spectral_work
+    from .inputs import check_request_work
+
+    bands = bands_of(args)
+    for name, given in (("--imager", request.sensor is not None), ("--gamut", bool(args.gamut)),
+                        ("--physics", bool(request.level.names))):
+        if given:
+            raise SkinrenderError(f"{name} goes without --spectral (validate --spectral checks the projected render "
+                                  "of the direct level against Eq. 4 and a direct render)", flag=name)
+    flag("--bands", check_bands, bands, request.grid, "the chart's light and reflectances (--grid)")
+    settings = request.settings
+    check_spectral_work(args, bands, request.pixels, settings.spp)
+    check_request_work(args, request, 2)  # the direct render: prevailing and calibration
+    print(f"rendering {request.scene.name} spectrally ({bands.size} bands) and directly at {settings.spp} spp …",
+          file=sys.stderr)
+    result = flag({"camera": "--camera", "bands": "--bands", None: "--camera"}, validate_spectral, request.scene,
+                  request.camera, request.prevailing, request.calibration, bands=bands, grid=request.grid,
+                  normalization=request.normalization, knee=request.knee, tolerance=tolerance, settings=settings)
+    document, lines = _chart_report(request, result.validation, settings, settings.spp, tolerance)
+    document["spectral"] = result.document()
+    direct = result.direct_difference
+    lines.append(f"spectral: {bands.size} bands {bands_text(bands)} nm (hat basis), basis error at most "
+                 f"{result.basis_relative:.2g} relative (Eq. 4 of the camera as the bands see it − of its curves; "
+                 "allowed in the difference test above)")
+    lines.append(f"spectral − direct render (seed {result.direct.raw[0].seed}): {direct.outcome.upper()} — "
+                 f"{direct.reason}")
+    verdict = combine([result.verdict, direct], "validation")
+    document["verdict"], document["passed"] = verdict.outcome, verdict.outcome == "pass"
+    document["exit_status"] = EXIT_STATUS[verdict.outcome]
+    rows = [[name, document["checks"][key]["verdict"] if key in document["checks"] else direct.outcome]
+            for name, key in (("Eq. 4 within tolerance", "equivalence"), ("Eq. 4 difference", "difference"),
+                              ("spectral − direct difference", "direct"))]
+    text = "\n".join(lines) + "\n" + table(rows, ["check", "outcome"])
+    text += f"\nverdict: {verdict.outcome.upper().replace('_', ' ')} (exit status {document['exit_status']})"
+    emit(args, document, text)
+    if document["exit_status"]:
+        raise SystemExit(document["exit_status"])

@@ -21,7 +21,7 @@ from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common,
                      check_output, check_seed, choices_help, emit, flag, flagged, integer_in, interruptible,
                      positive_number, settings_of, table, variant_of)
 
-__all__ = ["add_parsers", "add_face_arguments", "check_figure", "check_face_flags", "face_request_of", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face",
+__all__ = ["add_parsers", "add_face_arguments", "check_figure", "check_face_flags", "face_request_of", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face", "ladder_text", "command_ladders",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
 
 SIZE_MAX = 2000
@@ -71,7 +71,8 @@ def add_parsers(commands) -> None:
                             "all), with the skin's NCC against Eq. 4's within the detection budget and the skin "
                             "locus's detection rates at each (exit 0 every level within its budget, 1 one beyond, "
                             "3 one undecided)")
-    p.add_argument("--camera", required=True, help=HELP_CAMERA)
+    p.add_argument("--camera", required=True, action="append", help=HELP_CAMERA + "; repeat it for several cameras, "
+                   "seen through one spectral render per level (one ladder each; not with --effects, --plot)")
     p.add_argument("--prevailing", required=True, help="the key light: " + HELP_PLANCKIAN)
     p.add_argument("--calibration", required=True, help="the white balance: " + HELP_PLANCKIAN)
     p.add_argument("--skin", action="append", help=HELP_SKIN + "; repeat it with --effects")
@@ -102,6 +103,9 @@ def add_parsers(commands) -> None:
                    "--effects, the table's bars")
     add_translate(p)
     add_max_minutes(p, "the levels × --size² × --spp (with --effects, × the skins)")
+    from .bands_flags import add_cameras_arguments
+
+    add_cameras_arguments(p)
     add_common(p)
 
 
@@ -139,7 +143,7 @@ def check_figure(args: argparse.Namespace, *taken) -> Path | None:
     return figure
 
 
-def check_face_flags(args: argparse.Namespace) -> tuple:
+def check_face_flags(args: argparse.Namespace, spectral: bool = False) -> tuple:
     """
     What only the command line checks of a face render's flags, each refusal naming its flag: ``--camera`` (with
     its curves on the default grid), ``--prevailing`` and ``--calibration`` (Planckian, K; the camera sees each),
@@ -148,9 +152,12 @@ def check_face_flags(args: argparse.Namespace) -> tuple:
     ``(camera, {prevailing, calibration} K, size px or None)``; the rest is the request's
     (:func:`face_request_of`).
     """
-    cam = camera_of(args)
-    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
-    _check_light(cam, temperatures)
+    cam = None if spectral else camera_of(args)
+    temperatures = {name: _planckian(args, name) for name in ("prevailing",) + (() if spectral else ("calibration",))}
+    if cam is not None:
+        _check_light(cam, temperatures)
+    else:  # a spectral render: no camera, no calibration (applied afterwards)
+        temperatures["calibration"] = None
     if getattr(args, "normalization", "white") != "white":
         raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
                               f"got {args.normalization!r}", flag="--normalization")
@@ -176,7 +183,7 @@ def face_request_of(args: argparse.Namespace, scene, settings, **changes):
     from ..rendering.kinds import FACE
     from .inputs import REQUEST_FLAGS, sensor_flags, settings_fields
 
-    cam, temperatures, size = check_face_flags(args)
+    cam, temperatures, size = check_face_flags(args, changes.get("bands") is not None)
     keywords = {"skin": getattr(args, "skin", None), "physics": getattr(args, "physics", None) or "direct",
                 "size": size, "translate_mm": translate_of(args), **sensor_flags(args),
                 **settings_fields(args, settings), **changes}
@@ -241,9 +248,14 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
 
-    cam = camera_of(args)
+    from .bands_flags import bands_for, cameras_of
+
+    cams = cameras_of(args.camera)
     temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
-    _check_light(cam, temperatures)
+    for cam in cams:
+        _check_light(cam, temperatures)
+    if len(cams) > 1 and args.effects:
+        raise SkinrenderError("--camera: the effects table is one camera's; give one --camera", flag="--camera")
     size = integer_in(args.size, "--size", 1, SIZE_MAX)
     spp = integer_in(args.spp, "--spp", 1, SPP_MAX)
     seed = check_seed(integer_in(args.seed, "--seed", 0, SEED_MAX))
@@ -268,14 +280,17 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     from ..studies.face.ladder import REPLICATES_LADDER
     from ..workload import check_work
 
+    bands = bands_for(args, cams)
     renders = len(levels) * REPLICATES_LADDER * (len(skins or SKIN_TONES) if args.effects else 1)
+    renders *= len(cams) if bands is None else 1
     each = -(-spp // REPLICATES_LADDER)
     check_work(estimate_seconds(renders, size * size, each, 1, [level for level in levels
-                                                                for _ in range(renders // len(levels))]), "--spp",
-               f"{len(levels)} levels of {REPLICATES_LADDER} × {size}×{size} px at {each} spp"
+                                                                for _ in range(renders // len(levels))], bands),
+               "--spp", f"{len(levels)} levels of {REPLICATES_LADDER} × {size}×{size} px at {each} spp"
                + (f" for {len(skins or SKIN_TONES)} skins" if args.effects else ""), args.max_minutes,
                fewer="lower --spp or --size, or name fewer --levels")
-    return {"camera_": cam, "prevailing": temperatures["prevailing"], "calibration": temperatures["calibration"],
+    return {"cameras": cams, "bands": bands, "prevailing": temperatures["prevailing"],
+            "calibration": temperatures["calibration"],
             "levels": levels, "spp": spp, "seed": seed, "size": size, "scene": moved, "variant": args.variant,
             "imager": imager, "illuminance": lux, "skins": skins}
 
@@ -291,6 +306,11 @@ def command_ladder(args: argparse.Namespace) -> None:
 
     plot = check_output(getattr(args, "plot", None), "--plot", (".png",))
     inputs = _ladder_inputs(args)
+    cams, bands = inputs.pop("cameras"), inputs.pop("bands")
+    if len(cams) > 1:
+        skins = inputs.pop("skins")
+        return command_ladders(args, {**inputs, "skin": skins[0] if skins else None}, cams, bands, plot)
+    inputs["camera_"] = cams[0]
     skins = inputs.pop("skins")
     say = lambda line: print(line, file=sys.stderr)  # noqa: E731
     if args.effects:
@@ -306,25 +326,51 @@ def command_ladder(args: argparse.Namespace) -> None:
     else:
         result = ladder(**inputs, skin=skins[0] if skins else None, progress=say)
         document = result.document()
-
-        def triple(values) -> str:
-            return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
-
-        rows = [[row["name"], f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]),
-                 _shown(row["eq4_shift"], ".3g"), {True: "yes", False: "NO", None: "—"}[row["within_budget"]],
-                 _shown(row["tpr"], ".3f"), _shown(row["fpr"], ".3f")] for row in document["levels"]]
-        budget = document["budget"]
-        text = (f"the face ({result.skin}) through {result.camera}, {result.prevailing:g} K balanced to "
-                f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px; Eq. 4's skin NCC "
-                f"{triple(result.skin_ncc_analytic)}; detection budget {_shown(budget['budget'])} "
-                f"({budget['reason']}):\n"
-                + table(rows, ["level", "s", "spp", "skin NCC r g b", "shift", "within", "TPR", "FPR"]))
+        text = ladder_text(result, document)
     document.update(translate_key(args))
     if plot is not None:
         write_output(plot, result.figure, "--plot")
         document["plot"] = str(plot)
         text += f"\nfigure: {plot}"
     text += f"\nverdict: {document['verdict'].upper().replace('_', ' ')} (exit status {document['exit_status']})"
+    emit(args, document, text)
+    if document["exit_status"]:
+        raise SystemExit(document["exit_status"])
+
+
+def ladder_text(result, document: dict) -> str:
+    """One ladder's table: per level the seconds, spp, skin NCC, Eq. 4's shift against the budget, TPR and FPR."""
+    def triple(values) -> str:
+        return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
+
+    rows = [[row["name"], f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]),
+             _shown(row["eq4_shift"], ".3g"), {True: "yes", False: "NO", None: "—"}[row["within_budget"]],
+             _shown(row["tpr"], ".3f"), _shown(row["fpr"], ".3f")] for row in document["levels"]]
+    budget = document["budget"]
+    return (f"the face ({result.skin}) through {result.camera}, {result.prevailing:g} K balanced to "
+            f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px; Eq. 4's skin NCC "
+            f"{triple(result.skin_ncc_analytic)}; detection budget {_shown(budget['budget'])} ({budget['reason']}):\n"
+            + table(rows, ["level", "s", "spp", "skin NCC r g b", "shift", "within", "TPR", "FPR"]))
+
+
+def command_ladders(args: argparse.Namespace, inputs: dict, cameras: list, bands, plot) -> None:
+    """``ladder`` with several ``--camera``: each level's replicates rendered once spectrally (or, ``--direct``,
+    per camera) and seen through every camera; one ladder per camera, the verdict their combination."""
+    from ..evaluation.verdict import combine
+    from ..rendering.bands import bands_text
+    from ..studies.face.ladder import ladders
+
+    if plot is not None:
+        raise SkinrenderError("--plot draws one camera's ladder: give one --camera", flag="--plot")
+    say = lambda line: print(line, file=sys.stderr)  # noqa: E731
+    results = ladders(cameras, **inputs, bands=bands, progress=say)
+    documents = [result.document() for result in results]
+    verdict = combine([result.verdict for result in results], "ladders")
+    spectral = None if bands is None else {"bands_nm": bands_text(bands), "bands": bands.size, "basis": "hat"}
+    document = {"cameras": documents, "spectral": spectral, **verdict.summary()}
+    text = "\n\n".join(ladder_text(result, doc) for result, doc in zip(results, documents))
+    text += (f"\nverdict over {len(results)} cameras: {verdict.outcome.upper().replace('_', ' ')} (exit status "
+             f"{document['exit_status']})")
     emit(args, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])
@@ -379,70 +425,3 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
             f"{result.prevailing:g} K white-balanced to {result.calibration:g} K: {path} (+ {preview}, "
             f"label channel: {labels}), {result.spp} spp, {result.variant}, {result.seconds:.2f} s")
     emit(args, document, text)
-
-
-def command_detect_face(args: argparse.Namespace, scene) -> None:
-    """
-    ``detect SCENE …`` for a face scene: render it (``--physics`` from the scene's default, ``direct``), classify
-    every pixel by the camera's analytic skin locus for the calibration's white balance (trained on ``--skin``'s
-    set), and score against the label channel: TPR over skin pixels, FPR over the props' pixels.
-    """
-    from ..datasets import reflectances
-    from ..evaluation.detection import SCORED_MIN_OUTPUT
-    from ..evaluation.locus import skin_locus
-    from ..rendering.exr import write_png, write_preview
-    from ..studies.face.ladder import score_frame
-
-    from ..rendering.kinds import FACE
-    from .inputs import check_request_work
-
-    settings = settings_of(args)
-    output = check_output(args.output, "--output", (".png",))
-    check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
-    figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
-    request = face_request_of(args, scene, settings)
-    cam, scene = request.camera, request.scene
-    temperatures = {"prevailing": request.prevailing, "calibration": request.calibration}
-    locus_skin = getattr(args, "locus_skin", None) or "skin"
-    skin = flag("--locus-skin", reflectances, locus_skin)
-    check_request_work(args, request)
-    print(f"rendering the face ({request.level.name}) at {settings.spp} spp …", file=sys.stderr)
-    result = FACE.render(request)
-    locus = skin_locus(cam, skin, calibration=temperatures["calibration"], boundary=args.boundary)
-    scores, frame = score_frame(result, locus, clip_negative=True)  # scored as the ladder: too dark has no chromaticity
-    mask, scored = frame["inside"], frame["scored"]
-    tpr, fpr = scores["tpr"], scores["fpr"]
-    undefined = {key: reason for key, reason in scores["undefined"].items() if key in ("tpr", "fpr")}
-    preview = output.with_name(output.stem + "_preview.png")
-    outputs = [Output(output, "--output", lambda stream: write_png(stream, mask.astype(float))),
-               Output(preview, "--output (its preview)", lambda stream: write_preview(stream, result.image))]
-    per_label = []
-    for name, ident in result.label_names.items():
-        seen = scored & (result.labels == ident)
-        if ident > 0:
-            per_label.append({"name": name, "id": ident, "is_skin": ident == 1,
-                              "detected_fraction": float(mask[seen].mean()) if seen.any() else None,
-                              **({} if seen.any() else {"undefined": f"no scored pixel of {name} (in view with "
-                                                                      f"its brightest channel ≥ {SCORED_MIN_OUTPUT:g})"})})
-    document = {"scene": scene.name, "camera": cam.name, "prevailing_K": temperatures["prevailing"],
-                "calibration_K": temperatures["calibration"], "tpr": tpr, "fpr": fpr, "undefined": undefined,
-                "locus_degenerate": locus.degenerate, "mask_png": str(output), "preview_png": str(preview),
-                "per_patch": per_label, "labels": result.label_names, "physics": result.physics,
-                "skin": result.skin, "locus_skin": locus_skin,
-                "scored_min_output": SCORED_MIN_OUTPUT, "boundary": args.boundary, "spp": result.spp, "spp_requested": settings.spp,
-                "variant": result.variant}
-    shown = lambda value: "undefined" if value is None else f"{value:.3f}"  # noqa: E731
-    if figure is not None:
-        from ..studies.figures import figure_face
-
-        title = (f"{scene.name} through {cam.name}, {result.prevailing:g} K balanced to {result.calibration:g} K "
-                 f"({result.physics}, {result.spp} spp): TPR {shown(tpr)}, FPR {shown(fpr)}\n"
-                 f"detected: inside the analytic skin locus, scored pixels (brightest channel ≥ "
-                 f"{SCORED_MIN_OUTPUT:g})")
-        outputs.append(Output(figure, "--figure", lambda stream: figure_face(
-            result.image, result.labels, result.label_names, title, stream, mask & scored)))
-        document["figure"] = str(figure)
-    write_outputs(*outputs)  # every file whole, or none of them
-    rows = [[row["name"][:30], "skin" if row["is_skin"] else "", shown(row["detected_fraction"])] for row in per_label]
-    emit(args, document, table(rows, ["region", "", "detected"]) + f"\nTPR {shown(tpr)}, FPR {shown(fpr)}; mask {output}"
-         + (f"; figure {figure}" if figure is not None else ""))

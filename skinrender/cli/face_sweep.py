@@ -70,6 +70,9 @@ def add_parsers(commands) -> None:
     p.add_argument("--csv", help="write every combination's row to this CSV file (whole or not at all)")
     p.add_argument("--max-renders", metavar="N", default=str(RENDERS_MAX),
                    help=f"refuse sweeps of more renders than this (default {RENDERS_MAX})")
+    from .bands_flags import add_cameras_arguments
+
+    add_cameras_arguments(p)
     p.add_argument("--max-samples", metavar="N", default=f"{SWEEP_SAMPLES_MAX:g}",
                    help=f"refuse sweeps of more samples (renders × pixels × spp) than this (default "
                    f"{SWEEP_SAMPLES_MAX:g})")
@@ -106,7 +109,6 @@ def _checked(args: argparse.Namespace) -> dict:
     """Every flag checked, before any render: the arguments of :func:`~skinrender.studies.face.sweep.face_sweep`."""
     import numpy as np
 
-    from ..model.camera import camera
     from ..model.response import response
     from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
@@ -114,12 +116,9 @@ def _checked(args: argparse.Namespace) -> dict:
     from ..execution import WORKERS_MAX
 
     check_output(args.csv, "--csv", (".csv",))
-    cams = []
-    for spec in args.camera:
-        cam = flag("--camera", camera, spec)
-        flag("--camera", cam.sensitivities, GRID_DEFAULT)
-        cams.append(cam)
-    _once("--camera", [cam.name for cam in cams])
+    from .bands_flags import cameras_of
+
+    cams = cameras_of(args.camera)
     pairs = _lights(args.lights or [LIGHTS_DEFAULT])
     for cam in cams:
         for t in sorted({t for pair in pairs for t in pair}):
@@ -137,7 +136,11 @@ def _checked(args: argparse.Namespace) -> dict:
     max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
     if args.dask is not None and not str(args.dask).strip():
         raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one", flag="--dask")
+    from .bands_flags import bands_for
+
+    bands = bands_for(args, cams)
     return {
+        "spectral": bands is not None, **({"bands": bands} if bands is not None else {}),
         "cameras": cams, "lights": pairs, "skins": skins, "levels": levels, "scene": args.scene,
         "size": integer_in(args.size, "--size", 1, SIZE_MAX), "spp": integer_in(args.spp, "--spp", 1, SPP_MAX),
         "seed": integer_in(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": args.imager,
@@ -181,8 +184,13 @@ def _face_sweep(args: argparse.Namespace) -> None:
     rows = [[row["camera"], f"{row['prevailing_K']:g}/{row['calibration_K']:g}", row["skin"], row["level"],
              f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]), rate(row["tpr"]), rate(row["fpr"])]
             for row in document["combinations"]]
+    spectral = result.spectral
+    how = ("" if spectral is None else f" seen through {spectral['renders']} spectral render"
+           f"{'s' * (spectral['renders'] != 1)} of {spectral['bands']} bands ({spectral['bands_nm']} nm)")
     text = (table(rows, ["camera", "P/C K", "skin", "level", "s", "spp", "skin NCC r g b", "TPR", "FPR"])
-            + f"\n{len(rows)} render{'s' * (len(rows) != 1)} of {result.size}×{result.size} px at {document['spp']} spp in "
+            + f"\n{len(rows)} {'render' if spectral is None else 'combination'}{'s' * (len(rows) != 1)}{how} of "
+            f"{result.size}×{result.size} px at "
+            f"{document['spp']} spp in "
             f"{result.elapsed_s:.1f} s ({'Dask' if result.dask else f'{result.workers} worker' + 's' * (result.workers > 1)}, {result.variant})"
             + (f"; wrote {args.csv}" if args.csv else ""))
     emit(args, document, text)

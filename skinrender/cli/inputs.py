@@ -55,7 +55,7 @@ REQUEST_FLAGS = {"scene": "SCENE", "camera": "--camera", "prevailing": "--prevai
                  "physics": "--physics", "spp": "--spp", "seed": "--seed", "sampler": "--sampler",
                  "variant": "--variant", "channels": "--channels", "imager": "--imager", "illuminance": "--illuminance",
                  "exposure": "--exposure", "skin": "--skin", "size": "--size", "normalization": "--normalization",
-                 "knee": "--knee", "grid": "--grid", "translate_mm": "--translate-mm"}
+                 "knee": "--knee", "grid": "--grid", "bands": "--bands", "translate_mm": "--translate-mm"}
 """The flag of each argument of a request (an error's ``role`` → the flag a refusal names)."""
 
 
@@ -233,7 +233,9 @@ def check_request_work(args: argparse.Namespace, request, renders: int = 1, spp:
     """
     Refuse, naming ``--spp``, ``renders`` renders of ``request`` (at ``spp`` each where given) whose samples per
     pass exceed Mitsuba's 32-bit wavefront or whose estimate
-    (:meth:`~skinrender.rendering.kinds.SceneKind.workload` on every core) exceeds ``--max-minutes``.
+    (:meth:`~skinrender.rendering.kinds.SceneKind.workload` on every core) exceeds ``--max-minutes``; then, where
+    the level renders a chart's skin patches as slabs, their layers (measured reflectances fitted now, cached for
+    the render): a patch that is not skin refused, naming it and why, before anything renders.
     """
     import dataclasses
     import os
@@ -251,6 +253,10 @@ def check_request_work(args: argparse.Namespace, request, renders: int = 1, spp:
                               "for this scene", flag="--spp")
     seconds, what = scene_kind(request.scene).workload(request, renders, os.cpu_count() or 1)
     check_work(seconds, "--spp", what, getattr(args, "max_minutes", None), fewer="lower --spp")
+    if "subsurface" in request.level.names and hasattr(request.scene, "patches"):
+        from ..rendering.subsurface_chart import subsurface_chart
+
+        subsurface_chart(request.scene, request.grid)
 
 
 def imaging_document(imaged) -> dict:

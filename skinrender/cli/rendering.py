@@ -19,6 +19,8 @@ from .face import check_figure
 from .chart_validation import add_check_arguments, add_verdict_arguments, command_validate
 from .inputs import (by_kind, chart_only, chart_request_of, check_request_work, imaging_document, imaging_notes,
                      scene_of)
+from .bands_flags import add_spectral_arguments, bands_of
+from .spectral_commands import command_render_spectral
 from .placement import add_translate, translate_key
 from .subsurface import subsurface_keys
 
@@ -36,10 +38,13 @@ def add_parsers(commands) -> None:
         p = commands.add_parser(name, run=command_validate if name == "validate" else command_render, help=text)
         p.add_argument("scene", help="scene: a chart (macbeth, skin_patches, face_chart), a face (face) or a .toml path "
                        "(see scenes/)")
-        p.add_argument("--camera", required=True, help=HELP_CAMERA)
+        spectral = " (none with --spectral)" if name == "render" else ""
+        p.add_argument("--camera", required=name == "validate", help=HELP_CAMERA + spectral)
         p.add_argument("--prevailing", required=True, help="prevailing (emitter) illuminant: " + HELP_PLANCKIAN)
-        p.add_argument("--calibration", required=True, help="calibration (white balance) illuminant: " + HELP_PLANCKIAN)
+        p.add_argument("--calibration", required=name == "validate",
+                       help="calibration (white balance) illuminant: " + HELP_PLANCKIAN + spectral)
         add_render(p, spp_auto=name == "validate")
+        add_spectral_arguments(p, name)
         add_model(p)
         add_grid(p)
         if name == "validate":  # what it checks (--gamut, --limits) and its verdict's flags (--tolerance, below)
@@ -92,6 +97,13 @@ def command_render(args: argparse.Namespace) -> None:
     from .face import command_render_face
 
     scene = scene_of(args)
+    if args.spectral:
+        return command_render_spectral(args, scene)
+    bands_of(args)  # --bands without --spectral: refused
+    missing = [name for name in ("--camera", "--calibration") if getattr(args, name[2:]) is None]
+    if missing:
+        raise SkinrenderError(f"the following arguments are required: {', '.join(missing)} (or --spectral: the "
+                              "bands, for any camera afterwards)", flag=missing[0])
     return by_kind(scene, chart=command_render_chart, face=command_render_face)(args, scene)
 
 
@@ -160,7 +172,7 @@ def locus_skin_of(args: argparse.Namespace, chart: bool) -> str:
 @interruptible
 def command_detect(args: argparse.Namespace) -> None:
     """``detect``: the scene loaded once, then its kind's command (the face's label channel is its ground truth)."""
-    from .face import command_detect_face
+    from .face_detection import command_detect_face
 
     scene = scene_of(args)
     return by_kind(scene, chart=command_detect_chart, face=command_detect_face)(args, scene)

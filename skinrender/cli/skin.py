@@ -25,9 +25,13 @@ PARAMETER_FLAGS = {
     "epidermis_mm": ("--epidermis-mm", "thickness of the epidermis, mm (> 0)"),
     "n": ("--n", "refractive index of both layers (≥ 1)"),
     "surface": ("--surface", "kubelka-munk only: flat surface reflectance, in [0, 1] (default 0.02)"),
+    "background": ("--background", "absorption of the dermis besides blood and water, cm⁻¹ (≥ 0)"),
+    "vessel_min_um": ("--vessel-min-um", "smallest radius of the dermis' blood vessels, µm (> 0)"),
+    "vessel_max_um": ("--vessel-max-um", "largest radius of the dermis' blood vessels, µm (≥ --vessel-min-um)"),
+    "epidermis_scattering": ("--epidermis-scattering", "the epidermis' reduced scattering over the dermis' (> 0)"),
 }
 """SkinParameters field → (flag, help)."""
-HELD_IN_FIT = ("epidermis_mm", "n")
+HELD_IN_FIT = ("epidermis_mm", "n", "background", "vessel_min_um", "vessel_max_um", "epidermis_scattering")
 """Parameters a fit holds at what the flags say (the others it fits)."""
 SPECTRA_MAX = 1000
 """``--max-spectra`` unless given."""
@@ -86,7 +90,9 @@ def parameters_of(args: argparse.Namespace, names=tuple(PARAMETER_FLAGS)):
             raise SkinrenderError(f"{option} must be a number, got {text!r}", flag=option) from None
         one = replace(SkinParameters(), **{name: values[name]})
         flag(option, check_parameters, one)
-    return SkinParameters(**values)
+    parameters = SkinParameters(**values)
+    flag("--vessel-min-um", check_parameters, parameters)  # the one check across flags: min ≤ max
+    return parameters
 
 
 def _method(args: argparse.Namespace) -> str:
@@ -173,7 +179,8 @@ def _command_fit(args: argparse.Namespace) -> None:
 
     for name, (option, _) in PARAMETER_FLAGS.items():
         if name not in HELD_IN_FIT and getattr(args, name) is not None:
-            raise SkinrenderError(f"{option} is fitted with --fit; only --epidermis-mm and --n are held", flag=option)
+            raise SkinrenderError(f"{option} is fitted with --fit; only "
+                                  f"{', '.join(PARAMETER_FLAGS[k][0] for k in HELD_IN_FIT)} are held", flag=option)
     if args.plot is not None or args.compare != "skin":
         raise SkinrenderError("--plot and --compare draw the forward model; they do not go with --fit", flag="--plot")
     if args.grid != "400:700:1":
@@ -202,24 +209,28 @@ def _command_fit(args: argparse.Namespace) -> None:
     rms = np.array([f.rms for f in fits if f.converged])
     summary = ({"median": float(np.median(rms)), "p95": float(np.percentile(rms, 95)), "max": float(rms.max())}
                if rms.size else None)
+    skins = sum(not f.not_skin for f in fits)
     document = {"method": method, "source": measured.name, "wavelength_nm": lam.tolist(),
                 "bounds": {k: list(FIT_BOUNDS[k][:2]) + [FIT_BOUNDS[k][2]] for k in FIT_PARAMETERS[method]},
                 "held": {k: getattr(held, k) for k in HELD_IN_FIT},
                 "fits": [f.as_dict(method) for f in fits], "converged": int(sum(f.converged for f in fits)),
-                "rms": summary}
+                "skin": int(skins), "rms": summary}
     rows = [[f.name[:32], f"{f.rms:.4f}" if math.isfinite(f.rms) else "—",
              *(f"{getattr(f.parameters, k):.4g}" for k in FIT_PARAMETERS[method]),
-             ", ".join(f"{k} {v}" for k, v in f.bounds_hit.items()) or "-", "yes" if f.converged else "NO"]
+             ", ".join(f"{k} {v}" for k, v in f.bounds_hit.items()) or "-", "yes" if f.converged else "NO",
+             "NO" if f.not_skin else "yes"]
             for f in fits]
+    refused = [f"not skin: {f.name}: {f.not_skin_reason}" for f in fits if f.not_skin]
     text = (f"{method} fit of {measured.count} spectra from {measured.name}, {lam.size} wavelengths "
             f"{lam[0]:g}–{lam[-1]:g} nm\n"
-            + table(rows, ["spectrum", "RMS", *FIT_PARAMETERS[method], "on a bound", "converged"]) + "\n"
+            + table(rows, ["spectrum", "RMS", *FIT_PARAMETERS[method], "on a bound", "converged", "skin"]) + "\n"
+            + "".join(line + "\n" for line in refused)
             + (f"RMS median {summary['median']:.4f}, 95th percentile {summary['p95']:.4f}, max {summary['max']:.4f}; "
                if summary else "")
             + f"{document['converged']} of {len(fits)} converged; "
-            + f"{sum(1 for f in fits if f.bounds_hit)} sit on a bound")
+            + f"{sum(1 for f in fits if f.bounds_hit)} sit on a bound; {skins} of {len(fits)} are skin")
     emit(args, document, text)
-    if not document["converged"]:
+    if not skins:
         raise SystemExit(1)
 
 

@@ -113,8 +113,10 @@ def add_parsers(commands) -> None:
                     "--seeds × --spp; validate: --seeds × --spp-list; render --scene: the levels × --spp-list × "
                     "--size²")
     from .calibration import add_bench_arguments
+    from .spectral_commands import add_bench_spectral_arguments
 
     add_bench_arguments(p)
+    add_bench_spectral_arguments(p)
     add_common(p)
 
 
@@ -214,7 +216,7 @@ FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
 
 BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
                "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render", "calibration"),
-               "scene": ("render", "calibration", "validate"),
+               "scene": ("render", "calibration", "validate"), "spectral": ("render",), "cameras": ("render",),
                "max_minutes": ("analytic", "search", "sweep", "calibration", "validate", "render")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
 :data:`FACE_BENCH_FLAGS`, the verdict benchmarks' :data:`skinrender.cli.calibration.VERDICT_BENCH_FLAGS`."""
@@ -373,6 +375,13 @@ def command_bench(args: argparse.Namespace) -> None:
         if spps is not None and len(set(spps)) < len(spps):
             raise SkinrenderError(f"--spp-list: each spp once, got {args.spp_list!r}", flag="--spp-list")
         return command_bench_verdicts(args, spps)
+    if args.what == "render" and args.spectral:
+        from .spectral_commands import command_bench_spectral
+
+        refuse_foreign_flags(args)
+        return command_bench_spectral(args)
+    if args.cameras is not None:
+        raise SkinrenderError("--cameras goes with 'bench render --spectral'", flag="--cameras")
     face = face_bench_options(args)
     if face is not None:
         from ..studies.benchmarks.bench_face import bench_face

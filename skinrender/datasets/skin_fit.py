@@ -36,6 +36,9 @@ time, measured on 12 NIST skins); the reported RMS is the model's
 -   :func:`fit_skin_spectrum`: one spectrum; :func:`fit_skin`, its parameters and RMS.
 -   :func:`fit_skin_spectra`: every spectrum of a table, on worker processes.
 -   :func:`fit_seconds`: the time a fit of a table should take.
+-   :func:`skin_verdict`, :data:`SKIN_RMS_MAX`, :data:`SKIN_BOUNDS_MAX`: when a fit says the spectrum is not
+    skin: an RMS beyond the measured skins', or most of its parameters on a bound (a black patch fits to RMS
+    0.029 with every parameter on a bound). Every fit carries its verdict.
 
 References
 ----------
@@ -63,11 +66,11 @@ from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from .adding_doubling import QUAD_PTS_DEFAULT, Slab, stack_reflectance
-from .skin_model import (G_SKIN, SKIN_REFLECTANCE_METHODS, SURFACE_KUBELKA_MUNK, SkinParameters,
+from .skin_model import (G_SKIN, LAYER_KEYS, SKIN_REFLECTANCE_METHODS, SURFACE_KUBELKA_MUNK, SkinParameters,
                          kubelka_munk_two_layers, layer_coefficients, skin_reflectance)
 
-__all__ = ["FIT_BOUNDS", "FIT_PARAMETERS", "SECONDS_PER_FIT", "SkinFit", "fit_skin", "fit_skin_spectrum",
-           "fit_skin_spectra", "fit_seconds"]
+__all__ = ["FIT_BOUNDS", "FIT_PARAMETERS", "SECONDS_PER_FIT", "SKIN_RMS_MAX", "SKIN_BOUNDS_MAX", "SKIN_NEEDS", "SkinFit",
+           "skin_verdict", "fit_skin", "fit_skin_spectrum", "fit_skin_spectra", "fit_seconds"]
 
 FIT_BOUNDS = {
     "melanin": (0.0, 0.5, "epidermal melanosome fractions up to 43 % (Jacques 1998)"),
@@ -76,6 +79,7 @@ FIT_BOUNDS = {
     "scattering": (10.0, 200.0, "a fifth to four times the skin average 46 cm⁻¹ (Jacques 2013)"),
     "scattering_power": (0.0, 4.0, "large scatterers (0) to Rayleigh (4)"),
     "surface": (0.0, 0.1, "Fresnel 0.028 at n 1.4; up to 0.1 for an oily or rough surface"),
+    "background": (0.0, 1.0, "water's 0.006 cm⁻¹ at 700 nm to 4 times Jacques 1998's bloodless 0.244 cm⁻¹"),
 }
 """Bounds of the fit, parameter → ``(low, high, source)``."""
 
@@ -89,11 +93,50 @@ SECONDS_PER_FIT = {"adding-doubling": 1.5, "kubelka-munk": 0.05}
 """Seconds per spectrum of 100 wavelengths on one core, measured (``docs/skin-model.md``): the estimates' rate."""
 
 _SCALE = {"melanin": 0.05, "blood": 0.02, "oxygenation": 0.3, "scattering": 30.0, "scattering_power": 0.5,
-          "surface": 0.02}
+          "surface": 0.02, "background": 0.05}
 _QUAD_ITERATIONS = 8
 CORRECTIONS = 2
 """Defect corrections of an adding-doubling fit from 8 to the model's 16 quadrature points."""
 _MELANIN_SCAN = (0.005, 0.015, 0.04, 0.1, 0.2, 0.4)
+
+SKIN_RMS_MAX = 0.03
+"""A fit worse than this RMS (fraction of reflectance) is not skin: 1.8 times the worst of the measured skins'
+(``docs/skin-model.md``: the 100 NIST and 30 Vrhel skins fit to at most 0.017 by either method)."""
+SKIN_BOUNDS_MAX = {"adding-doubling": 2, "kubelka-munk": 4}
+"""A fit with more of its parameters on a bound than this is not skin (most of its parameters sit where the model's
+range ends, not where the spectrum puts them): the most any of the 100 NIST and 30 Vrhel skins has, per method
+(2 of 5; 4 of 6, one Vrhel skin by Kubelka–Munk). A black patch (``grey:0``) fits with all 5 on a bound."""
+SKIN_NEEDS = ("melanin", "blood")
+"""A fit with one of these at its low bound (0) is not skin: living skin has melanin and blood (the measured skins'
+least are 0.0066 and 0.0039 by adding-doubling, 0.014 and 0.0039 by Kubelka–Munk; a flat white 0.9 fits by
+Kubelka–Munk with neither)."""
+
+
+def skin_verdict(rms: float, bounds_hit: dict, method: str = "adding-doubling",
+                 converged: bool = True) -> str | None:
+    """
+    Why a fit by ``method`` is not skin, or ``None`` where it is: a fit that did not converge, an RMS above
+    :data:`SKIN_RMS_MAX`, more parameters on a bound than :data:`SKIN_BOUNDS_MAX` allows, or no melanin or no
+    blood (:data:`SKIN_NEEDS`).
+
+    >>> skin_verdict(0.005, {"scattering_power": "low"}) is None
+    True
+    >>> skin_verdict(0.029, {"melanin": "high", "blood": "low", "scattering": "low"})
+    'its fit has 3 of 5 parameters on a bound (melanin high, blood low, scattering low); measured skins have at most 2'
+    """
+    if not converged or not math.isfinite(rms):
+        return "the skin model's fit to it did not converge"
+    if rms > SKIN_RMS_MAX:
+        return (f"the skin model fits it to RMS {rms:.3g}, beyond the measured skins' (at most {SKIN_RMS_MAX:g} "
+                "is skin-like)")
+    if len(bounds_hit) > SKIN_BOUNDS_MAX[method]:
+        sides = ", ".join(f"{k} {v}" for k, v in bounds_hit.items())
+        return (f"its fit has {len(bounds_hit)} of {len(FIT_PARAMETERS[method])} parameters on a bound ({sides}); "
+                f"measured skins have at most {SKIN_BOUNDS_MAX[method]}")
+    missing = [name for name in SKIN_NEEDS if bounds_hit.get(name) == "low"]
+    if missing:
+        return f"its fit has no {' and no '.join(missing)} (living skin has both)"
+    return None
 
 
 @dataclass(frozen=True)
@@ -101,7 +144,8 @@ class SkinFit:
     """
     One spectrum's fit: its ``name``, the fitted :class:`SkinParameters`, the RMS reflectance error over its
     wavelengths (fraction), the bounds it sits on (parameter → ``"low"``/``"high"``), whether the optimiser
-    converged, its message and its function evaluations.
+    converged, its message and its function evaluations; ``not_skin_reason``: why the spectrum is not skin as
+    the model knows it (:func:`skin_verdict`), ``None`` where it is.
     """
 
     name: str
@@ -111,29 +155,36 @@ class SkinFit:
     converged: bool = True
     message: str = ""
     evaluations: int = 0
+    not_skin_reason: str | None = None
+
+    @property
+    def not_skin(self) -> bool:
+        """Whether the spectrum is refused as skin (:attr:`not_skin_reason` says why)."""
+        return self.not_skin_reason is not None
 
     def as_dict(self, method: str) -> dict:
-        """JSON values: the fitted parameters (only those of ``method``'s fit), rms, bounds_hit, converged."""
+        """JSON values: the fitted parameters (only those of ``method``'s fit), rms, bounds_hit, converged,
+        not_skin and not_skin_reason (``null`` for skin)."""
         values = {name: getattr(self.parameters, name) for name in FIT_PARAMETERS[method]}
         rms = self.rms if math.isfinite(self.rms) else None
         return {"name": self.name, "parameters": values, "rms": rms, "bounds_hit": self.bounds_hit,
-                "converged": self.converged, "message": self.message, "evaluations": self.evaluations}
+                "converged": self.converged, "message": self.message, "evaluations": self.evaluations,
+                "not_skin": self.not_skin, "not_skin_reason": self.not_skin_reason}
 
 
 def _model(method: str, lam: NDArrayFloat, x: NDArrayFloat, names: tuple, base: SkinParameters,
            quad_pts: int) -> NDArrayFloat:
     """The model at parameter rows ``x`` ``(m, len(names))``: reflectances ``(m, len(lam))``."""
-    values = {name: getattr(base, name) for name in ("melanin", "blood", "oxygenation", "scattering",
-                                                      "scattering_power", "epidermis_mm", "surface")}
+    values = {name: getattr(base, name) for name in (*LAYER_KEYS, "surface")}
     values.update({name: x[:, i] for i, name in enumerate(names)})
-    mu_a_epidermis, mu_a_dermis, mu_s = layer_coefficients(lam, values["melanin"], values["blood"],
-                                                           values["oxygenation"], values["scattering"],
-                                                           values["scattering_power"])
+    mu_a_epidermis, mu_a_dermis, mu_s_epidermis, mu_s_dermis = layer_coefficients(lam, values)
     if method == "kubelka-munk":
         surface = SURFACE_KUBELKA_MUNK if values["surface"] is None else values["surface"]
         surface = np.asarray(surface, dtype=np.float64)[..., None] if np.ndim(surface) else surface
-        return kubelka_munk_two_layers(mu_a_epidermis, mu_a_dermis, mu_s, G_SKIN, base.epidermis_mm, surface)
-    slabs = [Slab(mu_a_epidermis, mu_s, G_SKIN, float(base.epidermis_mm)), Slab(mu_a_dermis, mu_s, G_SKIN, None)]
+        return kubelka_munk_two_layers(mu_a_epidermis, mu_a_dermis, mu_s_epidermis, G_SKIN, base.epidermis_mm,
+                                       surface, mu_s_dermis)
+    slabs = [Slab(mu_a_epidermis, mu_s_epidermis, G_SKIN, float(base.epidermis_mm)),
+             Slab(mu_a_dermis, mu_s_dermis, G_SKIN, None)]
     return stack_reflectance(slabs, n=float(base.n), quad_pts=quad_pts)
 
 
@@ -158,7 +209,8 @@ def _least_squares(method, lam, target, x0, names, base, quad_pts, low, high):
 
 
 def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str = "adding-doubling",
-                      start: SkinParameters | None = None, name: str = "", scan: bool | None = None) -> SkinFit:
+                      start: SkinParameters | None = None, name: str = "", scan: bool | None = None,
+                      fitted: tuple[str, ...] | None = None) -> SkinFit:
     """
     Fit the skin model to one measured spectrum within :data:`FIT_BOUNDS`.
 
@@ -178,6 +230,9 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
     scan
         Start from the melanin of the best of a scan over light to very dark skin (``None``: when ``start``
         is ``None``).
+    fitted
+        The parameters fitted, melanin first (``None``: :data:`FIT_PARAMETERS` of ``method``); each needs
+        :data:`FIT_BOUNDS`. The others are held at ``start``'s values.
 
     Returns
     -------
@@ -190,7 +245,9 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
     target = np.asarray(reflectance, dtype=np.float64)
     if lam.ndim != 1 or lam.shape != target.shape or lam.size < 8 or not np.all(np.isfinite(target)):
         raise SkinrenderError("a skin fit needs finite reflectances on at least 8 wavelengths")
-    names = FIT_PARAMETERS[method]
+    names = FIT_PARAMETERS[method] if fitted is None else tuple(fitted)
+    if not names or names[0] != "melanin" or any(n not in FIT_BOUNDS for n in names):
+        raise SkinrenderError(f"fitted must name parameters of {sorted(FIT_BOUNDS)}, melanin first, got {names}")
     base = start or SkinParameters()
     if method == "adding-doubling":
         base = replace(base, surface=None)
@@ -219,7 +276,8 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
     except SkinrenderError:
         raise  # bad input (wavelengths beyond the absorbers' data …), not a fit that failed
     except (np.linalg.LinAlgError, ValueError) as error:
-        return SkinFit(name, base, math.nan, {}, False, f"the fit failed: {error}", evaluations)
+        return SkinFit(name, base, math.nan, {}, False, f"the fit failed: {error}", evaluations,
+                       skin_verdict(math.nan, {}, method, False))
     x = np.clip(found.x, low, high)
     fitted = replace(base, **{n: float(v) for n, v in zip(names, x)})
     with np.errstate(all="ignore"):
@@ -229,7 +287,8 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
     hit = {n: side for n, v, lo, hi, s in zip(names, x, low, high, span)
            for side in (("low",) if v <= lo + 1e-3 * s else ("high",) if v >= hi - 1e-3 * s else ())}
     converged = bool(found.status > 0 and math.isfinite(rms))
-    return SkinFit(name, fitted, rms, hit, converged, str(found.message), evaluations)
+    return SkinFit(name, fitted, rms, hit, converged, str(found.message), evaluations,
+                   skin_verdict(rms, hit, method, converged))
 
 
 def fit_skin(wavelength: ArrayLike, reflectance: ArrayLike, start: SkinParameters | None = None,
@@ -243,8 +302,8 @@ def fit_skin(wavelength: ArrayLike, reflectance: ArrayLike, start: SkinParameter
 
 
 def _fit_one(job):
-    lam, values, name, method, held = job
-    return fit_skin_spectrum(lam, values, method, start=held, name=name, scan=True)
+    lam, values, name, method, held, fitted = job
+    return fit_skin_spectrum(lam, values, method, start=held, name=name, scan=True, fitted=fitted)
 
 
 def fit_seconds(count: int, wavelengths: int, method: str, workers: int = 1) -> float:
@@ -259,16 +318,18 @@ def fit_seconds(count: int, wavelengths: int, method: str, workers: int = 1) -> 
 
 
 def fit_skin_spectra(wavelength: ArrayLike, values: ArrayLike, names, method: str = "adding-doubling",
-                     workers: int | None = 1, progress=None, held: SkinParameters | None = None) -> list[SkinFit]:
+                     workers: int | None = 1, progress=None, held: SkinParameters | None = None,
+                     fitted: tuple[str, ...] | None = None) -> list[SkinFit]:
     """
     Fit every spectrum (rows of ``values``, on ``wavelength`` in nm) on ``workers`` processes (``None``: every
     core), each started from a melanin scan; ``progress``: a stream for a progress bar, or ``None``; ``held``:
-    the values of the parameters not fitted (``None``: the defaults). Results in the order of the rows.
+    the values of the parameters not fitted (``None``: the defaults); ``fitted``: as in
+    :func:`fit_skin_spectrum`. Results in the order of the rows.
     """
     validate_method(method, SKIN_REFLECTANCE_METHODS, "method")
     lam = np.asarray(wavelength, dtype=np.float64)
     values = np.atleast_2d(np.asarray(values, dtype=np.float64))
-    jobs = [(lam, row, str(name), method, held) for row, name in zip(values, names)]
+    jobs = [(lam, row, str(name), method, held, fitted) for row, name in zip(values, names)]
     workers = min(len(jobs), workers or os.cpu_count() or 1)
     bar = None
     if progress is not None:

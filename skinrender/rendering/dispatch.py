@@ -29,8 +29,9 @@ Units: temperatures K; images in Eq. 4 output units (255 for white at p = c).
 from __future__ import annotations
 
 from ..errors import SkinrenderError
+from .bands import BANDS_DEFAULT
 
-__all__ = ["load_scene", "render", "validate"]
+__all__ = ["load_scene", "render", "validate", "render_spectral", "render_cameras", "SPECTRAL_OMITTED"]
 
 
 def load_scene(spec):
@@ -90,9 +91,11 @@ def _lights(kind, prevailing, calibration, what: str) -> None:
             raise SkinrenderError(f"{name}: a chart {what} needs the {name} light (kelvin, A or H)", role=name)
 
 
-def render(scene, camera=None, prevailing=None, calibration=None, **options):
+def render(scene, camera=None, prevailing=None, calibration=None, spectral: bool = False, **options):
     """
-    Render a chart or a face scene through a camera, white balanced to the calibration light (Eq. 4).
+    Render a chart or a face scene through a camera, white balanced to the calibration light (Eq. 4); with
+    ``spectral=True``, once for every camera: a :class:`~skinrender.rendering.spectral_image.SpectralImage` (no
+    camera, no calibration: ``.through(camera, calibration=K)`` gives each camera's result).
 
     Parameters
     ----------
@@ -111,10 +114,17 @@ def render(scene, camera=None, prevailing=None, calibration=None, **options):
         A face's: ``skin``, ``physics`` (``direct``, effects joined by ``+``), ``spp`` (default 64), ``seed``,
         ``size`` (pixels), ``sampler``, ``variant``, ``grid``, ``channels``, ``imager``, ``exposure`` (s or
         ``auto``), ``illuminance`` (lx) (:func:`skinrender.rendering.face.render.render_face`).
+        A spectral render's: ``bands`` (``START:END:STEP`` nm, default 400:700:5) and the options above but a
+        chart's ``normalization``, ``knee``, ``cache``, a sensor's, and ``channels`` (applied by ``.through``, or
+        meaningless).
+    spectral
+        Render the bands of :mod:`~skinrender.rendering.bands` instead of a camera's channels
+        (:func:`render_spectral`; the request's ``bands``).
 
     Returns
     -------
-    :class:`~skinrender.rendering.balance.Rendering` or :class:`~skinrender.rendering.face.render.FaceRendering`
+    :class:`~skinrender.rendering.balance.Rendering`, :class:`~skinrender.rendering.face.render.FaceRendering`
+    or, spectral, :class:`~skinrender.rendering.spectral_image.SpectralImage`
 
     Raises
     ------
@@ -131,6 +141,11 @@ def render(scene, camera=None, prevailing=None, calibration=None, **options):
     ('sheen', (16, 16, 3))
     """
 
+    if spectral:
+        from .request import spectral_only
+
+        spectral_only(camera if camera is not None else options.get("camera_"), calibration)
+        return render_spectral(scene, prevailing, **options)
     camera = _camera_of(camera, options, "render")
     from .kinds import scene_kind
 
@@ -190,3 +205,81 @@ def validate(scene, camera=None, prevailing=None, calibration=None, **options):
     _lights(kind, prevailing, calibration, "validation")
     _check_options(kind.validate_options, {}, options, kind.name, "validate")
     return kind.validate_of(scene, camera, prevailing, calibration, **options)
+
+
+SPECTRAL_OMITTED = ("normalization", "knee", "cache", "channels", "imager", "exposure", "illuminance")
+"""A chart's render options a spectral render does not take (a face's sensor options it does: ``noise``)."""
+
+
+def render_spectral(scene, prevailing=None, bands=BANDS_DEFAULT, **options):
+    """
+    Render a chart or a face once with the bands as its film (no camera, no calibration: both applied by
+    :meth:`~skinrender.rendering.spectral_image.SpectralImage.through`): the kind's request with ``bands``,
+    rendered by the kind.
+
+    Parameters
+    ----------
+    scene
+        A chart or a face: a bundled name, a TOML path or a parsed scene.
+    prevailing
+        The light: kelvin, ``A`` or ``H`` (a chart needs it; a face keeps its scene's key light where ``None``).
+    bands
+        ``START:END:STEP`` nm or a :class:`~skinrender.spectra.WavelengthGrid` (default 400:700:5).
+    **options
+        A chart's: ``spp``, ``seed``, ``sampler``, ``variant`` (or ``settings``), ``grid``, ``emitter``,
+        ``physics`` (``direct``). A face's: ``skin``, ``physics``, ``spp``, ``seed``, ``size``, ``sampler``,
+        ``variant``, ``grid``, ``imager``, ``exposure``, ``illuminance`` (the ``noise`` sensor, applied per camera).
+    """
+    from .kinds import scene_kind
+
+    kind = scene_kind(scene)
+    scene = kind.load(scene)
+    names = tuple(name for name in kind.render_options
+                  if not (kind.lights_required and name in SPECTRAL_OMITTED) and name != "channels")
+    _check_options(names, {}, options, kind.name, "spectral render")
+    if kind.lights_required and prevailing is None:
+        raise SkinrenderError(f"prevailing: a {kind.name}'s spectral render needs its light (kelvin, A or H)",
+                              role="prevailing")
+    return kind.render(kind.request(scene, None, prevailing, None, bands=bands, **options))
+
+
+def render_cameras(scene, cameras, prevailing=None, calibration=None, bands=BANDS_DEFAULT, **options) -> list:
+    """
+    Render ``scene`` once spectrally, then return each camera's result: what ``sr.render(scene, camera,
+    prevailing, calibration, …)`` returns for every camera of ``cameras``, in their order, from one render
+    (their images share its light paths).
+
+    Parameters
+    ----------
+    scene, prevailing, bands, options
+        As :func:`render_spectral`.
+    cameras
+        Cameras or specs (at least one).
+    calibration
+        The white balance's light (kelvin, ``A``, ``H``); ``None``: the prevailing light. A chart's
+        ``normalization`` and ``knee`` go in ``options`` too (applied by each ``through``).
+
+    Examples
+    --------
+    >>> import skinrender as sr
+    >>> faces = sr.render_cameras("face", ["gbell:9@450,540,610", "Nikon 5100 (NPL)"], 2856, 5900,
+    ...                           spp=4, size=16)  # doctest: +SKIP
+    >>> [face.camera.name for face in faces]  # doctest: +SKIP
+    ['gbell:9@450,540,610', 'Nikon 5100 (NPL)']
+    """
+    from ..model.camera import camera
+    from ..spectra import GRID_DEFAULT
+    from .bands import parse_bands, projection
+    from .request import planckian
+
+    cams = [camera(cam) for cam in cameras] if not isinstance(cameras, (str, bytes)) else [camera(cameras)]
+    if not cams:
+        raise SkinrenderError("cameras: name at least one camera", role="camera")
+    bands = parse_bands(bands)
+    for cam in cams:  # every camera checked against the bands before the render
+        projection(cam, bands, options.get("grid", GRID_DEFAULT))
+    if calibration is not None:
+        planckian(calibration, "calibration")
+    balance = {key: options.pop(key) for key in ("normalization", "knee") if key in options}
+    spectral = render_spectral(scene, prevailing, bands, **options)
+    return [spectral.through(cam, calibration, **balance) for cam in cams]

@@ -152,7 +152,12 @@ class ChartKind(_Kind):
 
     def render(self, request, cache: dict | None = None):
         """The :class:`~skinrender.rendering.balance.Rendering` of a request (its level's raw renders balanced;
-        through an image sensor: the Eq. 4 image of the noisy DN, the sensor's settings in ``info``)."""
+        through an image sensor: the Eq. 4 image of the noisy DN, the sensor's settings in ``info``); a spectral
+        request's (``bands``) :class:`~skinrender.rendering.spectral_image.SpectralImage`."""
+        if request.spectral:
+            from .spectral_chart import render_chart_spectral_request
+
+            return render_chart_spectral_request(request)
         return self.render_imaged(request, cache)[0]
 
     def render_imaged(self, request, cache: dict | None = None) -> tuple:
@@ -236,7 +241,12 @@ class FaceKind(_Kind):
         return face_request(scene, camera, prevailing, calibration, **options)
 
     def render(self, request, seed: int | None = None):
-        """The :class:`~skinrender.rendering.face.render.FaceRendering` of a request (``seed``: a derived seed)."""
+        """The :class:`~skinrender.rendering.face.render.FaceRendering` of a request (``seed``: a derived seed); a
+        spectral request's (``bands``) :class:`~skinrender.rendering.spectral_image.SpectralImage`."""
+        if request.spectral:
+            from .face.spectral_face import render_face_spectral_request
+
+            return render_face_spectral_request(request, seed)
         from .face.render import render_face_request
 
         return render_face_request(request, seed)

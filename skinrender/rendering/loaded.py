@@ -38,11 +38,11 @@ def release_scenes() -> int:
     >>> release_scenes() >= 0
     True
     """
-    from . import renderer, subsurface_chart
-    from .face import render as face_render
+    from . import renderer, spectral_chart, subsurface_chart
+    from .face import render as face_render, revalue
 
-    caches = (renderer._renderer, subsurface_chart._renderer, face_render._load)
+    caches = (renderer._renderer, subsurface_chart._renderer, spectral_chart._renderer, face_render._load)
     released = sum(cache.cache_info().currsize for cache in caches)
     for cache in caches:
         cache.cache_clear()  # the scenes go with their last reference (no gc.collect: a full one costs ~0.1 s)
-    return released
+    return released + revalue.release()

@@ -58,13 +58,16 @@ def error_law(rendering: Rendering, reference: NDArrayFloat) -> tuple[NDArrayFlo
     normalisation with two renders), both whites' with weights ``w_j = ρ_j / Σ ρ`` (``ρ_j`` the white ratios).
     The whites' terms are formed pixel by pixel (their channels share wavelength samples, so their errors
     correlate); the white reference's own balanced mean has ``δr = δp`` (its pixels are the prevailing white),
-    and with one render (p = c) ``δp = δc``, so its balanced mean is exact there. Second and third cumulants of
+    and with one render (p = c) ``δp = δc``, so its balanced mean is exact there; a calibration white computed
+    rather than rendered (a spectral render's at p ≠ c: ``info["white_calibration"] == "analytic"``) has
+    ``δc = 0``. Second and third cumulants of
     the independent parts add: the skewness is their third over σ³ (0 where σ = 0).
     """
     scene = rendering.scene
-    one = len(rendering.raw) == 1
+    analytic = rendering.info.get("white_calibration") == "analytic"  # a spectral render's: exact, no noise
+    one = len(rendering.raw) == 1 and not analytic
     white_p = _relative_pixels(rendering.raw[0], scene)
-    white_c = white_p if one else _relative_pixels(rendering.raw[-1], scene)
+    white_c = white_p if one else 0.0 * white_p if analytic else _relative_pixels(rendering.raw[-1], scene)
     weights = np.zeros(3)
     if rendering.normalization == "white" and not one:
         ratio = rendering.info["white_ratio"]

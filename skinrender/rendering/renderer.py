@@ -128,11 +128,14 @@ def scene_dict(
     channels: tuple[int, ...] = (0, 1, 2),
     variant: str | None = None,
     emitter: str = "tabulated",
+    film: dict | None = None,
 ) -> dict:
     """
     The Mitsuba scene dictionary: an orthographic camera over the chart, one
     directional Planck emitter at ``temperature`` (K), a ``specfilm`` with
-    the camera's ``channels`` (indices into R, G, B), float32, box filter.
+    the camera's ``channels`` (indices into R, G, B), float32, box filter; ``film``: a spectral render's
+    channels (name → Mitsuba spectrum, :func:`~skinrender.rendering.bands.film_channels`) in place of the
+    camera's (``cam`` may then be ``None``).
 
     ``emitter``: ``tabulated`` (Planck radiance, W·m⁻²·sr⁻¹·nm⁻¹, computed in
     float64 on a grid :data:`EMITTER_REFINE` times finer than ``grid`` and
@@ -144,12 +147,14 @@ def scene_dict(
     mi = mitsuba(choose_variant(variant))  # remembered per process by choose_variant
     width, height = scene.size
     wavelengths = grid.wavelengths
-    curves = cam.sensitivities(grid)
-    names = channel_names(cam)
-    film = {"type": "specfilm", "width": width, "height": height, "component_format": "float32",
-            "rfilter": {"type": "box"}}
-    for k in channels:
-        film[names[k]] = _spectrum(wavelengths, curves[k])
+    channels_given, film = film, {"type": "specfilm", "width": width, "height": height,
+                                  "component_format": "float32", "rfilter": {"type": "box"}}
+    if channels_given is not None:
+        film.update(channels_given)
+    else:
+        curves, names = cam.sensitivities(grid), channel_names(cam)
+        for k in channels:
+            film[names[k]] = _spectrum(wavelengths, curves[k])
     transform = mi.ScalarTransform4f
     document = {
         "type": "scene",
@@ -270,9 +275,10 @@ class ChartRenderer:
     """
 
     def __init__(self, scene, camera_, settings: RenderSettings | None = None, grid: WavelengthGrid = GRID_DEFAULT,
-                 emitter: str = "tabulated"):
+                 emitter: str = "tabulated", bands: WavelengthGrid | None = None):
         self.scene = load_chart_scene(scene)
-        self.camera = camera(camera_)
+        self.bands = bands  # a spectral render's (camera_ None): one pass, a channel per band
+        self.camera = None if bands is not None else camera(camera_)
         settings = RenderSettings.of(settings)
         spp = settings.spp
         width, height = self.scene.size
@@ -283,7 +289,8 @@ class ChartRenderer:
         validate_method(emitter, EMITTERS, "emitter")
         self.sampler, self.grid, self.emitter = settings.sampler, grid, emitter
         self.variant = choose_variant(settings.variant)
-        self.groups = [(0,), (1,), (2,)] if _separate(self.camera, grid, settings.channels) else [(0, 1, 2)]
+        self.groups = ([tuple(range(bands.size))] if bands is not None else
+                       [(0,), (1,), (2,)] if _separate(self.camera, grid, settings.channels) else [(0, 1, 2)])
         self.requested_spp = spp
         self._loaded: list = []
         self.spp = spp
@@ -291,9 +298,14 @@ class ChartRenderer:
     def _load(self, temperature: float) -> None:
         mi = mitsuba(self.variant)
         self._loaded = []
+        film = None
+        if self.bands is not None:
+            from .bands import film_channels
+
+            film = film_channels(self.bands)
         for group in self.groups:
             loaded = mi.load_dict(scene_dict(self.scene, self.camera, temperature, self.requested_spp, 0,
-                                             self.sampler, self.grid, group, self.variant, self.emitter))
+                                             self.sampler, self.grid, group, self.variant, self.emitter, film))
             self._loaded.append((group, loaded, mi.traverse(loaded)))
         # multijitter rounds the count to a product of two integers
         self.spp = int(self._loaded[0][1].sensors()[0].sampler().sample_count())
@@ -320,7 +332,7 @@ class ChartRenderer:
                 params["light.irradiance.values"] = kind(values)
                 params.update()
         width, height = self.scene.size
-        image = np.zeros((height, width, 3), dtype=np.float32)
+        image = np.zeros((height, width, 3 if self.bands is None else self.bands.size), dtype=np.float32)
         for group, loaded, _ in self._loaded:
             values = np.array(mi.render(loaded, seed=int(seed)), dtype=np.float32).reshape(height, width, len(group))
             image[:, :, list(group)] = values

@@ -41,7 +41,7 @@ from .physics import Level
 from .settings import RenderSettings
 
 __all__ = ["ILLUMINANCE_DEFAULT", "Request", "ChartRequest", "chart_request", "planckian", "named",
-           "settings_for"]
+           "settings_for", "spectral_only"]
 
 ILLUMINANCE_DEFAULT = 500.0
 """A chart's illuminance through an imager unless one is given, lx (an office)."""
@@ -133,11 +133,12 @@ class Request:
     options: Mapping[str, object] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
+        self._check_bands()
         for name, kind, what in (("camera", Camera, "a Camera (skinrender.camera(spec) makes one)"),
                                  ("level", Level, "a Level (of the scene kind's registry of effects)"),
                                  ("settings", RenderSettings, "a RenderSettings"),
                                  ("grid", WavelengthGrid, "a WavelengthGrid")):
-            if not isinstance(getattr(self, name), kind):
+            if not isinstance(getattr(self, name), kind) and not (name == "camera" and self.spectral):
                 raise SkinrenderError(f"{name} must be {what}, got {getattr(self, name)!r}", role=name)
         for name in ("prevailing", "calibration"):
             value = getattr(self, name)
@@ -152,6 +153,28 @@ class Request:
 
     def _check(self) -> None:
         """The checks of a scene kind's request (its own fields)."""
+
+    @property
+    def spectral(self) -> bool:
+        """Whether the request renders the bands of :mod:`~skinrender.rendering.bands` (its subclass's ``bands``
+        field) rather than a camera's channels: a spectral render, whose camera and calibration are applied
+        afterwards (``camera`` ``None``, ``calibration`` the prevailing light)."""
+        return getattr(self, "bands", None) is not None
+
+    def _check_bands(self) -> None:
+        """A spectral request takes no camera, and its bands lie inside its grid (the range its lights and spectra
+        are tabulated over)."""
+        bands = getattr(self, "bands", None)
+        if bands is None:
+            return
+        from .bands import check_bands
+
+        if not isinstance(bands, WavelengthGrid):
+            raise SkinrenderError(f"bands must be a WavelengthGrid, got {bands!r}", role="bands")
+        if self.camera is not None:
+            raise SkinrenderError("camera: a spectral render (bands) takes no camera: see it through one afterwards, "
+                                  "SpectralImage.through(camera, calibration=K)", role="camera")
+        check_bands(bands, self.grid)
 
     @property
     def sensor(self):
@@ -184,6 +207,7 @@ class ChartRequest(Request):
     normalization: str = "white"
     knee: bool = False
     emitter: str = "tabulated"
+    bands: WavelengthGrid | None = None
 
     def _check(self) -> None:
         from .renderer import EMITTERS
@@ -207,7 +231,7 @@ class ChartRequest(Request):
 def chart_request(scene, camera, prevailing, calibration, *, normalization: str = "white", knee: bool = False,
                   settings: RenderSettings | None = None, grid: WavelengthGrid = GRID_DEFAULT,
                   emitter: str = "tabulated", physics="direct", imager=None, illuminance=None, exposure=None,
-                  translate_mm=None, **fields) -> ChartRequest:
+                  bands=None, translate_mm=None, **fields) -> ChartRequest:
     """
     A chart's :class:`ChartRequest`, each argument parsed once and checked, a refusal naming it (its ``role``).
 
@@ -229,6 +253,9 @@ def chart_request(scene, camera, prevailing, calibration, *, normalization: str 
         The sensor's options (:class:`~skinrender.rendering.sensor.NoiseOptions`): an ``imager`` records the
         chart through an image sensor at ``illuminance`` lx (default :data:`ILLUMINANCE_DEFAULT`) and
         ``exposure`` (s or ``auto``); without an imager the other two are refused.
+    bands
+        A spectral render's band grid (``START:END:STEP`` nm or a grid, :mod:`~skinrender.rendering.bands`):
+        then no camera and no calibration (``None``; applied afterwards), nor Eq. 4's normalisation or knee.
     translate_mm
         The ``subsurface`` level's option (:class:`~skinrender.rendering.subsurface_chart.SlabOptions`): every
         skin patch's scene moved ``(x, y, z)`` mm from the origin; refused at any other level (a Lambertian chart
@@ -238,10 +265,31 @@ def chart_request(scene, camera, prevailing, calibration, *, normalization: str 
     from .scene import load_chart_scene
 
     chart = named("scene", load_chart_scene, scene)
-    cam = named("camera", camera_of, camera)
-    p, c = planckian(prevailing, "prevailing"), planckian(calibration, "calibration")
+    if bands is not None:
+        from .bands import parse_bands
+
+        bands = parse_bands(bands)
+        spectral_only(camera, calibration, normalization != "white" and "normalization", knee and "knee")
+        cam, p = None, planckian(prevailing, "prevailing")
+        c = p
+    else:
+        cam = named("camera", camera_of, camera)
+        p, c = planckian(prevailing, "prevailing"), planckian(calibration, "calibration")
     level = CHART_REGISTRY.level(physics if isinstance(physics, Level) else str(physics).strip())
     level, options = CHART_REGISTRY.with_options(level, {"imager": imager, "illuminance": illuminance,
                                                          "exposure": exposure, "translate_mm": translate_mm})
     return ChartRequest(chart, cam, p, c, level, settings_for(level, settings, **fields), grid, options,
-                        normalization, knee, emitter)
+                        normalization, knee, emitter, bands)
+
+
+def spectral_only(camera, calibration, *others) -> None:
+    """Refuse what a spectral request (bands) does not take: a camera, a calibration light, and any of
+    ``others`` (the names of options given that go with a camera's render, ``False`` where not given)."""
+    for name, value in (("camera", camera), ("calibration", calibration)):
+        if value is not None:
+            raise SkinrenderError(f"{name}: a spectral render takes no {name}; see it through one afterwards: "
+                                  "SpectralImage.through(camera, calibration=K)", role=name)
+    for name in others:
+        if name:
+            raise SkinrenderError(f"{name}: goes with a camera's render; a spectral render applies it in "
+                                  "through()", role=name)

@@ -74,6 +74,7 @@ def analytic_reference(
     grid: WavelengthGrid = GRID_DEFAULT,
     refine: int = REFINE,
     scale: float = CONSTANT_OUTPUT_SCALE,
+    bands: WavelengthGrid | None = None,
 ) -> NDArrayFloat:
     """
     Eq. 4 of the integral the renderer estimates.
@@ -81,13 +82,17 @@ def analytic_reference(
     Sensor curves and reflectances (given on ``grid``) are linearly
     interpolated onto a grid ``refine`` times finer, Planck is evaluated there,
     and the products are integrated with the trapezoid rule. Shape
-    ``reflectance.shape[:-1] + (3,)``, output units.
+    ``reflectance.shape[:-1] + (3,)``, output units. ``bands``: the camera as a spectral render of those bands
+    sees it (:mod:`~skinrender.rendering.bands`: its curves at the bands, linearly interpolated, 0 beyond them).
     """
 
     cam = camera(cam)
     fine = WavelengthGrid(grid.start, grid.end, grid.step / refine)
     lam, coarse = fine.wavelengths, grid.wavelengths
-    x = np.array([np.interp(lam, coarse, curve) for curve in cam.sensitivities(grid)])
+    on = grid if bands is None else bands
+    x = np.array([np.interp(lam, on.wavelengths, curve, left=None if bands is None else 0.0,
+                            right=None if bands is None else 0.0)
+                  for curve in cam.sensitivities(on)])
     o = np.asarray(reflectance, dtype=np.float64)
     o_fine = np.apply_along_axis(lambda row: np.interp(lam, coarse, row), -1, o.reshape(-1, coarse.size))
     weights = np.full(lam.size, fine.step)
@@ -250,6 +255,7 @@ def validate(
     tolerance: float = TOLERANCE_DEFAULT,
     alpha: float = ALPHA_EQUIVALENCE,
     alpha_difference: float = ALPHA_DIFFERENCE,
+    allowance: NDArrayFloat | float = 0.0,
     **render_options,
 ) -> Validation:
     """
@@ -268,6 +274,11 @@ def validate(
     alpha, alpha_difference
         Family-wise error rates of the equivalence verdict (its bounds hold together at ``1 − alpha``) and
         of the difference test (its false-alarm rate).
+    allowance
+        A known systematic ``|rendered − analytic|`` (output units, per patch and channel, or one value) the
+        difference test allows beside the float32 floor: a spectral render's basis error
+        (:func:`~skinrender.rendering.spectral_validation.validate_spectral`). The equivalence verdict allows
+        nothing: the tolerance holds the whole error.
     render_options
         To :func:`skinrender.rendering.balance.render`: ``normalization``, ``knee`` (Eq. 4's), ``settings``
         (a :class:`~skinrender.rendering.settings.RenderSettings`) or its fields ``spp``, ``seed``, ``sampler``,
@@ -288,7 +299,7 @@ def validate(
 
     tolerance = check_tolerance(tolerance, "tolerance")
     if rendering is not None:
-        return validate_rendering(rendering, tolerance, alpha, alpha_difference, grid)
+        return validate_rendering(rendering, tolerance, alpha, alpha_difference, grid, allowance)
     cache = render_options.pop("cache", None)
     request = chart_request(scene, camera_, prevailing, calibration, grid=grid, **render_options)
     if request.sensor is not None:
@@ -299,8 +310,10 @@ def validate(
 
 
 def validate_rendering(rendering: Rendering, tolerance: float = TOLERANCE_DEFAULT, alpha: float = ALPHA_EQUIVALENCE,
-                       alpha_difference: float = ALPHA_DIFFERENCE, grid: WavelengthGrid = GRID_DEFAULT) -> Validation:
-    """A chart's render checked patch by patch against the analytic reference (:func:`validate`'s check)."""
+                       alpha_difference: float = ALPHA_DIFFERENCE, grid: WavelengthGrid = GRID_DEFAULT,
+                       allowance: NDArrayFloat | float = 0.0) -> Validation:
+    """A chart's render checked patch by patch against the analytic reference (:func:`validate`'s check;
+    ``allowance`` as there)."""
     tolerance = check_tolerance(tolerance, "tolerance")
     chart = rendering.scene
     reflectance = rendering.info.get("reflectances")  # subsurface: a skin patch's slab (its adding-doubling R)
@@ -310,7 +323,7 @@ def validate_rendering(rendering: Rendering, tolerance: float = TOLERANCE_DEFAUL
     quadrature = quadrature_difference(r.camera, reflectance, r.prevailing, r.calibration, r.normalization, grid,
                                        exact=None if r.knee else reference)
     sigma, skewness = error_law(rendering, reference)
-    floor = float32_floor(rendering.camera, grid)[None, :] * np.abs(reference)
+    floor = float32_floor(rendering.camera, grid)[None, :] * np.abs(reference) + np.abs(allowance)
     dof = float(np.min(rendering.patches.count) - 1)
     out = agreement(rendering.patches.mean, reference, sigma, tolerance, r.raw[0].spp, dof, floor, alpha,
                     alpha_difference, skewness=skewness, skew_max=SKEW_MAX)

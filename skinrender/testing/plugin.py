@@ -96,7 +96,9 @@ class RenderRegression:
             A chart (``macbeth``, ``skin_patches``, ``face_chart`` or a chart TOML) or a face (``face`` or a
             face TOML), as the command line's ``render`` takes.
         camera
-            A camera name, ``gbell:N@P1,P2,P3``, ``impulse@P1,P2,P3`` or a CSV path (wavelength nm, R, G, B).
+            A camera name, ``gbell:N@P1,P2,P3``, ``impulse@P1,P2,P3`` or a CSV path (wavelength nm, R, G, B); or
+            a list of them: the scene is rendered once spectrally and seen through each, every camera compared
+            with its own reference ``<basename or test name>.<camera>.exr`` (a list of comparisons returned).
         prevailing, calibration
             Planckian lights: kelvin, ``A`` (2856 K) or ``H`` (2300 K).
         spp, seed
@@ -117,7 +119,7 @@ class RenderRegression:
 
         Returns
         -------
-        :class:`~skinrender.testing.regression.Comparison` or ``None``
+        :class:`~skinrender.testing.regression.Comparison`, a list of them (several cameras) or ``None``
             ``None`` when the reference was (re)written (``--skinrender-regen``).
         """
         try:
@@ -154,11 +156,13 @@ class RenderRegression:
         if basename is not None and not (isinstance(basename, str) and safe_name(basename) == basename
                                          and basename.strip(".")):
             raise SkinrenderError(f"basename must be a file name of letters, digits, '.', '-', '_', got {basename!r}")
+        options = dict(spp=spp, seed=seed, physics=physics, skin=skin, imager=imager, illuminance=illuminance,
+                       size=size, variant=variant)
+        if isinstance(camera, (list, tuple)):
+            return self._check_cameras(scene, list(camera), prevailing, calibration, options, basename, alpha)
         path = self.reference_path(basename)
         self._claim(path, basename)
         found = state(path)
-        options = dict(spp=spp, seed=seed, physics=physics, skin=skin, imager=imager, illuminance=illuminance,
-                       size=size, variant=variant)
         if self._config.getoption("skinrender_regen"):
             reference = measure(scene, camera, prevailing, calibration, factor=REFERENCE_SPP_FACTOR, **options)
             written = write_reference(path, reference, alpha)
@@ -175,6 +179,40 @@ class RenderRegression:
         if not result.passed:
             pytest.fail(self._failure(new, reference, result), pytrace=False)
         return result
+
+    def _check_cameras(self, scene, cameras: list, prevailing, calibration, options: dict, basename,
+                       alpha: float) -> list | None:
+        """
+        Several cameras seen through one spectral render (:mod:`skinrender.testing.spectral_checks`), each compared with
+        its own reference ``<basename or test name>.<camera>.exr``; the test fails with every camera that differs.
+        """
+        if not cameras:
+            raise SkinrenderError("camera: name at least one camera")
+        base = basename or self._request.node.name
+        paths = [self.reference_path(f"{base}.{getattr(cam, 'name', cam)}") for cam in cameras]
+        for path in paths:
+            self._claim(path, basename)
+        if self._config.getoption("skinrender_regen"):
+            references = measure(scene, cameras, prevailing, calibration, factor=REFERENCE_SPP_FACTOR, **options)
+            for path, reference in zip(paths, references):
+                written = write_reference(path, reference, alpha)
+                self._config.stash.setdefault(_WRITTEN, []).append((self._request.node.nodeid, written[0]))
+            return None
+        missing = [path for path in paths if state(path) == "missing"]
+        if missing:
+            raise ReferenceProblem(f"no reference render {', '.join(str(shown(p)) for p in missing)} (nor their "
+                                   f"sidecars): write them with `pytest --skinrender-regen "
+                                   f"{shlex.quote(self._request.node.nodeid)}` and commit them")
+        results, failures = [], []
+        for path, new in zip(paths, measure(scene, cameras, prevailing, calibration, **options)):
+            reference = read_reference(path, new)
+            results.append(compare(new, reference.mean, reference.standard_error, reference.dof, alpha,
+                                   setting_notes(new.settings, reference.settings)))
+            if not results[-1].passed:
+                failures.append(self._failure(new, reference, results[-1]))
+        if failures:
+            pytest.fail("\n".join(failures), pytrace=False)
+        return results
 
     def _failure(self, new, reference, result: Comparison) -> str:
         settings = new.settings

@@ -63,7 +63,7 @@ from ..hints import NDArrayFloat
 from .replicates import measure_face, region_values
 
 __all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
-           "Comparison", "scene_kind", "measure", "values_of", "setting_notes", "compare"]
+           "Comparison", "scene_kind", "measure", "measure_spectral", "values_of", "setting_notes", "compare"]
 
 REFERENCE_SPP_FACTOR = 4
 """A reference is rendered at this many times the check's spp (and the same seed): its own noise then moves
@@ -179,7 +179,8 @@ def _white_relative_variance(rendering) -> NDArrayFloat:
         mean = pixels.mean(axis=0)
         return np.cov(pixels, rowvar=False) / len(pixels) / np.outer(mean, mean)
 
-    sigma_c = relative_covariance(rendering.raw[-1])
+    analytic = rendering.info.get("white_calibration") == "analytic"  # a spectral render's: computed, exact
+    sigma_c = 0.0 * relative_covariance(rendering.raw[-1]) if analytic else relative_covariance(rendering.raw[-1])
     if rendering.normalization != "white" or rendering.prevailing == rendering.calibration:
         return np.diagonal(sigma_c).copy()
     sigma_w = relative_covariance(rendering.raw[0])
@@ -191,20 +192,27 @@ def _white_relative_variance(rendering) -> NDArrayFloat:
 
 def _chart(chart, cam, prevailing, calibration, spp, seed, imager, illuminance, variant) -> Measurement:
     from ..rendering.kinds import CHART
-    from ..rendering.renderer import channel_names
 
     request = CHART.request(chart, cam, prevailing, calibration, spp=spp, seed=seed, variant=variant, imager=imager,
                             illuminance=illuminance)  # the one request of every door
     rendering, imaged = CHART.render_imaged(request)
     # through a sensor the balance's whites are noise-free; else the rendered whites' noise adds to every patch
     relative = np.zeros(3) if imaged is not None else _white_relative_variance(rendering)
+    settings = {} if imaged is None else {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux}
+    return _chart_values(chart, cam, rendering, relative, settings)
+
+
+def _chart_values(chart, cam, rendering, relative, settings: dict) -> Measurement:
+    """A chart render reduced to its patch means with their standard errors (``relative``: the whites' relative
+    variance per channel)."""
+    from ..rendering.renderer import channel_names
+
     stats = rendering.patches
     se = np.sqrt(stats.standard_error**2 + stats.mean**2 * relative[None, :])
     dof = np.broadcast_to(stats.count[:, None] - 1.0, se.shape)
     names = tuple(p.name for p in chart.patches)
     items = tuple(f"{n} / {c}" for n in names for c in cam.channels)
-    settings = {"spp": int(rendering.raw[0].spp), "variant": rendering.variant,
-                **({} if imaged is None else {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux})}
+    settings = {"spp": int(rendering.raw[0].spp), "variant": rendering.variant, **settings}
     return Measurement("chart", rendering.image, None, channel_names(cam), names, items, stats.mean.ravel(),
                        se.ravel(), np.where(se.ravel() > 0, dof.ravel(), np.inf), settings)
 
@@ -222,6 +230,10 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     Render ``scene`` (a chart or a face) through ``camera`` under the Planckian ``prevailing`` light (K),
     white balanced to ``calibration`` (K), and reduce it to the values a regression compares (module
     docstring).
+
+    ``camera`` may be a list of cameras: the scene is then rendered once spectrally (a face: once per replicate
+    seed) and seen through each (:func:`measure_spectral`), and a list of measurements returned, one per camera,
+    in their order.
 
     ``spp`` defaults to :data:`SPP_CHART` or :data:`SPP_FACE`; ``physics``, ``skin`` and ``size`` (pixels,
     default :data:`SIZE_FACE`) go with faces; ``imager`` (and ``illuminance``, lx) put the image sensor's
@@ -244,25 +256,73 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
                                   "(e.g. 'face'), not a chart")
         if illuminance is not None and imager is None:
             raise SkinrenderError("illuminance sets the image sensor's exposure: it goes with imager")
-    cam = _named("camera", camera_of, camera)
-    _named("camera", cam.sensitivities)
+    several = isinstance(camera, (list, tuple))
+    cams = [_named("camera", camera_of, one) for one in (camera if several else [camera])]
+    if not cams:
+        raise SkinrenderError("camera: name at least one camera")
+    for cam in cams:
+        _named("camera", cam.sensitivities)
+    cam = cams[0]
     p, c = _planckian(prevailing, "prevailing"), _planckian(calibration, "calibration")
     spp = _integer(SPP_CHART if kind == "chart" and spp is None else SPP_FACE if spp is None else spp, "spp", 1,
                    SPP_MAX + 1)
     seed = _integer(seed, "seed", 0, SEED_MAX + 1)  # the bound of every front door
-    if kind == "chart":
-        found = _chart(chart, cam, p, c, spp * factor, seed, imager, illuminance, variant)
-        name = chart.name
+    size = SIZE_FACE if size is None else size
+    if several:
+        found = measure_spectral(kind, chart if kind == "chart" else scene, cams, p, c, spp * factor, seed, physics,
+                                 skin, imager, illuminance, size, variant)
+    elif kind == "chart":
+        found = [_chart(chart, cam, p, c, spp * factor, seed, imager, illuminance, variant)]
     else:
-        found = Measurement("face", *measure_face(scene, cam, p, c, spp * factor, seed, physics, skin, imager,
-                                                  illuminance, SIZE_FACE if size is None else size, variant))
-        name = found.settings.pop("scene_name")
+        found = [Measurement("face", *measure_face(scene, cam, p, c, spp * factor, seed, physics, skin, imager,
+                                                   illuminance, size, variant))]
     from .. import __version__
 
-    settings = {"kind": kind, "scene": name, **camera_attributes(cam), "prevailing_K": p, "calibration_K": c,
-                "spp_requested": spp, "seed": seed, **found.settings, "skinrender_version": __version__}
-    return Measurement(found.kind, found.image, found.labels, found.channels, found.regions, found.items,
-                       found.mean, found.standard_error, found.dof, settings, chart if kind == "chart" else None)
+    out = []
+    for cam, one in zip(cams, found):
+        name = chart.name if kind == "chart" else one.settings.pop("scene_name")
+        settings = {"kind": kind, "scene": name, **camera_attributes(cam), "prevailing_K": p, "calibration_K": c,
+                    "spp_requested": spp, "seed": seed, **one.settings, "skinrender_version": __version__}
+        out.append(Measurement(one.kind, one.image, one.labels, one.channels, one.regions, one.items, one.mean,
+                               one.standard_error, one.dof, settings, chart if kind == "chart" else None))
+    return out if several else out[0]
+
+
+def measure_spectral(kind: str, scene, cameras: list, prevailing: float, calibration: float, spp: int, seed: int,
+                     physics: str | None, skin: str | None, imager: str | None, illuminance: float | None, size: int,
+                     variant: str | None) -> list:
+    """
+    One :class:`Measurement` per camera of ``cameras`` from one spectral render of ``scene`` (a loaded chart, or a
+    face spec; a face: one per replicate seed) with :data:`~skinrender.rendering.bands.BANDS_DEFAULT` (arguments
+    as :func:`measure`; a chart through an ``imager`` is refused: its sensor records a camera's channels). The
+    settings add ``spectral_bands_nm``, so that a reference made one render per camera is told apart in a
+    failure's notes.
+    """
+    from ..rendering.bands import BANDS_DEFAULT, bands_text
+    from ..rendering.kinds import CHART, FACE
+    from .replicates import face_check_request, reduce_face, replicate_seeds
+
+    bands = {"spectral_bands_nm": bands_text(BANDS_DEFAULT)}
+    if kind == "chart":
+        if imager is not None:
+            raise SkinrenderError("imager: a chart's image sensor records one camera's render; check several cameras "
+                                  "without it, or one camera at a time")
+        image = CHART.render(CHART.request(scene, None, prevailing, None, spp=spp, seed=seed, variant=variant,
+                                           bands=BANDS_DEFAULT))
+        out = []
+        for cam in cameras:
+            rendering = image.through(cam, calibration)
+            out.append(_chart_values(scene, cam, rendering, _white_relative_variance(rendering), bands))
+        return out
+    request = face_check_request(scene, None, prevailing, None, spp, seed, physics, skin, imager, illuminance, size,
+                                 variant, BANDS_DEFAULT)
+    images = [FACE.render(request, s) for s in replicate_seeds(seed)]
+    out = []
+    for cam in cameras:
+        found = Measurement("face", *reduce_face([image.through(cam, calibration) for image in images], cam))
+        out.append(Measurement(found.kind, found.image, found.labels, found.channels, found.regions, found.items,
+                               found.mean, found.standard_error, found.dof, {**found.settings, **bands}))
+    return out
 
 
 def values_of(kind: str, image: NDArrayFloat, labels: NDArrayFloat | None, regions, scene=None) -> NDArrayFloat:
@@ -321,7 +381,8 @@ class Comparison:
 NOTED = {"camera_sha256": "the camera's curves", "variant": "the Mitsuba variant", "spp_requested": "spp",
          "seed": "the seed", "skinrender_version": "the skinrender version", "physics": "the physics",
          "skin": "the skin", "imager": "the imager", "prevailing_K": "the prevailing light (K)",
-         "calibration_K": "the calibration light (K)", "size": "the image size"}
+         "calibration_K": "the calibration light (K)", "size": "the image size",
+         "spectral_bands_nm": "the spectral bands (nm; none: one render per camera)"}
 """Settings whose change against the reference is noted in a failure message, key → words."""
 
 

@@ -35,7 +35,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 
-__all__ = ["REPLICATES", "replicate_seeds", "region_values", "measure_face"]
+__all__ = ["REPLICATES", "replicate_seeds", "region_values", "measure_face", "face_check_request", "reduce_face"]
 
 REPLICATES = 4
 """Independent replicates a face is rendered as, for its per-pixel Monte Carlo covariance."""
@@ -99,15 +99,32 @@ def measure_face(scene, cam, prevailing: float, calibration: float, spp: int, se
     ``imager`` adds physics ``noise``; ``illuminance`` without it or ``noise`` is refused.
     """
     from ..rendering.kinds import FACE
-    from ..rendering.renderer import channel_names
+
+    request = face_check_request(scene, cam, prevailing, calibration, spp, seed, physics, skin, imager, illuminance,
+                                 size, variant)
+    return reduce_face([FACE.render(request, s) for s in replicate_seeds(seed)], cam)
+
+
+def face_check_request(scene, cam, prevailing: float, calibration: float, spp: int, seed: int, physics: str | None,
+                       skin: str | None, imager: str | None, illuminance: float | None, size, variant: str | None,
+                       bands=None):
+    """A face check's request (the one request of every door: an imager adds noise there; illuminance without it
+    or noise is refused), its ``spp`` split over :data:`REPLICATES`; ``bands``: a spectral one (``cam``
+    ``None``)."""
+    from ..rendering.kinds import FACE
 
     if spp < REPLICATES:
         raise SkinrenderError(f"spp: a face check renders {REPLICATES} replicates, so spp must be at least "
                               f"{REPLICATES}, got {spp}")
-    # the one request of every door (an imager adds noise there; illuminance without it or noise is refused)
-    request = FACE.request(scene, cam, prevailing, calibration, skin=skin, physics=physics or "direct", size=size,
-                           spp=spp // REPLICATES, seed=seed, variant=variant, imager=imager, illuminance=illuminance)
-    renders = [FACE.render(request, s) for s in replicate_seeds(seed)]
+    return FACE.request(scene, cam, prevailing, calibration, skin=skin, physics=physics or "direct", size=size,
+                        spp=spp // REPLICATES, seed=seed, variant=variant, imager=imager, illuminance=illuminance,
+                        **({} if bands is None else {"bands": bands}))
+
+
+def reduce_face(renders: list, cam) -> tuple:
+    """:func:`measure_face`'s reduction of the replicate renders of one camera (``renders``, one per seed)."""
+    from ..rendering.renderer import channel_names
+
     first = renders[0]
     stack = np.array([r.image for r in renders], dtype=np.float64)
     image = stack.mean(axis=0).astype(np.float32)

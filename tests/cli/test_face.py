@@ -67,6 +67,22 @@ class TestLadder:
         assert set(row) >= {"eq4_shift", "budget", "within_budget", "seconds", "tpr_change", "fpr_change"}
         assert status == [document["exit_status"]] and document["verdict"] in ("pass", "fail", "inconclusive")
 
+    def test_several_cameras_share_each_levels_renders(self, capsys):
+        """Two ``--camera``: one ladder each, from spectral renders (16 px, 12 × 1 spp, 50 nm bands: tiny)."""
+        status = []
+        document = run(["ladder", "--camera", CAM, "--camera", "Nikon 5100 (NPL)", "--prevailing", "A",
+                        "--calibration", "H", "--size", "16", "--spp", "1", "--levels", "direct", "--bands",
+                        "400:700:50", "--json"], capsys, status)
+        assert [d["camera"] for d in document["cameras"]] == [CAM, "Nikon 5100 (NPL)"]
+        assert document["spectral"] == {"bands_nm": "400:700:50", "bands": 7, "basis": "hat"}
+        assert all(d["levels"][0]["name"] == "direct" for d in document["cameras"])
+        assert status == [document["exit_status"]]
+        for extra, name in ((["--plot", "x.png"], "--plot"), (["--effects"], "--camera"),
+                            (["--direct", "--bands", "400:700:5"], "--bands")):
+            with pytest.raises(SkinrenderError, match=name):
+                run(["ladder", "--camera", CAM, "--camera", "Nikon 5100 (NPL)", "--prevailing", "A",
+                     "--calibration", "H", "--levels", "direct", "--size", "8", *extra], capsys)
+
     def test_the_effects_table(self, tmp_path, capsys):
         """``--effects``: per skin and level the shift against the budget, the rate changes and the seconds; two
         skins named, two levels; the figure with --plot."""

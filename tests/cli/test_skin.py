@@ -1,8 +1,8 @@
 """
 Tests for :mod:`skinrender.cli.skin`: ``skin --json`` prints the reflectance and the layers it is computed from
 (adding-doubling computed independently from the printed layers by iadpython agrees), the text table and the
-plot; ``skin --fit`` fits every column of a table, reports bounds and convergence, exits 1 only when no column
-converged; bad input is refused in one line naming the flag.
+plot; ``skin --fit`` fits every column of a table, reports bounds, convergence and what is not skin (with the
+reason), exits 1 only when no column is skin; bad input is refused in one line naming the flag.
 """
 
 from __future__ import annotations
@@ -73,7 +73,7 @@ def fit_csv(tmp_path, columns: dict, lam) -> str:
     return str(path)
 
 
-def test_fit_of_model_spectra_and_a_white_that_sits_on_bounds(tmp_path, capsys):
+def test_fit_of_model_spectra_and_a_white_that_is_not_skin(tmp_path, capsys):
     from skinrender.datasets.skin_model import SkinParameters, skin_reflectance
 
     lam = np.arange(390.0, 711.0, 6.0)
@@ -88,16 +88,31 @@ def test_fit_of_model_spectra_and_a_white_that_sits_on_bounds(tmp_path, capsys):
     light, white = document["fits"]
     assert light["name"] == "light" and light["rms"] < 1e-5
     assert light["parameters"]["melanin"] == pytest.approx(0.03, rel=1e-4)
-    assert white["bounds_hit"] and white["rms"] > 0.01
+    assert light["not_skin"] is False and light["not_skin_reason"] is None
+    # a flat white fits by Kubelka–Munk (RMS 0.0005) with neither melanin nor blood: refused as skin
+    assert white["bounds_hit"]["melanin"] == "low" and white["not_skin"] is True
+    assert "no melanin and no blood" in white["not_skin_reason"] and document["skin"] == 1
     assert set(document["bounds"]) == set(light["parameters"]) and document["rms"]["max"] == white["rms"]
 
 
-def test_fit_text_says_which_sit_on_a_bound(tmp_path, capsys):
+def test_fit_text_says_which_sit_on_a_bound_and_which_are_not_skin(tmp_path, capsys):
     lam = np.arange(400.0, 701.0, 10.0)
     status, out, err = run(["skin", "--fit", fit_csv(tmp_path, {"white": np.full(lam.size, 0.9)}, lam),
                             "--method", "kubelka-munk", "--workers", "1"], capsys)
-    assert status == 0, err
-    assert "1 of 1 converged; 1 sit on a bound" in out and "white" in out
+    assert status == 1, err  # no column is skin
+    assert "1 of 1 converged; 1 sit on a bound; 0 of 1 are skin" in out
+    assert "not skin: white: its fit has no melanin and no blood" in out
+
+
+def test_an_all_ones_table_is_not_skin_and_exits_1(tmp_path, capsys):
+    """Issue 36: it used to 'converge' as skin (RMS 0.24, exit 0)."""
+    lam = np.arange(400.0, 701.0, 10.0)
+    status, out, err = run(["skin", "--fit", fit_csv(tmp_path, {"a": np.ones(lam.size), "b": np.ones(lam.size)},
+                                                      lam), "--workers", "1", "--json"], capsys)
+    document = json.loads(out)
+    assert status == 1 and document["skin"] == 0
+    for fit in document["fits"]:
+        assert fit["not_skin"] is True and "beyond the measured skins'" in fit["not_skin_reason"]
 
 
 def test_fit_of_nist_skins(shared_data, tmp_path, capsys):
@@ -139,6 +154,11 @@ def test_no_column_converged_exits_1_with_the_whole_document(tmp_path, capsys, m
     (["--scattering-power", "9"], "--scattering-power"),
     (["--epidermis-mm", "0"], "--epidermis-mm"),
     (["--n", "0.9"], ("--n", "[1, 3]")),
+    (["--background", "-1"], ("--background", "[0, 1000]")),
+    (["--vessel-min-um", "0"], "--vessel-min-um"),
+    (["--vessel-max-um", "1"], ("--vessel-max-um", "at most vessel_max_um")),
+    (["--vessel-min-um", "50", "--vessel-max-um", "10"], ("--vessel-min-um", "50 > 10")),
+    (["--epidermis-scattering", "0"], "--epidermis-scattering"),
     (["--method", "monte-carlo"], ("--method", "adding-doubling, kubelka-munk")),
     (["--surface", "0.05"], ("--surface", "kubelka-munk")),
     (["--grid", "700:400:10"], "--grid"),
@@ -147,7 +167,7 @@ def test_no_column_converged_exits_1_with_the_whole_document(tmp_path, capsys, m
     (["--compare", "macbeth"], ("--compare", "--plot")),
     (["--workers", "2"], "--workers"),
     (["--fit", "nosuch.csv"], ("--fit", "no such file")),
-    (["--fit", "skin", "--melanin", "0.1"], ("--melanin", "--fit")),
+    (["--fit", "skin", "--melanin", "0.1"], ("--melanin", "--fit", "--background")),
     (["--fit", "skin", "--grid", "400:700:5"], ("--grid", "--fit")),
     (["--fit", "skin", "--plot", "a.png"], "--plot"),
     (["--fit", "skin", "--fit-range", "700:400"], "--fit-range"),

@@ -80,6 +80,15 @@ def test_what_does_not_go_with_it_is_refused(chart, extra, names, capsys):
     assert_refused(["validate", chart, "--camera", CAM, *LIGHTS, "--physics", "subsurface", *extra], names, capsys)
 
 
+def test_a_black_patch_marked_skin_is_refused_naming_it(tmp_path, capsys):
+    """Issue 36: grey:0 marked skin fitted to RMS 0.029 with every parameter on a bound and rendered as a slab."""
+    path = tmp_path / "black.toml"
+    path.write_text('name = "black"\ncolumns = 1\npatch_px = 4\n[[patch]]\nname = "coal"\n'
+                    'reflectance = "grey:0"\nskin = true\n')
+    assert_refused(["validate", str(path), "--camera", CAM, *LIGHTS, "--physics", "subsurface", "--spp", "4"],
+                   ("patch 'coal'", "'grey:0'", "not skin", "parameters on a bound"), capsys)
+
+
 def test_a_chart_without_skin_and_other_levels(capsys):
     assert_refused(["validate", "macbeth", "--camera", CAM, *LIGHTS, "--physics", "subsurface"],
                    ("--physics subsurface", "macbeth has none"), capsys)

@@ -40,6 +40,32 @@ class TestSkinLayers:
         # μs' = 50 cm⁻¹ = 5 mm⁻¹ at 500 nm, half at 1000 nm; μs = μs' / (1 - g)
         np.testing.assert_allclose(epidermis.mu_s_per_mm * (1 - epidermis.g), [5.0, 2.5])
 
+    def test_the_dermis_is_packaged_blood_water_and_the_background(self):
+        """μa_derm = B C μa_blood + (1 − B)(0.65 μa_water + background): each term from its source."""
+        from skinrender.datasets.skin_absorbers import packaging_factor, water_absorption, whole_blood_absorption
+
+        p = SkinParameters(blood=0.02, oxygenation=0.7, background=0.1, vessel_min_um=5.0, vessel_max_um=40.0)
+        _, dermis = skin_layers(LAMBDA, p)
+        blood = whole_blood_absorption(LAMBDA, 0.7)
+        expected = 0.02 * blood * packaging_factor(blood, 5.0, 40.0) + 0.98 * (0.65 * water_absorption(LAMBDA) + 0.01)
+        np.testing.assert_allclose(dermis.mu_a_per_mm, expected, rtol=1e-12)
+
+    def test_epidermis_scattering_scales_the_epidermis_only(self):
+        same_epidermis, same_dermis = skin_layers(LAMBDA)
+        epidermis, dermis = skin_layers(LAMBDA, SkinParameters(epidermis_scattering=1.6))
+        np.testing.assert_allclose(epidermis.mu_s_per_mm, 1.6 * same_epidermis.mu_s_per_mm, rtol=1e-12)
+        np.testing.assert_array_equal(dermis.mu_s_per_mm, same_dermis.mu_s_per_mm)
+        assert not np.allclose(skin_reflectance(LAMBDA, SkinParameters(epidermis_scattering=1.6)),
+                               skin_reflectance(LAMBDA))
+
+    def test_background_darkens_the_red_and_packaging_brightens_the_haemoglobin_bands(self):
+        red, band = LAMBDA >= 650, (LAMBDA >= 535) & (LAMBDA <= 580)
+        base = skin_reflectance(LAMBDA, SkinParameters(melanin=0.02))
+        darker = skin_reflectance(LAMBDA, SkinParameters(melanin=0.02, background=0.3))
+        assert np.all(darker[red] < base[red] - 0.02)
+        spread = skin_reflectance(LAMBDA, SkinParameters(melanin=0.02, vessel_min_um=1e-3, vessel_max_um=1e-3))
+        assert np.all(base[band] > spread[band] + 0.01)  # blood in vessels absorbs less than blood spread evenly
+
     def test_as_dict_is_plain_json(self):
         import json
 
@@ -121,6 +147,10 @@ class TestSkinReflectance:
         ({"epidermis_mm": -0.1}, "epidermis_mm"),
         ({"n": 0.9}, r"n must be in \[1, 3\]"),
         ({"surface": 1.5}, "surface"),
+        ({"background": -0.1}, r"background must be in \[0, 1000\]"),
+        ({"vessel_min_um": 0}, r"vessel_min_um must be in \(0,"),
+        ({"vessel_min_um": 200.0}, "vessel_min_um must be at most vessel_max_um, got 200 > 100"),
+        ({"epidermis_scattering": 0}, r"epidermis_scattering must be in \(0,"),
     ])
     def test_parameters_outside_their_physical_range_are_refused_before_computing(self, parameters, match):
         with warnings.catch_warnings():

@@ -100,3 +100,34 @@ def test_validate_refusals(kwargs, message):
     with pytest.raises(sr.SkinrenderError) as error:
         sr.validate(**arguments)
     assert str(error.value).startswith(message)
+
+
+def test_a_spectral_render_of_a_chart_and_a_face():
+    """``spectral=True``: no camera, no calibration; a ``SpectralImage`` that any camera sees through."""
+    chart = sr.render("macbeth", prevailing=2856, spectral=True, spp=2, bands="400:700:50")
+    assert isinstance(chart, sr.SpectralImage) and chart.kind == "chart" and chart.image.shape[-1] == 7
+    face = sr.render("face", prevailing=2856, spectral=True, spp=1, size=8, bands="400:700:50", physics="sheen")
+    assert face.kind == "face" and face.physics == "sheen"
+    assert isinstance(face.through(CAMERA, 5900), FaceRendering)
+
+
+@pytest.mark.parametrize("call, message", [
+    (dict(camera=CAMERA), "camera: a spectral render takes no camera"),
+    (dict(calibration=5900), "calibration: a spectral render takes no calibration"),
+    (dict(normalization="none"), "normalization is not an option of a chart scene"),
+    (dict(prevailing=None), "prevailing: a chart"),
+])
+def test_a_spectral_render_refuses_what_it_does_not_take(call, message):
+    with pytest.raises(sr.SkinrenderError, match=message):
+        sr.render("macbeth", **{"prevailing": 2856, "spp": 1, **call}, spectral=True)
+
+
+def test_render_cameras_renders_once_for_every_camera():
+    """One spectral render: each camera's result, in order, sharing the render's seed and spp."""
+    results = sr.render_cameras("macbeth", [CAMERA, "Nikon 5100 (NPL)"], 2856, 5900, spp=2, bands="400:700:10")
+    assert [r.camera.name for r in results] == [CAMERA, "Nikon 5100 (NPL)"]
+    assert all(isinstance(r, Rendering) and r.calibration == 5900 and r.raw[0].seed == 0 for r in results)
+    with pytest.raises(sr.SkinrenderError, match="outside the bands"):
+        sr.render_cameras("macbeth", [CAMERA], 2856, bands="450:650:10", spp=1)
+    with pytest.raises(sr.SkinrenderError, match="at least one"):
+        sr.render_cameras("macbeth", [], 2856)

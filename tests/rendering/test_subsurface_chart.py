@@ -129,11 +129,12 @@ class TestRefusals:
         with pytest.raises(SkinrenderError, match="skin patches .* has none"):
             subsurface_chart("macbeth")
 
-    def test_a_skin_patch_the_model_does_not_fit(self, tmp_path):
+    @pytest.mark.parametrize("name, spec", [("blue", "macbeth:blue"), ("black", "grey:0")])
+    def test_a_skin_patch_that_is_not_skin(self, tmp_path, name, spec):
         path = tmp_path / "bad.toml"
-        path.write_text('name = "bad"\ncolumns = 1\npatch_px = 4\n[[patch]]\nname = "blue"\n'
-                        'reflectance = "macbeth:blue"\nskin = true\n')
-        with pytest.raises(SkinrenderError, match="patch 'blue': 'macbeth:blue' is a measured reflectance"):
+        path.write_text(f'name = "bad"\ncolumns = 1\npatch_px = 4\n[[patch]]\nname = "{name}"\n'
+                        f'reflectance = "{spec}"\nskin = true\n')
+        with pytest.raises(SkinrenderError, match=f"patch '{name}': '{spec}' is a measured reflectance and not skin"):
             subsurface_chart(str(path))
 
     def test_unknown_physics(self, two):

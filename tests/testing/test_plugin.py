@@ -49,6 +49,7 @@ def warm(tmp_path_factory):
     measure("face", "gbell:9@450,540,610", "A", "A", spp=4, size=8)
     measure("macbeth", "gbell:9@450,540,610", "A", "A", spp=4)
     import matplotlib.pyplot  # noqa: F401  (the difference figure's)
+    import scipy.stats  # noqa: F401  (the comparison's: it imports numpy.fft, a C module loaded once a process)
 
     # contourpy too: imported first inside a run, it is unloaded after it and, compiled, cannot be imported again
     # (later tests of the same pytest-xdist worker drawing a contour failed)
@@ -241,3 +242,33 @@ def test_the_entry_point_names_the_module_it_loads():
     assert points == {"skinrender.testing.plugin": "skinrender.testing.plugin"}
     module = importlib.import_module(points["skinrender.testing.plugin"])
     assert callable(module.pytest_addoption) and hasattr(module, "render_regression")
+
+
+def test_several_cameras_share_one_render_each_with_its_reference(pytester):
+    """``camera=[A, B]``: one spectral render, a reference per camera (``<test>.<camera>.exr``); B's curves
+    shifted by 4 nm (its CSV rewritten) fail B's check alone, named with the change."""
+    pytester.makepyfile(test_many="""
+from pathlib import Path
+
+HERE = Path(__file__).parent
+
+
+def test_many(render_regression):
+    out = render_regression.check(str(HERE / "tiny.toml"), camera=["gbell:9@450,540,610", str(HERE / "b.csv")],
+                                  prevailing="A", calibration=5000, spp=16)
+    assert out is None or len(out) == 2
+""")
+    (pytester.path / "tiny.toml").write_text(TINY)
+    csv_camera(pytester.path / "b.csv")
+    assert run(pytester, "--skinrender-regen").ret == 0
+    folder = pytester.path / "test_many"
+    names = sorted(p.name for p in folder.glob("*.exr"))
+    assert len(names) == 2 and names[1] == "test_many.gbell_9_450_540_610.exr" and names[0].endswith("b.csv.exr")
+    sidecar = json.loads((folder / "test_many.gbell_9_450_540_610.json").read_text())
+    assert sidecar["settings"]["spectral_bands_nm"] == "400:700:5"
+    assert run(pytester).ret == 0
+    csv_camera(pytester.path / "b.csv", shift=4.0)
+    result = run(pytester)
+    text = result.stdout.str()
+    assert result.ret == 1 and names[0] in text and "gbell_9_450" not in text
+    assert "the camera's curves changed" in text

@@ -59,7 +59,8 @@ from ..scene import reflectance_of
 from .labels import SHAPE_SKIN, prop_shape_id
 from .scene import MESH_HEAD, FaceScene, Light, skin_reflectance_of
 
-__all__ = ["channel_groups", "film_dict", "light_irradiance", "channel_integral", "transform", "face_document"]
+__all__ = ["channel_groups", "film_dict", "light_irradiance", "channel_integral", "transform", "face_document",
+           "skin_material", "light_documents"]
 
 
 def channel_groups(cam: Camera, grid: WavelengthGrid, channels: str = "auto") -> list[tuple[int, ...]]:
@@ -67,11 +68,18 @@ def channel_groups(cam: Camera, grid: WavelengthGrid, channels: str = "auto") ->
     return [(0,), (1,), (2,)] if _separate(cam, grid, channels) else [(0, 1, 2)]
 
 
-def film_dict(cam: Camera, grid: WavelengthGrid, group: tuple[int, ...], width: int, height: int) -> dict:
-    """A float32 ``specfilm``, box filter, with the camera's ``group`` channels (named as for charts)."""
-    curves, names = cam.sensitivities(grid), channel_names(cam)
+def film_dict(cam: Camera | None, grid: WavelengthGrid, group: tuple[int, ...], width: int, height: int,
+              channels: dict | None = None) -> dict:
+    """
+    A float32 ``specfilm``, box filter, with the camera's ``group`` channels (named as for charts), or with
+    ``channels`` (name → Mitsuba spectrum: a spectral render's bands, :func:`~skinrender.rendering.bands.film_channels`)
+    in their place.
+    """
     film = {"type": "specfilm", "width": int(width), "height": int(height), "component_format": "float32",
             "rfilter": {"type": "box"}}
+    if channels is not None:
+        return {**film, **channels}
+    curves, names = cam.sensitivities(grid), channel_names(cam)
     for k in group:
         film[names[k]] = _spectrum(grid.wavelengths, curves[k])
     return film
@@ -151,9 +159,9 @@ def _mesh(mi, scene: FaceScene, material: dict, unit: float = 1.0) -> dict | obj
     return mesh
 
 
-def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, level, skin: str,
+def face_document(mi, scene: FaceScene, cam: Camera | None, grid: WavelengthGrid, level, skin: str,
                   group: tuple[int, ...], spp: int, seed: int, sampler: str, lights: dict[str, Light],
-                  scale: float) -> dict:
+                  scale: float, channels: dict | None = None) -> dict:
     """
     The Mitsuba scene dictionary of a face scene.
 
@@ -168,6 +176,9 @@ def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, level
         The skin spec (:func:`~skinrender.rendering.face.scene.skin_reflectance_of`).
     group
         The camera channels of this pass.
+    channels
+        A spectral render's film channels (name → Mitsuba spectrum) in place of the camera's (``cam``
+        ``None``).
     lights
         The lights to add (the level's, :meth:`~skinrender.rendering.face.effects.levels.Level.lights`),
         with their temperatures: a point light where it has a position, else the uniform environment.
@@ -180,7 +191,7 @@ def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, level
     c = scene.camera
     setup = level.setup(scene, cam, grid, lights, skin=skin)
     k = level.scene_scale  # scene units per metre: 1 but with an effect that needs finer ray offsets
-    at = (lambda point: list(point)) if k == 1.0 else (lambda point: [k * v for v in point])  # noqa: E731
+    at = _at(k)
     document = {
         "type": "scene",
         "integrator": level.integrator(setup),
@@ -188,25 +199,48 @@ def face_document(mi, scene: FaceScene, cam: Camera, grid: WavelengthGrid, level
             "type": "perspective", "fov": c.fov, "fov_axis": "x", "near_clip": 1e-3 * k, "far_clip": 1e3 * k,
             "to_world": matrix().look_at(origin=at(c.position), target=at(c.target), up=list(c.up)),
             "sampler": {"type": sampler, "sample_count": int(spp), "seed": int(seed)},
-            "film": film_dict(cam, grid, group, c.width, c.height),
+            "film": film_dict(cam, grid, group, c.width, c.height, channels),
         },
     }
-    document[SHAPE_SKIN] = _mesh(mi, scene, level.skin(skin_reflectance_of(skin, grid, "skin"), setup), k)
+    document[SHAPE_SKIN] = _mesh(mi, scene, skin_material(scene, level, grid, skin, lights, cam), k)
     for index, prop in enumerate(scene.props):
         size = [prop.size[0] / 2, prop.size[1] / 2, prop.size[2] / 2 if prop.shape == "cube" else 1.0]
         document[prop_shape_id(index)] = {
             "type": prop.shape, "to_world": matrix(_scaled(transform(prop.position, prop.rotate, size), k)),
             **level.prop(reflectance_of(prop.reflectance, grid, f"prop {prop.name!r}"), setup),
         }
-    target = np.asarray(at(c.target))
+    return {**document, **light_documents(scene, level, grid, lights, scale)}
+
+
+def _at(unit: float):
+    """A point (m) in a scene of ``unit`` scene units per metre, as a list (unchanged, not even rounded, at 1)."""
+    return (lambda point: list(point)) if unit == 1.0 else (lambda point: [unit * v for v in point])
+
+
+def skin_material(scene: FaceScene, level, grid: WavelengthGrid, skin: str, lights: dict[str, Light],
+                  cam: Camera | None = None) -> dict:
+    """The skin's shape properties at ``level`` (``{"bsdf": …}``, a medium's ``"interior"``), plain dicts."""
+    setup = level.setup(scene, cam, grid, lights, skin=skin)
+    return level.skin(skin_reflectance_of(skin, grid, "skin"), setup)
+
+
+def light_documents(scene: FaceScene, level, grid: WavelengthGrid, lights: dict[str, Light], scale: float) -> dict:
+    """
+    The emitters of ``lights`` (``{"light_NAME": …}``, plain dicts): a point light where it has a position (its
+    intensity giving its irradiance at the camera target, in the level's scene units), else the uniform
+    environment; every spectrum divided by ``scale`` (W·m⁻²·nm⁻¹).
+    """
+    at = _at(level.scene_scale)
+    target = np.asarray(at(scene.camera.target))
+    out = {}
     for name, light in lights.items():
         lam, irradiance = light_irradiance(light, grid)
         if light.position is None:
-            document[f"light_{name}"] = {"type": "constant", "sampling_weight": float(light.illuminance),
-                                         "radiance": _spectrum(lam, irradiance / np.pi / scale)}
+            out[f"light_{name}"] = {"type": "constant", "sampling_weight": float(light.illuminance),
+                                    "radiance": _spectrum(lam, irradiance / np.pi / scale)}
         else:  # the intensity of a point light that gives its irradiance at the target, in scene units
             squared = float(np.sum((np.asarray(at(light.position)) - target) ** 2))
-            document[f"light_{name}"] = {"type": "point", "position": at(light.position),
-                                         "sampling_weight": float(light.illuminance),
-                                         "intensity": _spectrum(lam, irradiance * squared / scale)}
-    return document
+            out[f"light_{name}"] = {"type": "point", "position": at(light.position),
+                                    "sampling_weight": float(light.illuminance),
+                                    "intensity": _spectrum(lam, irradiance * squared / scale)}
+    return out

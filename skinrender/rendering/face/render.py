@@ -64,7 +64,7 @@ from .effects import Frame, Level
 from .labels import label_names, render_labels, shape_labels
 from .scene import MESH_HEAD, FaceScene, prevailing_name
 
-__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "render_face_request",
+__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "render_face_request", "finish_face",
            "face_exr", "write_face_exr"]
 
 LOADED_KEPT = 6
@@ -160,21 +160,29 @@ def planckian_temperature(spec, name: str) -> float:
     return planckian(spec, name)
 
 
-def white_references(scene: FaceScene, cam: Camera, calibration: float,
-                     grid: WavelengthGrid = GRID_DEFAULT) -> tuple[NDArrayFloat, NDArrayFloat]:
+def white_references(scene: FaceScene, cam: Camera, calibration: float, grid: WavelengthGrid = GRID_DEFAULT,
+                     bands=None) -> tuple[NDArrayFloat, NDArrayFloat]:
     """
     ``white_p`` and ``white_c`` (channels, specfilm units): a perfect white at
     the camera target facing the key light (or open to the environment in a
     scene without one), and under the calibration Planckian at ``calibration``
-    K (its scale arbitrary: Eq. 4 cancels it).
+    K (its scale arbitrary: Eq. 4 cancels it). ``bands``: integrated as a spectral render sees the camera
+    (:mod:`~skinrender.rendering.bands`: its curves at the bands, through the hats).
     """
     light = getattr(scene, prevailing_name(scene))
     if light is None:
         raise SkinrenderError(f"face scene {scene.source or scene.name} has no key light and no environment")
     lam, irradiance = light_irradiance(light, grid)
-    white_p = channel_integral(cam, grid, lam, irradiance / np.pi)
+    if bands is None:
+        integral = lambda spectrum: channel_integral(cam, grid, lam, spectrum)  # noqa: E731
+    else:
+        from ..bands import band_integrals, projection
+
+        matrix = projection(cam, bands, grid)
+        integral = lambda spectrum: band_integrals(lam, spectrum, bands) @ matrix.T  # noqa: E731
+    white_p = integral(irradiance / np.pi)
     spd = planck(lam, calibration)
-    white_c = channel_integral(cam, grid, lam, spd / np.max(spd))
+    white_c = integral(spd / np.max(spd))
     if np.any(white_c <= 0) or np.any(white_p <= 0):
         raise SkinrenderError(f"camera {cam.name}: a channel sees no light from the white reference")
     return white_p, white_c
@@ -183,13 +191,15 @@ def white_references(scene: FaceScene, cam: Camera, calibration: float,
 @dataclass(frozen=True)
 class _Document:
     """
-    A face's Mitsuba document as a cache key: what it depends on (the camera by its curves, the level by the
-    effects that change the document, the lights by name); the level and the lights themselves ride along,
-    outside the key.
+    A face's Mitsuba document as a cache key: what it depends on (the camera by its curves, or a spectral
+    render's bands on its grid; the level by the effects that change the document, the lights by name); the level
+    and the lights themselves ride along, outside the key.
     """
 
     scene: FaceScene
-    camera: CameraKey
+    camera: CameraKey | None
+    grid: WavelengthGrid
+    bands: WavelengthGrid | None
     effects: tuple[str, ...]
     skin: str | None
     group: tuple[int, ...]
@@ -204,10 +214,13 @@ class _Document:
 
 @functools.lru_cache(maxsize=LOADED_KEPT)
 def _load(document: _Document):
-    mi = mitsuba(document.variant)
-    scene = document.scene
-    built = face_document(mi, scene, document.camera.camera, document.camera.grid, document.level, document.skin,
-                          document.group, document.spp, 0, document.sampler, document.lights, document.scale)
+    from ..bands import film_channels
+
+    mi, scene = mitsuba(document.variant), document.scene
+    channels = None if document.bands is None else film_channels(document.bands)
+    cam = None if document.camera is None else document.camera.camera
+    built = face_document(mi, scene, cam, document.grid, document.level, document.skin, document.group,
+                          document.spp, 0, document.sampler, document.lights, document.scale, channels)
     if built["integrator"]["type"] == PLUGIN:
         register(mi)
     try:
@@ -220,9 +233,11 @@ def _load(document: _Document):
                               f"{reason}") from None
 
 
-def _loaded(scene, cam, grid, level: Level, skin, group, spp, sampler, variant, lights, scale):
-    """The face's document loaded into Mitsuba, reused across renders that share it (:data:`LOADED_KEPT` kept)."""
-    return _load(_Document(scene, CameraKey.of(cam, grid), level.document_key, skin, group, spp, sampler, variant,
+def _loaded(scene, cam, grid, level: Level, skin, group, spp, sampler, variant, lights, scale, bands=None):
+    """The face's document loaded into Mitsuba, reused across renders that share it (:data:`LOADED_KEPT` kept);
+    ``bands``: a spectral render's film (``cam`` ``None``)."""
+    key = None if cam is None else CameraKey.of(cam, grid)
+    return _load(_Document(scene, key, grid, bands, level.document_key, skin, group, spp, sampler, variant,
                            tuple(sorted(lights.items())), scale, level, lights))
 
 
@@ -311,7 +326,7 @@ def render_face_request(request, seed: int | None = None) -> FaceRendering:
     if not 0 <= seed < 2**32:
         raise SkinrenderError(f"seed must be a 32-bit integer, got {seed}", role="seed")
     spp, sampler, skin = settings.spp, settings.sampler, request.skin
-    p, c = request.prevailing, request.calibration
+    c = request.calibration
     lights = level.lights(face)
     white_p, white_c = white_references(face, cam, c, grid)
     scale = max(float(np.max(light_irradiance(light, grid)[1])) for light in lights.values())
@@ -328,15 +343,31 @@ def render_face_request(request, seed: int | None = None) -> FaceRendering:
         values = np.array(mi.render(loaded, seed=seed), dtype=np.float64)
         radiance[:, :, list(group)] = values.reshape(height, width, len(group)) * scale
     labels = render_labels(mi, first, width, height, shape_labels(face))
-    info = {"lights": {k: {"temperature_K": v.temperature, "illuminance_lx": v.illuminance}
-                       for k, v in lights.items()}}
-    after = level.setup(face, cam, grid, lights, calibration=c, seed=seed, options=request.options)
-    frame = level.post(Frame(radiance, white_p, white_c, info), after)  # e.g. noise: one frame through a sensor
+    return finish_face(request, cam, c, radiance, white_p, white_c, labels, spp_used, len(groups), seed, variant,
+                       start)
+
+
+def finish_face(request, cam: Camera, calibration: float, radiance: NDArrayFloat, white_p: NDArrayFloat,
+                white_c: NDArrayFloat, labels: NDArrayFloat, spp_used: int, passes: int, seed: int, variant: str,
+                start: float, info: dict | None = None) -> FaceRendering:
+    """
+    A face render of ``request`` from its ``radiance`` through ``cam`` (``(height, width, 3)``, specfilm units)
+    and the whites: the level's post-processing (``noise``: one frame through the sensor, seeded from ``seed``),
+    Eq. 4's gain (WP, Eq. 8) to ``calibration`` (K), the :class:`FaceRendering` (``start``: when the work began,
+    ``time.perf_counter()``; ``info``: keys added to its ``info``). A spectral render's projection ends here too.
+    """
+    face, level, grid = request.scene, request.level, request.grid
+    lights = level.lights(face)
+    extra = {"lights": {k: {"temperature_K": v.temperature, "illuminance_lx": v.illuminance}
+                        for k, v in lights.items()}, **(info or {})}
+    after = level.setup(face, cam, grid, lights, calibration=calibration, seed=seed, options=request.options)
+    frame = level.post(Frame(radiance, white_p, white_c, extra), after)  # e.g. noise: one frame through a sensor
     applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
     image = applied * frame.signal
-    return FaceRendering(face, cam, level.name, skin, float(p), float(c), image.astype(np.float32), radiance,
-                         labels, label_names(face), spp_used, int(spp), seed, sampler, variant,
-                         time.perf_counter() - start, len(groups), white_p, white_c, applied, frame.info)
+    return FaceRendering(face, cam, level.name, request.skin, float(request.prevailing), float(calibration),
+                         image.astype(np.float32), radiance, labels, label_names(face), int(spp_used),
+                         request.settings.spp, seed, request.settings.sampler, variant, time.perf_counter() - start,
+                         passes, white_p, white_c, applied, frame.info)
 
 
 def face_exr(rendering: FaceRendering) -> tuple[NDArrayFloat, tuple[str, ...], dict]:

@@ -51,6 +51,7 @@ class FaceRequest(Request):
     """
 
     skin: str = ""
+    bands: WavelengthGrid | None = None
 
     def _check(self) -> None:
         from ..renderer import SAMPLES_MAX
@@ -84,7 +85,7 @@ def _sized(face: FaceScene, size) -> FaceScene:
 def face_request(scene="face", camera=None, prevailing=None, calibration=None, *, skin: str | None = None,
                  physics="direct", size=None, settings: RenderSettings | None = None,
                  grid: WavelengthGrid = GRID_DEFAULT, imager=None, illuminance=None, exposure=None,
-                 spp: int | None = None, translate_mm=None, **fields) -> FaceRequest:
+                 spp: int | None = None, bands=None, translate_mm=None, **fields) -> FaceRequest:
     """
     A face's :class:`FaceRequest`, each argument parsed once and checked, a refusal naming it (its ``role``).
 
@@ -109,6 +110,9 @@ def face_request(scene="face", camera=None, prevailing=None, calibration=None, *
     imager, illuminance, exposure
         The ``noise`` effect's options (:class:`~skinrender.rendering.sensor.NoiseOptions`); an ``imager`` adds
         ``noise`` to the level; ``illuminance`` (lx) and ``exposure`` (s or ``auto``) go with it.
+    bands
+        A spectral render's band grid (``START:END:STEP`` nm or a grid, :mod:`~skinrender.rendering.bands`):
+        then no camera and no calibration (``None``; applied afterwards, the sensor of ``noise`` per camera).
     translate_mm
         ``(x, y, z)`` mm (or ``X,Y,Z`` text): the whole scene moved that far from the origin
         (:meth:`~skinrender.rendering.face.scene.FaceScene.translated`); ``None``: where it is. Any face request
@@ -118,10 +122,18 @@ def face_request(scene="face", camera=None, prevailing=None, calibration=None, *
     face = named("scene", load_face_scene, scene)
     if translate_mm is not None:
         face = face.translated(translation(translate_mm, "translate_mm"))
-    if camera is None:
+    if bands is not None:
+        from ..bands import parse_bands
+        from ..request import spectral_only
+
+        bands = parse_bands(bands)
+        spectral_only(camera, calibration)
+        cam = None
+    elif camera is None:
         raise SkinrenderError("camera: name the camera (a Camera or a spec such as gbell:9@450,540,610)",
                               role="camera")
-    cam = named("camera", camera_of, camera)
+    else:
+        cam = named("camera", camera_of, camera)
     level = PHYSICS_REGISTRY.level(physics if isinstance(physics, Level) else str(physics).strip())
     level, options = PHYSICS_REGISTRY.with_options(level, {"imager": imager, "illuminance": illuminance,
                                                            "exposure": exposure})
@@ -140,4 +152,4 @@ def face_request(scene="face", camera=None, prevailing=None, calibration=None, *
     p = light.temperature
     c = p if calibration is None else planckian(calibration, "calibration")
     skin = face.skin if skin is None else str(skin).strip()
-    return FaceRequest(face, cam, p, c, level, settings, grid, options, skin)
+    return FaceRequest(face, cam, p, c, level, settings, grid, options, skin, bands)

@@ -89,7 +89,7 @@ from .scene import skin_reflectance_of
 from .shift import budget_rates, eq4_shift, face_budget
 
 __all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "RENDER_OPTIONS",
-           "FaceValidation", "Replicated", "render_replicates", "render_replicates_request", "mean_rendering",
+           "FaceValidation", "Replicated", "replicated_of", "render_replicates", "render_replicates_request", "mean_rendering",
            "shift_against", "validate_face", "validate_face_request"]
 
 LIMITS_SCENE_FREE = {
@@ -166,12 +166,18 @@ def render_replicates_request(request: FaceRequest, seeds) -> Replicated:
     """
     start = time.perf_counter()
     renders = [render_face_request(request, seed) for seed in seeds]
+    return replicated_of(renders, request, time.perf_counter() - start)
+
+
+def replicated_of(renders: list, request, seconds: float = 0.0) -> Replicated:
+    """Replicate renders of one camera (e.g. seen through a spectral render per seed) of ``request`` (its level,
+    grid and options), measured as the level's checks see them; ``seconds``: the time they took."""
     first, grid, level = renders[0], request.grid, request.level
     images = np.array([r.image for r in renders], dtype=np.float64)
     rho = skin_reflectance_of(first.skin, grid, "skin")
     expected = ncc(analytic_reference(first.camera, rho[None], first.prevailing, first.calibration, grid=grid))[0]
     measured = level.measure(images, first, request.options)  # through a sensor: dark signal, clipping, codes
-    return Replicated(renders, level, measured, expected, time.perf_counter() - start, grid, request.options)
+    return Replicated(renders, level, measured, expected, seconds, grid, request.options)
 
 
 def render_replicates(camera_, scene, prevailing, calibration, skin, level: Level, spp: int, seeds, size=None,

@@ -32,6 +32,7 @@ Units: temperatures K, times s, NCC and rates fractions.
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -53,13 +54,14 @@ from ...rendering.face.scene import load_face_scene, skin_reflectance_of
 from ...rendering.face.shift import face_budget
 from ...rendering.settings import seed_at
 from ...rendering.face.request import face_request
-from ...rendering.face.validation import mean_rendering, render_replicates_request, shift_against
+from ...rendering.bands import BANDS_DEFAULT, parse_bands, projection
+from ...rendering.face.validation import mean_rendering, render_replicates_request, replicated_of, shift_against
 from ...rendering.validation import analytic_reference
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 from ...workload import duration_text
 
-__all__ = ["LEVELS_DEFAULT", "REPLICATES_LADDER", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "score_rendering",
-           "score_frame"]
+__all__ = ["LEVELS_DEFAULT", "REPLICATES_LADDER", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "ladders",
+           "score_rendering", "score_frame"]
 
 LEVELS_DEFAULT = LEVELS_LADDER
 """The levels of :func:`ladder`: the analytic model's world, each effect alone, then all of them (read from the
@@ -319,7 +321,25 @@ def ladder(
     :class:`Ladder`
     """
 
-    cam = camera(camera_)
+    return ladders([camera_], prevailing, calibration, skin, levels, spp, seed, size, scene, variant, grid, imager,
+                   illuminance, progress, replicates, budget_fraction, bands=None)[0]
+
+
+def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: Sequence[str] = LEVELS_DEFAULT,
+            spp: int = 64, seed: int = 0, size: int | None = 128, scene="face", variant: str | None = None,
+            grid: WavelengthGrid = GRID_DEFAULT, imager: str | None = None, illuminance: float | None = None,
+            progress: Callable[[str], None] | None = None, replicates: int = REPLICATES_LADDER,
+            budget_fraction: float = BUDGET_FRACTION, bands=BANDS_DEFAULT) -> list:
+    """
+    :func:`ladder` for every camera of ``cameras`` (arguments as there): each level's replicates rendered once
+    spectrally with ``bands`` (``START:END:STEP`` nm; one render per seed, seen through every camera:
+    :mod:`~skinrender.rendering.face.spectral_face`), or, with ``bands=None``, once per camera. A spectral
+    level's seconds are shared equally by the cameras (each adds its own projections). One :class:`Ladder` per
+    camera, in their order.
+    """
+    cams = [camera(c) for c in cameras]
+    if not cams:
+        raise SkinrenderError("cameras: name at least one camera")
     p, c = planckian_temperature(prevailing, "prevailing"), planckian_temperature(calibration, "calibration")
     face = load_face_scene(scene)
     skin = face.skin if skin is None else str(skin).strip()
@@ -329,30 +349,62 @@ def ladder(
         raise SkinrenderError("levels: name at least one level of physics")
     if isinstance(replicates, bool) or not isinstance(replicates, int) or replicates < 3:
         raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}")
+    if bands is not None:
+        bands = parse_bands(bands)
+        for cam in cams:
+            projection(cam, bands, grid)
     each = max(1, -(-int(spp) // replicates))
     sensor = {"imager": imager, "illuminance": illuminance}
-    requests = [face_request(face, cam, p, c, skin=skin, physics=level, size=size, spp=each, seed=seed,
-                             variant=variant, grid=grid, translate_mm=translate_mm,
-                             **PHYSICS_REGISTRY.options_for(level, sensor))
-                for level in levels]  # every bound checked before the first render
-    seconds = sum(request.level.seconds(request.pixels * each * replicates) for request in requests)
+    ways = [None] if bands is not None else cams  # a spectral request per level, or one per camera and level
+    requests = {(way and way.name, level.name): face_request(
+        face, way, p, None if way is None else c, skin=skin, physics=level, size=size, spp=each, seed=seed,
+        variant=variant, grid=grid, bands=None if way is not None else bands, translate_mm=translate_mm,
+        **PHYSICS_REGISTRY.options_for(level, sensor)) for way in ways for level in levels}  # checked first
+    seconds = sum(request.level.seconds(request.pixels * each * replicates) for request in requests.values())
     if progress is not None and seconds > 60:  # subsurface: minutes (the command line refuses beyond --max-minutes)
         progress(f"the {len(levels)} levels should take about {duration_text(seconds)} on one core")
-    analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
-    budget, locus = face_budget(cam, analytic, c, budget_fraction, grid)
+    studied = []
+    for cam in cams:
+        analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
+        studied.append((cam, analytic, *face_budget(cam, analytic, c, budget_fraction, grid)))
     seeds = [seed_at(seed, k) for k in range(replicates)]
-    rows, frames, verdicts, shape, mean = [], [], [], None, None
-    for request in requests:
+    rows, frames, verdicts = [[] for _ in cams], [[] for _ in cams], [[] for _ in cams]
+    means = [None] * len(cams)
+    for level in levels:
         if progress is not None:
-            progress(f"rendering the face: {request.level.name} ({replicates} × {each} spp) …")
-        replicated = render_replicates_request(request, seeds)
-        mean = mean_rendering(replicated)
-        scores, frame = score_frame(mean, locus)
-        shift = shift_against(replicated, budget, locus, mean.image)
-        rows.append(_level_row(request.level, replicated, mean, scores, shift, shift.details["budget_rates"]))
-        frames.append(frame)
-        verdicts.append(replace(shift.verdict, name=f"eq4_shift at {rows[-1]['name']}"))
+            how = "" if bands is None else f", spectral ({bands.size} bands) for {len(cams)} cameras"
+            progress(f"rendering the face: {level.name} ({replicates} × {each} spp{how}) …")
+        for index, replicated in enumerate(_replicated(cams, requests, level, seeds, c, bands is not None)):
+            _, _, budget, locus = studied[index]
+            mean = means[index] = mean_rendering(replicated)
+            scores, frame = score_frame(mean, locus)
+            shift = shift_against(replicated, budget, locus, mean.image)
+            rows[index].append(_level_row(level, replicated, mean, scores, shift, shift.details["budget_rates"]))
+            frames[index].append(frame)
+            verdicts[index].append(replace(shift.verdict, name=f"eq4_shift at {rows[index][-1]['name']}"))
+    out = []
+    for (cam, analytic, budget, locus), mine, drawn, checked, mean in zip(studied, rows, frames, verdicts, means):
+        _changes(mine)
         shape = (mean.scene.camera.width, mean.scene.camera.height)
-    _changes(rows)
-    return Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), rows, frames,
-                  np.asarray(locus.polygon), dict(mean.label_names), budget.document(), verdicts)
+        out.append(Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), mine, drawn,
+                          np.asarray(locus.polygon), dict(mean.label_names), budget.document(), checked))
+    return out
+
+
+def _replicated(cams, requests: dict, level, seeds, calibration: float, spectral: bool) -> list:
+    """One level's replicates for each camera: rendered per camera, or once per seed spectrally and seen through
+    each camera (the renders' seconds shared equally)."""
+    if not spectral:
+        return [render_replicates_request(requests[(cam.name, level.name)], seeds) for cam in cams]
+    from ...rendering.face.spectral_face import render_face_spectral_request
+
+    request = requests[(None, level.name)]
+    start = time.perf_counter()
+    images = [render_face_spectral_request(request, seed) for seed in seeds]
+    share = (time.perf_counter() - start) / len(cams)
+    out = []
+    for cam in cams:
+        begin = time.perf_counter()
+        renders = [image.through(cam, calibration) for image in images]
+        out.append(replicated_of(renders, request, share + time.perf_counter() - begin))
+    return out

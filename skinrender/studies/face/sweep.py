@@ -49,6 +49,7 @@ from ...rendering.face.effects import PHYSICS_REGISTRY, physics_level
 from ...rendering.face.effects.direct import SAMPLES_PER_S_DIRECT
 from ...rendering.face.effects.direct import SECONDS_PER_RENDER as SECONDS_PER_RENDER_DIRECT
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
+from ...rendering.bands import BANDS_DEFAULT, bands_text, check_bands, parse_bands, projection
 from ...rendering.renderer import SAMPLES_MAX
 from ...rendering.scene import PIXELS_MAX
 from ...rendering.settings import check_seed
@@ -60,7 +61,7 @@ from .workers import run_renders
 from .ladder import score_rendering
 
 __all__ = ["RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
-           "FaceSweep", "face_sweep", "sweep_tasks", "estimate_seconds"]
+           "FaceSweep", "face_sweep", "sweep_tasks", "spectral_tasks", "estimate_seconds"]
 
 RENDERS_MAX = 5000
 """Most renders a sweep may ask for unless ``max_renders`` is raised (a guard against a slip of the flags)."""
@@ -99,6 +100,19 @@ class _Settings:
     illuminance: float | None
 
 
+def _scored(result, cam, p: float, c: float, skin: str, grid: WavelengthGrid, start: float) -> dict:
+    """One combination's row from its render ``result`` (``start``: when its work began, ``perf_counter``)."""
+    locus = skin_locus(cam, "skin", calibration=c, grid=grid)
+    rho = skin_reflectance_of(skin, grid, "skin")
+    analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
+    row = {"camera": cam.name, "prevailing_K": p, "calibration_K": c, "skin": skin,
+           "level": result.physics, "seconds": 0.0, "spp": result.spp, **score_rendering(result, locus),
+           "skin_ncc_analytic": analytic.tolist(), "variant": result.variant}
+    row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
+    row["seconds"] = time.perf_counter() - start
+    return row
+
+
 def _render_task(task: tuple, settings: _Settings) -> dict:
     """One combination ``(camera, prevailing K, calibration K, skin, level)`` rendered and scored."""
     cam, p, c, skin, level = task
@@ -106,15 +120,44 @@ def _render_task(task: tuple, settings: _Settings) -> dict:
     sensor = PHYSICS_REGISTRY.options_for(level, {"imager": settings.imager, "illuminance": settings.illuminance})
     result = render_face(cam, settings.scene, p, c, skin, level, settings.spp, settings.seed, settings.size,
                          variant=settings.variant, grid=settings.grid, **sensor)
-    locus = skin_locus(cam, "skin", calibration=c, grid=settings.grid)
-    rho = skin_reflectance_of(skin, settings.grid, "skin")
-    analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=settings.grid))[0]
-    row = {"camera": cam.name, "prevailing_K": p, "calibration_K": c, "skin": skin,
-           "level": result.physics, "seconds": 0.0, "spp": result.spp, **score_rendering(result, locus),
-           "skin_ncc_analytic": analytic.tolist(), "variant": result.variant}
-    row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
-    row["seconds"] = time.perf_counter() - start
-    return row
+    return _scored(result, cam, p, c, skin, settings.grid, start)
+
+
+def _spectral_task(task: tuple, settings: _Settings, bands: WavelengthGrid) -> list[dict]:
+    """
+    One spectral render ``(prevailing K, skin, level, cameras, calibrations K)`` seen through every camera at
+    every calibration: their rows, the render's seconds shared equally among them (each adds its own
+    projection and scoring).
+    """
+    from ...rendering.face.spectral_face import render_face_spectral
+
+    p, skin, level, cams, calibrations = task
+    sensor = PHYSICS_REGISTRY.options_for(level, {"imager": settings.imager, "illuminance": settings.illuminance})
+    spectral = render_face_spectral(settings.scene, p, skin, level, settings.spp, settings.seed, settings.size,
+                                    variant=settings.variant, grid=settings.grid, bands=bands, **sensor)
+    share = spectral.seconds / (len(cams) * len(calibrations))
+    rows = []
+    for cam in cams:
+        for c in calibrations:
+            start = time.perf_counter() - share
+            rows.append(_scored(spectral.through(cam, c), cam, p, c, skin, settings.grid, start))
+    return rows
+
+
+def spectral_tasks(cameras, lights, skins, levels) -> list[tuple]:
+    """
+    The spectral renders of a sweep: one per prevailing light, skin and level, each with every camera and the
+    calibrations paired with that light.
+
+    Examples
+    --------
+    >>> [t[:3] + (t[4],) for t in spectral_tasks(["a", "b"], [(2856.0, 5900.0), (2856.0, 2856.0)], ["s"],
+    ...                                           ["direct"])]
+    [(2856.0, 's', 'direct', [5900.0, 2856.0])]
+    """
+    prevailing = list(dict.fromkeys(p for p, _ in lights))
+    return [(p, skin, level, list(cameras), [c for q, c in lights if q == p])
+            for p, skin, level in itertools.product(prevailing, skins, levels)]
 
 
 def sweep_tasks(cameras, lights, skins, levels) -> list[tuple]:
@@ -129,12 +172,13 @@ def sweep_tasks(cameras, lights, skins, levels) -> list[tuple]:
     return [(cam, p, c, skin, level) for cam, (p, c), skin, level in itertools.product(cameras, lights, skins, levels)]
 
 
-def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels=None) -> float:
+def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels=None, bands=None) -> float:
     """
     Wall time of ``renders`` face renders of ``pixels`` pixels at ``spp`` on ``cores`` cores, s (from
     :data:`SECONDS_PER_RENDER` and :data:`SAMPLES_PER_S`, per core; a worker's start, a few seconds, aside);
     ``levels``, one per render, each render at its level's rate
-    (:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`: ``subsurface`` is far slower).
+    (:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`: ``subsurface`` is far slower); ``bands``:
+    spectral renders of those bands (each sample costs more: :data:`~skinrender.rendering.bands.BAND_COST`).
 
     Examples
     --------
@@ -142,7 +186,12 @@ def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels
     71
     """
     rates = [SAMPLES_PER_S] * renders if levels is None else [physics_level(level).samples_per_s for level in levels]
-    return sum(SECONDS_PER_RENDER + pixels * spp / rate for rate in rates) / max(1, cores)
+    factor = 1.0
+    if bands is not None:
+        from ...rendering.bands import BAND_COST
+
+        factor = 1.0 + BAND_COST[0] * bands.size ** BAND_COST[1]
+    return sum(SECONDS_PER_RENDER + factor * pixels * spp / rate for rate in rates) / max(1, cores)
 
 
 @dataclass(frozen=True)
@@ -171,12 +220,14 @@ class FaceSweep:
     elapsed_s: float
     combinations: list = field(default_factory=list)
     dask: str | None = None
+    spectral: dict | None = None
 
     def document(self) -> dict:
-        """The JSON document (``combinations`` and the settings)."""
+        """The JSON document (``combinations`` and the settings; ``spectral``: the bands and the spectral renders
+        made, or ``null`` for one render per combination)."""
         return {"scene": self.scene, "size": self.size, "spp": self.spp, "seed": self.seed,
                 "variant": self.variant, "workers": self.workers, "dask": self.dask, "elapsed_s": self.elapsed_s,
-                "renders": len(self.combinations), "combinations": self.combinations}
+                "renders": len(self.combinations), "spectral": self.spectral, "combinations": self.combinations}
 
     def to_csv(self, path, flag: str | None = None) -> Path:
         """Every combination as a CSV row (:data:`CSV_COLUMNS`), written whole or not at all (``flag``: the
@@ -195,15 +246,16 @@ class FaceSweep:
 
 
 def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples: float, cores: int,
-                levels=None) -> None:
-    """Refuse a sweep too large (``levels``: each render's level; a slower level's samples count at its cost)."""
+                levels=None, bands=None) -> None:
+    """Refuse a sweep too large (``levels``: each render's level; a slower level's samples count at its cost;
+    ``bands``: spectral renders, each sample at the bands' cost)."""
     pixels = size * size
     if pixels > PIXELS_MAX:
         raise SkinrenderError(f"size {size} pixels gives {pixels} pixels per image, more than {PIXELS_MAX}")
     if spp * pixels > SAMPLES_MAX:
         raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
                               f"most {SAMPLES_MAX // pixels} spp at this size")
-    seconds, on = estimate_seconds(renders, pixels, spp, cores, levels), f"on {cores} core{'s' * (cores > 1)}"
+    seconds, on = estimate_seconds(renders, pixels, spp, cores, levels, bands), f"on {cores} core{'s' * (cores > 1)}"
     about = f"about {duration_text(seconds)} {on}"
     if renders > max_renders:
         raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} ({about}); raise "
@@ -239,6 +291,8 @@ def face_sweep(
     progress=None,
     max_renders: int = RENDERS_MAX,
     max_samples: float = SWEEP_SAMPLES_MAX,
+    spectral: bool | None = None,
+    bands: WavelengthGrid | str = BANDS_DEFAULT,
 ) -> FaceSweep:
     """
     Render and score the face for every camera × light pair × skin × level.
@@ -271,6 +325,11 @@ def face_sweep(
     max_renders, max_samples
         Refuse a sweep of more renders, or more samples (renders × pixels × spp), than these; the message
         carries an estimate of the time.
+    spectral, bands
+        Render once per prevailing light, skin and level with ``bands`` (``START:END:STEP`` nm) as the film and
+        see every camera and calibration through it (:mod:`~skinrender.rendering.face.spectral_face`), rather
+        than once per combination; ``None``: spectral for more than one camera. A spectral render's seconds are
+        shared equally by the rows it serves.
 
     Returns
     -------
@@ -291,12 +350,32 @@ def face_sweep(
     check_seed(seed)  # the bound of every front door
     workers = check_workers(workers, "workers")
     tasks = sweep_tasks(cams, pairs, skins, levels)
-    _check_size(len(tasks), int(size), int(spp), max_renders, max_samples,
-                min(workers, os.cpu_count() or 1) if dask is None else os.cpu_count() or 1, [t[-1] for t in tasks])
+    spectral = len(cams) > 1 if spectral is None else bool(spectral)
+    cores = min(workers, os.cpu_count() or 1) if dask is None else os.cpu_count() or 1
+    if spectral:
+        bands = parse_bands(bands)
+        check_bands(bands, grid, "the face's lights and reflectances")
+        for cam in cams:  # every camera checked against the bands before any render
+            projection(cam, bands, grid)
+        renders = spectral_tasks(cams, pairs, skins, levels)
+        _check_size(len(renders), int(size), int(spp), max_renders, max_samples, cores, [t[2] for t in renders],
+                    bands)
+    else:
+        _check_size(len(tasks), int(size), int(spp), max_renders, max_samples, cores, [t[-1] for t in tasks])
     face = load_face_scene(scene)
     settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance)
     start = time.perf_counter()
-    rows = run_renders(partial(_render_task, settings=settings), tasks, settings.variant, int(workers), dask,
-                       progress, "face sweep")
+    about = None
+    if spectral:
+        found = run_renders(partial(_spectral_task, settings=settings, bands=bands), renders, settings.variant,
+                            int(workers), dask, progress, "face sweep (spectral)")
+        by_key = {(row["camera"], row["prevailing_K"], row["calibration_K"], row["skin"], row["level"]): row
+                  for rows in found for row in rows}
+        rows = [by_key[(cam.name, p, c, skin, level.name)] for cam, p, c, skin, level in tasks]
+        about = {"bands_nm": bands_text(bands), "bands": bands.size, "basis": "hat", "renders": len(renders)}
+    else:
+        rows = run_renders(partial(_render_task, settings=settings), tasks, settings.variant, int(workers), dask,
+                           progress, "face sweep")
     return FaceSweep(face.name, int(size), int(spp), int(seed), settings.variant,
-                     1 if dask is not None else int(workers), time.perf_counter() - start, rows, dask_name(dask))
+                     1 if dask is not None else int(workers), time.perf_counter() - start, rows, dask_name(dask),
+                     about)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.studies.face.ladder import ladder
+from skinrender.studies.face.ladder import ladder, ladders
 
 pytest.importorskip("mitsuba")
 
@@ -88,3 +88,19 @@ def test_score_rendering_gives_a_reason_for_each_none():
     assert "no scored prop pixel" in dark["undefined"]["fpr"]
     lit = score_rendering(SimpleNamespace(image=np.full((2, 2, 3), 50.0), labels=labels), locus)
     assert lit["tpr"] == 1.0 and lit["undefined"] == {}
+
+
+def test_ladders_see_every_camera_through_one_render_per_replicate():
+    """Two cameras, one level: a ladder each, spectral (50 nm bands) or one render per camera (``bands=None``);
+    each camera's analytic NCC and budget its own; the spectral level's seconds shared."""
+    cams = [CAMERA, "Nikon 5100 (NPL)"]
+    spectral = ladders(cams, "A", 5900, levels=("direct",), spp=12, size=16, bands="400:700:50")
+    direct = ladders(cams, "A", 5900, levels=("direct",), spp=12, size=16, bands=None)
+    assert [r.camera for r in spectral] == [r.camera for r in direct] == cams
+    for s, d in zip(spectral, direct):
+        assert s.skin_ncc_analytic == d.skin_ncc_analytic and s.budget == d.budget
+        assert s.levels[0]["spp"] == d.levels[0]["spp"] == 12 and s.levels[0]["replicates"] == 12
+    assert spectral[0].skin_ncc_analytic != spectral[1].skin_ncc_analytic
+    with pytest.raises(SkinrenderError, match="outside the bands"):
+        ladders(cams, "A", 5900, levels=("direct",), spp=12, size=16, bands="450:650:10")
+

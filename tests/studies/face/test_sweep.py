@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.studies.face.sweep import CSV_COLUMNS, FaceSweep, estimate_seconds, face_sweep, sweep_tasks
+from skinrender.studies.face.sweep import CSV_COLUMNS, FaceSweep, estimate_seconds, face_sweep, spectral_tasks, sweep_tasks
 from skinrender.studies.face.ladder import score_rendering
 
 pytest.importorskip("mitsuba")
@@ -170,4 +170,22 @@ def test_refusals_before_any_render(kwargs, match):
                  "spp": 1, **kwargs}
     with pytest.raises(SkinrenderError, match=match):
         face_sweep(**arguments)
+
+
+def test_a_spectral_sweep_renders_once_per_light_skin_and_level():
+    """Two cameras × two calibrations of one prevailing light: one spectral render (50 nm bands), four rows in the
+    order of one render per combination, each camera's own analytic NCC; the same rows' keys one render each."""
+    lights = [(2856.0, 5900.0), (2856.0, 2856.0)]
+    cams = [CAMERA, "Nikon 5100 (NPL)"]
+    spectral = face_sweep(cams, lights, SKINS[:1], ["direct"], bands="400:700:50", workers=1, **TINY)
+    direct = face_sweep(cams, lights, SKINS[:1], ["direct"], spectral=False, workers=1, **TINY)
+    keys = lambda sweep: [(r["camera"], r["calibration_K"]) for r in sweep.combinations]  # noqa: E731
+    assert keys(spectral) == keys(direct) == [(c, k) for c in cams for _, k in lights]
+    assert spectral.document()["spectral"] == {"bands_nm": "400:700:50", "bands": 7, "basis": "hat", "renders": 1}
+    assert direct.document()["spectral"] is None
+    assert [r["skin_ncc_analytic"] for r in spectral.combinations] == [r["skin_ncc_analytic"]
+                                                                       for r in direct.combinations]
+    assert len(spectral_tasks(cams, lights, SKINS, LEVELS)) == len(SKINS) * len(LEVELS)
+    with pytest.raises(SkinrenderError, match="outside the bands"):
+        face_sweep(cams, lights, SKINS[:1], ["direct"], bands="450:650:10", workers=1, **TINY)
 

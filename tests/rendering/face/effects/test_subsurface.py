@@ -125,6 +125,6 @@ class TestRender:
     def test_a_skin_the_model_does_not_fit_is_refused(self):
         from skinrender.rendering.face import render_face
 
-        with pytest.raises(SkinrenderError, match="skin: 'grey:0.5' is a measured reflectance .*skin-model:"):
+        with pytest.raises(SkinrenderError, match="skin: 'grey:0.5' is a measured reflectance and not skin .*skin-model:"):
             render_face(CAM, physics="subsurface", skin="grey:0.5", spp=1, size=4)
 
