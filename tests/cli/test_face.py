@@ -102,7 +102,7 @@ class TestLadder:
         ``within_budget`` like every level (a verdict, never information only), and ``--effects`` gives its row.
 
         At 12 px and 1 spp per replicate (``--spp 12`` over the 12 replicates): what is asserted is the rows' shape
-        and their consistency, not the size of the shift, so the samples do not matter (subsurface renders ~1200
+        and their consistency, not the size of the shift, so the samples do not matter (subsurface renders ~3 × 10⁴
         samples/s); 12 px is the least size whose face has interior skin pixels to measure a shift on (8 px has none).
         The table names the scene's own skin: the second command reuses the first one's skin medium (its
         adding-doubling fit, cached per skin) and documents instead of fitting and loading another skin's."""
@@ -110,7 +110,7 @@ class TestLadder:
         document = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--size", "12",
                         "--spp", "12", "--levels", "direct,subsurface", "--json"], capsys, status)
         direct, subsurface = document["levels"]
-        assert subsurface["name"] == "subsurface" and subsurface["variant"] == "scalar_spectral"
+        assert subsurface["name"] == "subsurface" and subsurface["variant"] in ("llvm_ad_spectral", "cuda_ad_spectral")
         assert subsurface["eq4_verdict"] in ("pass", "fail", "inconclusive")
         assert subsurface["budget"] == direct["budget"] == document["budget"]["budget"] > 0
         assert subsurface["eq4_shift"] >= 0 and subsurface["eq4_shift_bound"] >= subsurface["eq4_shift"]

@@ -68,7 +68,7 @@ def test_a_chart_beyond_float32s_range_is_refused_naming_it(chart, capsys):
     ["ladder", "--levels", "direct,subsurface"],
 ])
 def test_a_face_beyond_float32s_range_is_refused_naming_it(argv, capsys):
-    """3 m away the skin's mean free path is beyond float32's reach (coordinates up to ~1 m at melanin 0.3)."""
+    """3 m away the skin's mean free path is beyond float32's reach (coordinates up to ~2 m at melanin 0.3)."""
     command, *rest = argv
     lights = LIGHTS if command != "ladder" else ["--prevailing", "2856", "--calibration", "5900"]
     assert_refused([command, *rest, "--camera", CAM, *lights, "--skin", "skin-model:melanin=0.3", "--translate-mm",

@@ -32,7 +32,7 @@ __all__ = ["face_reach_mm", "check_face_range"]
 
 @lru_cache(maxsize=16)
 def _mesh_reach_m(mesh: str, matrix: tuple) -> float:
-    """The largest |coordinate| of a mesh placed by ``matrix`` (a 4×4 as nested tuples), m."""
+    """The largest absolute coordinate of a mesh placed by ``matrix`` (a 4×4 as nested tuples), m."""
     m = np.array(matrix)
     if mesh == MESH_HEAD:
         from ...datasets.head import mesh_head
@@ -49,7 +49,7 @@ def _mesh_reach_m(mesh: str, matrix: tuple) -> float:
 
 def face_reach_mm(scene: FaceScene, props: bool = True) -> float:
     """
-    The largest |coordinate| of a face scene's surfaces, mm: its mesh (its vertices) and, with ``props``, its
+    The largest absolute coordinate of a face scene's surfaces, mm: its mesh (its vertices) and, with ``props``, its
     props (their centres plus half their size's diagonal). The camera and the lights are left out: where they are
     to a float32 step matters to nothing the render resolves.
     """

@@ -322,20 +322,20 @@ def ladder(
     """
 
     return ladders([camera_], prevailing, calibration, skin, levels, spp, seed, size, scene, variant, grid, imager,
-                   illuminance, progress, replicates, budget_fraction, bands=None)[0]
+                   illuminance, progress, replicates, budget_fraction, bands=None, translate_mm=translate_mm)[0]
 
 
 def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: Sequence[str] = LEVELS_DEFAULT,
             spp: int = 64, seed: int = 0, size: int | None = 128, scene="face", variant: str | None = None,
             grid: WavelengthGrid = GRID_DEFAULT, imager: str | None = None, illuminance: float | None = None,
             progress: Callable[[str], None] | None = None, replicates: int = REPLICATES_LADDER,
-            budget_fraction: float = BUDGET_FRACTION, bands=BANDS_DEFAULT) -> list:
+            budget_fraction: float = BUDGET_FRACTION, bands=BANDS_DEFAULT, translate_mm=None) -> list:
     """
     :func:`ladder` for every camera of ``cameras`` (arguments as there): each level's replicates rendered once
     spectrally with ``bands`` (``START:END:STEP`` nm; one render per seed, seen through every camera:
     :mod:`~skinrender.rendering.face.spectral_face`), or, with ``bands=None``, once per camera. A spectral
     level's seconds are shared equally by the cameras (each adds its own projections). One :class:`Ladder` per
-    camera, in their order.
+    camera, in their order. ``translate_mm``: as :func:`ladder`.
     """
     cams = [camera(c) for c in cameras]
     if not cams:
