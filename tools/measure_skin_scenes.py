@@ -160,6 +160,9 @@ def chart(argv) -> None:
         wall = time.perf_counter() - start
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu = after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
+        if not done.stdout.strip():
+            print(f"{' '.join(command)}: exit {done.returncode}, no JSON: {done.stderr.strip()[-600:]}", flush=True)
+            continue
         document = json.loads(done.stdout)
         checks = document["checks"]
         print(f"{' '.join(command[:-1])}: {document['verdict']} (exit {done.returncode}); equivalence bound "
