@@ -49,15 +49,15 @@ face.label_names
 
 # %% [markdown]
 # ## Step 2: the ladder of physics
-# TPR: lit skin pixels inside the analytic skin locus; FPR: prop pixels inside it. The `subsurface` level (skin as
-# tissue, path traced through its layers) takes minutes even at this size, so it is left out here (with the
-# level of all effects together, which holds it); `levels=LEVELS_LADDER` runs every level, as `skinrender ladder` does.
+# TPR: lit skin pixels inside the analytic skin locus; FPR: prop pixels inside it. Every default level runs, as
+# `skinrender ladder` does: `subsurface` is the fast transport (the skin model's flat slab as a table of angular
+# reflectance); its volumetric reference, `subsurface-volume` (skin path traced through its layers), takes minutes
+# even at this size and is not a default level: name it in `levels` to run it.
 
 # %%
 from skinrender.rendering.face.effects.levels import LEVELS_LADDER
 
-quick_levels = [level for level in LEVELS_LADDER if 'subsurface' not in level.split('+')]
-result = ladder(CAM, 2856.0, 5900.0, levels=quick_levels, spp=16, size=64, imager='sony-imx174', illuminance=500.0)
+result = ladder(CAM, 2856.0, 5900.0, levels=LEVELS_LADDER, spp=16, size=64, imager='sony-imx174', illuminance=500.0)
 [(row['name'], np.round(row['skin_ncc_mean'], 3).tolist(), round(row['tpr'], 3), round(row['fpr'], 3))
  for row in result.levels]
 

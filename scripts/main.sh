@@ -38,8 +38,20 @@ echo
 .venv/bin/skinrender detect face --camera "$CAMERA" --prevailing 2856 --calibration 5900 --spp 64 \
     -o out/face_mask.png --figure out/face_detect.png
 echo
-# the ladder of physics, small (64 x 64 px, 16 spp: about 20 s on 2 cores; the README's table is the full size)
-# (exit 1 or 3: some level's Eq. 4 error beyond, or not shown within, its detection budget; the figure is
-# written either way: that is the ladder's finding, not a failure of the job)
+# the ladder of physics, small (64 x 64 px, 16 spp: about 20 s on 2 cores; the README's table is the full size).
+# Its last lines are a finding, not a failure of the job: "finding:" says at which levels of physics Eq. 4
+# mispredicts the skin locus's detection rates (by more than 0.02), and the verdict line "FAIL (exit status 1)"
+# means Eq. 4 was shown wrong there (mixed light, sensor noise), which is what the ladder measures. Exit 3 means
+# some level could not be decided at this size; only 2 (a refused input) stops the job.
+status=0
 .venv/bin/skinrender ladder --camera "$CAMERA" --prevailing 2856 --calibration 5900 --size 64 --spp 16 \
-    --plot out/ladder.png || [ $? -ne 2 ]
+    --plot out/ladder.png || status=$?
+if [ "$status" -eq 2 ]; then exit 2; fi
+echo
+case "$status" in
+    0) echo "main job done: Eq. 4 predicts skin detection at every level of the ladder (out/ladder.png)." ;;
+    1) echo "main job done. The ladder's FAIL above is its finding, not an error: Eq. 4 mispredicts skin detection" \
+            "at the levels its 'finding:' line names (out/ladder.png shows them); the job itself succeeded." ;;
+    *) echo "main job done. The ladder could not decide every level at 64 px, 16 spp (exit $status): raise its" \
+            "--spp or --size to decide them; the job itself succeeded." ;;
+esac

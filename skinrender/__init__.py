@@ -45,7 +45,11 @@ Examples
 
 from __future__ import annotations
 
-from .constants import TEMPERATURES_PAPER
+from ._interrupt import quiet_while_starting as _quiet_while_starting
+
+_quiet_while_starting()  # the command line only: Ctrl-C while it imports is one line and status 130, no traceback
+
+from .constants import TEMPERATURES_PAPER  # noqa: E402 - after the Ctrl-C guard
 from .datasets import SpectralSet, list_cameras, list_reflectances, reflectances
 from .design.optimise import Design, optimise_camera
 from .design.search import SearchResult, search

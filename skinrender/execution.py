@@ -24,7 +24,8 @@ What every caller gets the same:
 Determinism is the caller's: a task carries its seed; a result does not depend on the worker that computed
 it or on the order tasks finish in.
 
--   :func:`map`, :func:`check_workers`, :func:`dask_client`, :func:`dask_name`, :func:`stop_pool`.
+-   :func:`map`, :func:`check_workers`, :func:`dask_client`, :func:`check_dask_address` (a scheduler's
+    handshake, within a timeout), :func:`dask_name`, :func:`stop_pool`.
 -   :data:`WORKERS_MAX`, :data:`DASK_TIMEOUT_S`.
 
 Units: times s.
@@ -46,7 +47,8 @@ from .errors import SkinrenderError
 from .extras import require
 from .workload import announce, progress_bar
 
-__all__ = ["WORKERS_MAX", "DASK_TIMEOUT_S", "map", "check_workers", "dask_client", "dask_name", "stop_pool"]
+__all__ = ["WORKERS_MAX", "DASK_TIMEOUT_S", "DASK_SCHEMES", "map", "check_workers", "dask_client",
+           "check_dask_address", "dask_name", "stop_pool"]
 
 WORKERS_MAX = max(64, 4 * (os.cpu_count() or 1))
 """Most worker processes a command may start (each holds the data its tasks share)."""
@@ -85,13 +87,146 @@ def dask_client(dask):
     from distributed import Client
 
     if not isinstance(dask, Client):
+        check_dask_address(dask)
         try:
-            return Client(dask, timeout=DASK_TIMEOUT_S), True
-        except (OSError, ValueError, TypeError, TimeoutError) as error:
+            client = Client(dask, timeout=DASK_TIMEOUT_S)
+        except (OSError, ValueError, TypeError, TimeoutError, MemoryError) as error:
             raise SkinrenderError(f"--dask: cannot reach a Dask scheduler at {dask!r} within {DASK_TIMEOUT_S:g} s "
                                   f"({type(error).__name__}: {' '.join(str(error).split())[:120]})",
                                   flag="--dask") from None
+        try:
+            client.wait_for_workers(1, timeout=DASK_TIMEOUT_S)
+        except (TimeoutError, OSError) as error:
+            client.close()
+            raise SkinrenderError(f"--dask: the Dask scheduler at {dask} has no workers (none joined within "
+                                  f"{DASK_TIMEOUT_S:g} s): start some (dask worker {dask})", flag="--dask") from error
+        return client, True
     return dask, False
+
+
+DASK_SCHEMES = ("tcp", "tls", "ws", "wss", "ucx", "inproc")
+"""Address schemes a Dask scheduler listens on (``tcp`` when none is given)."""
+
+_HANDSHAKE_BYTES_MAX = 1 << 16
+"""Largest first message a Dask scheduler sends (its handshake: ~60 bytes of msgpack), bytes."""
+
+
+def check_dask_address(address, flag: str = "--dask", timeout: float | None = None) -> str:
+    """
+    ``address`` checked to be a Dask scheduler before any work is sent to it: a one-line error naming ``flag``
+    otherwise, within ``timeout`` s (default :data:`DASK_TIMEOUT_S`; never a hang, never "out of memory").
+
+    A ``tcp://`` address (or ``host:port``) gets Dask's handshake: the connection is opened, a client's handshake
+    sent, and the server's read — a scheduler sends one on every connection (its comm framing: an 8-byte length,
+    the frame count and lengths, a msgpack map with ``python`` and ``pickle-protocol``). An HTTP server answers
+    with ``HTTP/1.1 …`` (which Dask had read as an 8-byte length of ~3e18 bytes and ran out of memory allocating,
+    or waited on past a minute); anything that says nothing within ``timeout`` is refused too. Other Dask schemes
+    (``tls``, ``ws``, ``ucx``, ``inproc``) are left to the client's own timeout; any other scheme is refused.
+    Returns the address.
+    """
+    import socket
+    import struct
+    import time
+
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    timeout = DASK_TIMEOUT_S if timeout is None else timeout
+    text = str(address).strip() if isinstance(address, str) else ""
+    if not text:
+        raise SkinrenderError(f"{flag}: expected a Dask scheduler address (tcp://host:8786), got {address!r}",
+                              flag=flag)
+    try:
+        scheme, location = parse_address(text, strict=False)
+        host, port = parse_host_port(location, 8786) if scheme == "tcp" else (None, None)
+    except (ValueError, TypeError) as error:
+        raise SkinrenderError(f"{flag}: {text!r} is not a Dask scheduler address (tcp://host:8786): "
+                              f"{' '.join(str(error).split())[:120]}", flag=flag) from None
+    if scheme not in DASK_SCHEMES:
+        raise SkinrenderError(f"{flag}: {text!r} is a {scheme}:// address, not a Dask scheduler's (schemes "
+                              f"{', '.join(DASK_SCHEMES)}; e.g. tcp://host:8786)", flag=flag)
+    if scheme != "tcp":
+        return text
+    deadline = time.monotonic() + timeout
+
+    def receive(sock, count: int) -> bytes:
+        data = b""
+        while len(data) < count:
+            sock.settimeout(max(deadline - time.monotonic(), 0.001))
+            chunk = sock.recv(count - len(data))
+            if not chunk:
+                raise ConnectionError("the server closed the connection")
+            data += chunk
+        return data
+
+    try:
+        sock = socket.create_connection((host, port), timeout=timeout)
+    except OSError as error:
+        raise SkinrenderError(f"{flag}: cannot reach a Dask scheduler at {text!r} within {timeout:g} s (cannot "
+                              f"connect: {' '.join((error.strerror or str(error)).split())[:100]})", flag=flag) from None
+    refusal = None
+    try:
+        with sock:
+            # Dask's handshake, then an empty line: a scheduler has closed its read by then (it reads the line
+            # as the start of the next message, cut short when this probe closes); an HTTP server takes the
+            # bytes for a malformed request and answers at once (HTTP/1.x 400), rather than waiting for more
+            sock.sendall(_client_handshake() + b"\r\n\r\n")
+            (size,) = struct.unpack("<Q", receive(sock, 8))
+            if not 16 <= size <= _HANDSHAKE_BYTES_MAX:
+                refusal = f"its first message is not Dask's ({_shown_bytes(struct.pack('<Q', size))}…)"
+            elif not _is_dask_handshake(receive(sock, size)):
+                refusal = "its first message is not Dask's handshake"
+    except TimeoutError:
+        refusal = f"no Dask handshake within {timeout:g} s (a Dask scheduler sends one on every connection)"
+    except OSError as error:
+        refusal = f"the connection failed ({' '.join((error.strerror or str(error)).split())[:100]})"
+    if refusal is not None:
+        raise SkinrenderError(f"{flag}: {text} is not a Dask scheduler: {refusal}", flag=flag)
+    return text
+
+
+def _client_handshake() -> bytes:
+    """A Dask client's handshake in Dask's TCP framing (what ``distributed.comm`` sends on connecting)."""
+    import pickle
+    import struct
+    import sys
+
+    import msgpack
+
+    frame = msgpack.dumps({"compression": None, "python": tuple(sys.version_info[:3]),
+                           "pickle-protocol": pickle.HIGHEST_PROTOCOL}, use_bin_type=True)
+    body = struct.pack("<QQ", 1, len(frame)) + frame
+    return struct.pack("<Q", len(body)) + body
+
+
+def _is_dask_handshake(body: bytes) -> bool:
+    """Whether ``body`` (a message's frames, after its length) holds Dask's handshake: a frame count, the frames'
+    lengths, and a msgpack map with ``python`` or ``pickle-protocol``."""
+    import struct
+
+    import msgpack
+
+    (count,) = struct.unpack_from("<Q", body)
+    if not 1 <= count <= 16 or len(body) < 8 * (count + 1):
+        return False
+    lengths = struct.unpack_from(f"<{count}Q", body, 8)
+    if sum(lengths) != len(body) - 8 * (count + 1):
+        return False
+    start = 8 * (count + 1)
+    for length in lengths:
+        try:
+            message = msgpack.loads(body[start:start + length], raw=False, strict_map_key=False)
+        except Exception:  # noqa: BLE001 - not msgpack: not Dask's
+            message = None
+        if isinstance(message, dict) and ({"python", "pickle-protocol"} & set(map(str, message))):
+            return True
+        start += length
+    return False
+
+
+def _shown_bytes(data: bytes) -> str:
+    """Bytes as a reader sees them: text where printable (``HTTP/1.1``), else hexadecimal."""
+    text = data.decode("ascii", errors="replace")
+    return repr(text) if text.isprintable() else data.hex()
 
 
 def dask_name(dask) -> str | None:

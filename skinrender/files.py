@@ -19,6 +19,9 @@ through this module, so that both fail the same clean way.
 -   :func:`check_output_path`: an output path refused before any work (a
     folder, a dangling symbolic link, a name too long, a place that cannot be
     written).
+-   :func:`write_stdout`: text on standard output, every byte's write checked
+    (a full disk under ``> file`` is an error naming the output, never a
+    short file and exit status 0).
 
 Sizes are bytes. The caps of each kind of input are stated where the input is
 read (:data:`skinrender.spectral_csv.CSV_BYTES_MAX`, :data:`TOML_BYTES_MAX`,
@@ -31,7 +34,9 @@ import errno
 import io
 import os
 import secrets
+import select
 import stat
+import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import BinaryIO, NamedTuple
@@ -40,7 +45,7 @@ from .errors import SkinrenderError
 
 __all__ = ["MACHINE_ERRNOS", "TOML_BYTES_MAX", "MESH_BYTES_MAX", "EXR_BYTES_MAX", "OutputError", "Output",
            "read_input", "check_input", "exists",
-           "reason_of", "shown", "check_output_path", "write_outputs", "write_output", "remove_pending"]
+           "reason_of", "shown", "check_output_path", "write_outputs", "write_output", "remove_pending", "write_stdout"]
 
 TOML_BYTES_MAX = 1_000_000
 """Largest scene or imager TOML read, bytes: the bundled ones are under 4 kB; a chart of 2 000 patches ~100 kB."""
@@ -387,3 +392,53 @@ def remove_pending() -> None:
 def write_output(path: str | Path, content, flag: str | None = None) -> Path:
     """One output written whole or not at all (:func:`write_outputs`); returns the file written."""
     return write_outputs(Output(path, flag, content))[0]
+
+
+def _write_all(handle: int, data: bytes) -> None:
+    """Every byte of ``data`` to the descriptor ``handle``: each ``write`` checked, a short one continued, one that
+    writes nothing an error (a non-blocking pipe that is full is waited on)."""
+    view = memoryview(data)
+    while view:
+        try:
+            count = os.write(handle, view)
+        except BlockingIOError:
+            select.select([], [handle], [])
+            continue
+        if count <= 0:
+            raise OSError(errno.EIO, "the write took no bytes")
+        view = view[count:]
+
+
+def write_stdout(text: str) -> None:
+    """
+    ``text`` on standard output, every byte's write checked.
+
+    Python's own buffered standard output can drop the rest of a document after one short write (a disk filling
+    under ``> file.json``: 4 096 bytes written, the command's exit status still 0). Here the stream's buffer is
+    flushed, then the text is written to its descriptor directly, each ``write`` checked and a short one
+    continued. A stream without a descriptor (a test's capture) is written and flushed as it is.
+
+    Raises
+    ------
+    OutputError
+        ``standard output: cannot be written (reason); the output is incomplete``: status 1 for the machine's
+        errors (a full disk or quota, a file-size limit, a failing device). A closed pipe
+        (:class:`BrokenPipeError`) is passed on as it is: the reader has gone.
+    """
+    stream = sys.stdout
+    try:
+        handle = stream.fileno()
+    except (AttributeError, OSError, ValueError, io.UnsupportedOperation):
+        handle = None
+    try:
+        if handle is None:
+            stream.write(text)
+            stream.flush()
+            return
+        stream.flush()
+        _write_all(handle, text.encode(stream.encoding or "utf-8", stream.errors or "strict"))
+    except BrokenPipeError:
+        raise
+    except OSError as error:
+        raise OutputError(f"standard output: cannot be written ({reason_of(error)}); the output is incomplete",
+                          "standard output", error) from None

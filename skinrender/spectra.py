@@ -42,6 +42,8 @@ __all__ = [
     "planck",
     "gbell",
     "impulse",
+    "float_array",
+    "as_grid",
 ]
 
 GRID_SIZE_MAX = 100_001
@@ -94,7 +96,11 @@ class WavelengthGrid:
     def __post_init__(self) -> None:
         for name in ("start", "end", "step"):
             value = getattr(self, name)
-            if not np.isfinite(value):
+            try:
+                finite = np.isfinite(float(value))
+            except (TypeError, ValueError, OverflowError):
+                finite = False
+            if not finite:
                 raise SkinrenderError(f"grid {name} must be a finite number of nm, got {value!r}")
         if self.start <= 0:
             raise SkinrenderError(f"grid start must be > 0 nm, got {self.start}")
@@ -136,6 +142,44 @@ GRID_DEFAULT = WavelengthGrid(400.0, 700.0, 1.0)
 """The default integration grid: 400–700 nm every 1 nm, as the paper."""
 
 
+def float_array(value, name: str) -> NDArrayFloat:
+    """
+    ``value`` as a float64 array, or a one-line :class:`SkinrenderError` naming the argument ``name`` (``None``,
+    text that is not a number, objects): never numpy's bare ``ValueError``.
+
+    >>> float_array([1, "2"], "x").tolist()
+    [1.0, 2.0]
+    >>> float_array("x", "temperature")
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: temperature must be numbers, got 'x'
+    """
+    error = value is None
+    if not error:
+        try:
+            return np.asarray(value, dtype=np.float64)
+        except (TypeError, ValueError, OverflowError):
+            error = True
+    shown = repr(value)
+    raise SkinrenderError(f"{name} must be numbers, got {shown if len(shown) <= 60 else shown[:57] + '...'}",
+                          role=name)
+
+
+def as_grid(grid, name: str = "grid") -> WavelengthGrid:
+    """
+    ``grid`` as a :class:`WavelengthGrid`: one already, or its text ``START:END:STEP`` (nm); anything else is a
+    one-line :class:`SkinrenderError` naming ``name``.
+
+    >>> as_grid("400:700:10")
+    WavelengthGrid(start=400.0, end=700.0, step=10.0)
+    """
+    if isinstance(grid, WavelengthGrid):
+        return grid
+    if isinstance(grid, str):
+        return WavelengthGrid.parse(grid)
+    raise SkinrenderError(f"{name} must be a WavelengthGrid or 'START:END:STEP' in nm, got {grid!r}", role=name)
+
+
 def resample(
     wavelengths: ArrayLike,
     values: ArrayLike,
@@ -172,9 +216,13 @@ def resample(
     neighbours, so a non-negative reflectance stays non-negative.
     """
 
-    x = np.asarray(wavelengths, dtype=np.float64)
-    y = np.asarray(values, dtype=np.float64)
-    target = grid.wavelengths if isinstance(grid, WavelengthGrid) else np.asarray(grid, np.float64)
+    x = float_array(wavelengths, "wavelengths")
+    y = float_array(values, "values")
+    target = (grid.wavelengths if isinstance(grid, WavelengthGrid) else as_grid(grid).wavelengths
+              if isinstance(grid, str) else float_array(grid, "grid"))
+    if x.ndim != 1 or y.ndim < 1 or target.ndim != 1:
+        raise SkinrenderError(f"{source}: expected wavelengths (1-D), spectra (…, n) and a grid, got shapes "
+                              f"{x.shape}, {y.shape}, {target.shape}")
     validate_method(extrapolation, EXTRAPOLATIONS, "extrapolation")
     if x.ndim != 1 or x.size != y.shape[-1]:
         raise SkinrenderError(
@@ -242,8 +290,8 @@ def planck(wavelength: ArrayLike, temperature: ArrayLike) -> NDArrayFloat:
     12762.19...
     """
 
-    lam = np.asarray(wavelength, dtype=np.float64)
-    t = np.asarray(temperature, dtype=np.float64)
+    lam = float_array(wavelength, "wavelength")
+    t = float_array(temperature, "temperature")
     if np.any(~np.isfinite(t)) or np.any(t <= 0) or np.any(t > TEMPERATURE_MAX):
         bad = t[~(np.isfinite(t) & (t > 0) & (t <= TEMPERATURE_MAX))]
         raise SkinrenderError(f"temperature must be a finite number of kelvin in (0, {TEMPERATURE_MAX:g}], "
@@ -304,9 +352,11 @@ def gbell(
     [1.0, 0.5]
     """
 
-    lam = np.asarray(wavelength, dtype=np.float64)
-    a = np.asarray(fwhm, dtype=np.float64) / 2.0
-    b = np.asarray(slope, dtype=np.float64)
+    lam, peak = float_array(wavelength, "wavelength"), float_array(peak, "peak")
+    a = float_array(fwhm, "fwhm") / 2.0
+    b = float_array(slope, "slope")
+    if np.any(~np.isfinite(lam)) or np.any(~np.isfinite(peak)):
+        raise SkinrenderError("wavelength and peak must be finite numbers of nm", role="wavelength")
     if np.any(~(a > 0)) or np.any(~np.isfinite(a)):
         raise SkinrenderError(f"fwhm must be a finite number of nm > 0, got {show_values(2 * a)}")
     if np.any(~(b > 0)) or np.any(~np.isfinite(b)):
@@ -338,8 +388,9 @@ def impulse(grid: WavelengthGrid, peak: float) -> NDArrayFloat:
     wavelength" differs by the constant ``Δλ``, which Eq. 4 cancels.
     """
 
+    grid = as_grid(grid)
     values = np.zeros(grid.size)
-    values[grid.index_of(peak)] = 1.0 / grid.step
+    values[grid.index_of(float(float_array(peak, "peak")))] = 1.0 / grid.step
     return values
 
 

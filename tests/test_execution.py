@@ -147,6 +147,67 @@ class TestMap:
         assert error.value.flag == "--dask" and "within 1 s" in message and "\n" not in message
 
 
+class TestDaskAddress:
+    """Issue 36: ``--dask`` pointing at something that is not a Dask scheduler hung past 60 s or said "out of
+    memory" (Dask read an HTTP answer's first bytes as a message length of ~3e18 bytes)."""
+
+    @staticmethod
+    def server(answer: bytes | None):
+        """A TCP server on a free port that answers ``answer`` to whatever it is sent (``None``: says nothing)."""
+        import socket
+        import threading
+
+        listener = socket.create_server(("127.0.0.1", 0))
+        held = []
+
+        def serve():
+            while True:
+                try:
+                    connection, _ = listener.accept()
+                except OSError:
+                    return
+                held.append(connection)
+                if answer is not None:
+                    connection.recv(1024)
+                    connection.sendall(answer)
+
+        threading.Thread(target=serve, daemon=True).start()
+        return listener, f"tcp://127.0.0.1:{listener.getsockname()[1]}"
+
+    def test_an_http_server_is_refused_at_once(self):
+        pytest.importorskip("distributed")
+        listener, address = self.server(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n")
+        with listener, pytest.raises(SkinrenderError, match=r"^--dask: tcp://127\.0\.0\.1:\d+ is not a Dask "
+                                     r"scheduler: its first message is not Dask's \('HTTP/1\.1'…\)$") as error:
+            execution.check_dask_address(address, timeout=60)  # refused on its answer, not on the timeout
+        assert error.value.flag == "--dask"
+
+    def test_a_silent_server_is_refused_after_the_timeout(self):
+        pytest.importorskip("distributed")
+        listener, address = self.server(None)
+        with listener, pytest.raises(SkinrenderError, match="is not a Dask scheduler: no Dask handshake within 0.3 s"):
+            execution.check_dask_address(address, timeout=0.3)
+
+    @pytest.mark.parametrize("address, message", [
+        ("", "expected a Dask scheduler address"), ("  ", "expected a Dask scheduler address"),
+        ("http://127.0.0.1:8787", "is a http:// address, not a Dask scheduler's"),
+        ("tcp://127.0.0.1:notaport", "is not a Dask scheduler address"),
+    ])
+    def test_malformed_addresses(self, address, message):
+        pytest.importorskip("distributed")
+        with pytest.raises(SkinrenderError, match=message):
+            execution.check_dask_address(address)
+
+    def test_a_scheduler_passes_and_one_without_workers_is_named(self, monkeypatch):
+        distributed = pytest.importorskip("distributed")
+        monkeypatch.setattr(execution, "DASK_TIMEOUT_S", 1.0)
+        with distributed.LocalCluster(n_workers=0, processes=False, dashboard_address=None) as cluster:
+            address = cluster.scheduler_address
+            assert execution.check_dask_address(address) == address  # its handshake is Dask's
+            with pytest.raises(SkinrenderError, match="has no workers .none joined within 1 s."):
+                execution.map(abs, [1], dask=address)
+
+
 class TestCheckWorkers:
     def test_default_is_every_core(self):
         assert check_workers(None) == (os.cpu_count() or 1)

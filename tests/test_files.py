@@ -191,3 +191,54 @@ class TestCheckOutputPath:
         locked.mkdir(mode=0o500)
         with pytest.raises(OutputError, match="permission denied"):
             check_output_path(locked / "f.png", "--figure")
+
+
+class TestStandardOutput:
+    """Issue 36: Python's buffered standard output dropped the rest of a document after one short write (a disk
+    filling under ``> k.json``: 4 096 bytes, exit status 0). :func:`skinrender.files.write_stdout` checks every
+    write (the whole command: ``tests/test_cli.py``)."""
+
+    @staticmethod
+    def stdout_on(monkeypatch, handle: int):
+        import io
+        import sys
+
+        stream = io.TextIOWrapper(io.FileIO(handle, "w", closefd=False), encoding="utf-8")
+        monkeypatch.setattr(sys, "stdout", stream)
+        return stream
+
+    def test_short_writes_are_continued(self, monkeypatch):
+        from skinrender import files
+
+        read, write = os.pipe()
+        self.stdout_on(monkeypatch, write)
+        real = os.write
+        monkeypatch.setattr(files.os, "write", lambda handle, data: real(handle, bytes(data)[:3]))  # 3 bytes a time
+        files.write_stdout("é, a document\n")
+        os.close(write)
+        assert os.read(read, 100).decode("utf-8") == "é, a document\n"
+        os.close(read)
+
+    @pytest.mark.parametrize("errno_, status", [(errno.ENOSPC, 1), (errno.EFBIG, 1)])
+    def test_a_failed_write_names_standard_output(self, monkeypatch, errno_, status):
+        from skinrender import files
+
+        read, write = os.pipe()
+        self.stdout_on(monkeypatch, write)
+
+        def fail(handle, data):
+            raise OSError(errno_, os.strerror(errno_))
+
+        monkeypatch.setattr(files.os, "write", fail)
+        with pytest.raises(files.OutputError, match="^standard output: cannot be written .*; the output is "
+                           "incomplete$") as error:
+            files.write_stdout("{}\n")
+        assert error.value.status == status and error.value.flag == "standard output"
+        os.close(read)
+        os.close(write)
+
+    def test_a_stream_without_a_descriptor_is_written_as_it_is(self, capsys):
+        from skinrender import files
+
+        files.write_stdout("captured\n")
+        assert capsys.readouterr().out == "captured\n"

@@ -96,3 +96,34 @@ def test_ncc_and_knee(rgb):
 def test_illuminant_sets(values):
     finite_or_refused(sr.gamut_calibration, "gbell:9@450,540,610", np.full((5, grid.size), 0.4) *
                       np.linspace(0.5, 1, 5)[:, None] * np.linspace(0.5, 1, grid.size), 3300, values)
+
+
+CAMERA = sr.camera("gbell:9@450,540,610")
+
+BAD_ARGUMENTS = {
+    # issue 36: each raised a bare ValueError, TypeError, IndexError or AttributeError, or was accepted
+    "response grid": (lambda: sr.response(CAMERA, sr.reflectances("macbeth"), 2856, 2300, grid="x"), "grid"),
+    "response knee": (lambda: sr.response(CAMERA, sr.reflectances("macbeth"), 2856, 2300, knee="yes"), "knee"),
+    "gamut_volume text": (lambda: sr.gamut_volume("x"), "points"),
+    "ncc text": (lambda: sr.ncc("x"), "rgb"),
+    "measure None": (lambda: sr.measure(None), "chromaticity"),
+    "skin_locus illuminants": (lambda: sr.skin_locus(CAMERA, illuminants="x"), "illuminants"),
+    "WavelengthGrid text": (lambda: sr.WavelengthGrid("a", "b", "c"), "grid start"),
+    "planck wavelength": (lambda: sr.planck("x", 3000), "wavelength"),
+    "planck temperature": (lambda: sr.planck([500.0], "x"), "temperature"),
+    "gbell None": (lambda: sr.gbell(None, 450, 90), "wavelength"),
+    "impulse grid": (lambda: sr.impulse("x", 450), "grid"),
+    "resample None": (lambda: sr.resample(None, None, None), "wavelengths"),
+    "knee text": (lambda: sr.knee("x"), "x must be numbers"),
+    "gain None": (lambda: sr.gain(None, None), "white_p"),
+    "search sensor": (lambda: sr.search(None, None, None), "sensor"),
+    "search shapes": (lambda: sr.search(9, sr.reflectances("macbeth").values, sr.reflectances("macbeth").values,
+                                        positions="400:700:100"), "reflectance"),
+}
+
+
+@pytest.mark.parametrize("name", list(BAD_ARGUMENTS))
+def test_a_bad_argument_is_a_skinrender_error_naming_it(name):
+    call, named = BAD_ARGUMENTS[name]
+    with pytest.raises(sr.SkinrenderError, match=named):
+        call()

@@ -1,12 +1,12 @@
 """
 Scenes for tools/measure_skin_integrator.py (run that script: face, curvature, chart, noise).
 
--   face: the face at the subsurface level at its place and moved by +100 mm (x): eq4_shift and TPR, each with
+-   face: the face at the subsurface-volume level at its place and moved by +100 mm (x): eq4_shift and TPR, each with
     its interval, and whether the two differ (independent seeds).
 -   curvature: a sphere of skin under the uniform sky, seen at its top: the layers by depth (re-anchored, the
     face's; and from the last contact alone) against the same sphere with an offset sphere as the layers'
     boundary, and that against the flat slab.
--   chart [SPP]: ``skinrender validate skin_patches --physics subsurface --tolerance 0.05`` timed (wall, CPU).
+-   chart [SPP]: ``skinrender validate skin_patches --physics subsurface-volume --tolerance 0.05`` timed (wall, CPU).
 -   noise: the face's skin at the spp users run, the ladder's numbers, with and without the connections through
     the boundary to the point lights.
 """
@@ -31,7 +31,7 @@ def _load() -> str:
 
 
 def _face_at(translate, seeds, size: int, spp: int, skin: str | None = None):
-    """The face at subsurface (a replicate per seed, ``spp`` each), moved by ``translate`` mm: eq4_shift's check,
+    """The face at subsurface-volume (a replicate per seed, ``spp`` each), moved by ``translate`` mm: eq4_shift's check,
     the TPR of each replicate and of their mean, seconds."""
     from skinrender.evaluation.budget import BUDGET_FRACTION
     from skinrender.model.chromaticity import ncc
@@ -42,7 +42,7 @@ def _face_at(translate, seeds, size: int, spp: int, skin: str | None = None):
     from skinrender.rendering.validation import analytic_reference
     from skinrender.studies.face.ladder import score_frame
 
-    request = face_request("face", CAMERA, 2856, 5900, skin=skin, physics="subsurface", size=size, spp=spp,
+    request = face_request("face", CAMERA, 2856, 5900, skin=skin, physics="subsurface-volume", size=size, spp=spp,
                            translate_mm=translate)
     analytic = ncc(analytic_reference(CAMERA, skin_reflectance_of(request.skin)[None], 2856, 5900))[0]
     budget, locus = face_budget(request.camera, analytic, 5900, BUDGET_FRACTION)
@@ -151,7 +151,7 @@ def chart(argv) -> None:
     spp = argv[0] if argv else "160"
     for camera_, lights in ((CAMERA, ("2856", "2856")), ("Canon EOS 5D Mark II", ("2300", "5900"))):
         command = ["skinrender", "validate", "skin_patches", "--camera", camera_, "--prevailing", lights[0],
-                   "--calibration", lights[1], "--physics", "subsurface", "--spp", spp, "--seed", "1",
+                   "--calibration", lights[1], "--physics", "subsurface-volume", "--spp", spp, "--seed", "1",
                    "--tolerance", "0.05", "--max-minutes", "60", "--json"]
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         start = time.perf_counter()
@@ -182,9 +182,9 @@ def noise(argv) -> None:
             effect.integrator_dict = lambda *a, **k: {**original(*a, **k), "through": on}  # noqa: B023
             loaded_documents.cache_clear()  # the loaded documents are cached by level, not by integrator
             start = time.perf_counter()
-            result = ladder(CAMERA, 2856, 5900, levels=["subsurface"], spp=spp, size=size)
+            result = ladder(CAMERA, 2856, 5900, levels=["subsurface-volume"], spp=spp, size=size)
             row = result.document()["levels"][0]
-            print(f"ladder's subsurface row at {size} px, {spp} spp, through the boundary {'on' if on else 'off'}: "
+            print(f"ladder's subsurface-volume row at {size} px, {spp} spp, through the boundary {'on' if on else 'off'}: "
                   f"eq4_shift {row['eq4_shift']:.4f} (≤ {row['eq4_shift_bound']:.4f}), TPR {row['tpr']:.3f}; "
                   f"{time.perf_counter() - start:.0f} s, {_load()}", flush=True)
     effect.integrator_dict = original

@@ -12,7 +12,7 @@ One module per command group (:data:`GROUPS`): :mod:`~skinrender.cli.data`,
 :mod:`~skinrender.cli.model`, :mod:`~skinrender.cli.evaluation`,
 :mod:`~skinrender.cli.design`, :mod:`~skinrender.cli.rendering` (with
 :mod:`~skinrender.cli.chart_validation`), :mod:`~skinrender.cli.studies`, :mod:`~skinrender.cli.face`,
-:mod:`~skinrender.cli.face_sweep`, :mod:`~skinrender.cli.skin`; :mod:`~skinrender.cli.common` holds what
+:mod:`~skinrender.cli.face_sweep`, :mod:`~skinrender.cli.ranking`, :mod:`~skinrender.cli.skin`; :mod:`~skinrender.cli.common` holds what
 they share, :mod:`~skinrender.cli.inputs` the objects a render command parses its flags into.
 
 The command registry is the parser: a group's ``add_parsers(commands)`` registers each of its commands in one
@@ -30,13 +30,14 @@ import sys
 from collections.abc import Sequence
 
 from .. import files
+from .._interrupt import INTERRUPTED_STATUS, hand_back
 from ..errors import SkinrenderError
-from . import data, design, evaluation, face, face_sweep, imaging, model, rendering, skin, studies
+from . import data, design, evaluation, face, face_sweep, imaging, model, ranking, rendering, skin, studies
 from .common import Parser, coverage_hint
 
 __all__ = ["main", "build_parser", "commands", "GROUPS"]
 
-GROUPS = (data, model, design, studies, rendering, evaluation, imaging, face, face_sweep, skin)
+GROUPS = (data, model, design, studies, rendering, evaluation, imaging, face, face_sweep, ranking, skin)
 """The command groups, in the order of ``skinrender --help``: each registers its commands (``add_parsers``)."""
 
 
@@ -68,42 +69,64 @@ def commands(parser: argparse.ArgumentParser | None = None) -> dict:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
-    parser = build_parser()
-    args, extra = parser.parse_known_args(argv)
-    command = _subparsers(parser)[args.command]
-    if extra:  # argparse's own message would name the top-level program: name the command and its help
-        command.error(f"unrecognized arguments: {' '.join(extra)}")
+    hand_back()  # Ctrl-C raises KeyboardInterrupt again: handled below, from the first parse on
+    name, args = "skinrender", argparse.Namespace()
     try:
+        parser = build_parser()
+        args, extra = parser.parse_known_args(argv)
+        name = f"skinrender {args.command}"
+        command = _subparsers(parser)[args.command]
+        if extra:  # argparse's own message would name the top-level program: name the command and its help
+            command.error(f"unrecognized arguments: {' '.join(extra)}")
         _sampler_note(None)  # forget an earlier command's (main may run several in one process)
-        command.run(args)
+        status = _run(command, args)
         sys.stdout.flush()  # here, so that a failing standard output is reported below, not at exit
         _sampler_note(args.command)
+        return status
+    except SystemExit as stop:  # argparse's --help (0) or its refusal, already said (2)
+        sys.stdout.flush()
+        return _status_of(stop)
     except SkinrenderError as error:
-        print(f"skinrender {args.command}: error: {' '.join(coverage_hint(error, args).split())}", file=sys.stderr)
+        print(f"{name}: error: {' '.join(coverage_hint(error, args).split())}", file=sys.stderr)
         return error.status
     except KeyboardInterrupt:
-        print(f"skinrender {args.command}: interrupted", file=sys.stderr, flush=True)
+        print(f"{name}: interrupted", file=sys.stderr, flush=True)
         files.remove_pending()  # a worker thread's half-written temporaries, which os._exit would leave
         # at once: the interpreter's exit would wait on worker pipes that no one reads any more
-        os._exit(130)
+        os._exit(INTERRUPTED_STATUS)
     except BrokenPipeError:
         return 0
     except OSError as error:
         if error.errno in USER_PATH_ERRNOS and error.filename:  # a path given that no check caught: still one line
-            print(f"skinrender {args.command}: error: {error.filename}: {files.reason_of(error)}", file=sys.stderr)
+            print(f"{name}: error: {error.filename}: {files.reason_of(error)}", file=sys.stderr)
             return 2
         if error.errno not in MACHINE_ERRNOS:
-            return _internal_error(args.command, error)
+            return _internal_error(name, error)
         where = f" ({error.filename})" if error.filename else ""  # the machine's, not the input's: one line
-        print(f"skinrender {args.command}: error: {error.strerror or error}{where}", file=sys.stderr)
+        print(f"{name}: error: {error.strerror or error}{where}", file=sys.stderr)
         return 1
     except MemoryError:
-        print(f"skinrender {args.command}: error: out of memory: ask for less (a coarser grid, fewer positions)",
-              file=sys.stderr)
+        print(f"{name}: error: out of memory: ask for less (a coarser grid, fewer positions)", file=sys.stderr)
         return 2
     except Exception as error:  # the last resort: one line, never a traceback (a bug to report)
-        return _internal_error(args.command, error)
+        return _internal_error(name, error)
+
+
+def _run(command: Parser, args: argparse.Namespace) -> int:
+    """The command's exit status: 0, or the status a verdict command ends with (its ``SystemExit``, raised after
+    its document was written whole)."""
+    try:
+        command.run(args)
+    except SystemExit as stop:
+        return _status_of(stop)
     return 0
+
+
+def _status_of(stop: SystemExit) -> int:
+    """The exit status of a ``SystemExit``: its code, 0 for ``None``, 1 for a message."""
+    if stop.code is None:
+        return 0
+    return stop.code if isinstance(stop.code, int) else 1
 
 
 MACHINE_ERRNOS = files.MACHINE_ERRNOS
@@ -128,8 +151,8 @@ def _sampler_note(command: str | None) -> None:
         variants.ROUNDED.clear()
 
 
-def _internal_error(command: str, error: BaseException) -> int:
-    print(f"skinrender {command}: internal error: {type(error).__name__}: "
+def _internal_error(name: str, error: BaseException) -> int:
+    print(f"{name}: internal error: {type(error).__name__}: "
           f"{' '.join(str(error).split())[:300]} (please report this)", file=sys.stderr)
     return 1
 

@@ -14,6 +14,7 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
+from ..files import write_output
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, check_output, emit, flag, imaging_options,
                      integer_in, interruptible, table)
 
@@ -24,6 +25,8 @@ VERDICT_BENCH_FLAGS = {"camera": ("render", "calibration", "validate"), "prevail
                        "seeds": ("calibration", "validate"), "seed": ("calibration", "validate"),
                        "imager": ("calibration", "validate"), "illuminance": ("calibration", "validate"),
                        "exposure": ("calibration", "validate"), "level": ("calibration",),
+                       "checks": ("calibration",), "skin": ("calibration",), "skin_set": ("calibration",),
+                       "detection_tolerance": ("calibration",),
                        "mc_variance": ("calibration", "validate")}
 """``bench`` flags of the verdict benchmarks (``dest``: the benchmarks they go with)."""
 
@@ -59,6 +62,16 @@ def add_bench_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--exposure", help="calibration, validate with --imager: seconds or auto (default)")
     p.add_argument("--level", help="calibration: a face's level of physics (default direct; faces only: refused for "
                    "charts); eq4_shift's failures count as false alarms only where Eq. 4 holds (direct, noise)")
+    p.add_argument("--checks", choices=["all", "detection"],
+                   help="calibration --scene face: every check of validate face (all, default) or the detection "
+                   "verdict alone (detection: at any spp, no floor per replicate; with --size, --skin, --skin-set, "
+                   "--detection-tolerance)")
+    p.add_argument("--skin", help="calibration --scene face --checks detection: the face's skin (default the "
+                   "scene's)")
+    p.add_argument("--skin-set", metavar="SET", help="calibration --scene face --checks detection: the locus's "
+                   "reflectance set (default skin)")
+    p.add_argument("--detection-tolerance", metavar="RATE", help="calibration --scene face --checks detection: "
+                   "the verdict's tolerance in TPR and FPR, a fraction (default 0.02)")
     p.add_argument("--mc-variance", choices=list(MC_VARIANCE),
                    help="calibration, validate with --imager: how the render's own variance enters the sensor's "
                    "predictions: " + choices_help(MC_VARIANCE))
@@ -87,6 +100,10 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     run = calibration_path(kind.name, args.level)
     if kind is FACE:
         return _checked_face(args, run, scene_spec)
+    for name in DETECTION_FLAGS + ("size",):
+        if getattr(args, name, None) is not None:
+            option = "--" + name.replace("_", "-")
+            raise SkinrenderError(f"{option} goes with 'bench calibration --scene face', not a chart", flag=option)
     scene = flag("--scene", load_chart_scene, scene_spec)
     cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))
     lights = {}
@@ -156,8 +173,17 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
     if first + SEED_STEP * seeds - 1 > SEED_MAX:
         raise SkinrenderError(f"--seed: the runs use seeds {first} to {first + SEED_STEP * seeds - 1}, beyond "
                               f"{SEED_MAX}")
-    spp = integer_in(_or(args.spp, 256), "--spp", 1, SPP_MAX)
+    detection = _or(args.checks, "all") == "detection"
+    if not detection:
+        for name in DETECTION_FLAGS[1:] + ("size",):
+            if getattr(args, name, None) is not None:
+                option = "--" + name.replace("_", "-")
+                raise SkinrenderError(f"{option} goes with --checks detection (validate face's own checks run at "
+                                      "the scene's size, skin and locus)", flag=option)
+    spp = integer_in(_or(args.spp, 16 if detection else 256), "--spp", 1, SPP_MAX)
     plot = check_output(args.plot, "--plot", (".png",))
+    if detection:
+        return _checked_detection(args, scene, level, cam, lights, imaging, seeds, first, spp, plot)
     seconds = estimate_face_seconds(seeds, scene.camera.width * scene.camera.height, spp, level)
     check_work(seconds, "--seeds", f"{seeds} validations of the face at {spp} spp", args.max_minutes,
                fewer="run fewer --seeds")
@@ -166,7 +192,33 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
             "level": level}
 
 
-PTC_REFUSED = ("calibration", "exposure", "level", "mc_variance")
+DETECTION_FLAGS = ("checks", "skin", "skin_set", "detection_tolerance")
+"""``bench calibration`` flags of the face's detection verdict (``--checks detection``)."""
+
+def _checked_detection(args, scene, level, cam, lights, imaging, seeds, first, spp, plot) -> dict:
+    """``bench calibration --scene face --checks detection``'s flags checked (``--size`` default 64)."""
+    from ..rendering.face.scene import skin_reflectance_of
+    from ..spectra import GRID_DEFAULT
+    from ..studies.benchmarks.detection_calibration import estimate_detection_seconds
+    from ..workload import check_work
+    from .detection_options import skin_set_of, tolerance_of
+    from .face import SIZE_MAX
+
+    size = integer_in(_or(args.size, 64), "--size", 1, SIZE_MAX)
+    if args.skin is not None:
+        skin_reflectance_of(args.skin, GRID_DEFAULT, "--skin")
+    args.skin_set = _or(args.skin_set, "skin")
+    args.detection_tolerance = _or(args.detection_tolerance, "0.02")
+    skins = skin_set_of(args, cam, [lights["calibration"]])
+    seconds = estimate_detection_seconds(seeds, size * size, spp, level)
+    check_work(seconds, "--seeds", f"{seeds} detection verdicts of the face at {spp} spp", args.max_minutes,
+               fewer="run fewer --seeds")
+    return {"kind": "detection", "scene": scene, "camera_": cam, **lights, "spp": spp, "size": size,
+            "skin": args.skin, "skin_set": skins, "tolerance": tolerance_of(args), "seeds": seeds,
+            "first_seed": first, "imaging": imaging, "plot": plot, "estimate_s": seconds, "level": level}
+
+
+PTC_REFUSED = ("calibration", "exposure", "level", "mc_variance", *DETECTION_FLAGS)
 """``bench`` flags that ``--scene ptc`` refuses: the photon transfer has one light, its own exposure series, no
 level of physics and no render variance in its predictions (its two-frame differences cancel it)."""
 
@@ -231,6 +283,21 @@ def _run(wrapped: argparse.Namespace) -> None:
         if options["plot"] is not None:
             from ..studies.figures import figure_calibration
 
+            result["plot"] = str(write_output(options["plot"], lambda stream: figure_calibration(result, stream),
+                                                  "--plot"))
+        emit(args, result, _calibration_text(result))
+        return
+    if options.get("kind") == "detection":  # the detection verdict alone, at any spp
+        from ..studies.benchmarks.detection_calibration import detection_calibration
+
+        result = detection_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
+                                       options["prevailing"], options["calibration"], options["spp"],
+                                       options["size"], options["skin"], options["skin_set"], options["tolerance"],
+                                       options["first_seed"], options["imaging"], progress=progress)
+        result["estimate_s"] = options["estimate_s"]
+        if options["plot"] is not None:
+            from ..studies.figures import figure_calibration
+
             result["plot"] = str(figure_calibration(result, options["plot"]))
         emit(args, result, _calibration_text(result))
         return
@@ -247,7 +314,8 @@ def _run(wrapped: argparse.Namespace) -> None:
         if options["plot"] is not None:
             from ..studies.figures import figure_calibration
 
-            result["plot"] = str(figure_calibration(result, options["plot"]))
+            result["plot"] = str(write_output(options["plot"], lambda stream: figure_calibration(result, stream),
+                                                  "--plot"))
         text = _calibration_text(result)
     elif args.what == "calibration":
         result = bench_calibration(options["run"], spp=options["spps"][0], seeds=options["seeds"],
@@ -256,7 +324,8 @@ def _run(wrapped: argparse.Namespace) -> None:
         if options["plot"] is not None:  # written whole or not at all
             from ..studies.figures import figure_calibration
 
-            result["plot"] = str(figure_calibration(result, options["plot"]))
+            result["plot"] = str(write_output(options["plot"], lambda stream: figure_calibration(result, stream),
+                                                  "--plot"))
         text = _calibration_text(result)
     else:
         result = bench_validate(options["run"], spps=options["spps"], seeds=options["seeds"], **common)

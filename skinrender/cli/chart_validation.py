@@ -21,21 +21,28 @@ import dataclasses
 import sys
 
 from ..errors import SkinrenderError
-from .common import emit, flag, interruptible, settings_of, table
+from .common import SPP_MAX, emit, flag, interruptible, settings_of, table
 from .placement import translate_key
 
-__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "add_check_arguments", "add_verdict_arguments", "tolerance_of", "spp_of", "command_validate",
-           "command_validate_chart", "command_validate_spectral"]
+__all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "SIGMAS_DEPRECATED", "add_check_arguments", "add_verdict_arguments",
+           "tolerance_of", "spp_of", "command_validate", "command_validate_chart", "command_validate_spectral"]
 
 HELP_TOLERANCE = (
-    "relative tolerance REL in (0, 1) on each lit patch channel (default 0.01, 1 %%); a channel darker than 1 %% of "
-    "white is held to the absolute floor REL × 2.55 output units. pass: every patch channel shown within it at "
+    "relative tolerance REL in [6e-8, 1) on each lit patch channel (default 0.01, 1 %%); a channel darker than 1 %% of "
+    "white (a perfect white's brightest channel under the prevailing light: 255 output units at p = c with the "
+    "white normalisation) is held to the absolute floor REL × 1 %% of that white. pass: every patch channel shown within it at "
     "family-wise 95 %% confidence; fail: one shown outside it; inconclusive: the samples cannot tell (spp_needed "
     "says how many would)")
 
+SIGMAS_DEPRECATED = (
+    "deprecated, to be removed in a later release: the tolerance is no longer k standard errors (k was 5) but "
+    "relative (--tolerance); 'sigmas' is now the equivalence's critical value c, the standard errors added in each "
+    "bound |error| + c·SE: read checks.equivalence.critical")
+"""The JSON's ``deprecated.sigmas``: why ``sigmas`` is kept and what to read instead."""
+
 EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the verdict of --tolerance; a face: its "
-                   "checks' verdicts combined, eq4_shift held to the detection budget), 2 a refused input, 130 "
-                   "interrupted")
+                   "checks' verdicts combined, detection held to --detection-tolerance; eq4_shift against the "
+                   "detection budget is a diagnostic), 2 a refused input, 130 interrupted")
 
 
 def add_check_arguments(p) -> None:
@@ -48,6 +55,12 @@ def add_check_arguments(p) -> None:
     p.add_argument("--limits", metavar="LIST",
                    help="face scenes: the scene-free limits run beside the level's own: furnace, sphere "
                    "(comma-separated) or none (default: both)")
+    p.add_argument("--detection-tolerance", metavar="RATE",
+                   help="face scenes: how far Eq. 4 may be off in TPR and in FPR, a fraction in (0, 1), for the "
+                   "detection check (default 0.02)")
+    p.add_argument("--skin-set", metavar="SET",
+                   help="face scenes: the reflectance set of the skin locus the detection check classifies with "
+                   "(default skin; skin-tones spans very light to very dark)")
 
 
 def add_verdict_arguments(p) -> None:
@@ -127,7 +140,8 @@ def _auto_spp(request, tolerance) -> dict:
         return CHART.validate(pilot, tolerance=tolerance)
 
     print(f"spp auto: pilot renders of {request.scene.name} …", file=sys.stderr)
-    choice = spp_for_tolerance(at, tolerance, settings.seed, spp_max=SAMPLES_MAX // request.pixels,
+    # the choice is held to both limits --spp has: SPP_MAX, and one pass's samples (Mitsuba's 32-bit wavefront)
+    choice = spp_for_tolerance(at, tolerance, settings.seed, spp_max=min(SPP_MAX, SAMPLES_MAX // request.pixels),
                                sampler=settings.sampler)
     print(f"spp auto: {choice['spp']} spp ({choice['why']})", file=sys.stderr)
     return choice
@@ -154,8 +168,17 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     tolerance = tolerance_of(args)
     auto = spp_of(args)
     chart_only(args)
-    if args.limits is not None:
-        raise SkinrenderError("--limits goes with a face scene (e.g. 'face'), not a chart", flag="--limits")
+    for name in ("limits", "detection_tolerance", "skin_set"):
+        if getattr(args, name, None) is not None:
+            option = "--" + name.replace("_", "-")
+            raise SkinrenderError(f"{option} goes with a face scene (e.g. 'face'), not a chart", flag=option)
+    if args.gamut and (args.normalization != "white" or args.knee):  # its volumes were taken with WP, no knee
+        given = "--knee" if args.knee else f"--normalization {args.normalization}"
+        raise SkinrenderError(f"--gamut compares the volumes of Eq. 4 with the white normalisation and no knee; "
+                              f"{given} would not apply to them: drop one of the two", flag="--gamut")
+    if args.knee and args.imager is not None:  # the sensor's tests compare linear codes with its model
+        raise SkinrenderError("--knee: validate --imager tests the sensor's linear codes (DN) against its model; "
+                              "drop --knee", flag="--knee")
     settings = settings_of(args, auto)
     requested = "auto" if auto else settings.spp
     request = chart_request_of(args, scene, settings)
@@ -204,7 +227,6 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
 
 def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict, list[str]]:
     """A chart validation's document and text lines: per patch and channel the values, error, bound, tolerance."""
-    from ..constants import CONSTANT_OUTPUT_SCALE
     from ..rendering.agreement import DARK_LEVEL
     from ..rendering.renderer import channel_names
     from .common import SPP_MAX
@@ -216,7 +238,8 @@ def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict,
                 "calibration_K": r.calibration, "normalization": inputs.normalization, "knee": inputs.knee,
                 "spp": r.raw[0].spp, "spp_requested": requested, "sampler": settings.sampler,
                 "seed": settings.seed, "variant": r.variant, "elapsed_s": r.seconds, "tolerance": tolerance,
-                "dark_floor_output": tolerance * DARK_LEVEL * CONSTANT_OUTPUT_SCALE,
+                "white_level": result.white_level, "dark_floor_output": tolerance * DARK_LEVEL * result.white_level,
+                "sigmas": result.verdict.details.get("critical"), "deprecated": {"sigmas": SIGMAS_DEPRECATED},
                 "bound": result.bound, "spp_needed": result.spp_needed,
                 "checks": {name: v.document() for name, v in checks.items()}, "patches": result.patches(),
                 "worst": result.worst(), "max_rel_error": float(result.rel_error.max()),
@@ -227,8 +250,9 @@ def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict,
              f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", p["shown"][k]]
             for p in document["patches"] for k in range(3)]
     lines = [f"{r.scene.name} through {r.camera.name}, {r.prevailing:g} K / {r.calibration:g} K, "
-             f"{r.raw[0].spp} spp {settings.sampler}, {r.variant}, {r.seconds:.2f} s; output units "
-             "(white = 255 at p = c); bound: the upper 95 % (family-wise) confidence bound of |error|",
+             f"{r.raw[0].spp} spp {settings.sampler}, {r.variant}, {r.seconds:.2f} s; output units (a perfect "
+             f"white's brightest channel: {result.white_level:.4g}); bound: the upper 95 % (family-wise) confidence "
+             "bound of |error|",
              *subsurface_lines(r), table(rows, ["patch", "channel", "analytic", "rendered", "error", "bound", "tolerance", "shown"])]
     lines += _summary("equivalence", result.verdict)
     needed = "—" if result.spp_needed is None else (result.spp_needed if result.spp_needed <= SPP_MAX

@@ -17,10 +17,10 @@ import sys
 from pathlib import Path
 
 from ..errors import SkinrenderError, naming
-from ..files import check_output_path, shown
+from ..files import check_output_path, shown, write_stdout
 
 __all__ = [
-    "Parser", "flag", "flagged", "imaging_options", "camera_of", "check_lights", "check_output", "check_seed", "SEED_MAX",
+    "Parser", "flag", "flagged", "imaging_options", "camera_of", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "settings_of", "choices_help", "coverage_hint",
     "interruptible", "add_max_minutes",
@@ -101,7 +101,7 @@ def add_render(parser: argparse.ArgumentParser, spp_auto: bool = False) -> None:
     else:
         parser.add_argument("--spp", type=int, help="samples per pixel (overrides --quality)")
     parser.add_argument("--sampler", choices=list(SAMPLERS), help="Mitsuba sampler: " + choices_help(SAMPLERS)
-                        + "; default multijitter (independent for a chart at --physics subsurface)")
+                        + "; default multijitter (independent for a chart at --physics subsurface-volume)")
     parser.add_argument("--seed", type=int, default=0, help="sampler seed; the same seed gives the same image (default 0)")
     parser.add_argument("--variant", help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral); "
                         "default: the fastest that works here")
@@ -130,13 +130,14 @@ def add_max_minutes(parser: argparse.ArgumentParser, what: str) -> None:
 def emit(args: argparse.Namespace, document: dict, text: str) -> None:
     """
     Print ``document`` as one JSON document (``--json``) or ``text``. The document is made whole before a
-    byte is written: one that cannot be (a NaN or infinity left in it) prints nothing, never half of it.
+    byte is written: one that cannot be (a NaN or infinity left in it) prints nothing, never half of it; every
+    byte's write is checked (:func:`skinrender.files.write_stdout`: a full disk under ``> out.json`` is an error
+    naming standard output, exit status 1, never a short document and status 0).
     """
     if args.json:
-        whole = json.dumps(document, indent=2, allow_nan=False)
-        sys.stdout.write(whole + "\n")
+        write_stdout(json.dumps(document, indent=2, allow_nan=False) + "\n")
     else:
-        sys.stdout.write(text.rstrip("\n") + "\n")
+        write_stdout(text.rstrip("\n") + "\n")
 
 
 def table(rows: list[list[str]], header: list[str]) -> str:
@@ -201,6 +202,12 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message: str):  # noqa: D102 - argparse's hook
         self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
+
+    def _print_message(self, message: str, file=None) -> None:  # argparse's hook: --help and usage
+        if message and (file is None or file is sys.stdout):
+            write_stdout(message)  # checked: a full disk under `--help > f` is an error, not a short file
+        elif message:
+            super()._print_message(message, file)
 
 
 flag = naming
@@ -306,17 +313,6 @@ def check_output(path: str | None, name: str, suffixes: tuple[str, ...] = ()) ->
     if suffixes and Path(path).suffix.lower() not in suffixes:
         raise SkinrenderError(f"{name}: {shown(path)} must end in {' or '.join(suffixes)}", flag=name)
     return target
-
-
-def check_lights(args: argparse.Namespace, cam, temperatures, grid=None, name: str = "--illuminants") -> None:
-    """Every illuminant of a set gives the camera light on the grid; otherwise a one-line error naming ``name``."""
-    from ..model.illuminant import illuminants_array
-    from ..model.response import check_light, spds_on
-    from ..spectra import GRID_DEFAULT
-
-    grid = grid or GRID_DEFAULT
-    items, _ = illuminants_array(temperatures)
-    flag({"camera": "--camera", None: name}, check_light, cam, items, spds_on(items, grid), grid, "illuminant")
 
 
 def check_seed(seed: int, name: str = "--seed") -> int:

@@ -14,6 +14,7 @@ from ..errors import SkinrenderError
 from ..workload import check_work
 from .common import (add_common, add_max_minutes, add_grid, add_search, check_output, flag, imaging_options, integer_in,
                      emit, grid_of)
+from .preflight import check_dask
 
 
 def add_noisy(parser) -> None:
@@ -160,6 +161,7 @@ def command_search(args: argparse.Namespace) -> None:
          grid=grid)
     noisy = noisy_of(args, temperatures)
     check_search_time(args, positions.size, noisy, max_triplets)
+    check_dask(args)
     result = flag({"positions": "--positions", None: None}, search,
         args.sensor, skin_values, munsell_values, args.positions, temperatures, slope, grid=grid,
         method=args.method, workers=args.workers, dask=args.dask,

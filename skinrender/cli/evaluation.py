@@ -10,7 +10,9 @@ import numpy as np
 
 from ..errors import SkinrenderError
 from ..files import write_output
-from .common import HELP_CAMERA, camera_of, check_lights, add_common, check_output, emit, flag
+from .common import HELP_CAMERA, camera_of, add_common, check_output, emit, flag
+from .detection_options import HELP_SKIN_SET
+from .preflight import check_lights
 
 
 def add_parsers(commands) -> None:
@@ -26,7 +28,8 @@ def add_parsers(commands) -> None:
 
     p.add_argument("--boundary", choices=list(BOUNDARIES), default="hull",
                    help="convex hull (default) or two quadratics (Soriano et al. 2003)")
-    p.add_argument("--skin", default="skin", help="skin reflectance set (default skin)")
+    p.add_argument("--skin-set", metavar="SET", help=HELP_SKIN_SET + " (default skin)")
+    p.add_argument("--skin", help="deprecated spelling of --skin-set (kept: it names the same set)")
     p.add_argument("--munsell", default="munsell",
                    help="the Munsell set, name or CSV path: the 'munsell' item of --nonskin (default munsell)")
     p.add_argument("--nonskin", default="munsell,vrhel-nonskin,macbeth",
@@ -80,8 +83,17 @@ def command_locus(args: argparse.Namespace) -> None:
         calibration = flag("--calibration", illuminant, args.calibration).temperature
         if calibration is None:
             raise SkinrenderError("--calibration must be Planckian (kelvin, A or H)", flag="--calibration")
-    skin = flag("--skin", reflectances, args.skin)
-    flag("--skin", skin.on)  # its coverage of the grid, checked here to name the flag
+    if args.skin is not None and args.skin_set is not None:
+        raise SkinrenderError("--skin is the old spelling of --skin-set: give one of them", flag="--skin")
+    which = "--skin" if args.skin is not None else "--skin-set"
+    spec = args.skin if args.skin is not None else "skin" if args.skin_set is None else args.skin_set
+    if not str(spec).strip():
+        raise SkinrenderError(f"{which}: expected a reflectance set (skin, skin-tones, a CSV path), got an empty one",
+                              flag=which)
+    skin = flag(which, reflectances, spec)
+    flag(which, skin.on)  # its coverage of the grid, checked here to name the flag
+    if skin.count == 0:
+        raise SkinrenderError(f"{which}: {spec!r} holds no spectrum; a locus needs skins", flag=which)
     locus = skin_locus(cam, skin, temperatures, calibration, args.boundary)
     # keyed by the --nonskin items: the Munsell set's rate is 'munsell' whichever set --munsell names
     sets = {}
@@ -92,6 +104,7 @@ def command_locus(args: argparse.Namespace) -> None:
     rates = {item: false_positive_rate(locus, cam, values) for item, values in sets.items()}
     document = {"camera": cam.name, "boundary": args.boundary, "polygon": locus.polygon.tolist(), "area": locus.area, "degenerate": locus.degenerate,
                 "illuminants_K": temperatures.tolist(), "calibration_K": calibration, "skin": skin.name,
+                "skin_set": skin.name,
                 "munsell": args.munsell,
                 "false_positive_rate": rates}
     if args.plot:
@@ -103,7 +116,8 @@ def command_locus(args: argparse.Namespace) -> None:
             locus.polygon, locus.area, args.boundary, points, skin.name, track,
             f"Planckian track (white, calibration {reference:g} K)", f"Skin locus of {cam.name}", stream), "--plot")
         document["plot"] = str(plot)
-    text = (f"skin locus of {cam.name} ({args.boundary}, {len(locus.polygon)} vertices, area {locus.area:.5f} in r,g) "
+    text = (f"skin locus of {cam.name} from the {skin.name} set ({args.boundary}, {len(locus.polygon)} vertices, area "
+            f"{locus.area:.5f} in r,g) "
             f"over {len(temperatures)} illuminants, "
             + ("every calibration" if calibration is None else f"calibration {calibration:g} K") + "\n"
             + "\n".join(f"  false positives, {k}{f' ({args.munsell})' if k == 'munsell' != args.munsell else ''}: "

@@ -16,6 +16,7 @@ from pathlib import Path
 
 from ..errors import SkinrenderError
 from ..files import TOML_BYTES_MAX, Output, exists, read_input, write_output, write_outputs
+from .detection_options import add_detection_tolerance, add_skin_set, skin_set_of, tolerance_of
 from .placement import add_translate, translate_key, translate_of, translated_face
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_of,
                      check_output, check_seed, choices_help, emit, flag, flagged, integer_in, interruptible,
@@ -68,9 +69,9 @@ def add_parsers(commands) -> None:
 
     p = commands.add_parser("ladder", run=command_ladder,
                             help=f"the face rendered at each level of physics ({level_names(True)}, "
-                            "all), with the skin's NCC against Eq. 4's within the detection budget and the skin "
-                            "locus's detection rates at each (exit 0 every level within its budget, 1 one beyond, "
-                            "3 one undecided)")
+                            "all), with the skin locus's detection rates at each against Eq. 4's (exit 0 Eq. 4 "
+                            "shown right within --detection-tolerance at every level, 1 shown wrong at one: a "
+                            "finding, 3 one undecided) and the skin's NCC shift against the detection budget")
     p.add_argument("--camera", required=True, action="append", help=HELP_CAMERA + "; repeat it for several cameras, "
                    "seen through one spectral render per level (one ladder each; not with --effects, --plot)")
     p.add_argument("--prevailing", required=True, help="the key light: " + HELP_PLANCKIAN)
@@ -101,6 +102,8 @@ def add_parsers(commands) -> None:
                    help="write the ladder's figure to this PNG: per level the render, the label mask, the "
                    "detected mask and the skin pixels' NCC over the analytic skin locus with the budget; with "
                    "--effects, the table's bars")
+    add_skin_set(p)
+    add_detection_tolerance(p)
     add_translate(p)
     add_max_minutes(p, "the levels × --size² × --spp (with --effects, × the skins)")
     from .bands_flags import add_cameras_arguments
@@ -122,13 +125,9 @@ def _planckian(args: argparse.Namespace, name: str) -> float:
 
 def _check_light(cam, temperatures: dict) -> None:
     """Each light gives the camera light on the grid (else a one-line error naming the flag)."""
-    import numpy as np
+    from .preflight import check_render_lights
 
-    from ..model.response import response
-    from ..spectra import GRID_DEFAULT
-
-    for name, t in temperatures.items():
-        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
+    check_render_lights(cam, temperatures)
 
 
 def check_figure(args: argparse.Namespace, *taken) -> Path | None:
@@ -281,28 +280,29 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     from ..workload import check_work
 
     bands = bands_for(args, cams)
-    renders = len(levels) * REPLICATES_LADDER * (len(skins or SKIN_TONES) if args.effects else 1)
+    tones = len(skins or SKIN_TONES) if args.effects else 1
+    renders = len(levels) * REPLICATES_LADDER * tones
     renders *= len(cams) if bands is None else 1
     each = -(-spp // REPLICATES_LADDER)
     check_work(estimate_seconds(renders, size * size, each, 1, [level for level in levels
-                                                                for _ in range(renders // len(levels))], bands),
-               "--spp", f"{len(levels)} levels of {REPLICATES_LADDER} × {size}×{size} px at {each} spp"
+                                                                for _ in range(renders // len(levels))], bands,
+                                tones), "--spp",
+               f"{len(levels)} levels of {REPLICATES_LADDER} × {size}×{size} px at {each} spp"
                + (f" for {len(skins or SKIN_TONES)} skins" if args.effects else ""), args.max_minutes,
                fewer="lower --spp or --size, or name fewer --levels")
     return {"cameras": cams, "bands": bands, "prevailing": temperatures["prevailing"],
             "calibration": temperatures["calibration"],
             "levels": levels, "spp": spp, "seed": seed, "size": size, "scene": moved, "variant": args.variant,
-            "imager": imager, "illuminance": lux, "skins": skins}
-
-
-def _shown(value, digits: str = ".4f") -> str:
-    return "—" if value is None else format(value, digits)
+            "imager": imager, "illuminance": lux, "skins": skins,
+            "skin_set": [skin_set_of(args, cam, [temperatures["calibration"]]) for cam in cams][-1],
+            "detection_tolerance": tolerance_of(args)}
 
 
 @interruptible
 def command_ladder(args: argparse.Namespace) -> None:
     from ..studies.face.effects_table import effects_table
     from ..studies.face.ladder import ladder
+    from .ladder_text import effects_text, ladder_text, verdict_text
 
     plot = check_output(getattr(args, "plot", None), "--plot", (".png",))
     inputs = _ladder_inputs(args)
@@ -316,13 +316,7 @@ def command_ladder(args: argparse.Namespace) -> None:
     if args.effects:
         result = effects_table(**inputs, skins=None if not skins else {skin: skin for skin in skins}, progress=say)
         document = result.document()
-        rows = [[row["tone"], row["level"], _shown(row["eq4_shift"], ".3g"), _shown(row["budget"], ".3g"),
-                 {True: "yes", False: "NO", None: "—"}[row["within_budget"]], _shown(row["tpr"], ".3f"),
-                 _shown(row["tpr_change"], "+.3f"), _shown(row["fpr"], ".3f"), _shown(row["fpr_change"], "+.3f"),
-                 f"{row['seconds']:.1f}"] for row in document["rows"]]
-        text = (f"what each effect does to skin detection: {result.camera}, {result.prevailing:g} K balanced to "
-                f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px, {result.spp} spp per level\n"
-                + table(rows, ["skin", "level", "shift", "budget", "within", "TPR", "ΔTPR", "FPR", "ΔFPR", "s"]))
+        text = effects_text(result, document)
     else:
         result = ladder(**inputs, skin=skins[0] if skins else None, progress=say)
         document = result.document()
@@ -332,25 +326,10 @@ def command_ladder(args: argparse.Namespace) -> None:
         write_output(plot, result.figure, "--plot")
         document["plot"] = str(plot)
         text += f"\nfigure: {plot}"
-    text += f"\nverdict: {document['verdict'].upper().replace('_', ' ')} (exit status {document['exit_status']})"
+    text += "\n" + verdict_text(document)
     emit(args, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])
-
-
-def ladder_text(result, document: dict) -> str:
-    """One ladder's table: per level the seconds, spp, skin NCC, Eq. 4's shift against the budget, TPR and FPR."""
-    def triple(values) -> str:
-        return "—" if values is None else " ".join(f"{v:.4f}" for v in values)
-
-    rows = [[row["name"], f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]),
-             _shown(row["eq4_shift"], ".3g"), {True: "yes", False: "NO", None: "—"}[row["within_budget"]],
-             _shown(row["tpr"], ".3f"), _shown(row["fpr"], ".3f")] for row in document["levels"]]
-    budget = document["budget"]
-    return (f"the face ({result.skin}) through {result.camera}, {result.prevailing:g} K balanced to "
-            f"{result.calibration:g} K, {result.size[0]}×{result.size[1]} px; Eq. 4's skin NCC "
-            f"{triple(result.skin_ncc_analytic)}; detection budget {_shown(budget['budget'])} ({budget['reason']}):\n"
-            + table(rows, ["level", "s", "spp", "skin NCC r g b", "shift", "within", "TPR", "FPR"]))
 
 
 def command_ladders(args: argparse.Namespace, inputs: dict, cameras: list, bands, plot) -> None:
@@ -359,6 +338,7 @@ def command_ladders(args: argparse.Namespace, inputs: dict, cameras: list, bands
     from ..evaluation.verdict import combine
     from ..rendering.bands import bands_text
     from ..studies.face.ladder import ladders
+    from .ladder_text import ladder_text
 
     if plot is not None:
         raise SkinrenderError("--plot draws one camera's ladder: give one --camera", flag="--plot")

@@ -19,6 +19,8 @@ import sys
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
                      interruptible, positive_number, table, variant_of)
+from .detection_options import add_detection_tolerance, add_skin_set, skin_set_of, tolerance_of
+from .preflight import check_dask
 from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
 
 __all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
@@ -76,6 +78,8 @@ def add_parsers(commands) -> None:
     p.add_argument("--max-samples", metavar="N", default=f"{SWEEP_SAMPLES_MAX:g}",
                    help=f"refuse sweeps of more samples (renders × pixels × spp) than this (default "
                    f"{SWEEP_SAMPLES_MAX:g})")
+    add_skin_set(p)
+    add_detection_tolerance(p)
     add_common(p)
 
 
@@ -132,23 +136,31 @@ def _checked(args: argparse.Namespace) -> dict:
     levels = levels_of(args.levels)
     flag("--scene", load_face_scene, args.scene)
     variant_of(args.variant)
-    lux = noise_sensor(args, levels)
+    imager, lux = noise_sensor(args, levels)  # (the imager loaded once, the lux checked)
     max_samples = positive_number(args.max_samples, "--max-samples", "renders × pixels × spp")
-    if args.dask is not None and not str(args.dask).strip():
-        raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one", flag="--dask")
     from .bands_flags import bands_for
 
     bands = bands_for(args, cams)
+    check_dask(args)  # an empty address, another server or none there: refused before any render
     return {
         "spectral": bands is not None, **({"bands": bands} if bands is not None else {}),
         "cameras": cams, "lights": pairs, "skins": skins, "levels": levels, "scene": args.scene,
         "size": integer_in(args.size, "--size", 1, SIZE_MAX), "spp": integer_in(args.spp, "--spp", 1, SPP_MAX),
-        "seed": integer_in(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": args.imager,
+        "seed": integer_in(args.seed, "--seed", 0, SEED_MAX), "variant": args.variant, "imager": imager,
         "illuminance": lux,
         "workers": None if args.workers is None else integer_in(args.workers, "--workers", 1, WORKERS_MAX),
         "dask": args.dask, "max_renders": integer_in(args.max_renders, "--max-renders", 1, 10**9),
-        "max_samples": max_samples,
+        "max_samples": max_samples, "detection_tolerance": tolerance_of(args),
+        "skin_set": _skin_set(args, cams, pairs),
     }
+
+
+def _skin_set(args: argparse.Namespace, cams, pairs):
+    """``--skin-set`` checked for every camera at every calibration."""
+    skins = None
+    for cam in cams:
+        skins = skin_set_of(args, cam, [c for _, c in pairs])
+    return skins
 
 
 def command_face_sweep(args: argparse.Namespace) -> None:
@@ -182,12 +194,18 @@ def _face_sweep(args: argparse.Namespace) -> None:
         return "—" if value is None else f"{value:.3f}"
 
     rows = [[row["camera"], f"{row['prevailing_K']:g}/{row['calibration_K']:g}", row["skin"], row["level"],
-             f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]), rate(row["tpr"]), rate(row["fpr"])]
+             f"{row['seconds']:.2f}", row["spp"], triple(row["skin_ncc_mean"]), rate(row["tpr"]), rate(row["fpr"]),
+             f"{rate(row['detection']['tpr'])} ({rate(row['detection']['tpr_eq4'])})",
+             f"{rate(row['detection']['fpr'])} ({rate(row['detection']['fpr_eq4'])})", row["detection"]["verdict"]]
             for row in document["combinations"]]
     spectral = result.spectral
-    how = ("" if spectral is None else f" seen through {spectral['renders']} spectral render"
+    how = ("" if spectral is None else f" seen through {spectral['renders']} × 12 spectral render"
            f"{'s' * (spectral['renders'] != 1)} of {spectral['bands']} bands ({spectral['bands_nm']} nm)")
-    text = (table(rows, ["camera", "P/C K", "skin", "level", "s", "spp", "skin NCC r g b", "TPR", "FPR"])
+    text = (table(rows, ["camera", "P/C K", "skin", "level", "s", "spp", "skin NCC r g b", "TPR seen", "FPR seen",
+                         "TPR (Eq. 4)", "FPR (Eq. 4)", "detection"])
+            + f"\n(the {document['combinations'][0]['skin_set']} skin locus; seen: as rendered; TPR, FPR: the "
+            "renderer's noise separated, Eq. 4's in brackets; detection: the changes held to "
+            f"±{args.detection_tolerance})"
             + f"\n{len(rows)} {'render' if spectral is None else 'combination'}{'s' * (len(rows) != 1)}{how} of "
             f"{result.size}×{result.size} px at "
             f"{document['spp']} spp in "

@@ -4,8 +4,10 @@ level in replicates and checked against the analytic limits that hold there
 (:mod:`skinrender.rendering.face.validation`): ``shading_cancels`` at
 ``direct``, ``dichromatic_plane`` at ``sheen`` (both through the sensor too,
 with ``noise`` or ``--imager``), the white furnace and the closed sphere at
-every level, and ``eq4_shift`` (Eq. 4's error against the detection budget)
-at every level. Each check is a verdict — pass, fail, inconclusive or not
+every level, ``detection`` (the skin locus's rates against Eq. 4's,
+``--detection-tolerance``, the locus of ``--skin-set``) and, as a diagnostic
+that does not decide the verdict, ``eq4_shift`` (Eq. 4's NCC error against the
+detection budget) at every level. Each check is a verdict — pass, fail, inconclusive or not
 applicable — with its test and α; the validation's verdict is their
 combination, and the exit status is the verdict's
 (:data:`~skinrender.evaluation.verdict.EXIT_STATUS`): 0 pass (or nothing
@@ -81,9 +83,11 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     ``--calibration``, the render options) and the face's (``--physics``, ``--skin``, ``--size``);
     every flag is checked before anything renders; ``scene``: the face scene loaded.
     """
+    from ..evaluation.detection_verdict import DETECTION_TOLERANCE, check_tolerance
     from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
     from ..rendering.kinds import FACE
     from .common import emit, flag, integer_in, settings_of, table
+    from .detection_options import skin_set_of
     from .face import SIZE_MAX, face_pixels, face_request_of
     from .inputs import check_request_work
     from .placement import translate_key
@@ -98,13 +102,17 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     check_samples(settings.spp, face_pixels(scene, None if size is None else integer_in(size, "--size", 1, SIZE_MAX)))
     each = max(-(-int(settings.spp) // REPLICATES), SPP_REPLICATE_MIN)  # a replicate's spp
     request = face_request_of(args, scene, settings, spp=each)
-    check_request_work(args, request, REPLICATES)  # at its level's rate (subsurface: far slower)
+    check_request_work(args, request, REPLICATES)  # at its level's rate (subsurface-volume: far slower)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
+    detection = {"detection_tolerance": check_tolerance(
+        getattr(args, "detection_tolerance", None) or DETECTION_TOLERANCE, "--detection-tolerance")}
+    args.skin_set = getattr(args, "skin_set", None) or "skin"
+    detection["skin_set"] = skin_set_of(args, request.camera, [request.calibration])
     result = flag("validate", FACE.validate, request, spp=settings.spp, limits=limits,
-                  progress=lambda line: print(line, file=sys.stderr))
+                  progress=lambda line: print(line, file=sys.stderr), **detection)
     document = {**result.document(), **translate_key(args)}
-    rows = [[c.name, c.outcome.replace("_", " "), _number(c.statistic), _number(c.tolerance), _number(c.bound),
-             f"{c.alpha:g}", c.pixels] for c in result.checks]
+    rows = [[c.name, c.outcome.replace("_", " ") + ("" if c.applies else " (diagnostic)"), _number(c.statistic),
+             _number(c.tolerance), _number(c.bound), f"{c.alpha:g}", c.pixels] for c in result.checks]
     r, verdict = result.rendering, result.verdict
     if verdict.outcome in ("inconclusive", "not_applicable"):
         document["undefined"] = {"passed": f"{verdict.outcome.upper().replace('_', ' ')}: {verdict.reason}"}
@@ -115,10 +123,11 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
             + table(rows, ["check", "verdict", "statistic", "tolerance", "bound", "α", "pixels"])
             + "".join(f"\n{c.name}: {c.reason}\n  test: {c.test}" for c in result.checks)
             + f"\nverdict: {verdict.outcome.upper().replace('_', ' ')} (exit status {document['exit_status']}); "
-            "difference tests: statistic = the largest |t| / critical value (≤ 1 passes); eq4_shift: the shift "
-            "of the skin's mean NCC against the detection budget, bound its 95 % upper bound"
+            "difference tests: statistic = the largest |t| / critical value (≤ 1 passes); detection: the TPR and "
+            "FPR changes from Eq. 4's, the renderer's noise separated, bound their 95 % upper bound; eq4_shift "
+            "(a diagnostic, not in the verdict): the shift of the skin's mean NCC against the detection budget"
             + ("" if result.spp_needed is None else
-               f"\nspp needed for eq4_shift to pass: about {result.spp_needed} in all (--spp)"))
+               f"\nspp needed for eq4_shift (a diagnostic) to pass: about {result.spp_needed} in all (--spp)"))
     emit(args, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])

@@ -14,8 +14,9 @@ import sys
 
 from ..errors import SkinrenderError
 from ..files import write_output
-from .common import (EXPOSURE_MAX, HELP_CAMERA, add_common, add_max_minutes, camera_of, check_lights, check_output, check_seed, emit, flag, integer_in,
+from .common import (EXPOSURE_MAX, HELP_CAMERA, add_common, add_max_minutes, camera_of, check_output, check_seed, emit, flag, integer_in,
                      positive_number, table)
+from .preflight import check_lights
 
 __all__ = [
     "SAMPLES_DEFAULT",

@@ -95,8 +95,8 @@ class ChartInputs:
     grid
         ``--grid``, nm.
     physics
-        ``--physics`` as given: ``direct`` or ``subsurface``, parsed into a level where the request is built
-        (:meth:`request`).
+        ``--physics`` as given: ``direct``, ``subsurface`` or ``subsurface-volume``, parsed into a level where the
+        request is built (:meth:`request`).
     """
 
     scene: ChartScene
@@ -159,10 +159,8 @@ def chart_inputs(args: argparse.Namespace, scene: ChartScene) -> ChartInputs:
     named in any error, and checked to give the camera light on the grid (``--grid`` parsed once too) before
     anything renders; ``scene``: the chart :func:`scene_of` loaded.
     """
-    import numpy as np
-
     from ..model.illuminant import illuminant
-    from ..model.response import response
+    from .preflight import check_render_lights
 
     grid = grid_of(args)
     cam = camera_of(args, grid)
@@ -173,9 +171,7 @@ def chart_inputs(args: argparse.Namespace, scene: ChartScene) -> ChartInputs:
             raise SkinrenderError(f"--{name}: rendering needs a Planckian illuminant (kelvin, A or H), got {light}",
                                   flag=f"--{name}")
         temperatures[name] = light.temperature
-    for name, kelvin in temperatures.items():  # each light seen by the camera, the one at fault named
-        flag({"camera": "--camera", None: f"--{name}"}, response, cam, np.ones((1, grid.size)), kelvin, kelvin,
-             grid=grid)
+    check_render_lights(cam, temperatures, grid)  # each light seen by the camera, the one at fault named
     try:  # every patch's data covers the grid, before the render needs it
         scene.reflectances(grid)
     except SkinrenderError as error:  # the chart's own data: --extrapolation (CSV cameras') does not apply
@@ -201,7 +197,7 @@ def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
     given = [name for name, on in (("--physics", not chart_level), ("--skin", skin and args.skin is not None),
                                    ("--size", args.size is not None)) if on]
     if given:
-        levels = f" (a chart takes --physics {' or '.join(CHART_REGISTRY.named)})" if "--physics" in given else ""
+        levels = f" (a chart takes --physics {', '.join(CHART_REGISTRY.named)})" if "--physics" in given else ""
         raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
                               f"(e.g. 'face'), not a chart{levels}", flag=given[0])
 
@@ -253,10 +249,10 @@ def check_request_work(args: argparse.Namespace, request, renders: int = 1, spp:
                               "for this scene", flag="--spp")
     seconds, what = scene_kind(request.scene).workload(request, renders, os.cpu_count() or 1)
     check_work(seconds, "--spp", what, getattr(args, "max_minutes", None), fewer="lower --spp")
-    if "subsurface" in request.level.names and hasattr(request.scene, "patches"):
-        from ..rendering.subsurface_chart import subsurface_chart
+    if hasattr(request.scene, "patches"):
+        from ..rendering.chart_effects import prepare_slabs
 
-        subsurface_chart(request.scene, request.grid)
+        prepare_slabs(request)
 
 
 def imaging_document(imaged) -> dict:

@@ -8,8 +8,9 @@ import argparse
 import math
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, camera_of, check_lights, HELP_ILLUMINANT, add_common, add_grid, add_model, emit, flag,
+from .common import (HELP_CAMERA, camera_of, HELP_ILLUMINANT, add_common, add_grid, add_model, emit, flag,
                      grid_of, integer_in, table)
+from .preflight import check_lights
 
 
 def add_parsers(commands) -> None:

@@ -3,7 +3,7 @@
 ===============================================================
 
 The whole scene moved away from the origin (a face: its camera, mesh, props
-and point lights; a chart at ``--physics subsurface``: each patch's slab,
+and point lights; a chart at ``--physics subsurface-volume``: each patch's slab,
 floor and camera), to test a render where float32 positions are coarsest. A
 scene beyond float32's useful range is refused, naming it, before anything
 renders (:mod:`skinrender.rendering.placement`).
@@ -25,7 +25,7 @@ def add_translate(parser: argparse.ArgumentParser) -> None:
     """Add ``--translate-mm``."""
     parser.add_argument("--translate-mm", metavar="X,Y,Z",
                         help="move the whole scene X, Y, Z mm away from the origin (a face; a chart at --physics "
-                        "subsurface) to test it where float32 is coarsest; refused beyond float32's useful range")
+                        "subsurface-volume) to test it where float32 is coarsest; refused beyond float32's useful range")
 
 
 def translate_of(args: argparse.Namespace) -> tuple[float, float, float] | None:

@@ -14,6 +14,7 @@ import sys
 import numpy as np
 
 from ..errors import SkinrenderError
+from ..files import write_output
 from .common import add_common, check_output, emit, flag, integer_in, table
 
 PARAMETER_FLAGS = {
@@ -56,7 +57,7 @@ def add_parsers(commands) -> None:
                    help="reflectance method: " + "; ".join(f"{k}: {v}" for k, v in METHOD_MEANINGS.items()))
     p.add_argument("--grid", default="400:700:1", help="wavelengths START:END:STEP in nm (default 400:700:1)")
     p.add_argument("--plot", help="write R(λ) beside the measured skin spectra's range (--compare) to this PNG")
-    p.add_argument("--compare", default="skin",
+    p.add_argument("--compare", default=None,
                    help="with --plot: comma-separated measured skin sets (names or CSV paths) drawn as ranges "
                         "(default skin, the 30 Vrhel skins; e.g. skin,../shared/data/skin_nist.csv)")
     p.add_argument("--fit", metavar="FILE.csv",
@@ -105,14 +106,15 @@ def _method(args: argparse.Namespace) -> str:
 def command_skin(args: argparse.Namespace) -> None:
     if args.fit is not None:
         return _command_fit(args)
-    for option, default in (("fit_range", "400:700"), ("workers", None), ("max_spectra", str(SPECTRA_MAX))):
+    for option, default in (("fit_range", "400:700"), ("workers", None), ("max_spectra", str(SPECTRA_MAX)),
+                            ("quiet", False)):  # --quiet silences the fit's progress: nothing else has one
         if getattr(args, option) != default:
             raise SkinrenderError(f"--{option.replace('_', '-')} goes with --fit", flag=f"--{option.replace('_', '-')}")
     from ..datasets.skin_model import skin_layers, skin_reflectance
 
     method = _method(args)
     check_output(args.plot, "--plot", (".png",))
-    if args.plot is None and args.compare != "skin":
+    if args.plot is None and args.compare is not None:  # given at all: even its default's value is a request
         raise SkinrenderError("--compare names the measured sets drawn with --plot: give --plot FILE.png",
                               flag="--compare")
     compare = _compare_sets(args) if args.plot else []
@@ -120,6 +122,9 @@ def command_skin(args: argparse.Namespace) -> None:
     if parameters.surface is not None and method != "kubelka-munk":
         raise SkinrenderError("--surface is the kubelka-munk method's flat surface reflectance; adding-doubling's "
                               "surface is its Fresnel boundary (--n)", flag="--surface")
+    if args.n is not None and method == "kubelka-munk":  # it changed nothing there: no boundary refracts
+        raise SkinrenderError("--n is the refractive index of adding-doubling's Fresnel boundary; kubelka-munk has "
+                              "none (its surface is --surface's flat reflectance)", flag="--n")
     from .common import grid_of
 
     grid = grid_of(args)
@@ -134,8 +139,9 @@ def command_skin(args: argparse.Namespace) -> None:
     if args.plot:
         from ..studies.figures import figure_skin_model
 
-        figure_skin_model(lam, reflectance, f"skin model ({method}), melanin {parameters.melanin:g}, "
-                          f"blood {parameters.blood:g}", compare, args.plot)
+        write_output(args.plot, lambda stream: figure_skin_model(  # whole or not at all, its failure naming --plot
+            lam, reflectance, f"skin model ({method}), melanin {parameters.melanin:g}, blood {parameters.blood:g}",
+            compare, stream), "--plot")
         document["plot"] = args.plot
     emit(args, document, _text(method, parameters, lam, reflectance, layers, args.plot))
 
@@ -144,7 +150,7 @@ def _compare_sets(args: argparse.Namespace) -> list[tuple]:
     """The measured sets of ``--compare``: ``(name, wavelengths nm, values)`` each, checked before any work."""
     from ..datasets import reflectances
 
-    items = [item.strip() for item in str(args.compare).split(",")]
+    items = [item.strip() for item in str("skin" if args.compare is None else args.compare).split(",")]
     if not all(items):
         raise SkinrenderError(f"--compare: expected comma-separated reflectance sets, got {args.compare!r}",
                               flag="--compare")
@@ -181,12 +187,15 @@ def _command_fit(args: argparse.Namespace) -> None:
         if name not in HELD_IN_FIT and getattr(args, name) is not None:
             raise SkinrenderError(f"{option} is fitted with --fit; only "
                                   f"{', '.join(PARAMETER_FLAGS[k][0] for k in HELD_IN_FIT)} are held", flag=option)
-    if args.plot is not None or args.compare != "skin":
+    if args.plot is not None or args.compare is not None:
         raise SkinrenderError("--plot and --compare draw the forward model; they do not go with --fit", flag="--plot")
     if args.grid != "400:700:1":
         raise SkinrenderError("--grid sets the forward model's wavelengths; --fit uses the table's own "
                               "wavelengths in --fit-range", flag="--grid")
     method = _method(args)
+    if args.n is not None and method == "kubelka-munk":  # held, it would change nothing: no boundary refracts
+        raise SkinrenderError("--n is the refractive index of adding-doubling's Fresnel boundary; kubelka-munk has "
+                              "none", flag="--n")
     held = parameters_of(args, HELD_IN_FIT)
     start, end = _fit_range(args.fit_range)
     workers = check_workers(None if args.workers is None else integer_in(args.workers, "--workers", 1), "--workers")

@@ -1,6 +1,4 @@
-"""
-The paper's studies and benchmarks: ``reproduce``, ``table1``, ``bench``.
-"""
+"""The paper's studies and benchmarks: ``reproduce``, ``table1``, ``bench`` (``bench rank``: :mod:`skinrender.cli.ranking`'s)."""
 
 from __future__ import annotations
 
@@ -13,6 +11,8 @@ from ..workload import check_work
 from ..files import write_output
 from .common import (HELP_CAMERA, add_common, add_max_minutes, add_grid, add_search, check_output, flag, integer_in,
                      emit, positive_number, table)
+from .preflight import check_dask
+from .ranking import command_bench_rank
 
 
 def _g(value) -> str:
@@ -51,9 +51,8 @@ def add_parsers(commands) -> None:
                    help="Stage 2 camera for Figs. 3–7 (the paper's Sony is not public); " + HELP_CAMERA)
     p.add_argument("--slope", type=float, default=2.0, help="gbell slope b, not given by the paper (default 2)")
     add_grid(p)
-    p.add_argument("--illuminants", default="paper",
-                   help="illuminant set: 'paper' (its ten, default), 'auto' (Stage 1 for --stage1-camera) or "
-                        "comma-separated kelvin")
+    p.add_argument("--illuminants", default="paper", help="illuminant set: 'paper' (its ten, default), 'auto' "
+                   "(Stage 1 for --stage1-camera) or comma-separated kelvin")
     p.add_argument("--stage1-camera", help="camera of --illuminants auto (default: --camera); " + HELP_CAMERA)
     p.add_argument("--no-figures", action="store_true", help="the tables only (no Stage 2 figures)")
     p.add_argument("--sweep", action="store_true",
@@ -83,10 +82,10 @@ def add_parsers(commands) -> None:
     p = commands.add_parser("bench", run=command_bench,
                             help="speed and accuracy figures; calibration: the validation's false-alarm "
                             "rates over seeds; validate: seconds, bound and false alarms per spp")
-    p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate"],
-                   help="which benchmark")
+    p.add_argument("what", choices=["analytic", "search", "sweep", "render", "calibration", "validate", "rank"],
+                   help="which benchmark (rank: the issue's ranking, against 10 minutes on 2 cores)")
     p.add_argument("--quick", action="store_true", help="render: a short curve (spp 4…256, one variant); search: "
-                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep")
+                   "only the 20 nm search in full (10 and 5 nm estimated from --sample), no sweep; rank: small")
     p.add_argument("--plot", help="render: write the error-against-time plot (log–log) to this PNG; calibration: the "
                    "observed false-alarm rates with their 95 %% intervals against the nominal α")
     p.add_argument("--repeat", type=int, help="analytic: timed repetitions, best kept (default 3)")
@@ -144,6 +143,7 @@ def command_reproduce(args: argparse.Namespace) -> None:
         raise SkinrenderError(f"--stage1-camera is the camera of --illuminants auto; got --illuminants {args.illuminants!r}",
                               flag="--stage1-camera")
     check_sweep_flags(args)
+    check_dask(args)
     if args.sweep:
         from ..studies.paper.sweep import reproduce_sweep
         from ..studies.paper.unknowns import Setting
@@ -189,9 +189,11 @@ def command_table1(args: argparse.Namespace) -> None:
     spp = integer_in(args.spp, "--spp", 1, SPP_MAX)  # each flag checked on its own, so that its error names it
     settings = RenderSettings(spp=spp, seed=check_seed(args.seed))
     tolerance = TABLE1_TOLERANCE if args.tolerance is None else positive_number(args.tolerance, "--tolerance", "NCC")
-    if tolerance >= 1:
-        raise SkinrenderError(f"--tolerance must be an NCC difference in (0, 1), got {args.tolerance!r}",
-                              flag="--tolerance")
+    from ..rendering.agreement import TOLERANCE_MIN
+
+    if not TOLERANCE_MIN <= tolerance < 1:  # below float32's resolution: 1e-320 ended in an internal error
+        raise SkinrenderError(f"--tolerance must be an NCC difference in [{TOLERANCE_MIN:.3g}, 1) (its lower end is "
+                              f"float32's resolution), got {args.tolerance!r}", flag="--tolerance")
     cam = flag("--camera", camera, args.camera)
     result = flag({"spp": "--spp", None: "--camera"}, table1, cam, settings, tolerance=tolerance)
     rows = [[r["model"], r["case"], f"{r['mean']:.5f}", f"{r['std']:.5f}"] for r in result["rows"]]
@@ -211,12 +213,12 @@ def command_table1(args: argparse.Namespace) -> None:
         raise SystemExit(result["exit_status"])
 
 
-FACE_BENCH_FLAGS = ("size", "levels", "spp_list", "reference_spp")
+FACE_BENCH_FLAGS = ("levels", "spp_list", "reference_spp")
 """``bench`` flags that go with ``render --scene``."""
 
-BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "workers": ("search", "sweep"),
-               "positions": ("sweep",), "quick": ("render", "search"), "plot": ("render", "calibration"),
-               "scene": ("render", "calibration", "validate"), "spectral": ("render",), "cameras": ("render",),
+BENCH_FLAGS = {"repeat": ("analytic",), "sensor": ("search",), "sample": ("search",), "positions": ("sweep",),
+               "workers": ("search", "sweep", "rank"), "quick": ("render", "search", "rank"), "plot": ("render", "calibration"),
+               "scene": ("render", "calibration", "validate"), "size": ("render", "calibration"), "spectral": ("render",), "cameras": ("render",),
                "max_minutes": ("analytic", "search", "sweep", "calibration", "validate", "render")}
 """``bench`` flags of one or a few benchmarks (``dest``: the benchmarks they go with); the face's are
 :data:`FACE_BENCH_FLAGS`, the verdict benchmarks' :data:`skinrender.cli.calibration.VERDICT_BENCH_FLAGS`."""
@@ -265,7 +267,7 @@ def face_bench_options(args: argparse.Namespace) -> dict | None:
     The face bench's options from ``bench render --scene …`` (checked, one-line errors naming the flag), or
     ``None`` for the chart bench; the face flags without ``--scene`` are refused.
     """
-    given = [name for name in FACE_BENCH_FLAGS if getattr(args, name, None) is not None]
+    given = [name for name in (*FACE_BENCH_FLAGS, "size") if getattr(args, name, None) is not None]
     if args.scene is not None and args.what != "render":
         raise SkinrenderError(f"--scene goes with 'bench render', 'bench calibration' or 'bench validate', not "
                               f"'bench {args.what}'", flag="--scene")
@@ -321,7 +323,7 @@ def check_face_bench_work(args: argparse.Namespace, levels: list, pixels: int, s
     Refuse the face bench when its estimate exceeds ``--max-minutes``: per level one reference render at
     ``reference`` spp and, per spp of the curve, a warm-up and a timed render (``2 × Σ spps``), all of ``pixels``
     pixels (:func:`~skinrender.studies.face.sweep.estimate_seconds` on every core, each level at its own rate:
-    ``subsurface`` is far slower), naming ``--spp-list``.
+    ``subsurface-volume`` is far slower), naming ``--spp-list``.
     """
     import os
 
@@ -361,6 +363,8 @@ def _camera_spec(spec: str) -> str:
 def command_bench(args: argparse.Namespace) -> None:
     from ..studies.benchmarks.bench import bench_analytic, bench_search, bench_sweep
 
+    if args.what == "rank":  # bench's other flags refused there
+        return command_bench_rank(args, refuse_foreign_flags)
     if args.what in ("calibration", "validate"):
         from .calibration import command_bench_verdicts
         from .common import SPP_MAX

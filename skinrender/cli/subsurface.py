@@ -1,13 +1,14 @@
 """
-``--physics subsurface`` on a chart (``render``, ``validate``, ``detect``)
-==========================================================================
+``--physics subsurface`` and ``subsurface-volume`` on a chart (``render``, ``validate``, ``detect``)
+====================================================================================================
 
-The chart commands take ``--physics direct`` (the default) or ``subsurface``
-(the chart's registry of effects, :mod:`skinrender.rendering.chart_effects`,
-whose ``subsurface`` refuses what does not go with it where the request is
-built):
-the chart's skin patches rendered as the skin model's two layers under a
-dielectric boundary, lit by a uniform sky
+The chart commands take ``--physics direct`` (the default), ``subsurface`` or
+``subsurface-volume`` (the chart's registry of effects,
+:mod:`skinrender.rendering.chart_effects`, whose subsurface levels refuse what
+does not go with them where the request is built): the chart's skin patches
+as the skin model's layers, lit by a uniform sky, their flat slab's angular
+reflectance as a BSDF (:mod:`skinrender.rendering.slab_chart`) or media under
+a dielectric boundary, path traced
 (:mod:`skinrender.rendering.subsurface_chart`), each checked by ``validate``
 against Eq. 4 of its slab's adding-doubling reflectance.
 
@@ -24,8 +25,9 @@ def subsurface_keys(rendering, rows: list[dict] | None = None) -> dict:
     """
     The keys a subsurface chart's JSON adds (``{}`` at ``direct``): ``physics``, ``light`` (the sky), and per
     patch ``skin_model``: the layers' ``spec``, ``source`` (``parameters`` or ``fit``), ``parameters``,
-    ``fit_rms``, ``bounds_hit`` and ``dermis_mm`` (``None`` for a Lambertian patch), as a list in the scene's
-    order, or, given the document's per-patch ``rows``, added to each row.
+    ``fit_rms``, ``bounds_hit`` and ``dermis_mm`` (the rendered dermis' thickness at ``subsurface-volume``;
+    ``None`` at ``subsurface``, whose table is the model's semi-infinite dermis) (``None`` for a Lambertian
+    patch), as a list in the scene's order, or, given the document's per-patch ``rows``, added to each row.
     """
     if "skin_model" not in rendering.info:  # the chart's level renders no slab
         return {}
@@ -48,5 +50,7 @@ def subsurface_lines(rendering) -> list[str]:
     rows = [row for row in rendering.info["skin_model"] if row is not None]
     fits = [row["fit_rms"] for row in rows if row["fit_rms"] is not None]
     fitted = f", {len(fits)} fitted to their measured reflectance (RMS ≤ {max(fits):.4f})" if fits else ""
-    return [f"subsurface: {len(rows)} skin patches as the skin model's layers{fitted}, under a uniform sky; "
+    physics = rendering.info["physics"]
+    how = "media, path traced" if physics == "subsurface-volume" else "their slab's angular reflectance (a BSDF)"
+    return [f"{physics}: {len(rows)} skin patches as the skin model's layers{fitted}, {how}, under a uniform sky; "
             f"analytic: each slab's adding-doubling reflectance through Eq. 4"]

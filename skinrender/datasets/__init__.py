@@ -21,7 +21,7 @@ from ..files import exists
 from ..methods import validate_method
 from ..spectra import EXTRAPOLATIONS
 from ..spectral_csv import read_spectra_csv
-from . import colour_science, luxpy_munsell, psychtoolbox, skin_model  # noqa: F401  (registration)
+from . import colour_science, luxpy_munsell, psychtoolbox, skin_model, skin_tones  # noqa: F401  (registration)
 from .registry import REGISTRY_CAMERAS, REGISTRY_REFLECTANCES, SpectralSet, lookup, unknown
 
 __all__ = [

@@ -194,7 +194,11 @@ def check_parameters(parameters: SkinParameters) -> None:
     >>> check_parameters(SkinParameters(melanin=5))
     Traceback (most recent call last):
     ...
-    skinrender.errors.SkinrenderError: melanin must be in [0, 1] (a volume fraction), got 5
+    skinrender.errors.SkinrenderError: melanin must be in [0, 1] (a volume fraction), got 5.0
+    >>> check_parameters(SkinParameters(melanin=1.0000001))
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: melanin must be in [0, 1] (a volume fraction), got 1.0000001
     """
     for name, (low, high, open_low, what) in PARAMETER_RANGES.items():
         value = getattr(parameters, name)
@@ -203,13 +207,14 @@ def check_parameters(parameters: SkinParameters) -> None:
         try:
             value = float(value)
         except (TypeError, ValueError):
-            raise SkinrenderError(f"{name} must be a number, got {value!r}") from None
+            raise SkinrenderError(f"{name} must be a number, got {value!r}", role=name) from None
         if not (math.isfinite(value) and (value > low if open_low else value >= low) and value <= high):
             interval = f"({low:g}, {high:g}]" if open_low else f"[{low:g}, {high:g}]"
-            raise SkinrenderError(f"{name} must be in {interval} ({what}), got {value:g}")
+            # repr, not :g: 1.0000001 is not 1 (it was shown as "got 1", a value inside the range)
+            raise SkinrenderError(f"{name} must be in {interval} ({what}), got {value!r}", role=name)
     if float(parameters.vessel_min_um) > float(parameters.vessel_max_um):
         raise SkinrenderError(f"vessel_min_um must be at most vessel_max_um, got {parameters.vessel_min_um:g} > "
-                              f"{parameters.vessel_max_um:g}")
+                              f"{parameters.vessel_max_um:g}", role="vessel_min_um")
 
 
 LAYER_KEYS = ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "background", "vessel_min_um",

@@ -35,7 +35,7 @@ from ..methods import RangeWords, parse_range, range_steps, validate_method
 from ..model.camera import sensor_curves
 from ..model.illuminant import illuminants_array
 from ..model.response import NORMALISATIONS, gain, normalisation_factor, spds_on
-from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..spectra import GRID_DEFAULT, WavelengthGrid, float_array
 
 __all__ = ["SENSORS_PAPER", "POSITIONS_MAX", "positions_grid", "triplets", "SensorBank", "sensor_bank"]
 
@@ -155,9 +155,10 @@ def sensor_bank(
     """
 
     validate_method(normalization, NORMALISATIONS, "normalization")
-    if not (np.isfinite(sensor) and sensor > 0):
-        raise SkinrenderError(f"sensor must be {SENSOR_RULE}, got {sensor}")
-    positions = np.asarray(positions, dtype=np.float64)
+    number = float_array(sensor, "sensor")
+    if number.ndim != 0 or not (np.isfinite(number) and number > 0):
+        raise SkinrenderError(f"sensor must be {SENSOR_RULE}, got {sensor!r}", role="sensor")
+    positions = float_array(positions, "positions")
     if positions.min() < grid.start or positions.max() > grid.end:
         raise SkinrenderError(
             f"positions {positions.min():g}–{positions.max():g} nm leave the integration grid {grid}"
@@ -165,7 +166,10 @@ def sensor_bank(
     items, _ = illuminants_array(illuminants)
     spd = spds_on(items, grid)  # (P, W)
     x = sensor_curves(positions, grid, None if sensor == 1 else float(sensor) * 10.0, slope)
-    o = np.asarray(reflectance, dtype=np.float64)
+    o = float_array(reflectance, "reflectance")
+    if o.ndim != 2 or o.shape[-1] != grid.size:
+        raise SkinrenderError(f"reflectance must be an array (samples, {grid.size}) on the grid {grid}, got shape "
+                              f"{o.shape}", role="reflectance")
     signal = np.einsum("iw,pjw->pji", o, spd[:, None, :] * x[None, :, :], optimize=True)
     white = spd @ x.T
     for item, row in zip(items, white):

@@ -15,10 +15,12 @@ Units: the image in output units (Eq. 4); rates are fractions in [0, 1].
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..model.chromaticity import ncc
 from .locus import SkinLocus
@@ -82,8 +84,21 @@ def detect(rendering, locus: SkinLocus, scored_min: float = 0.0) -> Detection:
     scored has undefined rates (``None`` and the reason), not 0. Each patch's
     row counts its ``pixels`` and ``scored_pixels``; its ``detected_fraction``
     is ``None`` (with ``undefined``) when none is scored.
+
+    A bad argument (not a chart render, not a :class:`SkinLocus`, a ``scored_min`` that is not a finite number
+    ≥ 0) raises a one-line :class:`SkinrenderError` naming it.
     """
 
+    if not (hasattr(rendering, "image") and hasattr(getattr(rendering, "scene", None), "patch_pixels")):
+        raise SkinrenderError(f"rendering: expected a chart render (skinrender.render(chart, …)), got "
+                              f"{type(rendering).__name__}", role="rendering")
+    if not isinstance(locus, SkinLocus):
+        raise SkinrenderError(f"locus: expected a SkinLocus (skinrender.skin_locus(camera, …)), got "
+                              f"{type(locus).__name__}", role="locus")
+    if isinstance(scored_min, bool) or not isinstance(scored_min, (int, float, np.integer, np.floating)) or not (
+            math.isfinite(scored_min) and scored_min >= 0):
+        raise SkinrenderError(f"scored_min must be a finite number ≥ 0 (output units), got {scored_min!r}",
+                              role="scored_min")
     chart = rendering.scene
     # a sensor's read noise can leave a dark pixel below its black level: nothing above black is no light
     image = np.maximum(rendering.image.astype(np.float64), 0.0)

@@ -35,7 +35,7 @@ from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..model.camera import Camera
 from ..model.response import response
-from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..spectra import GRID_DEFAULT, WavelengthGrid, float_array
 
 __all__ = [
     "TOLERANCE_GAMUT_FLATNESS",
@@ -106,7 +106,7 @@ def gamut_hull(points: ArrayLike) -> tuple[Gamut, np.ndarray]:
     For a degenerate cloud the indices are every point's (none can be ruled out).
     """
 
-    cloud = np.asarray(points, dtype=np.float64)
+    cloud = float_array(points, "points")
     if cloud.shape[-1:] != (3,):
         raise SkinrenderError(f"gamut points must have three channels on the last axis, got shape {cloud.shape}")
     cloud = cloud.reshape(-1, 3)

@@ -40,7 +40,7 @@ from ..methods import validate_method
 from ..model.camera import Camera
 from ..model.chromaticity import ncc
 from ..model.response import response
-from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..spectra import GRID_DEFAULT, WavelengthGrid, float_array
 
 __all__ = ["BOUNDARIES", "locus_points", "SkinLocus", "skin_locus", "false_positive_rate", "hull_locus"]
 
@@ -69,7 +69,9 @@ def locus_points(
     the set. Shape ``(n, 2)``.
     """
 
-    t = np.asarray(illuminants, dtype=np.float64)
+    t = float_array(illuminants, "illuminants")
+    if t.ndim != 1:
+        raise SkinrenderError(f"illuminants must be a list of kelvin, got {illuminants!r}", role="illuminants")
     if calibration is None:
         rgb = response(cam, reflectance, t[:, None], t[None, :], grid=grid)
     else:

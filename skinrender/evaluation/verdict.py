@@ -369,8 +369,9 @@ def samples_needed(samples: int, error: ArrayLike, standard_error: ArrayLike, to
 
     ``shrinking``: the errors are themselves the noise of an unbiased estimator (a Monte Carlo render's),
     so they shrink with the standard errors and every bound ``|error| + c·SE`` falls as ``1/√samples``:
-    ``samples · max((|error| + c·SE) / tolerance)²``, never ``None`` (an error beyond the tolerance is
-    then taken for noise; a render with a real bias stays short of a pass at the count given).
+    ``samples · max((|error| + c·SE) / tolerance)²`` (an error beyond the tolerance is then taken for noise; a
+    render with a real bias stays short of a pass at the count given), ``None`` only where that count is beyond
+    any a float can hold (a tolerance of 5e-324, below every float's resolution).
 
     >>> samples_needed(16, [0.0], [0.1], 0.1)
     44
@@ -378,18 +379,25 @@ def samples_needed(samples: int, error: ArrayLike, standard_error: ArrayLike, to
     True
     >>> samples_needed(16, [0.2], [0.1], 0.1, shrinking=True)
     213
+    >>> samples_needed(16, [0.2], [0.1], 5e-324, shrinking=True) is None
+    True
     """
 
     e = np.abs(np.asarray(error, dtype=np.float64))
     se = np.broadcast_to(np.asarray(standard_error, dtype=np.float64), e.shape)
     tol = np.broadcast_to(np.asarray(tolerance, dtype=np.float64), e.shape)
     c = critical_z(alpha, e.size, sides=1, dof=dof)
-    if shrinking:
-        return max(1, int(math.ceil(samples * np.max(((e + c * se) / tol) ** 2))))
-    if np.any(e >= tol):
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        if shrinking:
+            factor = np.max(((e + c * se) / tol) ** 2)
+        elif np.any(e >= tol):
+            return None
+        else:
+            factor = np.max((c * se / (tol - e)) ** 2)
+        count = samples * factor
+    if not math.isfinite(count):  # beyond any count: a tolerance below the floats' resolution
         return None
-    factor = np.max((c * se / (tol - e)) ** 2)
-    return max(1, int(math.ceil(samples * factor)))
+    return max(1, int(math.ceil(count)))
 
 
 def binomial_interval(failures: int, trials: int, level: float = 0.95) -> tuple[float, float]:

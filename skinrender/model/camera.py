@@ -31,7 +31,7 @@ from ..datasets import SpectralSet, camera_sensitivities, looks_like_path
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, Literal, NDArrayFloat
 from ..methods import validate_method
-from ..spectra import EXTRAPOLATIONS, GRID_DEFAULT, WavelengthGrid, gbell, impulse
+from ..spectra import EXTRAPOLATIONS, GRID_DEFAULT, WavelengthGrid, as_grid, gbell, impulse
 from ..spectral_csv import read_spectra_csv
 
 __all__ = ["CHANNELS", "GBELL_SLOPE_DEFAULT", "Camera", "camera", "sensor_curves"]
@@ -98,6 +98,7 @@ class Camera:
         the dataset's extrapolation rule (zero outside the measured range for
         bundled cameras).
         """
+        grid = as_grid(grid)
         if grid not in self._cache:
             if self.kind == "measured":
                 values = self.measured.on(grid)

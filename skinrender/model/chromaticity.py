@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import SkinrenderError
+from ..spectra import float_array
 from ..hints import ArrayLike, NDArrayFloat
 
 __all__ = ["ncc", "measure"]
@@ -45,7 +46,7 @@ def ncc(rgb: ArrayLike) -> NDArrayFloat:
     [0.5, 0.25, 0.25]
     """
 
-    rgb = np.asarray(rgb, dtype=np.float64)
+    rgb = float_array(rgb, "rgb")
     if rgb.shape[-1:] != (3,):
         raise SkinrenderError(f"ncc expects three channels on the last axis, got shape {rgb.shape}")
     if not np.all(np.isfinite(rgb)) or np.any(rgb < 0):
@@ -80,8 +81,11 @@ def measure(chromaticity: ArrayLike, pair: str = "gb") -> NDArrayFloat:
         Shape ``(...)``.
     """
 
-    pair = pair.lower()
+    pair = str(pair).lower()
     if len(pair) != 2 or any(c not in _CHANNEL_INDEX for c in pair) or pair[0] == pair[1]:
         raise SkinrenderError(f"pair must be two of r, g, b (e.g. 'gb'), got {pair!r}")
-    c = np.asarray(chromaticity, dtype=np.float64)
+    c = float_array(chromaticity, "chromaticity")
+    if c.shape[-1:] != (3,):
+        raise SkinrenderError(f"measure expects NCC chromaticities with three channels on the last axis, got shape "
+                              f"{c.shape}", role="chromaticity")
     return np.hypot(c[..., _CHANNEL_INDEX[pair[0]]], c[..., _CHANNEL_INDEX[pair[1]]])

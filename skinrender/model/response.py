@@ -38,7 +38,7 @@ from ..datasets import SpectralSet, reflectances
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, Literal, NDArrayFloat
 from ..methods import validate_method
-from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid, float_array
 from .camera import Camera, camera
 from .illuminant import Illuminant, illuminants_array
 
@@ -187,7 +187,12 @@ def gain(
     """
 
     validate_method(normalization, NORMALISATIONS, "normalization")
-    white_p, white_c = np.asarray(white_p, dtype=np.float64), np.asarray(white_c, dtype=np.float64)
+    white_p, white_c = float_array(white_p, "white_p"), float_array(white_c, "white_c")
+    for name, white, low in (("white_p", white_p, "≥ 0"), ("white_c", white_c, "> 0")):
+        ok = np.isfinite(white) & ((white >= 0) if name == "white_p" else (white > 0))
+        if white.shape[-1:] != (3,) or not np.all(ok):
+            raise SkinrenderError(f"{name} must be a white's three channel responses, finite and {low}, got "
+                                  f"{np.ravel(white)[:6].tolist()} (shape {white.shape})", role=name)
     if normalization == "white":
         factor = white_coefficient_from_whites(white_p, white_c)
     else:
@@ -364,6 +369,9 @@ def response(
     """
 
     validate_method(normalization, NORMALISATIONS, "normalization")
+    grid = as_grid(grid)
+    if not isinstance(knee, (bool, np.bool_)):
+        raise SkinrenderError(f"knee must be True or False, got {knee!r}", role="knee")
     cam = camera(camera_)
     o = _reflectance_values(reflectance, grid)
     p_items, p_shape = illuminants_array(prevailing)
@@ -424,7 +432,7 @@ def knee(
     keeps the knee continuous everywhere; at 1109 it gives 254.9855.
     """
 
-    x = np.asarray(x, dtype=np.float64)
+    x = float_array(x, "x")
     if not 0 < a <= 1:
         raise SkinrenderError(f"knee factor a must be in (0, 1], got {a}")
     if not np.all(np.isfinite(x)):

@@ -233,11 +233,13 @@ def render(
     cache
         A dict to reuse raw renders across calls, keyed by temperature.
     physics
-        ``direct`` (Lambertian patches under the directional light) or ``subsurface``: the skin patches as the
-        skin model's layers under a sky (:mod:`skinrender.rendering.subsurface_chart`; the calibration render
-        renders the Lambertian patches only, the white balance reading the white alone; the sampler
+        ``direct`` (Lambertian patches under the directional light); ``subsurface``: the skin patches as the
+        skin model's layers, the slab's angular reflectance as a BSDF, under a sky
+        (:mod:`skinrender.rendering.slab_chart`); ``subsurface-volume``: the same layers as media, path traced
+        (:mod:`skinrender.rendering.subsurface_chart`; the calibration render renders the Lambertian patches
+        only, the white balance reading the white alone; the sampler
         :data:`~skinrender.rendering.subsurface_chart.SAMPLER_SUBSURFACE` unless ``settings`` or ``options``
-        name one). ``info`` then has ``physics``, ``reflectances`` (per patch, what Eq. 4 is checked with: the
+        name one). At both ``info`` has ``physics``, ``reflectances`` (per patch, what Eq. 4 is checked with: the
         slab's adding-doubling reflectance for a skin patch) and ``skin_model`` (per patch its layers' source, or
         ``None``).
     **options

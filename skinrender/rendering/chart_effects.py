@@ -5,12 +5,14 @@ A chart's effects of physics
 The chart's registry of effects (:class:`~skinrender.rendering.registry.Registry`,
 the same classes as the face's): ``direct`` (the Lambertian patches under the
 directional light, the analytic model's world), ``subsurface`` (the skin
-patches as the skin model's layers under a sky,
-:mod:`~skinrender.rendering.subsurface_chart`) and the image sensor, ``noise``
+patches as the skin model's layers under a sky, their flat slab's angular
+reflectance as a BSDF: :mod:`~skinrender.rendering.slab_chart`),
+``subsurface-volume`` (the same layers as media, path traced, the volumetric
+reference: :mod:`~skinrender.rendering.subsurface_chart`) and the image sensor, ``noise``
 (added by an ``imager``, not named in ``--physics``: a chart records through a
-sensor with ``--imager``). ``subsurface`` has options too
+sensor with ``--imager``). ``subsurface-volume`` has options too
 (:class:`~skinrender.rendering.subsurface_chart.SlabOptions`: ``translate_mm``,
-the slabs moved away from the origin). ``direct`` and ``subsurface`` supply the ``chart``
+the slabs moved away from the origin). ``direct`` and the two subsurface levels supply the ``chart``
 part, the source of a level's raw renders (``source.raw(temperature, seed,
 skins)``, ``source.info``) that :func:`~skinrender.rendering.balance.render_balanced`
 balances; the sensor supplies its options, and a request that holds them is
@@ -19,7 +21,8 @@ Each says what does not go with it (``refuse`` before any work; ``refuses``:
 the validation's options).
 
 -   :data:`CHART_REGISTRY`, :data:`CHART_EFFECTS`: the registry and its table.
--   :data:`CHART_DIRECT`, :data:`CHART_SUBSURFACE`, :data:`CHART_NOISE`: the effects.
+-   :data:`CHART_DIRECT`, :data:`CHART_SUBSURFACE`, :data:`CHART_SUBSURFACE_VOLUME`, :data:`CHART_NOISE`: the
+    effects; :func:`prepare_slabs`: a subsurface chart's skin patches' layers before any render.
 
 Units: temperatures K, illuminance lx, exposure s, times s.
 """
@@ -32,7 +35,8 @@ from .registry import Registry
 from .sensor import NoiseOptions
 from .subsurface_chart import SAMPLER_SUBSURFACE, SAMPLES_PER_S_SLAB, SlabOptions
 
-__all__ = ["CHART_DIRECT", "CHART_SUBSURFACE", "CHART_NOISE", "CHART_EFFECTS", "CHART_REGISTRY"]
+__all__ = ["CHART_DIRECT", "CHART_SUBSURFACE", "CHART_SUBSURFACE_VOLUME", "CHART_NOISE", "CHART_EFFECTS",
+           "CHART_REGISTRY", "prepare_slabs"]
 
 
 class _Lambertian:
@@ -50,13 +54,20 @@ class _Lambertian:
 
 
 class _Slabs:
-    """The raw renders of a chart whose skin patches are slabs (:func:`~skinrender.rendering.subsurface_chart.subsurface_renderer`)."""
+    """The raw renders of a chart whose skin patches are slabs: their tables as BSDFs at ``subsurface``
+    (:func:`~skinrender.rendering.slab_chart.slab_renderer`), media at ``subsurface-volume``
+    (:func:`~skinrender.rendering.subsurface_chart.subsurface_renderer`)."""
 
     def __init__(self, request):
+        from .slab_chart import slab_renderer
         from .subsurface_chart import subsurface_renderer
 
-        self.renderer = subsurface_renderer(request.scene, request.camera, request.settings, request.grid,
-                                            request.options["subsurface"].translate_mm)
+        volume = CHART_SUBSURFACE_VOLUME.name in request.level
+        if volume:
+            self.renderer = subsurface_renderer(request.scene, request.camera, request.settings, request.grid,
+                                                request.options[CHART_SUBSURFACE_VOLUME.name].translate_mm)
+        else:
+            self.renderer = slab_renderer(request.scene, request.camera, request.settings, request.grid)
         chart = self.renderer.chart
         self.info = {"physics": request.level.name, "reflectances": chart.reflectances, "skin_model": chart.rows()}
 
@@ -64,24 +75,60 @@ class _Slabs:
         return self.renderer.raw(temperature, seed, skins)
 
 
+def prepare_slabs(request) -> None:
+    """
+    Where the request's level renders a chart's skin patches as slabs, their layers now (measured reflectances
+    fitted, the tables built at ``subsurface``; cached for the render): a patch that is not skin, or that the
+    volumetric level's depth cap cannot render, refused naming it, before anything renders. Nothing at ``direct``.
+    """
+    if CHART_SUBSURFACE_VOLUME.name in request.level:
+        from .subsurface_chart import subsurface_chart
+
+        subsurface_chart(request.scene, request.grid)
+    elif CHART_SUBSURFACE.name in request.level:
+        from .slab_chart import slab_chart
+
+        slab_chart(request.scene, request.grid)
+
+
 def _skin_patches(request) -> None:
-    """Refuse a chart without a skin patch at ``subsurface`` (nothing would be a slab), and a sensor on it."""
-    scene = request.scene
+    """Refuse a chart without a skin patch at a subsurface level (nothing would be a slab), and a sensor on it."""
+    scene, physics = request.scene, request.level.name
     if not any(patch.skin for patch in scene.patches):
-        raise SkinrenderError(f"physics subsurface renders a chart's skin patches (skin = true) as the skin model's "
+        raise SkinrenderError(f"physics {physics} renders a chart's skin patches (skin = true) as the skin model's "
                               f"layers; {scene.name} has none", role="physics")
     if request.sensor is not None:
-        raise SkinrenderError("imager: a chart at physics subsurface is rendered without an image sensor; drop it (or "
-                              "use physics direct)", role="imager")
-    translate = request.options["subsurface"].translate_mm
-    if any(translate):  # float32's range, against its skins' mean free paths (the fits are the render's, cached)
-        from .subsurface_chart import check_chart_range, subsurface_chart
+        raise SkinrenderError(f"imager: a chart at physics {physics} is rendered without an image sensor; drop it "
+                              "(or use physics direct)", role="imager")
+    if CHART_SUBSURFACE_VOLUME.name in request.level:
+        translate = request.options[CHART_SUBSURFACE_VOLUME.name].translate_mm
+        if any(translate):  # float32's range, against its skins' mean free paths (the fits are the render's, cached)
+            from .subsurface_chart import check_chart_range, subsurface_chart
 
-        check_chart_range(subsurface_chart(scene, request.grid), translate)
+            check_chart_range(subsurface_chart(scene, request.grid), translate)
+
+
+def _fits(scene) -> int:
+    """The skin patches given as measured reflectances, which the skin model is fitted to."""
+    from .scene import skin_parameters_of
+
+    return sum(1 for p in scene.patches if p.skin and skin_parameters_of(p.reflectance, "SCENE") is None)
+
+
+def _table_seconds(request, cores: int) -> tuple[float, str]:
+    """A chart at ``subsurface`` on ``cores`` cores: its pixels, and its skin patches' tables and fits on one core
+    (:func:`~skinrender.rendering.slab_chart.estimate_seconds`)."""
+    from .slab_chart import SAMPLES_PER_S_TABLE, estimate_seconds
+
+    scene, spp, fits = request.scene, request.settings.spp, _fits(request.scene)
+    what = (f"{scene.name} at {spp} spp with {sum(p.skin for p in scene.patches)} skin patches' tables and {fits} "
+            f"fits ({SAMPLES_PER_S_TABLE:g} samples/s per core, {cores} core{'s' * (cores > 1)})")
+    return estimate_seconds(scene, spp, fits=fits, cores=cores), what
 
 
 def _slab_seconds(request, cores: int) -> tuple[float, str]:
-    """A subsurface chart's render on ``cores`` cores: its skin patches' paths (the Lambertian ones are free)."""
+    """A subsurface-volume chart's render on ``cores`` cores: its skin patches' paths (the Lambertian ones are
+    free)."""
     from .subsurface_chart import estimate_seconds
 
     scene, spp = request.scene, request.settings.spp
@@ -97,17 +144,27 @@ CHART_DIRECT = Effect(
 )
 """The base: the chart the analytic model describes."""
 
+_REFUSES_SLABS = {"gamut": "the gamut volumes are compared on the Lambertian chart",
+                  "spp_auto": "it picks spp from the Lambertian chart's pilot renders; give spp N"}
+
 CHART_SUBSURFACE = Effect(
     "subsurface",
-    "the skin patches as the skin model's two layers under a dielectric boundary, lit by a uniform sky, against "
-    "their slab's adding-doubling reflectance",
-    chart=_Slabs, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches, samples_per_s=SAMPLES_PER_S_SLAB,
-    options=SlabOptions,
-    estimate=_slab_seconds, order=30,
-    refuses={"gamut": "the gamut volumes are compared on the Lambertian chart",
-             "spp_auto": "it picks spp from the Lambertian chart's pilot renders; give spp N"},
+    "the skin patches as the skin model's layers, a flat slab's angular reflectance from adding-doubling as a BSDF "
+    "(fast; no lateral transport), lit by a uniform sky, against the slab's adding-doubling reflectance",
+    chart=_Slabs, refuse=_skin_patches, estimate=_table_seconds, order=30, refuses=_REFUSES_SLABS,
 )
-"""The skin patches as slabs (:mod:`~skinrender.rendering.subsurface_chart`)."""
+"""The skin patches as their slab's table (:mod:`~skinrender.rendering.slab_chart`); the chart's default sampler."""
+
+CHART_SUBSURFACE_VOLUME = Effect(
+    "subsurface-volume",
+    "the skin patches as the skin model's two layers of participating media under a dielectric boundary, path "
+    "traced (the volumetric reference; minutes), lit by a uniform sky, against their slab's adding-doubling "
+    "reflectance",
+    short="volumetric subsurface scattering", chart=_Slabs, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches,
+    samples_per_s=SAMPLES_PER_S_SLAB, options=SlabOptions, estimate=_slab_seconds, order=35,
+    refuses=_REFUSES_SLABS, excludes=("subsurface",), by_default=False,
+)
+"""The skin patches as slabs of media (:mod:`~skinrender.rendering.subsurface_chart`)."""
 
 CHART_NOISE = Effect(
     "noise",
@@ -119,8 +176,9 @@ CHART_NOISE = Effect(
 """The chart recorded by an image sensor (:func:`~skinrender.rendering.imaging.render_imaged_request`: a request
 whose options hold the sensor's, :attr:`~skinrender.rendering.request.Request.sensor`)."""
 
-CHART_EFFECTS: dict[str, Effect] = {effect.name: effect for effect in (CHART_DIRECT, CHART_SUBSURFACE, CHART_NOISE)}
+CHART_EFFECTS: dict[str, Effect] = {effect.name: effect for effect in (CHART_DIRECT, CHART_SUBSURFACE,
+                                                                      CHART_SUBSURFACE_VOLUME, CHART_NOISE)}
 """A chart's effects, name → effect, in the order a level applies them, the base first."""
 
 CHART_REGISTRY = Registry(CHART_EFFECTS, "physics (of a chart)")
-"""A chart's registry of effects: its physics specs (``direct``, ``subsurface``) and levels."""
+"""A chart's registry of effects: its physics specs (``direct``, ``subsurface``, ``subsurface-volume``) and levels."""

@@ -64,8 +64,8 @@ from .renderer import RawRender, emitter_grid, render_raw
 from .scene import ChartScene, load_chart_scene
 from .settings import RenderSettings
 
-__all__ = ["AUTO_EXPOSURE_FRACTION", "ImagedRendering", "electrons_per_radiance", "exposure_for", "exposure_note",
-           "render_imaged", "render_imaged_request", "predicted_electrons", "predicted_patches"]
+__all__ = ["AUTO_EXPOSURE_FRACTION", "ImagedRendering", "electrons_per_radiance", "check_exposure", "exposure_for",
+           "exposure_note", "render_imaged", "render_imaged_request", "predicted_electrons", "predicted_patches"]
 
 
 def _white_radiance(cam: Camera, temperature: float, grid: WavelengthGrid) -> NDArrayFloat:
@@ -106,20 +106,33 @@ def exposure_note(im: Imager, cam: Camera, calibration: float, lux: float, expos
                               AUTO_EXPOSURE_MAX_S)
 
 
+def check_exposure(exposure) -> float | str:
+    """
+    ``exposure`` checked before anything renders: ``"auto"``, or a finite number of seconds > 0 (text of one
+    too); else a one-line error naming it.
+
+    >>> check_exposure("AUTO"), check_exposure("0.01")
+    ('auto', 0.01)
+    """
+    if isinstance(exposure, str) and _is_auto(exposure):
+        return "auto"
+    try:
+        value = float(exposure)
+    except (TypeError, ValueError, OverflowError):
+        raise SkinrenderError(f"exposure must be 'auto' or seconds > 0, got {exposure!r}", role="exposure") from None
+    if isinstance(exposure, bool) or not (np.isfinite(value) and value > 0):
+        raise SkinrenderError(f"exposure must be 'auto' or a finite number of seconds > 0, got {exposure!r}",
+                              role="exposure")
+    return value
+
+
 def exposure_for(im: Imager, cam: Camera, calibration: float, lux: float, exposure: float | str,
                  grid: WavelengthGrid = GRID_DEFAULT) -> float:
     """The exposure, s: ``exposure`` itself (> 0), or ``auto`` from the calibration white."""
-    if isinstance(exposure, str):
-        if not _is_auto(exposure):
-            try:
-                exposure = float(exposure)
-            except ValueError:
-                raise SkinrenderError(f"exposure must be 'auto' or seconds > 0, got {exposure!r}") from None
-        else:
-            return float(auto_exposure(im, _white_rate(im, cam, calibration, lux, grid), AUTO_EXPOSURE_FRACTION,
-                                         AUTO_EXPOSURE_MAX_S))
-    if not (np.isfinite(exposure) and exposure > 0):
-        raise SkinrenderError(f"exposure must be 'auto' or a finite number of seconds > 0, got {exposure!r}")
+    exposure = check_exposure(exposure)
+    if exposure == "auto":
+        return float(auto_exposure(im, _white_rate(im, cam, calibration, lux, grid), AUTO_EXPOSURE_FRACTION,
+                                   AUTO_EXPOSURE_MAX_S))
     return float(exposure)
 
 

@@ -87,15 +87,16 @@ def _workload(request, renders: int, cores: int) -> tuple[float, str]:
     """
     ``renders`` renders of ``request`` on ``cores`` cores: ``(seconds, what)`` (what they are, in words, for a
     refusal): its level's own estimate where an effect gives one (:attr:`~skinrender.rendering.physics.Effect.estimate`),
-    else a render's fixed cost and its pixels × spp at the level's rate.
+    else a render's fixed cost and its pixels × spp at the level's rate, and the level's one-off work once
+    (:attr:`~skinrender.rendering.physics.Level.setup_seconds`: the fast subsurface's table).
     """
     cores = max(1, int(cores))
     estimate = request.level.estimate
     if estimate is not None:
         seconds, what = estimate(request, cores)
         return renders * seconds, what
-    spp, pixels = request.settings.spp, request.pixels
-    seconds = renders * (SECONDS_PER_RENDER + pixels * spp / request.level.samples_per_s) / cores
+    spp, pixels, level = request.settings.spp, request.pixels, request.level
+    seconds = (renders * (SECONDS_PER_RENDER + pixels * spp / level.samples_per_s) + level.setup_seconds) / cores
     return seconds, f"{f'{renders} renders' if renders > 1 else 'a render'} of {pixels} pixels at {spp} spp"
 
 

@@ -23,6 +23,7 @@ Units: images in Eq. 4 output units (255 for white at p = c).
 from __future__ import annotations
 
 from collections.abc import Callable
+from os import PathLike
 from pathlib import Path
 
 from ..errors import SkinrenderError
@@ -47,10 +48,7 @@ def draw_figure(kind: str, result, path: str | Path, **options) -> Path:
     if kind not in FIGURE_DRAWERS:
         raise SkinrenderError(f"no figure of a {kind} render is registered: they are drawn by "
                               "skinrender.studies.labelled (import skinrender registers them)")
-    path = Path(path)
-    if path.suffix.lower() != ".png" or path.is_dir():
-        raise SkinrenderError(f"figure: {path} must be a .png file path")
-    return Path(FIGURE_DRAWERS[kind](result, path, **options))
+    return Path(FIGURE_DRAWERS[kind](result, _file_path("figure", path, ".png"), **options))
 
 
 def output_paths(exr: str | Path, png: bool | str | Path | None = True,
@@ -58,20 +56,33 @@ def output_paths(exr: str | Path, png: bool | str | Path | None = True,
     """
     The paths of a save, checked before anything is written: the EXR (``.exr``), the PNG preview
     (``True``: the EXR's path with ``.png``; a path; ``False``/``None``: none) and the figure (a ``.png``
-    path or ``None``), none a folder and no two the same; a one-line error naming the argument otherwise.
+    path or ``None``), none empty or a folder and no two the same; a one-line error naming the argument
+    otherwise.
 
     >>> [str(p) for p in output_paths("out/face.exr", True, "out/figure.png")]
     ['out/face.exr', 'out/face.png', 'out/figure.png']
     """
-    exr = Path(exr)
-    png = None if png is None or png is False else exr.with_suffix(".png") if png is True else Path(png)
-    figure = None if figure is None else Path(figure)
-    for name, path, suffix in (("exr", exr, ".exr"), ("png", png, ".png"), ("figure", figure, ".png")):
-        if path is not None and (path.suffix.lower() != suffix or path.is_dir()):
-            raise SkinrenderError(f"{name}: {path} must be a {suffix} file path")
+    exr = _file_path("exr", exr, ".exr")
+    png = None if png is None or png is False else exr.with_suffix(".png") if png is True else _file_path(
+        "png", png, ".png", "True (beside the EXR), False or ")
+    figure = None if figure is None else _file_path("figure", figure, ".png", "None or ")
     if figure is not None and png is not None and figure.resolve() == png.resolve():
         raise SkinrenderError(f"figure: {figure} is also the PNG preview; name another PNG")
     return exr, png, figure
+
+
+def _file_path(name: str, value, suffix: str, others: str = "") -> Path:
+    """``value`` as a ``suffix`` file path, else a one-line error naming the argument ``name`` (an empty path, a
+    folder, another suffix, something that is not a path at all)."""
+    if isinstance(value, bool) or not isinstance(value, (str, PathLike)):
+        raise SkinrenderError(f"{name}: expected {others}a {suffix} file path, got {value!r}", role=name)
+    text = str(Path(value)) if str(value).strip() else ""
+    if not text or text == "." or "\0" in text:
+        raise SkinrenderError(f"{name}: expected {others}a {suffix} file path, got {str(value)!r}", role=name)
+    path = Path(value)
+    if path.suffix.lower() != suffix or path.is_dir():
+        raise SkinrenderError(f"{name}: {path} must be a {suffix} file path", role=name)
+    return path
 
 
 def save_result(result, kind: str, exr: str | Path, png: bool | str | Path | None, figure: str | Path | None,

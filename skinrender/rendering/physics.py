@@ -206,11 +206,17 @@ class Effect:
         See :mod:`skinrender.rendering.face.effects.base`.
     estimate
         ``(request, cores) → (seconds, what)``: one render on ``cores`` cores and what it is in words, where
-        pixels × spp / :attr:`samples_per_s` does not give it (a subsurface chart: its skin patches only), or
+        pixels × spp / :attr:`samples_per_s` does not give it (a subsurface chart: its skin patches, or its tables), or
         ``None``.
     refuses
         What a validation at a level with it does not take, option → why (a subsurface chart's ``gamut`` and
         ``spp_auto``).
+    setup_seconds
+        One-off seconds on one core before a process's first render of a skin with it (the fast ``subsurface``'s
+        table), measured: the estimates add it once per level and skin.
+    excludes, by_default
+        Effects it does not combine with (two transports of one skin); whether the default levels (``ladder``,
+        ``face-sweep``, the face bench) hold it (``False``: ``subsurface-volume``, which a user names).
     """
 
     name: str
@@ -235,6 +241,9 @@ class Effect:
     chart: Callable | None = None
     estimate: Callable | None = None
     refuses: Mapping[str, str] = field(default_factory=dict, compare=False, hash=False)
+    setup_seconds: float = 0.0
+    excludes: tuple[str, ...] = ()
+    by_default: bool = True
 
     def __repr__(self) -> str:
         return f"Effect({self.name!r})"
@@ -375,8 +384,14 @@ class Level:
         return min(effect.samples_per_s for effect in self.effects if effect.samples_per_s is not None)
 
     def seconds(self, samples: float) -> float:
-        """Seconds ``samples`` (pixels × spp) take at this level on one core (:attr:`samples_per_s`)."""
-        return float(samples) / self.samples_per_s
+        """Seconds ``samples`` (pixels × spp) of one skin take at this level on one core (:attr:`samples_per_s`,
+        and :attr:`setup_seconds` once)."""
+        return float(samples) / self.samples_per_s + self.setup_seconds
+
+    @property
+    def setup_seconds(self) -> float:
+        """One-off seconds on one core before a skin's first render (its effects' :attr:`Effect.setup_seconds`)."""
+        return float(sum(effect.setup_seconds for effect in self.effects))
 
     @property
     def scene_scale(self) -> float:

@@ -28,7 +28,7 @@ __all__ = ["FLOAT32_SHARE", "translation", "float32_spacing", "float32_limit_mm"
 
 FLOAT32_SHARE = 0.01
 """Float32's useful range: where the spacing of float32 positions is at most this share of the smallest length
-the render depends on (the skin's mean free path at ``subsurface``, a pixel's footprint otherwise).
+the render depends on (the skin's mean free path at ``subsurface-volume``, a pixel's footprint otherwise).
 ``docs/subsurface.md`` measures a slab out to where the spacing is a tenth of its mean free path."""
 
 

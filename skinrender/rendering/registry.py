@@ -53,6 +53,12 @@ class Registry:
         """The effects a user may name in a spec (:attr:`Effect.named`), in order."""
         return {name: effect for name, effect in self.effects.items() if effect.named}
 
+    @property
+    def by_default(self) -> dict[str, Effect]:
+        """The named effects of the default levels (:attr:`Effect.by_default`: all but a reference a user names,
+        ``subsurface-volume``), in order."""
+        return {name: effect for name, effect in self.named.items() if effect.by_default}
+
     def register(self, effect: Effect) -> Effect:
         """Add ``effect`` in the place of its :attr:`Effect.order` (after the base); a name taken is refused."""
         if not isinstance(effect, Effect) or effect.name in self.effects:
@@ -77,6 +83,11 @@ class Registry:
         if twice:
             raise SkinrenderError(f"physics: {', '.join(twice)} named twice in {text!r}; name each effect once",
                                   role="physics")
+        for part in parts:
+            clash = [other for other in self.effects[part].excludes if other in parts]
+            if clash:
+                raise SkinrenderError(f"physics: {part!r} and {clash[0]!r} are two transports of the same skin and "
+                                      f"do not combine, got {text!r}; name one", role="physics")
         return tuple(name for name in self.effects if name in parts and name != base)
 
     def level(self, spec: str | Sequence[str] | Level) -> Level:

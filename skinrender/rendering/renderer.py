@@ -295,6 +295,18 @@ class ChartRenderer:
         self._loaded: list = []
         self.spp = spp
 
+    EMITTER_PARAMETER = "light.irradiance.values"
+    """The document's parameter holding the tabulated emitter's values (divided by their peak)."""
+    EMITTER_DIVISOR = 1.0
+    """The raw image times the emitter's peak over this is the specfilm value (1: a directional light's
+    irradiance P gives a white ``P / π``, as Mitsuba renders it)."""
+
+    def document(self, mi, temperature: float, group: tuple[int, ...], film: dict | None = None) -> dict:
+        """The Mitsuba document of the channels ``group`` (:func:`scene_dict`; ``film``: a spectral render's
+        channels)."""
+        return scene_dict(self.scene, self.camera, temperature, self.requested_spp, 0, self.sampler, self.grid,
+                          group, self.variant, self.emitter, film)
+
     def _load(self, temperature: float) -> None:
         mi = mitsuba(self.variant)
         self._loaded = []
@@ -304,8 +316,7 @@ class ChartRenderer:
 
             film = film_channels(self.bands)
         for group in self.groups:
-            loaded = mi.load_dict(scene_dict(self.scene, self.camera, temperature, self.requested_spp, 0,
-                                             self.sampler, self.grid, group, self.variant, self.emitter, film))
+            loaded = mi.load_dict(self.document(mi, temperature, group, film))
             self._loaded.append((group, loaded, mi.traverse(loaded)))
         # multijitter rounds the count to a product of two integers
         self.spp = int(self._loaded[0][1].sensors()[0].sampler().sample_count())
@@ -328,8 +339,8 @@ class ChartRenderer:
             # always set through the parameters (the scene file's text values round differently by an ulp)
             values = (radiance / scale).astype(np.float32)
             for _, _, params in self._loaded:
-                kind = type(params["light.irradiance.values"])  # mi.Float, or a dynamic array in scalar variants
-                params["light.irradiance.values"] = kind(values)
+                kind = type(params[self.EMITTER_PARAMETER])  # mi.Float, or a dynamic array in scalar variants
+                params[self.EMITTER_PARAMETER] = kind(values)
                 params.update()
         width, height = self.scene.size
         image = np.zeros((height, width, 3 if self.bands is None else self.bands.size), dtype=np.float32)
@@ -338,7 +349,7 @@ class ChartRenderer:
             image[:, :, list(group)] = values
         seconds = time.perf_counter() - start
         return RawRender(image, float(temperature), self.spp, int(seed), self.sampler, self.variant, seconds,
-                         len(self.groups), scale)
+                         len(self.groups), scale / self.EMITTER_DIVISOR)
 
 
 @dataclass(frozen=True)

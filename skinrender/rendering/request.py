@@ -82,7 +82,7 @@ def settings_for(level: Level, settings: RenderSettings | None = None, **fields)
     """
     The render settings of a request at ``level``: ``settings`` (the defaults where ``None``) with ``fields``
     (``spp``, ``seed``, ``sampler``, ``variant``, ``channels``; ``None`` values not given); the level's own sampler
-    (:attr:`~skinrender.rendering.physics.Level.sampler`: a subsurface chart's) where neither names one.
+    (:attr:`~skinrender.rendering.physics.Level.sampler`: a subsurface-volume chart's) where neither names one.
     """
     fields = {key: value for key, value in fields.items() if value is not None}
     if settings is None and "sampler" not in fields and level.sampler is not None:
@@ -147,9 +147,29 @@ class Request:
                 raise SkinrenderError(f"{name} must be a temperature, a finite number of kelvin > 0, got {value!r}",
                                       role=name)
             object.__setattr__(self, name, float(value))
+        self._check_lights()
         object.__setattr__(self, "options", MappingProxyType(self.level.default_options(self.options)))
         self._check()
         self.level.refuse(self)
+
+    def _check_lights(self) -> None:
+        """
+        Each light gives the camera light on the grid, the one at fault named by its role (``calibration
+        illuminant 1K gives no light …``, ``role`` ``calibration``): a chart's calibration light of 1 K had been
+        refused only after the prevailing render ("the Planck emitter is zero", no argument named), a face's after
+        its white references (~9 s, then a NaN).
+        """
+        from ..model.illuminant import illuminant
+        from ..model.response import check_light, spds_on
+
+        if self.camera is None:  # a spectral render: no camera yet (each is checked where it sees the render)
+            return
+        for role in ("prevailing", "calibration"):
+            item = illuminant(getattr(self, role))
+            try:
+                check_light(self.camera, [item], spds_on([item], self.grid), self.grid, f"{role} illuminant")
+            except SkinrenderError as error:
+                raise error.reworded(role=role if error.role == "illuminant" else error.role) from None
 
     def _check(self) -> None:
         """The checks of a scene kind's request (its own fields)."""
@@ -246,9 +266,10 @@ def chart_request(scene, camera, prevailing, calibration, *, normalization: str 
         Eq. 4's normalisation and knee (Eq. 10), the grid (nm), the emitter.
     settings, **fields
         A :class:`~skinrender.rendering.settings.RenderSettings`, or its fields one by one (``spp``, ``seed``,
-        ``sampler``, ``variant``, ``channels``); at ``subsurface`` the sampler is that level's unless named.
+        ``sampler``, ``variant``, ``channels``); at ``subsurface-volume`` the sampler is that level's unless named.
     physics
-        ``direct`` or ``subsurface`` (:data:`~skinrender.rendering.chart_effects.CHART_REGISTRY`), or a level.
+        ``direct``, ``subsurface`` or ``subsurface-volume`` (:data:`~skinrender.rendering.chart_effects.CHART_REGISTRY`),
+        or a level.
     imager, illuminance, exposure
         The sensor's options (:class:`~skinrender.rendering.sensor.NoiseOptions`): an ``imager`` records the
         chart through an image sensor at ``illuminance`` lx (default :data:`ILLUMINANCE_DEFAULT`) and

@@ -30,7 +30,7 @@ a sample name), ``SET:#N`` (the N-th sample, from 0), ``perfect`` (ρ = 1),
 ``skin-model:melanin=0.05,blood=0.02`` (any fields of
 :class:`~skinrender.datasets.skin_model.SkinParameters`, the others at their
 defaults; :func:`skin_parameters_of`): its adding-doubling reflectance, and
-under ``--physics subsurface`` its layers.
+under ``--physics subsurface`` or ``subsurface-volume`` its layers.
 """
 
 from __future__ import annotations

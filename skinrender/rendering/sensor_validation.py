@@ -370,9 +370,12 @@ def validate_imaged(imaged: ImagedRendering, reference_ratio: NDArrayFloat, mode
     difference_all = _verdict("difference", np.concatenate([p_mean.ravel(), p_var.ravel()]), level, alpha, tests,
                               "every patch channel's pixel mean and variance")
     gains, black = imaged.gains, model_im.black_level_dn
+    # the dark floor is a fraction of the white this render shows (a perfect white's brightest channel, output units)
+    white_dn = (predicted_electrons(imaged, np.ones((1, 3)), grid)[0]
+                - model_im.dark_current_e_per_s * imaged.exposure_s) * model_im.gain_dn_per_e
     out = agreement((rendered_mean - black) * gains, (mean - black) * gains, np.sqrt((variance + mc) / count) * gains,
                     tolerance, imaged.rendering.raw[0].spp, None, 0.0, alpha_equivalence, alpha,
-                    "patch channel means through the sensor")
+                    "patch channel means through the sensor", scale=float(np.max(white_dn * gains)))
     spp = imaged.rendering.raw[0].spp
     needed, reason = _spp_needed(out, spp, variance, mc)
     checks["equivalence"] = replace(out["equivalence"], details={**out["equivalence"].details, "spp_needed": needed})

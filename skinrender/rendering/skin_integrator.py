@@ -139,7 +139,7 @@ def register(module) -> None:
     if variant in _REGISTERED:
         return
     if variant.startswith("scalar"):
-        raise SkinrenderError(f"variant {variant}: the subsurface level's integrator runs in llvm_ad_spectral or "
+        raise SkinrenderError(f"variant {variant}: the subsurface-volume level's integrator runs in llvm_ad_spectral or "
                               "cuda_ad_spectral (one traced kernel), not in a scalar variant", role="variant")
     cls = _integrator_class()
     mi.register_integrator(PLUGIN, lambda props: cls(props))

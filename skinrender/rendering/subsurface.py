@@ -13,7 +13,8 @@ adding-doubling reflectance, the Mitsuba media and integrator.
 
 -   :class:`SkinMedia`, :func:`skin_media_of`: the layers of a skin spec, from
     the skin model's parameters (``skin-model:melanin=…``) or fitted to a
-    measured reflectance (:mod:`skinrender.datasets.skin_fit`).
+    measured reflectance (:mod:`skinrender.datasets.skin_fit`);
+    :func:`chart_skin_media`: a chart's skin patches' (both subsurface levels).
 -   :func:`slab_layers`, :func:`slab_reflectance`: the flat slab as rendered
     (the dermis :data:`SLAB_DERMIS_MM` thick, air below) and its adding-doubling
     reflectance.
@@ -72,8 +73,8 @@ from .scene import reflectance_of, skin_parameters_of
 from .variants import choose_variant
 
 __all__ = ["SLAB_DERMIS_MM", "FIT_RMS_MAX", "FIT_STEP_NM", "DEPTH_MAX_SUBSURFACE", "TRUNCATION_MAX", "SkinMedia",
-           "skin_media_of", "slab_layers", "slab_reflectance", "effective_layer", "medium_dict", "integrator_dict",
-           "truncation_bound", "check_truncation", "mean_free_path", "subsurface_variant"]
+           "skin_media_of", "chart_skin_media", "slab_layers", "slab_reflectance", "effective_layer", "medium_dict",
+           "integrator_dict", "truncation_bound", "check_truncation", "mean_free_path", "subsurface_variant"]
 
 SLAB_DERMIS_MM = 5.0
 """Thickness of the rendered dermis, mm, standing for the model's semi-infinite one. Since the skin model absorbs
@@ -182,6 +183,20 @@ def _skin_media(spec: str, grid: WavelengthGrid, where: str) -> SkinMedia:
                               f"it: {fit.not_skin_reason}; {accepts}")
     return SkinMedia(spec, fit.parameters, float(fit.rms), skin_layers(lam, fit.parameters), lam,
                      dict(fit.bounds_hit))
+
+
+def chart_skin_media(chart, grid: WavelengthGrid, physics: str) -> tuple[tuple, tuple]:
+    """
+    Per patch of a chart (a :class:`~skinrender.rendering.scene.ChartScene`) its skin's :class:`SkinMedia`
+    (:func:`skin_media_of`; ``None`` for a patch that is not skin) and where a refusal names it
+    (``"SOURCE: patch 'NAME'"``): ``(media, wheres)``. A chart without a skin patch is refused, naming ``physics``.
+    """
+    if not any(p.skin for p in chart.patches):
+        raise SkinrenderError(f"{chart.source or chart.name}: physics {physics!r} renders a chart's skin patches "
+                              "(skin = true) as the skin model's layers, and this chart has none")
+    wheres = tuple(f"{chart.source}: patch {patch.name!r}" if patch.skin else None for patch in chart.patches)
+    return tuple(None if where is None else skin_media_of(patch.reflectance, grid, where)
+                 for patch, where in zip(chart.patches, wheres)), wheres
 
 
 @lru_cache(maxsize=256)
@@ -336,7 +351,7 @@ def subsurface_variant(requested: str | None = None) -> str:
     chosen = choose_variant(requested)
     if chosen.startswith("scalar"):
         why = "asked" if requested is not None else "the only variant that runs here"
-        raise SkinrenderError(f"variant {chosen} ({why}): the subsurface level renders in llvm_ad_spectral or "
+        raise SkinrenderError(f"variant {chosen} ({why}): the subsurface-volume level renders in llvm_ad_spectral or "
                               "cuda_ad_spectral (its integrator is traced into one kernel; llvm needs libLLVM ≥ 16)",
                               role="variant")
     return chosen

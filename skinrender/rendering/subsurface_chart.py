@@ -1,8 +1,10 @@
 """
-Charts with subsurface scattering
-=================================
+Charts with subsurface scattering: the volumetric reference
+===========================================================
 
-A chart rendered at ``--physics subsurface``: each skin patch (``skin =
+A chart rendered at ``--physics subsurface-volume`` (named ``subsurface``
+until issue 34, which gave that name to the fast transport of
+:mod:`skinrender.rendering.slab_chart`): each skin patch (``skin =
 true``) is the skin model's two layers (:func:`~skinrender.rendering.subsurface.skin_media_of`:
 its ``skin-model:`` parameters, or the model fitted to its measured
 reflectance) rendered as media under a smooth dielectric boundary, and
@@ -84,8 +86,8 @@ from .scene import ChartScene, load_chart_scene
 from .placement import check_float32_range, translation
 from .settings import RenderSettings
 from .skin_integrator import register
-from .subsurface import (SLAB_DERMIS_MM, SkinMedia, check_truncation, integrator_dict, mean_free_path,
-                         skin_media_of, slab_reflectance, subsurface_variant)
+from .subsurface import (SLAB_DERMIS_MM, SkinMedia, chart_skin_media, check_truncation, integrator_dict,
+                         mean_free_path, slab_reflectance, subsurface_variant)
 from .variants import mitsuba
 
 __all__ = ["FOOTPRINT_MM", "SLAB_HALF_WIDTH_MM", "SAMPLES_PER_S_SLAB", "SAMPLER_SUBSURFACE", "SECONDS_PER_FIT",
@@ -104,7 +106,7 @@ SAMPLES_PER_S_SLAB = 10000.0
 a light slab alone 2.4 × 10⁴ paths per CPU second, a dark one 6.6 × 10⁴)."""
 
 SAMPLER_SUBSURFACE = "independent"
-"""The sampler of a subsurface chart unless one is named (``validate``, ``render``, ``detect``; Python: where no
+"""The sampler of a subsurface-volume chart unless one is named (``validate``, ``render``, ``detect``; Python: where no
 settings are given): its pixels are independent samples by construction, so a patch's standard error from its
 pixels' spread holds whatever the paths, and validate's difference test was calibrated with it (2 false alarms in
 100 seeds at α 0.01, ``docs/subsurface.md``). Over 150 seeds of a slab (8 × 8 px, 16 spp, the skin fitted to Vrhel
@@ -116,11 +118,10 @@ SECONDS_PER_FIT = 1.3
 """Seconds to fit the skin model to one measured skin patch (one core, ~101 wavelengths), the estimates'."""
 
 
-
 @dataclass(frozen=True, eq=False)
 class SubsurfaceChart:
     """
-    A chart's patches at ``subsurface``: per patch its :class:`~skinrender.rendering.subsurface.SkinMedia`
+    A chart's patches at ``subsurface-volume``: per patch its :class:`~skinrender.rendering.subsurface.SkinMedia`
     (``None``: Lambertian) and ``reflectances`` ``(patches, grid.size)``, the reflectance Eq. 4 is checked with:
     the slab's adding-doubling reflectance for a skin patch, the patch's own for the others.
     """
@@ -143,7 +144,7 @@ class SubsurfaceChart:
 
 def subsurface_chart(scene, grid: WavelengthGrid = GRID_DEFAULT) -> SubsurfaceChart:
     """
-    The chart's patches at ``subsurface`` (:class:`SubsurfaceChart`): its skin patches' layers (fitting those
+    The chart's patches at ``subsurface-volume`` (:class:`SubsurfaceChart`): its skin patches' layers (fitting those
     given as measured reflectances, ~1.3 s each) and the reflectances Eq. 4 is checked with. Cached.
 
     Raises
@@ -156,28 +157,20 @@ def subsurface_chart(scene, grid: WavelengthGrid = GRID_DEFAULT) -> SubsurfaceCh
 
 @lru_cache(maxsize=8)
 def _subsurface_chart(chart: ChartScene, grid: WavelengthGrid) -> SubsurfaceChart:
-    if not any(p.skin for p in chart.patches):
-        raise SkinrenderError(f"{chart.source or chart.name}: physics 'subsurface' renders a chart's skin patches "
-                              "(skin = true) as the skin model's layers, and this chart has none")
+    media, wheres = chart_skin_media(chart, grid, "subsurface-volume")
     reflectances = chart.reflectances(grid).copy()
-    media: list[SkinMedia | None] = []
-    for index, patch in enumerate(chart.patches):
-        if not patch.skin:
-            media.append(None)
-            continue
-        where = f"{chart.source}: patch {patch.name!r}"
-        item = skin_media_of(patch.reflectance, grid, where)
-        check_truncation(item, where)
-        media.append(item)
-        reflectances[index] = slab_reflectance(item.layers)
+    for index, item in enumerate(media):
+        if item is not None:
+            check_truncation(item, wheres[index])
+            reflectances[index] = slab_reflectance(item.layers)
     reflectances.setflags(write=False)
-    return SubsurfaceChart(chart, grid, tuple(media), reflectances)
+    return SubsurfaceChart(chart, grid, media, reflectances)
 
 
 @dataclass(frozen=True)
 class SlabOptions:
     """
-    The options of a chart's ``subsurface`` level.
+    The options of a chart's ``subsurface-volume`` level.
 
     Parameters
     ----------
@@ -280,7 +273,7 @@ def _patch_seed(seed: int, index: int) -> int:
 
 class SubsurfaceChartRenderer:
     """
-    A chart at ``subsurface`` through a camera (:class:`SubsurfaceChart`), rendered at any temperature.
+    A chart at ``subsurface-volume`` through a camera (:class:`SubsurfaceChart`), rendered at any temperature.
 
     Each patch is its own Mitsuba scene (module docstring). ``settings``
     (:class:`~skinrender.rendering.settings.RenderSettings`) gives the spp, sampler, variant and channel passes

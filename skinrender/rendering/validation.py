@@ -50,7 +50,7 @@ from .settings import RenderSettings, seed_at
 from .spp_choice import square_spp
 
 __all__ = ["FLOAT32_FLOOR", "REFINE", "analytic_reference", "quadrature_difference", "Validation", "validate",
-           "validate_rendering", "validate_gamut"]
+           "validate_rendering", "white_level", "validate_gamut"]
 
 FLOAT32_FLOOR = 2e-6
 """Relative floor for float32 accumulation in the renderer (≈ 16 ulp)."""
@@ -133,7 +133,7 @@ class Validation:
         The float32 floor of each patch channel, output units (the difference test's allowance).
     tolerance
         The allowed ``|rendered − analytic|`` per patch and channel, output units: ``tolerance_relative ×
-        max(|analytic|, DARK_LEVEL × 255)`` (:mod:`~skinrender.rendering.agreement`).
+        max(|analytic|, DARK_LEVEL × white_level)`` (:mod:`~skinrender.rendering.agreement`).
     tolerance_relative
         The relative tolerance asked for.
     verdict
@@ -150,6 +150,10 @@ class Validation:
         The skewness of each patch channel's error (:func:`~skinrender.rendering.patch_errors.error_law`): beyond
         :data:`~skinrender.rendering.patch_errors.SKEW_MAX` its normal law is not trusted and the value is held to
         distribution-free bounds (:func:`~skinrender.rendering.agreement.agreement`).
+    white_level
+        A perfect white's brightest channel in this render's output units (Eq. 4 of a reflectance of 1 under
+        the prevailing light, with the render's normalisation and knee): 255 at p = c with ``white``, ~3.5 with
+        ``none`` (:func:`white_level`). A channel below ``DARK_LEVEL`` of it is dark.
     """
 
     rendering: Rendering
@@ -165,6 +169,7 @@ class Validation:
     upper: NDArrayFloat
     spp_needed: int | None
     skewness: NDArrayFloat | None = None
+    white_level: float = CONSTANT_OUTPUT_SCALE
 
     @property
     def error(self) -> NDArrayFloat:
@@ -210,7 +215,7 @@ class Validation:
         ``|error|``, output units; ``shown`` says per channel ``within``, ``outside`` or ``undecided``.
         """
         rows = []
-        scale = tolerance_scale(self.analytic)
+        scale = tolerance_scale(self.analytic, self.white_level)
         for i, patch in enumerate(self.rendering.scene.patches):
             within = self.upper[i] <= self.tolerance[i]
             lower = np.abs(self.error[i]) - (self.upper[i] - np.abs(self.error[i]))
@@ -325,11 +330,30 @@ def validate_rendering(rendering: Rendering, tolerance: float = TOLERANCE_DEFAUL
     sigma, skewness = error_law(rendering, reference)
     floor = float32_floor(rendering.camera, grid)[None, :] * np.abs(reference) + np.abs(allowance)
     dof = float(np.min(rendering.patches.count) - 1)
+    level = white_level(r.camera, r.prevailing, r.calibration, r.normalization, r.knee, grid)
     out = agreement(rendering.patches.mean, reference, sigma, tolerance, r.raw[0].spp, dof, floor, alpha,
-                    alpha_difference, skewness=skewness, skew_max=SKEW_MAX)
+                    alpha_difference, skewness=skewness, skew_max=SKEW_MAX, scale=level)
     needed = None if out["spp_needed"] is None else square_spp(out["spp_needed"], r.raw[0].sampler)
     return Validation(rendering, rendering.patches.mean, reference, sigma, floor, quadrature, out["tolerance"],
-                      tolerance, out["equivalence"], out["difference"], out["upper"], needed, skewness)
+                      tolerance, out["equivalence"], out["difference"], out["upper"], needed, skewness, level)
+
+
+def white_level(cam: Camera | str, prevailing: float, calibration: float, normalization: str = "white",
+                knee: bool = False, grid: WavelengthGrid = GRID_DEFAULT) -> float:
+    """
+    A perfect white's brightest channel in Eq. 4's output units under ``prevailing`` (K), balanced to
+    ``calibration`` (K) with ``normalization`` (and the knee): what a validation's dark floor is a fraction of
+    (:data:`~skinrender.rendering.agreement.DARK_LEVEL`). 255 at p = c with the white normalisation; with
+    ``none`` (Eq. 5) the raw response, a few output units: a floor of 1 % of 255 there allowed a dark channel
+    an error of several times its value.
+
+    >>> round(white_level("gbell:9@450,540,610", 2856, 2856), 6)
+    255.0
+    >>> round(white_level("gbell:9@450,540,610", 2856, 5900, "none"), 2)
+    3.5
+    """
+    white = np.ones((1, grid.wavelengths.size))
+    return float(np.max(analytic_reference(cam, white, prevailing, calibration, normalization, knee, grid)))
 
 
 def validate_gamut(
@@ -372,6 +396,9 @@ def validate_gamut(
     """
 
     tolerance = check_tolerance(tolerance, "tolerance")
+    if isinstance(draws, bool) or not isinstance(draws, (int, np.integer)) or not 2 <= draws <= 100_000:
+        raise SkinrenderError(f"draws must be an integer in [2, 100000] (redraws of the patch means), got {draws!r}",
+                              role="draws")
     settings = RenderSettings.of(settings, **options)
     seed = settings.seed
     chart = load_chart_scene(scene)

@@ -23,19 +23,25 @@ Units: temperatures K (or ``A``, ``H``), illuminance lx, images in Eq. 4 output 
 
 from __future__ import annotations
 
+import hashlib
+import os
 import re
 import shlex
 import shutil
+import tempfile
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
 
 from ..errors import SkinrenderError
 from ..evaluation.verdict import ALPHA_DIFFERENCE
-from .reference import ReferenceProblem, read_reference, shown, sidecar_of, state, write_reference
+from ..files import Output, write_outputs
+from .reference import ReferenceProblem, read_reference, reference_seed, shown, sidecar_of, state, write_reference
 from .regression import REFERENCE_SPP_FACTOR, Comparison, compare, measure, setting_notes
 
-__all__ = ["RenderRegression", "render_regression", "pytest_addoption", "pytest_terminal_summary", "safe_name"]
+__all__ = ["RenderRegression", "render_regression", "pytest_addoption", "pytest_terminal_summary", "safe_name",
+           "claim_across_workers", "pytest_configure_node", "pytest_sessionfinish"]
 
 _WRITTEN = pytest.StashKey[list]()
 _CLAIMED = pytest.StashKey[dict]()
@@ -103,7 +109,8 @@ class RenderRegression:
             Planckian lights: kelvin, ``A`` (2856 K) or ``H`` (2300 K).
         spp, seed
             Samples per pixel (default 64 for a chart, 64 over the 4 replicates of a face) and the sampler's
-            seed. The reference is rendered at 4× the spp with the same seed.
+            seed. The reference is rendered at 4× the spp with its own seed, drawn from this one
+            (:func:`~skinrender.testing.reference.reference_seed`: independent of the check's samples).
         physics, skin, size
             A face's level of physics (``direct`` or effects joined by ``+``), skin spec and image side in
             pixels (default 64).
@@ -130,7 +137,8 @@ class RenderRegression:
         pytest.fail(message, pytrace=False)  # outside the except: no chained traceback
 
     def _claim(self, path: Path, basename: str | None) -> None:
-        """One reference per check: refused when another test, or another check of this one, has ``path``."""
+        """One reference per check: refused when another test, or another check of this one, has ``path`` — in
+        this process, or under pytest-xdist in another worker of the same run (:func:`claim_across_workers`)."""
         claimed = self._config.stash.setdefault(_CLAIMED, {})
         node = self._request.node.nodeid
         if claimed.get(path, node) != node:
@@ -139,8 +147,25 @@ class RenderRegression:
         if path in self._used:
             raise SkinrenderError(f"basename: {path.name} is already the reference of another check in this test; "
                                   "give each check its own basename=")
+        other = claim_across_workers(path, node)
+        if other is not None:
+            raise SkinrenderError(f"basename: {path} is already the reference of {other} (another pytest-xdist "
+                                  "worker); give this check its own basename=")
         claimed[path] = node
         self._used.add(path)
+
+    def _portable(self, settings: dict) -> dict:
+        """The settings with a CSV camera's path relative to the test file's folder (a writer's absolute path
+        churned the diffs of every reference in the user's repository)."""
+        camera = settings.get("camera")
+        try:
+            found = isinstance(camera, str) and Path(camera).is_file()
+        except (OSError, ValueError):
+            found = False
+        if not found:
+            return settings
+        relative = os.path.relpath(Path(camera).resolve(), Path(self._request.path).resolve().parent)
+        return {**settings, "camera": Path(relative).as_posix()}
 
     def _check(self, scene, camera, prevailing, calibration, spp, seed, physics, skin, imager, illuminance,
                basename, size, variant, alpha, unknown) -> Comparison | None:
@@ -164,8 +189,9 @@ class RenderRegression:
         self._claim(path, basename)
         found = state(path)
         if self._config.getoption("skinrender_regen"):
-            reference = measure(scene, camera, prevailing, calibration, factor=REFERENCE_SPP_FACTOR, **options)
-            written = write_reference(path, reference, alpha)
+            reference = measure(scene, camera, prevailing, calibration, factor=REFERENCE_SPP_FACTOR,
+                                render_seed=reference_seed(seed), **options)
+            written = write_reference(path, replace(reference, settings=self._portable(reference.settings)), alpha)
             self._config.stash.setdefault(_WRITTEN, []).append((self._request.node.nodeid, written[0]))
             return None
         if found == "missing":
@@ -193,9 +219,11 @@ class RenderRegression:
         for path in paths:
             self._claim(path, basename)
         if self._config.getoption("skinrender_regen"):
-            references = measure(scene, cameras, prevailing, calibration, factor=REFERENCE_SPP_FACTOR, **options)
+            references = measure(scene, cameras, prevailing, calibration, factor=REFERENCE_SPP_FACTOR,
+                                 render_seed=reference_seed(options["seed"]), **options)
             for path, reference in zip(paths, references):
-                written = write_reference(path, reference, alpha)
+                written = write_reference(path, replace(reference, settings=self._portable(reference.settings)),
+                                          alpha)
                 self._config.stash.setdefault(_WRITTEN, []).append((self._request.node.nodeid, written[0]))
             return None
         missing = [path for path in paths if state(path) == "missing"]
@@ -244,14 +272,68 @@ class RenderRegression:
         stem = reference.path.stem
         written = list(write_reference(folder / f"{stem}.new.exr", new, result.verdict.alpha))
         copy = folder / f"{stem}.reference.exr"
-        shutil.copyfile(reference.path, copy)
-        shutil.copyfile(sidecar_of(reference.path), sidecar_of(copy))
+        write_outputs(Output(copy, None, reference.path.read_bytes()),  # whole, every write checked
+                      Output(sidecar_of(copy), None, sidecar_of(reference.path).read_bytes()))
         regions = new.regions
         title = (f"{new.settings['scene']} through {new.settings['camera']}: "
                  + result.summary().split(" (critical")[0])
         figure = difference_figure(folder / f"{stem}.difference.png", reference.image, new.image, result.items,
                                    result.z, result.critical, regions, title, new.scene, new.labels)
         return [written[0], copy, figure]
+
+
+_RUN_UID = "PYTEST_XDIST_TESTRUNUID"
+"""pytest-xdist's identifier of a run, the same in every worker of it (unset without xdist)."""
+
+_RUNS = pytest.StashKey[list]()
+
+
+def _claims_folder(uid: str) -> Path:
+    """Where the workers of the run ``uid`` claim their references: a folder of the system's temporary files (the
+    user's repository is left alone), removed when the run ends."""
+    return Path(tempfile.gettempdir()) / f"skinrender-claims-{safe_name(uid)}"
+
+
+def claim_across_workers(path: Path, node: str, uid: str | None = None) -> str | None:
+    """
+    Claim the reference ``path`` for the test ``node`` among the pytest-xdist workers of this run: ``None`` when
+    it is this test's (claimed now, or before by it), else the test that claimed it first. The claim is a lock
+    file made atomically (``O_CREAT | O_EXCL``) in :func:`_claims_folder`, named by the hash of the reference's
+    resolved path and holding the test's id. Without xdist (``uid`` ``None`` and no run identifier) there is
+    one process, whose own record suffices: ``None``.
+    """
+    uid = os.environ.get(_RUN_UID) if uid is None else uid
+    if not uid:
+        return None
+    folder = _claims_folder(uid)
+    folder.mkdir(parents=True, exist_ok=True)
+    lock = folder / (hashlib.sha256(str(Path(path).resolve()).encode("utf-8")).hexdigest() + ".claim")
+    try:
+        handle = os.open(lock, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+    except FileExistsError:
+        owner = lock.read_text(encoding="utf-8")
+        return None if owner == node else owner or "another test"
+    try:
+        os.write(handle, node.encode("utf-8"))
+    finally:
+        os.close(handle)
+    return None
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_configure_node(node) -> None:
+    """pytest-xdist's controller: note the run's identifier, so that its claims are removed when it ends."""
+    uid = getattr(node, "workerinput", {}).get("testrunuid")
+    if uid:
+        node.config.stash.setdefault(_RUNS, []).append(uid)
+
+
+def pytest_sessionfinish(session) -> None:
+    """The controller (or a run without xdist): remove the run's claims (:func:`claim_across_workers`)."""
+    if hasattr(session.config, "workerinput"):
+        return  # a worker: the others may still claim; the controller removes the folder at the end
+    for uid in set(session.config.stash.get(_RUNS, [])):
+        shutil.rmtree(_claims_folder(uid), ignore_errors=True)
 
 
 @pytest.fixture

@@ -62,14 +62,16 @@ from ..evaluation.verdict import ALPHA_DIFFERENCE, Verdict, difference, sidak
 from ..hints import NDArrayFloat
 from .replicates import measure_face, region_values
 
-__all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE", "ILLUMINANCE_DEFAULT_LUX", "Measurement",
-           "Comparison", "scene_kind", "measure", "measure_spectral", "values_of", "setting_notes", "compare"]
+__all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE",
+           "ILLUMINANCE_DEFAULT_LUX", "Measurement", "Comparison", "scene_kind", "measure", "measure_spectral",
+           "values_of", "setting_notes", "compare"]
 
 REFERENCE_SPP_FACTOR = 4
-"""A reference is rendered at this many times the check's spp (and the same seed): its own noise then moves
-every later check's z by at most ``1/√5`` of its deviation (``1/√2`` at equal spp), so that one unlucky
-reference does not raise the false-alarm rate of all the checks against it, as Mitsuba's high-spp references
-do not."""
+"""A reference is rendered at this many times the check's spp (with its own seed,
+:func:`~skinrender.testing.reference.reference_seed`): its
+own noise then moves every later check's z by at most ``1/√5`` of its deviation (``1/√2`` at equal spp), so that
+one unlucky reference does not raise the false-alarm rate of all the checks against it, as Mitsuba's high-spp
+references do not."""
 
 SPP_CHART = 64
 """Samples per pixel of a chart check unless given (a check ~0.2 s after the first; a 2 nm shift at z > 10)."""
@@ -225,7 +227,8 @@ def _integer(value, name: str, low: int, high: int) -> int:
 
 def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed: int = 0, physics: str | None = None,
             skin: str | None = None, imager: str | None = None, illuminance: float | None = None,
-            size: int | None = None, variant: str | None = None, factor: int = 1) -> Measurement:
+            size: int | None = None, variant: str | None = None, factor: int = 1,
+            render_seed: int | None = None) -> Measurement:
     """
     Render ``scene`` (a chart or a face) through ``camera`` under the Planckian ``prevailing`` light (K),
     white balanced to ``calibration`` (K), and reduce it to the values a regression compares (module
@@ -238,8 +241,10 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     ``spp`` defaults to :data:`SPP_CHART` or :data:`SPP_FACE`; ``physics``, ``skin`` and ``size`` (pixels,
     default :data:`SIZE_FACE`) go with faces; ``imager`` (and ``illuminance``, lx) put the image sensor's
     noise in (a face: physics ``noise``). ``factor``: render at ``factor × spp`` (a reference,
-    :data:`REFERENCE_SPP_FACTOR`); the settings keep ``spp_requested`` the check's. Any bad argument raises a
-    one-line :class:`SkinrenderError` naming it.
+    :data:`REFERENCE_SPP_FACTOR`); the settings keep ``spp_requested`` the check's. ``render_seed``: render with
+    this seed rather than ``seed`` (a reference, :func:`~skinrender.testing.reference.reference_seed`); the settings
+    keep ``seed`` the check's
+    and add ``reference_seed``. Any bad argument raises a one-line :class:`SkinrenderError` naming it.
     """
     from ..model.camera import camera as camera_of
     from ..rendering.exr import camera_attributes
@@ -267,14 +272,15 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     spp = _integer(SPP_CHART if kind == "chart" and spp is None else SPP_FACE if spp is None else spp, "spp", 1,
                    SPP_MAX + 1)
     seed = _integer(seed, "seed", 0, SEED_MAX + 1)  # the bound of every front door
+    renders = seed if render_seed is None else _integer(render_seed, "render_seed", 0, SEED_MAX + 1)
     size = SIZE_FACE if size is None else size
     if several:
-        found = measure_spectral(kind, chart if kind == "chart" else scene, cams, p, c, spp * factor, seed, physics,
+        found = measure_spectral(kind, chart if kind == "chart" else scene, cams, p, c, spp * factor, renders, physics,
                                  skin, imager, illuminance, size, variant)
     elif kind == "chart":
-        found = [_chart(chart, cam, p, c, spp * factor, seed, imager, illuminance, variant)]
+        found = [_chart(chart, cam, p, c, spp * factor, renders, imager, illuminance, variant)]
     else:
-        found = [Measurement("face", *measure_face(scene, cam, p, c, spp * factor, seed, physics, skin, imager,
+        found = [Measurement("face", *measure_face(scene, cam, p, c, spp * factor, renders, physics, skin, imager,
                                                    illuminance, size, variant))]
     from .. import __version__
 
@@ -282,7 +288,9 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     for cam, one in zip(cams, found):
         name = chart.name if kind == "chart" else one.settings.pop("scene_name")
         settings = {"kind": kind, "scene": name, **camera_attributes(cam), "prevailing_K": p, "calibration_K": c,
-                    "spp_requested": spp, "seed": seed, **one.settings, "skinrender_version": __version__}
+                    "spp_requested": spp, "seed": seed,
+                    **({} if render_seed is None else {"reference_seed": renders}), **one.settings,
+                    "skinrender_version": __version__}
         out.append(Measurement(one.kind, one.image, one.labels, one.channels, one.regions, one.items, one.mean,
                                one.standard_error, one.dof, settings, chart if kind == "chart" else None))
     return out if several else out[0]

@@ -60,11 +60,37 @@ def test_a_faces_calibration_per_check(tmp_path, capsys):
     assert status == 0, err[-500:]
     document = json.loads(out)
     rows = {row["name"]: row for row in document["checks"]}
-    assert list(rows) == ["dichromatic_plane", "eq4_shift", "white_furnace", "closed_sphere"]
+    assert list(rows) == ["dichromatic_plane", "detection", "eq4_shift", "white_furnace", "closed_sphere"]
     assert [r["seed"] for r in document["runs"]] == [0, 12] and document["level"] == "sheen"
     assert rows["dichromatic_plane"]["nominal_alpha"] == 0.01 and rows["dichromatic_plane"]["seeds"] == 2
     assert rows["eq4_shift"]["nominal"] is None and rows["eq4_shift"]["consistent"] is None
+    assert rows["detection"]["nominal"] is None  # sheen changes the rates: a fail there is a finding
     assert plot.stat().st_size > 0 and document["estimate_s"] > 0
+
+
+def test_the_detection_verdicts_false_alarms_at_any_spp(capsys):
+    """``--checks detection``: the detection verdict alone at the ladder's sizes (no floor per replicate: 12 × 1
+    spp here), its failures false alarms at direct (at most α). Three seeds at 24 px: the shape, not the rate
+    (docs/face-verdicts.md measures 40 seeds)."""
+    status, out, err = run(["bench", "calibration", "--scene", "face", "--checks", "detection", "--seeds", "3",
+                            "--spp", "12", "--size", "24", "--skin", "skin-model:melanin=0.3", "--skin-set",
+                            "skin-tones", "--json"], capsys)
+    assert status == 0, err[-500:]
+    document = json.loads(out)
+    (row,) = document["checks"]
+    assert row["name"] == "detection" and row["nominal"] == "at most" and row["trials"] == 3
+    assert row["failures"] == 0 and document["spp"] == 12 and document["size"] == 24
+    assert document["skin_set"] == "skin-tones" and [r["seed"] for r in document["runs"]] == [0, 12, 24]
+
+
+@pytest.mark.parametrize("argv, flag", [
+    (["--checks", "detection", "--skin-set", "nothing-such"], "--skin-set"),
+    (["--checks", "detection", "--detection-tolerance", "2"], "--detection-tolerance"),
+    (["--skin", "skin-model:melanin=0.3"], "--skin"),
+])
+def test_the_detection_calibrations_flags_are_refused_by_name(argv, flag, capsys):
+    status, out, err = run(["bench", "calibration", "--scene", "face", "--seeds", "1", *argv], capsys)
+    assert status == 2 and out == "" and flag in err
 
 
 def test_ptc_calibration_rates_and_z(capsys):

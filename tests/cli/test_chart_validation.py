@@ -84,6 +84,13 @@ def test_spp_auto_says_what_it_chose_and_why(small_chart, capsys):
     (["--spp", "auto"], ("--spp auto", "--tolerance")),
     (["--spp", "many"], "--spp"),
     (["--gamut", "--imager", "sony-imx174"], ("--gamut", "--imager")),
+    # issue 36: an OverflowError as "internal error" (its bounds' ratios overflowed)
+    (["--tolerance", "5e-324"], ("--tolerance", "float32's resolution")),
+    (["--tolerance", "1e400"], "--tolerance"),
+    # issue 36: each was accepted and had no effect
+    (["--imager", "sony-imx174", "--knee"], ("--knee", "linear codes")),
+    (["--gamut", "--normalization", "none"], ("--gamut", "--normalization none")),
+    (["--gamut", "--knee"], ("--gamut", "--knee")),
 ])
 def test_bad_input_refused(extra, names, capsys):
     assert_refused(["validate", "macbeth", "--camera", CAM, *LIGHTS, *extra], names, capsys)
@@ -133,3 +140,43 @@ def test_gamut_keeps_the_csv_cameras_extrapolation(small_chart, tmp_path, capsys
     document = json.loads(out)
     assert document["camera"] == str(path) and document["gamut"]["camera"] == str(path)
     assert len(document["gamut"]["rendered"]) == len(document["gamut"]["illuminants_K"]) + 1
+
+
+def test_the_dark_floor_follows_the_rendered_white(capsys):
+    """Issue 36: at --normalization none the white is ~3.5 output units, but the dark floor stayed REL × 2.55, so
+    the black patch's blue could err by 480 % and the run passed where --normalization white is inconclusive. The
+    floor is now 1 % of the white's brightest channel as rendered; the header says what that white is."""
+    argv = ["validate", "macbeth", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--spp", "4",
+            "--tolerance", "0.06"]
+    code, out, err = run([*argv, "--normalization", "none", "--json"], capsys)
+    document = json.loads(out)
+    assert 3 < document["white_level"] < 4 and document["dark_floor_output"] == pytest.approx(
+        0.06 * 0.01 * document["white_level"])
+    assert document["verdict"] != "pass" and code == document["exit_status"] != 0
+    code, out, err = run(argv, capsys)
+    assert "output units (a perfect white's brightest channel: 3.49" not in out
+    assert "a perfect white's brightest channel: 410.7" in out  # white normalisation at A / 5900 K
+
+
+def test_the_dropped_sigmas_key_is_back_with_its_deprecation(small_chart, capsys):
+    """Issue 36: validate --json had dropped 'sigmas' (the tolerance in standard errors, 5, before the verdicts)
+    without a deprecation. It is back: the equivalence's critical value, with a note of what to read instead."""
+    code, out, err = run(["validate", small_chart, "--camera", CAM, *LIGHTS, "--spp", "4", "--json"], capsys)
+    document = json.loads(out)
+    assert document["sigmas"] == document["checks"]["equivalence"]["critical"] > 2
+    assert "deprecated" in document["deprecated"]["sigmas"] and "checks.equivalence.critical" in document[
+        "deprecated"]["sigmas"]
+
+
+def test_spp_auto_is_held_to_the_spp_limit(tmp_path, capsys):
+    """Issue 36: --spp auto --tolerance 1e-9 picked 2.4 M spp on a small chart (one pass could hold that many),
+    beyond --spp's own limit of 1 048 576, and rendered for 89 s. Refused after the pilots, naming --tolerance."""
+    chart = tmp_path / "two.toml"
+    chart.write_text("columns = 2\npatch_px = 4\ngap_px = 1\nborder_px = 1\n[[patch]]\nreflectance = 'grey:0.5'\n")
+    # 30 K: the pilots' bounds barely fall (the render is extremely heavy-tailed), so the spp projected is vast; the
+    # refusal follows the pilots (it is their projection), after their progress line
+    code, out, err = run(["validate", chart, "--camera", CAM, "--prevailing", "30", "--calibration", "5900", "--spp",
+                          "auto", "--tolerance", "1e-4", "--json"], capsys)
+    assert code == 2 and out == "" and "Traceback" not in err
+    assert err.splitlines()[-1].startswith("skinrender validate: error: --tolerance 0.0001: about ")
+    assert "more than 1048576 a render may take" in err

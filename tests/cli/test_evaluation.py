@@ -80,3 +80,21 @@ def test_the_nonskin_help_says_a_set_named_twice_is_refused(capsys):
     commands = next(a for a in build_parser()._actions if a.dest == "command").choices
     assert "a set named twice is refused" in " ".join(commands["locus"].format_help().split())
     assert_refused(["locus", "--camera", "gbell:9@450,540,610", "--nonskin", "macbeth,macbeth"], "--nonskin", capsys)
+
+
+def test_the_locus_names_its_skin_set(capsys):
+    """``--skin-set`` (``--skin`` its old spelling, still taken): the document says which set built the locus; the
+    all-tones set's locus is larger than the Vrhel skins'."""
+    import json
+
+    from .refusal import assert_refused, run
+
+    areas = {}
+    for argv in (["--skin-set", "skin-tones"], ["--skin", "skin"], []):
+        status, out, err = run(["locus", "--camera", "gbell:9@450,540,610", "--calibration", "5900", *argv, "--json"],
+                               capsys)
+        document = json.loads(out)
+        areas[document["skin_set"]] = document["area"]
+    assert set(areas) == {"skin", "skin-tones"} and areas["skin-tones"] > areas["skin"]
+    for argv, name in ((["--skin-set", ""], "--skin-set"), (["--skin-set", "skin", "--skin", "skin"], "--skin")):
+        assert_refused(["locus", "--camera", "gbell:9@450,540,610", *argv], name, capsys)

@@ -98,7 +98,7 @@ class TestLadder:
         assert status == [document["exit_status"]] and plot.read_bytes()[:4] == b"\x89PNG"
 
     def test_subsurface_is_judged_against_the_budget(self, capsys):
-        """Issue 22: ``ladder --json`` has the ``subsurface`` level with ``eq4_shift``, ``budget`` and
+        """Issue 22: ``ladder --json`` has the ``subsurface-volume`` level (issue 22's ``subsurface``) with ``eq4_shift``, ``budget`` and
         ``within_budget`` like every level (a verdict, never information only), and ``--effects`` gives its row.
 
         At 12 px and 1 spp per replicate (``--spp 12`` over the 12 replicates): what is asserted is the rows' shape
@@ -108,9 +108,10 @@ class TestLadder:
         adding-doubling fit, cached per skin) and documents instead of fitting and loading another skin's."""
         status = []
         document = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--size", "12",
-                        "--spp", "12", "--levels", "direct,subsurface", "--json"], capsys, status)
+                        "--spp", "12", "--levels", "direct,subsurface-volume", "--json"], capsys, status)
         direct, subsurface = document["levels"]
-        assert subsurface["name"] == "subsurface" and subsurface["variant"] in ("llvm_ad_spectral", "cuda_ad_spectral")
+        assert subsurface["name"] == "subsurface-volume"
+        assert subsurface["variant"] in ("llvm_ad_spectral", "cuda_ad_spectral")
         assert subsurface["eq4_verdict"] in ("pass", "fail", "inconclusive")
         assert subsurface["budget"] == direct["budget"] == document["budget"]["budget"] > 0
         assert subsurface["eq4_shift"] >= 0 and subsurface["eq4_shift_bound"] >= subsurface["eq4_shift"]
@@ -120,9 +121,9 @@ class TestLadder:
         assert status == [document["exit_status"]]
         skin = load_face_scene("face").skin
         table = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--size", "12",
-                     "--spp", "12", "--effects", "--skin", skin, "--levels", "direct,subsurface", "--json"], capsys)
+                     "--spp", "12", "--effects", "--skin", skin, "--levels", "direct,subsurface-volume", "--json"], capsys)
         row = table["rows"][1]
-        assert (row["tone"], row["level"]) == (skin, "subsurface")
+        assert (row["tone"], row["level"]) == (skin, "subsurface-volume")
         assert row["eq4_verdict"] in ("pass", "fail", "inconclusive") and row["seconds"] > 0
         assert {"eq4_shift", "budget", "within_budget", "tpr_change", "fpr_change"} <= set(row)
 
@@ -361,10 +362,10 @@ def test_ladder_work_is_capped_by_its_estimated_time(capsys):
     assert "7 levels of 12 × 1000×1000 px at 8334 spp would take about" in line  # 12 replicates each
 
 
-def test_subsurface_is_estimated_at_its_own_rate(capsys, monkeypatch, tmp_path):
-    """A face render or a ladder that is quick at direct is refused at subsurface (30 times slower per sample),
-    with its estimate, before anything renders: 256 px × 256 spp is ~19 s per core at direct, ~9 min at
-    subsurface, refused beyond --max-minutes 1 on up to 9 cores."""
+def test_subsurface_volume_is_estimated_at_its_own_rate(capsys, monkeypatch, tmp_path):
+    """A face render or a ladder that is quick at direct is refused at subsurface-volume (30 times slower per
+    sample), with its estimate, before anything renders: 256 px × 256 spp is ~19 s per core at direct, ~9 min at
+    subsurface-volume, refused beyond --max-minutes 1 on up to 9 cores."""
     from skinrender.rendering.face import render as face_render
 
     from .refusal import assert_refused, run
@@ -373,11 +374,35 @@ def test_subsurface_is_estimated_at_its_own_rate(capsys, monkeypatch, tmp_path):
     monkeypatch.setattr(face_render, "render_face", never)
     monkeypatch.setattr(face_render, "render_face_request", never)
     settings = ["--size", "256", "--spp", "256", "--max-minutes", "1"]
-    line = assert_refused(["render", "face", *FACE, "--physics", "subsurface", *settings, "-o", tmp_path / "x.exr"],
+    line = assert_refused(["render", "face", *FACE, "--physics", "subsurface-volume", *settings, "-o",
+                           tmp_path / "x.exr"],
                           ("--spp", "--max-minutes"), capsys)
     assert "would take about" in line
     assert_refused(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--levels",
-                    "direct,subsurface", *settings], ("--spp", "--max-minutes"), capsys)
+                    "direct,subsurface-volume", *settings], ("--spp", "--max-minutes"), capsys)
     status, out, err = run(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "H", "--levels",
                             "direct", "--size", "8", "--spp", "1", "--max-minutes", "5", "--json"], capsys)
     assert status != 2, err[-400:]  # not refused at direct (its verdict aside)
+
+
+@pytest.mark.parametrize("argv, name", [
+    (["--detection-tolerance", "0"], "--detection-tolerance"), (["--detection-tolerance", "1"], "--detection-tolerance"),
+    (["--detection-tolerance", "two"], "--detection-tolerance"), (["--skin-set", ""], "--skin-set"),
+    (["--skin-set", "nothing-such"], "--skin-set"), (["--levels", "glossy"], "--levels"),
+])
+def test_the_detection_flags_are_refused_by_name(argv, name, capsys):
+    from .refusal import assert_refused
+
+    assert_refused(["ladder", "--camera", "gbell:9@450,540,610", "--prevailing", "2856", "--calibration", "5900",
+                    "--size", "8", *argv], name, capsys)
+
+
+def test_the_ladders_last_lines_say_what_it_found(capsys):
+    """The finding in words, then the verdict with what it means (issue 32: a FAIL is a finding, not a broken run)."""
+    from .refusal import run
+
+    status, out, err = run(["ladder", "--camera", "gbell:9@450,540,610", "--prevailing", "2856", "--calibration",
+                            "5900", "--size", "48", "--spp", "16", "--levels", "direct,mixed"], capsys)
+    lines = out.strip().splitlines()
+    assert status == 1 and lines[-2].startswith("finding: Eq. 4 mispredicts detection (by more than 0.02) at: mixed")
+    assert lines[-1].startswith("verdict: FAIL (exit status 1): a finding, not an error of the run")

@@ -43,7 +43,9 @@ def test_json_and_csv_in_this_process(tmp_path, capsys):
 def test_text_table(capsys):
     status, out, err = run([*SWEEP, "--workers", "1"], capsys)
     assert status == 0, err
-    assert "skin-model:melanin=0.02" in out and "2856/5900" in out and "1 render of 16×16 px at 2 spp" in out and "(1 worker, " in out
+    # 12 replicates of ⌈2 / 12⌉ spp: 12 spp in all; the detection verdict beside the rates
+    assert "skin-model:melanin=0.02" in out and "2856/5900" in out and "1 render of 16×16 px at 12 spp" in out and "(1 worker, " in out
+    assert "detection" in out and "the skin skin locus" in out
 
 
 def command(argv: list[str]) -> list[str]:
@@ -149,9 +151,9 @@ def test_ctrl_c_stops_an_in_process_render_at_once(name, extra, marker):
 def test_rounded_spp_is_said_once_and_the_json_reports_the_count_used(capsys):
     """Seen: Mitsuba's "Sample count rounded up" warnings reached the terminal (54 in the README's example) while
     the JSON reported the requested spp."""
-    status, out, err = run([*SWEEP, "--spp", "7", "--workers", "1", "--json"], capsys)
+    status, out, err = run([*SWEEP, "--spp", "84", "--workers", "1", "--json"], capsys)  # 12 replicates of 7 spp
     document = json.loads(out)
-    assert status == 0 and document["spp"] == 8 and document["spp_requested"] == 7
+    assert status == 0 and document["spp"] == 96 and document["spp_requested"] == 84
     assert "WARN" not in err and err.count("rounded") == 1
 
 
@@ -162,3 +164,13 @@ def test_a_full_disk_leaves_no_csv(tmp_path, capsys, monkeypatch):
     status, out, err = run([*SWEEP, "--workers", "1", "--csv", tmp_path / "s.csv", "--json"], capsys)
     assert status == 1 and out == "" and list(tmp_path.iterdir()) == []
     assert f"error: --csv {tmp_path / 's.csv'}: cannot be written (no space left" in err
+
+
+def test_the_sensors_flags_reach_the_noise_level(capsys):
+    """--illuminance and --imager go to the noise level's sensor (after the front door, noise_sensor returns both:
+    the sweep had taken the pair for the lux and refused every --illuminance)."""
+    status, out, err = run([*SWEEP, "--levels", "noise", "--illuminance", "500", "--imager", "sony-imx174",
+                            "--workers", "1", "--json"], capsys)
+    assert status == 0, err[-500:]
+    row = json.loads(out)["combinations"][0]
+    assert row["illuminance_lux"] == 500 and row["imager"] == "sony-imx174"

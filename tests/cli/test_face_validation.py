@@ -36,10 +36,14 @@ def test_direct_document(capsys):
     assert document["physics"] == "direct" and document["seed"] == 3 and document["spp_requested"] == 48
     assert document["spp"] >= 48 and document["checks"][0]["passed"] is True and document["replicates"] == 12
     names = [row["name"] for row in document["checks"]]
-    assert names == ["shading_cancels", "eq4_shift", "white_furnace", "closed_sphere"]
+    assert names == ["shading_cancels", "detection", "eq4_shift", "white_furnace", "closed_sphere"]
     assert all(set(row) >= ROW for row in document["checks"])
-    shift = document["checks"][1]
-    assert shift["applies"] is True and shift["verdict"] == "pass" and shift["within_budget"] is True
+    detection, shift = document["checks"][1], document["checks"][2]
+    assert detection["applies"] is True and detection["verdict"] == "pass" and detection["tolerance"] == 0.02
+    assert document["detection"]["verdict"] == "pass" and document["detection"]["tpr_change"] == 0
+    assert document["skin_set"] == "skin"
+    # the NCC budget is a diagnostic: reported, outside the verdict
+    assert shift["applies"] is False and shift["verdict"] == "pass" and shift["within_budget"] is True
     assert shift["tolerance"] == document["budget"]["budget"] and shift["alpha"] == 0.05
     assert shift["bound"] < shift["tolerance"] and "equivalence" in shift["test"]
     assert {row["verdict"] for row in document["checks"]} == {"pass"} and document["passed"] is True
@@ -61,7 +65,8 @@ def test_interreflection_is_held_to_the_budget_and_the_sensor_is_named(capsys):
                               sampler=None, seed=0, variant=None, channels="auto", imager="sony-icx418",
                               illuminance=300.0, exposure="auto", normalization="white", knee=False,
                               grid="400:700:1", extrapolation="refuse", gamut=False, physics="interreflection",
-                              skin=None, size="16", limits="none", json=True)
+                              skin=None, size="16", limits="none", json=True, detection_tolerance=None,
+                              skin_set=None)
     try:
         command_validate_face(args, scene_of(args))
         status = 0
@@ -70,7 +75,7 @@ def test_interreflection_is_held_to_the_budget_and_the_sensor_is_named(capsys):
     document = json.loads(capsys.readouterr().out)
     assert document["physics"] == "interreflection+noise" and document["imager"] == "sony-icx418"
     assert document["illuminance_lux"] == 300.0
-    assert [row["name"] for row in document["checks"]] == ["eq4_shift"]
+    assert [row["name"] for row in document["checks"]] == ["detection", "eq4_shift"]
     assert status == document["exit_status"] == {"pass": 0, "fail": 1, "inconclusive": 3}[document["verdict"]]
 
 

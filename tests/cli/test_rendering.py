@@ -38,6 +38,9 @@ def command(request, tmp_path):
     (["--camera", "impulse@401.5,500,600"], "--camera"),
     (["--prevailing", "20"], ("prevailing", "no light")),
     (["--calibration", "20"], ("calibration", "no light")),
+    # issue 36: "--calibration: prevailing illuminant 1K …" (the light was checked as a prevailing one)
+    (["--calibration", "1"], "--calibration: calibration illuminant 1K gives no light"),
+    (["--prevailing", "1"], "--prevailing: prevailing illuminant 1K gives no light"),
     (["--prevailing", "x"], "--prevailing"),
     (["--sampler", "random"], "--sampler"),
     (["--quality", "ultra"], "--quality"),

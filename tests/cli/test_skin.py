@@ -165,6 +165,12 @@ def test_no_column_converged_exits_1_with_the_whole_document(tmp_path, capsys, m
     (["--plot", "out.txt"], "--plot"),
     (["--compare", "nosuchset", "--plot", "a.png"], "--compare"),
     (["--compare", "macbeth"], ("--compare", "--plot")),
+    (["--compare", "skin"], ("--compare", "--plot")),  # issue 36: the default's own value was ignored silently
+    (["--melanin", "1.0000001"], ("--melanin", "got 1.0000001")),  # issue 36: it said "got 1"
+    (["--blood=-1e-9"], ("--blood", "got -1e-09")),
+    (["--quiet"], ("--quiet", "--fit")),  # issue 36: accepted, and nothing it could silence
+    (["--method", "kubelka-munk", "--n", "1.4"], ("--n", "kubelka-munk")),  # issue 36: changed nothing
+    (["--fit", "skin", "--method", "kubelka-munk", "--n", "1.4"], ("--n", "kubelka-munk")),
     (["--workers", "2"], "--workers"),
     (["--fit", "nosuch.csv"], ("--fit", "no such file")),
     (["--fit", "skin", "--melanin", "0.1"], ("--melanin", "--fit", "--background")),
@@ -183,3 +189,21 @@ def test_bad_input_is_refused_in_one_line(argv, names, capsys, tmp_path):
 def test_bad_csv_is_refused_as_other_readers_do(bad_files, capsys):
     assert_refused(["skin", "--fit", bad_files["refl_negative.csv"]], ("--fit", "negative reflectance"), capsys)
     assert_refused(["skin", "--fit", bad_files["binary.csv"]], ("--fit", "binary"), capsys)
+
+
+def test_a_plot_that_cannot_be_written_names_plot(tmp_path, capsys, monkeypatch):
+    """Issue 36: ``skin --plot full/p.png`` on a full disk said only the path; the line names --plot, exit 1 (the
+    machine's error), and nothing is left."""
+    import errno
+
+    import skinrender.files as files
+
+    def full(handle, data):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(files.os, "write", full)
+    status, out, err = run(["skin", *GRID, "--plot", tmp_path / "full" / "p.png", "--json"], capsys)
+    lines = err.strip().splitlines()
+    assert status == 1 and out == "" and len(lines) == 1
+    assert lines[0].startswith("skinrender skin: error: --plot ") and "no space left" in lines[0]
+    assert not (tmp_path / "full").exists()

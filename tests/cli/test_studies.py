@@ -170,7 +170,9 @@ def test_face_bench_marks_extrapolated_presets(monkeypatch, capsys):
 
 
 @pytest.mark.parametrize("argv, names", [(["--tolerance", "0"], "--tolerance"), (["--tolerance", "2"], "--tolerance"),
-                                         (["--tolerance", "x"], "--tolerance")])
+                                         (["--tolerance", "x"], "--tolerance"),
+                                         # issue 36: an internal error (the bounds overflowed to infinity)
+                                         (["--tolerance", "1e-320"], ("--tolerance", "float32"))])
 def test_table1_tolerance_refused(argv, names, capsys):
     assert_refused(["table1", *argv], names, capsys)
 
@@ -198,7 +200,7 @@ def test_work_and_its_flag_are_named(argv, names, capsys):
 
 
 def test_the_face_bench_estimates_each_level_at_its_own_rate():
-    """A subsurface level in the face bench is estimated at its own (far slower) rate, as render and ladder do."""
+    """A subsurface-volume level in the face bench is estimated at its own (far slower) rate, as render and ladder do."""
     import argparse
     import re
 
@@ -211,7 +213,7 @@ def test_the_face_bench_estimates_each_level_at_its_own_rate():
         value, unit = re.search(r"about ([\d.]+) (s|min|h)", str(error.value)).groups()
         return float(value) * {"s": 1 / 60, "min": 1, "h": 60}[unit]
 
-    assert minutes(["direct", "subsurface"]) > 10 * minutes(["direct", "sheen"])
+    assert minutes(["direct", "subsurface-volume"]) > 10 * minutes(["direct", "sheen"])
 
 
 def test_reproduce_on_a_full_disk_leaves_no_folder_and_names_o(tmp_path, capsys, monkeypatch):

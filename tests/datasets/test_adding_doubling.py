@@ -1,7 +1,8 @@
 """
-Tests for :mod:`skinrender.datasets.adding_doubling`: the quadrature, the Fresnel boundary, and the stack's
+Tests for :mod:`skinrender.datasets.adding_doubling`: the quadrature, the Fresnel boundary, the stack's
 reflectance against Prahl's own adding-doubling (iadpython) for single finite and semi-infinite layers and for
-two layers, slab by slab.
+two layers, slab by slab, and its angular reflectance (a BRDF table) against iadpython's matrix, single scattering,
+energy conservation and the diffuse reflectance.
 """
 
 from __future__ import annotations
@@ -11,7 +12,8 @@ import copy
 import numpy as np
 import pytest
 
-from skinrender.datasets.adding_doubling import Slab, fresnel_reflectance, quadrature, stack_reflectance
+from skinrender.datasets.adding_doubling import (Slab, angular_reflectance, fresnel_reflectance, quadrature,
+                                                 stack_reflectance)
 from skinrender.errors import SkinrenderError
 
 TOLERANCE_IADPYTHON = 1e-8
@@ -19,8 +21,10 @@ TOLERANCE_IADPYTHON = 1e-8
 semi-infinite layers stop doubling on slightly different criteria)."""
 
 
-def iad_two_layers(top: tuple, bottom: tuple, thickness_top: float, g: float, n: float, quad_pts: int = 16) -> float:
-    """iadpython's total reflectance (UR1) of a layer ``(mu_a, mu_s)`` over a semi-infinite one, under air."""
+def iad_two_layers_matrices(top: tuple, bottom: tuple, thickness_top: float, g: float, n: float,
+                            quad_pts: int = 16) -> tuple:
+    """iadpython's sample and reflection matrix (from air, boundary included) of a layer ``(mu_a, mu_s)`` over a
+    semi-infinite one, and the stack's transmission matrix."""
     iad = pytest.importorskip("iadpython")
     sample = iad.Sample(a=0.5, b=1, g=g, n=n, n_above=1, n_below=1, quad_pts=quad_pts)
     sample.update_quadrature()
@@ -32,7 +36,12 @@ def iad_two_layers(top: tuple, bottom: tuple, thickness_top: float, g: float, n:
     (r1, t1), (r2, t2) = matrices
     r02, r20, t02, t20 = iad.add_layers(sample, r1, r1, t1, t1, r2, r2, t2, t2)
     b01, b10, c01, c10 = iad.boundary_matrices(sample, top=True)
-    total = iad.add_layers(sample, b01, b10, c01, c10, r02, r20, t02, t20)[0]
+    return sample, iad.add_layers(sample, b01, b10, c01, c10, r02, r20, t02, t20)[0], t02
+
+
+def iad_two_layers(top: tuple, bottom: tuple, thickness_top: float, g: float, n: float, quad_pts: int = 16) -> float:
+    """iadpython's total reflectance (UR1) of a layer ``(mu_a, mu_s)`` over a semi-infinite one, under air."""
+    sample, total, t02 = iad_two_layers_matrices(top, bottom, thickness_top, g, n, quad_pts)
     return float(sample.UX1_and_UXU(total, t02)[0])
 
 
@@ -144,3 +153,74 @@ class TestStackReflectance:
     def test_an_index_below_one_is_refused(self):
         with pytest.raises(SkinrenderError, match="n must be"):
             stack_reflectance([Slab(np.array([1.0]), np.array([1.0]), 0.5, None)], n=0.9)
+
+
+def iad_two_layers_brdf(top: tuple, bottom: tuple, thickness_top: float, g: float, n: float,
+                        quad_pts: int = 16) -> np.ndarray:
+    """iadpython's reflection matrix of a layer over a semi-infinite one under air, as a BRDF on the nodes that
+    leave into air: (total − the boundary's Fresnel term) / (π n²) (angular_reflectance's docstring)."""
+    sample, total, _ = iad_two_layers_matrices(top, bottom, thickness_top, g, n, quad_pts)
+    above = sample.nu > np.sqrt(1 - 1 / n**2)
+    body = total - np.diag(fresnel_reflectance(sample.nu, n) / sample.twonuw)
+    return body[above][:, above] / (np.pi * n**2)
+
+
+class TestAngularReflectance:
+    def test_two_layers_against_iadpython(self, rng):
+        """The whole matrix, not only UR1's column, is iadpython's: every pair of angles."""
+        for _ in range(3):
+            top, bottom = (rng.uniform(0.1, 5), rng.uniform(5, 40)), (rng.uniform(0.01, 1), rng.uniform(5, 40))
+            thickness, g = rng.uniform(0.05, 0.2), rng.uniform(0.6, 0.9)
+            mine = angular_reflectance([Slab(np.array([top[0]]), np.array([top[1]]), g, thickness),
+                                        Slab(np.array([bottom[0]]), np.array([bottom[1]]), g, None)], n=1.4)
+            theirs = iad_two_layers_brdf(top, bottom, thickness, g, 1.4)
+            np.testing.assert_allclose(mine.brdf[0], theirs, rtol=1e-7, atol=1e-12)
+
+    def test_single_scattering(self):
+        """
+        An independent check of the BRDF's units and angles: a thin slab (τ 0.5) scattering isotropically with
+        albedo ω 0.002, no boundary (n 1), reflects almost only light scattered once. A beam of irradiance E at μ_i
+        carries E/μ_i across its own section; at optical depth t a layer dt scatters ω (E/μ_i) e^(−t/μ_i) dt/4π per
+        sr, attenuated by e^(−t/μ_o) on the way out, and spread over dt/μ_o of the surface:
+
+            L_o = ω E / (4π μ_i μ_o) ∫₀^τ e^(−t(1/μ_i + 1/μ_o)) dt,  f = L_o / E = ω (1 − e^(−τ(1/μ_i + 1/μ_o))) / (4π (μ_i + μ_o)).
+
+        Light scattered twice adds a fraction of order ω: agreement within 0.2 %.
+        """
+        albedo, tau = 0.002, 0.5
+        table = angular_reflectance([Slab(np.array([1 - albedo]), np.array([albedo]), 0.0, tau)], n=1.0)
+        mo, mi = np.meshgrid(table.mu, table.mu, indexing="ij")
+        once = albedo * (1 - np.exp(-tau * (1 / mo + 1 / mi))) / (4 * np.pi * (mo + mi))
+        np.testing.assert_allclose(table.brdf[0], once, rtol=2e-3)
+        np.testing.assert_allclose(table.specular, 0.0, atol=1e-15)
+
+    def test_reciprocity_and_ur1(self, rng):
+        """f(μ_o, μ_i) = f(μ_i, μ_o) (both ends in air), and the albedo at normal incidence is UR1."""
+        mu_a, mu_s = rng.uniform(0.01, 1, size=4), rng.uniform(5, 30, size=4)
+        slabs = [Slab(mu_a * 5, mu_s, 0.8, 0.1), Slab(mu_a, mu_s, 0.8, None)]
+        table = angular_reflectance(slabs, n=1.4, quad_pts=16)
+        assert table.brdf.shape == (4, 8, 8) and table.mu[-1] == 1.0 and np.all(np.diff(table.mu) > 0)
+        np.testing.assert_allclose(table.brdf, np.swapaxes(table.brdf, -1, -2), rtol=1e-10)
+        np.testing.assert_allclose(table.albedo()[:, -1], stack_reflectance(slabs, n=1.4), atol=1e-13)
+        np.testing.assert_allclose(table.specular, fresnel_reflectance(np.sqrt(1 - (1 - table.mu**2) / 1.4**2), 1.4))
+
+    def test_weights_integrate_in_air(self):
+        """The air weights are a quadrature of ∫₀¹ 2μ dμ: exact for μ^(2k) (a polynomial in the nodes' ν inside:
+        μ² = 1 − n²(1 − ν²))."""
+        table = angular_reflectance([Slab(np.array([0.1]), np.array([10.0]), 0.8, None)], n=1.4, quad_pts=16)
+        for k in range(5):
+            assert table.weights @ table.mu ** (2 * k) == pytest.approx(1 / (k + 1), rel=1e-12)
+
+    def test_no_absorption_returns_every_angle_s_light(self):
+        """A semi-infinite slab that does not absorb reflects all the light that arrives, from any angle: its
+        directional-hemispherical reflectance (the body's flux plus Fresnel) is 1 at every node."""
+        table = angular_reflectance([Slab(np.array([0.0]), np.array([5.0]), 0.8, None)], n=1.4)
+        np.testing.assert_allclose(table.albedo(), 1.0, atol=5e-6)
+
+    def test_diffuse_reflectance(self, rng):
+        """Under diffuse light the table's reflectance, weighted over incidence, is adding-doubling's URU."""
+        mu_a, mu_s = rng.uniform(0.01, 1, size=3), rng.uniform(5, 30, size=3)
+        slabs = [Slab(mu_a, mu_s, 0.8, None)]
+        table = angular_reflectance(slabs, n=1.4)
+        np.testing.assert_allclose(table.albedo() @ table.weights, stack_reflectance(slabs, n=1.4, diffuse=True),
+                                   atol=1e-12)

@@ -72,3 +72,17 @@ def test_negative_noise_on_black_is_no_light(locus):
     result = detect(noisy, locus)
     assert sum(p["scored_pixels"] for p in result.per_patch) < sum(p["pixels"] for p in result.per_patch)
     assert not (result.mask & ~scored).any()
+
+
+@pytest.mark.parametrize("rendering, locus_given, scored_min, name", [
+    ("chart", None, 0.0, "locus"), (None, "locus", 0.0, "rendering"), ("chart", "locus", -1.0, "scored_min"),
+    ("chart", "locus", float("nan"), "scored_min"), ("chart", "locus", "1", "scored_min"),
+    ("chart", "a string", 0.0, "locus"),
+])
+def test_a_bad_argument_names_itself(locus, rendering, locus_given, scored_min, name):
+    """Issue 36: ``sr.detect(r, None)`` raised a bare AttributeError."""
+    chart = chart_rendering(1.0) if rendering == "chart" else rendering
+    given = locus if locus_given == "locus" else locus_given
+    with pytest.raises(sr.SkinrenderError, match=f"^{name}") as error:
+        sr.detect(chart, given, scored_min)
+    assert error.value.role == name

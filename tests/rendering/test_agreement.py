@@ -8,7 +8,7 @@ import pytest
 
 from skinrender.errors import SkinrenderError
 from skinrender.evaluation.verdict import binomial_interval
-from skinrender.rendering.agreement import DARK_LEVEL, agreement, check_tolerance, tolerance_scale
+from skinrender.rendering.agreement import DARK_LEVEL, SKEW_SPREAD, agreement, check_tolerance, tolerance_scale
 
 
 class TestTolerance:
@@ -83,3 +83,41 @@ class TestSkewedValues:
         out = agreement([100.1, 50.0], analytic, 0.01, 0.01, 64, skewness=[0.9, 0.0], skew_max=0.5)
         assert out["difference"].outcome == "pass"  # 10 σ: beyond the normal's 2.8 σ, within Chebyshev's 14 σ
         assert agreement([100.1, 50.0], analytic, 0.01, 0.01, 64)["difference"].outcome == "fail"
+
+
+class TestHeavyTails:
+    """Issue 36: for skewed Monte Carlo estimates (a subsurface slab's long paths) a mean divided by its own sample
+    standard error is skewed the other way, and the equivalence's bounds covered a truth above the values in 92 %
+    of 100 seeds, against the 95 % stated. Each bound now carries its value's skewness."""
+
+    def test_each_bound_is_widened_by_its_skewness(self):
+        from skinrender.evaluation.verdict import critical_z
+
+        error, sigma, skew, n = np.array([0.0, 0.0]), np.array([1.0, 1.0]), np.array([0.0, 0.2]), 64
+        out = agreement([10.0, 10.0], 10.0 - error, sigma, 0.5, spp=1, dof=n - 1, skewness=skew, skew_max=0.5)
+        c = critical_z(0.05, 2, sides=1, dof=n - 1)
+        g = skew + SKEW_SPREAD * np.sqrt(6) / n  # standard errors above the estimate
+        np.testing.assert_allclose(out["upper"], sigma * (c + g * (2 * c**2 + 1) / 6))
+        plain = agreement([10.0, 10.0], 10.0, sigma, 0.5, spp=1, dof=n - 1)
+        np.testing.assert_allclose(plain["upper"], sigma * c)  # no skewness given: the normal law's bound
+
+    def test_coverage_of_a_skewed_estimate_rises(self):
+        """Nine values, each the mean of 64 lognormal pixels (σ 0.3: skewness 0.95, as a subsurface slab's worst
+        channels), the truth known; 500 seeded trials. The bounds' family-wise coverage at a truth above every
+        value (every ``e ≥ −h``) was 0.89 with the normal law and is 0.95 with the widening (pixels more skewed
+        still, exponential ones, stay short of 0.95: docs/verdicts.md says so)."""
+        rng = np.random.default_rng(1)
+        n, m, truth = 64, 9, np.exp(0.3**2 / 2)
+        covered = {True: 0, False: 0}
+        for _ in range(500):
+            pixels = rng.lognormal(0.0, 0.3, (m, n))
+            mean = pixels.mean(axis=1)
+            centred = pixels - mean[:, None]
+            sigma = np.sqrt((centred**2).sum(axis=1) / (n - 1) / n)
+            skew = (centred**3).mean(axis=1) / n**2 / sigma**3
+            for widened in (True, False):
+                out = agreement(mean, np.full(m, truth), sigma, 0.5, spp=1, dof=n - 1,
+                                skewness=skew if widened else None, skew_max=0.5 if widened else None)
+                half = out["upper"] - np.abs(out["error"])
+                covered[widened] += bool(np.all(out["error"] >= -half))
+        assert covered[False] < 465 and covered[True] > covered[False] + 20 and covered[True] >= 470  # 446, 475

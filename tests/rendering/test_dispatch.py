@@ -45,7 +45,8 @@ def test_a_chart_as_before_positionally_and_by_name():
 @pytest.mark.parametrize("kwargs, message", [
     ({"scene": "macbeth", "skin": "skin:#0"}, "render: skin is not an option of a chart scene; its options: "
                                                "normalization, knee, spp"),
-    ({"scene": "macbeth", "physics": "sheen"}, "physics (of a chart) must be one of direct, subsurface, got 'sheen'"),
+    ({"scene": "macbeth", "physics": "sheen"}, "physics (of a chart) must be one of direct, subsurface, "
+                                               "subsurface-volume, got 'sheen'"),
     ({"scene": "face", "normalization": "white", "knee": True}, "render: knee, normalization are not options of a "
                                                                  "face scene; its options: skin, physics"),
     ({"scene": "macbeth", "prevailing": None}, "prevailing: a chart render needs the prevailing light"),
@@ -67,8 +68,8 @@ def test_validate_a_face_from_python_with_its_verdict_bound_and_spp_needed():
 
     result = sr.validate("face", CAMERA, 2856, 2856, physics="direct", spp=48, size=16, seed=3, limits=())
     assert isinstance(result, FaceValidation)
-    assert [c.name for c in result.checks] == ["shading_cancels", "eq4_shift"]
-    shift = result.checks[-1]
+    assert [c.name for c in result.checks] == ["shading_cancels", "detection", "eq4_shift"]
+    shift = result.checks[-1]  # the NCC budget's diagnostic: the bound and spp_needed are still its
     assert result.bound == shift.bound and result.bound >= shift.statistic
     document = result.document()
     assert document["bound"] == result.bound and document["spp_needed"] == result.spp_needed
@@ -91,7 +92,8 @@ def test_validate_a_chart_from_python_as_before():
 @pytest.mark.parametrize("kwargs, message", [
     ({"scene": "face", "tolerance": 0.1}, "validate: tolerance is not an option of a face scene; its options: skin"),
     ({"scene": "macbeth", "skin": "skin:#0"}, "validate: skin is not an option of a chart scene"),
-    ({"scene": "macbeth", "physics": "sheen"}, "physics (of a chart) must be one of direct, subsurface, got 'sheen'"),
+    ({"scene": "macbeth", "physics": "sheen"}, "physics (of a chart) must be one of direct, subsurface, "
+                                               "subsurface-volume, got 'sheen'"),
     ({"scene": "macbeth", "calibration": None}, "calibration: a chart validation needs the calibration light"),
     ({"scene": "macbeth", "camera": None}, "camera: name the camera"),
 ])

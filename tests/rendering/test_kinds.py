@@ -50,14 +50,19 @@ def test_a_face_toml_is_parsed_once(tmp_path, monkeypatch):
 
 
 def test_estimates_follow_the_level(small_chart):
-    """A slower level's estimate is longer; a subsurface chart's counts its skin patches only."""
+    """A slower level's estimate is longer; a subsurface-volume chart's counts its skin patches only; the fast
+    subsurface adds its one-off table."""
     fast = FACE.request("face", CAM, None, None, size=64, spp=64)
-    slow = FACE.request("face", CAM, None, None, size=64, spp=64, physics="subsurface")
+    slow = FACE.request("face", CAM, None, None, size=64, spp=64, physics="subsurface-volume")
     assert FACE.estimate_seconds(slow) > 10 * FACE.estimate_seconds(fast) > 0
     assert FACE.estimate_seconds(fast, renders=4, cores=2) == pytest.approx(2 * FACE.estimate_seconds(fast))
-    slabs = CHART.request("skin_patches", CAM, 2856, 2856, physics="subsurface", spp=16)
-    seconds, what = CHART.workload(slabs)
-    assert seconds == pytest.approx(CHART.estimate_seconds(slabs)) and "30 skin patches" in what
+    table = FACE.request("face", CAM, None, None, size=64, spp=64, physics="subsurface")
+    assert FACE.estimate_seconds(fast) < FACE.estimate_seconds(table) < 2 * FACE.estimate_seconds(fast) + 5
+    for physics, what_says in (("subsurface-volume", "30 skin patches of skin_patches as media"),
+                               ("subsurface", "30 skin patches' tables and 30 fits")):
+        slabs = CHART.request("skin_patches", CAM, 2856, 2856, physics=physics, spp=16)
+        seconds, what = CHART.workload(slabs)
+        assert seconds == pytest.approx(CHART.estimate_seconds(slabs)) and what_says in what
 
 
 def test_a_chart_through_an_imager_from_python():

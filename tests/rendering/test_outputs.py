@@ -33,6 +33,17 @@ class TestOutputPaths:
             output_paths(*(tmp_path / a if isinstance(a, str) else a for a in args))
         assert list(tmp_path.iterdir()) == []
 
+    @pytest.mark.parametrize("args, name", [
+        (("",), "exr"), ((None,), "exr"), ((3,), "exr"), (("a.exr", ""), "png"), (("a.exr", 1), "png"),
+        (("a.exr", True, ""), "figure"), (("a.exr", True, b"f.png"), "figure"),
+    ])
+    def test_empty_and_non_paths_are_refused_by_name(self, args, name):
+        """Issue 36: ``sr.render(...).save("")`` raised a bare ValueError (Path('') is '.', which has no suffix to
+        replace)."""
+        with pytest.raises(sr.SkinrenderError, match=f"^{name}: expected ") as error:
+            output_paths(*args)
+        assert error.value.role == name
+
     def test_a_folder_is_no_file(self, tmp_path):
         (tmp_path / "x.exr").mkdir()
         with pytest.raises(sr.SkinrenderError, match="exr"):

@@ -21,7 +21,7 @@ SENSOR = [name for name, effect in PHYSICS_EFFECTS.items() if "imager" in effect
 
 def test_specs_become_levels_in_the_registrys_order():
     for registry in (PHYSICS_REGISTRY, CHART_REGISTRY):
-        named = list(registry.named)
+        named = list(registry.by_default)  # (the effects a spec may name together: no two transports of one skin)
         assert registry.level(registry.base.name).names == () and registry.level(()).name == registry.base.name
         spec = "+".join(reversed(named[1:]))
         assert registry.level(spec).names == tuple(named[1:])  # the registry's order, whatever the spec's
@@ -30,6 +30,18 @@ def test_specs_become_levels_in_the_registrys_order():
     with pytest.raises(SkinrenderError, match="not of this scene's effects") as error:
         CHART_REGISTRY.level(PHYSICS_REGISTRY.level("sheen"))
     assert error.value.role == "physics"
+
+
+def test_two_transports_of_one_skin_do_not_combine():
+    """``subsurface`` and ``subsurface-volume`` exclude each other, on a chart and on the face, whichever is named
+    first; each is a level alone, and the volumetric one is not a default level."""
+    for registry in (PHYSICS_REGISTRY, CHART_REGISTRY):
+        for spec in ("subsurface+subsurface-volume", "subsurface-volume+subsurface"):
+            with pytest.raises(SkinrenderError, match="two transports of the same skin") as error:
+                registry.level(spec)
+            assert error.value.role == "physics"
+        assert registry.level("subsurface-volume").names == ("subsurface-volume",)
+        assert "subsurface" in registry.by_default and "subsurface-volume" not in registry.by_default
 
 
 def test_options_go_to_their_effect_and_an_imager_adds_the_sensor():

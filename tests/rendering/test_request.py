@@ -60,8 +60,9 @@ def test_an_imager_adds_the_sensor_with_its_options():
     ({"seed": -1}, "seed", "seed must be an integer"),
     ({"spp": 0}, "spp", "spp must be a positive integer"),
     ({"spp": 2**21}, "spp", "at most 1048576"),
-    ({"physics": "sheen"}, "physics", "physics (of a chart) must be one of direct, subsurface, got 'sheen'"),
-    ({"physics": "noise"}, "physics", "must be one of direct, subsurface"),  # the sensor comes with an imager
+    ({"physics": "sheen"}, "physics",
+     "physics (of a chart) must be one of direct, subsurface, subsurface-volume, got 'sheen'"),
+    ({"physics": "noise"}, "physics", "must be one of direct, subsurface, subsurface-volume"),  # the sensor comes with an imager
     ({"illuminance": 300}, "illuminance", "it goes with imager"),
     ({"exposure": "auto"}, "exposure", "it goes with imager"),
     ({"imager": "sony-imx174", "exposure": -1}, "exposure", "exposure must be auto or a finite number of seconds"),
@@ -96,14 +97,16 @@ def test_subsurface_refuses_before_any_render(no_render):
     assert error.value.role == "imager"
 
 
-def test_the_subsurface_level_brings_its_sampler_unless_one_is_named():
+def test_the_subsurface_volume_level_brings_its_sampler_unless_one_is_named():
+    """The volumetric chart's sampler (SAMPLER_SUBSURFACE, calibrated there); the fast one keeps the chart's."""
     chart = sr.load_scene("skin_patches")
-    assert chart_request(chart, CAM, 2856, 2856, physics="subsurface").settings.sampler == "independent"
-    named = chart_request(chart, CAM, 2856, 2856, physics="subsurface", sampler="multijitter")
+    assert chart_request(chart, CAM, 2856, 2856, physics="subsurface-volume").settings.sampler == "independent"
+    named = chart_request(chart, CAM, 2856, 2856, physics="subsurface-volume", sampler="multijitter")
     assert named.settings.sampler == "multijitter"
-    given = chart_request(chart, CAM, 2856, 2856, physics="subsurface", settings=sr.RenderSettings())
+    given = chart_request(chart, CAM, 2856, 2856, physics="subsurface-volume", settings=sr.RenderSettings())
     assert given.settings.sampler == "multijitter"  # a whole settings object is taken as it is
     assert chart_request("macbeth", CAM, 2856, 2856).settings.sampler == "multijitter"
+    assert chart_request(chart, CAM, 2856, 2856, physics="subsurface").settings.sampler == "multijitter"
 
 
 @pytest.mark.parametrize("seed, refused", [(SEED_MAX, False), (SEED_MAX + 1, True)])

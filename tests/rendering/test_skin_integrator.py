@@ -122,7 +122,7 @@ def test_a_boundary_met_before_any_scattering_gives_finite_light(mi):
 def test_a_scalar_variant_is_refused():
     scalar = mitsuba("scalar_spectral")
     try:
-        with pytest.raises(SkinrenderError, match="scalar_spectral: the subsurface level's integrator runs in "
+        with pytest.raises(SkinrenderError, match="scalar_spectral: the subsurface-volume level's integrator runs in "
                                                   "llvm_ad_spectral or cuda_ad_spectral"):
             register(scalar)
     finally:

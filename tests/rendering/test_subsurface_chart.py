@@ -59,7 +59,7 @@ def validated(two):
     multijitter sampler: at this size, the one a test affords, the dark slab's standard error with the default
     (independent, SAMPLER_SUBSURFACE) is 4.5–6.3 % and the equivalence needs ~90 spp to decide; multijitter's is a
     little smaller for the same paths (docs/subsurface.md measures both samplers' errors against their spread)."""
-    return validate(two, CAMERA, 2856, 5900, spp=32, seed=3, sampler="multijitter", physics="subsurface",
+    return validate(two, CAMERA, 2856, 5900, spp=32, seed=3, sampler="multijitter", physics="subsurface-volume",
                     tolerance=TOLERANCE)
 
 
@@ -94,7 +94,7 @@ class TestAgainstAddingDoubling:
         rows = validated.rendering.info["skin_model"]
         assert rows[0]["source"] == "parameters" and rows[0]["parameters"]["melanin"] == 0.02
         assert rows[0]["dermis_mm"] == 5.0 and rows[2] is None and rows[3] is None  # grey and the white
-        assert validated.rendering.info["physics"] == "subsurface"
+        assert validated.rendering.info["physics"] == "subsurface-volume"
         assert not np.any(np.isnan(validated.rendering.image)) and np.all(validated.rendering.image >= 0)
 
 

@@ -100,3 +100,26 @@ def _brighter(rendering, factor):
 
     image = (rendering.image * factor).astype(np.float32)
     return dataclasses.replace(rendering, image=image, patches=patch_statistics(image, rendering.scene))
+
+
+def test_the_white_level_is_the_rendered_white(small):
+    """Issue 36: the dark floor was 1 % of 255 whatever the normalisation; it is 1 % of a perfect white's brightest
+    channel as this render shows it (255 at p = c with WP; ~3.5 output units unnormalised, where a floor of 2.55 let
+    a dark channel err by several times its value)."""
+    from skinrender.rendering.validation import white_level
+
+    same = validate(small, CAMERA, 2856, 2856, spp=4, seed=1, tolerance=0.06)
+    assert same.white_level == pytest.approx(255.0)
+    raw = validate(small, CAMERA, 2856, 5900, spp=4, seed=1, tolerance=0.06, normalization="none")
+    assert raw.white_level == pytest.approx(white_level(CAMERA, 2856, 5900, "none")) and 3 < raw.white_level < 4
+    assert raw.verdict.details["dark_level"] == pytest.approx(0.01 * raw.white_level)
+    rows = raw.patches()
+    dark = np.abs(np.array([row["analytic"] for row in rows])) < 0.01 * raw.white_level
+    allowed = np.array([row["tolerance"] for row in rows])
+    assert np.all(allowed[dark] == pytest.approx(0.06 * 0.01 * raw.white_level))
+
+
+def test_gamut_draws_are_checked():
+    with pytest.raises(SkinrenderError, match="draws must be an integer") as error:
+        sr.validate_gamut("macbeth", CAMERA, draws=0)
+    assert error.value.role == "draws"

@@ -90,6 +90,12 @@ def test_regen_pass_and_a_shifted_camera_fails_with_its_files(project, monkeypat
                                                         "test_face.json"]
     sidecar = json.loads((folder / "test_chart.json").read_text())
     assert sidecar["settings"]["spp"] == 64 and sidecar["settings"]["spp_requested"] == 16  # 4 × the check's
+    # issue 36: the reference has its own seed (not the check's 0), and the camera's path is the test file's
+    assert sidecar["settings"]["seed"] == 0 and sidecar["settings"]["reference_seed"] not in (0, 1)
+    assert sidecar["settings"]["camera"] == "camera.csv"
+    from skinrender.rendering.exr import read_exr_attributes
+
+    assert read_exr_attributes(folder / "test_chart.exr")["camera"] == "camera.csv"
     assert len(sidecar["settings"]["camera_sha256"]) == 64 and sidecar["compared"]["items"][0]["name"].endswith("/ R")
     face = json.loads((folder / "test_face.json").read_text())
     assert face["regions"]["skin"] == 1 and face["compared"]["items"][-1]["name"] == "skin NCC / g"
@@ -129,11 +135,20 @@ def written(project):
     ("garble_sidecar", "*the reference's sidecar *test_chart.json is unreadable (JSONDecodeError*"),
     ("foreign_sidecar", "*test_chart.json is not a skinrender reference sidecar*"),
     ("edit_exr", "*test_chart.exr changed after its sidecar was written (SHA-256 differs)*"),
+    # issue 36: a hand-edited sidecar switched the check off (a shifted camera passed)
+    ("inflate_standard_errors", "*the sidecar *test_chart.json was changed after the reference was written*"),
+    ("zero_dof", "*the sidecar *test_chart.json was changed after the reference was written*"),
 ])
 def test_damaged_references_are_reported_and_never_rewritten(written, damage, message):
     project, exr = written
     sidecar = exr.with_suffix(".json")
-    if damage == "delete_exr":
+    if damage in ("inflate_standard_errors", "zero_dof"):
+        csv_camera(project.path / "camera.csv", shift=2.0)  # a change the check must not miss
+        document = json.loads(sidecar.read_text())
+        for item in document["compared"]["items"]:
+            item.update({"standard_error": 1e30} if damage == "inflate_standard_errors" else {"dof": 0})
+        sidecar.write_text(json.dumps(document))
+    elif damage == "delete_exr":
         exr.unlink()
     elif damage == "delete_sidecar":
         sidecar.unlink()
@@ -149,8 +164,9 @@ def test_damaged_references_are_reported_and_never_rewritten(written, damage, me
     result.stdout.fnmatch_lines([message])
     if damage != "delete_exr":  # a sidecar of ours with its EXR gone may be rewritten; nothing else
         again = run(project, "-k", "chart", "--skinrender-regen")
-        assert again.ret != 0 or damage == "edit_exr"
-        if damage != "edit_exr":
+        rewritable = ("edit_exr", "inflate_standard_errors", "zero_dof")  # ours, damaged: regen writes them again
+        assert again.ret != 0 or damage in rewritable
+        if damage not in rewritable:
             assert {p.name: p.read_bytes() for p in exr.parent.iterdir()} == before
 
 
@@ -209,6 +225,61 @@ def test_two(render_regression):
     result = run(pytester, "--skinrender-regen")
     result.assert_outcomes(failed=1)
     result.stdout.fnmatch_lines(["*basename: test_two.exr is already the reference of another check in this test;*"])
+
+
+def test_a_reference_is_claimed_once_across_xdist_workers(tmp_path, monkeypatch):
+    """Issue 36: two tests with one basename under ``pytest -n 2 --skinrender-regen`` both passed (each worker knew
+    only its own claims) and one reference was lost. The claim is a lock file shared by the run's workers."""
+    from skinrender.testing import plugin
+
+    monkeypatch.setattr(plugin.tempfile, "gettempdir", lambda: str(tmp_path))
+    reference = tmp_path / "tests" / "test_a" / "same.exr"
+    assert plugin.claim_across_workers(reference, "test_a.py::test_one", uid="run1") is None
+    assert plugin.claim_across_workers(reference, "test_a.py::test_one", uid="run1") is None  # its own, again
+    assert plugin.claim_across_workers(reference, "test_b.py::test_two", uid="run1") == "test_a.py::test_one"
+    assert plugin.claim_across_workers(reference, "test_b.py::test_two", uid="run2") is None  # another run
+    monkeypatch.delenv("PYTEST_XDIST_TESTRUNUID", raising=False)
+    assert plugin.claim_across_workers(reference, "test_c.py::test", uid=None) is None  # no xdist: one process
+    assert not list(reference.parent.parent.rglob("*.claim"))  # nothing beside the references
+
+    class Node:  # the controller hears of each worker's run identifier, and removes the claims at the end
+        workerinput = {"testrunuid": "run1"}
+        config = type("Config", (), {"stash": pytest.Stash()})()
+
+    plugin.pytest_configure_node(Node)
+    session = type("Session", (), {"config": Node.config})()
+    plugin.pytest_sessionfinish(session)
+    assert not (tmp_path / "skinrender-claims-run1").exists() and (tmp_path / "skinrender-claims-run2").exists()
+
+
+def test_two_tests_with_one_basename_under_two_workers(pytester, monkeypatch):
+    """The claim as the workers make it: the run's identifier in the environment (as pytest-xdist sets it)."""
+    monkeypatch.setenv("PYTEST_XDIST_TESTRUNUID", "one-run")
+    monkeypatch.setattr("tempfile.tempdir", str(pytester.path))
+    for name in ("test_first", "test_second"):
+        pytester.makepyfile(**{name: f"""
+def test_it(render_regression):
+    render_regression.check("macbeth", camera="gbell:9@450,540,610", prevailing="A", calibration="A", spp=4,
+                            basename="shared")
+"""})
+    # each file is its own test file, so its own folder: the same basename is two references, both fine
+    run(pytester, "--skinrender-regen").assert_outcomes(passed=2)
+    # one folder, two tests, one basename, two "workers" (here one process forgetting its own record each run)
+    pytester.makepyfile(test_third="""
+def test_a(render_regression):
+    render_regression.check("macbeth", camera="gbell:9@450,540,610", prevailing="A", calibration="A", spp=4,
+                            basename="shared")
+""")
+    run(pytester, "--skinrender-regen", "test_third.py").assert_outcomes(passed=1)
+    pytester.makepyfile(test_third="""
+def test_b(render_regression):
+    render_regression.check("macbeth", camera="gbell:9@450,540,610", prevailing="A", calibration="A", spp=4,
+                            basename="shared")
+""")
+    result = run(pytester, "--skinrender-regen", "test_third.py")
+    result.assert_outcomes(failed=1)
+    result.stdout.fnmatch_lines(["*basename: *shared.exr is already the reference of test_third.py::test_a "
+                                 "(another pytest-xdist worker)*"])
 
 
 def test_the_fixture_gives_the_reference_path(pytester):

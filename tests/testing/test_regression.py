@@ -144,3 +144,4 @@ class TestRenderedCalibration:
         shifted = measure(**{**kwargs, "camera": csv_camera(folder / "shifted.csv", 2.0)})
         result = compare(shifted, reference.mean, reference.standard_error, reference.dof)
         assert not result.passed and abs(result.z[result.worst]) > 10
+

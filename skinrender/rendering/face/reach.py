@@ -5,7 +5,7 @@ How far a face scene reaches from the origin
 A face render is refused where its scene lies beyond float32's useful range
 (:func:`~skinrender.rendering.placement.check_float32_range`): where float32
 positions are too coarse for the smallest length its level depends on, the
-skin's mean free path at ``subsurface`` (where its walks are: the mesh), a
+skin's mean free path at ``subsurface-volume`` (where its walks are: the mesh), a
 pixel's footprint at the camera target otherwise (on the mesh and the props). A scene gets there moved by ``--translate-mm``
 (:meth:`~skinrender.rendering.face.scene.FaceScene.translated`), or written
 there.
@@ -71,7 +71,7 @@ def check_face_range(scene: FaceScene, physics, skin: str, grid) -> float:
         Naming the scene.
     """
     level = physics_level(physics)
-    skin_walks = "subsurface" in level
+    skin_walks = "subsurface-volume" in level
     if skin_walks:
         from ..subsurface import mean_free_path
         from .effects.subsurface import face_media

@@ -12,6 +12,7 @@ with a label image from the geometry.
     :class:`~skinrender.rendering.face.request.FaceRequest`.
 -   :func:`white_references`: the channel responses to a white under the
     prevailing and the calibration light.
+-   :func:`balanced_frame`: a radiance as one frame of a level (its sensor's, if it has one), balanced.
 -   :func:`write_face_exr`: the float32 EXR, with a ``label`` channel.
 -   :func:`planckian_temperature`: a Planckian light spec in K.
 
@@ -65,7 +66,7 @@ from .labels import label_names, render_labels, shape_labels
 from .scene import MESH_HEAD, FaceScene, prevailing_name
 
 __all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "render_face_request", "finish_face",
-           "face_exr", "write_face_exr"]
+           "balanced_frame", "face_exr", "write_face_exr"]
 
 LOADED_KEPT = 6
 """Face documents kept loaded in Mitsuba (the least recently used goes first)."""
@@ -368,6 +369,21 @@ def finish_face(request, cam: Camera, calibration: float, radiance: NDArrayFloat
                          image.astype(np.float32), radiance, labels, label_names(face), int(spp_used),
                          request.settings.spp, seed, request.settings.sampler, variant, time.perf_counter() - start,
                          passes, white_p, white_c, applied, frame.info)
+
+
+def balanced_frame(first: FaceRendering, level: Level, radiance: NDArrayFloat, grid: WavelengthGrid, seed: int,
+                   options=None) -> tuple[NDArrayFloat, Frame, NDArrayFloat]:
+    """
+    A ``radiance`` (specfilm units, ``(..., 3)``) of ``first``'s scene, camera and lights as one frame of
+    ``level``: through its ``post`` (a sensor's frame, seeded by ``seed``; ``options``: the effects' options, as
+    the render's) and Eq. 4's gain. Returns the image (output units, float64), the frame and the gain.
+    """
+    setup = level.setup(first.scene, first.camera, grid, level.lights(first.scene), calibration=first.calibration,
+                        seed=int(seed), options=dict(options or {}))
+    frame = level.post(Frame(radiance, first.white_prevailing, first.white_calibration,
+                             {"lights": first.info.get("lights", {})}), setup)
+    applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
+    return applied * frame.signal, frame, applied
 
 
 def face_exr(rendering: FaceRendering) -> tuple[NDArrayFloat, tuple[str, ...], dict]:

@@ -11,9 +11,11 @@ camera's skin locus): ``pass`` when the shift is shown within the budget
 lower bound above it), ``inconclusive`` otherwise, ``not_applicable`` where
 no budget is defined (a degenerate locus, a skin on its boundary).
 
--   :func:`face_budget`: the budget of a face's skin, and the locus it comes
-    from (the ladder's: the ``skin`` set under the paper's ten Planckians,
-    white balanced to the calibration).
+-   :func:`face_budget`: the budget of a face's skin, and the locus detection
+    uses (a skin set, ``skin`` unless told, under the paper's ten Planckians,
+    white balanced to the calibration); the budget is measured against that
+    locus without the tested skin (a leave-one-out hull), so it is defined
+    for every skin.
 -   :func:`eq4_shift`: the check.
 -   :func:`scored_skin`, :func:`budget_rates`: the pixels it measures, and
     what a shift of the budget does to their detection.
@@ -46,6 +48,8 @@ References
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ...evaluation.budget import BUDGET_FRACTION, DetectionBudget, detection_budget, rates_shifted
@@ -58,17 +62,52 @@ from ...spectra import GRID_DEFAULT, WavelengthGrid
 from .labels import LABEL_SKIN, interior
 from .limits import PIXELS_MIN, LimitCheck, _ratio, critical_t, jackknife, rg
 
-__all__ = ["face_budget", "scored_skin", "eq4_shift", "budget_rates"]
+__all__ = ["SKIN_SET_DEFAULT", "skin_set_name", "face_budget", "scored_skin", "eq4_shift", "budget_rates"]
+
+
+SKIN_SET_DEFAULT = "skin"
+"""The reflectance set a face's skin locus is built from unless told: the 30 Vrhel skins."""
+
+
+def skin_set_name(skin_set) -> str:
+    """
+    How a row names the set its locus was built from: the set's name, or ``N spectra`` for an array.
+
+    >>> skin_set_name("skin-tones"), skin_set_name(np.ones((3, 301)))
+    ('skin-tones', '3 spectra')
+    """
+    if isinstance(skin_set, str):
+        return skin_set
+    name = getattr(skin_set, "name", None)
+    return str(name) if name is not None else f"{np.asarray(skin_set).reshape(-1, np.shape(skin_set)[-1]).shape[0]} spectra"
 
 
 def face_budget(cam: Camera, expected: NDArrayFloat, calibration: float, fraction: float = BUDGET_FRACTION,
-                grid: WavelengthGrid = GRID_DEFAULT) -> tuple[DetectionBudget, SkinLocus]:
+                grid: WavelengthGrid = GRID_DEFAULT, skin_set=SKIN_SET_DEFAULT,
+                skin: NDArrayFloat | None = None) -> tuple[DetectionBudget, SkinLocus]:
     """
     The detection budget of Eq. 4's skin NCC ``expected`` (``[r, g, …]``) for camera ``cam`` white balanced to
-    ``calibration`` (K), and the skin locus it is measured against (the ``skin`` set, the paper's ten Planckians).
+    ``calibration`` (K), and the skin locus detection uses (``skin_set`` under the paper's ten Planckians).
+
+    The budget is measured against the locus of the set *without the tested skin* (``skin``, its reflectance
+    on ``grid``; the spectra of the set equal to it left out): a skin of the set would otherwise sit on or
+    just inside the hull it helps to span, its budget 0 (undefined, at a hull vertex) or small by
+    construction. Left out, it has a margin like any other skin's, so the budget is defined for every skin.
     """
-    locus = skin_locus(cam, "skin", calibration=calibration, grid=grid)
-    return detection_budget(locus, np.asarray(expected, dtype=np.float64)[:2], fraction), locus
+    locus = skin_locus(cam, skin_set, calibration=calibration, grid=grid)
+    trimmed = locus
+    if skin is not None:
+        from ...datasets import SpectralSet, reflectances
+
+        spectra = (reflectances(skin_set).on(grid) if isinstance(skin_set, (str, SpectralSet))
+                   else np.asarray(skin_set, dtype=np.float64).reshape(-1, grid.size))
+        same = np.all(np.isclose(spectra, np.asarray(skin, dtype=np.float64)[None], rtol=1e-6, atol=1e-9), axis=1)
+        if same.any() and not same.all():
+            trimmed = skin_locus(cam, spectra[~same], calibration=calibration, grid=grid)
+    budget = detection_budget(trimmed, np.asarray(expected, dtype=np.float64)[:2], fraction)
+    if trimmed is not locus and budget.budget is not None:
+        budget = replace(budget, reason=budget.reason + " (the locus without the tested skin, which is in the set)")
+    return budget, locus
 
 
 def scored_skin(mean: NDArrayFloat, labels: NDArrayFloat, usable: NDArrayFloat | None = None) -> NDArrayFloat:

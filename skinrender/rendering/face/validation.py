@@ -72,21 +72,21 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ...constants import CONSTANT_OUTPUT_SCALE
 from ...errors import SkinrenderError
+from ...evaluation.detection_verdict import check_tolerance
 from ...evaluation.verdict import EXIT_STATUS, Verdict, combine, samples_needed
 from ...model.chromaticity import ncc
-from ...model.response import gain
 from ...spectra import GRID_DEFAULT
 from ..validation import analytic_reference
 from ..settings import seed_at
-from .effects import Frame, Level, Measured, Replicates
+from .effects import Level, Measured, Replicates
 from .limit_scenes import check_furnace, check_sphere, furnace_radiance, sphere_channels
+from .detection import detection_check
 from .limits import REPLICATES, SPP_REPLICATE_MIN, LimitCheck
-from .render import FaceRendering, render_face_request
+from .render import FaceRendering, balanced_frame, render_face_request
 from .request import FaceRequest, face_request
 from .scene import skin_reflectance_of
-from .shift import budget_rates, eq4_shift, face_budget
+from .shift import budget_rates, eq4_shift, face_budget, skin_set_name
 
 __all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP", "RENDER_OPTIONS",
            "FaceValidation", "Replicated", "replicated_of", "render_replicates", "render_replicates_request", "mean_rendering",
@@ -110,8 +110,7 @@ SPHERE_SIZE = 16
 SPHERE_SPP = 16
 """Samples per pixel of each closed-sphere replicate."""
 
-RENDER_OPTIONS = ("skin", "size", "sampler", "variant", "grid", "channels", "imager", "exposure", "illuminance",
-                  "translate_mm")
+RENDER_OPTIONS = ("skin", "size", "sampler", "variant", "grid", "channels", "imager", "exposure", "illuminance", "translate_mm")
 """:func:`validate_face`'s keywords that go to each replicate's :func:`~skinrender.rendering.face.render_face`."""
 
 
@@ -200,7 +199,7 @@ def mean_rendering(replicated: Replicated, imager=None, exposure=None) -> FaceRe
     deprecated: they replace the sensor's where given) and Eq. 4's gain; what one render at the replicates'
     total spp would give.
     """
-    renders, level, first = replicated.renders, replicated.level, replicated.first
+    renders, first = replicated.renders, replicated.first
     options = dict(replicated.options)
     if imager is not None or exposure is not None:  # deprecated: the sensor's options of the replicates replaced
         from ..sensor import NoiseOptions
@@ -210,12 +209,8 @@ def mean_rendering(replicated: Replicated, imager=None, exposure=None) -> FaceRe
                 options[name] = NoiseOptions(imager if imager is not None else noise.imager, noise.illuminance,
                                              exposure if exposure is not None else noise.exposure)
     radiance = np.mean([r.radiance for r in renders], axis=0)
-    setup = level.setup(first.scene, first.camera, replicated.grid, level.lights(first.scene),
-                        calibration=first.calibration, seed=first.seed, options=options)
-    frame = level.post(Frame(radiance, first.white_prevailing, first.white_calibration,
-                             {"lights": first.info.get("lights", {})}), setup)
-    applied = gain(frame.white_prevailing, frame.white_calibration, scale=CONSTANT_OUTPUT_SCALE)
-    return replace(first, image=(applied * frame.signal).astype(np.float32), radiance=radiance, gain=applied,
+    image, frame, applied = balanced_frame(first, replicated.level, radiance, replicated.grid, first.seed, options)
+    return replace(first, image=image.astype(np.float32), radiance=radiance, gain=applied,
                    spp=int(sum(r.spp for r in renders)), spp_requested=int(sum(r.spp_requested for r in renders)),
                    seconds=replicated.seconds, info=frame.info)
 
@@ -268,9 +263,10 @@ class FaceValidation:
 
     @property
     def verdict(self) -> Verdict:
-        """The checks' verdicts combined: ``fail`` if one failed, else ``inconclusive`` if one was, else ``pass``
-        if one passed, else ``not_applicable``."""
-        return combine([c.verdict for c in self.checks], "validate face")
+        """The verdicts of the checks that apply combined (a diagnostic row, ``eq4_shift``, decides nothing):
+        ``fail`` if one failed, else ``inconclusive`` if one was, else ``pass`` if one passed, else
+        ``not_applicable``."""
+        return combine([c.verdict for c in self.checks if c.applies], "validate face")
 
     @property
     def passed(self) -> bool | None:
@@ -332,6 +328,8 @@ def validate_face(
     limits=tuple(LIMITS_SCENE_FREE),
     progress: Callable[[str], None] | None = None,
     budget_fraction: float | None = None,
+    skin_set="skin",
+    detection_tolerance: float | None = None,
     **render_options,
 ) -> FaceValidation:
     """
@@ -355,13 +353,13 @@ def validate_face(
     progress
         Called with a line of text before each stage.
     budget_fraction
-        The share of the margin to the skin locus's boundary that Eq. 4's error may use
-        (:data:`~skinrender.evaluation.budget.BUDGET_FRACTION` unless given).
+        The share of the margin to the locus's boundary Eq. 4's error may use (``eq4_shift``, a diagnostic).
+    skin_set, detection_tolerance
+        The locus's skin set (``skin``) and the ``detection`` check's tolerance in TPR and FPR (0.02).
     **render_options
         The render's own, to each replicate's :func:`skinrender.rendering.face.render_face`: ``skin``,
         ``size`` (image side, pixels; ``None``: the scene's), ``sampler``, ``variant``, ``channels``, ``grid``
-        (nm), ``imager``, ``exposure`` (s or ``auto``), ``illuminance`` (lx), ``translate_mm`` (the scene moved,
-        x, y, z mm).
+        (nm), ``imager``, ``exposure`` (s or ``auto``), ``illuminance`` (lx), ``translate_mm`` (x, y, z mm).
 
     Returns
     -------
@@ -375,6 +373,8 @@ def validate_face(
 
     if isinstance(replicates, bool) or not isinstance(replicates, (int, np.integer)) or replicates < 3:
         raise SkinrenderError(f"replicates must be an integer ≥ 3, got {replicates!r}", role="replicates")
+    if isinstance(limits, str):  # "furnace,sphere" as the command line gives it, not its letters one by one
+        limits = [name.strip() for name in limits.split(",") if name.strip()] if limits.strip() != "none" else []
     unknown = [name for name in limits if name not in LIMITS_SCENE_FREE]
     if unknown:
         raise SkinrenderError(f"limits: unknown {', '.join(map(repr, unknown))}; known: "
@@ -388,12 +388,14 @@ def validate_face(
     each = max(SPP_REPLICATE_MIN, math.ceil(int(spp) / replicates))
     request = face_request(scene, camera_, prevailing, calibration, physics=physics, spp=each, seed=seed,
                            **render_options)
-    return validate_face_request(request, spp, replicates, limits, progress, budget_fraction)
+    return validate_face_request(request, spp, replicates, limits, progress, budget_fraction, skin_set,
+                                 detection_tolerance)
 
 
 def validate_face_request(request: FaceRequest, spp: int | None = None, replicates: int = REPLICATES,
                           limits=tuple(LIMITS_SCENE_FREE), progress: Callable[[str], None] | None = None,
-                          budget_fraction: float | None = None) -> FaceValidation:
+                          budget_fraction: float | None = None, skin_set="skin",
+                          detection_tolerance: float | None = None) -> FaceValidation:
     """
     :func:`validate_face` of a :class:`~skinrender.rendering.face.request.FaceRequest`: ``replicates`` renders at
     its spp (each replicate's) with seeds ``seed, seed + 1, …`` (mod 2³²); ``spp``: the total asked (default the
@@ -419,9 +421,12 @@ def validate_face_request(request: FaceRequest, spp: int | None = None, replicat
         if row is not None and row.outcome == "inconclusive":
             checks[0] = replace(row, reason=f"{row.reason}; {measured.note}")
         checks = [replace(c, details={**c.details, **measured.excluded}) for c in checks]
+    tolerance = check_tolerance(detection_tolerance, "detection_tolerance")  # None: the default
     fraction = BUDGET_FRACTION if budget_fraction is None else budget_fraction
-    budget, locus = face_budget(first.camera, replicated.expected, first.calibration, fraction)
-    checks.append(shift_against(replicated, budget, locus))
+    budget, locus = face_budget(first.camera, replicated.expected, first.calibration, fraction, replicated.grid,
+                                skin_set, skin_reflectance_of(first.skin, replicated.grid, "skin"))
+    detection, check_row = detection_check(replicated, locus, tolerance, seed=request.settings.seed)
+    checks += [check_row, replace(shift_against(replicated, budget, locus), applies=False)]  # eq4_shift: a diagnostic
     cam = first.camera
     if "furnace" in limits:
         say(f"white furnace ({FURNACE_SIZE}² px, {replicates} × {FURNACE_SPP} spp) …")
@@ -439,7 +444,7 @@ def validate_face_request(request: FaceRequest, spp: int | None = None, replicat
     if each > math.ceil(int(spp) / replicates):
         info["spp_note"] = (f"each replicate rendered at {each} spp, the least a replicate takes "
                             f"(SPP_REPLICATE_MIN); {spp} spp over {replicates} would give fewer")
-    info["budget"] = budget.document()
+    info.update(budget=budget.document(), detection=detection, skin_set=skin_set_name(skin_set))
     renders = replicated.renders
     return FaceValidation(first, checks, int(sum(r.spp for r in renders)), int(spp), int(replicates),
                           int(request.settings.seed), time.perf_counter() - start, info)

@@ -5,10 +5,12 @@ What each effect does to skin detection, and what it costs
 For light, medium and dark skin, the face at the base level and with each
 effect alone (:data:`~skinrender.rendering.face.effects.LEVELS_EACH`, read
 from the registry: a new effect gets its row), each a :func:`~skinrender.studies.face.ladder.ladder`
-level: how far the effect moves the skin's mean NCC from Eq. 4 (``eq4_shift``,
-with its 95 % upper bound) against the detection budget, how it changes the
-true- and false-positive rates from ``direct``'s, what a shift of the budget
-would do to them, and the seconds the level took. ``skinrender ladder
+level: whether Eq. 4 still predicts the skin locus's true- and false-positive
+rates there (each row's ``detection``, the table's verdict), how far the
+effect moves the skin's mean NCC from Eq. 4 (``eq4_shift``, with its 95 %
+upper bound) against the detection budget (a diagnostic), how it changes the
+rates from ``direct``'s, what a shift of the budget would do to them, and the
+seconds the level took. ``skinrender ladder
 --effects`` prints it (``--plot``: :func:`skinrender.studies.face.effect_figures.figure_effects`).
 
 -   :data:`SKIN_TONES`: the default skins (the skin model at three melanin
@@ -26,7 +28,9 @@ from pathlib import Path
 
 from ...errors import SkinrenderError
 from ...evaluation.budget import BUDGET_FRACTION
+from ...evaluation.detection_verdict import DETECTION_TOLERANCE, findings_text
 from ...evaluation.verdict import Combined
+from ...rendering.face.shift import SKIN_SET_DEFAULT
 from ...rendering.face.effects import LEVELS_EACH, PHYSICS_REGISTRY
 from .ladder import REPLICATES_LADDER, ladder
 
@@ -40,7 +44,7 @@ SKIN_TONES = {
 """The skins of the table, tone → skin spec: the skin model at melanin volume fractions 0.02, 0.13 and 0.3 (issue
 22's light, medium and dark), its other parameters at their defaults."""
 
-ROW_KEYS = ("seconds", "spp", "eq4_shift", "eq4_shift_bound", "eq4_verdict", "budget", "within_budget", "tpr", "fpr",
+ROW_KEYS = ("skin_set", "detection", "seconds", "spp", "eq4_shift", "eq4_shift_bound", "eq4_verdict", "budget", "within_budget", "tpr", "fpr",
             "tpr_change", "fpr_change", "budget_tpr_change", "budget_fpr_change", "skin_pixels", "prop_pixels")
 """The ladder's keys each row of the table carries (beside ``tone``, ``skin``, ``level`` and ``undefined``)."""
 
@@ -62,14 +66,23 @@ class EffectsTable(Combined):
     skins: list
     rows: list
     verdicts: list = field(default_factory=list, repr=False, compare=False)
+    skin_set: str = SKIN_SET_DEFAULT
+    detection_tolerance: float = DETECTION_TOLERANCE
 
     VERDICT_NAME = "effects table"
+
+    @property
+    def finding(self) -> str:
+        """Where Eq. 4 mispredicts detection, per skin and level, in words."""
+        return findings_text([(f"{row['tone']} {row['level']}", row["detection"]) for row in self.rows],
+                             self.detection_tolerance)
 
     def document(self) -> dict:
         """The JSON document."""
         return {"camera": self.camera, "prevailing_K": self.prevailing, "calibration_K": self.calibration,
                 "size": list(self.size), "spp": self.spp, "levels": list(self.levels), "skins": self.skins,
-                "rows": self.rows, **self.verdict.summary()}
+                "skin_set": self.skin_set, "detection_tolerance": self.detection_tolerance, "rows": self.rows,
+                "finding": self.finding, **self.verdict.summary()}
 
     def figure(self, path) -> Path:
         """Draw the table (:func:`skinrender.studies.face.effect_figures.figure_effects`) to a PNG; returns ``path``."""
@@ -85,12 +98,14 @@ def effects_table(camera_, prevailing, calibration, skins: Mapping[str, str] | N
                   scene="face", variant: str | None = None, imager: str | None = None,
                   illuminance: float | None = None, replicates: int = REPLICATES_LADDER,
                   budget_fraction: float = BUDGET_FRACTION,
-                  progress: Callable[[str], None] | None = None) -> EffectsTable:
+                  progress: Callable[[str], None] | None = None, skin_set=SKIN_SET_DEFAULT,
+                  detection_tolerance: float = DETECTION_TOLERANCE) -> EffectsTable:
     """
     The ladder (:func:`~skinrender.studies.face.ladder.ladder`) at ``levels`` for each skin of ``skins``
     (tone → skin spec; default :data:`SKIN_TONES`), gathered per tone and level.
 
-    ``levels`` must hold ``direct``: the rates' changes are from it. The other arguments are the ladder's.
+    ``levels`` must hold ``direct``: the rates' changes are from it. The other arguments are the ladder's
+    (``skin_set``: the set the locus is built from; ``detection_tolerance``: each row's detection verdict).
     """
     skins = dict(SKIN_TONES if skins is None else skins)
     if not skins:
@@ -106,7 +121,7 @@ def effects_table(camera_, prevailing, calibration, skins: Mapping[str, str] | N
             progress(f"{tone} skin ({skin}) …")
         result = ladder(camera_, prevailing, calibration, skin, levels, spp, seed, size, scene, variant,
                         imager=imager, illuminance=illuminance, progress=progress, replicates=replicates,
-                        budget_fraction=budget_fraction)
+                        budget_fraction=budget_fraction, skin_set=skin_set, detection_tolerance=detection_tolerance)
         described.append({"tone": tone, "skin": skin, "skin_ncc_analytic": result.skin_ncc_analytic,
                           "budget": result.budget})
         for row in result.levels:
@@ -114,4 +129,5 @@ def effects_table(camera_, prevailing, calibration, skins: Mapping[str, str] | N
                          "undefined": row["undefined"]})
         verdicts.extend(replace(verdict, name=f"{tone} skin, {verdict.name}") for verdict in result.verdicts)
     return EffectsTable(result.camera, result.prevailing, result.calibration, result.size, int(spp),
-                        tuple(level.name for level in levels), described, rows, verdicts)
+                        tuple(level.name for level in levels), described, rows, verdicts, result.skin_set,
+                        result.detection_tolerance)

@@ -4,11 +4,14 @@ The physics ladder
 
 The face rendered at each level of physics
 (:data:`skinrender.rendering.face.PHYSICS`), and what each level does to skin
-detection: the skin pixels' NCC against Eq. 4's — tested against the
-detection budget (:mod:`skinrender.rendering.face.shift`: ``eq4_shift``,
-``budget``, ``within_budget``) — and the true- and false-positive rates of the
-camera's analytic skin locus on the rendered pixels, and how far each level
-moves them from ``direct``'s.
+detection: the true- and false-positive rates of the camera's analytic skin
+locus on the rendered pixels, and whether Eq. 4 predicts them — each level's
+``detection`` verdict (:mod:`skinrender.rendering.face.detection`: the rates
+with the renderer's noise separated against Eq. 4's, within
+``detection_tolerance``), which is the ladder's verdict — and, as diagnostics,
+the skin pixels' NCC against Eq. 4's with the detection budget
+(:mod:`skinrender.rendering.face.shift`: ``eq4_shift``, ``budget``,
+``within_budget``) and how far each level moves the rates from ``direct``'s.
 
 -   :func:`ladder`, :class:`Ladder`: the study; :meth:`Ladder.figure` draws it
     (renders, label masks, detected masks, NCC over the locus with the budget).
@@ -25,7 +28,9 @@ pixels (label 1) whose NCC (r, g) lies in the locus
 (:func:`skinrender.evaluation.locus.skin_locus` of the ``skin`` set, one white
 balancing at the calibration light), ``fpr`` that of the scored prop pixels;
 the background is left out. Each is ``None`` when no pixel of its kind is
-scored, with its reason in the level's ``undefined`` (``{key: reason}``).
+scored, with its reason in the level's ``undefined`` (``{key: reason}``). The
+locus is that of the ``skin_set`` (default ``skin``, the Vrhel skins; each row
+says which in ``skin_set``).
 
 Units: temperatures K, times s, NCC and rates fractions.
 """
@@ -51,7 +56,9 @@ from ...rendering.face.effects import LEVELS_LADDER, PHYSICS_REGISTRY, Level
 from ...rendering.face.labels import LABEL_SKIN
 from ...rendering.face.limits import REPLICATES
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
-from ...rendering.face.shift import face_budget
+from ...evaluation.detection_verdict import DETECTION_TOLERANCE, check_tolerance, findings_text
+from ...rendering.face.detection import face_detection
+from ...rendering.face.shift import SKIN_SET_DEFAULT, face_budget, skin_set_name
 from ...rendering.settings import seed_at
 from ...rendering.face.request import face_request
 from ...rendering.bands import BANDS_DEFAULT, parse_bands, projection
@@ -122,15 +129,23 @@ class Ladder(Combined):
     label_names: dict = field(default_factory=dict)
     budget: dict = field(default_factory=dict)
     verdicts: list = field(default_factory=list, repr=False, compare=False)
+    skin_set: str = SKIN_SET_DEFAULT
+    detection_tolerance: float = DETECTION_TOLERANCE
 
     VERDICT_NAME = "ladder"
 
+    @property
+    def finding(self) -> str:
+        """The ladder's finding in words: where Eq. 4 mispredicts detection (:func:`findings_text`)."""
+        return findings_text([(row["name"], row["detection"]) for row in self.levels], self.detection_tolerance)
+
     def document(self) -> dict:
         """The JSON document (``levels``, the budget, the verdict and the settings)."""
-        return {"camera": self.camera, "scene": self.scene, "skin": self.skin,
+        return {"camera": self.camera, "scene": self.scene, "skin": self.skin, "skin_set": self.skin_set,
                 "prevailing_K": self.prevailing, "calibration_K": self.calibration, "size": list(self.size),
                 "skin_ncc_analytic": self.skin_ncc_analytic, "locus_area": self.locus_area, "budget": self.budget,
-                "levels": self.levels, **self.verdict.summary()}
+                "detection_tolerance": self.detection_tolerance, "levels": self.levels, "finding": self.finding,
+                **self.verdict.summary()}
 
     def figure(self, path) -> Path:
         """
@@ -275,6 +290,8 @@ def ladder(
     progress: Callable[[str], None] | None = None,
     replicates: int = REPLICATES_LADDER,
     budget_fraction: float = BUDGET_FRACTION,
+    skin_set=SKIN_SET_DEFAULT,
+    detection_tolerance: float = DETECTION_TOLERANCE,
     translate_mm=None,
 ) -> Ladder:
     """
@@ -311,6 +328,12 @@ def ladder(
     budget_fraction
         The share of the margin to the locus's boundary Eq. 4's error may use
         (:data:`~skinrender.evaluation.budget.BUDGET_FRACTION`).
+    skin_set
+        The reflectance set the skin locus is built from (a name such as ``skin`` or ``skin-tones``, a
+        :class:`~skinrender.datasets.SpectralSet` or spectra on ``grid``).
+    detection_tolerance
+        How far Eq. 4 may be off in TPR and in FPR (fractions in (0, 1)): each level's ``detection`` verdict
+        (:func:`~skinrender.rendering.face.detection.face_detection`).
     translate_mm
         ``(x, y, z)`` mm: the whole scene moved that far from the origin (``None``: where it is); a scene beyond
         float32's useful range at any of the levels is refused before anything renders
@@ -322,14 +345,16 @@ def ladder(
     """
 
     return ladders([camera_], prevailing, calibration, skin, levels, spp, seed, size, scene, variant, grid, imager,
-                   illuminance, progress, replicates, budget_fraction, bands=None, translate_mm=translate_mm)[0]
+                   illuminance, progress, replicates, budget_fraction, bands=None, skin_set=skin_set,
+                   detection_tolerance=detection_tolerance, translate_mm=translate_mm)[0]
 
 
 def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: Sequence[str] = LEVELS_DEFAULT,
             spp: int = 64, seed: int = 0, size: int | None = 128, scene="face", variant: str | None = None,
             grid: WavelengthGrid = GRID_DEFAULT, imager: str | None = None, illuminance: float | None = None,
             progress: Callable[[str], None] | None = None, replicates: int = REPLICATES_LADDER,
-            budget_fraction: float = BUDGET_FRACTION, bands=BANDS_DEFAULT, translate_mm=None) -> list:
+            budget_fraction: float = BUDGET_FRACTION, bands=BANDS_DEFAULT, skin_set=SKIN_SET_DEFAULT,
+            detection_tolerance: float = DETECTION_TOLERANCE, translate_mm=None) -> list:
     """
     :func:`ladder` for every camera of ``cameras`` (arguments as there): each level's replicates rendered once
     spectrally with ``bands`` (``START:END:STEP`` nm; one render per seed, seen through every camera:
@@ -361,12 +386,14 @@ def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: S
         variant=variant, grid=grid, bands=None if way is not None else bands, translate_mm=translate_mm,
         **PHYSICS_REGISTRY.options_for(level, sensor)) for way in ways for level in levels}  # checked first
     seconds = sum(request.level.seconds(request.pixels * each * replicates) for request in requests.values())
-    if progress is not None and seconds > 60:  # subsurface: minutes (the command line refuses beyond --max-minutes)
+    if progress is not None and seconds > 60:  # subsurface-volume: minutes (the command line refuses beyond --max-minutes)
         progress(f"the {len(levels)} levels should take about {duration_text(seconds)} on one core")
+    detection_tolerance = check_tolerance(detection_tolerance, "detection_tolerance")
+    set_name = skin_set_name(skin_set)
     studied = []
     for cam in cams:
         analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
-        studied.append((cam, analytic, *face_budget(cam, analytic, c, budget_fraction, grid)))
+        studied.append((cam, analytic, *face_budget(cam, analytic, c, budget_fraction, grid, skin_set, rho)))
     seeds = [seed_at(seed, k) for k in range(replicates)]
     rows, frames, verdicts = [[] for _ in cams], [[] for _ in cams], [[] for _ in cams]
     means = [None] * len(cams)
@@ -380,14 +407,17 @@ def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: S
             scores, frame = score_frame(mean, locus)
             shift = shift_against(replicated, budget, locus, mean.image)
             rows[index].append(_level_row(level, replicated, mean, scores, shift, shift.details["budget_rates"]))
+            detection, verdict = face_detection(replicated, locus, detection_tolerance, seed=seed, mean=mean)
+            rows[index][-1].update({"skin_set": set_name, "detection": detection})
             frames[index].append(frame)
-            verdicts[index].append(replace(shift.verdict, name=f"eq4_shift at {rows[index][-1]['name']}"))
+            verdicts[index].append(replace(verdict, name=f"detection at {rows[index][-1]['name']}"))
     out = []
     for (cam, analytic, budget, locus), mine, drawn, checked, mean in zip(studied, rows, frames, verdicts, means):
         _changes(mine)
         shape = (mean.scene.camera.width, mean.scene.camera.height)
         out.append(Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), mine, drawn,
-                          np.asarray(locus.polygon), dict(mean.label_names), budget.document(), checked))
+                          np.asarray(locus.polygon), dict(mean.label_names), budget.document(), checked, set_name,
+                          detection_tolerance))
     return out
 
 

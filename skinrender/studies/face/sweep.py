@@ -7,7 +7,9 @@ combination of cameras × (prevailing, calibration) light pairs × skins ×
 levels of physics, each scored as the ladder scores a level
 (:mod:`skinrender.studies.face.ladder`): the scored skin pixels' NCC mean and
 spread, the share of them inside the camera's analytic skin locus (TPR) and
-that of the scored prop pixels (FPR). The renders run on every core (a
+that of the scored prop pixels (FPR), and the detection verdict (Eq. 4's rates
+against the rendered ones, the renderer's noise separated); each combination
+rendered as replicates, as the ladder renders a level. The renders run on every core (a
 process pool) or a Dask cluster, as the Stage 3 search does
 (:mod:`skinrender.design.search`).
 
@@ -44,15 +46,21 @@ from ...evaluation.locus import skin_locus
 from ...files import write_output
 from ...model.camera import camera
 from ...model.chromaticity import ncc
-from ...rendering.face import planckian_temperature, render_face
+from ...evaluation.detection_verdict import DETECTION_TOLERANCE, check_tolerance
+from ...rendering.face import planckian_temperature
+from ...rendering.face.detection import face_detection
 from ...rendering.face.effects import PHYSICS_REGISTRY, physics_level
+from ...rendering.face.limits import REPLICATES
+from ...rendering.face.request import face_request
+from ...rendering.face.shift import skin_set_name
+from ...rendering.face.validation import mean_rendering, render_replicates, replicated_of
 from ...rendering.face.effects.direct import SAMPLES_PER_S_DIRECT
 from ...rendering.face.effects.direct import SECONDS_PER_RENDER as SECONDS_PER_RENDER_DIRECT
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
 from ...rendering.bands import BANDS_DEFAULT, bands_text, check_bands, parse_bands, projection
 from ...rendering.renderer import SAMPLES_MAX
 from ...rendering.scene import PIXELS_MAX
-from ...rendering.settings import check_seed
+from ...rendering.settings import check_seed, seed_at
 from ...rendering.validation import analytic_reference
 from ...rendering.variants import choose_variant
 from ...spectra import GRID_DEFAULT, WavelengthGrid
@@ -60,8 +68,12 @@ from ...workload import duration_text
 from .workers import run_renders
 from .ladder import score_rendering
 
-__all__ = ["RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
+__all__ = ["REPLICATES_SWEEP", "RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
            "FaceSweep", "face_sweep", "sweep_tasks", "spectral_tasks", "estimate_seconds"]
+
+REPLICATES_SWEEP = REPLICATES
+"""Replicates each combination is rendered as (independent seeds, ``⌈spp / K⌉`` spp each): their mean is scored,
+their spread separates the renderer's noise from the physics in the detection verdict."""
 
 RENDERS_MAX = 5000
 """Most renders a sweep may ask for unless ``max_renders`` is raised (a guard against a slip of the flags)."""
@@ -77,12 +89,14 @@ SECONDS_PER_RENDER = SECONDS_PER_RENDER_DIRECT
 SAMPLES_PER_S = SAMPLES_PER_S_DIRECT
 """Samples per second of the face on one core (one drjit thread), the estimates' rate (see
 :data:`SECONDS_PER_RENDER`) at every level but those whose effects are slower (a level's own rate:
-:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`, e.g. ``subsurface``'s)."""
+:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`, e.g. ``subsurface-volume``'s)."""
 
 CSV_COLUMNS = ("camera", "prevailing_K", "calibration_K", "skin", "level", "seconds", "spp",
                "skin_ncc_mean_r", "skin_ncc_mean_g", "skin_ncc_mean_b", "skin_ncc_std_r", "skin_ncc_std_g",
                "skin_ncc_std_b", "tpr", "fpr", "skin_pixels", "prop_pixels",
-               "skin_ncc_analytic_r", "skin_ncc_analytic_g", "skin_ncc_analytic_b")
+               "skin_ncc_analytic_r", "skin_ncc_analytic_g", "skin_ncc_analytic_b", "skin_set",
+               "detection_verdict", "detection_tpr", "detection_fpr", "tpr_eq4", "fpr_eq4", "tpr_change",
+               "fpr_change")
 """Columns of :meth:`FaceSweep.to_csv`; an empty cell where a value is ``None``."""
 
 
@@ -98,49 +112,72 @@ class _Settings:
     grid: WavelengthGrid
     imager: str | None
     illuminance: float | None
+    skin_set: object = "skin"
+    tolerance: float = DETECTION_TOLERANCE
+
+    @property
+    def seeds(self) -> list[int]:
+        """The replicates' seeds: ``seed, seed + 1, …`` (mod 2³²)."""
+        return [seed_at(self.seed, k) for k in range(REPLICATES_SWEEP)]
+
+    @property
+    def each(self) -> int:
+        """A replicate's spp: ``⌈spp / K⌉``."""
+        return -(-self.spp // REPLICATES_SWEEP)
 
 
-def _scored(result, cam, p: float, c: float, skin: str, grid: WavelengthGrid, start: float) -> dict:
-    """One combination's row from its render ``result`` (``start``: when its work began, ``perf_counter``)."""
-    locus = skin_locus(cam, "skin", calibration=c, grid=grid)
+def _scored(replicated, cam, p: float, c: float, skin: str, settings: _Settings, start: float) -> dict:
+    """One combination's row from its replicates: their mean scored as the ladder scores a level, and its
+    detection verdict (``start``: when its work began, ``perf_counter``)."""
+    grid = settings.grid
+    result = mean_rendering(replicated)
+    locus = skin_locus(cam, settings.skin_set, calibration=c, grid=grid)
     rho = skin_reflectance_of(skin, grid, "skin")
     analytic = ncc(analytic_reference(cam, rho[None], p, c, grid=grid))[0]
+    detection, _ = face_detection(replicated, locus, settings.tolerance, seed=settings.seed, mean=result)
     row = {"camera": cam.name, "prevailing_K": p, "calibration_K": c, "skin": skin,
-           "level": result.physics, "seconds": 0.0, "spp": result.spp, **score_rendering(result, locus),
-           "skin_ncc_analytic": analytic.tolist(), "variant": result.variant}
+           "level": result.physics, "seconds": 0.0, "spp": result.spp, "replicates": len(replicated.renders),
+           "spp_per_replicate": replicated.first.spp, **score_rendering(result, locus),
+           "skin_ncc_analytic": analytic.tolist(), "variant": result.variant,
+           "skin_set": skin_set_name(settings.skin_set), "detection": detection}
     row.update({k: v for k, v in result.info.items() if k in ("imager", "illuminance_lux", "exposure_s")})
     row["seconds"] = time.perf_counter() - start
     return row
 
 
 def _render_task(task: tuple, settings: _Settings) -> dict:
-    """One combination ``(camera, prevailing K, calibration K, skin, level)`` rendered and scored."""
+    """One combination ``(camera, prevailing K, calibration K, skin, level)`` rendered as :data:`REPLICATES_SWEEP`
+    replicates and scored."""
     cam, p, c, skin, level = task
     start = time.perf_counter()
     sensor = PHYSICS_REGISTRY.options_for(level, {"imager": settings.imager, "illuminance": settings.illuminance})
-    result = render_face(cam, settings.scene, p, c, skin, level, settings.spp, settings.seed, settings.size,
-                         variant=settings.variant, grid=settings.grid, **sensor)
-    return _scored(result, cam, p, c, skin, settings.grid, start)
+    replicated = render_replicates(cam, settings.scene, p, c, skin, level, settings.each, settings.seeds,
+                                   settings.size, grid=settings.grid, variant=settings.variant, **sensor)
+    return _scored(replicated, cam, p, c, skin, settings, start)
 
 
 def _spectral_task(task: tuple, settings: _Settings, bands: WavelengthGrid) -> list[dict]:
     """
-    One spectral render ``(prevailing K, skin, level, cameras, calibrations K)`` seen through every camera at
-    every calibration: their rows, the render's seconds shared equally among them (each adds its own
-    projection and scoring).
+    One spectral render per replicate ``(prevailing K, skin, level, cameras, calibrations K)`` seen through every
+    camera at every calibration: their rows, the renders' seconds shared equally among them (each adds its own
+    projections and scoring).
     """
-    from ...rendering.face.spectral_face import render_face_spectral
+    from ...rendering.face.spectral_face import render_face_spectral_request
 
     p, skin, level, cams, calibrations = task
     sensor = PHYSICS_REGISTRY.options_for(level, {"imager": settings.imager, "illuminance": settings.illuminance})
-    spectral = render_face_spectral(settings.scene, p, skin, level, settings.spp, settings.seed, settings.size,
-                                    variant=settings.variant, grid=settings.grid, bands=bands, **sensor)
-    share = spectral.seconds / (len(cams) * len(calibrations))
+    request = face_request(settings.scene, None, p, None, skin=skin, physics=level, size=settings.size,
+                           spp=settings.each, seed=settings.seed, variant=settings.variant, grid=settings.grid,
+                           bands=bands, **sensor)
+    begun = time.perf_counter()
+    images = [render_face_spectral_request(request, seed) for seed in settings.seeds]  # one per replicate
+    share = (time.perf_counter() - begun) / (len(cams) * len(calibrations))
     rows = []
     for cam in cams:
         for c in calibrations:
             start = time.perf_counter() - share
-            rows.append(_scored(spectral.through(cam, c), cam, p, c, skin, settings.grid, start))
+            replicated = replicated_of([image.through(cam, c) for image in images], request)
+            rows.append(_scored(replicated, cam, p, c, skin, settings, start))
     return rows
 
 
@@ -172,12 +209,15 @@ def sweep_tasks(cameras, lights, skins, levels) -> list[tuple]:
     return [(cam, p, c, skin, level) for cam, (p, c), skin, level in itertools.product(cameras, lights, skins, levels)]
 
 
-def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels=None, bands=None) -> float:
+def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels=None, bands=None,
+                     skins: int = 1) -> float:
     """
     Wall time of ``renders`` face renders of ``pixels`` pixels at ``spp`` on ``cores`` cores, s (from
     :data:`SECONDS_PER_RENDER` and :data:`SAMPLES_PER_S`, per core; a worker's start, a few seconds, aside);
     ``levels``, one per render, each render at its level's rate
-    (:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`: ``subsurface`` is far slower); ``bands``:
+    (:attr:`~skinrender.rendering.face.effects.Level.samples_per_s`: ``subsurface-volume`` is far slower) and
+    each distinct level's one-off work once per skin of the ``skins``
+    (:attr:`~skinrender.rendering.face.effects.Level.setup_seconds`: ``subsurface``'s table); ``bands``:
     spectral renders of those bands (each sample costs more: :data:`~skinrender.rendering.bands.BAND_COST`).
 
     Examples
@@ -191,7 +231,8 @@ def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels
         from ...rendering.bands import BAND_COST
 
         factor = 1.0 + BAND_COST[0] * bands.size ** BAND_COST[1]
-    return sum(SECONDS_PER_RENDER + factor * pixels * spp / rate for rate in rates) / max(1, cores)
+    setup = 0.0 if levels is None else sum(physics_level(level).setup_seconds for level in set(levels)) * skins
+    return (sum(SECONDS_PER_RENDER + factor * pixels * spp / rate for rate in rates) + setup) / max(1, cores)
 
 
 @dataclass(frozen=True)
@@ -238,24 +279,31 @@ class FaceSweep:
         for row in self.combinations:
             triples = [v for key in ("skin_ncc_mean", "skin_ncc_std")
                        for v in (row[key] if row[key] is not None else [None] * 3)]
+            found = row.get("detection") or {}
             cells = [row["camera"], row["prevailing_K"], row["calibration_K"], row["skin"], row["level"],
                      row["seconds"], row["spp"], *triples, row["tpr"], row["fpr"], row["skin_pixels"],
-                     row["prop_pixels"], *row["skin_ncc_analytic"]]
+                     row["prop_pixels"], *row["skin_ncc_analytic"], row.get("skin_set"),
+                     *(found.get(key) for key in ("verdict", "tpr", "fpr", "tpr_eq4", "fpr_eq4", "tpr_change",
+                                                   "fpr_change"))]
             writer.writerow(["" if v is None else f"{v:.17g}" if isinstance(v, float) else v for v in cells])
         return write_output(path, handle.getvalue(), flag)
 
 
 def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples: float, cores: int,
-                levels=None, bands=None) -> None:
+                levels=None, bands=None, skins: int = 1) -> None:
     """Refuse a sweep too large (``levels``: each render's level; a slower level's samples count at its cost;
-    ``bands``: spectral renders, each sample at the bands' cost)."""
+    ``bands``: spectral renders, each sample at the bands' cost; ``skins``: how many)."""
     pixels = size * size
     if pixels > PIXELS_MAX:
         raise SkinrenderError(f"size {size} pixels gives {pixels} pixels per image, more than {PIXELS_MAX}")
     if spp * pixels > SAMPLES_MAX:
         raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
                               f"most {SAMPLES_MAX // pixels} spp at this size")
-    seconds, on = estimate_seconds(renders, pixels, spp, cores, levels, bands), f"on {cores} core{'s' * (cores > 1)}"
+    each = -(-spp // REPLICATES_SWEEP)  # every combination is rendered as replicates of ⌈spp / K⌉
+    seconds = estimate_seconds(renders * REPLICATES_SWEEP, pixels, each, cores,
+                               None if levels is None else [level for level in levels for _ in range(REPLICATES_SWEEP)],
+                               bands, skins)
+    on = f"on {cores} core{'s' * (cores > 1)}"
     about = f"about {duration_text(seconds)} {on}"
     if renders > max_renders:
         raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} ({about}); raise "
@@ -293,6 +341,8 @@ def face_sweep(
     max_samples: float = SWEEP_SAMPLES_MAX,
     spectral: bool | None = None,
     bands: WavelengthGrid | str = BANDS_DEFAULT,
+    skin_set="skin",
+    detection_tolerance: float = DETECTION_TOLERANCE,
 ) -> FaceSweep:
     """
     Render and score the face for every camera × light pair × skin × level.
@@ -330,6 +380,13 @@ def face_sweep(
         see every camera and calibration through it (:mod:`~skinrender.rendering.face.spectral_face`), rather
         than once per combination; ``None``: spectral for more than one camera. A spectral render's seconds are
         shared equally by the rows it serves.
+    skin_set
+        The reflectance set of every combination's skin locus (``skin``: the Vrhel skins; a name, a set or
+        spectra); each row says which (``skin_set``).
+    detection_tolerance
+        How far Eq. 4 may be off in TPR and FPR, fractions in (0, 1): each row's ``detection`` verdict
+        (:func:`~skinrender.rendering.face.detection.face_detection`). Every combination is rendered as
+        :data:`REPLICATES_SWEEP` replicates of ``⌈spp / K⌉`` spp (seeds ``seed, seed + 1, …``), scored on their mean.
 
     Returns
     -------
@@ -359,11 +416,13 @@ def face_sweep(
             projection(cam, bands, grid)
         renders = spectral_tasks(cams, pairs, skins, levels)
         _check_size(len(renders), int(size), int(spp), max_renders, max_samples, cores, [t[2] for t in renders],
-                    bands)
+                    bands, len(set(skins)))
     else:
-        _check_size(len(tasks), int(size), int(spp), max_renders, max_samples, cores, [t[-1] for t in tasks])
+        _check_size(len(tasks), int(size), int(spp), max_renders, max_samples, cores, [t[-1] for t in tasks],
+                    skins=len(set(skins)))
     face = load_face_scene(scene)
-    settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance)
+    settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance,
+                         skin_set, check_tolerance(detection_tolerance, "detection_tolerance"))
     start = time.perf_counter()
     about = None
     if spectral:

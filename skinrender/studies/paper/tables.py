@@ -184,8 +184,12 @@ def table1(
 
     from ...evaluation.verdict import ALPHA_DIFFERENCE, difference, equivalence
 
-    if not (isinstance(tolerance, (int, float)) and 0 < tolerance < 1):
-        raise SkinrenderError(f"tolerance must be an NCC difference in (0, 1), got {tolerance!r}")
+    from ...rendering.agreement import TOLERANCE_MIN
+
+    # below float32's resolution no render resolves it (and 1e-320 overflowed the bounds' ratios to infinity)
+    if isinstance(tolerance, bool) or not (isinstance(tolerance, (int, float)) and TOLERANCE_MIN <= tolerance < 1):
+        raise SkinrenderError(f"tolerance must be an NCC difference in [{TOLERANCE_MIN:.3g}, 1) (its lower end is "
+                              f"float32's resolution), got {tolerance!r}", role="tolerance")
     chart = load_chart_scene("macbeth")
     cam = camera(camera_)
     cache: dict = {}

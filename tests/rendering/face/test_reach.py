@@ -39,13 +39,13 @@ def test_translated_moves_everything_but_the_skies():
 
 
 def test_beyond_float32s_useful_range_is_refused_naming_the_scene():
-    """The skin's mean free path (0.0141 mm for dark skin) sets the subsurface level's range: +100 mm passes,
+    """The skin's mean free path (0.0141 mm for dark skin) sets the subsurface-volume level's range: +100 mm passes,
     +3 m is refused; a pixel's footprint (1.9 mm at 256 px) sets the others', which +3 m meets."""
     face = load_face_scene("face")
-    assert check_face_range(face.translated((100, 0, 0)), "subsurface", SKIN, GRID_DEFAULT) < 1e-4
+    assert check_face_range(face.translated((100, 0, 0)), "subsurface-volume", SKIN, GRID_DEFAULT) < 1e-4
     far = face.translated((3000, 0, 0))
     with pytest.raises(SkinrenderError, match=r"face\.toml: it reaches .* mean free path of its skin") as raised:
-        check_face_range(far, "interreflection+subsurface", SKIN, GRID_DEFAULT)
+        check_face_range(far, "interreflection+subsurface-volume", SKIN, GRID_DEFAULT)
     assert raised.value.flag == "--translate-mm"
     assert check_face_range(far, "direct", SKIN, GRID_DEFAULT) < 0.019
     with pytest.raises(SkinrenderError, match="a pixel's footprint at the camera target"):

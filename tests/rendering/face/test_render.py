@@ -201,3 +201,18 @@ def test_loaded_documents_are_reused_and_keyed_by_the_curves(tmp_path):
     swapped = render_face(str(path), "face", 2856, 2856, spp=1, size=8, seed=1)
     assert _load.cache_info().misses > middle.misses
     assert not np.allclose(swapped.radiance, first.radiance)
+
+
+@pytest.mark.parametrize("exposure", ["x", -1, 0.0, float("nan")])
+def test_a_bad_exposure_is_refused_before_any_render(exposure, monkeypatch):
+    """Issue 36 (a late refusal): a face's exposure was checked by the noise level's setup, after the white
+    references had rendered (~5 s)."""
+    import skinrender as sr
+    import skinrender.rendering.face.render as face_render
+
+    monkeypatch.setattr(face_render, "render_face_request",
+                        lambda *a, **k: pytest.fail("rendered before the exposure was checked"))
+    with pytest.raises(sr.SkinrenderError, match="exposure must be .?auto.? or") as error:
+        sr.render("face", "gbell:9@450,540,610", "A", "A", spp=4, size=8, physics="noise", imager="sony-imx174",
+                  exposure=exposure)
+    assert error.value.role == "exposure"

@@ -25,10 +25,27 @@ BANDS = WavelengthGrid(400, 700, 50)
 def test_every_value_parameter_is_found_in_the_dictionaries(level):
     """Each level's loaded document (JIT variant) against :func:`revalue.flattened`: the same names, the same
     values to float32 rounding; a level that did not match would be loaded anew for every render (slower, not
-    wrong). ``subsurface`` renders in ``scalar_spectral``, which compiles nothing and is never revalued."""
+    wrong). ``subsurface-volume`` renders in ``scalar_spectral``, which compiles nothing and is never revalued;
+    ``subsurface`` is the next test's."""
     plan = FacePlan.of(face_request("face", None, 2856, skin="skin-model:melanin=0.02", physics=level, spp=1, size=4,
                                     variant="llvm_ad_spectral", bands=BANDS))
     assert revalue._matches(revalue._fresh(plan, BANDS), plan)
+
+
+def test_the_fast_subsurface_is_loaded_anew_for_every_skin():
+    """The fast ``subsurface``'s skin is a table outside the document's dictionary (the plugin names it by a key
+    and exposes no parameter): its documents must not match their flattening, or a kept one would render the
+    skin it was loaded with. It is loaded anew (slower, not wrong); a second skin renders as its own fresh render."""
+    plan = FacePlan.of(face_request("face", None, 2856, skin="skin-model:melanin=0.02", physics="subsurface", spp=1,
+                                    size=4, variant="llvm_ad_spectral", bands=BANDS))
+    assert not revalue._matches(revalue._fresh(plan, BANDS), plan)
+    revalue.release()
+    render_face_spectral("face", 2856, "skin-model:melanin=0.02", "subsurface", 4, 1, 8, bands=BANDS)
+    kept = render_face_spectral("face", 2856, "skin-model:melanin=0.3", "subsurface", 4, 1, 8, bands=BANDS)
+    revalue.release()
+    fresh = render_face_spectral("face", 2856, "skin-model:melanin=0.3", "subsurface", 4, 1, 8, bands=BANDS)
+    floor = FLOAT32_FLOOR * float(np.max(fresh.image))
+    assert np.allclose(kept.image, fresh.image, rtol=FLOAT32_FLOOR, atol=floor)
 
 
 def test_a_kept_document_renders_what_a_fresh_one_does():

@@ -99,3 +99,26 @@ class TestFaceBudget:
         rates = budget_rates(mean, labels, locus, got)
         assert rates["tpr"] == rates["tpr_shifted"] == 1.0 and rates["fpr"] == rates["fpr_shifted"] == 0.0
         assert budget_rates(mean, labels, locus, None) is None
+
+
+def test_a_skin_of_the_set_is_budgeted_against_the_others():
+    """A skin that helps span the locus sits on its boundary at a light of the set (Vrhel skin #1 at 2000 K, one
+    of the paper's ten, among the first five skins: margin ~2e-5, a budget of ~1e-5 by construction); measured
+    against the hull of the others it has a margin like any skin's (here outside it, by 1.5e-3), and the reason says
+    so. A skin inside the hull keeps its budget."""
+    from skinrender.datasets import reflectances
+    from skinrender.model.camera import camera
+    from skinrender.model.chromaticity import ncc
+    from skinrender.rendering.face.shift import face_budget
+    from skinrender.rendering.validation import analytic_reference
+    from skinrender.spectra import GRID_DEFAULT
+
+    cam, skins = camera("gbell:9@450,540,610"), reflectances("skin").on(GRID_DEFAULT)[:5]
+    point = ncc(analytic_reference(cam, skins[1][None], 2000.0, 5900.0))[0]
+    alone, _ = face_budget(cam, point, 5900.0, skin_set=skins)
+    left_out, locus = face_budget(cam, point, 5900.0, skin_set=skins, skin=skins[1])
+    assert alone.budget < 1e-4 and left_out.margin < -1e-3 and left_out.budget > 5e-4
+    assert "without the tested skin" in left_out.reason and locus.area > 0
+    inside = ncc(analytic_reference(cam, skins[3][None], 2000.0, 5900.0))[0]
+    assert face_budget(cam, inside, 5900.0, skin_set=skins, skin=skins[3])[0].budget == pytest.approx(
+        face_budget(cam, inside, 5900.0, skin_set=skins)[0].budget)

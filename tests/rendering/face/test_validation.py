@@ -24,25 +24,32 @@ def names(result) -> list[str]:
 
 
 @pytest.mark.parametrize("physics, expected, shift", [
-    ("direct", ["shading_cancels", "eq4_shift"], "pass"),
-    ("sheen", ["dichromatic_plane", "eq4_shift"], "fail"),
-    ("noise", ["shading_cancels", "eq4_shift"], None),
-    ("sheen+noise", ["dichromatic_plane", "eq4_shift"], None),
-    ("mixed", ["eq4_shift"], "fail"),
+    ("direct", ["shading_cancels", "detection", "eq4_shift"], "pass"),
+    ("sheen", ["dichromatic_plane", "detection", "eq4_shift"], "fail"),
+    ("noise", ["shading_cancels", "detection", "eq4_shift"], None),
+    ("sheen+noise", ["dichromatic_plane", "detection", "eq4_shift"], None),
+    ("mixed", ["detection", "eq4_shift"], "fail"),
 ])
 def test_the_checks_of_each_level(physics, expected, shift):
-    """Each level runs its limit's check (which passes) and eq4_shift against the detection budget: within it where
-    Eq. 4 holds (direct), beyond it under the sheen's saturated body colour and under mixed light."""
+    """Each level runs its limit's check (which passes), the detection check (the verdict's) and, as a diagnostic
+    outside the verdict, eq4_shift against the detection budget: within it where Eq. 4 holds (direct), beyond it
+    under the sheen's saturated body colour and under mixed light."""
     result = validate_face(CAM, physics=physics, size=48, spp=48, limits=(), prevailing=2856, calibration=2856)
     assert names(result) == expected
     assert result.spp == 12 * SPP_REPLICATE_MIN and result.spp_requested == 48 and result.replicates == 12
     assert "spp_note" in result.info and result.info["spp_per_replicate"] == SPP_REPLICATE_MIN
     first, last = result.checks[0], result.checks[-1]
-    if first.name != "eq4_shift" and "noise" not in physics:
+    if first.name not in ("detection", "eq4_shift") and "noise" not in physics:
         assert first.passed is True, first
-    elif first.name != "eq4_shift":  # the 8-bit sensor at 48 px leaves ~10 pixels usable: never a failure, but
-        assert first.outcome != "fail", first  # no highlight resolved, or too few pixels (the sensor: test below)
-    assert all(c.applies for c in result.checks)
+    elif first.name not in ("detection", "eq4_shift"):  # the 8-bit sensor at 48 px leaves ~10 pixels usable: never a
+        assert first.outcome != "fail", first  # failure, but no highlight resolved, or too few pixels (test below)
+    assert [c.applies for c in result.checks] == [c.name != "eq4_shift" for c in result.checks]
+    detection = next(c for c in result.checks if c.name == "detection")
+    assert result.verdict.outcome == ("fail" if "fail" in {c.outcome for c in result.checks if c.applies}
+                                      else result.verdict.outcome)
+    assert detection.tolerance == 0.02 and result.info["detection"]["verdict"] == detection.outcome
+    if physics == "mixed":  # the props under two lights: FPR far from Eq. 4's
+        assert detection.outcome == "fail" and result.info["detection"]["fpr_change"] > 0.2
     if shift is not None:
         assert last.outcome == shift, last
     assert last.tolerance == pytest.approx(result.info["budget"]["budget"])
@@ -51,7 +58,7 @@ def test_the_checks_of_each_level(physics, expected, shift):
     assert document["physics"] == physics and document["checks"][0]["name"] == expected[0]
     assert document["verdict"] == result.verdict.outcome and document["exit_status"] == EXIT_STATUS[
         result.verdict.outcome]
-    if shift == "fail":
+    if detection.outcome == "fail":
         assert result.passed is False and document["exit_status"] == 1
 
 
@@ -149,3 +156,11 @@ def test_the_mean_of_the_replicates_is_one_render_of_all_their_samples():
             assert np.allclose(mean.image, np.mean([r.image for r in replicated.renders], axis=0), rtol=1e-5)
         else:
             assert mean.info["imager"] and not np.allclose(mean.image, replicated.renders[0].image)
+
+
+def test_limits_given_as_text_are_named_whole():
+    """Issue 36: ``limits="bogus"`` was read letter by letter ("unknown 'b', 'o', 'g', …")."""
+    import skinrender as sr
+
+    with pytest.raises(sr.SkinrenderError, match=r"^limits: unknown 'bogus'; known: furnace, sphere$"):
+        sr.validate("face", "gbell:9@450,540,610", "A", "A", spp=24, size=8, limits="furnace,bogus")

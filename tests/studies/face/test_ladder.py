@@ -35,6 +35,11 @@ class TestLadder:
         assert mixed["skin_ncc_mean"][2] > direct["skin_ncc_mean"][2] + max(direct["skin_ncc_std"])
         assert direct["within_budget"] is True and mixed["within_budget"] is False
         assert direct["tpr_change"] == 0 and mixed["fpr_change"] == mixed["fpr"] - direct["fpr"]
+        # the verdict is the detection's: Eq. 4 right at direct, the props let in under two lights
+        assert direct["detection"]["verdict"] == "pass" and direct["detection"]["tpr_change"] == 0
+        assert mixed["detection"]["verdict"] == "fail" and mixed["detection"]["fpr_change"] > 0.2
+        assert all(row["skin_set"] == "skin" for row in document["levels"]) and document["skin_set"] == "skin"
+        assert document["finding"].startswith("Eq. 4 mispredicts detection (by more than 0.02) at: mixed (FPR +")
         assert document["verdict"] == "fail" and document["exit_status"] == 1
 
     def test_frames_carry_the_masks_and_draw(self, tmp_path):
@@ -62,10 +67,13 @@ class TestLadder:
             assert nones and set(row["undefined"]) == nones
             if "tpr" in nones:
                 assert row["undefined"]["tpr"] == "no scored skin pixel (brightest channel ≥ 10)"
+            detection = row["detection"]  # no pixel to score: the rates are None with their reason, never 0
+            assert detection["tpr"] is None and "no scored skin pixel" in detection["undefined"]["tpr"]
 
     @pytest.mark.parametrize("kwargs, match", [
         ({"levels": ()}, "levels"), ({"levels": ("glossy",)}, "physics"), ({"prevailing": "x"}, "illuminant"),
         ({"skin": "skin:nobody"}, "skin"), ({"replicates": 2}, "replicates"),
+        ({"detection_tolerance": 1.0}, "detection_tolerance"), ({"detection_tolerance": 0}, "detection_tolerance"),
     ])
     def test_refusals(self, kwargs, match):
         arguments = {"camera_": CAMERA, "prevailing": 2856, "calibration": 5900, "size": 8, "spp": 1,

@@ -55,7 +55,9 @@ class TestFaceSweep:
                                 "skin_ncc_mean", "skin_ncc_std", "tpr", "fpr", "undefined"}
             assert row["undefined"] == {}  # the ladder's reasons for a None score: none here
             assert row["camera"] == CAMERA and row["prevailing_K"] == 2856 and row["calibration_K"] == 5900
-            assert row["spp"] == 4 and row["seconds"] > 0 and row["skin_pixels"] > 0
+            # 12 replicates of ⌈4 / 12⌉ spp, each scored with its detection verdict on the Vrhel locus
+            assert row["spp"] == 12 and row["replicates"] == 12 and row["seconds"] > 0 and row["skin_pixels"] > 0
+            assert row["skin_set"] == "skin" and row["detection"]["verdict"] in ("pass", "fail", "inconclusive")
             assert abs(sum(row["skin_ncc_mean"]) - 1) < 1e-9 and 0 <= row["tpr"] <= 1 and 0 <= row["fpr"] <= 1
         # at the direct level each skin's NCC is Eq. 4's (shading cancels), so the rendered skins move apart
         # as the analytic ones do; the dark skin has fewer pixels bright enough to score
@@ -82,19 +84,16 @@ class TestFaceSweep:
         assert numbers(remote.combinations) == numbers(split_work.combinations[:1])
 
     def test_the_ladders_scores(self, one_worker):
-        """The sweep scores a render exactly as the ladder scores a level (score_frame, the ladder's locus); the
-        ladder's level is the mean of its replicates, the sweep's one render at the same settings."""
-        from skinrender.evaluation.locus import skin_locus
-        from skinrender.rendering.face import render_face
+        """The sweep scores a combination exactly as the ladder scores a level: the same replicates (seeds seed,
+        seed + 1, … at ⌈spp / 12⌉), their mean scored by score_frame against the ladder's locus, and the same
+        detection verdict."""
         from skinrender.studies.face.ladder import ladder
 
-        render = render_face(CAMERA, "face", 2856, 5900, SKINS[1], LEVELS[0], TINY["spp"], TINY["seed"], TINY["size"])
-        theirs = score_rendering(render, skin_locus(CAMERA, "skin", calibration=5900))
-        mine = one_worker.combinations[2]
-        for key in ("skin_ncc_mean", "skin_ncc_std", "tpr", "fpr", "skin_pixels", "prop_pixels"):
-            assert mine[key] == theirs[key], key
-        assert mine["spp"] == render.spp
         result = ladder(CAMERA, 2856, 5900, SKINS[1], levels=LEVELS[:1], **TINY)
+        theirs, mine = result.levels[0], one_worker.combinations[2]
+        for key in ("skin_ncc_mean", "skin_ncc_std", "tpr", "fpr", "skin_pixels", "prop_pixels", "spp"):
+            assert mine[key] == theirs[key], key
+        assert mine["detection"] == theirs["detection"]
         assert mine["skin_ncc_analytic"] == pytest.approx(result.skin_ncc_analytic, abs=1e-15)
 
     def test_csv_whole(self, one_worker, tmp_path):
@@ -144,18 +143,23 @@ def test_estimate_grows_with_samples():
 
 
 def test_estimate_and_cap_count_each_level_at_its_cost():
-    """A subsurface render costs its own rate (samples/s): its estimate and its share of max_samples are larger."""
+    """A subsurface-volume render costs its own rate (samples/s): its estimate and its share of max_samples are larger;
+    a fast subsurface render costs the base's rate and its table once per skin."""
     from skinrender.rendering.face.effects import physics_level
 
-    ratio = physics_level("direct").samples_per_s / physics_level("subsurface").samples_per_s
+    ratio = physics_level("direct").samples_per_s / physics_level("subsurface-volume").samples_per_s
     base = estimate_seconds(2, 64 * 64, 32, levels=["direct", "direct"])
     assert base == pytest.approx(estimate_seconds(2, 64 * 64, 32))
-    slow = estimate_seconds(2, 64 * 64, 32, levels=["direct", "sheen+subsurface"])
+    slow = estimate_seconds(2, 64 * 64, 32, levels=["direct", "sheen+subsurface-volume"])
     assert slow > 5 * base and ratio > 10  # 30 (9e5 against 3e4 samples/s); a render's fixed cost aside
     arguments = {"cameras": [CAMERA], "lights": [(2856, 5900)], "skins": SKINS[:1], "size": 16, "spp": 4,
                  "max_samples": 16 * 16 * 4 * 10}
-    with pytest.raises(SkinrenderError, match=r"at subsurface a sample counts as \d+ at the base's rate.*max-samples"):
-        face_sweep(levels=["direct", "subsurface"], **arguments)
+    with pytest.raises(SkinrenderError, match=r"at subsurface-volume a sample counts as \d+ at the base's rate.*max-samples"):
+        face_sweep(levels=["direct", "subsurface-volume"], **arguments)
+    fast = physics_level("subsurface")
+    assert fast.samples_per_s == physics_level("direct").samples_per_s and fast.setup_seconds > 0
+    assert estimate_seconds(4, 64 * 64, 32, cores=1, levels=["subsurface"] * 4, skins=3) == pytest.approx(
+        estimate_seconds(4, 64 * 64, 32, cores=1) + 3 * fast.setup_seconds)
 
 
 @pytest.mark.parametrize("kwargs, match", [

@@ -20,6 +20,8 @@ owns its options (``options``: a dataclass, e.g. ``noise``'s
 -   :mod:`~skinrender.rendering.face.effects.direct` (the base),
     :mod:`~skinrender.rendering.face.effects.interreflection`,
     :mod:`~skinrender.rendering.face.effects.sheen`,
+    :mod:`~skinrender.rendering.face.effects.subsurface_table` (``subsurface``),
+    :mod:`~skinrender.rendering.face.effects.subsurface` (``subsurface-volume``),
     :mod:`~skinrender.rendering.face.effects.mixed`,
     :mod:`~skinrender.rendering.face.effects.noise`: the effects.
 
@@ -29,9 +31,10 @@ How to add one: ``docs/effects.md``.
 from __future__ import annotations
 
 from .base import Effect, Frame, Limits, Measured, Replicates, Setup
-from .levels import (EFFECTS, LEVELS_EACH, LEVELS_LADDER, PHYSICS, PHYSICS_BASE, PHYSICS_EFFECTS, PHYSICS_REGISTRY,
-                     Level, Registry, active_lights, levels_each, levels_ladder, parse_physics, physics_level, register)
+from .levels import (EFFECTS, EFFECTS_DEFAULT, LEVELS_EACH, LEVELS_LADDER, PHYSICS, PHYSICS_BASE, PHYSICS_EFFECTS,
+                     PHYSICS_REGISTRY, Level, Registry, active_lights, levels_each, levels_ladder, parse_physics,
+                     physics_level, register)
 
 __all__ = ["Effect", "Limits", "Setup", "Frame", "Replicates", "Measured", "PHYSICS_EFFECTS", "PHYSICS_BASE",
-           "PHYSICS", "EFFECTS", "LEVELS_EACH", "LEVELS_LADDER", "PHYSICS_REGISTRY", "Level", "Registry", "register",
+           "PHYSICS", "EFFECTS", "EFFECTS_DEFAULT", "LEVELS_EACH", "LEVELS_LADDER", "PHYSICS_REGISTRY", "Level", "Registry", "register",
            "levels_each", "levels_ladder", "parse_physics", "physics_level", "active_lights"]

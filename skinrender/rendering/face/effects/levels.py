@@ -21,9 +21,11 @@ user's plugin).
     table), :data:`PHYSICS_BASE`, :func:`register`.
 -   :data:`PHYSICS`: name → description (read from the registry);
     :data:`EFFECTS`: the names that add to the base.
--   :data:`LEVELS_EACH`, :data:`LEVELS_LADDER`: the base and each effect
-    alone (``bench render --scene``), and then all together (``ladder``,
-    ``face-sweep``), as registered at import; :func:`levels_each`,
+-   :data:`EFFECTS_DEFAULT`, :data:`LEVELS_EACH`, :data:`LEVELS_LADDER`: the
+    effects of the default levels (every effect but the volumetric reference,
+    ``subsurface-volume``: :attr:`~.base.Effect.by_default`), the base and each
+    of them alone (``bench render --scene``), and then all together
+    (``ladder``, ``face-sweep``), as registered at import; :func:`levels_each`,
     :func:`levels_ladder`: the same read from the registry when called.
 -   :func:`parse_physics`: a spec's effects as names (a tuple);
     :func:`physics_level`: a spec as a :class:`Level`.
@@ -41,7 +43,8 @@ from ...physics import Effect, Level
 from ...registry import Registry
 from ..scene import FaceScene, Light
 
-__all__ = ["Registry", "PHYSICS_REGISTRY", "PHYSICS_EFFECTS", "PHYSICS_BASE", "PHYSICS", "EFFECTS", "LEVELS_EACH",
+__all__ = ["Registry", "PHYSICS_REGISTRY", "PHYSICS_EFFECTS", "PHYSICS_BASE", "PHYSICS", "EFFECTS", "EFFECTS_DEFAULT",
+           "LEVELS_EACH",
            "LEVELS_LADDER", "Level", "register", "levels_each", "levels_ladder", "parse_physics", "physics_level",
            "active_lights"]
 
@@ -95,12 +98,15 @@ add one effect to it and combine with ``+`` (``interreflection+sheen+mixed``).""
 EFFECTS = tuple(name for name in PHYSICS_EFFECTS if name != PHYSICS_BASE)
 """The effects that add to ``direct``, in ladder order."""
 
-LEVELS_EACH = (PHYSICS_BASE, *EFFECTS)
-"""The base and each effect alone (the face bench's levels)."""
+EFFECTS_DEFAULT = tuple(name for name in EFFECTS if PHYSICS_EFFECTS[name].by_default)
+"""The effects of the default levels (:attr:`~.base.Effect.by_default`: all but ``subsurface-volume``, the
+volumetric reference, which a user names)."""
 
-LEVELS_LADDER = (*LEVELS_EACH, "+".join(EFFECTS))
-"""The base, each effect alone, then all of them (the ladder's and the face sweep's levels)."""
+LEVELS_EACH = (PHYSICS_BASE, *EFFECTS_DEFAULT)
+"""The base and each default effect alone (the face bench's and the effects table's levels)."""
 
+LEVELS_LADDER = (*LEVELS_EACH, "+".join(EFFECTS_DEFAULT))
+"""The base, each default effect alone, then all of them (the ladder's and the face sweep's levels)."""
 
 PHYSICS_REGISTRY = Registry(PHYSICS_EFFECTS)
 """The face's registry of effects (its table: :data:`PHYSICS_EFFECTS`)."""
@@ -112,12 +118,14 @@ def register(effect: Effect) -> Effect:
 
 
 def levels_each(registry: Registry = PHYSICS_REGISTRY) -> tuple[str, ...]:
-    """The base and each named effect alone, as registered now."""
-    return tuple(registry.named)
+    """The base and each named effect of the default levels alone (:meth:`Registry.by_default`), as registered
+    now."""
+    return tuple(registry.by_default)
 
 
 def levels_ladder(registry: Registry = PHYSICS_REGISTRY) -> tuple[str, ...]:
-    """The base, each named effect alone, then all of them together, as registered now (the ladder's)."""
+    """The base, each named effect of the default levels alone, then all of them together, as registered now (the
+    ladder's)."""
     each = levels_each(registry)
     return (*each, "+".join(each[1:])) if len(each) > 2 else each
 

@@ -1,13 +1,16 @@
 """
-Subsurface scattering
-=====================
+Subsurface scattering, volumetric: the reference
+================================================
 
-The skin as the skin model's two layers under a rough dielectric boundary
-(Mitsuba 3 has no BSSRDF), path traced by the project's own integrator
+Level ``subsurface-volume`` (until issue 34 it was named ``subsurface``,
+which is now the fast transport of
+:mod:`~skinrender.rendering.face.effects.subsurface_table`). The skin as the
+skin model's two layers under a rough dielectric boundary (Mitsuba 3 has no
+BSSRDF), path traced by the project's own integrator
 (:mod:`~skinrender.rendering.skin_integrator`): light enters the skin,
 scatters under it and leaves it elsewhere.
 
--   :data:`SUBSURFACE`: the effect; :data:`SUBSURFACE_ALPHA`,
+-   :data:`SUBSURFACE_VOLUME`: the effect; :data:`SUBSURFACE_ALPHA`,
     :data:`SCENE_SCALE_SUBSURFACE`, :data:`SAMPLES_PER_S_SUBSURFACE`.
 -   :func:`face_media`: the layers the face renders for a skin spec.
 
@@ -56,14 +59,16 @@ None holds: light leaving the skin has travelled under it along paths whose
 length and depth depend on where it entered and in which direction, so its
 spectrum changes with the angles of incidence and view, and the shading no
 longer cancels in NCC. The flat slab against adding-doubling is the check of
-this physics (``validate CHART --physics subsurface``,
+this physics (``validate CHART --physics subsurface-volume``,
 :mod:`skinrender.rendering.subsurface_chart`).
 
 Cost
 ----
 Light scatters hundreds of times in skin before it leaves: a face render at
 this level costs ~:data:`SAMPLES_PER_S_SUBSURFACE` samples per second on one
-core; :attr:`~skinrender.rendering.face.effects.base.Effect.samples_per_s`
+core, against ~9e5 without it, so the default levels (``ladder``,
+``face-sweep``, the face bench) leave it out (:attr:`~skinrender.rendering.face.effects.base.Effect.by_default`):
+name it (``--levels subsurface-volume``). :attr:`~skinrender.rendering.face.effects.base.Effect.samples_per_s`
 gives the estimates this rate.
 """
 
@@ -75,7 +80,7 @@ from ....spectra import WavelengthGrid
 from ...subsurface import check_truncation, integrator_dict, medium_dict, skin_media_of, subsurface_variant
 from .base import Effect, Limits, Setup
 
-__all__ = ["EFFECT", "SUBSURFACE", "SUBSURFACE_ALPHA", "SCENE_SCALE_SUBSURFACE", "SAMPLES_PER_S_SUBSURFACE", "face_media"]
+__all__ = ["EFFECT", "SUBSURFACE_VOLUME", "SUBSURFACE_ALPHA", "SCENE_SCALE_SUBSURFACE", "SAMPLES_PER_S_SUBSURFACE", "face_media"]
 
 SUBSURFACE_ALPHA = 0.35
 """GGX roughness α of the skin's boundary, as ``sheen``'s coat (Weyrich et al. 2006 fit 0.3–0.45 to faces)."""
@@ -120,19 +125,20 @@ def _skin(material: dict, reflectance, setup: Setup) -> dict:
             "interior": medium_dict(epidermis, setup.grid, 1000.0 / SCENE_SCALE_SUBSURFACE)}
 
 
-SUBSURFACE = Effect(
-    "subsurface",
-    "the skin as the skin model's two layers under a rough dielectric boundary, path traced (the project's "
-    "skinvolpath): light scatters under the skin and leaves it elsewhere",
+SUBSURFACE_VOLUME = Effect(
+    "subsurface-volume",
+    "the volumetric reference: the skin as the skin model's two layers under a rough dielectric boundary, path "
+    "traced (the project's skinvolpath; minutes): light scatters under the skin and leaves it elsewhere",
+    short="volumetric subsurface scattering", excludes=("subsurface",), by_default=False,
     integrator=_integrator, skin=_skin,
     limits=Limits(holds=False, why="light leaves the skin after paths under it whose length depends on the angles "
                                    "of incidence and view, so the skin's colour changes with the geometry and the "
                                    "shading no longer cancels: no analytic limit on the face (the flat slab is "
-                                   "checked against adding-doubling: validate a chart with --physics subsurface)"),
+                                   "checked against adding-doubling: validate a chart with --physics subsurface-volume)"),
     samples_per_s=SAMPLES_PER_S_SUBSURFACE, scene_scale=SCENE_SCALE_SUBSURFACE, variant=subsurface_variant,
-    order=30,
+    order=35,
 )
 """The skin as a medium (module docstring)."""
 
-EFFECT = SUBSURFACE
+EFFECT = SUBSURFACE_VOLUME
 """This module's effect (the registry takes it: :mod:`.levels`)."""

@@ -8,15 +8,16 @@ an effect's own tests (its module's) name it.
 from __future__ import annotations
 
 import itertools
+import re
 from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.rendering.face.effects import (EFFECTS, LEVELS_EACH, LEVELS_LADDER, PHYSICS, PHYSICS_BASE,
-                                               PHYSICS_EFFECTS, Effect, Limits, active_lights, levels_each,
-                                               levels_ladder, parse_physics, physics_level)
+from skinrender.rendering.face.effects import (EFFECTS, EFFECTS_DEFAULT, LEVELS_EACH, LEVELS_LADDER, PHYSICS,
+                                               PHYSICS_BASE, PHYSICS_EFFECTS, Effect, Limits, active_lights,
+                                               levels_each, levels_ladder, parse_physics, physics_level)
 from skinrender.rendering.face.effects.base import Frame
 from skinrender.rendering.face.effects.direct import DIRECT
 from skinrender.rendering.face.effects.noise import NOISE
@@ -36,7 +37,7 @@ class TestParsePhysics:
         assert parse_physics(PHYSICS_BASE) == ()
         last, before = EFFECTS[-1], EFFECTS[-2]
         assert parse_physics(f" {last} + {before} ") == (before, last)
-        assert parse_physics("+".join(reversed(EFFECTS))) == EFFECTS
+        assert parse_physics("+".join(reversed(EFFECTS_DEFAULT))) == EFFECTS_DEFAULT
         assert set(EFFECTS) | {PHYSICS_BASE} == set(PHYSICS)
 
     @pytest.mark.parametrize("spec", ["", "glossy", f"{PHYSICS_BASE}+{EFFECTS[-1]}", f"{EFFECTS[0]}+", "bssrdf"])
@@ -68,7 +69,7 @@ class TestRegistry:
         parts = ("integrator", "skin", "prop", "lights", "post")
         assert next(iter(PHYSICS_EFFECTS)) == PHYSICS_BASE == "direct"
         for name, effect in PHYSICS_EFFECTS.items():
-            assert isinstance(effect, Effect) and effect.name == name and name.isidentifier()
+            assert isinstance(effect, Effect) and effect.name == name and re.fullmatch(r"[a-z]+(-[a-z]+)*", name)
             assert effect.description.strip() and "\n" not in effect.description and PHYSICS[name] == effect.description
             assert all(getattr(effect, part) is None or callable(getattr(effect, part)) for part in parts)
             assert isinstance(effect.limits, Limits)
@@ -84,9 +85,13 @@ class TestRegistry:
         assert base.limits.check is not None and base.limits.holds
 
     def test_level_lists_are_read_from_the_registry(self):
+        """Every effect is registered; the default levels leave out those a user names (by_default: the
+        volumetric reference, subsurface-volume), and the face bench those slower per sample than the base."""
         assert EFFECTS == tuple(PHYSICS_EFFECTS)[1:] and len(EFFECTS) >= 2
-        assert LEVELS_EACH == (PHYSICS_BASE, *EFFECTS) == levels_each()
-        assert LEVELS_LADDER == (*LEVELS_EACH, "+".join(EFFECTS)) == levels_ladder()
+        assert EFFECTS_DEFAULT == tuple(name for name in EFFECTS if PHYSICS_EFFECTS[name].by_default)
+        assert "subsurface" in EFFECTS_DEFAULT and "subsurface-volume" in set(EFFECTS) - set(EFFECTS_DEFAULT)
+        assert LEVELS_EACH == (PHYSICS_BASE, *EFFECTS_DEFAULT) == levels_each()
+        assert LEVELS_LADDER == (*LEVELS_EACH, "+".join(EFFECTS_DEFAULT)) == levels_ladder()
         base_rate = PHYSICS_EFFECTS[PHYSICS_BASE].samples_per_s
         assert LEVELS_DEFAULT is LEVELS_LADDER and LEVELS_BENCH == tuple(
             level for level in LEVELS_EACH if physics_level(level).samples_per_s >= base_rate)
@@ -124,6 +129,8 @@ class TestRefusals:
          f"physics: '{PHYSICS_BASE}' is the base and combines with nothing, got '{PHYSICS_BASE}+{EFFECTS[-1]}'"),
         (f"{EFFECTS[1]}+{EFFECTS[0]}+{EFFECTS[1]}",
          f"physics: {EFFECTS[1]} named twice in '{EFFECTS[1]}+{EFFECTS[0]}+{EFFECTS[1]}'; name each effect once"),
+        ("subsurface-volume+subsurface", "physics: 'subsurface-volume' and 'subsurface' are two transports of the same "
+                                         "skin and do not combine, got 'subsurface-volume+subsurface'; name one"),
     ])
     def test_messages(self, spec, message):
         for parse in (parse_physics, physics_level):
@@ -160,7 +167,8 @@ def _old_lights(scene, effects: tuple[str, ...]) -> dict:
 
 
 EFFECTS_BEFORE = ("interreflection", "sheen", "mixed", "noise")
-"""The effects registered when the registry replaced the branches (``subsurface`` came later: its own tests)."""
+"""The effects registered when the registry replaced the branches (``subsurface`` and ``subsurface-volume`` came
+later: their own tests)."""
 
 LEVELS_ALL = ["+".join(c) for n in range(len(EFFECTS_BEFORE) + 1) for c in itertools.combinations(EFFECTS_BEFORE, n)]
 """Every level of those: direct (the empty combination) and each of the 15 combinations of the four effects."""
@@ -235,7 +243,7 @@ def test_a_toy_effect_registered_for_a_test_only_renders_and_validates(monkeypat
     assert (direct.image[skin].max(axis=-1) == 0).any(), "the key light alone leaves some skin pixel black"
     assert (lit.image[skin].min(axis=-1) > 0).all(), "the sky reaches every skin pixel"
     result = validate_face(CAM, dark, physics="sky", size=32, spp=48, limits=(), prevailing=2856, calibration=2856)
-    assert [c.name for c in result.checks] == ["shading_cancels", "eq4_shift"]
+    assert [c.name for c in result.checks] == ["shading_cancels", "detection", "eq4_shift"]
     assert result.checks[0].passed is True, result.checks[0]
     assert "sky" not in PHYSICS_EFFECTS or PHYSICS_EFFECTS["sky"] is SKY
 

@@ -1,0 +1,58 @@
+"""Tests for :mod:`skinrender.evaluation.detection_verdict`: the changes held to a tolerance, undefined rates, words."""
+
+from __future__ import annotations
+
+import pytest
+
+from skinrender.errors import SkinrenderError
+from skinrender.evaluation.detection_verdict import (DETECTION_KEYS, check_tolerance, detection_verdict, finding,
+                                                     findings_text)
+
+STEADY = [(1.0, 0.10)] * 12
+"""Half-samples that agree: a standard error of 0."""
+
+
+def test_the_decomposition_and_the_keys():
+    """rendered = Eq. 4 + change + mc_floor, term by term; the issue's keys first."""
+    document, verdict = detection_verdict((0.81, 0.19), (1.0, 0.10), (1.0, 0.10), STEADY)
+    assert list(document)[:len(DETECTION_KEYS)] == list(DETECTION_KEYS)
+    for key in ("tpr", "fpr"):
+        assert document[f"{key}_rendered"] == pytest.approx(document[f"{key}_eq4"] + document[f"{key}_change"]
+                                                            + document["mc_floor"][key])
+    assert verdict.outcome == document["verdict"] == "pass" and document["tolerance"] == 0.02
+
+
+@pytest.mark.parametrize("separated, samples, outcome", [
+    ((0.90, 0.10), STEADY, "fail"),                                      # TPR 10 points below Eq. 4's, shown
+    ((1.0, 0.115), [(1.0, 0.10), (1.0, 0.13)] * 6, "inconclusive"),      # 1.5 points, ± 1.5: cannot tell
+    ((1.0, 0.105), [(1.0, 0.104), (1.0, 0.106)] * 6, "pass"),           # half a point, shown within 2
+])
+def test_the_verdict_follows_the_intervals(separated, samples, outcome):
+    document, verdict = detection_verdict((0.9, 0.2), separated, (1.0, 0.10), samples, 0.02)
+    assert verdict.outcome == outcome
+    bound = max(document["tpr_change_bound"], document["fpr_change_bound"])
+    assert (bound <= 0.02) == (outcome == "pass")
+
+
+def test_a_rate_without_pixels_is_none_with_its_reason():
+    """No scored skin pixel: TPR and its change are None with the reason (never 0), and only FPR is tested."""
+    document, verdict = detection_verdict((None, 0.2), (None, 0.10), (None, 0.10), [(None, 0.10)] * 12)
+    assert document["tpr"] is None and document["tpr_change"] is None and document["mc_floor"]["tpr"] is None
+    assert "no scored skin pixel" in document["undefined"]["tpr"] and verdict.outcome == "pass"
+    document, verdict = detection_verdict((None, None), (None, None), (None, None), [(None, None)] * 12)
+    assert verdict.outcome == "not_applicable"
+
+
+@pytest.mark.parametrize("value", [0, 1, -0.1, 2, "x", True, float("nan")])
+def test_a_tolerance_outside_the_unit_interval_is_refused(value):
+    with pytest.raises(SkinrenderError, match="--detection-tolerance: a rate as a fraction in"):
+        check_tolerance(value, "--detection-tolerance")
+
+
+def test_findings_in_words():
+    mixed = {"verdict": "fail", "tpr_change": -0.004, "fpr_change": 0.41, "tolerance": 0.02}
+    noise = {"verdict": "fail", "tpr_change": -0.11, "fpr_change": 0.05, "tolerance": 0.02}
+    assert finding("noise", noise) == "noise (TPR -0.11, FPR +0.05)" and finding("direct", {"verdict": "pass"}) is None
+    text = findings_text([("direct", {"verdict": "pass"}), ("mixed", mixed), ("sheen", {"verdict": "inconclusive"})])
+    assert text == ("Eq. 4 mispredicts detection (by more than 0.02) at: mixed (FPR +0.41); it holds at: direct; "
+                    "undecided (more samples needed) at: sheen")
