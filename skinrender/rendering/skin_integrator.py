@@ -84,6 +84,7 @@ References
 from __future__ import annotations
 
 from ..errors import SkinrenderError
+from .rough_boundary import Boundary
 from .skin_sampling import (bind, coefficients, component, flat, hg_pdf, hg_sample, inside_direction, layer_lengths,
                             margin, phase_g, power, spectral)
 
@@ -165,6 +166,8 @@ def _integrator_class():
             self.nee_g = float(props.get("nee_g", THROUGH_G))
             self.through = bool(props.get("through", True))
             self.reanchor = float(props.get("reanchor_depth", 0.0))  # 0: by the last contact alone
+            # the skin's BSDF as the walk uses it: a rough boundary's lost light put back (rough_boundary)
+            self.boundary = Boundary(mi, float(props.get("boundary_alpha", 0.0)), self.eta)
             self.points = False
 
         def aov_names(self):
@@ -207,24 +210,24 @@ def _integrator_class():
                 # emitter sampling
                 nee = active & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Smooth)
                 ds, em = scene.sample_emitter_direction(si, sampler.next_2d(nee), True, nee)
-                nee &= ds.pdf != 0
-                value, pdf_b = bsdf.eval_pdf(ctx, si, si.to_local(ds.d), nee)
+                nee = self.boundary.lights(si, bsdf, ds, nee & (ds.pdf != 0))
+                value, pdf_b = self.boundary.eval_pdf(ctx, bsdf, si, si.to_local(ds.d), nee)
                 L[nee] += weight * value * em * dr.select(ds.delta, 1.0, power(ds.pdf, pdf_b))
                 # the next direction: Fresnel splitting at smooth skin, else the BSDF's sample
                 smooth = skin & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Delta)
                 outside = si.wi.z > 0
                 split, chance, emitted = self._split(scene, si, sampler, smooth)
                 L[smooth] += weight * emitted
-                bs, b_weight = bsdf.sample(ctx, si, sampler.next_1d(active), sampler.next_2d(active), active)
-                wo = si.to_world(bs.wo)
+                b_wo, b_weight, b_pdf, b_delta = self.boundary.sample(ctx, bsdf, si, sampler, active)
+                wo = si.to_world(b_wo)
                 wo[smooth] = split
                 b_weight[smooth] = 1.0
-                bs.pdf[smooth] = 1.0
-                active &= bs.pdf > 0
+                b_pdf[smooth] = 1.0
+                active &= b_pdf > 0
                 beta[active] *= b_weight
                 prev[active] = si
-                prev_pdf[active] = bs.pdf
-                prev_delta[active] = smooth | mi.has_flag(bs.sampled_type, mi.BSDFFlags.Delta)
+                prev_pdf[active] = b_pdf
+                prev_delta[active] = smooth | b_delta
                 first = dr.select(smooth, chance, 1.0)
                 ray[active] = si.spawn_ray(wo)
                 depth[active] += 1
@@ -289,7 +292,7 @@ def _integrator_class():
             log_t = -(t_1 * l_1 + t_2 * l_2)
             ds_y, em = scene.sample_emitter_direction(hit, u, True, active)
             active &= ds_y.delta & (ds_y.pdf > 0)
-            value = bsdf.eval(ctx, hit, hit.to_local(ds_y.d), active)
+            value = self.boundary.eval_pdf(ctx, bsdf, hit, hit.to_local(ds_y.d), active)[0]
             top = dr.max(log_r)
             both = dr.mean(dr.exp(log_r - top) * (phase * dr.exp(log_t) + q))
             light = mi.Spectrum(0.0)
@@ -380,8 +383,8 @@ def _integrator_class():
                 weight = beta * spectral(log_a, log_r)
                 nee = boundary & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Smooth)
                 ds, em = scene.sample_emitter_direction(hit, sampler.next_2d(nee), True, nee)
-                nee &= ds.pdf != 0
-                value, pdf_b = bsdf.eval_pdf(ctx, hit, hit.to_local(ds.d), nee)
+                nee = self.boundary.lights(hit, bsdf, ds, nee & (ds.pdf != 0))
+                value, pdf_b = self.boundary.eval_pdf(ctx, bsdf, hit, hit.to_local(ds.d), nee)
                 share = mi.Float(1.0)
                 if dr.hint(self.points, mode="scalar"):  # MIS against the path through the boundary from the scattering it left
                     aim, above = inside_direction(dr.normalize(ds.p - x_start), anchor_start, self.eta)
@@ -393,12 +396,12 @@ def _integrator_class():
                 smooth = boundary & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Delta)
                 split, chance, emitted = self._split(scene, hit, sampler, smooth)
                 L[smooth] += weight * emitted
-                bs, b_weight = bsdf.sample(ctx, hit, sampler.next_1d(boundary), sampler.next_2d(boundary), boundary)
-                wo = hit.to_world(bs.wo)
+                b_wo, b_weight, b_pdf, b_delta = self.boundary.sample(ctx, bsdf, hit, sampler, boundary)
+                wo = hit.to_world(b_wo)
                 wo[smooth] = split
                 b_weight[smooth] = 1.0
-                bs.pdf[smooth] = 1.0
-                ok = boundary & (bs.pdf > 0)
+                b_pdf[smooth] = 1.0
+                ok = boundary & (b_pdf > 0)
                 beta[ok] *= b_weight
                 leaves = ok & (dr.dot(wo, hit.n) > 0)
                 stays = ok & ~leaves
@@ -407,8 +410,8 @@ def _integrator_class():
                 left |= leaves
                 ray_out[leaves] = hit.spawn_ray(wo)
                 out_si[leaves] = hit
-                out_pdf[leaves] = bs.pdf
-                out_delta[leaves] = smooth | mi.has_flag(bs.sampled_type, mi.BSDFFlags.Delta)
+                out_pdf[leaves] = b_pdf
+                out_delta[leaves] = smooth | b_delta
                 out_first[leaves] = dr.select(smooth, chance, 1.0)
                 walking &= ~boundary | stays
                 # Russian roulette on the weight

@@ -282,13 +282,16 @@ def medium_dict(layer, grid: WavelengthGrid, mm_per_unit: float = 1.0) -> dict:
             "phase": {"type": "hg", "g": float(layer.g)}}
 
 
-def integrator_dict(layers, grid: WavelengthGrid, mm_per_unit: float = 1.0, hide_emitters: bool = False) -> dict:
+def integrator_dict(layers, grid: WavelengthGrid, mm_per_unit: float = 1.0, hide_emitters: bool = False,
+                    boundary_alpha: float = 0.0) -> dict:
     """
     The Mitsuba integrator of skin (:mod:`~skinrender.rendering.skin_integrator`): the epidermis and the dermis
     of ``layers`` as media (:func:`medium_dict`), the epidermis' thickness in scene units (a scene unit is
     ``mm_per_unit`` mm), the boundary's index ``n``, walks of at most :data:`DEPTH_MAX_SUBSURFACE` events, its
     depths (the re-anchoring's and the point lights' connections') in scene units too;
-    ``hide_emitters``: the emitters seen straight from the camera left out (the background black).
+    ``hide_emitters``: the emitters seen straight from the camera left out (the background black);
+    ``boundary_alpha``: the GGX roughness of a rough skin boundary, whose lost light the integrator puts back
+    (:mod:`~skinrender.rendering.rough_boundary`; 0: a smooth boundary).
     """
     from .skin_integrator import PLUGIN, REANCHOR_DEPTH_MM, THROUGH_DEPTH_MM
 
@@ -297,7 +300,8 @@ def integrator_dict(layers, grid: WavelengthGrid, mm_per_unit: float = 1.0, hide
             "dermis": medium_dict(dermis, grid, mm_per_unit),
             "epidermis_thickness": float(epidermis.thickness_mm) / float(mm_per_unit), "eta": float(dermis.n),
             "max_walk": DEPTH_MAX_SUBSURFACE, "rr_depth": RR_DEPTH_AIR, "hide_emitters": bool(hide_emitters),
-            "reanchor_depth": REANCHOR_DEPTH_MM / float(mm_per_unit), "nee_depth": THROUGH_DEPTH_MM / float(mm_per_unit)}
+            "reanchor_depth": REANCHOR_DEPTH_MM / float(mm_per_unit), "nee_depth": THROUGH_DEPTH_MM / float(mm_per_unit),
+            "boundary_alpha": float(boundary_alpha)}
 
 
 def mean_free_path(layers) -> float:

@@ -120,6 +120,8 @@ class TestMitsubaPieces:
         assert document["dermis"] == medium_dict(layers[1], COARSE, 0.5)
         assert document["epidermis_thickness"] == pytest.approx(0.16) and document["eta"] == 1.4
         assert document["hide_emitters"] is True and integrator_dict(layers, COARSE)["hide_emitters"] is False
+        assert document["boundary_alpha"] == 0.0 and integrator_dict(layers, COARSE, boundary_alpha=0.35)[
+            "boundary_alpha"] == 0.35  # a rough boundary's lost light put back (rough_boundary)
 
     def test_mean_free_path(self):
         layers = skin_layers(COARSE.wavelengths, SkinParameters(melanin=0.3))

@@ -113,7 +113,8 @@ def _integrator(integrator: dict | None, setup: Setup) -> dict:
     """The skin's integrator, the base's choice of hiding the skies from the camera kept."""
     media = face_media(setup.skin or setup.scene.skin, setup.grid)
     hidden = bool((integrator or {}).get("hide_emitters"))
-    return integrator_dict(media.layers, setup.grid, 1000.0 / SCENE_SCALE_SUBSURFACE, hide_emitters=hidden)
+    return integrator_dict(media.layers, setup.grid, 1000.0 / SCENE_SCALE_SUBSURFACE, hide_emitters=hidden,
+                           boundary_alpha=SUBSURFACE_ALPHA)
 
 
 def _skin(material: dict, reflectance, setup: Setup) -> dict:

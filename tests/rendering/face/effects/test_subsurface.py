@@ -47,7 +47,8 @@ class TestParts:
         for spec in ("subsurface-volume", "sheen+subsurface-volume", "interreflection+subsurface-volume"):
             level = physics_level(spec)
             setup = level.setup(scene, None, GRID_DEFAULT, level.lights(scene), skin=SKIN)
-            assert level.integrator(setup) == integrator_dict(layers, GRID_DEFAULT, 1.0, hide_emitters=True)
+            assert level.integrator(setup) == integrator_dict(layers, GRID_DEFAULT, 1.0, hide_emitters=True,
+                                                              boundary_alpha=SUBSURFACE_ALPHA)
             skin = level.skin(np.full(GRID_DEFAULT.size, 0.3), setup)
             assert skin["bsdf"]["type"] == "roughdielectric" and skin["bsdf"]["alpha"] == SUBSURFACE_ALPHA
             assert skin["interior"] == medium_dict(layers[0], GRID_DEFAULT)  # mm⁻¹ in mm
