@@ -65,3 +65,24 @@ def test_layer_lengths(mi, z, rate, in_epi, expected):
 def test_phase_g(mi):
     medium = mi.load_dict({"type": "homogeneous", "sigma_t": 1.0, "albedo": 0.5, "phase": {"type": "hg", "g": 0.7}})
     assert s.phase_g(medium) == pytest.approx(0.7)
+
+
+def test_a_wavelength_outside_the_medium_is_clear_not_a_nan(mi):
+    """The media are spectra on the render's grid: a wavelength a float32 step outside reads 0 extinction, whose
+    albedo 0 / 0 was a NaN pixel; its extinction is 1e-12 (clear), its albedo 0 (it carries nothing)."""
+    from skinrender.datasets.skin_model import SkinParameters, skin_layers
+    from skinrender.rendering.subsurface import medium_dict
+    from skinrender.spectra import GRID_DEFAULT
+
+    layer = skin_layers(GRID_DEFAULT.wavelengths, SkinParameters())[1]
+    medium = mi.load_dict(medium_dict(layer, GRID_DEFAULT))
+    lam = dr_wavelengths(mi, [500.0, float(GRID_DEFAULT.wavelengths[-1]) + 5.0, 550.0, 600.0])
+    sigma_s, sigma_t = (np.array(v).ravel() for v in s.coefficients(medium, lam))
+    assert sigma_t[1] == pytest.approx(1e-12) and sigma_s[1] == 0 and np.all(sigma_t[[0, 2, 3]] > 1)
+    albedo = sigma_s / sigma_t
+    assert albedo[1] == 0 and np.all((albedo[[0, 2, 3]] > 0.5) & (albedo[[0, 2, 3]] < 1))
+
+
+def dr_wavelengths(mi, values):
+    """One lane's four wavelengths, nm."""
+    return mi.UnpolarizedSpectrum(*[mi.Float([v]) for v in values])
