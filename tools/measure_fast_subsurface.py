@@ -15,7 +15,7 @@ docs/subsurface.md, each figure with the load average beside it:
 
 ``face`` runs ``skinrender ladder --levels direct,subsurface,interreflection+subsurface,subsurface-volume`` for the
 light, medium and dark skin of ``ladder --effects`` and prints, per tone, each level's eq4_shift (with its 95 %
-upper bound) and TPR, and the fast levels' differences from the volumetric reference (eq4_shift, TPR, the skin's
+upper bound) and TPR (of the replicates' mean image, and the detection verdict's with the noise separated), and the fast levels' differences from the volumetric reference (eq4_shift, TPR, the skin's
 mean NCC): the volumetric level path traces every bounce, so ``interreflection+subsurface`` is its like for like.
 """
 
@@ -194,8 +194,10 @@ def face(size: int = 32, spp: int = 48) -> None:
         line = [f"{tone} ({skin}, budget {document['budget']['budget']:.4f})"]
         for level in FACE_LEVELS:
             row = rows[level]
+            separated = (row.get("detection") or {}).get("tpr")
             line.append(f"{level}: eq4_shift {row['eq4_shift']:.4f} (≤ {row['eq4_shift_bound']:.4f}), "
-                        f"TPR {row['tpr']:.3f}, {row['seconds']:.1f} s")
+                        f"TPR {row['tpr']:.3f} (noise separated {'—' if separated is None else f'{separated:.3f}'}), "
+                        f"{row['seconds']:.1f} s")
         volume = rows["subsurface-volume"]
         for level in FACE_LEVELS[1:3]:
             fast = rows[level]

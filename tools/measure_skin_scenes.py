@@ -165,9 +165,11 @@ def chart(argv) -> None:
             continue
         document = json.loads(done.stdout)
         checks = document["checks"]
-        print(f"{' '.join(command[:-1])}: {document['verdict']} (exit {done.returncode}); equivalence bound "
-              f"{document['bound']:.3f}, difference {checks['difference']['outcome']} (max |z| / critical "
-              f"{checks['difference'].get('statistic', float('nan')):.2f}); spp {document['spp']}; {wall:.0f} s "
+        print(f"{' '.join(command[:-1])}: {document['verdict']} (exit {done.returncode}); equivalence "
+              f"{checks['equivalence']['verdict']}, bound {document['bound']:.3f}; difference "
+              f"{checks['difference']['verdict']} (max |z| {checks['difference'].get('statistic', float('nan')):.2f} / "
+              f"critical {checks['difference'].get('threshold', float('nan')):.2f}); largest |relative error| "
+              f"{document.get('max_rel_error', float('nan')):.4f}; spp {document['spp']}; {wall:.0f} s "
               f"({cpu:.0f} s CPU), {_load()}", flush=True)
 
 
