@@ -41,7 +41,8 @@ def test_at_direct_the_rankings_agree(ranking, tmp_path):
 
 def test_the_summary_on_known_scores():
     """Scores in the same order: τ 1; reversed: τ −1, another best; half-samples that disagree half the time:
-    same_best null, with its reason."""
+    same_best null, with its reason; half-samples that lean towards Eq. 4's order while the whole sample reverses
+    it: another best (their spread is about the whole sample's scores)."""
     names = ["a", "b", "c", "d"]
     eq4 = np.array([0.9, 0.8, 0.7, 0.6])
     same = _level_summary("x", names, eq4, eq4 + 0.01, np.tile(eq4, (24, 1)), 1.0, {})
@@ -49,8 +50,11 @@ def test_the_summary_on_known_scores():
     flipped = _level_summary("x", names, eq4, eq4[::-1], np.tile(eq4[::-1], (24, 1)), 1.0, {})
     assert flipped["kendall_tau"] == -1.0 and flipped["same_best"] is False and flipped["best_rendered"] == "d"
     halves = np.array([eq4 if k % 2 else eq4[[1, 0, 2, 3]] for k in range(24)])
-    mixed = _level_summary("x", names, eq4, eq4, halves, 1.0, {})
+    mixed = _level_summary("x", names, eq4, halves.mean(axis=0), halves, 1.0, {})
     assert mixed["same_best"] is None and "cannot tell" in mixed["undefined"]["same_best"]
+    leaning = _level_summary("x", names, eq4, eq4[::-1], np.tile(eq4, (24, 1)) + np.arange(24)[:, None] * 1e-4,
+                             1.0, {})
+    assert leaning["same_best"] is False and leaning["same_best_share"] == 0.0  # the halves' spread, not their lean
     tied = _level_summary("x", names, np.full(4, 0.5), eq4, np.tile(eq4, (24, 1)), 1.0, {})
     assert tied["kendall_tau"] is None and "every candidate scores the same" in tied["undefined"]["kendall_tau"]
 
