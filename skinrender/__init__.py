@@ -49,38 +49,88 @@ from ._interrupt import quiet_while_starting as _quiet_while_starting
 
 _quiet_while_starting()  # the command line only: Ctrl-C while it imports is one line and status 130, no traceback
 
-from .constants import TEMPERATURES_PAPER  # noqa: E402 - after the Ctrl-C guard
-from .datasets import SpectralSet, list_cameras, list_reflectances, reflectances
-from .design.optimise import Design, optimise_camera
-from .design.search import SearchResult, search
-from .errors import SkinrenderError
-from .evaluation.detection import Detection, detect
-from .evaluation.gamut import Gamut, gamut, gamut_all_calibrations, gamut_calibration, gamut_volume
-from .evaluation.locus import SkinLocus, skin_locus
-from .evaluation.verdict import Verdict
-from .model.camera import CHANNELS, Camera, camera
-from .model.illuminant import Illuminant, illuminant
-from .model.chromaticity import measure, ncc
-from .model.response import (
-    NORMALISATIONS,
-    gain,
-    knee,
-    normalisation_factor,
-    response,
-    response_raw,
-    white_coefficient,
-)
-from .model.stage1 import illuminant_selection, illuminant_set, illuminant_track, select_illuminants
-from .rendering.balance import Rendering
-from .rendering.dispatch import load_scene, render, render_cameras, validate
-from .rendering.scene import ChartScene
-from .rendering.settings import RenderSettings
-from .rendering.spectral_files import read_spectral
-from .rendering.spectral_image import SpectralImage
-from .rendering.validation import Validation, validate_gamut
-from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse, planck, resample
-from .studies import labelled as _labelled  # noqa: F401 (registers the figures of Rendering and FaceRendering)
-from .studies.paper.tables import table1
+import importlib as _importlib  # noqa: E402 - after the Ctrl-C guard
+import importlib.util as _importlib_util
+from typing import TYPE_CHECKING
+
+_WHERE = {
+    "TEMPERATURES_PAPER": "constants",
+    **dict.fromkeys(("SpectralSet", "list_cameras", "list_reflectances", "reflectances"), "datasets"),
+    **dict.fromkeys(("Design", "optimise_camera"), "design.optimise"),
+    **dict.fromkeys(("SearchResult", "search"), "design.search"),
+    "SkinrenderError": "errors",
+    **dict.fromkeys(("Detection", "detect"), "evaluation.detection"),
+    **dict.fromkeys(("Gamut", "gamut", "gamut_all_calibrations", "gamut_calibration", "gamut_volume"),
+                    "evaluation.gamut"),
+    **dict.fromkeys(("SkinLocus", "skin_locus"), "evaluation.locus"),
+    "Verdict": "evaluation.verdict",
+    **dict.fromkeys(("CHANNELS", "Camera", "camera"), "model.camera"),
+    **dict.fromkeys(("Illuminant", "illuminant"), "model.illuminant"),
+    **dict.fromkeys(("measure", "ncc"), "model.chromaticity"),
+    "NORMALISATIONS": "model.factors",
+    **dict.fromkeys(("gain", "knee", "normalisation_factor", "response", "response_raw",
+                     "white_coefficient"), "model.response"),
+    **dict.fromkeys(("illuminant_selection", "illuminant_set", "illuminant_track", "select_illuminants"),
+                    "model.stage1"),
+    "Rendering": "rendering.balance",
+    **dict.fromkeys(("load_scene", "render", "render_cameras", "validate"), "rendering.dispatch"),
+    "read_spectral": "rendering.spectral_files",
+    "SpectralImage": "rendering.spectral_image",
+    "ChartScene": "rendering.scene",
+    "RenderSettings": "rendering.settings",
+    **dict.fromkeys(("Validation", "validate_gamut"), "rendering.validation"),
+    **dict.fromkeys(("GRID_DEFAULT", "WavelengthGrid", "gbell", "impulse", "planck", "resample"), "spectra"),
+    "table1": "studies.paper.tables",
+}
+"""Each public name → the module (below ``skinrender``) that defines it: imported on first use (PEP 562), so
+that ``import skinrender`` (and the pytest plugin, which every pytest session of a user loads) imports nothing
+but this file; ``skinrender.NAME`` and ``from skinrender import NAME`` read as before."""
+
+
+def __getattr__(name: str):
+    """A public name (:data:`_WHERE`) or a layer module, imported on first use and kept."""
+    if name in _WHERE:
+        value = getattr(_importlib.import_module(f"{__name__}.{_WHERE[name]}"), name)
+    elif not name.startswith("_") and _importlib_util.find_spec(f"{__name__}.{name}") is not None:
+        value = _importlib.import_module(f"{__name__}.{name}")  # a layer module, as an import of it would set
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *__all__})
+
+
+if TYPE_CHECKING:  # the names for type checkers and editors, as they are imported on first use
+    from .constants import TEMPERATURES_PAPER  # noqa: F401
+    from .datasets import SpectralSet, list_cameras, list_reflectances, reflectances  # noqa: F401
+    from .design.optimise import Design, optimise_camera  # noqa: F401
+    from .design.search import SearchResult, search  # noqa: F401
+    from .errors import SkinrenderError  # noqa: F401
+    from .evaluation.detection import Detection, detect  # noqa: F401
+    from .evaluation.gamut import (Gamut, gamut, gamut_all_calibrations, gamut_calibration,  # noqa: F401
+                                   gamut_volume)
+    from .evaluation.locus import SkinLocus, skin_locus  # noqa: F401
+    from .evaluation.verdict import Verdict  # noqa: F401
+    from .model.camera import CHANNELS, Camera, camera  # noqa: F401
+    from .model.chromaticity import measure, ncc  # noqa: F401
+    from .model.illuminant import Illuminant, illuminant  # noqa: F401
+    from .model.factors import NORMALISATIONS  # noqa: F401
+    from .model.response import (gain, knee, normalisation_factor, response, response_raw,  # noqa: F401
+                                 white_coefficient)
+    from .model.stage1 import (illuminant_selection, illuminant_set, illuminant_track,  # noqa: F401
+                               select_illuminants)
+    from .rendering.balance import Rendering  # noqa: F401
+    from .rendering.dispatch import load_scene, render, render_cameras, validate  # noqa: F401
+    from .rendering.spectral_files import read_spectral  # noqa: F401
+    from .rendering.spectral_image import SpectralImage  # noqa: F401
+    from .rendering.scene import ChartScene  # noqa: F401
+    from .rendering.settings import RenderSettings  # noqa: F401
+    from .rendering.validation import Validation, validate_gamut  # noqa: F401
+    from .spectra import GRID_DEFAULT, WavelengthGrid, gbell, impulse, planck, resample  # noqa: F401
+    from .studies.paper.tables import table1  # noqa: F401
 
 __version__ = "0.1.0"
 

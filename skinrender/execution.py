@@ -2,7 +2,7 @@
 Many tasks on one core, every core or a Dask cluster
 ====================================================
 
-One way to run a list of independent tasks: :func:`map` calls ``function(task)`` for each, in this process
+One way to run a list of independent tasks: :func:`map_tasks` calls ``function(task)`` for each, in this process
 (one worker), in a pool of worker processes (:class:`concurrent.futures.ProcessPoolExecutor`), or on a Dask
 cluster (the ``concurrent.futures`` executor of a ``distributed.Client``, :meth:`Client.get_executor`), and
 returns the results in task order, the same every way. The Stage 3 search
@@ -24,8 +24,9 @@ What every caller gets the same:
 Determinism is the caller's: a task carries its seed; a result does not depend on the worker that computed
 it or on the order tasks finish in.
 
--   :func:`map`, :func:`check_workers`, :func:`dask_client`, :func:`check_dask_address` (a scheduler's
-    handshake, within a timeout), :func:`dask_name`, :func:`stop_pool`.
+-   :func:`map_tasks` (formerly ``map``, which shadowed the builtin: a deprecated alias), :func:`check_workers`,
+    :func:`dask_client`, :func:`check_dask_address` (a scheduler's handshake, within a timeout), :func:`dask_name`,
+    :func:`stop_pool`.
 -   :data:`WORKERS_MAX`, :data:`DASK_TIMEOUT_S`.
 
 Units: times s.
@@ -47,7 +48,7 @@ from .errors import SkinrenderError
 from .extras import require
 from .workload import announce, progress_bar
 
-__all__ = ["WORKERS_MAX", "DASK_TIMEOUT_S", "DASK_SCHEMES", "map", "check_workers", "dask_client",
+__all__ = ["WORKERS_MAX", "DASK_TIMEOUT_S", "DASK_SCHEMES", "map_tasks", "check_workers", "dask_client",
            "check_dask_address", "dask_name", "stop_pool"]
 
 WORKERS_MAX = max(64, 4 * (os.cpu_count() or 1))
@@ -267,7 +268,7 @@ def _with_shared(function: Callable, task):
     return function(_SHARED, task)
 
 
-def map(function: Callable, tasks: Sequence, *, workers: int = 1, dask=None, shared=None,
+def map_tasks(function: Callable, tasks: Sequence, *, workers: int = 1, dask=None, shared=None,
         initializer: Callable | None = None, initargs: tuple = (), start: str | None = None, progress=None,
         label: str = "tasks", unit: str = "task", sizes: Sequence[int] | None = None,
         on_start: Callable[[], None] | None = None,
@@ -317,9 +318,9 @@ def map(function: Callable, tasks: Sequence, *, workers: int = 1, dask=None, sha
     --------
     >>> from functools import partial
     >>> import operator
-    >>> map(partial(operator.mul, 3), [5, 1, 4])
+    >>> map_tasks(partial(operator.mul, 3), [5, 1, 4])
     [15, 3, 12]
-    >>> map(operator.add, [1, 2], shared=10)
+    >>> map_tasks(operator.add, [1, 2], shared=10)
     [11, 12]
     """
     results: list = [None] * len(tasks)
@@ -419,3 +420,14 @@ def _map_dask(dask, function: Callable, tasks: Sequence, shared, started, store)
     finally:
         if own:
             client.close()
+
+
+def __getattr__(name: str):
+    """``map``: the deprecated name of :func:`map_tasks` (it shadowed the builtin), with a notice."""
+    if name == "map":
+        import warnings
+
+        warnings.warn("skinrender.execution.map is deprecated: use skinrender.execution.map_tasks",
+                      DeprecationWarning, stacklevel=2)
+        return map_tasks
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -4,14 +4,20 @@ Method tables
 
 Every family of named methods (normalisations, extrapolations, locus
 boundaries, design objectives, emitters, samplers, …) is a mapping from the
-name a user types to what it means; :func:`validate_method` checks a name
-against its table and words the error the same way everywhere, and the
-command line takes its choices from the same tables. :func:`parse_range`
+name a user types to the function that does it (as colour-science's
+``CCT_TO_XY_METHODS``), with one dispatcher that checks the name
+(:func:`validate_method`, which words the error the same way everywhere) and
+calls the function: nothing else compares a value with a method's name. A
+method's one-line description is its docstring's first paragraph
+(:func:`describe`), from which the command line words its choices' help. :func:`parse_range`
 reads the ``START:END:STEP`` ranges (nm) of grids and sensor positions, and
 :func:`range_steps` checks every such range (wavelength grids, sensor
 positions, Stage 1's candidate temperatures) in one place.
 
 -   :func:`validate_method`: a name of a method table, or a one-line error.
+-   :func:`method_of`: the method of a name, checked (what a dispatcher calls).
+-   :func:`describe`: a method's one-line description.
+-   :func:`takes`: whether a method takes an option (what it does not take, it refuses).
 -   :func:`parse_range`: ``START:END:STEP`` as three finite numbers.
 -   :func:`range_steps`, :class:`RangeWords`, :class:`Steps`: the steps of a
     range, END included, or a refusal worded for its kind of range.
@@ -26,7 +32,7 @@ from typing import NamedTuple
 
 from .errors import SkinrenderError
 
-__all__ = ["validate_method", "parse_range", "Steps", "RangeWords", "range_steps"]
+__all__ = ["validate_method", "method_of", "describe", "takes", "parse_range", "Steps", "RangeWords", "range_steps"]
 
 
 def validate_method(name: object, methods: Mapping[str, object], what: str, role: str | None = None) -> str:
@@ -48,6 +54,53 @@ def validate_method(name: object, methods: Mapping[str, object], what: str, role
     if not isinstance(name, str) or name not in methods:
         raise SkinrenderError(f"{what} must be one of {', '.join(methods)}, got {name!r}", role=role)
     return name
+
+
+def method_of(name: object, methods: Mapping[str, Callable], what: str, role: str | None = None) -> Callable:
+    """
+    The method ``methods[name]``, ``name`` checked by :func:`validate_method` first: what a family's dispatcher
+    calls.
+
+    Examples
+    --------
+    >>> method_of("twice", {"twice": lambda x: 2 * x}, "rule")(4)
+    8
+    """
+    return methods[validate_method(name, methods, what, role)]
+
+
+def describe(method: object) -> str:
+    """
+    The one-line description of a method: the first paragraph of its docstring, on one line (a string is its own
+    description).
+
+    Examples
+    --------
+    >>> def zero(values):
+    ...     \"\"\"0 outside the
+    ...     measured range
+    ...
+    ...     The values, 0 where no sample is.\"\"\"
+    >>> describe(zero), describe("an error")
+    ('0 outside the measured range', 'an error')
+    """
+    if isinstance(method, str):
+        return method
+    text = (getattr(method, "__doc__", None) or "").strip()
+    return " ".join(text.split("\n\n")[0].split()) if text else getattr(method, "__name__", str(method))
+
+
+def takes(method: Callable, option: str) -> bool:
+    """
+    Whether ``method`` takes the keyword ``option``: the one question a caller asks of a method beside calling it
+    (an option only some methods of a family take is a parameter of those, and the others are refused it).
+
+    >>> takes(lambda banks, noisy=None: 0, "noisy"), takes(lambda banks: 0, "noisy")
+    (True, False)
+    """
+    import inspect
+
+    return option in inspect.signature(method).parameters
 
 
 def parse_range(text: str, what: str, example: str = "400:700:10") -> tuple[float, float, float]:

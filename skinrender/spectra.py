@@ -31,12 +31,15 @@ import numpy as np
 from .constants import CONSTANT_C, CONSTANT_H, CONSTANT_K_B, TEMPERATURE_MAX
 from .errors import SkinrenderError
 from .hints import ArrayLike, Literal, NDArrayFloat
-from .methods import RangeWords, parse_range, range_steps, validate_method
+from .methods import RangeWords, method_of, parse_range, range_steps
 
 __all__ = [
     "WavelengthGrid",
     "GRID_DEFAULT",
     "EXTRAPOLATIONS",
+    "extrapolate_refuse",
+    "extrapolate_zero",
+    "extrapolate_constant",
     "GRID_SIZE_MAX",
     "resample",
     "planck",
@@ -50,12 +53,43 @@ GRID_SIZE_MAX = 100_001
 """Most samples a wavelength grid may have (400–700 nm every 0.003 nm): a
 reflectance set of 1269 spectra on it takes 1 GB."""
 
-EXTRAPOLATIONS = {
-    "refuse": "an error (default)",
-    "zero": "0 outside the measured range (the usual rule for sensor sensitivities)",
-    "constant": "the nearest measured value is held",
-}
-"""Rules for wavelengths of the grid outside the measured range, name → meaning."""
+def extrapolate_refuse(values: NDArrayFloat, outside: NDArrayFloat, measured: NDArrayFloat, target: NDArrayFloat,
+                      source: str) -> NDArrayFloat:
+    """an error (default)
+
+    ``values`` (spectra on ``target``, nm, the end values held beyond the ``measured`` wavelengths) where no
+    wavelength is ``outside`` them, else a :class:`SkinrenderError` naming ``source`` (its ``cause``:
+    ``coverage``)."""
+    if np.any(outside):
+        raise SkinrenderError(
+            f"{source}: measured over {measured[0]:g}–{measured[-1]:g} nm, which does not cover the "
+            f"grid {target[0]:g}–{target[-1]:g} nm", cause="coverage",
+            hint="choose a grid inside the data or state an extrapolation ('zero' or 'constant')",
+        )
+    return values
+
+
+def extrapolate_zero(values: NDArrayFloat, outside: NDArrayFloat, measured: NDArrayFloat, target: NDArrayFloat,
+                     source: str) -> NDArrayFloat:
+    """0 outside the measured range (the usual rule for sensor sensitivities)
+
+    ``values`` with the wavelengths ``outside`` the measured range set to 0."""
+    values[:, outside] = 0.0
+    return values
+
+
+def extrapolate_constant(values: NDArrayFloat, outside: NDArrayFloat, measured: NDArrayFloat, target: NDArrayFloat,
+                         source: str) -> NDArrayFloat:
+    """the nearest measured value is held
+
+    ``values`` as interpolated: the end values are held beyond the measured range."""
+    return values
+
+
+EXTRAPOLATIONS = {"refuse": extrapolate_refuse, "zero": extrapolate_zero, "constant": extrapolate_constant}
+"""Rules for wavelengths of the grid outside the measured range, name → function ``(values, outside, measured,
+target, source) → values`` of the spectra interpolated onto the grid (the end values held); :func:`resample`
+dispatches."""
 
 
 _GRID_WORDS = RangeWords(
@@ -223,7 +257,7 @@ def resample(
     if x.ndim != 1 or y.ndim < 1 or target.ndim != 1:
         raise SkinrenderError(f"{source}: expected wavelengths (1-D), spectra (…, n) and a grid, got shapes "
                               f"{x.shape}, {y.shape}, {target.shape}")
-    validate_method(extrapolation, EXTRAPOLATIONS, "extrapolation")
+    rule = method_of(extrapolation, EXTRAPOLATIONS, "extrapolation")
     if x.ndim != 1 or x.size != y.shape[-1]:
         raise SkinrenderError(
             f"{source}: {x.size} wavelengths but spectra of length {y.shape[-1]}"
@@ -237,12 +271,6 @@ def resample(
             f"{source}: measured over {x[0]:g}–{x[-1]:g} nm, which does not overlap the grid "
             f"{target[0]:g}–{target[-1]:g} nm at all{' (wavelengths in µm? they are in nm)' if x[-1] < 10 else ''}"
         )
-    if np.any(outside) and extrapolation == "refuse":
-        raise SkinrenderError(
-            f"{source}: measured over {x[0]:g}–{x[-1]:g} nm, which does not cover the "
-            f"grid {target[0]:g}–{target[-1]:g} nm", cause="coverage",
-            hint="choose a grid inside the data or state an extrapolation ('zero' or 'constant')",
-        )
     flat = y.reshape(-1, x.size)
     if x.size == 1:
         out = np.repeat(flat, target.size, axis=1)
@@ -251,9 +279,7 @@ def resample(
         index = np.clip(np.searchsorted(x, target, side="right") - 1, 0, x.size - 2)
         t = np.clip((target - x[index]) / (x[index + 1] - x[index]), 0.0, 1.0)
         out = flat[:, index] * (1.0 - t) + flat[:, index + 1] * t
-    if extrapolation == "zero":
-        out[:, outside] = 0.0
-    return out.reshape(*y.shape[:-1], target.size)
+    return rule(out, outside, x, target, source).reshape(*y.shape[:-1], target.size)
 
 
 def planck(wavelength: ArrayLike, temperature: ArrayLike) -> NDArrayFloat:

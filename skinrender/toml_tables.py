@@ -231,18 +231,34 @@ def _values(schema: type, table: dict, where: str, unknown: str) -> dict:
     return values
 
 
-def read_toml(path: str | Path, what: str) -> dict:
+def read_toml(path: str | Path, what: str, where: str = "", role: str | None = None) -> dict:
     """
     The table of the TOML file ``path`` (``what`` it should be, for the messages: ``a scene TOML``), read
-    bounded (:data:`~skinrender.files.TOML_BYTES_MAX`; a pipe, a device or a huge file refused unread).
+    bounded (:data:`~skinrender.files.TOML_BYTES_MAX`; a pipe, a device or a huge file refused unread): the
+    package's one TOML reader (scenes, face scenes, imagers).
+
+    Parameters
+    ----------
+    where
+        Words put before a refusal's path (``imager file``).
+    role
+        The refusal's ``role`` (the argument at fault: ``imager``).
 
     Raises
     ------
     SkinrenderError
-        ``PATH: not valid TOML: …`` (text that is not TOML, or not UTF-8), or the file's own problem.
+        ``PATH: not valid TOML: …``, ``PATH: not a UTF-8 text file (TOML is text)``, or the file's own problem.
     """
-    data = read_input(path, TOML_BYTES_MAX, what)
+    prefix = f"{where} " if where else ""
+    try:
+        data = read_input(path, TOML_BYTES_MAX, what)
+    except SkinrenderError as error:
+        if not where and role is None:
+            raise
+        raise error.reworded(prefix + error.message, role=role) from None
     try:
         return tomllib.loads(data.decode("utf-8"))
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
-        raise SkinrenderError(f"{path}: not valid TOML: {' '.join(str(error).split())}") from None
+    except UnicodeDecodeError:
+        raise SkinrenderError(f"{prefix}{path}: not a UTF-8 text file (TOML is text)", role=role) from None
+    except tomllib.TOMLDecodeError as error:
+        raise SkinrenderError(f"{prefix}{path}: not valid TOML: {' '.join(str(error).split())}", role=role) from None

@@ -201,3 +201,77 @@ def test_the_doctest_server_children_start_alike(doctest_server, doctest_example
     for name in ("with_colour", "without_colour", "sets_an_attribute", "sees_no_attribute", "with_colour"):
         result = doctest_server(name)
         assert (result["failed"], result["attempted"] > 0) == (0, True), result
+
+
+def test_the_pytest_plugin_imports_neither_mitsuba_nor_the_renderer():
+    """Every pytest session of a user with skinrender installed loads the plugin (its ``pytest11`` entry point):
+    importing it, in a fresh interpreter, imports neither Mitsuba nor ``skinrender.rendering`` (its fixture
+    imports what a check needs), and ``import skinrender`` alone imports nothing of the package but itself and its
+    Ctrl-C guard."""
+    code = ("import json, sys; import {module}; "
+            "print(json.dumps(sorted(m for m in sys.modules if m.split('.')[0] in ('skinrender', 'mitsuba', 'drjit'))))")
+    seen = {module: json.loads(subprocess.run([sys.executable, "-c", code.format(module=module)], check=True,
+                                              capture_output=True, text=True).stdout)
+            for module in ("skinrender.testing.plugin", "skinrender")}
+    plugin = seen["skinrender.testing.plugin"]
+    assert "skinrender.testing.plugin" in plugin
+    assert [m for m in plugin if m.startswith(("mitsuba", "drjit", "skinrender.rendering"))] == []
+    assert seen["skinrender"] == ["skinrender", "skinrender._interrupt"]  # and the Ctrl-C guard (standard library)
+
+
+def _parsed_modules():
+    """Every module of the package, parsed: ``(dotted name, syntax tree)``."""
+    import ast
+
+    return [(module, ast.parse(source_of(module).read_text(encoding="utf-8"))) for module in ["skinrender", *modules()]]
+
+
+def test_no_private_name_is_imported_from_another_module():
+    """A name another module needs is public (in its module's ``__all__``); ``_name`` stays in its module. Only a
+    compiled kernel's own wrapper imports it (``evaluation.hull`` ← ``_hull3d``)."""
+    import ast
+
+    found = []
+    for module, tree in _parsed_modules():
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.module != "__future__":
+                found += [f"{module}: from {'.' * node.level}{node.module or ''} import {alias.name}"
+                          for alias in node.names if alias.name.startswith("_") and not alias.name.startswith("__")
+                          and not (module == "skinrender.evaluation.hull" and alias.name == "_hull3d")]
+    assert found == []
+
+
+def test_no_builtin_is_shadowed():
+    """No module defines a name of Python's builtins at its top level (``execution.map`` became ``map_tasks``)."""
+    import ast
+    import builtins
+
+    names = set(dir(builtins))
+    found = []
+    for module, tree in _parsed_modules():
+        for node in tree.body:
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+                defined = [node.name]
+            elif isinstance(node, (ast.Assign, ast.AnnAssign)):
+                targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+                defined = [target.id for target in targets if isinstance(target, ast.Name)]
+            elif isinstance(node, (ast.Import, ast.ImportFrom)):
+                defined = [(alias.asname or alias.name).split(".")[0] for alias in node.names]
+            else:
+                continue
+            found += [f"{module}: {name}" for name in defined if name in names]
+    assert found == []
+
+
+def test_no_method_level_or_kind_name_is_compared_outside_the_registries():
+    """A choice among named methods is made by its table's dispatcher, a level or a kind by its registry: no other
+    code compares a value with such a name or tests a scene's class (``tools/name_comparisons.py``, whose
+    ``ALLOWED`` says where a name is read by design, and why)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("name_comparisons", REPOSITORY / "tools" / "name_comparisons.py")
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)
+    found = tool.scan(ROOT, tool.tables())
+    assert [f"{f['module']}:{f['line']} {f['text']}" for f in found if not f["allowed"]] == []
+    assert len(tool.tables()) == len(tool.TABLES), "a table the tool reads is gone: update tools/name_comparisons.py"

@@ -1,5 +1,5 @@
 """
-Tests for :mod:`skinrender.execution`: one ``map`` in this process, in worker processes and on Dask, results in
+Tests for :mod:`skinrender.execution`: one ``map_tasks`` in this process, in worker processes and on Dask, results in
 task order every way; the data the tasks share; progress; an error or an interrupt stops the workers and reaches
 the caller; the worker count's check. (Ctrl-C from the command line: tests/cli/test_design.py and
 tests/cli/test_face_sweep.py; the Stage 3 search, the volumes and the face renders on it: their own tests.)
@@ -53,56 +53,62 @@ def _marked(_task) -> list:
 class TestMap:
     @pytest.mark.parametrize("workers", [1, 2])
     def test_results_in_task_order(self, workers):
-        assert execution.map(partial(operator.mul, 3), [5, 1, 4, 2, 7], workers=workers) == [15, 3, 12, 6, 21]
+        assert execution.map_tasks(partial(operator.mul, 3), [5, 1, 4, 2, 7], workers=workers) == [15, 3, 12, 6, 21]
+
+    def test_map_is_the_deprecated_name_of_map_tasks(self):
+        """``execution.map`` shadowed the builtin: still there, with a notice, and the same function."""
+        with pytest.warns(DeprecationWarning, match="map_tasks"):
+            assert execution.map is execution.map_tasks
+        assert "map" not in vars(execution)
 
     def test_no_tasks(self):
         started = []
-        assert execution.map(abs, [], workers=2, on_start=lambda: started.append(True)) == []
+        assert execution.map_tasks(abs, [], workers=2, on_start=lambda: started.append(True)) == []
         assert started == [True]
 
     def test_one_worker_runs_here(self):
-        assert set(execution.map(_pid, range(3))) == {os.getpid()}
+        assert set(execution.map_tasks(_pid, range(3))) == {os.getpid()}
 
     def test_two_workers_run_elsewhere(self):
-        pids = execution.map(_pid, range(6), workers=2)
+        pids = execution.map_tasks(_pid, range(6), workers=2)
         assert os.getpid() not in pids and 1 <= len(set(pids)) <= 2
 
     @pytest.mark.parametrize("workers", [1, 2])
     def test_shared_data_is_the_first_argument(self, workers):
         shared = np.arange(10.0)
-        assert execution.map(_shared_sum, [3, 0, 9], workers=workers, shared=shared) == [3.5, 0.5, 9.5]
+        assert execution.map_tasks(_shared_sum, [3, 0, 9], workers=workers, shared=shared) == [3.5, 0.5, 9.5]
 
     def test_shared_data_is_sent_once_per_worker(self):
         """Every task of one worker sees the same object: the worker's copy, not one pickled with each task."""
-        seen = execution.map(_pid_and_shared, range(8), workers=2, shared=np.zeros(1000))
+        seen = execution.map_tasks(_pid_and_shared, range(8), workers=2, shared=np.zeros(1000))
         by_worker = {}
         for pid, identity in seen:
             by_worker.setdefault(pid, set()).add(identity)
         assert all(len(ids) == 1 for ids in by_worker.values())
 
     def test_workers_ignore_ctrl_c_the_parent_handles_it(self):
-        assert execution.map(_signal_ignored, range(2), workers=2) == [True, True]
+        assert execution.map_tasks(_signal_ignored, range(2), workers=2) == [True, True]
 
     def test_the_initializer_runs_in_each_worker(self):
-        assert execution.map(_marked, range(2), workers=2, initializer=_mark, initargs=("ready",)) == [["ready"]] * 2
+        assert execution.map_tasks(_marked, range(2), workers=2, initializer=_mark, initargs=("ready",)) == [["ready"]] * 2
 
     @pytest.mark.parametrize("workers", [1, 2])
     def test_on_start_and_on_result(self, workers):
         events = []
-        execution.map(abs, [-1, -2, -3], workers=workers, on_start=lambda: events.append("start"),
+        execution.map_tasks(abs, [-1, -2, -3], workers=workers, on_start=lambda: events.append("start"),
                       on_result=lambda i, r: events.append((i, r)))
         assert events[0] == "start" and sorted(events[1:]) == [(0, 1), (1, 2), (2, 3)]
 
     def test_progress_counts_the_sizes(self):
         """Not a terminal: one line saying the work started, in the units of ``sizes``."""
         log = io.StringIO()
-        execution.map(abs, [-1, -2], sizes=[4, 3], progress=log, label="sensor 9", unit="triplet")
+        execution.map_tasks(abs, [-1, -2], sizes=[4, 3], progress=log, label="sensor 9", unit="triplet")
         assert log.getvalue() == "sensor 9: 7 triplets …\n"
 
     @pytest.mark.parametrize("workers", [1, 2])
     def test_an_error_in_a_task_reaches_the_caller(self, workers):
         with pytest.raises(ZeroDivisionError):
-            execution.map(partial(operator.truediv, 1), [1, 0, 2], workers=workers)
+            execution.map_tasks(partial(operator.truediv, 1), [1, 0, 2], workers=workers)
 
     def test_an_interrupt_stops_the_workers(self, monkeypatch):
         """Ctrl-C (raised by ``on_start``, once the workers are busy: no timing involved) terminates them."""
@@ -121,7 +127,7 @@ class TestMap:
 
         monkeypatch.setattr(execution, "ProcessPoolExecutor", recorded)
         with pytest.raises(KeyboardInterrupt):
-            execution.map(abs, range(50), workers=2, on_start=interrupt)
+            execution.map_tasks(abs, range(50), workers=2, on_start=interrupt)
         assert workers and not any(process.is_alive() for process in workers)
         assert pools[0]._shutdown_thread  # the pool was shut down: the queued tasks were dropped
 
@@ -129,10 +135,10 @@ class TestMap:
         distributed = pytest.importorskip("distributed")
         with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
                                       dashboard_address=None) as cluster, distributed.Client(cluster) as client:
-            assert execution.map(partial(operator.add, 1), [2, 3, 4], dask=client) == [3, 4, 5]
-            assert execution.map(_shared_sum, [1, 2], dask=client, shared=np.arange(3.0)) == [1.5, 2.5]
+            assert execution.map_tasks(partial(operator.add, 1), [2, 3, 4], dask=client) == [3, 4, 5]
+            assert execution.map_tasks(_shared_sum, [1, 2], dask=client, shared=np.arange(3.0)) == [1.5, 2.5]
             with pytest.raises(ZeroDivisionError):
-                execution.map(partial(operator.truediv, 1), [1, 0], dask=client)
+                execution.map_tasks(partial(operator.truediv, 1), [1, 0], dask=client)
             assert dask_name(client) == cluster.scheduler_address
         assert dask_name(None) is None and dask_name("tcp://h:1") == "tcp://h:1"
 
@@ -142,7 +148,7 @@ class TestMap:
         pytest.importorskip("distributed")
         monkeypatch.setattr(execution, "DASK_TIMEOUT_S", 1.0)
         with pytest.raises(SkinrenderError, match="^--dask: cannot reach a Dask scheduler") as error:
-            execution.map(abs, [1], dask="tcp://127.0.0.1:9")
+            execution.map_tasks(abs, [1], dask="tcp://127.0.0.1:9")
         message = str(error.value)
         assert error.value.flag == "--dask" and "within 1 s" in message and "\n" not in message
 
@@ -205,7 +211,7 @@ class TestDaskAddress:
             address = cluster.scheduler_address
             assert execution.check_dask_address(address) == address  # its handshake is Dask's
             with pytest.raises(SkinrenderError, match="has no workers .none joined within 1 s."):
-                execution.map(abs, [1], dask=address)
+                execution.map_tasks(abs, [1], dask=address)
 
 
 class TestCheckWorkers:

@@ -62,3 +62,38 @@ def test_parse_range_and_validate_method():
     with pytest.raises(SkinrenderError) as error:
         validate_method("x", {"a": 1}, "method", role="method")
     assert error.value.role == "method" and str(error.value) == "method must be one of a, got 'x'"
+
+
+def test_every_method_table_maps_names_to_described_functions():
+    """Each family's table holds functions (colour-science's ``*_METHODS``), each with a one-line description for
+    the command line's help; its dispatcher refuses a name outside it, naming the choices."""
+    from skinrender.design.optimise import OBJECTIVES
+    from skinrender.design.search import SEARCH_METHODS
+    from skinrender.evaluation.locus import BOUNDARIES
+    from skinrender.methods import describe, method_of
+    from skinrender.model.factors import NORMALISATIONS, QUADRATURES
+    from skinrender.rendering.face.validation import LIMITS_SCENE_FREE
+    from skinrender.rendering.renderer import EMITTERS
+    from skinrender.rendering.sensor_validation import MC_VARIANCE
+    from skinrender.rendering.settings import CHANNEL_GROUPINGS, SAMPLERS
+    from skinrender.spectra import EXTRAPOLATIONS
+
+    tables = [EXTRAPOLATIONS, NORMALISATIONS, QUADRATURES, BOUNDARIES, SEARCH_METHODS, OBJECTIVES, SAMPLERS,
+              CHANNEL_GROUPINGS, EMITTERS, MC_VARIANCE, LIMITS_SCENE_FREE]
+    for table in tables:
+        assert all(callable(function) and describe(function) and "\n" not in describe(function)
+                   for function in table.values()), table
+        first = next(iter(table))
+        assert method_of(first, table, "method") is table[first]
+        with pytest.raises(SkinrenderError, match=f"method must be one of {', '.join(table)}, got 'nothing'"):
+            method_of("nothing", table, "method")
+
+
+def test_takes_tells_the_methods_that_take_an_option():
+    """Only the detection objective takes noisy pixels; only the frames variance method a second frame."""
+    from skinrender.design.optimise import OBJECTIVES
+    from skinrender.methods import takes
+    from skinrender.rendering.sensor_validation import MC_VARIANCE
+
+    assert [name for name, f in OBJECTIVES.items() if takes(f, "noisy")] == ["detection"]
+    assert [name for name, f in MC_VARIANCE.items() if takes(f, "other")] == ["frames"]

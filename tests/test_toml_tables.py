@@ -107,8 +107,11 @@ def test_read_toml(tmp_path):
     path.write_text("a = 1\n[b]\nc = 'd'\n")
     assert read_toml(path, "a test TOML") == {"a": 1, "b": {"c": "d"}}
     path.write_bytes(b"a = '\xff'\n")
-    with pytest.raises(SkinrenderError, match="a.toml: not valid TOML: 'utf-8' codec can't decode"):
+    with pytest.raises(SkinrenderError, match=r"a.toml: not a UTF-8 text file \(TOML is text\)"):
         read_toml(path, "a test TOML")
+    with pytest.raises(SkinrenderError, match=r"^imager file .*a.toml: not a UTF-8 text file") as caught:
+        read_toml(path, "a test TOML", where="imager file", role="imager")
+    assert caught.value.role == "imager"
     path.write_text("a = = 1\n")
     with pytest.raises(SkinrenderError, match=r"a.toml: not valid TOML: Invalid value \(at line 1, column 5\)"):
         read_toml(path, "a test TOML")

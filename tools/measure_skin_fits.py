@@ -2,16 +2,20 @@
 """
 Measure the skin model's fits to measured skin (``docs/skin-model.md``): the numbers behind its defaults.
 
-    python tools/measure_skin_fits.py background [--every N]   # the background calibration
-    python tools/measure_skin_fits.py variants [--every N]     # the absorption variants compared
+    python tools/measure_skin_fits.py background [--every N] [--only NAME]   # the background calibration
+    python tools/measure_skin_fits.py variants [--every N] [--only NAME,…]   # the alternatives compared
     python tools/measure_skin_fits.py refit [--every N]        # = skinrender skin --fit (summary)
+    python tools/measure_skin_fits.py diagnose [--subjects S006,…]   # what the fits on a bound ask for
 
 ``background``: the 100 NIST skins fitted with the dermis' scattering held at Jacques 2013's skin average
 (a = 46 cm⁻¹) and ``background`` fitted with melanin, blood, oxygenation and b: the median of the fitted
-background is ``BACKGROUND_PER_CM``. ``variants``: the full fit (a, b free) under other absorption choices —
-water only (background 0), Jacques 1998's bloodless baseline's red level (0.244 cm⁻¹), one vessel radius, and
-epidermal scattering 1.6× — to show what the scattering follows. ``refit``: the fit at the defaults, the
-medians ``SkinParameters``' defaults are taken from. Each prints medians, ranges, RMS and the bounds hit.
+background is ``BACKGROUND_PER_CM``. ``variants``: the full fit (a, b free) at the defaults and under
+sourced alternatives (:data:`VARIANTS`, from ``skin_alternatives.py`` beside this file: other absorption levels,
+vessel radii, melanin and blood spectra, fat, a Rayleigh part of the scattering, the instrument's lateral loss) —
+to show what the fitted parameters follow; ``--only`` picks some by name. ``refit``: the fit at the defaults, the
+medians ``SkinParameters``' defaults are taken from. ``diagnose``: named subjects fitted with b
+allowed down to −3 (a diagnostic: b < 0 is not physical), then with the melanosome's power law's exponent
+changed (its value at 500 nm kept). Each prints medians, ranges, RMS and the bounds hit.
 Needs ``../shared/data/skin_nist.csv`` and the ``skin`` extra; uses every core.
 """
 
@@ -55,10 +59,14 @@ def _fit(label, lam, values, names, held, fitted=None):
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[1])
-    parser.add_argument("what", choices=("background", "variants", "refit"))
+    parser.add_argument("what", choices=("background", "variants", "refit", "diagnose"))
+    parser.add_argument("--subjects", default="S006,S061,S096,S011,S051",
+                        help="diagnose: NIST subjects (default: three on b = 0 and two light ones)")
     parser.add_argument("--every", type=int, default=1, help="fit every Nth NIST skin (default 1: all 100)")
+    parser.add_argument("--only", default="", help="variants: comma-separated names (default: all); background: one")
     args = parser.parse_args(argv)
     sys.path.insert(0, str(ROOT))
+    sys.path.insert(0, str(ROOT / "tools"))
     from skinrender.datasets import reflectances
     from skinrender.datasets.skin_model import SkinParameters
 
@@ -69,16 +77,33 @@ def main(argv=None) -> int:
     keep = (measured.wavelengths >= 400) & (measured.wavelengths <= 700)
     lam, values = measured.wavelengths[keep], measured.values[::args.every, keep]
     names = measured.names[::args.every]
-    if args.what == "background":
-        _fit("background fitted, a held at 46 cm⁻¹", lam, values, names, SkinParameters(scattering=46.0),
-             ("melanin", "blood", "oxygenation", "scattering_power", "background"))
+    if args.what == "background":  # --only: one variant's substitution (its held changes but the background)
+        from skin_alternatives import VARIANTS, substituted
+
+        if args.only and args.only not in VARIANTS:
+            print(f"--only: unknown variant {args.only!r}; choose from {sorted(VARIANTS)}", file=sys.stderr)
+            return 2
+        label, changes, substitution = VARIANTS[args.only] if args.only else ("", {}, None)
+        held = replace(SkinParameters(), **{k: v for k, v in changes.items() if k != "background"}, scattering=46.0)
+        with substituted(substitution):
+            _fit(f"background fitted, a held at 46 cm⁻¹ {label}", lam, values, names, held,
+                 ("melanin", "blood", "oxygenation", "scattering_power", "background"))
     elif args.what == "variants":
-        base = SkinParameters()
-        for label, held in (("water only (background 0)", replace(base, background=0.0)),
-                            ("background 0.244 cm⁻¹ (Jacques 1998's red level)", replace(base, background=0.244)),
-                            ("one vessel radius 8 µm", replace(base, vessel_min_um=8.0, vessel_max_um=8.0)),
-                            ("epidermal scattering 1.6×", replace(base, epidermis_scattering=1.6))):
-            _fit(label, lam, values, names, held)
+        from skin_alternatives import VARIANTS, substituted
+
+        chosen = [n for n in args.only.split(",") if n] or list(VARIANTS)
+        unknown = sorted(set(chosen) - set(VARIANTS))
+        if unknown:
+            print(f"--only: unknown variants {unknown}; choose from {sorted(VARIANTS)}", file=sys.stderr)
+            return 2
+        for name in chosen:
+            label, changes, substitution = VARIANTS[name]
+            with substituted(substitution):
+                _fit(f"{name}: {label}", lam, values, names, replace(SkinParameters(), **changes))
+    elif args.what == "diagnose":
+        from skin_alternatives import diagnose
+
+        diagnose(lam, measured.values[:, keep], measured.names, args.subjects.split(","))
     else:
         _fit("refit at the defaults", lam, values, names, SkinParameters())
     return 0

@@ -50,7 +50,7 @@ def _slab(spec: str, spp: int, px: int, place, integrator: str = "skinvolpath", 
     from skinrender.datasets.skin_model import reflectance_of_layers
     from skinrender.model.camera import camera
     from skinrender.rendering.face.document import channel_integral
-    from skinrender.rendering.renderer import _spectrum, emitter_grid
+    from skinrender.rendering.renderer import emitter_grid, mitsuba_spectrum as _spectrum
     from skinrender.rendering.skin_integrator import register
     from skinrender.rendering.subsurface import medium_dict, skin_media_of, slab_layers
     from skinrender.rendering.subsurface_chart import slab_document

@@ -83,7 +83,7 @@ def _sphere(spec: str, radius: float, layers: str, spp: int, px: int = 16, seed:
     flat slab's adding-doubling expectation."""
     from skinrender.model.camera import camera
     from skinrender.rendering.face.document import channel_integral
-    from skinrender.rendering.renderer import _spectrum, emitter_grid
+    from skinrender.rendering.renderer import emitter_grid, mitsuba_spectrum as _spectrum
     from skinrender.rendering.skin_integrator import register
     from skinrender.rendering.subsurface import integrator_dict, medium_dict, skin_media_of, slab_reflectance
     from skinrender.rendering.subsurface_chart import _film

@@ -39,15 +39,13 @@ def title(text: str) -> str:
 
 
 def public_names(init: Path) -> dict[str, str]:
-    """``skinrender.__all__``'s names → the module each is imported from (read from the ``__init__``)."""
+    """``skinrender.__all__``'s names → the module each is imported from on first use (the ``__init__``'s
+    ``_WHERE``, read from its source)."""
     tree = ast.parse(init.read_text(encoding="utf-8"))
-    where = {}
-    for node in tree.body:
-        if isinstance(node, ast.ImportFrom) and node.level == 1:
-            for alias in node.names:
-                module = f"skinrender.{node.module}" if node.module else "skinrender"
-                where[alias.asname or alias.name] = module
-    return where
+    table = next(node.value for node in tree.body if isinstance(node, ast.Assign)
+                 and any(isinstance(t, ast.Name) and t.id == "_WHERE" for t in node.targets))
+    where = eval(compile(ast.Expression(table), str(init), "eval"), {})  # a literal table: name → module
+    return {name: f"skinrender.{module}" for name, module in where.items()}
 
 
 def top_page(package: str, subpackages: list[str], modules: list[str]) -> str:

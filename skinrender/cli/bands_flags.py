@@ -20,7 +20,7 @@ import os
 from ..errors import SkinrenderError
 from .common import flag
 
-__all__ = ["HELP_BANDS", "add_spectral_arguments", "add_cameras_arguments", "bands_of", "bands_for",
+__all__ = ["HELP_BANDS", "add_spectral_arguments", "add_cameras_arguments", "bands_of", "bands_from", "bands_for", "bands_for_cameras",
            "check_spectral_work", "cameras_of"]
 
 HELP_BANDS = ("with --spectral: the band grid START:END:STEP in nm (default 400:700:5, 61 bands), inside --grid: "
@@ -43,16 +43,21 @@ def add_spectral_arguments(parser: argparse.ArgumentParser, command: str) -> Non
 
 def add_cameras_arguments(parser: argparse.ArgumentParser) -> None:
     """``--direct`` and ``--bands`` of a command whose ``--camera`` repeats (``face-sweep``, ``ladder``)."""
-    parser.add_argument("--direct", action="store_true",
-                        help="render every camera on its own (the default for one --camera); without it several "
-                        "cameras are seen through one spectral render per light, skin and level")
-    parser.add_argument("--bands", metavar="START:END:STEP",
-                        help="the spectral renders' band grid in nm (default 400:700:5): a hat per band, a camera on "
-                        "this grid seen exactly")
+    direct = ("render every camera on its own (the default for one --camera); without it several cameras are seen "
+              "through one spectral render per light, skin and level")
+    bands = ("the spectral renders' band grid in nm (default 400:700:5): a hat per band, a camera on this grid seen "
+             "exactly")
+    parser.add_argument("--direct", action="store_true", help=direct)
+    parser.add_argument("--bands", metavar="START:END:STEP", help=bands)
 
 
 
 def bands_for(args: argparse.Namespace, cameras: list):
+    """:func:`bands_for_cameras` ``--bands`` and ``--direct``."""
+    return bands_for_cameras(args.bands, args.direct, cameras)
+
+
+def bands_for_cameras(bands: str | None, direct: bool, cameras: list):
     """
     The bands several ``--camera`` are seen through (``--bands``, default 400:700:5; each camera checked against
     them), or ``None`` for one render per camera (one camera, or ``--direct``; ``--bands`` then refused).
@@ -60,12 +65,12 @@ def bands_for(args: argparse.Namespace, cameras: list):
     from ..rendering.bands import BANDS_DEFAULT, check_bands, parse_bands, projection
     from ..spectra import GRID_DEFAULT
 
-    if len(cameras) == 1 or args.direct:
-        if args.bands is not None:
+    if len(cameras) == 1 or direct:
+        if bands is not None:
             raise SkinrenderError("--bands: the bands of a spectral render, which several --camera share (not with "
                                   "--direct or one camera)", flag="--bands")
         return None
-    bands = BANDS_DEFAULT if args.bands is None else flag("--bands", parse_bands, args.bands)
+    bands = BANDS_DEFAULT if bands is None else flag("--bands", parse_bands, bands)
     flag("--bands", check_bands, bands, GRID_DEFAULT, "the face's lights and reflectances (400–700 nm)")
     for cam in cameras:
         flag({"camera": "--camera", None: "--bands"}, projection, cam, bands, GRID_DEFAULT)
@@ -74,14 +79,19 @@ def bands_for(args: argparse.Namespace, cameras: list):
 
 
 def bands_of(args: argparse.Namespace):
+    """:func:`bands_from` ``--spectral`` and ``--bands``."""
+    return bands_from(getattr(args, "spectral", False), getattr(args, "bands", None))
+
+
+def bands_from(spectral: bool, bands: str | None):
     """``--bands`` checked (with ``--spectral`` only), or the default bands; ``None`` without ``--spectral``."""
     from ..rendering.bands import BANDS_DEFAULT, parse_bands
 
-    if not getattr(args, "spectral", False):
-        if getattr(args, "bands", None) is not None:
+    if not spectral:
+        if bands is not None:
             raise SkinrenderError("--bands goes with --spectral", flag="--bands")
         return None
-    return BANDS_DEFAULT if args.bands is None else flag("--bands", parse_bands, args.bands)
+    return BANDS_DEFAULT if bands is None else flag("--bands", parse_bands, bands)
 
 
 

@@ -85,21 +85,26 @@ def _or(value, default):
 def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
     """Every flag of ``bench calibration`` / ``bench validate`` checked before anything renders (``spp_list``:
     ``--spp-list`` as parsed by ``bench``, ``None`` when not given)."""
-    from ..model.camera import camera
-    from ..model.illuminant import illuminant
-    from ..rendering.renderer import SAMPLES_MAX, render_passes
-    from ..rendering.scene import load_chart_scene
-    from ..studies.benchmarks.calibration import calibration_path, estimate_seconds, renders_of
-    from ..rendering.kinds import FACE, scene_kind
-    from ..workload import check_work
+    from ..rendering.kinds import scene_kind
+    from ..studies.benchmarks.calibration import calibration_path
+    from .inputs import by_kind
 
     scene_spec = _or(args.scene, "macbeth")
     if scene_spec == "ptc":
         return _checked_ptc(args)
-    kind = scene_kind(scene_spec)
-    run = calibration_path(kind.name, args.level)
-    if kind is FACE:
-        return _checked_face(args, run, scene_spec)
+    run = calibration_path(scene_kind(scene_spec).name, args.level)
+    return by_kind(scene_spec, chart=_checked_chart, face=_checked_face)(args, run, scene_spec, spp_list)
+
+
+def _checked_chart(args: argparse.Namespace, run, scene_spec: str, spp_list: list[int] | None) -> dict:
+    """A chart's calibration or validation flags, checked (:func:`_checked`)."""
+    from ..model.camera import camera
+    from ..model.illuminant import illuminant
+    from ..rendering.renderer import SAMPLES_MAX, render_passes
+    from ..rendering.scene import load_chart_scene
+    from ..studies.benchmarks.calibration import estimate_seconds, renders_of
+    from ..workload import check_work
+
     for name in DETECTION_FLAGS + ("size",):
         if getattr(args, name, None) is not None:
             option = "--" + name.replace("_", "-")
@@ -144,7 +149,7 @@ def _checked(args: argparse.Namespace, spp_list: list[int] | None) -> dict:
             "level": args.level}
 
 
-def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
+def _checked_face(args: argparse.Namespace, run, scene_spec: str, spp_list: list[int] | None = None) -> dict:
     """``bench calibration --scene FACE [--level L]``'s flags checked (``bench validate`` and ``--mc-variance``
     refused: the face's checks have no tolerance, and no sensor prediction to correct)."""
     from ..model.camera import camera
@@ -161,7 +166,7 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
         raise SkinrenderError("--mc-variance corrects a chart's sensor predictions; a face's checks through a sensor "
                               "take their noise from the replicates")
     scene = flag("--scene", load_face_scene, scene_spec)
-    level = flag("--level", physics_level, _or(args.level, PHYSICS_BASE)).name
+    level = flag("--level", physics_level, _or(args.level, PHYSICS_BASE))  # parsed once: the studies take it
     cam = flag("--camera", camera, _or(args.camera, "gbell:9@450,540,610"))
     lights = {name: planckian_flag(_or(getattr(args, name), default), f"--{name}")
               for name, default in (("prevailing", "2856"), ("calibration", "5900"))}
@@ -187,7 +192,7 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
     seconds = estimate_face_seconds(seeds, scene.camera.width * scene.camera.height, spp, level)
     check_work(seconds, "--seeds", f"{seeds} validations of the face at {spp} spp", args.max_minutes,
                fewer="run fewer --seeds")
-    return {"run": run, "kind": "face", "scene": scene, "camera_": cam, **lights, "spps": [spp], "seeds": seeds,
+    return {"run": run, "study": _study_face, "scene": scene, "camera_": cam, **lights, "spps": [spp], "seeds": seeds,
             "first_seed": first, "imaging": imaging, "mc_variance": None, "plot": plot, "estimate_s": seconds,
             "level": level}
 
@@ -195,26 +200,26 @@ def _checked_face(args: argparse.Namespace, run, scene_spec: str) -> dict:
 DETECTION_FLAGS = ("checks", "skin", "skin_set", "detection_tolerance")
 """``bench calibration`` flags of the face's detection verdict (``--checks detection``)."""
 
+
 def _checked_detection(args, scene, level, cam, lights, imaging, seeds, first, spp, plot) -> dict:
     """``bench calibration --scene face --checks detection``'s flags checked (``--size`` default 64)."""
     from ..rendering.face.scene import skin_reflectance_of
     from ..spectra import GRID_DEFAULT
     from ..studies.benchmarks.detection_calibration import estimate_detection_seconds
     from ..workload import check_work
-    from .detection_options import skin_set_of, tolerance_of
-    from .face import SIZE_MAX
+    from .detection_options import detection_tolerance_from, skin_set_from
+    from .face_inputs import SIZE_MAX
 
     size = integer_in(_or(args.size, 64), "--size", 1, SIZE_MAX)
     if args.skin is not None:
         skin_reflectance_of(args.skin, GRID_DEFAULT, "--skin")
-    args.skin_set = _or(args.skin_set, "skin")
-    args.detection_tolerance = _or(args.detection_tolerance, "0.02")
-    skins = skin_set_of(args, cam, [lights["calibration"]])
+    skins = skin_set_from(args.skin_set, cam, [lights["calibration"]])
+    tolerance = detection_tolerance_from(args.detection_tolerance)
     seconds = estimate_detection_seconds(seeds, size * size, spp, level)
     check_work(seconds, "--seeds", f"{seeds} detection verdicts of the face at {spp} spp", args.max_minutes,
                fewer="run fewer --seeds")
-    return {"kind": "detection", "scene": scene, "camera_": cam, **lights, "spp": spp, "size": size,
-            "skin": args.skin, "skin_set": skins, "tolerance": tolerance_of(args), "seeds": seeds,
+    return {"study": _study_detection, "scene": scene, "camera_": cam, **lights, "spp": spp, "size": size,
+            "skin": args.skin, "skin_set": skins, "tolerance": tolerance, "seeds": seeds,
             "first_seed": first, "imaging": imaging, "plot": plot, "estimate_s": seconds, "level": level}
 
 
@@ -261,76 +266,75 @@ def _checked_ptc(args: argparse.Namespace) -> dict:
     seconds = estimate_ptc_seconds(seeds, spp=spp)
     check_work(seconds, "--seeds", f"{seeds} photon-transfer measurements", args.max_minutes,
                fewer="run fewer --seeds")
-    return {"kind": "ptc", "camera_": cam, "imager_": sensor, "illuminance_lux": lux, "temperature": temperature,
+    return {"study": _study_ptc, "camera_": cam, "imager_": sensor, "illuminance_lux": lux, "temperature": temperature,
             "seeds": seeds, "first_seed": first, "spp": spp, "plot": plot, "estimate_s": seconds}
+
+
+def _study_ptc(args: argparse.Namespace, options: dict, progress) -> tuple[dict, str]:
+    """``bench calibration --scene ptc``: the photon transfer's fits over the seeds."""
+    from ..studies.benchmarks.ptc import ptc_calibration
+
+    result = ptc_calibration(options["camera_"], options["imager_"], options["temperature"],
+                             options["illuminance_lux"], options["seeds"], options["first_seed"],
+                             spp=options["spp"], progress=progress)
+    return _plotted(result, options), _calibration_text(result)
+
+
+def _study_face(args: argparse.Namespace, options: dict, progress) -> tuple[dict, str]:
+    """A face's calibration: the face's own study (it knows where Eq. 4's null holds)."""
+    from ..studies.benchmarks.face_calibration import face_calibration
+
+    result = face_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
+                              options["prevailing"], options["calibration"], options["spps"][0],
+                              first_seed=options["first_seed"], imaging=options["imaging"], progress=progress)
+    return _plotted(result, options), _calibration_text(result)
+
+
+def _study_detection(args: argparse.Namespace, options: dict, progress) -> tuple[dict, str]:
+    """A face's detection verdict alone over the seeds, at any spp (``--checks detection``)."""
+    from ..studies.benchmarks.detection_calibration import detection_calibration
+
+    result = detection_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
+                                   options["prevailing"], options["calibration"], options["spp"],
+                                   options["size"], options["skin"], options["skin_set"], options["tolerance"],
+                                   options["first_seed"], options["imaging"], progress=progress)
+    return _plotted(result, options), _calibration_text(result)
+
+
+def _study_chart(args: argparse.Namespace, options: dict, progress) -> tuple[dict, str]:
+    """A chart's ``bench calibration`` (its verdicts' false alarms) or ``bench validate`` (over the spp)."""
+    from ..studies.benchmarks.calibration import bench_calibration, bench_validate
+
+    common = {"scene": options["scene"], "camera_": options["camera_"], "prevailing": options["prevailing"],
+              "calibration": options["calibration"], "first_seed": options["first_seed"],
+              "imaging": options["imaging"], "mc_variance": options["mc_variance"], "progress": progress}
+    if args.what == "calibration":
+        result = bench_calibration(options["run"], spp=options["spps"][0], seeds=options["seeds"],
+                                   level=options["level"], **common)
+        return _plotted(result, options), _calibration_text(result)
+    result = bench_validate(options["run"], spps=options["spps"], seeds=options["seeds"], **common)
+    result["estimate_s"] = options["estimate_s"]
+    return result, _validate_text(result)
+
+
+def _plotted(result: dict, options: dict) -> dict:
+    """A calibration's result with its estimate, and its figure written (whole or not at all) where asked."""
+    result["estimate_s"] = options["estimate_s"]
+    if options["plot"] is not None:
+        from ..studies.figures import figure_calibration
+
+        result["plot"] = str(write_output(options["plot"], lambda stream: figure_calibration(result, stream),
+                                          "--plot"))
+    return result
 
 
 @interruptible
 def _run(wrapped: argparse.Namespace) -> None:
-    from ..studies.benchmarks.calibration import bench_calibration, bench_validate
-
     args = wrapped.args
     options = _checked(args, wrapped.spp_list)
     print(f"bench {args.what}: about {options['estimate_s']:.0f} s (estimated) …", file=sys.stderr)
     progress = lambda line: print(line, file=sys.stderr)  # noqa: E731
-    if options.get("kind") == "ptc":
-        from ..studies.benchmarks.ptc import ptc_calibration
-
-        result = ptc_calibration(options["camera_"], options["imager_"], options["temperature"],
-                                 options["illuminance_lux"], options["seeds"], options["first_seed"],
-                                 spp=options["spp"], progress=progress)
-        result["estimate_s"] = options["estimate_s"]
-        if options["plot"] is not None:
-            from ..studies.figures import figure_calibration
-
-            result["plot"] = str(write_output(options["plot"], lambda stream: figure_calibration(result, stream),
-                                                  "--plot"))
-        emit(args, result, _calibration_text(result))
-        return
-    if options.get("kind") == "detection":  # the detection verdict alone, at any spp
-        from ..studies.benchmarks.detection_calibration import detection_calibration
-
-        result = detection_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
-                                       options["prevailing"], options["calibration"], options["spp"],
-                                       options["size"], options["skin"], options["skin_set"], options["tolerance"],
-                                       options["first_seed"], options["imaging"], progress=progress)
-        result["estimate_s"] = options["estimate_s"]
-        if options["plot"] is not None:
-            from ..studies.figures import figure_calibration
-
-            result["plot"] = str(figure_calibration(result, options["plot"]))
-        emit(args, result, _calibration_text(result))
-        return
-    common = {"scene": options["scene"], "camera_": options["camera_"], "prevailing": options["prevailing"],
-              "calibration": options["calibration"], "first_seed": options["first_seed"],
-              "imaging": options["imaging"], "mc_variance": options["mc_variance"], "progress": progress}
-    if options.get("kind") == "face":  # the face's own study: it knows where Eq. 4's null holds
-        from ..studies.benchmarks.face_calibration import face_calibration
-
-        result = face_calibration(options["level"], options["seeds"], options["camera_"], options["scene"],
-                                  options["prevailing"], options["calibration"], options["spps"][0],
-                                  first_seed=options["first_seed"], imaging=options["imaging"], progress=progress)
-        result["estimate_s"] = options["estimate_s"]
-        if options["plot"] is not None:
-            from ..studies.figures import figure_calibration
-
-            result["plot"] = str(write_output(options["plot"], lambda stream: figure_calibration(result, stream),
-                                                  "--plot"))
-        text = _calibration_text(result)
-    elif args.what == "calibration":
-        result = bench_calibration(options["run"], spp=options["spps"][0], seeds=options["seeds"],
-                                   level=options["level"], **common)
-        result["estimate_s"] = options["estimate_s"]
-        if options["plot"] is not None:  # written whole or not at all
-            from ..studies.figures import figure_calibration
-
-            result["plot"] = str(write_output(options["plot"], lambda stream: figure_calibration(result, stream),
-                                                  "--plot"))
-        text = _calibration_text(result)
-    else:
-        result = bench_validate(options["run"], spps=options["spps"], seeds=options["seeds"], **common)
-        result["estimate_s"] = options["estimate_s"]
-        text = _validate_text(result)
+    result, text = options.get("study", _study_chart)(args, options, progress)
     emit(args, result, text)
 
 

@@ -21,11 +21,12 @@ import dataclasses
 import sys
 
 from ..errors import SkinrenderError
-from .common import SPP_MAX, emit, flag, interruptible, settings_of, table
+from .common import SPP_MAX, emit, flag, interruptible, settings_from, table
 from .placement import translate_key
 
 __all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "SIGMAS_DEPRECATED", "add_check_arguments", "add_verdict_arguments",
-           "tolerance_of", "spp_of", "command_validate", "command_validate_chart", "command_validate_spectral"]
+           "tolerance_of", "tolerance_from", "spp_of", "spp_auto_from", "command_validate", "command_validate_chart",
+           "command_validate_spectral"]
 
 HELP_TOLERANCE = (
     "relative tolerance REL in [6e-8, 1) on each lit patch channel (default 0.01, 1 %%); a channel darker than 1 %% of "
@@ -73,44 +74,40 @@ def add_verdict_arguments(p) -> None:
 def command_validate(args: argparse.Namespace) -> None:
     """``validate``: a face (:mod:`skinrender.cli.face_validation`) or a chart (:func:`command_validate_chart`),
     the scene loaded once."""
-    from .inputs import by_kind, scene_of
-
-    scene = scene_of(args)
-    return by_kind(scene, chart=command_validate_chart, face=_validate_face)(args, scene)
-
-
-def _validate_face(args: argparse.Namespace, scene) -> None:
-    """``validate`` on a face: the analytic limits that hold at its level of physics
-    (:mod:`skinrender.cli.face_validation`); the chart's verdict flags refused."""
     from .face_validation import command_validate_face
+    from .inputs import by_kind, scene_from
 
-    if args.spectral:
-        raise SkinrenderError("--spectral validates a chart (e.g. macbeth) against Eq. 4 and a direct render; a "
-                              "face's spectral render is seen through cameras by face-sweep and ladder",
-                              flag="--spectral")
-    for name, option, given in (("--spp auto", "--spp", str(args.spp).strip().lower() == "auto"),
-                                ("--tolerance", "--tolerance", args.tolerance is not None)):
-        if given:
-            raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts",
-                                  flag=option)
-    return command_validate_face(args, scene)
+    scene = scene_from(args.scene)
+    return by_kind(scene, chart=command_validate_chart, face=command_validate_face)(args, scene)
 
 
 def tolerance_of(args: argparse.Namespace) -> float:
+    """:func:`tolerance_from` ``--tolerance``."""
+    return tolerance_from(args.tolerance)
+
+
+def tolerance_from(text) -> float:
     """``--tolerance`` checked (in (0, 1)), or the default."""
     from ..rendering.agreement import TOLERANCE_DEFAULT, check_tolerance
 
-    return TOLERANCE_DEFAULT if args.tolerance is None else check_tolerance(args.tolerance, "--tolerance")
+    return TOLERANCE_DEFAULT if text is None else check_tolerance(text, "--tolerance")
 
 
 def spp_of(args: argparse.Namespace) -> bool:
+    """:func:`spp_auto_from` ``--spp`` and ``--tolerance``."""
+    return spp_auto_from(args.spp, args.tolerance)
+
+
+def spp_auto_from(spp, tolerance) -> bool:
     """
     Whether ``--spp`` is ``auto`` (then ``--tolerance`` must be given); any other ``--spp`` is
-    :func:`~skinrender.cli.common.settings_of`'s.
+    :func:`~skinrender.cli.common.settings_from`'s.
     """
-    if args.spp is None or str(args.spp).strip().lower() != "auto":
+    from .inputs import is_auto
+
+    if not is_auto(spp):
         return False
-    if args.tolerance is None:
+    if tolerance is None:
         raise SkinrenderError("--spp auto picks the smallest spp expected to pass --tolerance: give --tolerance "
                               "REL as well", flag="--spp")
     return True
@@ -163,29 +160,30 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     from ..rendering.kinds import CHART
     from ..rendering.sensor_validation import ImagedValidation
     from ..rendering.spp_choice import PILOT_SPP
-    from .inputs import chart_only, chart_request_of, check_request_work
+    from ..model.response import uses_whites
+    from .inputs import chart_flags, chart_request_from, check_request_work, refuse_face_flags
 
-    tolerance = tolerance_of(args)
-    auto = spp_of(args)
-    chart_only(args)
-    for name in ("limits", "detection_tolerance", "skin_set"):
-        if getattr(args, name, None) is not None:
-            option = "--" + name.replace("_", "-")
+    tolerance = tolerance_from(args.tolerance)
+    auto = spp_auto_from(args.spp, args.tolerance)
+    refuse_face_flags(args.physics, args.skin, args.size)
+    for option, given in (("--limits", args.limits), ("--detection-tolerance", args.detection_tolerance),
+                          ("--skin-set", args.skin_set)):
+        if given is not None:
             raise SkinrenderError(f"{option} goes with a face scene (e.g. 'face'), not a chart", flag=option)
-    if args.gamut and (args.normalization != "white" or args.knee):  # its volumes were taken with WP, no knee
+    if args.gamut and (not uses_whites(args.normalization) or args.knee):  # its volumes were taken with WP, no knee
         given = "--knee" if args.knee else f"--normalization {args.normalization}"
         raise SkinrenderError(f"--gamut compares the volumes of Eq. 4 with the white normalisation and no knee; "
                               f"{given} would not apply to them: drop one of the two", flag="--gamut")
     if args.knee and args.imager is not None:  # the sensor's tests compare linear codes with its model
         raise SkinrenderError("--knee: validate --imager tests the sensor's linear codes (DN) against its model; "
                               "drop --knee", flag="--knee")
-    settings = settings_of(args, auto)
+    settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels, auto)
     requested = "auto" if auto else settings.spp
-    request = chart_request_of(args, scene, settings)
+    request = chart_request_from(scene, settings, **chart_flags(args))
     if args.spectral or args.bands is not None:
-        from .bands_flags import bands_of
+        from .bands_flags import bands_from
 
-        bands_of(args)  # --bands without --spectral: refused
+        bands_from(args.spectral, args.bands)  # --bands without --spectral: refused
         if auto:
             raise SkinrenderError("--spp auto goes without --spectral: give --spp N", flag="--spp")
         return command_validate_spectral(args, request, tolerance)
@@ -196,10 +194,10 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
     renders = 11 if args.gamut else 1  # --gamut: ten more, one per paper illuminant
     choice = None
     if auto:
-        check_request_work(args, request, len(PILOT_SPP), max(PILOT_SPP))
+        check_request_work(args.max_minutes, request, len(PILOT_SPP), max(PILOT_SPP))
         choice = _auto_spp(request, tolerance)
         request = dataclasses.replace(request, settings=request.settings.replace(spp=choice["spp"]))
-    check_request_work(args, request, renders)
+    check_request_work(args.max_minutes, request, renders)
     settings = request.settings
     print(f"rendering {request.scene.name} at {settings.spp} spp and validating …", file=sys.stderr)
     result = CHART.validate(request, tolerance=tolerance)
@@ -220,7 +218,7 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
         text = f"spp auto: {choice['spp']} spp — {choice['why']}\n" + text
     document["exit_status"] = EXIT_STATUS[verdict.outcome]
     text += f"\nverdict: {verdict.outcome.upper().replace('_', ' ')} (exit status {document['exit_status']})"
-    emit(args, document, text)
+    emit(args.json, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])
 

@@ -2,10 +2,9 @@
 Command-line helpers
 ====================
 
-What every command shares: the help texts, the argument groups (grid,
-model, search, render options), printing one JSON document or a text table,
-and the grid and render options parsed from the arguments. Choices come from
-the method tables of the package (:mod:`skinrender.methods`).
+What every command shares: the help texts, the argument groups (grid, model, search, render options), printing one
+JSON document or a text table, and the grid and render options parsed from the arguments. Choices come from the
+method tables of the package (:mod:`skinrender.methods`).
 """
 
 from __future__ import annotations
@@ -22,7 +21,8 @@ from ..files import check_output_path, shown, write_stdout
 __all__ = [
     "Parser", "flag", "flagged", "imaging_options", "camera_of", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
-    "add_render", "emit", "table", "range_text", "grid_of", "settings_of", "choices_help", "coverage_hint",
+    "add_render", "emit", "table", "range_text", "grid_of", "grid_from", "settings_of", "settings_from",
+    "camera_from", "choices_help", "coverage_hint",
     "interruptible", "add_max_minutes",
 ]
 
@@ -38,8 +38,11 @@ HELP_GRID = "integration grid START:END:STEP in nm (default 400:700:1)"
 
 
 def choices_help(methods: dict) -> str:
-    """``name (meaning), …`` of a method table, for a flag's help."""
-    return "; ".join(f"{name}: {meaning}" for name, meaning in methods.items()).replace("%", "%%")
+    """``name: meaning; …`` of a method table (each method's :func:`~skinrender.methods.describe`), for a flag's
+    help."""
+    from ..methods import describe
+
+    return "; ".join(f"{name}: {describe(method)}" for name, method in methods.items()).replace("%", "%%")
 
 
 def add_common(parser: argparse.ArgumentParser) -> None:
@@ -127,14 +130,15 @@ def add_max_minutes(parser: argparse.ArgumentParser, what: str) -> None:
                         f"estimate, from {what}, is printed with the refusal)")
 
 
-def emit(args: argparse.Namespace, document: dict, text: str) -> None:
+def emit(args, document: dict, text: str) -> None:
     """
-    Print ``document`` as one JSON document (``--json``) or ``text``. The document is made whole before a
-    byte is written: one that cannot be (a NaN or infinity left in it) prints nothing, never half of it; every
-    byte's write is checked (:func:`skinrender.files.write_stdout`: a full disk under ``> out.json`` is an error
-    naming standard output, exit status 1, never a short document and status 0).
+    Print ``document`` as one JSON document (``--json``: ``args.json``, of the parsed arguments or of what a command
+    made of them, or the flag itself) or ``text``. The document is made whole before a byte is written: one that
+    cannot be (a NaN or infinity left in it) prints nothing, never half of it; every byte's write is checked
+    (:func:`skinrender.files.write_stdout`: a full disk under ``> out.json`` is an error naming standard output,
+    exit status 1, never a short document and status 0).
     """
-    if args.json:
+    if args if isinstance(args, bool) else args.json:
         write_stdout(json.dumps(document, indent=2, allow_nan=False) + "\n")
     else:
         write_stdout(text.rstrip("\n") + "\n")
@@ -156,34 +160,39 @@ def range_text(values: list) -> str:
 
 
 def grid_of(args: argparse.Namespace):
-    """The :class:`~skinrender.spectra.WavelengthGrid` of ``--grid`` (the default grid for a command without it),
-    parsed once per command: the commands pass the object on."""
+    """:func:`grid_from` ``--grid`` (the default grid for a command without it): the commands pass it on."""
+    return grid_from(getattr(args, "grid", None))
+
+
+def grid_from(text: str | None):
+    """``--grid``'s :class:`~skinrender.spectra.WavelengthGrid` (``None``: the default grid)."""
     from ..spectra import GRID_DEFAULT, WavelengthGrid
 
-    if getattr(args, "grid", None) is None:
-        return GRID_DEFAULT
-    return flag("--grid", WavelengthGrid.parse, args.grid)
+    return GRID_DEFAULT if text is None else flag("--grid", WavelengthGrid.parse, text)
 
 
 def settings_of(args: argparse.Namespace, auto: bool = False):
-    """
-    The :class:`~skinrender.rendering.settings.RenderSettings` of the render flags, made once per command:
+    """:func:`settings_from` the render flags (``--quality --spp --sampler --seed --variant --channels``)."""
+    return settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels, auto)
+
+
+def settings_from(quality: str, spp, sampler: str | None, seed: int, variant: str | None, channels: str,
+                  auto: bool = False):
+    """The :class:`~skinrender.rendering.settings.RenderSettings` of the render flags, made once per command:
     ``--quality``'s spp and sampler unless ``--spp`` or ``--sampler`` is given, ``--seed``, ``--variant`` (checked to
     run here before anything renders) and ``--channels``; each refusal names its flag. ``auto``: ``--spp auto``,
-    which the command resolves itself (``validate``), the quality's spp standing in until it has.
-    """
+    which the command resolves itself (``validate``), the quality's spp standing in until it has."""
     from ..rendering.settings import QUALITY_PRESETS, RenderSettings
 
-    preset = QUALITY_PRESETS[args.quality]
-    spp = args.spp if args.spp is not None and not auto else preset["spp"]
+    preset = QUALITY_PRESETS[quality]
+    spp = spp if spp is not None and not auto else preset["spp"]
     if isinstance(spp, str):  # a command whose --spp also takes auto (validate), which it resolves itself
         if spp.strip().lower() == "auto":
             raise SkinrenderError("--spp auto goes with a chart's 'validate --tolerance T'", flag="--spp")
         spp = integer_in(spp, "--spp", 1, SPP_MAX)
     if not 1 <= spp <= SPP_MAX:
         raise SkinrenderError(f"--spp must be an integer in [1, {SPP_MAX}], got {spp}", flag="--spp")
-    return RenderSettings(spp, check_seed(args.seed), args.sampler or preset["sampler"], variant_of(args.variant),
-                          args.channels)
+    return RenderSettings(spp, check_seed(seed), sampler or preset["sampler"], variant_of(variant), channels)
 
 
 from ..rendering.settings import SEED_MAX, SPP_MAX  # noqa: E402 - every door's bounds (re-exported)
@@ -324,12 +333,17 @@ def check_seed(seed: int, name: str = "--seed") -> int:
 
 
 def camera_of(args: argparse.Namespace, grid=None, name: str = "--camera"):
-    """The camera of ``--camera`` (with ``--extrapolation`` where the command has it), its curves checked on ``grid``."""
+    """:func:`camera_from` ``--camera`` (with ``--extrapolation`` where the command has it)."""
+    spec = getattr(args, name.lstrip("-").replace("-", "_"))
+    return camera_from(spec, getattr(args, "extrapolation", "refuse"), grid, name)
+
+
+def camera_from(spec: str, extrapolation: str = "refuse", grid=None, name: str = "--camera"):
+    """The camera of flag ``name`` (a CSV's with ``extrapolation``), its curves checked on ``grid``."""
     from ..model.camera import camera
     from ..spectra import GRID_DEFAULT
 
-    extrapolation = getattr(args, "extrapolation", "refuse")
-    cam = flag(name, camera, getattr(args, name.lstrip("-").replace("-", "_")), extrapolation=extrapolation)
+    cam = flag(name, camera, spec, extrapolation=extrapolation)
     flag(name, cam.sensitivities, grid or GRID_DEFAULT)
     return cam
 
@@ -377,8 +391,7 @@ def sensor_settings(args: argparse.Namespace, default_lux: float | None = ILLUMI
     lux = default_lux if args.illuminance is None else args.illuminance
     options = flagged({"illuminance": "--illuminance", "exposure": "--exposure"}, NoiseOptions,
                       illuminance=lux, exposure="auto" if args.exposure is None else args.exposure)
-    lux, exposure = options.illuminance, options.exposure
-    return lux, exposure
+    return options.illuminance, options.exposure
 
 
 def refuse_sensor_settings(args: argparse.Namespace, instead: str = "--imager") -> None:
@@ -404,21 +417,21 @@ def imaging_options(args: argparse.Namespace) -> dict | None:
 def interruptible(command):
     """
     ``command`` (a function of the parsed arguments) run in a worker thread while the main thread waits, so that
-    Ctrl-C stops it at once: Mitsuba renders in native code, where the main thread would take the interrupt
-    only when the render returns (as late as the whole render: tens of seconds for a large face). The KeyboardInterrupt reaches
-    :func:`skinrender.cli.main`, which exits 130 at once (``os._exit``: the worker is not waited for, and
+    Ctrl-C stops it at once: Mitsuba renders in native code, where the main thread would take the interrupt only
+    when the render returns (as late as the whole render: tens of seconds for a large face). The KeyboardInterrupt
+    reaches :func:`skinrender.cli.main`, which exits 130 at once (``os._exit``: the worker is not waited for, and
     nothing is written after it). The command's own result or exception is passed on.
     """
     import functools
     import threading
 
     @functools.wraps(command)
-    def run(args: argparse.Namespace) -> None:
+    def run(*arguments) -> None:
         outcome: dict = {}
 
         def work() -> None:
             try:
-                outcome["result"] = command(args)
+                outcome["result"] = command(*arguments)
             except BaseException as error:  # noqa: BLE001 - handed to the main thread as it is
                 outcome["error"] = error
 

@@ -275,8 +275,14 @@ def command_design(args: argparse.Namespace) -> None:
         raise SkinrenderError(f"--sensor must be a gbell number N > 0 (FWHM N·10 nm), got {args.sensor}",
                               flag="--sensor")
     noisy = noisy_of(args)
-    if noisy is not None and args.objective != "detection":
-        raise SkinrenderError("--imager goes with --objective detection (noisy pixels), not ratio", flag="--imager")
+    if noisy is not None:  # noisy pixels go with an objective that takes them
+        from ..design.optimise import OBJECTIVES
+        from ..methods import takes
+
+        if not takes(OBJECTIVES[args.objective], "noisy"):
+            noisy_ones = " or ".join(name for name, each in OBJECTIVES.items() if takes(each, "noisy"))
+            raise SkinrenderError(f"--imager goes with --objective {noisy_ones} (noisy pixels), not "
+                                  f"{args.objective}", flag="--imager")
     evaluations = len(starts) * max(int(args.evaluations), 0)
     each = DESIGN_SECONDS_PER_EVALUATION + (0 if noisy is None else noisy.samples * DESIGN_SECONDS_PER_NOISE_SAMPLE)
     check_work(evaluations * each, "--evaluations", f"{len(starts)} starts × {args.evaluations} evaluations",

@@ -14,7 +14,8 @@ import argparse
 from ..errors import SkinrenderError
 from .common import flag
 
-__all__ = ["HELP_SKIN_SET", "add_skin_set", "add_detection_tolerance", "skin_set_of", "tolerance_of"]
+__all__ = ["HELP_SKIN_SET", "add_skin_set", "add_detection_tolerance", "add_detection_options", "skin_set_from",
+           "detection_tolerance_from"]
 
 HELP_SKIN_SET = ("reflectance set the skin locus is built from: skin (the 30 Vrhel skins, default), skin-tones (very "
                  "light to very dark: the skin model fitted to measured colours, and its dark end), skin-model, "
@@ -35,25 +36,33 @@ def add_detection_tolerance(parser: argparse.ArgumentParser) -> None:
                         f"verdict (default {DETECTION_TOLERANCE:g}: two percentage points)")
 
 
-def tolerance_of(args: argparse.Namespace) -> float:
-    """``--detection-tolerance`` as a fraction in (0, 1)."""
+def add_detection_options(parser: argparse.ArgumentParser) -> None:
+    """The detection verdict's flags of a face study (``ladder``, ``face-sweep``): :func:`add_skin_set` and
+    :func:`add_detection_tolerance`."""
+    add_skin_set(parser)
+    add_detection_tolerance(parser)
+
+
+def detection_tolerance_from(text: str | float | None) -> float:
+    """``--detection-tolerance``'s value as a fraction in (0, 1) (``None``: the default,
+    :data:`~skinrender.evaluation.detection_verdict.DETECTION_TOLERANCE`)."""
     from ..evaluation.detection_verdict import check_tolerance
 
-    return check_tolerance(args.detection_tolerance, "--detection-tolerance")
+    return check_tolerance(text, "--detection-tolerance")
 
 
-def skin_set_of(args: argparse.Namespace, cam, calibrations, grid=None):
+def skin_set_from(spec: str | None, cam, calibrations, grid=None):
     """
-    ``--skin-set`` as a :class:`~skinrender.datasets.SpectralSet`, refused (naming the flag) when it is unknown,
-    unreadable, empty, does not cover the grid, or gives ``cam`` a locus of no area at one of ``calibrations``
-    (K) over the paper's ten lights: detection with it would find no skin.
+    ``--skin-set``'s value (``None``: ``skin``) as a :class:`~skinrender.datasets.SpectralSet`, refused (naming the
+    flag) when it is unknown, unreadable, empty, does not cover the grid, or gives ``cam`` a locus of no area at one
+    of ``calibrations`` (K) over the paper's ten lights: detection with it would find no skin.
     """
     from ..datasets import reflectances
     from ..evaluation.locus import skin_locus
     from ..spectra import GRID_DEFAULT
 
     grid = GRID_DEFAULT if grid is None else grid
-    spec = str(args.skin_set).strip()
+    spec = "skin" if spec is None else str(spec).strip()
     if not spec:
         raise SkinrenderError("--skin-set: expected a reflectance set (skin, skin-tones, a CSV path), got an empty "
                               "one", flag="--skin-set")

@@ -10,23 +10,23 @@ fractions.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from pathlib import Path
 
 from ..errors import SkinrenderError
-from ..files import TOML_BYTES_MAX, Output, exists, read_input, write_output, write_outputs
-from .detection_options import add_detection_tolerance, add_skin_set, skin_set_of, tolerance_of
+from ..files import Output, write_output, write_outputs
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_from,
+                     check_output, check_seed, choices_help, emit, flag, integer_in, interruptible, settings_from,
+                     table, variant_of)
+from .detection_options import add_detection_options, detection_tolerance_from, skin_set_from
+from .face_inputs import (SIZE_MAX, check_lights_seen, face_flags_from, face_pixels, face_request_from,  # noqa: F401
+                          level_names, levels_of, noise_sensor_from, planckian_flag)
+from .inputs import check_request_work, figure_from
+from .ladder_text import ladder_text  # noqa: F401 - its old place
 from .placement import add_translate, translate_key, translate_of, translated_face
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_of,
-                     check_output, check_seed, choices_help, emit, flag, flagged, integer_in, interruptible,
-                     positive_number, settings_of, table, variant_of)
 
 __all__ = ["add_parsers", "add_face_arguments", "check_figure", "check_face_flags", "face_request_of", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face", "ladder_text", "command_ladders",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
-
-SIZE_MAX = 2000
-"""Largest image side, pixels (the chart scenes' 4 000 000-pixel cap)."""
 
 LADDER_SPP_DEFAULT = 64
 """``ladder --spp`` unless given."""
@@ -42,13 +42,6 @@ def _physics_help() -> str:
     from ..rendering.face.effects import PHYSICS
 
     return "level of physics: " + choices_help(PHYSICS) + "; effects combine with '+'"
-
-
-def level_names(short: bool = False) -> str:
-    """The registered levels of physics, comma-separated (``short``: as words for prose, ``mixed light``)."""
-    from ..rendering.face.effects import PHYSICS_EFFECTS
-
-    return ", ".join(effect.short or name if short else name for name, effect in PHYSICS_EFFECTS.items())
 
 
 def add_face_arguments(parser: argparse.ArgumentParser) -> None:
@@ -102,8 +95,7 @@ def add_parsers(commands) -> None:
                    help="write the ladder's figure to this PNG: per level the render, the label mask, the "
                    "detected mask and the skin pixels' NCC over the analytic skin locus with the budget; with "
                    "--effects, the table's bars")
-    add_skin_set(p)
-    add_detection_tolerance(p)
+    add_detection_options(p)
     add_translate(p)
     add_max_minutes(p, "the levels × --size² × --spp (with --effects, × the skins)")
     from .bands_flags import add_cameras_arguments
@@ -112,125 +104,38 @@ def add_parsers(commands) -> None:
     add_common(p)
 
 
-def planckian_flag(spec: str, name: str) -> float:
-    """The temperature, K, of the Planckian light ``spec`` given to flag ``name``; a one-line error otherwise."""
-    from ..rendering.face import planckian_temperature
-
-    return flag(name, planckian_temperature, spec, name)
-
-
-def _planckian(args: argparse.Namespace, name: str) -> float:
-    return planckian_flag(getattr(args, name), f"--{name}")
-
-
-def _check_light(cam, temperatures: dict) -> None:
-    """Each light gives the camera light on the grid (else a one-line error naming the flag)."""
-    from .preflight import check_render_lights
-
-    check_render_lights(cam, temperatures)
-
-
 def check_figure(args: argparse.Namespace, *taken) -> Path | None:
-    """
-    ``--figure`` checked before any work (:func:`~skinrender.cli.common.check_output`, a ``.png``), and refused
-    when it is one of the command's other outputs ``taken``; ``None`` when the flag is not given.
-    """
-    figure = check_output(getattr(args, "figure", None), "--figure", (".png",))
-    if figure is not None and any(figure.resolve() == Path(other).resolve() for other in taken):
-        raise SkinrenderError(f"--figure: {figure} is also another output of the command; name another PNG",
-                              flag="--figure")
-    return figure
+    """:func:`~skinrender.cli.inputs.figure_from` ``--figure``."""
+    return figure_from(getattr(args, "figure", None), *taken)
+
+
+def face_flags(args) -> dict:
+    """The flags of a face render (``render``, ``validate``, ``detect``) by the keywords of
+    :func:`~skinrender.cli.face_inputs.face_request_from` (absent ones their defaults)."""
+    names = ("normalization", "grid", "physics", "size", "skin", "imager", "illuminance", "exposure", "sampler")
+    moved = translate_of(args)  # --translate-mm, checked: (x, y, z) mm or None
+    return {"camera": args.camera, "prevailing": args.prevailing, "calibration": args.calibration,
+            **{name: getattr(args, name) for name in names if hasattr(args, name)},
+            **({} if moved is None else {"translate_mm": moved})}
 
 
 def check_face_flags(args: argparse.Namespace, spectral: bool = False) -> tuple:
-    """
-    What only the command line checks of a face render's flags, each refusal naming its flag: ``--camera`` (with
-    its curves on the default grid), ``--prevailing`` and ``--calibration`` (Planckian, K; the camera sees each),
-    ``--normalization`` (``white`` only: a face is balanced with WP), ``--grid`` (the default: a face renders on
-    400:700:1 nm), ``--physics`` (not empty) and ``--size`` (an integer in [1, :data:`SIZE_MAX`]). Returns
-    ``(camera, {prevailing, calibration} K, size px or None)``; the rest is the request's
-    (:func:`face_request_of`).
-    """
-    cam = None if spectral else camera_of(args)
-    temperatures = {name: _planckian(args, name) for name in ("prevailing",) + (() if spectral else ("calibration",))}
-    if cam is not None:
-        _check_light(cam, temperatures)
-    else:  # a spectral render: no camera, no calibration (applied afterwards)
-        temperatures["calibration"] = None
-    if getattr(args, "normalization", "white") != "white":
-        raise SkinrenderError(f"--normalization: a face is balanced with WP (white) only, "
-                              f"got {args.normalization!r}", flag="--normalization")
-    if str(getattr(args, "grid", "400:700:1")).strip() != "400:700:1":
-        raise SkinrenderError(f"--grid: a face renders on 400:700:1 nm, got {args.grid!r}", flag="--grid")
-    physics = getattr(args, "physics", None)
-    if physics is not None and not str(physics).strip():
-        raise SkinrenderError(f"--physics: name a level ({level_names()}; '+' combines them), got ''", flag="--physics")
-    size = getattr(args, "size", None)
-    size = None if size is None else integer_in(size, "--size", 1, SIZE_MAX)
-    return cam, temperatures, size
+    """:func:`~skinrender.cli.face_inputs.face_flags_from` the flags of ``args`` (``spectral``: a spectral render's,
+    without a camera or a calibration light)."""
+    flags = face_flags(args)
+    return face_flags_from(*(flags.get(name) for name in ("camera", "prevailing", "calibration")),
+                           **{name: flags[name] for name in ("normalization", "grid", "physics", "size")
+                              if name in flags}, spectral=spectral)
 
 
 def face_request_of(args: argparse.Namespace, scene, settings, **changes):
-    """
-    A face command's :class:`~skinrender.rendering.face.request.FaceRequest` from the flags of ``render``,
-    ``validate``, ``detect`` (absent ones take their defaults), as every front door builds it
-    (:meth:`~skinrender.rendering.kinds.FaceKind.request`), each refusal naming its flag; ``changes``: keywords
-    replaced (``spp``: a validation's per replicate). What only the command line has is checked first: the
-    camera sees each light (:func:`check_face_flags`), ``--normalization`` is ``white``,
-    ``--grid`` the default, ``--physics`` names a level, ``--size`` an integer.
-    """
-    from ..rendering.kinds import FACE
-    from .inputs import REQUEST_FLAGS, sensor_flags, settings_fields
-
-    cam, temperatures, size = check_face_flags(args, changes.get("bands") is not None)
-    keywords = {"skin": getattr(args, "skin", None), "physics": getattr(args, "physics", None) or "direct",
-                "size": size, "translate_mm": translate_of(args), **sensor_flags(args),
-                **settings_fields(args, settings), **changes}
-    return flagged(REQUEST_FLAGS, FACE.request, scene, cam, temperatures["prevailing"], temperatures["calibration"],
-                   **keywords)
-
-
-def face_pixels(scene, size: int | None) -> int:
-    """The pixels of a face render: ``size`` squared where given, else the scene camera's."""
-    return size * size if size is not None else scene.camera.width * scene.camera.height
-
-
-def levels_of(text: str) -> list:
-    """
-    ``--levels``: comma-separated levels of physics, none empty and none twice (``a+b`` and ``b+a`` are one
-    level), each parsed once into its :class:`~skinrender.rendering.physics.Level`; a one-line error naming the
-    flag otherwise.
-    """
-    from ..rendering.face.effects import PHYSICS_REGISTRY
-
-    specs = [level.strip() for level in str(text).split(",")]
-    if not any(specs) or not all(specs):
-        raise SkinrenderError(f"--levels: comma-separated levels of physics, none empty, got {text!r}", flag="--levels")
-    levels = [flag("--levels", PHYSICS_REGISTRY.level, spec) for spec in specs]
-    if len({level.name for level in levels}) < len(levels):
-        raise SkinrenderError(f"--levels: a level is named twice in {text!r}; name each once", flag="--levels")
-    return levels
+    """:func:`~skinrender.cli.face_inputs.face_request_from` the flags of ``args``."""
+    return face_request_from(scene, settings, **face_flags(args), **changes)
 
 
 def noise_sensor(args: argparse.Namespace, levels: list) -> tuple:
-    """
-    The sensor's options of a study over ``levels`` (:class:`~skinrender.rendering.physics.Level` objects):
-    ``(imager, lux)``, ``--imager`` loaded once (``None``: the effect's default) and ``--illuminance`` in lx
-    (``None``: the scene's), each checked as a request checks it; either is refused where no level has an effect
-    that takes it (nothing would see it).
-    """
-    from ..rendering.face.effects import PHYSICS_REGISTRY
-    from ..rendering.sensor import NoiseOptions
-
-    options = flagged({"imager": "--imager", "illuminance": "--illuminance"}, NoiseOptions, args.imager,
-                      None if args.illuminance is None else positive_number(args.illuminance, "--illuminance", "lx"))
-    for name in ("imager", "illuminance"):
-        if getattr(args, name) is not None and not any(PHYSICS_REGISTRY.options_for(level, {name: True})
-                                                       for level in levels):
-            raise SkinrenderError(f"--{name} is the noise level's: add a level with noise to --levels "
-                                  f"(e.g. noise or interreflection+noise), got "
-                                  f"{','.join(level.name for level in levels)!r}", flag=f"--{name}")
-    return options.imager, options.illuminance
+    """:func:`~skinrender.cli.face_inputs.noise_sensor_from` ``--imager`` and ``--illuminance``."""
+    return noise_sensor_from(args.imager, args.illuminance, levels)
 
 
 def is_face_scene(spec: str) -> bool:
@@ -247,12 +152,13 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     from ..rendering.face.scene import load_face_scene, skin_reflectance_of
     from ..spectra import GRID_DEFAULT
 
-    from .bands_flags import bands_for, cameras_of
+    from .bands_flags import bands_for_cameras, cameras_of
 
     cams = cameras_of(args.camera)
-    temperatures = {name: _planckian(args, name) for name in ("prevailing", "calibration")}
+    temperatures = {"prevailing": planckian_flag(args.prevailing, "--prevailing"),
+                    "calibration": planckian_flag(args.calibration, "--calibration")}
     for cam in cams:
-        _check_light(cam, temperatures)
+        check_lights_seen(cam, temperatures)
     if len(cams) > 1 and args.effects:
         raise SkinrenderError("--camera: the effects table is one camera's; give one --camera", flag="--camera")
     size = integer_in(args.size, "--size", 1, SIZE_MAX)
@@ -270,7 +176,7 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
         raise SkinrenderError(f"--levels: the effects table compares each effect with direct; add it, got "
                               f"{','.join(level.name for level in levels)!r}")
     variant_of(args.variant)
-    imager, lux = noise_sensor(args, levels)
+    imager, lux = noise_sensor_from(args.imager, args.illuminance, levels)
     from ..studies.face.effects_table import SKIN_TONES
 
     for skin in skins or (list(SKIN_TONES.values()) if args.effects else [None]):
@@ -279,7 +185,7 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     from ..studies.face.ladder import REPLICATES_LADDER
     from ..workload import check_work
 
-    bands = bands_for(args, cams)
+    bands = bands_for_cameras(args.bands, args.direct, cams)
     tones = len(skins or SKIN_TONES) if args.effects else 1
     renders = len(levels) * REPLICATES_LADDER * tones
     renders *= len(cams) if bands is None else 1
@@ -294,22 +200,22 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
             "calibration": temperatures["calibration"],
             "levels": levels, "spp": spp, "seed": seed, "size": size, "scene": moved, "variant": args.variant,
             "imager": imager, "illuminance": lux, "skins": skins,
-            "skin_set": [skin_set_of(args, cam, [temperatures["calibration"]]) for cam in cams][-1],
-            "detection_tolerance": tolerance_of(args)}
+            "skin_set": [skin_set_from(args.skin_set, cam, [temperatures["calibration"]]) for cam in cams][-1],
+            "detection_tolerance": detection_tolerance_from(args.detection_tolerance)}
 
 
 @interruptible
 def command_ladder(args: argparse.Namespace) -> None:
     from ..studies.face.effects_table import effects_table
     from ..studies.face.ladder import ladder
-    from .ladder_text import effects_text, ladder_text, verdict_text
+    from .ladder_text import effects_text, verdict_text
 
     plot = check_output(getattr(args, "plot", None), "--plot", (".png",))
     inputs = _ladder_inputs(args)
     cams, bands = inputs.pop("cameras"), inputs.pop("bands")
     if len(cams) > 1:
         skins = inputs.pop("skins")
-        return command_ladders(args, {**inputs, "skin": skins[0] if skins else None}, cams, bands, plot)
+        return command_ladders(args.json, {**inputs, "skin": skins[0] if skins else None}, cams, bands, plot)
     inputs["camera_"] = cams[0]
     skins = inputs.pop("skins")
     say = lambda line: print(line, file=sys.stderr)  # noqa: E731
@@ -327,18 +233,18 @@ def command_ladder(args: argparse.Namespace) -> None:
         document["plot"] = str(plot)
         text += f"\nfigure: {plot}"
     text += "\n" + verdict_text(document)
-    emit(args, document, text)
+    emit(args.json, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])
 
 
-def command_ladders(args: argparse.Namespace, inputs: dict, cameras: list, bands, plot) -> None:
+def command_ladders(as_json: bool, inputs: dict, cameras: list, bands, plot) -> None:
     """``ladder`` with several ``--camera``: each level's replicates rendered once spectrally (or, ``--direct``,
-    per camera) and seen through every camera; one ladder per camera, the verdict their combination."""
+    per camera) and seen through every camera; one ladder per camera, the verdict their combination
+    (``as_json``: ``--json``)."""
     from ..evaluation.verdict import combine
     from ..rendering.bands import bands_text
     from ..studies.face.ladder import ladders
-    from .ladder_text import ladder_text
 
     if plot is not None:
         raise SkinrenderError("--plot draws one camera's ladder: give one --camera", flag="--plot")
@@ -351,7 +257,7 @@ def command_ladders(args: argparse.Namespace, inputs: dict, cameras: list, bands
     text = "\n\n".join(ladder_text(result, doc) for result, doc in zip(results, documents))
     text += (f"\nverdict over {len(results)} cameras: {verdict.outcome.upper().replace('_', ' ')} (exit status "
              f"{document['exit_status']})")
-    emit(args, document, text)
+    emit(as_json, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])
 
@@ -367,14 +273,13 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
     from ..rendering.face.render import face_exr
 
     from ..rendering.kinds import FACE
-    from .inputs import check_request_work
 
-    settings = settings_of(args)
+    settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels)
     output = check_output(getattr(args, "output", "render.exr"), "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
-    figure = check_figure(args, output.with_suffix(".png"))
-    request = face_request_of(args, scene, settings)
-    check_request_work(args, request)
+    figure = figure_from(args.figure, output.with_suffix(".png"))
+    request = face_request_from(scene, settings, **face_flags(args))
+    check_request_work(args.max_minutes, request)
     print(f"rendering the face ({request.level.name}) at {settings.spp} spp …", file=sys.stderr)
     result = FACE.render(request)
     if getattr(args, "knee", False):
@@ -404,4 +309,4 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
     text = (f"{result.scene.name} ({result.skin}, {result.physics}) through {result.camera.name}, "
             f"{result.prevailing:g} K white-balanced to {result.calibration:g} K: {path} (+ {preview}, "
             f"label channel: {labels}), {result.spp} spp, {result.variant}, {result.seconds:.2f} s")
-    emit(args, document, text)
+    emit(args.json, document, text)

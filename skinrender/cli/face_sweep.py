@@ -19,11 +19,12 @@ import sys
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
                      interruptible, positive_number, table, variant_of)
-from .detection_options import add_detection_tolerance, add_skin_set, skin_set_of, tolerance_of
+from .detection_options import add_detection_options, detection_tolerance_from, skin_set_from
 from .preflight import check_dask
 from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
+from .face_inputs import refuse_repeated, skins_from
 
-__all__ = ["add_parsers", "command_face_sweep", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
+__all__ = ["add_parsers", "command_face_sweep", "light_pairs", "LIGHTS_DEFAULT", "SIZE_DEFAULT", "SPP_DEFAULT"]
 
 LIGHTS_DEFAULT = "2300/5900,2856/5900,5900/5900,10000/5900"
 """``--lights`` unless given: horizon sunlight to blue sky, balanced to daylight (as the face loci)."""
@@ -78,12 +79,11 @@ def add_parsers(commands) -> None:
     p.add_argument("--max-samples", metavar="N", default=f"{SWEEP_SAMPLES_MAX:g}",
                    help=f"refuse sweeps of more samples (renders × pixels × spp) than this (default "
                    f"{SWEEP_SAMPLES_MAX:g})")
-    add_skin_set(p)
-    add_detection_tolerance(p)
+    add_detection_options(p)
     add_common(p)
 
 
-def _lights(values: list[str]) -> list[tuple[float, float]]:
+def light_pairs(values: list[str]) -> list[tuple[float, float]]:
     """The (prevailing, calibration) pairs of every ``--lights``, K."""
     pairs = []
     for value in values:
@@ -98,15 +98,8 @@ def _lights(values: list[str]) -> list[tuple[float, float]]:
             pairs.append((planckian_flag(parts[0].strip(), "--lights"), planckian_flag(parts[1].strip(), "--lights")))
     if not pairs:
         raise SkinrenderError("--lights: name at least one PREVAILING/CALIBRATION pair", flag="--lights")
-    _once("--lights", [f"{p:g}/{c:g} K" for p, c in pairs])
+    refuse_repeated("--lights", [f"{p:g}/{c:g} K" for p, c in pairs])
     return pairs
-
-
-def _once(name: str, items: list[str]) -> None:
-    """Refuse a sweep that names one camera, light pair or skin twice (it would render it twice), naming ``name``."""
-    twice = sorted({item for item in items if items.count(item) > 1})
-    if twice:
-        raise SkinrenderError(f"{name}: each once, got {', '.join(twice)} more than once", flag=name)
 
 
 def _checked(args: argparse.Namespace) -> dict:
@@ -114,7 +107,7 @@ def _checked(args: argparse.Namespace) -> dict:
     import numpy as np
 
     from ..model.response import response
-    from ..rendering.face.scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face.scene import load_face_scene
     from ..spectra import GRID_DEFAULT
     from ..studies.face.locus import SKIN_TONES
     from ..execution import WORKERS_MAX
@@ -123,16 +116,11 @@ def _checked(args: argparse.Namespace) -> dict:
     from .bands_flags import cameras_of
 
     cams = cameras_of(args.camera)
-    pairs = _lights(args.lights or [LIGHTS_DEFAULT])
+    pairs = light_pairs(args.lights or [LIGHTS_DEFAULT])
     for cam in cams:
         for t in sorted({t for pair in pairs for t in pair}):
             flag({"camera": "--camera", None: "--lights"}, response, cam, np.ones((1, GRID_DEFAULT.size)), t, t)
-    skins = [s.strip() for s in (args.skin or SKIN_TONES)]
-    for skin in skins:
-        if not skin:
-            raise SkinrenderError("--skin: expected a skin spec, got an empty one", flag="--skin")
-        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
-    _once("--skin", skins)
+    skins = skins_from(args.skin or SKIN_TONES)
     levels = levels_of(args.levels)
     flag("--scene", load_face_scene, args.scene)
     variant_of(args.variant)
@@ -150,16 +138,16 @@ def _checked(args: argparse.Namespace) -> dict:
         "illuminance": lux,
         "workers": None if args.workers is None else integer_in(args.workers, "--workers", 1, WORKERS_MAX),
         "dask": args.dask, "max_renders": integer_in(args.max_renders, "--max-renders", 1, 10**9),
-        "max_samples": max_samples, "detection_tolerance": tolerance_of(args),
-        "skin_set": _skin_set(args, cams, pairs),
+        "max_samples": max_samples, "detection_tolerance": detection_tolerance_from(args.detection_tolerance),
+        "skin_set": _skin_set(args.skin_set, cams, pairs),
     }
 
 
-def _skin_set(args: argparse.Namespace, cams, pairs):
-    """``--skin-set`` checked for every camera at every calibration."""
+def _skin_set(spec: str | None, cams, pairs):
+    """``--skin-set`` (``spec``) checked for every camera at every calibration (K, ``pairs``' second)."""
     skins = None
     for cam in cams:
-        skins = skin_set_of(args, cam, [c for _, c in pairs])
+        skins = skin_set_from(spec, cam, [c for _, c in pairs])
     return skins
 
 

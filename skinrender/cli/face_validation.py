@@ -23,7 +23,7 @@ import sys
 
 from ..errors import SkinrenderError
 
-__all__ = ["command_validate_face", "check_samples", "limits_of"]
+__all__ = ["command_validate_face", "check_samples", "limits_of", "refuse_chart_verdict_flags"]
 
 
 def limits_of(text: str | None) -> tuple[str, ...]:
@@ -77,22 +77,39 @@ def check_samples(spp: int, pixels: int) -> None:
                               flag="--spp")
 
 
+def refuse_chart_verdict_flags(spp, tolerance, spectral: bool = False) -> None:
+    """``validate`` on a face: the chart's flags (``--spectral``, ``--spp auto``, ``--tolerance``) refused (the
+    face's checks have their own verdicts)."""
+    from .inputs import is_auto
+
+    if spectral:
+        raise SkinrenderError("--spectral validates a chart (e.g. macbeth) against Eq. 4 and a direct render; a "
+                              "face's spectral render is seen through cameras by face-sweep and ladder",
+                              flag="--spectral")
+    for name, option, given in (("--spp auto", "--spp", is_auto(spp)), ("--tolerance", "--tolerance",
+                                                                       tolerance is not None)):
+        if given:
+            raise SkinrenderError(f"{name} goes with a chart scene; the face's checks have their own verdicts",
+                                  flag=option)
+
+
 def command_validate_face(args: argparse.Namespace, scene) -> None:
     """
     ``validate SCENE …`` for a face scene: the ``validate`` flags (``--camera``, ``--prevailing``,
     ``--calibration``, the render options) and the face's (``--physics``, ``--skin``, ``--size``);
     every flag is checked before anything renders; ``scene``: the face scene loaded.
     """
-    from ..evaluation.detection_verdict import DETECTION_TOLERANCE, check_tolerance
     from ..rendering.face.limits import REPLICATES, SPP_REPLICATE_MIN
     from ..rendering.kinds import FACE
-    from .common import emit, flag, integer_in, settings_of, table
-    from .detection_options import skin_set_of
-    from .face import SIZE_MAX, face_pixels, face_request_of
+    from .common import emit, flag, integer_in, settings_from, table
+    from .detection_options import detection_tolerance_from, skin_set_from
+    from .face import face_flags
+    from .face_inputs import SIZE_MAX, face_pixels, face_request_from
     from .inputs import check_request_work
     from .placement import translate_key
 
-    settings = settings_of(args)
+    refuse_chart_verdict_flags(args.spp, getattr(args, "tolerance", None), getattr(args, "spectral", False))
+    settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels)
     if getattr(args, "knee", False):
         raise SkinrenderError("--knee: the face's limits are checked on the linear image; drop --knee", flag="--knee")
     if getattr(args, "gamut", False):
@@ -101,13 +118,13 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     size = getattr(args, "size", None)
     check_samples(settings.spp, face_pixels(scene, None if size is None else integer_in(size, "--size", 1, SIZE_MAX)))
     each = max(-(-int(settings.spp) // REPLICATES), SPP_REPLICATE_MIN)  # a replicate's spp
-    request = face_request_of(args, scene, settings, spp=each)
-    check_request_work(args, request, REPLICATES)  # at its level's rate (subsurface-volume: far slower)
+    request = face_request_from(scene, settings, **face_flags(args), spp=each)
+    # at its level's rate (subsurface-volume: far slower)
+    check_request_work(getattr(args, "max_minutes", None), request, REPLICATES)
     limits = flag("--limits", limits_of, getattr(args, "limits", None))
-    detection = {"detection_tolerance": check_tolerance(
-        getattr(args, "detection_tolerance", None) or DETECTION_TOLERANCE, "--detection-tolerance")}
-    args.skin_set = getattr(args, "skin_set", None) or "skin"
-    detection["skin_set"] = skin_set_of(args, request.camera, [request.calibration])
+    detection = {"detection_tolerance": detection_tolerance_from(getattr(args, "detection_tolerance", None) or None),
+                 "skin_set": skin_set_from(getattr(args, "skin_set", None) or None, request.camera,
+                                           [request.calibration])}
     result = flag("validate", FACE.validate, request, spp=settings.spp, limits=limits,
                   progress=lambda line: print(line, file=sys.stderr), **detection)
     document = {**result.document(), **translate_key(args)}
@@ -128,6 +145,6 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
             "(a diagnostic, not in the verdict): the shift of the skin's mean NCC against the detection budget"
             + ("" if result.spp_needed is None else
                f"\nspp needed for eq4_shift (a diagnostic) to pass: about {result.spp_needed} in all (--spp)"))
-    emit(args, document, text)
+    emit(args.json, document, text)
     if document["exit_status"]:
         raise SystemExit(document["exit_status"])

@@ -35,10 +35,11 @@ from __future__ import annotations
 
 import argparse
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import SkinrenderError
-from .common import camera_of, flag, flagged, grid_of
+from .common import camera_from, check_output, flag, flagged, grid_from
 from .placement import translate_of
 
 if TYPE_CHECKING:
@@ -48,8 +49,11 @@ if TYPE_CHECKING:
     from ..rendering.settings import RenderSettings
     from ..spectra import WavelengthGrid
 
-__all__ = ["REQUEST_FLAGS", "by_kind", "scene_of", "ChartInputs", "chart_inputs", "chart_only", "chart_request_of",
-           "settings_fields", "sensor_flags", "check_request_work", "imaging_document", "imaging_notes"]
+__all__ = ["REQUEST_FLAGS", "by_kind", "scene_of", "scene_from", "figure_from", "is_auto", "ChartInputs", "chart_inputs",
+           "chart_inputs_from", "chart_only", "refuse_face_flags", "chart_flags", "chart_request_of",
+           "chart_request_from",
+           "settings_fields", "settings_keywords", "sensor_flags", "check_request_work", "imaging_document",
+           "imaging_notes"]
 
 REQUEST_FLAGS = {"scene": "SCENE", "camera": "--camera", "prevailing": "--prevailing", "calibration": "--calibration",
                  "physics": "--physics", "spp": "--spp", "seed": "--seed", "sampler": "--sampler",
@@ -60,25 +64,41 @@ REQUEST_FLAGS = {"scene": "SCENE", "camera": "--camera", "prevailing": "--prevai
 
 
 def by_kind(scene, **commands):
-    """
-    The function of ``scene``'s kind among ``commands`` (kind name → function, every kind of
-    :data:`~skinrender.rendering.kinds.SCENE_KINDS` given): the command line's one dispatch on a scene's kind
-    (:func:`~skinrender.rendering.kinds.scene_kind`).
-    """
-    from ..rendering.kinds import SCENE_KINDS, scene_kind
+    """The function of ``scene``'s kind among ``commands``: :func:`skinrender.rendering.kinds.by_kind`, the
+    command line's one dispatch on a scene's kind."""
+    from ..rendering.kinds import by_kind as of_kind
 
-    missing = sorted(set(SCENE_KINDS) - set(commands))
-    if missing:
-        raise TypeError(f"by_kind: no function for {', '.join(missing)}")
-    return commands[scene_kind(scene).name]
+    return of_kind(scene, **commands)
 
 
 def scene_of(args: argparse.Namespace, name: str = "SCENE") -> ChartScene | FaceScene:
-    """``args.scene`` loaded once (:func:`~skinrender.rendering.dispatch.load_scene`): a chart or a face scene;
+    """:func:`scene_from` ``args.scene``."""
+    return scene_from(args.scene, name)
+
+
+def scene_from(spec: str, name: str = "SCENE") -> ChartScene | FaceScene:
+    """The scene ``spec`` loaded once (:func:`~skinrender.rendering.dispatch.load_scene`): a chart or a face scene;
     a refusal names ``name``."""
     from ..rendering.dispatch import load_scene
 
-    return flag(name, load_scene, args.scene)
+    return flag(name, load_scene, spec)
+
+
+def is_auto(spp) -> bool:
+    """Whether ``--spp`` is ``auto`` (the spp's spelling, not a number)."""
+    return spp is not None and str(spp).strip().lower() == "auto"
+
+
+def figure_from(path: str | None, *taken) -> Path | None:
+    """
+    ``--figure`` checked before any work (:func:`~skinrender.cli.common.check_output`, a ``.png``), and refused
+    when it is one of the command's other outputs ``taken``; ``None`` when the flag is not given.
+    """
+    figure = check_output(path, "--figure", (".png",))
+    if figure is not None and any(figure.resolve() == Path(other).resolve() for other in taken):
+        raise SkinrenderError(f"--figure: {figure} is also another output of the command; name another PNG",
+                              flag="--figure")
+    return figure
 
 
 @dataclass(frozen=True)
@@ -154,19 +174,28 @@ class ChartInputs:
 
 
 def chart_inputs(args: argparse.Namespace, scene: ChartScene) -> ChartInputs:
+    """:func:`chart_inputs_from` the flags of ``args``."""
+    return chart_inputs_from(scene, args.camera, args.prevailing, args.calibration, getattr(args, "grid", None),
+                             getattr(args, "extrapolation", "refuse"), getattr(args, "normalization", "white"),
+                             getattr(args, "knee", False), getattr(args, "physics", "direct"))
+
+
+def chart_inputs_from(scene: ChartScene, camera: str, prevailing: str, calibration: str, grid: str | None = None,
+                      extrapolation: str = "refuse", normalization: str = "white", knee: bool = False,
+                      physics: str = "direct") -> ChartInputs:
     """
     The camera and the two Planckian temperatures (K) of a chart render, each parsed once here with its flag
     named in any error, and checked to give the camera light on the grid (``--grid`` parsed once too) before
-    anything renders; ``scene``: the chart :func:`scene_of` loaded.
+    anything renders; ``scene``: the chart :func:`scene_from` loaded.
     """
     from ..model.illuminant import illuminant
     from .preflight import check_render_lights
 
-    grid = grid_of(args)
-    cam = camera_of(args, grid)
+    grid = grid_from(grid)
+    cam = camera_from(camera, extrapolation, grid)
     temperatures = {}
-    for name in ("prevailing", "calibration"):
-        light = flag(f"--{name}", illuminant, getattr(args, name))
+    for name, spec in (("prevailing", prevailing), ("calibration", calibration)):
+        light = flag(f"--{name}", illuminant, spec)
         if light.temperature is None:
             raise SkinrenderError(f"--{name}: rendering needs a Planckian illuminant (kelvin, A or H), got {light}",
                                   flag=f"--{name}")
@@ -180,22 +209,27 @@ def chart_inputs(args: argparse.Namespace, scene: ChartScene) -> ChartInputs:
         raise error.reworded(f"--grid: {error.message}", flag="--grid", cause=None,
                              hint="choose a --grid inside the chart's data") from None
     return ChartInputs(scene, cam, temperatures["prevailing"], temperatures["calibration"], grid,
-                       getattr(args, "normalization", "white"), bool(getattr(args, "knee", False)),
-                       str(getattr(args, "physics", "direct")).strip())
+                       normalization, bool(knee), str(physics).strip())
 
 
 def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
+    """:func:`refuse_face_flags` of ``args``."""
+    refuse_face_flags(args.physics, args.skin, args.size, skin)
+
+
+def refuse_face_flags(physics: str, skin: str | None, size: str | None, skin_refused: bool = True) -> None:
     """The face-only flags refused on a chart: ``--physics`` but a chart's levels
-    (:data:`~skinrender.rendering.chart_effects.CHART_REGISTRY`), ``--size`` and (but for ``detect``) ``--skin``."""
+    (:data:`~skinrender.rendering.chart_effects.CHART_REGISTRY`), ``--size`` and (``skin_refused``: but for
+    ``detect``) ``--skin``."""
     from ..rendering.chart_effects import CHART_REGISTRY
 
     try:
-        CHART_REGISTRY.names(args.physics)
+        CHART_REGISTRY.names(physics)
         chart_level = True
     except SkinrenderError:
         chart_level = False
-    given = [name for name, on in (("--physics", not chart_level), ("--skin", skin and args.skin is not None),
-                                   ("--size", args.size is not None)) if on]
+    given = [name for name, on in (("--physics", not chart_level), ("--skin", skin_refused and skin is not None),
+                                   ("--size", size is not None)) if on]
     if given:
         levels = f" (a chart takes --physics {', '.join(CHART_REGISTRY.named)})" if "--physics" in given else ""
         raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
@@ -203,12 +237,17 @@ def chart_only(args: argparse.Namespace, skin: bool = True) -> None:
 
 
 def settings_fields(args: argparse.Namespace, settings: RenderSettings) -> dict:
+    """:func:`settings_keywords` of ``settings`` and ``--sampler``."""
+    return settings_keywords(settings, getattr(args, "sampler", None))
+
+
+def settings_keywords(settings: RenderSettings, sampler: str | None) -> dict:
     """``settings``' fields as a request's keywords, the sampler ``None`` (the level's or the default) where
-    ``--sampler`` was not given."""
+    ``sampler`` (``--sampler``) was not given."""
     import dataclasses
 
     fields = dataclasses.asdict(settings)
-    if getattr(args, "sampler", None) is None:
+    if sampler is None:
         fields["sampler"] = None
     return fields
 
@@ -219,19 +258,50 @@ def sensor_flags(args: argparse.Namespace) -> dict:
     return {name: getattr(args, name, None) for name in ("imager", "illuminance", "exposure")}
 
 
+def chart_flags(args) -> dict:
+    """The flags of a chart render (``render``, ``validate``, ``detect``) by the keywords of
+    :func:`chart_request_from` (absent ones their defaults)."""
+    names = ("grid", "extrapolation", "normalization", "knee", "physics", "imager", "illuminance", "exposure",
+             "sampler")
+    return {"camera": args.camera, "prevailing": args.prevailing, "calibration": args.calibration,
+            **{name: getattr(args, name) for name in names if hasattr(args, name)}}
+
+
 def chart_request_of(args: argparse.Namespace, scene: ChartScene, settings: RenderSettings, **changes):
-    """A chart command's :class:`~skinrender.rendering.request.ChartRequest`: :func:`chart_inputs` (each flag's
-    object, checked against the others) made the request (:meth:`ChartInputs.request`)."""
-    return chart_inputs(args, scene).request(args, settings, **changes)
+    """:func:`chart_request_from` the flags of ``args``."""
+    return chart_request_from(scene, settings, **chart_flags(args), **changes)
 
 
-def check_request_work(args: argparse.Namespace, request, renders: int = 1, spp: int | None = None) -> None:
+def chart_request_from(scene: ChartScene, settings: RenderSettings, *, camera: str, prevailing: str,
+                       calibration: str, grid: str | None = None, extrapolation: str = "refuse",
+                       normalization: str = "white", knee: bool = False, physics: str = "direct",
+                       imager: str | None = None, illuminance=None, exposure=None, sampler: str | None = None,
+                       **changes):
+    """
+    A chart command's :class:`~skinrender.rendering.request.ChartRequest` from its flags' values:
+    :func:`chart_inputs_from` (each flag's object, checked against the others) made the request by the chart kind,
+    as every front door builds it, with ``settings`` (the sampler left to the level where ``sampler``,
+    ``--sampler``, was not given) and the sensor's flags; ``changes``: keywords replaced (``knee``).
+    """
+    from ..rendering.kinds import CHART
+
+    inputs = chart_inputs_from(scene, camera, prevailing, calibration, grid, extrapolation, normalization, knee,
+                               physics)
+    keywords = {"normalization": inputs.normalization, "knee": inputs.knee, "grid": inputs.grid,
+                "physics": inputs.physics, "imager": imager, "illuminance": illuminance, "exposure": exposure,
+                **settings_keywords(settings, sampler), **changes}
+    return flagged(REQUEST_FLAGS, CHART.request, inputs.scene, inputs.camera, inputs.prevailing, inputs.calibration,
+                   **keywords)
+
+
+def check_request_work(args, request, renders: int = 1, spp: int | None = None) -> None:
     """
     Refuse, naming ``--spp``, ``renders`` renders of ``request`` (at ``spp`` each where given) whose samples per
     pass exceed Mitsuba's 32-bit wavefront or whose estimate
-    (:meth:`~skinrender.rendering.kinds.SceneKind.workload` on every core) exceeds ``--max-minutes``; then, where
-    the level renders a chart's skin patches as slabs, their layers (measured reflectances fitted now, cached for
-    the render): a patch that is not skin refused, naming it and why, before anything renders.
+    (:meth:`~skinrender.rendering.kinds.SceneKind.workload` on every core) exceeds ``--max-minutes`` (``args``:
+    the parsed arguments or what a command made of them, its ``max_minutes`` in minutes; or the minutes); then what
+    the level's effects prepare before any render (:meth:`~skinrender.rendering.physics.Level.prepare`: a
+    subsurface chart's skin patches fitted, one that is not skin refused, naming it and why).
     """
     import dataclasses
     import os
@@ -248,11 +318,9 @@ def check_request_work(args: argparse.Namespace, request, renders: int = 1, spp:
                               f"{SAMPLES_MAX:.3g} (Mitsuba's 32-bit wavefront); at most {SAMPLES_MAX // pixels} spp "
                               "for this scene", flag="--spp")
     seconds, what = scene_kind(request.scene).workload(request, renders, os.cpu_count() or 1)
-    check_work(seconds, "--spp", what, getattr(args, "max_minutes", None), fewer="lower --spp")
-    if hasattr(request.scene, "patches"):
-        from ..rendering.chart_effects import prepare_slabs
-
-        prepare_slabs(request)
+    minutes = args if args is None or isinstance(args, (int, float)) else getattr(args, "max_minutes", None)
+    check_work(seconds, "--spp", what, minutes, fewer="lower --spp")
+    request.level.prepare(request)
 
 
 def imaging_document(imaged) -> dict:

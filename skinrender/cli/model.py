@@ -97,7 +97,7 @@ def command_response(args: argparse.Namespace) -> None:
     from ..model.chromaticity import ncc
     from ..datasets import reflectances
     from ..model.illuminant import illuminant
-    from ..model.response import normalisation_factor, response
+    from ..model.response import illuminant_factors, response
 
     grid = grid_of(args)
     cam = camera_of(args, grid)
@@ -106,8 +106,7 @@ def command_response(args: argparse.Namespace) -> None:
     prevailing, calibration = flag("--prevailing", illuminant, args.prevailing), flag("--calibration", illuminant, args.calibration)
     for name, light in (("--prevailing", prevailing), ("--calibration", calibration)):
         check_lights(args, cam, light, grid, name)
-        if args.normalization != "white":
-            flag(name, normalisation_factor, light, args.normalization, grid)
+        flag(name, illuminant_factors, light, args.normalization, grid)  # its factor defined (Eqs. 5–7)
     rgb = response(cam, refl.on(grid), prevailing, calibration, args.normalization, args.knee, grid)
     chromaticity = ncc(rgb)
     samples = [

@@ -18,7 +18,7 @@ import sys
 from ..errors import SkinrenderError
 from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, add_max_minutes, check_output, emit, flag,
                      integer_in, table, variant_of)
-from .detection_options import add_skin_set, skin_set_of
+from .detection_options import add_skin_set, skin_set_from
 
 __all__ = ["add_parsers", "command_rank", "command_bench_rank", "TOP_DEFAULT", "POSITIONS_DEFAULT"]
 
@@ -39,6 +39,12 @@ the noise separation on the half-samples), s (measured ~0.64 s of CPU per camera
 whose renders took about half)."""
 
 
+HELP_RANK = ("the camera decision under physics: the Stage 3 search's top triplets and any --camera scored on "
+             "rendered faces and by Eq. 4 (Youden's J = TPR − FPR) and ranked both ways, per level: Kendall's τ with "
+             "its 95 % interval, the top-k overlap, whether Eq. 4's best camera stays best")
+"""``rank``'s help."""
+
+
 def add_parsers(commands) -> None:
     """Add the parser of rank."""
     from ..studies.face.effects_table import SKIN_TONES
@@ -46,11 +52,7 @@ def add_parsers(commands) -> None:
     from .face import HELP_SKIN, level_names
     from .face_sweep import LIGHTS_DEFAULT
 
-    p = commands.add_parser("rank", run=command_rank,
-                            help="the camera decision under physics: the Stage 3 search's top triplets and any "
-                            "--camera scored on rendered faces and by Eq. 4 (Youden's J = TPR − FPR) and ranked both "
-                            "ways, per level: Kendall's τ with its 95 % interval, the top-k overlap, whether Eq. 4's "
-                            "best camera stays best")
+    p = commands.add_parser("rank", run=command_rank, help=HELP_RANK)
     p.add_argument("--top", metavar="K", default=str(TOP_DEFAULT),
                    help=f"candidates from the Stage 3 search: its best K triplets by Eq. 4's detection criterion "
                    f"(the Munsell false-positive rate in the skin locus; 0: only --camera) (default {TOP_DEFAULT})")
@@ -92,15 +94,15 @@ def _checked(args: argparse.Namespace) -> dict:
     from ..design.bank import positions_grid
     from ..execution import WORKERS_MAX, check_workers
     from ..model.camera import camera
-    from ..rendering.face.scene import load_face_scene, skin_reflectance_of
+    from ..rendering.face.scene import load_face_scene
     from ..spectra import GRID_DEFAULT
     from ..studies.face.effects_table import SKIN_TONES
     from ..studies.face.sweep import estimate_seconds
     from ..rendering.face.limits import REPLICATES
     from ..workload import check_work
     from .common import positive_number
-    from .face import SIZE_MAX, levels_of, noise_sensor
-    from .face_sweep import LIGHTS_DEFAULT, _lights, _once
+    from .face_inputs import SIZE_MAX, levels_of, noise_sensor_from, refuse_repeated, skins_from
+    from .face_sweep import LIGHTS_DEFAULT, light_pairs
 
     plot = check_output(args.plot, "--plot", (".png",))
     sensor = positive_number(args.sensor, "--sensor", "(1 impulse, N ≥ 2 gbell)")
@@ -116,21 +118,16 @@ def _checked(args: argparse.Namespace) -> dict:
         cam = flag("--camera", camera, spec)
         flag("--camera", cam.sensitivities, GRID_DEFAULT)
         extra.append(cam)
-    _once("--camera", [cam.name for cam in extra])
+    refuse_repeated("--camera", [cam.name for cam in extra])
     if top + len(extra) < 2:
         raise SkinrenderError(f"--top: a ranking needs two or more candidates, got {top} from the search and "
                               f"{len(extra)} --camera", flag="--top")
-    pairs = _lights(args.lights or [LIGHTS_DEFAULT])
-    skins = [s.strip() for s in (args.skin or SKIN_TONES.values())]
-    for skin in skins:
-        if not skin:
-            raise SkinrenderError("--skin: expected a skin spec, got an empty one", flag="--skin")
-        skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
-    _once("--skin", skins)
+    pairs = light_pairs(args.lights or [LIGHTS_DEFAULT])
+    skins = skins_from(args.skin or SKIN_TONES.values())
     levels = levels_of(args.levels)
     scene = flag("--scene", load_face_scene, args.scene)
     variant_of(args.variant)
-    imager, lux = noise_sensor(args, levels)
+    imager, lux = noise_sensor_from(args.imager, args.illuminance, levels)
     size = integer_in(args.size, "--size", 1, SIZE_MAX)
     spp = integer_in(args.spp, "--spp", 1, SPP_MAX)
     seed = integer_in(args.seed, "--seed", 0, SEED_MAX - REPLICATES)
@@ -138,8 +135,8 @@ def _checked(args: argparse.Namespace) -> dict:
     if args.dask is not None and not str(args.dask).strip():
         raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one", flag="--dask")
     for cam in extra:
-        skin_set_of(args, cam, [c for _, c in pairs])
-    skins_set = skin_set_of(args, extra[0] if extra else camera(f"gbell:{sensor:g}@450,540,610"),
+        skin_set_from(args.skin_set, cam, [c for _, c in pairs])
+    skins_set = skin_set_from(args.skin_set, extra[0] if extra else camera(f"gbell:{sensor:g}@450,540,610"),
                             [c for _, c in pairs])
     cores = min(check_workers(workers), os.cpu_count() or 1) if args.dask is None else os.cpu_count() or 1
     candidates = top + len(extra)

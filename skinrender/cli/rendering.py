@@ -14,12 +14,11 @@ from ..errors import SkinrenderError
 from ..files import Output, write_outputs
 from ..studies.labelled import chart_figure
 from .common import (HELP_CAMERA, HELP_PLANCKIAN, interruptible, add_common, add_grid, add_model, add_render,
-                     check_output, choices_help, emit, flag, settings_of, table)
-from .face import check_figure
+                     check_output, choices_help, emit, flag, settings_from, table)
 from .chart_validation import add_check_arguments, add_verdict_arguments, command_validate
-from .inputs import (by_kind, chart_only, chart_request_of, check_request_work, imaging_document, imaging_notes,
-                     scene_of)
-from .bands_flags import add_spectral_arguments, bands_of
+from .inputs import (by_kind, chart_flags, chart_request_from, check_request_work, figure_from, imaging_document,
+                     imaging_notes, refuse_face_flags, scene_from)
+from .bands_flags import add_spectral_arguments, bands_from
 from .spectral_commands import command_render_spectral
 from .placement import add_translate, translate_key
 from .subsurface import subsurface_keys
@@ -96,11 +95,12 @@ def command_render(args: argparse.Namespace) -> None:
     :func:`~skinrender.cli.face.command_render_face`)."""
     from .face import command_render_face
 
-    scene = scene_of(args)
+    scene = scene_from(args.scene)
     if args.spectral:
         return command_render_spectral(args, scene)
-    bands_of(args)  # --bands without --spectral: refused
-    missing = [name for name in ("--camera", "--calibration") if getattr(args, name[2:]) is None]
+    bands_from(args.spectral, args.bands)  # --bands without --spectral: refused
+    missing = [name for name, value in (("--camera", args.camera), ("--calibration", args.calibration))
+               if value is None]
     if missing:
         raise SkinrenderError(f"the following arguments are required: {', '.join(missing)} (or --spectral: the "
                               "bands, for any camera afterwards)", flag=missing[0])
@@ -114,13 +114,13 @@ def command_render_chart(args: argparse.Namespace, scene) -> None:
     from ..rendering.outputs import write_chart_exr
     from ..rendering.renderer import channel_names
 
-    chart_only(args)
-    settings = settings_of(args)
+    refuse_face_flags(args.physics, args.skin, args.size)
+    settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels)
     output = check_output(args.output, "--output", (".exr",))
     check_output(str(output.with_suffix(".png")), "--output (its PNG preview)", (".png",))
-    figure = check_figure(args, output.with_suffix(".png"))
-    request = chart_request_of(args, scene, settings)
-    check_request_work(args, request)
+    figure = figure_from(args.figure, output.with_suffix(".png"))
+    request = chart_request_from(scene, settings, **chart_flags(args))
+    check_request_work(args.max_minutes, request)
     settings = request.settings
     print(f"rendering {request.scene.name} at {settings.spp} spp …", file=sys.stderr)
     result, imaged = CHART.render_imaged(request)
@@ -143,14 +143,14 @@ def command_render_chart(args: argparse.Namespace, scene) -> None:
                 "sampler": settings.sampler, "seed": settings.seed, "variant": result.variant,
                 "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
-                "normalization": args.normalization, "knee": args.knee, **imaging_document(imaged),
+                "normalization": request.normalization, "knee": request.knee, **imaging_document(imaged),
                 **subsurface_keys(result), **translate_key(args)}
     if figure is not None:
         document["figure"] = str(figure)
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "
             f"{result.calibration:g} K: {output} (+ {preview}), {spp} spp, {result.variant}, "
             f"{result.seconds:.2f} s" + (f"; figure {figure}" if figure is not None else "") + imaging_notes(imaged))
-    emit(args, document, text)
+    emit(args.json, document, text)
 
 
 def locus_skin_of(args: argparse.Namespace, chart: bool) -> str:
@@ -174,7 +174,7 @@ def command_detect(args: argparse.Namespace) -> None:
     """``detect``: the scene loaded once, then its kind's command (the face's label channel is its ground truth)."""
     from .face_detection import command_detect_face
 
-    scene = scene_of(args)
+    scene = scene_from(args.scene)
     return by_kind(scene, chart=command_detect_chart, face=command_detect_face)(args, scene)
 
 
@@ -186,15 +186,15 @@ def command_detect_chart(args: argparse.Namespace, scene) -> None:
     from ..rendering.exr import write_png, write_preview
     from ..rendering.kinds import CHART
 
-    chart_only(args, skin=False)
+    refuse_face_flags(args.physics, args.skin, args.size, skin_refused=False)
     locus_skin = locus_skin_of(args, chart=True)
-    settings = settings_of(args)
+    settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels)
     output = check_output(args.output, "--output", (".png",))
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
-    figure = check_figure(args, output, output.with_name(output.stem + "_preview.png"))
-    request = chart_request_of(args, scene, settings)
+    figure = figure_from(args.figure, output, output.with_name(output.stem + "_preview.png"))
+    request = chart_request_from(scene, settings, **chart_flags(args))
     skin = flag("--locus-skin" if args.skin is None else "--skin", reflectances, locus_skin)
-    check_request_work(args, request)
+    check_request_work(args.max_minutes, request)
     settings = request.settings
     print(f"rendering {request.scene.name} at {settings.spp} spp …", file=sys.stderr)
     rendering, imaged = CHART.render_imaged(request)
@@ -224,4 +224,4 @@ def command_detect_chart(args: argparse.Namespace, scene) -> None:
     text = (table(rows, ["patch", "", "detected"])
             + f"\nTPR {rate(result.tpr, 'tpr')}, FPR {rate(result.fpr, 'fpr')}; mask {output}"
             + (f"; figure {figure}" if figure is not None else "") + imaging_notes(imaged))
-    emit(args, document, text)
+    emit(args.json, document, text)

@@ -119,10 +119,13 @@ def command_skin(args: argparse.Namespace) -> None:
                               flag="--compare")
     compare = _compare_sets(args) if args.plot else []
     parameters = parameters_of(args)
-    if parameters.surface is not None and method != "kubelka-munk":
+    from ..datasets.skin_fit import FIT_MODELS
+    from ..methods import takes
+
+    if parameters.surface is not None and not takes(FIT_MODELS[method], "surface"):
         raise SkinrenderError("--surface is the kubelka-munk method's flat surface reflectance; adding-doubling's "
                               "surface is its Fresnel boundary (--n)", flag="--surface")
-    if args.n is not None and method == "kubelka-munk":  # it changed nothing there: no boundary refracts
+    if args.n is not None and takes(FIT_MODELS[method], "surface"):  # a flat surface: no boundary refracts
         raise SkinrenderError("--n is the refractive index of adding-doubling's Fresnel boundary; kubelka-munk has "
                               "none (its surface is --surface's flat reflectance)", flag="--n")
     from .common import grid_of
@@ -193,7 +196,10 @@ def _command_fit(args: argparse.Namespace) -> None:
         raise SkinrenderError("--grid sets the forward model's wavelengths; --fit uses the table's own "
                               "wavelengths in --fit-range", flag="--grid")
     method = _method(args)
-    if args.n is not None and method == "kubelka-munk":  # held, it would change nothing: no boundary refracts
+    from ..datasets.skin_fit import FIT_MODELS
+    from ..methods import takes
+
+    if args.n is not None and takes(FIT_MODELS[method], "surface"):  # held, it would change nothing: no boundary
         raise SkinrenderError("--n is the refractive index of adding-doubling's Fresnel boundary; kubelka-munk has "
                               "none", flag="--n")
     held = parameters_of(args, HELD_IN_FIT)

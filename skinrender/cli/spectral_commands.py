@@ -23,6 +23,7 @@ import sys
 from ..errors import SkinrenderError
 from .bands_flags import bands_of, check_spectral_work
 from .common import check_output, emit, flag, flagged, grid_of, settings_of, table
+from .inputs import by_kind
 
 __all__ = ["command_render_spectral", "add_bench_spectral_arguments", "command_bench_spectral",
            "BENCH_SPECTRAL_REFUSED"]
@@ -36,11 +37,15 @@ def _refuse(args: argparse.Namespace, given: dict, why: str) -> None:
 
 
 def _common_refusals(args: argparse.Namespace) -> None:
+    from ..model.response import uses_whites
+    from ..rendering.settings import CHANNELS_DEFAULT
+
     _refuse(args, {"--camera": args.camera is not None, "--calibration": args.calibration is not None},
             "a spectral render takes no camera and no calibration: both are applied afterwards "
             "(sr.read_spectral(PATH).through(camera, calibration=K))")
     _refuse(args, {"--figure": getattr(args, "figure", None) is not None, "--knee": bool(args.knee),
-                   "--normalization": args.normalization != "white", "--channels": args.channels != "auto"},
+                   "--normalization": not uses_whites(args.normalization),
+                   "--channels": args.channels != CHANNELS_DEFAULT},
             "goes with a camera's render: a spectral render records bands (apply it with through())")
 
 
@@ -55,17 +60,12 @@ def command_render_spectral(args: argparse.Namespace, scene) -> None:
     settings = settings_of(args)
     output = check_output(args.output, "--output", (".exr",))
     kind = scene_kind(scene)
-    face = kind.name == "face"
-    if face:
-        from .face import face_request_of
-
-        request = face_request_of(args, scene, settings, bands=bands)
-    else:
-        request = _chart_request(args, scene, settings, bands)
+    request = by_kind(scene, chart=_chart_request, face=_face_request)(args, scene, settings, bands)
     memory, seconds = check_spectral_work(args, bands, request.pixels, request.settings.spp, [request.level])
     print(f"rendering {request.scene.name} ({request.level.name}) spectrally, {bands.size} bands, at "
           f"{request.settings.spp} spp …", file=sys.stderr)
     result = flag({"bands": "--bands", None: "SCENE"}, kind.render, request)
+    face = result.labels is not None  # a face's: its label channel and skin
     result.save(output)
     document = {"image": str(output), "channels": [*result.channels, *(["label"] if face else [])],
                 "bands_nm": bands_text(result.bands), "bands": int(result.bands.size), "basis": "hat", "spp": result.spp,
@@ -86,13 +86,21 @@ def command_render_spectral(args: argparse.Namespace, scene) -> None:
     emit(args, document, text)
 
 
+def _face_request(args: argparse.Namespace, scene, settings, bands):
+    """A face's spectral request from the flags (:func:`~skinrender.cli.face.face_request_of`, with ``bands``)."""
+    from .face import face_request_of
+
+    return face_request_of(args, scene, settings, bands=bands)
+
+
 def _chart_request(args: argparse.Namespace, scene, settings, bands):
     """A chart's spectral request from the flags (each refusal naming its flag): the direct level, no sensor."""
+    from ..rendering.chart_effects import CHART_REGISTRY
     from ..rendering.kinds import CHART
     from .inputs import REQUEST_FLAGS, chart_only, settings_fields
 
     chart_only(args)
-    _refuse(args, {"--physics": str(args.physics).strip() != "direct"},
+    _refuse(args, {"--physics": bool(flag("--physics", CHART_REGISTRY.names, args.physics))},
             "a chart's spectral render is at the direct level (subsurface renders each patch as a slab through a "
             "camera)")
     _refuse(args, {"--imager": args.imager is not None, "--illuminance": args.illuminance is not None,

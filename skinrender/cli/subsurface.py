@@ -50,7 +50,6 @@ def subsurface_lines(rendering) -> list[str]:
     rows = [row for row in rendering.info["skin_model"] if row is not None]
     fits = [row["fit_rms"] for row in rows if row["fit_rms"] is not None]
     fitted = f", {len(fits)} fitted to their measured reflectance (RMS ≤ {max(fits):.4f})" if fits else ""
-    physics = rendering.info["physics"]
-    how = "media, path traced" if physics == "subsurface-volume" else "their slab's angular reflectance (a BSDF)"
+    physics, how = rendering.info["physics"], rendering.info["slabs_as"]
     return [f"{physics}: {len(rows)} skin patches as the skin model's layers{fitted}, {how}, under a uniform sky; "
             f"analytic: each slab's adding-doubling reflectance through Eq. 4"]

@@ -64,13 +64,14 @@ import numpy as np
 
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
-from ..methods import validate_method
+from ..methods import method_of, takes, validate_method
 from .adding_doubling import QUAD_PTS_DEFAULT, Slab, stack_reflectance
 from .skin_model import (G_SKIN, LAYER_KEYS, SKIN_REFLECTANCE_METHODS, SURFACE_KUBELKA_MUNK, SkinParameters,
                          kubelka_munk_two_layers, layer_coefficients, skin_reflectance)
 
-__all__ = ["FIT_BOUNDS", "FIT_PARAMETERS", "SECONDS_PER_FIT", "SKIN_RMS_MAX", "SKIN_BOUNDS_MAX", "SKIN_NEEDS", "SkinFit",
-           "skin_verdict", "fit_skin", "fit_skin_spectrum", "fit_skin_spectra", "fit_seconds"]
+__all__ = ["FIT_BOUNDS", "FIT_PARAMETERS", "FIT_MODELS", "fit_model_adding_doubling", "fit_model_kubelka_munk",
+           "SECONDS_PER_FIT", "SKIN_RMS_MAX", "SKIN_BOUNDS_MAX", "SKIN_NEEDS", "SkinFit", "skin_verdict", "fit_skin",
+           "fit_skin_spectrum", "fit_skin_spectra", "fit_seconds"]
 
 FIT_BOUNDS = {
     "melanin": (0.0, 0.5, "epidermal melanosome fractions up to 43 % (Jacques 1998)"),
@@ -172,20 +173,45 @@ class SkinFit:
                 "not_skin": self.not_skin, "not_skin_reason": self.not_skin_reason}
 
 
+def fit_model_adding_doubling(coefficients: tuple, base: SkinParameters, quad_pts: int) -> NDArrayFloat:
+    """
+    The adding-doubling model's reflectances of the layers' ``coefficients`` (``(μa epidermis, μa dermis, μs
+    epidermis, μs dermis)``, mm⁻¹, rows of parameters): two slabs under a Fresnel boundary of ``base.n``,
+    ``quad_pts`` quadrature points (a fit runs with fewer and corrects the defect: :data:`CORRECTIONS`). Its surface
+    is that boundary: it takes no ``surface`` reflectance.
+    """
+    mu_a_epidermis, mu_a_dermis, mu_s_epidermis, mu_s_dermis = coefficients
+    slabs = [Slab(mu_a_epidermis, mu_s_epidermis, G_SKIN, float(base.epidermis_mm)),
+             Slab(mu_a_dermis, mu_s_dermis, G_SKIN, None)]
+    return stack_reflectance(slabs, n=float(base.n), quad_pts=quad_pts)
+
+
+def fit_model_kubelka_munk(coefficients: tuple, base: SkinParameters, surface) -> NDArrayFloat:
+    """The Kubelka-Munk two-layer model's reflectances of the layers' ``coefficients`` (as
+    :func:`fit_model_adding_doubling`) under a flat ``surface`` reflectance (a fraction, rows of parameters;
+    ``None``: :data:`~skinrender.datasets.skin_model.SURFACE_KUBELKA_MUNK`)."""
+    mu_a_epidermis, mu_a_dermis, mu_s_epidermis, mu_s_dermis = coefficients
+    surface = SURFACE_KUBELKA_MUNK if surface is None else surface
+    surface = np.asarray(surface, dtype=np.float64)[..., None] if np.ndim(surface) else surface
+    return kubelka_munk_two_layers(mu_a_epidermis, mu_a_dermis, mu_s_epidermis, G_SKIN, base.epidermis_mm, surface,
+                                   mu_s_dermis)
+
+
+FIT_MODELS = {"adding-doubling": fit_model_adding_doubling, "kubelka-munk": fit_model_kubelka_munk}
+"""The model a fit evaluates for each method of :data:`~skinrender.datasets.skin_model.SKIN_REFLECTANCE_METHODS`,
+name → ``(coefficients, base, quad_pts | surface) → reflectances``: a model that takes ``quad_pts`` is corrected
+from a coarse quadrature, one that takes ``surface`` fits it (:data:`FIT_PARAMETERS`)."""
+
+
 def _model(method: str, lam: NDArrayFloat, x: NDArrayFloat, names: tuple, base: SkinParameters,
            quad_pts: int) -> NDArrayFloat:
     """The model at parameter rows ``x`` ``(m, len(names))``: reflectances ``(m, len(lam))``."""
     values = {name: getattr(base, name) for name in (*LAYER_KEYS, "surface")}
     values.update({name: x[:, i] for i, name in enumerate(names)})
-    mu_a_epidermis, mu_a_dermis, mu_s_epidermis, mu_s_dermis = layer_coefficients(lam, values)
-    if method == "kubelka-munk":
-        surface = SURFACE_KUBELKA_MUNK if values["surface"] is None else values["surface"]
-        surface = np.asarray(surface, dtype=np.float64)[..., None] if np.ndim(surface) else surface
-        return kubelka_munk_two_layers(mu_a_epidermis, mu_a_dermis, mu_s_epidermis, G_SKIN, base.epidermis_mm,
-                                       surface, mu_s_dermis)
-    slabs = [Slab(mu_a_epidermis, mu_s_epidermis, G_SKIN, float(base.epidermis_mm)),
-             Slab(mu_a_dermis, mu_s_dermis, G_SKIN, None)]
-    return stack_reflectance(slabs, n=float(base.n), quad_pts=quad_pts)
+    coefficients = layer_coefficients(lam, values)
+    model = method_of(method, FIT_MODELS, "method")
+    return model(coefficients, base, **({"quad_pts": quad_pts} if takes(model, "quad_pts")
+                                        else {"surface": values["surface"]}))
 
 
 def _least_squares(method, lam, target, x0, names, base, quad_pts, low, high):
@@ -249,7 +275,8 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
     if not names or names[0] != "melanin" or any(n not in FIT_BOUNDS for n in names):
         raise SkinrenderError(f"fitted must name parameters of {sorted(FIT_BOUNDS)}, melanin first, got {names}")
     base = start or SkinParameters()
-    if method == "adding-doubling":
+    corrected = takes(FIT_MODELS[method], "quad_pts")  # adding-doubling: from 8 quadrature points to 16
+    if not takes(FIT_MODELS[method], "surface"):  # its surface is the Fresnel boundary
         base = replace(base, surface=None)
     low = np.array([FIT_BOUNDS[n][0] for n in names])
     high = np.array([FIT_BOUNDS[n][1] for n in names])
@@ -265,7 +292,7 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
         with np.errstate(all="ignore"):
             found = _least_squares(method, lam, target, x0, names, base, quad, low, high)
             evaluations += found.nfev
-            for _ in range(CORRECTIONS if method == "adding-doubling" else 0):
+            for _ in range(CORRECTIONS if corrected else 0):
                 # defect correction: the fit to 8 points' model, its target shifted by what 16 points change
                 # at the current parameters, converges on the 16-point fit in half its time
                 rows = found.x[None, :]

@@ -34,7 +34,7 @@ from ..hints import ArrayLike, NDArrayFloat
 from ..methods import RangeWords, parse_range, range_steps, validate_method
 from ..model.camera import sensor_curves
 from ..model.illuminant import illuminants_array
-from ..model.response import NORMALISATIONS, gain, normalisation_factor, spds_on
+from ..model.response import NORMALISATIONS, gain, illuminant_factors, spds_on
 from ..spectra import GRID_DEFAULT, WavelengthGrid, float_array
 
 __all__ = ["SENSORS_PAPER", "POSITIONS_MAX", "positions_grid", "triplets", "SensorBank", "sensor_bank"]
@@ -176,7 +176,7 @@ def sensor_bank(
         if not np.all(np.isfinite(row) & (row > 1e-300)):
             raise SkinrenderError(f"illuminant {item} gives no light in the sensors' range ({grid}) at every position: "
                                   "every response would be 0/0")
-    factor = None if normalization == "white" else normalisation_factor(items, normalization, grid)
+    factor = illuminant_factors(items, normalization, grid)  # None: WP (Eq. 8), the pair's
     temperatures = np.array([item.temperature if item.temperature is not None else np.nan for item in items])
     return SensorBank(positions, temperatures, signal, white, factor, knee=knee, diagonal=sensor == 1,
                       normalization=normalization)

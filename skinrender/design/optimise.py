@@ -28,19 +28,40 @@ import numpy as np
 from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
-from ..methods import validate_method
+from ..methods import method_of, takes
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import sensor_bank
 from .criteria import triplet_false_positive_rates, triplet_volumes_fast
 from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, exposure_capped, triplet_noisy_rates
 
-__all__ = ["OBJECTIVES", "objective", "Design", "optimise_camera", "noisy_report"]
+__all__ = ["OBJECTIVES", "objective_detection", "objective_ratio", "objective", "Design", "optimise_camera", "noisy_report"]
 
-OBJECTIVES = {
-    "detection": "Munsell false-positive rate inside the skin locus",
-    "ratio": "skin/Munsell all-calibration gamut volume (the paper's Table 5)",
-}
-"""Design objectives (lower is better), name → meaning."""
+def objective_detection(banks: list, fwhm: float, slope: float, grid: WavelengthGrid,
+                        noisy: NoisySetting | None = None) -> float:
+    """Munsell false-positive rate inside the skin locus
+
+    Of the camera of the skin and Munsell ``banks`` (one triplet); with ``noisy``, on noisy pixels: the FPR while
+    the TPR holds at :data:`~skinrender.design.noise_aware.TPR_MIN`, else a penalty above any FPR."""
+    if noisy is not None:
+        tpr, fpr, _ = _noisy_rates(banks, fwhm, slope, grid, noisy)
+        if not np.isfinite(fpr):
+            return np.inf
+        return fpr if tpr >= TPR_MIN else 1.0 + (TPR_MIN - tpr)
+    rates = triplet_false_positive_rates(banks[0], banks[1], [0, 1, 2])
+    return float(rates[0]) if np.isfinite(rates[0]) else np.inf  # the same for every calibration
+
+
+def objective_ratio(banks: list, fwhm: float, slope: float, grid: WavelengthGrid) -> float:
+    """skin/Munsell all-calibration gamut volume (the paper's Table 5)
+
+    Of the camera of the skin and Munsell ``banks``; ``inf`` where a gamut is degenerate. Takes no noisy pixels."""
+    volumes = [triplet_volumes_fast(bank, [0, 1, 2])[-1] for bank in banks]
+    return volumes[0] / volumes[1] if volumes[0] > 0 and volumes[1] > 0 else np.inf
+
+
+OBJECTIVES = {"detection": objective_detection, "ratio": objective_ratio}
+"""Design objectives (lower is better), name → the function ``(banks, fwhm, slope, grid[, noisy]) → value``;
+:func:`objective` dispatches (only an objective that takes ``noisy`` is given noisy pixels)."""
 
 BOUNDS_NM = (400.0, 700.0)
 """Peaks stay on the integration range, nm."""
@@ -67,21 +88,21 @@ def objective(
     below it (:mod:`skinrender.design.noise_aware`).
     """
 
-    validate_method(kind, OBJECTIVES, "objective")
+    function = _objective_of(kind, noisy)
     peaks = np.sort(np.asarray(peaks, dtype=np.float64))
     if peaks[0] < BOUNDS_NM[0] or peaks[-1] > BOUNDS_NM[1] or np.any(np.diff(peaks) <= 0) or fwhm <= 0 or slope <= 0:
         return np.inf
     banks = [sensor_bank(fwhm / 10.0, values, peaks, illuminants, slope, grid=grid) for values in (skin, munsell)]
-    if kind == "ratio":
-        volumes = [triplet_volumes_fast(bank, [0, 1, 2])[-1] for bank in banks]
-        return volumes[0] / volumes[1] if volumes[0] > 0 and volumes[1] > 0 else np.inf
-    if noisy is not None:  # on noisy pixels: the FPR while the TPR holds, else a penalty above any FPR
-        tpr, fpr, _ = _noisy_rates(banks, fwhm, slope, grid, noisy)
-        if not np.isfinite(fpr):
-            return np.inf
-        return fpr if tpr >= TPR_MIN else 1.0 + (TPR_MIN - tpr)
-    rates = triplet_false_positive_rates(banks[0], banks[1], [0, 1, 2])
-    return float(rates[0]) if np.isfinite(rates[0]) else np.inf  # the same for every calibration
+    return function(banks, fwhm, slope, grid, **({} if noisy is None else {"noisy": noisy}))
+
+
+def _objective_of(kind: str, noisy: NoisySetting | None):
+    """The function of objective ``kind``, checked (noisy pixels go with an objective that takes them)."""
+    function = method_of(kind, OBJECTIVES, "objective")
+    if noisy is not None and not takes(function, "noisy"):
+        noisy_ones = " or ".join(name for name, each in OBJECTIVES.items() if takes(each, "noisy"))
+        raise SkinrenderError(f"an imager (noisy pixels) goes with the {noisy_ones} objective, not the {kind}")
+    return function
 
 
 @dataclass(frozen=True)
@@ -145,9 +166,7 @@ def optimise_camera(
         The best over the starts, with every start's result.
     """
 
-    validate_method(kind, OBJECTIVES, "objective")
-    if noisy is not None and kind != "detection":
-        raise SkinrenderError("an imager (noisy pixels) goes with the detection objective, not the ratio")
+    _objective_of(kind, noisy)
     if noisy is not None:
         calibration_index(np.asarray(illuminants, dtype=np.float64), noisy.calibration)
     if not (isinstance(max_evaluations, (int, np.integer)) and max_evaluations >= 1):

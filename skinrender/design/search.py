@@ -35,7 +35,7 @@ from ..execution import DASK_TIMEOUT_S, WORKERS_MAX, check_workers, dask_client,
 from ..files import write_output
 from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import ArrayLike, NDArrayFloat
-from ..methods import validate_method
+from ..methods import method_of
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from ..workload import duration_text
 from .bank import positions_grid, sensor_bank, triplets
@@ -52,11 +52,25 @@ SECONDS_PER_TRIPLET = 2.2e-3
 TOLERANCE_TIE = 1e-9
 """Two values within this relative difference are a tie; ties are reported."""
 
-SEARCH_METHODS = {
-    "fast": "hull vertices only, exact (default)",
-    "naive": "Qhull on every case's full point set",
-}
-"""How the search computes each triplet's volumes, name → meaning."""
+def volumes_fast(bank, chunk: NDArrayFloat) -> tuple[NDArrayFloat, str]:
+    """hull vertices only, exact (default)
+
+    The volumes of a chunk of index triplets ``(T, 3)``, shape ``(T, Q + 1)``
+    (:func:`~skinrender.design.criteria.triplet_volumes_many`), and the hull kernel that computed them."""
+    return triplet_volumes_many(bank, chunk), HULL_KERNEL
+
+
+def volumes_naive(bank, chunk: NDArrayFloat) -> tuple[NDArrayFloat, str]:
+    """Qhull on every case's full point set
+
+    The volumes of a chunk of index triplets, triplet by triplet
+    (:func:`~skinrender.design.criteria.triplet_volumes_naive`), and the kernel (``qhull``)."""
+    return np.array([triplet_volumes_naive(bank, triplet) for triplet in chunk]).reshape(len(chunk), -1), "qhull"
+
+
+SEARCH_METHODS = {"fast": volumes_fast, "naive": volumes_naive}
+"""How the search computes each triplet's volumes, name → the function ``(bank, chunk) → (volumes, hull
+kernel)``; :func:`search` dispatches."""
 
 
 # --------------------------------------------------------------------------- #
@@ -64,12 +78,13 @@ SEARCH_METHODS = {
 # --------------------------------------------------------------------------- #
 
 
-def _volumes_chunk(shared: tuple, task: tuple, method: str, detection: bool = False):
+def _volumes_chunk(shared: tuple, task: tuple, method, detection: bool = False):
     """
     Volumes of a chunk of index triplets for every bank, shape ``(len(banks), T, Q + 1)``, with ``detection``
     the false-positive rates of the skin locus ``(T, Q)``, and with noise (``shared``'s second item,
     ``(setting, rates_skin, rates_nonskin)``) the noisy (TPR, FPR) ``(T, 2)`` of the triplets; ``shared`` is
-    ``(banks, noisy)``, ``task`` is ``(index triplets, their numbers)``.
+    ``(banks, noisy)``, ``task`` is ``(index triplets, their numbers)``; ``method`` one of
+    :data:`SEARCH_METHODS`' functions. The hull kernel is the last item.
     """
     (banks, noisy), (chunk, numbers) = shared, task
     noisy_rates = None
@@ -79,14 +94,10 @@ def _volumes_chunk(shared: tuple, task: tuple, method: str, detection: bool = Fa
                                 for t, n in zip(chunk, numbers)])
     out = np.empty((len(banks), len(chunk), banks[0].white.shape[0] + 1))
     for b, bank in enumerate(banks):
-        if method == "fast":
-            out[b] = triplet_volumes_many(bank, chunk)
-        else:
-            for t, triplet in enumerate(chunk):
-                out[b, t] = triplet_volumes_naive(bank, triplet)
+        out[b], kernel = method(bank, chunk)
     if not detection:
-        return out, None, noisy_rates
-    return out, np.array([triplet_false_positive_rates(banks[0], banks[1], t) for t in chunk]), noisy_rates
+        return out, None, noisy_rates, kernel
+    return out, np.array([triplet_false_positive_rates(banks[0], banks[1], t) for t in chunk]), noisy_rates, kernel
 
 
 def _chunks(index: np.ndarray, count: int) -> list[np.ndarray]:
@@ -286,7 +297,7 @@ def search(
     :class:`SearchResult`
     """
 
-    validate_method(method, SEARCH_METHODS, "method")
+    volumes = method_of(method, SEARCH_METHODS, "method")
     where = positions_grid(positions)
     count = where.size * (where.size - 1) * (where.size - 2) // 6
     if count > max_triplets:
@@ -300,8 +311,7 @@ def search(
     )
     index = triplets(where.size)
     start = time.perf_counter()
-    if method == "fast":
-        notice_kernel(notice)
+    notice_kernel(notice)  # the compiled kernel's absence, said once
     # Several chunks per worker keep every core busy to the end.
     chunks = _chunks(np.arange(len(index)), 1 if workers == 1 and dask is None else 8 * max(workers, 4))
     out = np.empty((2, len(index), banks[0].white.shape[0] + 1))
@@ -311,6 +321,7 @@ def search(
         calibration_index(banks[0].temperatures, noisy.calibration)
         pack = (noisy, bank_rates(banks[0], noisy, sensor, slope, grid), bank_rates(banks[1], noisy, sensor, slope, grid))
     noisy_rates = np.empty((len(index), 2)) if noisy is not None else None
+    kernels = set()
 
     def store(number: int, result) -> None:
         chunk = chunks[number]
@@ -319,15 +330,16 @@ def search(
             fpr[chunk] = result[1]
         if noisy is not None:
             noisy_rates[chunk] = result[2]
+        kernels.add(result[3])
 
-    execution.map(partial(_volumes_chunk, method=method, detection=detection), [(index[c], c) for c in chunks],
+    execution.map_tasks(partial(_volumes_chunk, method=volumes, detection=detection), [(index[c], c) for c in chunks],
                   workers=workers, dask=dask, shared=(banks, pack), progress=progress, label=label, unit="triplet",
                   sizes=[len(c) for c in chunks], on_result=store)
     elapsed = time.perf_counter() - start
     return SearchResult(
         float(sensor), float(slope), where, where[index], banks[0].temperatures, out[0], out[1], elapsed,
         method, 1 if dask is not None else workers, normalization, knee, fpr=fpr, noisy=noisy_rates,
-        info={"hull_kernel": HULL_KERNEL if method == "fast" else "qhull",
+        info={"hull_kernel": ", ".join(sorted(kernels)),
               **({} if noisy is None else {"imager": noisy.imager.name, "illuminance_lux": noisy.illuminance_lux,
                                            "exposure": noisy.exposure, "calibration_K": noisy.calibration,
                                            "noise_samples": noisy.samples, "noise_seed": noisy.seed,

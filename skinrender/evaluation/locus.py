@@ -36,19 +36,33 @@ import numpy as np
 from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
-from ..methods import validate_method
+from ..methods import method_of
 from ..model.camera import Camera
 from ..model.chromaticity import ncc
 from ..model.response import response
 from ..spectra import GRID_DEFAULT, WavelengthGrid, float_array
 
-__all__ = ["BOUNDARIES", "locus_points", "SkinLocus", "skin_locus", "false_positive_rate", "hull_locus"]
+__all__ = ["BOUNDARIES", "boundary_hull", "boundary_quadratic", "locus_points", "SkinLocus", "skin_locus", "false_positive_rate", "hull_locus"]
 
-BOUNDARIES = {
-    "hull": "the convex hull of the training chromaticities (default)",
-    "quadratic": "two quadratics g(r) (Soriano et al. 2003)",
-}
-"""Locus boundaries, name → meaning."""
+def boundary_hull(points: NDArrayFloat, hull: SkinLocus) -> SkinLocus:
+    """the convex hull of the training chromaticities (default)
+
+    The convex hull of the (r, g) ``points``: ``hull`` as it is."""
+    return hull
+
+
+def boundary_quadratic(points: NDArrayFloat, hull: SkinLocus) -> SkinLocus:
+    """two quadratics g(r) (Soriano et al. 2003)
+
+    Two quadratics in r fitted to the g extremes of the (r, g) ``points`` (tighter on the curved skin locus; it
+    contains every training point), the lights of ``hull`` kept."""
+    polygon, quadratics = _quadratic_polygon(points)
+    return SkinLocus(polygon, _polygon_area(polygon), "quadratic", hull.illuminants, hull.calibration, quadratics)
+
+
+BOUNDARIES = {"hull": boundary_hull, "quadratic": boundary_quadratic}
+"""Locus boundaries, name → the function ``(points, hull) → SkinLocus`` of the training chromaticities and their
+convex-hull locus; :func:`skin_locus` dispatches."""
 
 QUADRATIC_BINS = 24
 """r bins whose g extremes the two quadratics are fitted to."""
@@ -190,17 +204,14 @@ def skin_locus(
         tighter on the curved skin locus; it contains every training point).
     """
 
-    validate_method(boundary, BOUNDARIES, "boundary")
+    shaped = method_of(boundary, BOUNDARIES, "boundary")
     points = locus_points(cam, skin, illuminants, calibration, grid)
     illuminants = np.asarray(illuminants, dtype=np.float64)
     locus = hull_locus(points, illuminants, calibration)
     if locus is None:  # degenerate is not an error: a locus of no area, which contains nothing
         return SkinLocus(np.unique(points.round(12), axis=0), 0.0, boundary, illuminants, calibration,
                          degenerate="the skin chromaticities lie on a line or a point (coincident sensors?)")
-    if boundary == "hull":
-        return locus
-    polygon, quadratics = _quadratic_polygon(points)
-    return SkinLocus(polygon, _polygon_area(polygon), boundary, illuminants, calibration, quadratics)
+    return shaped(points, locus)
 
 
 def hull_locus(points: NDArrayFloat, illuminants: NDArrayFloat, calibration: float | None) -> SkinLocus | None:

@@ -39,7 +39,6 @@ from __future__ import annotations
 
 import math
 import numbers
-import tomllib
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
@@ -47,10 +46,10 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SkinrenderError
-from ..files import TOML_BYTES_MAX, exists, read_input
+from ..files import exists
 from ..hints import ArrayLike, NDArrayFloat
 from ..spectra import WavelengthGrid
-from ..toml_tables import entry, from_table
+from ..toml_tables import entry, from_table, read_toml
 
 __all__ = ["ROOT_RESOURCES_IMAGERS", "Imager", "checked_array", "checked_grid", "imager", "is_integer", "list_imagers"]
 
@@ -154,14 +153,7 @@ class Imager:
 
 def _read_imager_toml(path: Path) -> Imager:
     """One imager file; every problem names the file and the field."""
-    try:
-        data = tomllib.loads(read_input(path, TOML_BYTES_MAX, "an imager TOML").decode("utf-8"))
-    except SkinrenderError as error:
-        raise SkinrenderError(f"imager file {error}", role="imager") from None
-    except tomllib.TOMLDecodeError as error:
-        raise SkinrenderError(f"imager file {path}: not valid TOML ({error})", role="imager") from None
-    except UnicodeDecodeError:
-        raise SkinrenderError(f"imager file {path}: not a UTF-8 text file (TOML is text)", role="imager") from None
+    data = read_toml(path, "an imager TOML", where="imager file", role="imager")
     return from_table(Imager, data, f"imager file {path}", unknown="first", role="imager")
 
 

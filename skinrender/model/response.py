@@ -6,7 +6,9 @@ The paper's Eqs. 1–11 for a :class:`~skinrender.model.camera.Camera`: the raw
 response of Eq. 1, the white-balanced response of Eq. 4 with the illuminant
 normalisations of Eqs. 5–8 (the Eq. 10 factor), and the knee of Eq. 11.
 
--   :data:`NORMALISATIONS`, :func:`normalisation_factor`, :func:`white_coefficient`.
+-   :data:`NORMALISATIONS` (Eqs. 5–8, name → the factor of each illuminant) with its dispatcher
+    :func:`illuminant_factors`, :func:`normalisation_factor` (Eqs. 5–7) and :data:`QUADRATURES`: defined in
+    :mod:`skinrender.model.factors`, importable here; :func:`white_coefficient`.
 -   :func:`gain`: the one implementation of the Eq. 4 gain ``v · F / W_c``
     (white balance and Eq. 10 factor), used by the analytic model, the
     Stage 3 search, the renderer's white balance and the validation.
@@ -37,14 +39,25 @@ from ..constants import (
 from ..datasets import SpectralSet, reflectances
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, Literal, NDArrayFloat
-from ..methods import validate_method
+from ..methods import method_of, validate_method
 from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid, float_array
 from .camera import Camera, camera
+from .factors import (NORMALISATIONS, QUADRATURES, factor_560nm, factor_euclidean, factor_none,  # noqa: F401
+                      factor_white, illuminant_factors, normalisation_factor, spds_on, sum_weights,
+                      trapezoid_weights, uses_whites)
 from .illuminant import Illuminant, illuminants_array
 
 __all__ = [
     "NORMALISATIONS",
     "QUADRATURES",
+    "factor_none",
+    "factor_560nm",
+    "factor_euclidean",
+    "factor_white",
+    "sum_weights",
+    "trapezoid_weights",
+    "illuminant_factors",
+    "uses_whites",
     "normalisation_factor",
     "white_coefficient",
     "white_coefficient_from_whites",
@@ -55,71 +68,6 @@ __all__ = [
     "response",
     "knee",
 ]
-
-NORMALISATIONS = {
-    "none": "Eq. 5: the absolute Planck SPD",
-    "560nm": "Eq. 6: SPD scaled to 100 at 560 nm",
-    "euclidean": "Eq. 7: SPD of unit Euclidean norm over the grid samples",
-    "white": "Eq. 8: the white coefficient WP (default)",
-}
-"""Illuminant normalisations (Eqs. 5–8), name → meaning."""
-
-QUADRATURES = {
-    "sum": "the paper's Σ over the grid samples",
-    "trapezoid": "end samples weighted ½: the integral of the linearly interpolated spectra (what a renderer estimates)",
-}
-"""Quadrature rules of :func:`response`, name → meaning."""
-
-
-def spds_on(illuminants: list[Illuminant], grid: WavelengthGrid) -> NDArrayFloat:
-    """SPDs of illuminants on ``grid``, shape ``(len(illuminants), grid.size)``, W·m⁻²·sr⁻¹·nm⁻¹."""
-    return np.array([illuminant.spd(grid.wavelengths) for illuminant in illuminants])
-
-
-def normalisation_factor(
-    illuminants: ArrayLike | Illuminant | str,
-    method: Literal["none", "560nm", "euclidean"] | str,
-    grid: WavelengthGrid = GRID_DEFAULT,
-) -> NDArrayFloat:
-    """
-    The factor *F_n* with ``I_n = F_n · I_0`` (Eqs. 5–7).
-
-    Parameters
-    ----------
-    illuminants
-        Illuminant(s): kelvin, ``A``, ``H``, a CSV path or :class:`Illuminant`.
-    method
-        ``none`` (``F = 1``), ``560nm`` (``F = 100 / SPD(560 nm)``) or
-        ``euclidean`` (``F = 1 / sqrt(Σ SPD²)`` over the samples of ``grid``, so
-        it depends on the grid as the paper's sum does).
-
-    Returns
-    -------
-    :class:`numpy.ndarray`
-        Shape of ``illuminants``; unit the inverse of the SPD's.
-    """
-
-    items, shape = illuminants_array(illuminants)
-    if method == "none":
-        return np.ones(shape)
-    if method == "560nm":
-        level = np.array([i.spd(np.array([560.0]))[0] for i in items])
-        dark = [str(i) for i, v in zip(items, level) if not (np.isfinite(v) and v > 1e-300)]
-        if dark:
-            raise SkinrenderError(f"illuminant {dark[0]} has no light at 560 nm (Planck underflows): the 560nm "
-                                  "normalisation (Eq. 6) is undefined for it")
-        return (100.0 / level).reshape(shape)
-    if method == "euclidean":
-        norm = np.linalg.norm(spds_on(items, grid), axis=-1)
-        dark = [str(i) for i, v in zip(items, norm) if not (np.isfinite(v) and v > 1e-300)]
-        if dark:
-            raise SkinrenderError(f"illuminant {dark[0]} has no light on the grid {grid}: the euclidean "
-                                  "normalisation (Eq. 7) is undefined for it")
-        return (1.0 / norm).reshape(shape)
-    raise SkinrenderError(
-        f"normalization must be one of none, 560nm, euclidean (white has no per-illuminant factor), got {method!r}"
-    )
-
 
 def check_light(cam: Camera, items: list[Illuminant], spds: NDArrayFloat, grid: WavelengthGrid, role: str) -> None:
     """
@@ -193,7 +141,7 @@ def gain(
         if white.shape[-1:] != (3,) or not np.all(ok):
             raise SkinrenderError(f"{name} must be a white's three channel responses, finite and {low}, got "
                                   f"{np.ravel(white)[:6].tolist()} (shape {white.shape})", role=name)
-    if normalization == "white":
+    if uses_whites(normalization):  # WP (Eq. 8): the pair's, from the whites
         factor = white_coefficient_from_whites(white_p, white_c)
     else:
         if factor_p is None or factor_c is None:
@@ -379,18 +327,16 @@ def response(
     x = cam.sensitivities(grid)
     spd_p = spds_on(p_items, grid)
     spd_c = spds_on(c_items, grid)
-    if validate_method(quadrature, QUADRATURES, "quadrature") == "trapezoid":
-        weights = np.ones(grid.size)
-        weights[[0, -1]] = 0.5
-        spd_p, spd_c = spd_p * weights, spd_c * weights
+    weights = method_of(quadrature, QUADRATURES, "quadrature")(grid)
+    spd_p, spd_c = spd_p * weights, spd_c * weights
     signal = np.einsum("...w,pkw->p...k", o, spd_p[:, None, :] * x[None, :, :])  # (P, ..., 3)
     white_p = spd_p @ x.T  # (P, 3)
     white_c = spd_c @ x.T  # (C, 3)
     check_light(cam, p_items, spd_p, grid, "prevailing illuminant")
     check_light(cam, c_items, spd_c, grid, "calibration illuminant")
     pi, ci = np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape))
-    factors = (None, None) if normalization == "white" else (
-        normalisation_factor(p_items, normalization, grid)[pi], normalisation_factor(c_items, normalization, grid)[ci])
+    factor_p, factor_c = (illuminant_factors(items, normalization, grid) for items in (p_items, c_items))
+    factors = (None, None) if factor_p is None else (factor_p[pi], factor_c[ci])  # None: WP, from the whites
     gains = gain(white_p[pi], white_c[ci], normalization, *factors, scale=scale)
     gains = gains.reshape(*gains.shape[:-1], *((1,) * (o.ndim - 1)), 3)
     out = signal[pi] * gains

@@ -33,7 +33,7 @@ from ..constants import CONSTANT_OUTPUT_SCALE
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..model.camera import Camera
-from ..model.response import gain, knee as apply_knee, normalisation_factor
+from ..model.response import gain, illuminant_factors, knee as apply_knee
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .renderer import RawRender
 from .scene import ChartScene
@@ -140,10 +140,8 @@ def pair_gain(white_p: NDArrayFloat, white_c: NDArrayFloat, normalization: str, 
     with WP for ``white``, else ``F_p / F_c`` (Eqs. 5–7) of the two Planck SPDs.
     """
 
-    if normalization == "white":
-        return gain(white_p, white_c, scale=scale)
-    f = normalisation_factor([prevailing, calibration], normalization, grid)
-    return gain(white_p, white_c, normalization, f[0], f[1], scale)
+    f = illuminant_factors([prevailing, calibration], normalization, grid)  # None: WP, from the whites
+    return gain(white_p, white_c, normalization, *((None, None) if f is None else f), scale=scale)
 
 
 @dataclass(frozen=True)

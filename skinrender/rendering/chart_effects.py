@@ -54,25 +54,49 @@ class _Lambertian:
 
 
 class _Slabs:
-    """The raw renders of a chart whose skin patches are slabs: their tables as BSDFs at ``subsurface``
-    (:func:`~skinrender.rendering.slab_chart.slab_renderer`), media at ``subsurface-volume``
-    (:func:`~skinrender.rendering.subsurface_chart.subsurface_renderer`)."""
+    """The raw renders of a chart whose skin patches are slabs, by its level's slab renderer (a subclass's
+    ``renderer_of``; ``slabs_as``: how it renders them, in words)."""
+
+    slabs_as = ""
 
     def __init__(self, request):
-        from .slab_chart import slab_renderer
-        from .subsurface_chart import subsurface_renderer
-
-        volume = CHART_SUBSURFACE_VOLUME.name in request.level
-        if volume:
-            self.renderer = subsurface_renderer(request.scene, request.camera, request.settings, request.grid,
-                                                request.options[CHART_SUBSURFACE_VOLUME.name].translate_mm)
-        else:
-            self.renderer = slab_renderer(request.scene, request.camera, request.settings, request.grid)
+        self.renderer = self.renderer_of(request)
         chart = self.renderer.chart
-        self.info = {"physics": request.level.name, "reflectances": chart.reflectances, "skin_model": chart.rows()}
+        self.info = {"physics": request.level.name, "reflectances": chart.reflectances, "skin_model": chart.rows(),
+                     "slabs_as": self.slabs_as}
+
+    @staticmethod
+    def renderer_of(request):
+        raise NotImplementedError
 
     def raw(self, temperature: float, seed: int, skins: bool = True):
         return self.renderer.raw(temperature, seed, skins)
+
+
+class _SlabTables(_Slabs):
+    """At ``subsurface``: the skin patches' tables as BSDFs (:func:`~skinrender.rendering.slab_chart.slab_renderer`)."""
+
+    slabs_as = "their slab's angular reflectance (a BSDF)"
+
+    @staticmethod
+    def renderer_of(request):
+        from .slab_chart import slab_renderer
+
+        return slab_renderer(request.scene, request.camera, request.settings, request.grid)
+
+
+class _SlabMedia(_Slabs):
+    """At ``subsurface-volume``: the skin patches as media
+    (:func:`~skinrender.rendering.subsurface_chart.subsurface_renderer`)."""
+
+    slabs_as = "media, path traced"
+
+    @staticmethod
+    def renderer_of(request):
+        from .subsurface_chart import subsurface_renderer
+
+        return subsurface_renderer(request.scene, request.camera, request.settings, request.grid,
+                                   request.options[CHART_SUBSURFACE_VOLUME.name].translate_mm)
 
 
 def prepare_slabs(request) -> None:
@@ -81,14 +105,7 @@ def prepare_slabs(request) -> None:
     fitted, the tables built at ``subsurface``; cached for the render): a patch that is not skin, or that the
     volumetric level's depth cap cannot render, refused naming it, before anything renders. Nothing at ``direct``.
     """
-    if CHART_SUBSURFACE_VOLUME.name in request.level:
-        from .subsurface_chart import subsurface_chart
-
-        subsurface_chart(request.scene, request.grid)
-    elif CHART_SUBSURFACE.name in request.level:
-        from .slab_chart import slab_chart
-
-        slab_chart(request.scene, request.grid)
+    request.level.prepare(request)  # each effect's (Effect.prepare): the slabs' at either subsurface level
 
 
 def _skin_patches(request) -> None:
@@ -100,12 +117,11 @@ def _skin_patches(request) -> None:
     if request.sensor is not None:
         raise SkinrenderError(f"imager: a chart at physics {physics} is rendered without an image sensor; drop it "
                               "(or use physics direct)", role="imager")
-    if CHART_SUBSURFACE_VOLUME.name in request.level:
-        translate = request.options[CHART_SUBSURFACE_VOLUME.name].translate_mm
-        if any(translate):  # float32's range, against its skins' mean free paths (the fits are the render's, cached)
-            from .subsurface_chart import check_chart_range, subsurface_chart
+    slabs = request.options.get(CHART_SUBSURFACE_VOLUME.name)  # the volumetric level's options: translate_mm
+    if slabs is not None and any(slabs.translate_mm):  # float32's range against its skins' mean free paths
+        from .subsurface_chart import check_chart_range, subsurface_chart
 
-            check_chart_range(subsurface_chart(scene, request.grid), translate)
+        check_chart_range(subsurface_chart(scene, request.grid), slabs.translate_mm)
 
 
 def _fits(scene) -> int:
@@ -124,6 +140,22 @@ def _table_seconds(request, cores: int) -> tuple[float, str]:
     what = (f"{scene.name} at {spp} spp with {sum(p.skin for p in scene.patches)} skin patches' tables and {fits} "
             f"fits ({SAMPLES_PER_S_TABLE:g} samples/s per core, {cores} core{'s' * (cores > 1)})")
     return estimate_seconds(scene, spp, fits=fits, cores=cores), what
+
+
+def _fit_skin_patches(request) -> None:
+    """``subsurface-volume``'s prepare: the chart's skin patches as the skin model's layers, fitted now (cached for
+    the render): a patch that is not skin, or that the depth cap cannot render, refused naming it."""
+    from .subsurface_chart import subsurface_chart
+
+    subsurface_chart(request.scene, request.grid)
+
+
+def _prepare_tables(request) -> None:
+    """``subsurface``'s prepare: the skin patches' layers fitted and their slabs' tables built now (cached for the
+    render): a patch that is not skin refused naming it."""
+    from .slab_chart import slab_chart
+
+    slab_chart(request.scene, request.grid)
 
 
 def _slab_seconds(request, cores: int) -> tuple[float, str]:
@@ -151,7 +183,8 @@ CHART_SUBSURFACE = Effect(
     "subsurface",
     "the skin patches as the skin model's layers, a flat slab's angular reflectance from adding-doubling as a BSDF "
     "(fast; no lateral transport), lit by a uniform sky, against the slab's adding-doubling reflectance",
-    chart=_Slabs, refuse=_skin_patches, estimate=_table_seconds, order=30, refuses=_REFUSES_SLABS,
+    chart=_SlabTables, refuse=_skin_patches, estimate=_table_seconds, prepare=_prepare_tables, order=30,
+    refuses=_REFUSES_SLABS,
 )
 """The skin patches as their slab's table (:mod:`~skinrender.rendering.slab_chart`); the chart's default sampler."""
 
@@ -160,9 +193,10 @@ CHART_SUBSURFACE_VOLUME = Effect(
     "the skin patches as the skin model's two layers of participating media under a dielectric boundary, path "
     "traced (the volumetric reference; minutes), lit by a uniform sky, against their slab's adding-doubling "
     "reflectance",
-    short="volumetric subsurface scattering", chart=_Slabs, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches,
-    samples_per_s=SAMPLES_PER_S_SLAB, options=SlabOptions, estimate=_slab_seconds, order=35,
-    refuses=_REFUSES_SLABS, excludes=("subsurface",), by_default=False,
+    short="volumetric subsurface scattering", chart=_SlabMedia, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches,
+    samples_per_s=SAMPLES_PER_S_SLAB, options=SlabOptions, estimate=_slab_seconds, prepare=_fit_skin_patches,
+    order=35, refuses=_REFUSES_SLABS,
+    excludes=("subsurface",), by_default=False,
 )
 """The skin patches as slabs of media (:mod:`~skinrender.rendering.subsurface_chart`)."""
 

@@ -57,9 +57,8 @@ from ..model.exposure import (AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S, auto_
                               auto_exposure_note, electrons_mean, irradiance_planck)
 from ..model.imager import Imager, imager
 from ..model.noise import clipping_counts, clipping_note, simulate_dn_clipped, statistics_dn
-from ..model.response import gain
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
-from .balance import Rendering, patch_statistics
+from .balance import Rendering, pair_gain, patch_statistics
 from .renderer import RawRender, emitter_grid, render_raw
 from .scene import ChartScene, load_chart_scene
 from .settings import RenderSettings
@@ -225,13 +224,7 @@ def render_imaged_request(request) -> ImagedRendering:
                                     clipping_note(clipping)) if note)
     white = {name: (_white_rate(im, camera_, k, illuminance_lux, grid) - im.dark_current_e_per_s)
              * t * im.gain_dn_per_e for name, k in (("p", prevailing), ("c", calibration))}
-    if normalization == "white":
-        gains = gain(white["p"], white["c"])
-    else:
-        from ..model.response import normalisation_factor
-
-        f = normalisation_factor([prevailing, calibration], normalization, grid)
-        gains = gain(white["p"], white["c"], normalization, f[0], f[1])
+    gains = pair_gain(white["p"], white["c"], normalization, prevailing, calibration, grid)
     image = ((dn - im.black_level_dn) * gains).astype(np.float32)
     rendering = Rendering(chart, camera_, prevailing, calibration, normalization, False, image,
                           patch_statistics(image, chart), np.zeros((2, 3)), (raw,),

@@ -26,7 +26,7 @@ from typing import Protocol
 
 from .physics import SECONDS_PER_RENDER
 
-__all__ = ["SceneKind", "ChartKind", "FaceKind", "CHART", "FACE", "SCENE_KINDS", "scene_kind"]
+__all__ = ["SceneKind", "ChartKind", "FaceKind", "CHART", "FACE", "SCENE_KINDS", "scene_kind", "by_kind"]
 
 
 class SceneKind(Protocol):
@@ -275,6 +275,21 @@ FACE = FaceKind()
 SCENE_KINDS: dict[str, SceneKind] = {"face": FACE, "chart": CHART}
 """The kinds of scene, name → kind, in the order a spec is tried (a face TOML has ``[camera]`` and ``[mesh]``;
 anything else is a chart's, whose loader names what is wrong)."""
+
+
+def by_kind(scene, **functions):
+    """
+    The function of ``scene``'s kind (a scene or a spec) among ``functions`` (kind name → function, every kind of
+    :data:`SCENE_KINDS` given): the one way code outside the kinds takes a kind's road (the command line's
+    commands, the pytest plugin's checks).
+
+    >>> by_kind("face", chart="a chart's", face="a face's")
+    "a face's"
+    """
+    missing = sorted(set(SCENE_KINDS) - set(functions))
+    if missing:
+        raise TypeError(f"by_kind: no function for {', '.join(missing)}")
+    return functions[scene_kind(scene).name]
 
 
 def scene_kind(spec) -> SceneKind:

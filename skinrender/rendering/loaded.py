@@ -41,7 +41,7 @@ def release_scenes() -> int:
     from . import renderer, spectral_chart, subsurface_chart
     from .face import render as face_render, revalue
 
-    caches = (renderer._renderer, subsurface_chart._renderer, spectral_chart._renderer, face_render._load)
+    caches = (renderer._renderer, subsurface_chart._renderer, spectral_chart._renderer, face_render.load_document)
     released = sum(cache.cache_info().currsize for cache in caches)
     for cache in caches:
         cache.cache_clear()  # the scenes go with their last reference (no gc.collect: a full one costs ~0.1 s)

@@ -8,11 +8,14 @@ beside its arrays: ``.save(exr, png=…, figure=…)`` and ``.figure(path)``.
 
 Only the studies layer draws (matplotlib stays out of ``rendering``, an
 import-linter contract): it registers a drawer per kind of result here
-(:func:`register_figure`; :mod:`skinrender.studies.labelled` does, and
-``import skinrender`` imports it), and a result's ``.figure()`` reaches it
-through :func:`draw_figure`, so ``rendering`` never imports ``studies``.
+(:func:`register_figure`; :mod:`skinrender.studies.labelled` does when it is
+imported), and a result's ``.figure()`` reaches it through :func:`draw_figure`,
+which imports the module that registers them (:data:`FIGURE_MODULE`) the first
+time a figure is asked for: ``rendering`` never imports ``studies`` by name,
+and ``import skinrender`` imports neither.
 
--   :data:`FIGURE_DRAWERS`, :func:`register_figure`, :func:`draw_figure`.
+-   :data:`FIGURE_DRAWERS`, :data:`FIGURE_MODULE`, :func:`register_figure`, :func:`drawer`,
+    :func:`draw_figure`.
 -   :func:`output_paths`: a save's paths, checked before anything is written.
 -   :func:`save_result`: figure, EXR and PNG preview of a result.
 -   :func:`write_chart_exr`: a chart render's float32 EXR.
@@ -31,11 +34,15 @@ from ..files import Output, write_outputs
 from .exr import camera_attributes, write_exr, write_preview
 from .renderer import channel_names
 
-__all__ = ["FIGURE_DRAWERS", "register_figure", "draw_figure", "output_paths", "save_result", "write_chart_exr"]
+__all__ = ["FIGURE_DRAWERS", "FIGURE_MODULE", "register_figure", "drawer", "draw_figure", "output_paths", "save_result", "write_chart_exr"]
 
 FIGURE_DRAWERS: dict[str, Callable] = {}
 """Kind of result (``chart``, ``face``) → ``drawer(result, path, **options) → Path``; filled by the studies
-layer (:mod:`skinrender.studies.labelled`) when ``skinrender`` is imported."""
+layer (:data:`FIGURE_MODULE`) when it is imported."""
+
+FIGURE_MODULE = "skinrender.studies.labelled"
+"""The module that registers the drawers (:func:`register_figure`), imported by :func:`drawer` on the first
+figure asked for (as a plugin is found by its name: ``rendering`` does not import the studies layer)."""
 
 
 def register_figure(kind: str, drawer: Callable) -> None:
@@ -43,12 +50,23 @@ def register_figure(kind: str, drawer: Callable) -> None:
     FIGURE_DRAWERS[kind] = drawer
 
 
-def draw_figure(kind: str, result, path: str | Path, **options) -> Path:
-    """Draw ``result`` (a ``kind`` result) into a PNG at ``path`` with its registered drawer; the path."""
+def drawer(kind: str) -> Callable:
+    """The drawer of ``kind`` results, :data:`FIGURE_MODULE` imported first where none is registered; a
+    refusal saying who draws them where it registers none."""
+    if kind not in FIGURE_DRAWERS:
+        import importlib
+
+        importlib.import_module(FIGURE_MODULE)  # registers its drawers on its first import
     if kind not in FIGURE_DRAWERS:
         raise SkinrenderError(f"no figure of a {kind} render is registered: they are drawn by "
-                              "skinrender.studies.labelled (import skinrender registers them)")
-    return Path(FIGURE_DRAWERS[kind](result, _file_path("figure", path, ".png"), **options))
+                              f"{FIGURE_MODULE} (importing it registers them)")
+    return FIGURE_DRAWERS[kind]
+
+
+def draw_figure(kind: str, result, path: str | Path, **options) -> Path:
+    """Draw ``result`` (a ``kind`` result) into a PNG at ``path`` with its registered drawer; the path."""
+    draw = drawer(kind)
+    return Path(draw(result, _file_path("figure", path, ".png"), **options))
 
 
 def output_paths(exr: str | Path, png: bool | str | Path | None = True,
@@ -93,13 +111,12 @@ def save_result(result, kind: str, exr: str | Path, png: bool | str | Path | Non
     ``{"exr": path, "png": path or None, "figure": path or None}``.
     """
     exr, png, figure = output_paths(exr, png, figure)
-    if figure is not None and kind not in FIGURE_DRAWERS:
-        draw_figure(kind, result, figure)  # its refusal: no drawer registered
+    draw = drawer(kind) if figure is not None else None  # its refusal, before anything is written
     outputs = [Output(exr, "exr", write)]
     if png is not None:
         outputs.append(Output(png, "png", lambda stream: write_preview(stream, result.image)))
     if figure is not None:
-        outputs.append(Output(figure, "figure", lambda stream: FIGURE_DRAWERS[kind](result, stream)))
+        outputs.append(Output(figure, "figure", lambda stream: draw(result, stream)))
     written = iter(write_outputs(*outputs))
     return {"exr": next(written), "png": next(written) if png is not None else None,
             "figure": next(written) if figure is not None else None}

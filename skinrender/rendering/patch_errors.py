@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..hints import NDArrayFloat
+from ..model.response import uses_whites
 from .balance import Rendering
 from .renderer import RawRender
 from .scene import ChartScene
@@ -69,7 +70,7 @@ def error_law(rendering: Rendering, reference: NDArrayFloat) -> tuple[NDArrayFlo
     white_p = _relative_pixels(rendering.raw[0], scene)
     white_c = white_p if one else 0.0 * white_p if analytic else _relative_pixels(rendering.raw[-1], scene)
     weights = np.zeros(3)
-    if rendering.normalization == "white" and not one:
+    if uses_whites(rendering.normalization) and not one:
         ratio = rendering.info["white_ratio"]
         weights = ratio / ratio.sum()
     second, third = np.zeros(reference.shape), np.zeros(reference.shape)

@@ -18,9 +18,8 @@ never the spec.
 
 -   :class:`Effect`, :class:`Limits`: an effect and its analytic limits.
 -   :class:`Level`: a composition of effects.
--   :class:`Setup`, :class:`Frame`, :class:`Replicates`, :class:`Measured`:
-    what an effect's functions read and return (a face's; their parts:
-    :mod:`skinrender.rendering.face.effects.base`).
+-   :class:`~skinrender.rendering.effect_inputs.Setup`, ``Frame``, ``Replicates``, ``Measured``: what an
+    effect's functions read and return (:mod:`skinrender.rendering.effect_inputs`, importable here).
 -   :data:`SAMPLES_PER_S_DIRECT`, :data:`SECONDS_PER_RENDER`: the base's
     rate and a render's fixed cost, the estimates'.
 
@@ -35,12 +34,10 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from ..errors import SkinrenderError
-from ..hints import NDArrayFloat
+from .effect_inputs import Frame, Measured, Replicates, Setup  # noqa: F401 (their home before)
 from .variants import choose_variant
 
 if TYPE_CHECKING:
-    from ..model.camera import Camera
-    from ..spectra import WavelengthGrid
     from .face.scene import FaceScene, Light
 
 __all__ = ["SAMPLES_PER_S_DIRECT", "SECONDS_PER_RENDER", "Setup", "Frame", "Replicates", "Measured", "Effect",
@@ -57,78 +54,6 @@ SECONDS_PER_RENDER = 0.15
 fitted with :data:`SAMPLES_PER_S_DIRECT` to two measured sweeps of 54 renders (direct, sheen, all effects) with one
 worker at 64 px, 32 spp and 128 px, 64 spp (the measurements and their commands: docs/speed.md, "The rates
 behind the estimates")."""
-
-
-@dataclass(frozen=True)
-class Setup:
-    """
-    What an effect's functions may read about the render.
-
-    ``scene``, ``camera``, ``grid`` and the level's ``lights`` (``{name: Light}``) for the Mitsuba
-    document, and the ``skin`` spec rendered (its reflectance is the ``skin`` part's argument; an effect that
-    needs more of it, as the skin model's layers, reads the spec); ``calibration`` (K), ``seed``
-    and ``options`` (effect name → its options, :attr:`Effect.options`) for ``post``, ``None`` while the
-    document is built.
-    """
-
-    scene: FaceScene
-    camera: Camera
-    grid: WavelengthGrid
-    lights: Mapping[str, Light]
-    calibration: float | None = None
-    seed: int | None = None
-    options: Mapping[str, object] = field(default_factory=dict)
-    skin: str | None = None
-
-
-@dataclass(frozen=True)
-class Frame:
-    """
-    A rendered frame before Eq. 4's gain: ``signal`` ``(height, width, 3)`` (the specfilm's radiance,
-    or DN after a sensor), the whites in the same units that the gain is formed from, ``(3,)`` each,
-    and the rendering's ``info`` (JSON-ready).
-    """
-
-    signal: NDArrayFloat
-    white_prevailing: NDArrayFloat
-    white_calibration: NDArrayFloat
-    info: dict
-
-
-@dataclass(frozen=True)
-class Replicates:
-    """
-    What a limit's check reads: the replicate images ``(K, height, width, 3)`` (balanced, output units,
-    after any ``measure``), the ``labels``, Eq. 4's NCC of the skin ``expected``, the ``first`` replicate
-    (a :class:`~skinrender.rendering.face.render.FaceRendering`), the level's ``lights`` in its scene,
-    and a sensor's ``usable`` pixels, ``bias`` bound and standard-error ``floor`` (``None`` without one).
-    """
-
-    images: NDArrayFloat
-    labels: NDArrayFloat
-    expected: NDArrayFloat
-    first: object
-    lights: Mapping[str, Light]
-    usable: NDArrayFloat | None = None
-    bias: NDArrayFloat | None = None
-    floor: NDArrayFloat | None = None
-
-
-@dataclass(frozen=True)
-class Measured:
-    """
-    The replicate images as the checks see them, after a ``measure`` step (a sensor's: its dark signal
-    removed), with the ``usable`` pixels, the ``bias`` bound and the standard-error ``floor``
-    (:class:`Replicates`), the pixels it left out (``excluded``, ``{name: count}``, added to the check's
-    details) and a ``note`` added to the reason of a check left undecided.
-    """
-
-    images: NDArrayFloat
-    usable: NDArrayFloat | None = None
-    bias: NDArrayFloat | None = None
-    floor: NDArrayFloat | None = None
-    excluded: dict = field(default_factory=dict)
-    note: str = ""
 
 
 @dataclass(frozen=True)
@@ -208,6 +133,9 @@ class Effect:
         ``(request, cores) → (seconds, what)``: one render on ``cores`` cores and what it is in words, where
         pixels × spp / :attr:`samples_per_s` does not give it (a subsurface chart: its skin patches, or its tables), or
         ``None``.
+    prepare
+        ``(request) → None``: work done once the request's time is accepted, before any render, that may still
+        refuse it (a subsurface chart fits its skin patches' layers: one that is not skin is refused), or ``None``.
     refuses
         What a validation at a level with it does not take, option → why (a subsurface chart's ``gamut`` and
         ``spp_auto``).
@@ -240,6 +168,7 @@ class Effect:
     refuse: Callable | None = None
     chart: Callable | None = None
     estimate: Callable | None = None
+    prepare: Callable | None = None
     refuses: Mapping[str, str] = field(default_factory=dict, compare=False, hash=False)
     setup_seconds: float = 0.0
     excludes: tuple[str, ...] = ()
@@ -370,6 +299,12 @@ class Level:
         for effect in self.effects:
             if effect.refuse is not None:
                 effect.refuse(request)
+
+    def prepare(self, request) -> None:
+        """What its effects do before any render, once the request's time is accepted (each effect's ``prepare``)."""
+        for effect in self.effects:
+            if effect.prepare is not None:
+                effect.prepare(request)
 
     def scene(self, scene, options: Mapping[str, object]):
         """The scene as the render sees it: each effect's ``scene`` part with its options."""

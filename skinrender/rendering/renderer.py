@@ -50,16 +50,18 @@ from __future__ import annotations
 import functools
 import time
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
-from ..methods import validate_method
+from ..methods import method_of
 from ..model.camera import Camera, camera
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .scene import ChartScene, load_chart_scene
-from .settings import CHANNEL_GROUPINGS, QUALITY_PRESETS, SAMPLERS, RenderSettings
+from .settings import (CHANNEL_AREA_RATIO_SEPARATE, CHANNEL_GROUPINGS, FWHM_SEPARATE, QUALITY_PRESETS,  # noqa: F401
+                       SAMPLERS, RenderSettings)
 from .variants import choose_variant, mitsuba
 
 __all__ = [
@@ -70,8 +72,15 @@ __all__ = [
     "FWHM_SEPARATE",
     "QUALITY_PRESETS",
     "EMITTERS",
+    "Emission",
+    "emitter_tabulated",
+    "emitter_blackbody",
+    "emission",
     "channel_names",
     "render_passes",
+    "mitsuba_spectrum",
+    "emitter_peak",
+    "channels_separate",
     "scene_dict",
     "RawRender",
     "render_raw",
@@ -83,15 +92,6 @@ __all__ = [
 SAMPLES_MAX = 2**31 - 1
 """Most samples one render pass may take (pixels × spp): drjit sizes its wavefront with 32-bit integers."""
 
-CHANNEL_AREA_RATIO_SEPARATE = 4.0
-"""With ``channels="auto"``, render channels separately when the largest
-channel area ∫ s_k dλ exceeds the smallest by this factor."""
-
-FWHM_SEPARATE = 50.0
-"""With ``channels="auto"``, render gbell channels of at most this FWHM (nm)
-separately: three narrow, disjoint channels in one pass share the wavelength
-samples three ways and their patch means get heavy-tailed at low spp
-(measured: 5σ excursions at 64 spp for sensor 3)."""
 
 
 def channel_names(cam: Camera) -> tuple[str, str, str]:
@@ -101,7 +101,7 @@ def channel_names(cam: Camera) -> tuple[str, str, str]:
     return tuple(f"{c}_{p:g}nm" for c, p in zip(cam.channels, cam.peaks))
 
 
-def _spectrum(wavelengths: NDArrayFloat, values: NDArrayFloat) -> dict:
+def mitsuba_spectrum(wavelengths: NDArrayFloat, values: NDArrayFloat) -> dict:
     """A Mitsuba spectrum: ``irregular`` on the wavelengths (nm), or ``uniform`` 0 for an all-zero one (a black
     patch), which Mitsuba refuses as an irregular spectrum ("no probability mass found")."""
     if not np.any(np.asarray(values) != 0):
@@ -154,7 +154,7 @@ def scene_dict(
     else:
         curves, names = cam.sensitivities(grid), channel_names(cam)
         for k in channels:
-            film[names[k]] = _spectrum(wavelengths, curves[k])
+            film[names[k]] = mitsuba_spectrum(wavelengths, curves[k])
     transform = mi.ScalarTransform4f
     document = {
         "type": "scene",
@@ -166,7 +166,7 @@ def scene_dict(
             "sampler": {"type": sampler, "sample_count": int(spp), "seed": int(seed)},
             "film": film,
         },
-        "light": {"type": "directional", "direction": [0, 0, -1], "irradiance": _emitter(temperature, grid, emitter)},
+        "light": {"type": "directional", "direction": [0, 0, -1], "irradiance": emission(temperature, grid, emitter).document},
     }
     values = scene.reflectances(grid)
     for index, patch in enumerate(scene.patches):
@@ -177,7 +177,7 @@ def scene_dict(
         document[f"patch_{index:03d}"] = {
             "type": "rectangle",
             "to_world": transform().translate(centre) @ transform().scale([half, half, 1]),
-            "bsdf": {"type": "diffuse", "reflectance": _spectrum(wavelengths, values[index])},
+            "bsdf": {"type": "diffuse", "reflectance": mitsuba_spectrum(wavelengths, values[index])},
         }
     return document
 
@@ -185,28 +185,52 @@ def scene_dict(
 EMITTER_REFINE = 10
 """The tabulated Planck emitter is sampled every ``grid.step / EMITTER_REFINE`` nm."""
 
-EMITTERS = {
-    "tabulated": "Planck tabulated every grid.step / EMITTER_REFINE nm, one kernel for every temperature (default)",
-    "blackbody": "Mitsuba's blackbody plugin (recompiled for every temperature)",
-}
-"""Planck emitters, name → meaning."""
-
-
 def emitter_grid(grid: WavelengthGrid) -> NDArrayFloat:
     """Wavelengths (nm) of the tabulated Planck emitter."""
     return WavelengthGrid(grid.start, grid.end, grid.step / EMITTER_REFINE).wavelengths
 
 
-def _emitter(temperature: float, grid: WavelengthGrid, kind: str) -> dict:
-    if kind == "blackbody":
-        return {"type": "blackbody", "temperature": float(temperature)}
-    validate_method(kind, EMITTERS, "emitter")
+class Emission(NamedTuple):
+    """
+    A Planck emitter at one temperature: its Mitsuba ``document`` (the directional light's irradiance), the
+    ``scale`` its values were divided by (W·m⁻²·sr⁻¹·nm⁻¹; 1 where none) and the ``values`` a loaded scene takes
+    through its parameters, without recompiling (``None``: the temperature is compiled in, the scene is loaded
+    again).
+    """
+
+    document: dict
+    scale: float
+    values: NDArrayFloat | None
+
+
+def emitter_tabulated(temperature: float, grid: WavelengthGrid) -> Emission:
+    """Planck tabulated every grid.step / EMITTER_REFINE nm, one kernel for every temperature (default)
+
+    Planck radiance in float64 on a grid :data:`EMITTER_REFINE` times finer than ``grid``, scaled to a peak of 1,
+    an ``irregular`` spectrum whose values a new temperature replaces."""
     lam = emitter_grid(grid)
-    values = planck(lam, temperature)
-    return _spectrum(lam, values / _peak(values))
+    radiance = planck(lam, temperature)
+    scale = emitter_peak(radiance)
+    return Emission(mitsuba_spectrum(lam, radiance / scale), scale, (radiance / scale).astype(np.float32))
 
 
-def _peak(values: NDArrayFloat) -> float:
+def emitter_blackbody(temperature: float, grid: WavelengthGrid) -> Emission:
+    """Mitsuba's blackbody plugin (recompiled for every temperature)"""
+    return Emission({"type": "blackbody", "temperature": float(temperature)}, 1.0, None)
+
+
+EMITTERS = {"tabulated": emitter_tabulated, "blackbody": emitter_blackbody}
+"""Planck emitters, name → the function ``(temperature K, grid) → Emission``; :func:`emission` dispatches."""
+
+
+def emission(temperature: float, grid: WavelengthGrid, emitter: str = "tabulated") -> Emission:
+    """The :class:`Emission` of ``emitter`` (one of :data:`EMITTERS`) at ``temperature`` K on ``grid``."""
+    return method_of(emitter, EMITTERS, "emitter")(temperature, grid)
+
+
+def emitter_peak(values: NDArrayFloat) -> float:
+    """The largest value of a Planck emitter's spectrum on the grid (W·m⁻²·sr⁻¹·nm⁻¹), which scales it; a
+    refusal where it is zero or not finite."""
     peak = float(np.max(values))
     if not (np.isfinite(peak) and peak > 0):
         raise SkinrenderError("the Planck emitter is zero (or not finite) over the whole grid at this temperature")
@@ -242,14 +266,10 @@ class RawRender:
         return self.image.astype(np.float64) * self.emitter_scale
 
 
-def _separate(cam: Camera, grid: WavelengthGrid, channels: str) -> bool:
-    validate_method(channels, CHANNEL_GROUPINGS, "channels")
-    if channels != "auto":
-        return channels == "separate"
-    if cam.kind == "impulse" or (cam.kind == "gbell" and cam.fwhm <= FWHM_SEPARATE):
-        return True
-    areas = cam.sensitivities(grid).sum(axis=1)
-    return bool(areas.max() > CHANNEL_AREA_RATIO_SEPARATE * areas.min())
+def channels_separate(cam: Camera, grid: WavelengthGrid, channels: str) -> bool:
+    """Whether ``cam``'s three channels are rendered in separate passes on ``grid`` (``channels``: one of
+    :data:`CHANNEL_GROUPINGS`; ``auto``: the impulse, a narrow gbell or very unequal channel areas)."""
+    return method_of(channels, CHANNEL_GROUPINGS, "channels")(cam, grid)
 
 
 def render_passes(cam: Camera, grid: WavelengthGrid = GRID_DEFAULT, channels: str = "auto") -> int:
@@ -259,7 +279,7 @@ def render_passes(cam: Camera, grid: WavelengthGrid = GRID_DEFAULT, channels: st
     >>> render_passes(camera("gbell:9@450,540,610")), render_passes(camera("impulse@450,550,650"))
     (1, 3)
     """
-    return 3 if _separate(camera(cam), grid, channels) else 1
+    return 3 if channels_separate(camera(cam), grid, channels) else 1
 
 
 class ChartRenderer:
@@ -286,11 +306,11 @@ class ChartRenderer:
             raise SkinrenderError(f"spp {spp} × {width * height} pixels = {spp * width * height:.3g} samples per pass, "
                                   f"more than {SAMPLES_MAX:.3g} (Mitsuba's 32-bit wavefront); at most "
                                   f"{SAMPLES_MAX // (width * height)} spp for this chart", role="spp")
-        validate_method(emitter, EMITTERS, "emitter")
+        method_of(emitter, EMITTERS, "emitter")
         self.sampler, self.grid, self.emitter = settings.sampler, grid, emitter
         self.variant = choose_variant(settings.variant)
         self.groups = ([tuple(range(bands.size))] if bands is not None else
-                       [(0,), (1,), (2,)] if _separate(self.camera, grid, settings.channels) else [(0, 1, 2)])
+                       [(0,), (1,), (2,)] if channels_separate(self.camera, grid, settings.channels) else [(0, 1, 2)])
         self.requested_spp = spp
         self._loaded: list = []
         self.spp = spp
@@ -329,18 +349,15 @@ class ChartRenderer:
             raise SkinrenderError(f"seed must be an integer in [0, 2^32) (Mitsuba's seeds are 32-bit), got {seed!r}")
         mi = mitsuba(self.variant)
         start = time.perf_counter()
-        scale = 1.0
-        if self.emitter == "tabulated":
-            radiance = planck(emitter_grid(self.grid), temperature)
-            scale = _peak(radiance)
-        if not self._loaded or self.emitter == "blackbody":
+        light = emission(temperature, self.grid, self.emitter)
+        scale = light.scale
+        if not self._loaded or light.values is None:  # a temperature compiled in: loaded again
             self._load(temperature)
-        if self.emitter == "tabulated":
+        if light.values is not None:
             # always set through the parameters (the scene file's text values round differently by an ulp)
-            values = (radiance / scale).astype(np.float32)
             for _, _, params in self._loaded:
                 kind = type(params[self.EMITTER_PARAMETER])  # mi.Float, or a dynamic array in scalar variants
-                params[self.EMITTER_PARAMETER] = kind(values)
+                params[self.EMITTER_PARAMETER] = kind(light.values)
                 params.update()
         width, height = self.scene.size
         image = np.zeros((height, width, 3 if self.bands is None else self.bands.size), dtype=np.float32)

@@ -35,7 +35,7 @@ from ..errors import SkinrenderError, flag_of
 from ..methods import validate_method
 from ..model.camera import Camera, camera as camera_of
 from ..model.illuminant import illuminant
-from ..model.response import NORMALISATIONS
+from ..model.response import NORMALISATIONS, uses_whites
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .physics import Level
 from .settings import RenderSettings
@@ -238,8 +238,7 @@ class ChartRequest(Request):
         validate_method(self.normalization, NORMALISATIONS, "normalization", role="normalization")
         if not isinstance(self.knee, bool):
             raise SkinrenderError(f"knee must be True or False, got {self.knee!r}", role="knee")
-        if self.emitter != "blackbody":
-            validate_method(self.emitter, EMITTERS, "emitter", role="emitter")
+        validate_method(self.emitter, EMITTERS, "emitter", role="emitter")
 
     @property
     def pixels(self) -> int:
@@ -290,7 +289,7 @@ def chart_request(scene, camera, prevailing, calibration, *, normalization: str 
         from .bands import parse_bands
 
         bands = parse_bands(bands)
-        spectral_only(camera, calibration, normalization != "white" and "normalization", knee and "knee")
+        spectral_only(camera, calibration, not uses_whites(normalization) and "normalization", knee and "knee")
         cam, p = None, planckian(prevailing, "prevailing")
         c = p
     else:

@@ -66,7 +66,8 @@ class NoiseOptions:
     Raises
     ------
     SkinrenderError
-        An option out of its bounds, its ``role`` the option's name.
+        An option out of its bounds (illuminance in lx, exposure in s), its ``role`` the option's name: the
+        command line words it with the option's flag.
 
     Examples
     --------

@@ -17,7 +17,7 @@ against the analytic sensor model (:mod:`skinrender.model.noise`) and Eq. 4:
     the relative tolerance (:mod:`skinrender.rendering.agreement`).
 
 Where the noise spans a few codes (σ < 4 DN and a small lattice) the mean and
-variance tests are exact on the code lattice (:func:`_exact_p_values`), the
+variance tests are exact on the code lattice (:func:`exact_p_values`), the
 pixel's law the mixture of the patch pixels' code laws (the render's spread
 included); elsewhere the mean takes a z-test and the variance a scaled χ²
 whose degrees of freedom match its law's fourth moment (Satterthwaite). Every
@@ -49,35 +49,19 @@ import numpy as np
 
 from ..evaluation.verdict import ALPHA_EQUIVALENCE, Verdict, combine
 from ..hints import NDArrayFloat
-from ..methods import validate_method
+from ..methods import method_of, takes
 from ..model.imager import Imager, imager
 from ..model.noise import code_probabilities, simulate_dn_clipped, statistics_dn
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .agreement import TOLERANCE_DEFAULT, agreement, check_tolerance
+from .code_laws import difference_law, exact_p_values, mixture, normal_sf, p_variance, spread_of_variance
 from .imaging import ImagedRendering, electrons_per_radiance, predicted_electrons, predicted_patches
 
-__all__ = ["ALPHA_FAMILY", "MC_VARIANCE", "ImagedValidation", "validate_imaged"]
+__all__ = ["ALPHA_FAMILY", "MC_VARIANCE", "PatchChannel", "mc_frames", "mc_pixels", "mc_none", "ImagedValidation", "validate_imaged"]
 
 ALPHA_FAMILY = 0.01
 """Family-wise false-alarm rate of the mean and variance tests: each of the m tests (patch × channel × mean and
 variance) runs at the Šidák level ``1 − (1 − α)^(1/m)``, as Mitsuba's render tests do."""
-
-MC_VARIANCE = {
-    "frames": "a second sensor frame of the same render: the variance test on half the variance of the frames' "
-              "difference (the render's noise cancels); the mean's standard error adds the render's pixel variance "
-              "(default)",
-    "pixels": "the render's own pixel variance subtracted from the frame's, the test's degrees of freedom reduced "
-              "for the cross term the two share",
-    "none": "left out (the model's sensor variance alone; too many false alarms at a few tens of spp)",
-}
-"""How the render's own Monte Carlo variance enters the noisy predictions, name → meaning."""
-
-_EXACT_CELLS = 1 << 20
-"""The largest (sum, sum of squares) lattice, cells, on which a patch's statistics are summed exactly."""
-
-_NEGLIGIBLE = 1e-15
-"""Codes less likely than this per pixel are left out of the exact law (their total over a patch is < 1e-11)."""
-
 
 @dataclass(frozen=True)
 class ImagedValidation:
@@ -147,89 +131,6 @@ class ImagedValidation:
         return rows
 
 
-def _two_sided(law: NDArrayFloat, below: NDArrayFloat, above: NDArrayFloat) -> float:
-    """2 · min(P(T ≤ t), P(T ≥ t)) of a discrete law (both tails keep the observed value), at most 1."""
-    return float(min(1.0, 2.0 * min(law[below].sum(), law[above].sum())))
-
-
-def _exact_p_values(pmf: NDArrayFloat, first: float, codes: NDArrayFloat) -> tuple[float, float] | None:
-    """
-    Exact two-sided p-values of a patch's pixel mean and sample variance, n pixels of the code law ``pmf``.
-
-    The n codes are independent draws of P(DN = first + j) = ``pmf[j]``: the joint law of (Σ d, Σ d²) is the
-    n-fold convolution of one pixel's, summed on its integer lattice (by FFT; codes counted from the most likely
-    one, d = 0). The patch mean is Σ d / n and the sample variance (Σ d² − (Σ d)² / n) / (n − 1): both lattice
-    laws, never normal where the noise spans a few codes (every pixel one code has probability Σ_j pmf_j^n).
-    ``None`` where the lattice exceeds :data:`_EXACT_CELLS`.
-    """
-    n = codes.size
-    keep = np.flatnonzero(pmf > _NEGLIGIBLE)
-    probs = pmf[keep[0]:keep[-1] + 1] / pmf[keep[0]:keep[-1] + 1].sum()
-    offsets = np.arange(probs.size) - int(np.argmax(probs))  # d, from the most likely code
-    width, depth = n * (probs.size - 1) + 1, n * int((offsets**2).max()) + 1
-    if n < 2 or width * depth > _EXACT_CELLS:
-        return None
-    observed = codes - (first + keep[0]) + offsets[0]  # each pixel's d
-    if observed.min() < offsets[0] or observed.max() > offsets[-1]:
-        return 0.0, 0.0  # a code the model gives < 1e-15 per pixel
-    from scipy import fft
-
-    shape = (fft.next_fast_len(width, real=True), fft.next_fast_len(depth, real=True))  # ≥ the sums: no wrap
-    one = np.zeros(shape)
-    one[offsets - offsets[0], offsets**2] = probs
-    spectrum = fft.rfft2(one)
-    power = np.abs(spectrum) ** n * np.exp(1j * n * np.angle(spectrum))  # the n-fold convolution
-    joint = np.maximum(fft.irfft2(power, s=shape)[:width, :depth], 0.0)
-    marginal = joint.sum(axis=1)
-    row = int(observed.sum() - n * offsets[0])
-    index = np.arange(width)
-    p_mean = _two_sided(marginal, index <= row, index >= row)
-    cells = np.nonzero(joint > 1e-300)  # (Σ d − n d_min, Σ d²) reachable
-    total = cells[0] + float(n * offsets[0])
-    variance = (cells[1] - total**2 / n) / (n - 1)
-    seen = (np.sum(observed**2) - observed.sum() ** 2 / n) / (n - 1)
-    slack = 1e-9 * max(1.0, abs(seen))
-    return p_mean, _two_sided(joint[cells], variance <= seen + slack, variance >= seen - slack)
-
-
-def _spread_of_variance(pmf: NDArrayFloat | None, first: float, mean: float, variance: float, n: int) -> float:
-    """
-    Var(s²) of the sample variance of n draws: μ₄ / n − σ⁴ (n − 3) / (n (n − 1)), μ₄ from the code law ``pmf``
-    (first code ``first``), or 3 σ⁴ (a normal law) where none is known.
-    """
-    fourth = 3.0 * variance**2
-    if pmf is not None and np.all(np.isfinite(pmf)):
-        fourth = float(np.sum(pmf * (first + np.arange(pmf.size) - mean) ** 4))
-    spread = fourth / n - variance**2 * (n - 3) / (n * (n - 1))
-    return spread if spread > 0 else 2.0 * variance**2 / (n - 1)
-
-
-def _mixture(firsts: NDArrayFloat, pmfs: NDArrayFloat) -> tuple[float, NDArrayFloat] | None:
-    """The average of code laws (rows of ``pmfs`` from codes ``firsts``) on one window: (first, pmf); ``None`` if
-    any row has no law (NaN)."""
-    if np.any(np.isnan(firsts)) or np.any(np.isnan(pmfs)):
-        return None
-    start = firsts.astype(np.int64) - int(firsts.min())
-    out = np.zeros(int(start.max()) + pmfs.shape[1])
-    for offset in np.unique(start):
-        out[offset:offset + pmfs.shape[1]] += pmfs[start == offset].sum(axis=0)
-    return float(firsts.min()), out / len(pmfs)
-
-
-def _difference_law(pmfs: NDArrayFloat) -> tuple[float, NDArrayFloat]:
-    """The law of A − B, two frames of one pixel, averaged over the rows' code laws: (first, pmf)."""
-    width = pmfs.shape[1]
-    law = np.mean([np.convolve(p, p[::-1]) for p in pmfs], axis=0)
-    return float(-(width - 1)), law
-
-
-def _p_variance(statistic: float, dof: float) -> float:
-    """Two-sided p-value of a scaled χ² statistic with ``dof`` degrees of freedom."""
-    from scipy.stats import chi2
-
-    return float(min(1.0, 2 * min(chi2.cdf(statistic, dof), chi2.sf(statistic, dof))))
-
-
 def _model_electrons(imaged: ImagedRendering, model: Imager, grid: WavelengthGrid) -> NDArrayFloat:
     """Each pixel's expected electrons, e⁻, under ``model`` (its quantum efficiency and dark current) from the
     render's radiance, as :func:`~skinrender.rendering.imaging.render_imaged` computes them for its own imager."""
@@ -254,61 +155,125 @@ def _verdict(name: str, p_values: NDArrayFloat, level: float, alpha: float, test
                    details={"rejected": 0, "tests": int(p_values.size)})
 
 
+@dataclass(frozen=True)
+class PatchChannel:
+    """One patch channel as a variance method (:data:`MC_VARIANCE`) sees it: its frame's ``codes`` (DN), each
+    pixel's expected ``electrons`` and code ``means`` (DN); the analytic patch's ``mean`` and ``variance`` (DN,
+    DN²) at ``expected`` electrons; the codes' ``sample_var`` and the ``sensor``'s own variance (DN²); ``own``,
+    the sensor's law at the analytic electrons (``(first code, probabilities or None)``)."""
+
+    codes: NDArrayFloat
+    electrons: NDArrayFloat
+    means: NDArrayFloat
+    model: Imager
+    mean: float
+    variance: float
+    expected: float
+    sample_var: float
+    sensor: float
+    own: tuple
+
+    @property
+    def n(self) -> int:
+        """The pixels."""
+        return int(self.codes.size)
+
+    def mixed(self) -> tuple:
+        """The pixels' law: the sensor's mixed over the render's spread, centred on the analytic electrons."""
+        return mixture(*code_probabilities(self.model, self.electrons - self.electrons.mean() + self.expected))
+
+
+def mc_frames(channel: PatchChannel, other: NDArrayFloat):
+    """a second sensor frame of the same render: the variance test on half the variance of the frames'
+    difference (the render's noise cancels); the mean's standard error adds the render's pixel variance (default)
+
+    ``(mc, test)``: the render's variance (DN²) and the variance test, ``test() → (law, p_variance, replaced)``
+    (``replaced``: an exact law's p-value replaces it); ``other``: the second frame's codes."""
+    def test() -> tuple:
+        difference = channel.codes - other
+        laws = code_probabilities(channel.model, channel.electrons)[1]
+        found = None
+        if not np.any(np.isnan(laws)):
+            first_d, law_d = difference_law(laws)
+            found = exact_p_values(law_d, first_d, difference)
+        else:
+            first_d, law_d = 0.0, None
+        if found is not None:
+            return channel.mixed(), found[1], False
+        var_d = 2 * channel.sensor
+        dof = 2 * var_d**2 / spread_of_variance(law_d, first_d, 0.0, var_d, channel.n)
+        return channel.mixed(), p_variance(dof * np.var(difference, ddof=1) / var_d, dof), False
+
+    return float(np.var(channel.means, ddof=1)), test
+
+
+def mc_pixels(channel: PatchChannel):
+    """the render's own pixel variance subtracted from the frame's, the test's degrees of freedom reduced
+    for the cross term the two share
+
+    ``(mc, test)`` as :func:`mc_frames`: S² − mc estimates the sensor's variance; the cross term widens its law."""
+    mc = float(np.var(channel.means, ddof=1))
+
+    def test() -> tuple:
+        own, sensor, n = channel.own, channel.sensor, channel.n
+        spread = spread_of_variance(own[1], own[0], channel.mean, sensor, n) + 4 * mc * sensor / (n - 1)
+        dof = 2 * sensor**2 / spread
+        return channel.mixed(), p_variance(dof * (channel.sample_var - mc) / sensor, dof), True
+
+    return mc, test
+
+
+def mc_none(channel: PatchChannel):
+    """left out (the model's sensor variance alone; too many false alarms at a few tens of spp)
+
+    ``(mc, test)`` as :func:`mc_frames`, the render's variance 0."""
+    def test() -> tuple:
+        own, variance = channel.own, channel.variance
+        dof = 2 * variance**2 / spread_of_variance(own[1], own[0], channel.mean, variance, channel.n)
+        return (own if own[1] is not None else None), p_variance(dof * channel.sample_var / variance, dof), True
+
+    return 0.0, test
+
+
+MC_VARIANCE = {"frames": mc_frames, "pixels": mc_pixels, "none": mc_none}
+"""How the render's own Monte Carlo variance enters the noisy predictions, name → the function ``(channel[,
+other]) → (mc, test)`` (:func:`mc_frames`: one that takes ``other`` is given a second frame of the same render);
+:func:`validate_imaged` dispatches."""
+
+
 def _channel_tests(codes: NDArrayFloat, other: NDArrayFloat | None, electrons: NDArrayFloat, means: NDArrayFloat,
                    variances: NDArrayFloat, mean: float, variance: float, expected: float, model: Imager,
-                   method: str) -> tuple[float, float, float, bool, float]:
+                   method) -> tuple[float, float, float, bool, float]:
     """
     One patch channel's tests: ``(z, p_mean, p_variance, exact, mc)``.
 
-    ``codes``: the frame's n codes, DN; ``other``: the second frame's (``frames``); ``electrons``, ``means``,
-    ``variances``: each pixel's expected electrons (e⁻) and its code mean and variance under the model (DN, DN²);
-    ``mean``, ``variance``: the analytic patch's (DN, DN²) at ``expected`` electrons; ``mc``: the render's Monte
-    Carlo variance as the sensor sees it, DN² (the variance of the pixels' code means).
+    ``codes``: the frame's n codes, DN; ``other``: the second frame's (a method that takes it); ``electrons``,
+    ``means``, ``variances``: each pixel's expected electrons (e⁻) and its code mean and variance under the model
+    (DN, DN²); ``mean``, ``variance``: the analytic patch's (DN, DN²) at ``expected`` electrons; ``method``: one of
+    :data:`MC_VARIANCE`' functions; ``mc``: the render's Monte Carlo variance as the sensor sees it, DN² (the
+    variance of the pixels' code means).
     """
     n = codes.size
     sample_var = float(np.var(codes, ddof=1))
-    mc = 0.0 if method == "none" else float(np.var(means, ddof=1))
-    sensor = float(np.mean(variances))  # the sensor's own variance at these pixels' electrons
+    first, own = code_probabilities(model, np.full(1, expected))  # the sensor's own law at the analytic electrons
+    own = (float(first[0]), own[0]) if np.all(np.isfinite(own)) else (0.0, None)
+    channel = PatchChannel(codes, electrons, means, model, mean, variance, expected, sample_var,
+                           float(np.mean(variances)), own)
+    mc, test = method(channel, **({"other": other} if takes(method, "other") else {}))
     total = variance + mc
     if total <= 0:  # a clipped, noiseless patch: it must equal its prediction exactly
         return 0.0, float(abs(codes.mean() - mean) < 1e-9), float(sample_var < 1e-9), False, mc
     z = (codes.mean() - mean) / np.sqrt(total / n)
-    p_mean = float(2 * _normal_sf(abs(z)))
-    first, own = code_probabilities(model, np.full(1, expected))  # the sensor's own law at the analytic electrons
-    own = (float(first[0]), own[0]) if np.all(np.isfinite(own)) else (0.0, None)
-    # the pixels' law: the sensor's mixed over the render's spread, centred on the analytic electrons
-    law = _mixture(*code_probabilities(model, electrons - electrons.mean() + expected)) if method != "none" else (
-        own if own[1] is not None else None)
-    if method == "frames":
-        difference = codes - other
-        laws = code_probabilities(model, electrons)[1]
-        found = None
-        if not np.any(np.isnan(laws)):
-            first_d, law_d = _difference_law(laws)
-            found = _exact_p_values(law_d, first_d, difference)
-        else:
-            first_d, law_d = 0.0, None
-        if found is not None:
-            p_variance = found[1]
-        else:
-            var_d = 2 * sensor
-            dof = 2 * var_d**2 / _spread_of_variance(law_d, first_d, 0.0, var_d, n)
-            p_variance = _p_variance(dof * np.var(difference, ddof=1) / var_d, dof)
-    elif method == "pixels":  # S² − mc estimates the sensor's variance; the cross term widens its law
-        spread = _spread_of_variance(own[1], own[0], mean, sensor, n) + 4 * mc * sensor / (n - 1)
-        dof = 2 * sensor**2 / spread
-        p_variance = _p_variance(dof * (sample_var - mc) / sensor, dof)
-    else:
-        dof = 2 * variance**2 / _spread_of_variance(own[1], own[0], mean, variance, n)
-        p_variance = _p_variance(dof * sample_var / variance, dof)
+    p_mean = float(2 * normal_sf(abs(z)))
+    law, p_var, replaced = test()
     exact = False
     if law is not None:
-        found = _exact_p_values(law[1], law[0], codes)
+        found = exact_p_values(law[1], law[0], codes)
         if found is not None:
             exact, p_mean = True, found[0]
-            if method != "frames":
-                p_variance = found[1]
-    return float(z), p_mean, p_variance, exact, mc
+            if replaced:
+                p_var = found[1]
+    return float(z), p_mean, p_var, exact, mc
 
 
 def validate_imaged(imaged: ImagedRendering, reference_ratio: NDArrayFloat, model: Imager | str | None = None,
@@ -335,12 +300,12 @@ def validate_imaged(imaged: ImagedRendering, reference_ratio: NDArrayFloat, mode
         How the render's Monte Carlo variance enters (:data:`MC_VARIANCE`).
     """
 
-    validate_method(mc_variance, MC_VARIANCE, "mc_variance")
+    method = method_of(mc_variance, MC_VARIANCE, "mc_variance")
     tolerance = check_tolerance(tolerance)
     recording = imaged.imager
     model_im = recording if model is None else imager(model)
     second = None
-    if mc_variance == "frames":  # the same render, the sensor's noise drawn again (another stream of the seed)
+    if takes(method, "other"):  # the same render, the sensor's noise drawn again (another stream of the seed)
         second = simulate_dn_clipped(recording, imaged.electrons, np.random.default_rng([imaged.seed, 0x5EED, 1]))[0]
     imaged = replace(imaged, imager=model_im)
     mean, variance = predicted_patches(imaged, reference_ratio, grid)
@@ -361,7 +326,7 @@ def validate_imaged(imaged: ImagedRendering, reference_ratio: NDArrayFloat, mode
                 codes[:, k], None if second is None else second[rows, columns, k].ravel(),
                 electrons[rows, columns, k].ravel(), pixel_mean[rows, columns, k].ravel(),
                 pixel_variance[rows, columns, k].ravel(), mean[i, k], variance[i, k], expected[i, k], model_im,
-                mc_variance)
+                method)
     tests = 2 * mean.size
     level = 1.0 - (1.0 - alpha) ** (1.0 / tests)
     checks = {"mean": _verdict("mean", p_mean, level, alpha, tests, "each patch channel's pixel mean, DN"),
@@ -402,9 +367,3 @@ def _spp_needed(out: dict, spp: int, sensor: NDArrayFloat, mc: NDArrayFloat) -> 
         return None, ("the sensor's noise alone keeps a bound above its tolerance: more spp cannot pass; more light "
                       "(--illuminance), a longer exposure or larger patches can")
     return max(1, int(np.ceil(np.max(mc * spp / room)))), ""
-
-
-def _normal_sf(x: float) -> float:
-    from scipy.stats import norm
-
-    return float(norm.sf(x))

@@ -23,13 +23,16 @@ keyword arguments ``spp=``, ``seed=`` … make one (:meth:`RenderSettings.of`).
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 
 from ..errors import SkinrenderError
 from ..methods import validate_method
 from ..model.imager import is_integer
 
-__all__ = ["SAMPLERS", "CHANNEL_GROUPINGS", "QUALITY_PRESETS", "SEED_MAX", "SPP_MAX", "check_seed", "seed_at",
+__all__ = ["SAMPLERS", "CHANNEL_GROUPINGS", "QUALITY_PRESETS", "sampler_independent", "sampler_stratified",
+           "sampler_multijitter", "sampler_orthogonal", "sampler_ldsampler", "passes_auto", "passes_together",
+           "passes_separate", "CHANNELS_DEFAULT", "FWHM_SEPARATE", "CHANNEL_AREA_RATIO_SEPARATE", "SEED_MAX", "SPP_MAX", "check_seed", "seed_at",
            "RenderSettings"]
 
 SEED_MAX = 2**32 - 2
@@ -64,21 +67,92 @@ def seed_at(seed: int, offset: int) -> int:
     """
     return (int(seed) + int(offset)) % 2**32
 
-SAMPLERS = {
-    "independent": "independent uniform samples",
-    "stratified": "stratified samples",
-    "multijitter": "correlated multi-jittered samples (default; far better on flat patches)",
-    "orthogonal": "orthogonal-array samples",
-    "ldsampler": "low-discrepancy (Sobol-type) samples",
-}
-"""Mitsuba samplers, name → meaning."""
+def _at_least(spp: float) -> int:
+    return max(1, math.ceil(spp))
 
-CHANNEL_GROUPINGS = {
-    "auto": "separate passes for the impulse, narrow gbell or very unequal channels, else one",
-    "together": "the three channels in one pass",
-    "separate": "one pass per channel",
-}
-"""How the three channels are rendered, name → meaning."""
+
+def sampler_independent(spp: float) -> tuple[int, str]:
+    """independent uniform samples
+
+    ``(count, how)``: the samples per pixel to ask for at least ``spp`` (rounded up), and how it was rounded, in
+    words for a reason (``""``: to an integer)."""
+    return _at_least(spp), ""
+
+
+def sampler_stratified(spp: float) -> tuple[int, str]:
+    """stratified samples
+
+    ``(count, how)`` as :func:`sampler_independent`."""
+    return _at_least(spp), ""
+
+
+def sampler_multijitter(spp: float) -> tuple[int, str]:
+    """correlated multi-jittered samples (default; far better on flat patches)
+
+    ``(count, how)`` as :func:`sampler_independent`, the count rounded up to the square of an even number: the
+    counts multijitter samples exactly, whose bounds fall alike (:mod:`~skinrender.rendering.spp_choice`)."""
+    count = _at_least(spp)
+    side = math.isqrt(count - 1) + 1  # the smallest side with side² ≥ count
+    side += side % 2
+    return side * side, ", up to an even square"
+
+
+def sampler_orthogonal(spp: float) -> tuple[int, str]:
+    """orthogonal-array samples
+
+    ``(count, how)`` as :func:`sampler_independent`."""
+    return _at_least(spp), ""
+
+
+def sampler_ldsampler(spp: float) -> tuple[int, str]:
+    """low-discrepancy (Sobol-type) samples
+
+    ``(count, how)`` as :func:`sampler_independent`."""
+    return _at_least(spp), ""
+
+
+SAMPLERS = {"independent": sampler_independent, "stratified": sampler_stratified,
+            "multijitter": sampler_multijitter, "orthogonal": sampler_orthogonal, "ldsampler": sampler_ldsampler}
+"""Mitsuba samplers (the name is Mitsuba's plugin), name → the function ``(spp) → (count, how)`` of the samples
+per pixel to ask it for (:func:`~skinrender.rendering.spp_choice.square_spp` dispatches)."""
+
+CHANNEL_AREA_RATIO_SEPARATE = 4.0
+"""With ``channels="auto"``, render channels separately when the largest
+channel area ∫ s_k dλ exceeds the smallest by this factor."""
+
+FWHM_SEPARATE = 50.0
+"""With ``channels="auto"``, render gbell channels of at most this FWHM (nm)
+separately: three narrow, disjoint channels in one pass share the wavelength
+samples three ways and their patch means get heavy-tailed at low spp
+(measured: 5σ excursions at 64 spp for sensor 3)."""
+
+
+def passes_auto(cam, grid) -> bool:
+    """separate passes for the impulse, narrow gbell or very unequal channels, else one
+
+    Whether ``cam``'s channels are rendered in separate passes on ``grid``: the impulse, a gbell of at most
+    :data:`FWHM_SEPARATE` nm, or channel areas more than :data:`CHANNEL_AREA_RATIO_SEPARATE` apart."""
+    if cam.kind == "impulse" or (cam.kind == "gbell" and cam.fwhm <= FWHM_SEPARATE):
+        return True
+    areas = cam.sensitivities(grid).sum(axis=1)
+    return bool(areas.max() > CHANNEL_AREA_RATIO_SEPARATE * areas.min())
+
+
+def passes_together(cam, grid) -> bool:
+    """the three channels in one pass"""
+    return False
+
+
+def passes_separate(cam, grid) -> bool:
+    """one pass per channel"""
+    return True
+
+
+CHANNEL_GROUPINGS = {"auto": passes_auto, "together": passes_together, "separate": passes_separate}
+CHANNELS_DEFAULT = "auto"
+"""The channel grouping unless one is named (a spectral render, one pass of bands, takes no other)."""
+"""How the three channels are rendered, name → the function ``(camera, grid) → bool``: whether each channel has
+a pass of its own (:func:`~skinrender.rendering.renderer.channels_separate` dispatches)."""
 
 QUALITY_PRESETS = {
     "draft": {"spp": 16, "sampler": "multijitter"},
@@ -127,7 +201,7 @@ class RenderSettings:
     seed: int = 0
     sampler: str = "multijitter"
     variant: str | None = None
-    channels: str = "auto"
+    channels: str = CHANNELS_DEFAULT
 
     def __post_init__(self) -> None:
         if not (is_integer(self.spp) and 1 <= self.spp <= SPP_MAX):

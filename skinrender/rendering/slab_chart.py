@@ -98,19 +98,15 @@ class SlabChart:
 def slab_chart(scene, grid: WavelengthGrid = GRID_DEFAULT) -> SlabChart:
     """
     The chart's patches at ``subsurface`` (:class:`SlabChart`): each skin patch's layers (fitting those given as
-    measured reflectances, ~1.3 s each) and their table (~0.6 s each). Cached.
-
-    Raises
-    ------
-    SkinrenderError
-        A chart without a skin patch, or a skin patch the skin model does not fit (the patch named).
+    measured reflectances, ~1.3 s each) and their table (~0.6 s each). Cached. Refused as
+    :func:`~skinrender.rendering.subsurface_chart.subsurface_chart` refuses (a :class:`SkinrenderError`).
     """
     return _slab_chart(load_chart_scene(scene), grid)
 
 
 @lru_cache(maxsize=8)
 def _slab_chart(chart: ChartScene, grid: WavelengthGrid) -> SlabChart:
-    media, wheres = chart_skin_media(chart, grid, "subsurface")
+    media, wheres = chart_skin_media(chart, grid)
     tables = tuple(None if item is None else slab_table(item.spec, grid, where) for item, where in zip(media, wheres))
     reflectances = chart.reflectances(grid).copy()
     for index, table in enumerate(tables):

@@ -42,7 +42,7 @@ from .request import planckian
 from .bands import BANDS_DEFAULT, band_integrals, bands_text, estimate, projection
 from .renderer import RENDERERS_KEPT, ChartRenderer, RawRender, emitter_grid
 from .scene import ChartScene
-from .settings import RenderSettings
+from .settings import CHANNELS_DEFAULT, RenderSettings
 
 __all__ = ["render_chart_spectral", "render_chart_spectral_request", "chart_through", "calibration_white"]
 
@@ -94,7 +94,7 @@ def render_chart_spectral_request(request):
         raise SkinrenderError("bands: this request renders a camera's channels; a spectral render needs bands",
                               role="bands")
     settings, chart, bands, grid = request.settings, request.scene, request.bands, request.grid
-    if settings.channels != "auto":
+    if settings.channels != CHANNELS_DEFAULT:  # a grouping named: a spectral render has one pass of bands
         raise SkinrenderError(f"channels: a spectral render records its bands in one pass, got {settings.channels!r}",
                               role="channels")
     if request.level.names:

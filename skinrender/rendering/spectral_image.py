@@ -101,10 +101,11 @@ class SpectralImage:
     physics: str
     spp: int
     spp_requested: int
+    """The spp asked (``spp``: the count the sampler took)."""
     seed: int
     sampler: str
     variant: str
-    seconds: float
+    seconds: float  # the render's, s
     grid: WavelengthGrid
     labels: NDArrayFloat | None = None
     label_names: dict = field(default_factory=dict)
@@ -136,7 +137,7 @@ class SpectralImage:
             A camera whose data do not cover the bands, or that is sensitive outside them on the render's
             grid (its range named); a bad light; an option of the other kind of scene.
         """
-        if self.kind == "face" and options:
+        if self.labels is not None and options:  # a face's (its label image): balanced with WP alone
             raise SkinrenderError(f"{', '.join(sorted(options))}: not an option of a face's through(); a face is "
                                   "balanced with WP (white) alone")
         if self.seen_through is None:
@@ -185,7 +186,7 @@ def spectral_attributes(image: SpectralImage) -> dict:
         attributes.update({"imager": "" if sensor.imager is None else sensor.imager.name,
                            "exposure": str(sensor.exposure),
                            "illuminance_lx": "" if sensor.illuminance is None else repr(float(sensor.illuminance))})
-    if image.kind == "face":
+    if image.labels is not None:  # a face's: its skin, size and labels
         scene = image.scene
         attributes.update({"skin": image.skin, "size": f"{scene.camera.width}x{scene.camera.height}",
                            "labels": ", ".join(f"{k}={v}" for k, v in image.label_names.items())})

@@ -75,8 +75,9 @@ class SpectralValidation:
     basis_error: NDArrayFloat
     spectral: object
     direct: Rendering | None = None
+    """Asked with ``direct=True`` (the default)."""
     direct_difference: Verdict | None = None
-    direct_z: NDArrayFloat | None = None
+    direct_z: NDArrayFloat | None = None  # (patches, 3)
 
     @property
     def verdict(self) -> Verdict:
@@ -112,11 +113,8 @@ def validate_spectral(
     spectral=None,
     direct: bool = True,
     grid: WavelengthGrid = GRID_DEFAULT,
-    normalization: str = "white",
-    knee: bool = False,
-    tolerance: float = TOLERANCE_DEFAULT,
-    alpha: float = ALPHA_EQUIVALENCE,
-    alpha_difference: float = ALPHA_DIFFERENCE,
+    normalization: str = "white", knee: bool = False, tolerance: float = TOLERANCE_DEFAULT,
+    alpha: float = ALPHA_EQUIVALENCE, alpha_difference: float = ALPHA_DIFFERENCE,
     settings: RenderSettings | None = None,
     **options,
 ) -> SpectralValidation:

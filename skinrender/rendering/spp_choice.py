@@ -38,6 +38,8 @@ from __future__ import annotations
 import math
 
 from ..errors import SkinrenderError
+from ..methods import method_of
+from .settings import SAMPLERS
 
 __all__ = ["PILOT_SPP", "SPP_AUTO_MARGIN", "EXPONENT_RANGE", "square_spp", "bound_exponent", "spp_for_tolerance"]
 
@@ -59,12 +61,12 @@ def square_spp(spp: float, sampler: str = "multijitter") -> int:
     >>> square_spp(127.3), square_spp(127.3, "independent"), square_spp(0.2), square_spp(200)
     (144, 128, 4, 256)
     """
-    count = max(1, math.ceil(spp))
-    if sampler != "multijitter":
-        return count
-    side = math.isqrt(count - 1) + 1  # the smallest side with side² ≥ count
-    side += side % 2
-    return side * side
+    return _count(spp, sampler)[0]
+
+
+def _count(spp: float, sampler: str) -> tuple[int, str]:
+    """The sampler's ``(count, how)`` for ``spp`` (:data:`~skinrender.rendering.settings.SAMPLERS`)."""
+    return method_of(sampler, SAMPLERS, "sampler")(spp)
 
 
 def bound_exponent(spps: tuple[int, int], bounds: tuple[float, float]) -> float:
@@ -126,10 +128,10 @@ def spp_for_tolerance(validate_at, tolerance: float, seed: int = 0, pilots: tupl
     else:
         exponent = bound_exponent((rows[0]["spp"], rows[1]["spp"]), (rows[0]["bound"], rows[1]["bound"]))
         at = rows[1]["spp"] * (rows[1]["bound"] / tolerance) ** (1 / exponent)
-        chosen = square_spp(at * SPP_AUTO_MARGIN, sampler)
+        chosen, how = _count(at * SPP_AUTO_MARGIN, sampler)
         why = (f"pilots at {rows[0]['spp']} and {rows[1]['spp']} spp gave bounds {rows[0]['bound']:.3g} and "
                f"{rows[1]['bound']:.3g} (falling as spp^-{exponent:.2f}); the bound is expected to meet {tolerance:g} "
-               f"at {at:.0f} spp; × {SPP_AUTO_MARGIN:g} margin" + (", up to an even square" if sampler == "multijitter" else ""))
+               f"at {at:.0f} spp; × {SPP_AUTO_MARGIN:g} margin{how}")
     if spp_max is not None and chosen > spp_max:
         raise SkinrenderError(f"--tolerance {tolerance:g}: about {chosen} spp would be needed ({why}), more than "
                               f"{spp_max} a render may take; ask for a larger tolerance", flag="--tolerance")

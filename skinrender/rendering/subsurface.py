@@ -68,7 +68,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..spectra import WavelengthGrid
-from .renderer import _spectrum
+from .renderer import mitsuba_spectrum
 from .scene import reflectance_of, skin_parameters_of
 from .variants import choose_variant
 
@@ -185,15 +185,17 @@ def _skin_media(spec: str, grid: WavelengthGrid, where: str) -> SkinMedia:
                      dict(fit.bounds_hit))
 
 
-def chart_skin_media(chart, grid: WavelengthGrid, physics: str) -> tuple[tuple, tuple]:
+def chart_skin_media(chart, grid: WavelengthGrid, physics: str | None = None) -> tuple[tuple, tuple]:
     """
     Per patch of a chart (a :class:`~skinrender.rendering.scene.ChartScene`) its skin's :class:`SkinMedia`
     (:func:`skin_media_of`; ``None`` for a patch that is not skin) and where a refusal names it
-    (``"SOURCE: patch 'NAME'"``): ``(media, wheres)``. A chart without a skin patch is refused, naming ``physics``.
+    (``"SOURCE: patch 'NAME'"``): ``(media, wheres)``. A chart without a skin patch is refused (``physics``: the
+    level's name for the refusal, where a caller has it; the request refuses such a chart first, naming its level).
     """
     if not any(p.skin for p in chart.patches):
-        raise SkinrenderError(f"{chart.source or chart.name}: physics {physics!r} renders a chart's skin patches "
-                              "(skin = true) as the skin model's layers, and this chart has none")
+        level = "a subsurface level" if physics is None else f"physics {physics!r}"
+        raise SkinrenderError(f"{chart.source or chart.name}: {level} renders a chart's skin patches (skin = true) as "
+                              "the skin model's layers, and this chart has none")
     wheres = tuple(f"{chart.source}: patch {patch.name!r}" if patch.skin else None for patch in chart.patches)
     return tuple(None if where is None else skin_media_of(patch.reflectance, grid, where)
                  for patch, where in zip(chart.patches, wheres)), wheres
@@ -277,8 +279,8 @@ def medium_dict(layer, grid: WavelengthGrid, mm_per_unit: float = 1.0) -> dict:
     mu_t = mu_a + mu_s
     if not (np.all(np.isfinite(mu_t)) and np.all(mu_t > 0)):
         raise SkinrenderError(f"layer {layer.name}: extinction μa + μs must be finite and > 0 mm⁻¹")
-    return {"type": "homogeneous", "sigma_t": _spectrum(grid.wavelengths, mu_t),
-            "albedo": _spectrum(grid.wavelengths, mu_s / mu_t), "scale": float(mm_per_unit),
+    return {"type": "homogeneous", "sigma_t": mitsuba_spectrum(grid.wavelengths, mu_t),
+            "albedo": mitsuba_spectrum(grid.wavelengths, mu_s / mu_t), "scale": float(mm_per_unit),
             "phase": {"type": "hg", "g": float(layer.g)}}
 
 

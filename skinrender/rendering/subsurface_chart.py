@@ -80,7 +80,7 @@ from ..errors import SkinrenderError
 from ..hints import NDArrayFloat
 from ..model.camera import Camera, camera
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
-from .renderer import (SAMPLES_MAX, CameraKey, RawRender, _peak, _separate, _spectrum, channel_names,
+from .renderer import (SAMPLES_MAX, CameraKey, RawRender, emitter_peak, channels_separate, mitsuba_spectrum, channel_names,
                        emitter_grid)
 from .scene import ChartScene, load_chart_scene
 from .placement import check_float32_range, translation
@@ -157,7 +157,7 @@ def subsurface_chart(scene, grid: WavelengthGrid = GRID_DEFAULT) -> SubsurfaceCh
 
 @lru_cache(maxsize=8)
 def _subsurface_chart(chart: ChartScene, grid: WavelengthGrid) -> SubsurfaceChart:
-    media, wheres = chart_skin_media(chart, grid, "subsurface-volume")
+    media, wheres = chart_skin_media(chart, grid)
     reflectances = chart.reflectances(grid).copy()
     for index, item in enumerate(media):
         if item is not None:
@@ -220,7 +220,7 @@ def _film(cam: Camera, grid: WavelengthGrid, group: tuple[int, ...], size: int) 
             "rfilter": {"type": "box"}}
     curves, names = cam.sensitivities(grid), channel_names(cam)
     for k in group:
-        film[names[k]] = _spectrum(grid.wavelengths, curves[k])
+        film[names[k]] = mitsuba_spectrum(grid.wavelengths, curves[k])
     return film
 
 
@@ -243,12 +243,12 @@ def slab_document(mi, media: SkinMedia | None, reflectance: NDArrayFloat, cam: C
                    @ t().scale([FOOTPRINT_MM / 2, FOOTPRINT_MM / 2, 1]),
                    "sampler": {"type": sampler, "sample_count": int(spp), "seed": 0},
                    "film": _film(cam, grid, group, size)},
-        "sky": {"type": "constant", "radiance": _spectrum(emitter_grid(grid), sky)},
+        "sky": {"type": "constant", "radiance": mitsuba_spectrum(emitter_grid(grid), sky)},
     }
     if media is None:
         document["integrator"] = {"type": "direct", "emitter_samples": 0, "bsdf_samples": 1}
         document["patch"] = {"type": "rectangle", "to_world": place @ wide,
-                             "bsdf": {"type": "diffuse", "reflectance": _spectrum(grid.wavelengths, reflectance)}}
+                             "bsdf": {"type": "diffuse", "reflectance": mitsuba_spectrum(grid.wavelengths, reflectance)}}
         return document
     epidermis, dermis = media.layers
     boundary = {"type": "dielectric", "int_ior": float(dermis.n), "ext_ior": 1.0}
@@ -298,7 +298,7 @@ class SubsurfaceChartRenderer:
         check_chart_range(self.chart, self.translate_mm)
         self.sampler, self.grid, self.requested_spp = settings.sampler, grid, spp
         self.variant = subsurface_variant(settings.variant)
-        self.groups = [(0,), (1,), (2,)] if _separate(self.camera, grid, settings.channels) else [(0, 1, 2)]
+        self.groups = [(0,), (1,), (2,)] if channels_separate(self.camera, grid, settings.channels) else [(0, 1, 2)]
         self.spp = spp
 
     def raw(self, temperature: float, seed: int = 0, skins: bool = True) -> RawRender:
@@ -313,7 +313,7 @@ class SubsurfaceChartRenderer:
         place = mi.ScalarTransform4f().translate(list(self.translate_mm))
         start = time.perf_counter()
         radiance = planck(emitter_grid(self.grid), temperature)
-        peak = _peak(radiance)
+        peak = emitter_peak(radiance)
         chart, size = self.chart, self.scene.patch_px
         width, height = self.scene.size
         image = np.zeros((height, width, 3), dtype=np.float32)

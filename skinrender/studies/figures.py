@@ -40,13 +40,14 @@ from ..files import write_output
 from ..hints import NDArrayFloat
 
 __all__ = ["figure_pairs", "figure_gamuts", "figure_cases", "figure_render_curve", "figure_locus", "figure_ptc",
-           "figure_chart", "figure_face", "figure_ladder", "figure_calibration", "display_srgb", "figure_skin_model"]
+           "figure_chart", "figure_face", "figure_ladder", "figure_calibration", "display_srgb", "figure_skin_model",
+           "pyplot_agg", "save_figure", "LABEL_COLOURS"]
 
 DPI = 110
 """Resolution of every figure, dots per inch."""
 
 
-def _pyplot():
+def pyplot_agg():
     """matplotlib's pyplot on the Agg backend (files only, no display)."""
     import matplotlib
 
@@ -56,7 +57,7 @@ def _pyplot():
     return plt
 
 
-def _save(figure, path, legend: dict | None = None, layout: bool = True):
+def save_figure(figure, path, legend: dict | None = None, layout: bool = True):
     """
     Lay out (``layout``: tight layout; ``False`` where the caller placed the
     panels), write and close a figure; ``legend``: a figure legend's
@@ -76,13 +77,13 @@ def _save(figure, path, legend: dict | None = None, layout: bool = True):
         form = Path(path).suffix.lstrip(".").lower() or "png"
         return write_output(path, lambda stream: figure.savefig(stream, format=form, **options))
     finally:
-        _pyplot().close(figure)
+        pyplot_agg().close(figure)
 
 
 def figure_pairs(volumes: NDArrayFloat, temperatures: NDArrayFloat, title: str, path: str | Path) -> Path:
     """Figs. 3–5: ``volumes[p, q]`` (output units³) relative to each calibration's largest, one panel per calibration
     (K), five to a row (the paper's ten: 2 × 5)."""
-    plt = _pyplot()
+    plt = pyplot_agg()
     relative = volumes / volumes.max(axis=0, keepdims=True)
     count = temperatures.size
     columns = min(5, count)
@@ -104,7 +105,7 @@ def figure_pairs(volumes: NDArrayFloat, temperatures: NDArrayFloat, title: str, 
     figure.suptitle(title)
     # Fixed margins for this fixed grid: tight_layout took ~0.6 s per figure, a third of reproduce's Stage 2 thread.
     figure.subplots_adjust(left=0.055, right=0.99, bottom=0.1, top=0.87, wspace=0.08, hspace=0.33)
-    return _save(figure, path, layout=False)
+    return save_figure(figure, path, layout=False)
 
 
 def figure_gamuts(panels: list[dict], title: str, path: str | Path) -> Path:
@@ -114,7 +115,7 @@ def figure_gamuts(panels: list[dict], title: str, path: str | Path) -> Path:
     ``panels``: ``{"rgb": (N, 3) output units, "simplices": (F, 3) hull facet
     indices or None, "volume": output units³, "label": str}``.
     """
-    plt = _pyplot()
+    plt = pyplot_agg()
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     figure = plt.figure(figsize=(5 * len(panels), 4.8))
@@ -128,24 +129,24 @@ def figure_gamuts(panels: list[dict], title: str, path: str | Path) -> Path:
         axis.set(xlabel="R", ylabel="G", zlabel="B", xlim=(0, 260), ylim=(0, 260), zlim=(0, 260))
         axis.set_title(f"{panel['label']}\nvolume {panel['volume']:.4g}", fontsize=9)
     figure.suptitle(title)
-    return _save(figure, path)
+    return save_figure(figure, path)
 
 
 def figure_cases(cases: dict, path: str | Path) -> Path:
     """Fig. 7: ``cases["skin"]``, ``["munsell"]`` (output units³) and ``["ratio"]`` per calibration."""
-    plt = _pyplot()
+    plt = pyplot_agg()
     index = np.arange(1, cases["temperatures"].size + 1)
     figure, axes = plt.subplots(1, 3, figsize=(12, 3.6))
     for axis, key, label in zip(axes, ("skin", "munsell", "ratio"), ("skin gamut", "Munsell gamut", "skin / Munsell")):
         axis.plot(index, cases[key], "o-")
         axis.set(xlabel=f"calibration illuminant (1–{index.size})", title=label, xticks=index)
     figure.suptitle("Fig. 7: one-calibration-case gamuts, white normalisation")
-    return _save(figure, path)
+    return save_figure(figure, path)
 
 
 def figure_render_curve(result: dict, path: str | Path) -> Path:
     """Error against time (log–log) of ``bench render``'s curve, one line per variant and sampler."""
-    plt = _pyplot()
+    plt = pyplot_agg()
     figure, axis = plt.subplots(figsize=(6, 4.2))
     lines = sorted({(r["variant"], r["sampler"]) for r in result["curve"] if r["variant"] != "analytic"})
     for variant, sampler in lines:
@@ -156,12 +157,12 @@ def figure_render_curve(result: dict, path: str | Path) -> Path:
     axis.set(xlabel="render time per Macbeth image (s)", ylabel="RMS relative error of patch means",
              title="Render error against time (labels: spp)")
     axis.legend(fontsize=7)
-    return _save(figure, path)
+    return save_figure(figure, path)
 
 
 def figure_calibration(result: dict, path: str | Path) -> Path:
     """``bench calibration``: per check the observed false-alarm rate with its 95 % interval, and the nominal α."""
-    plt = _pyplot()
+    plt = pyplot_agg()
     checks = result["checks"]
     figure, axis = plt.subplots(figsize=(6.4, 1.9 + 0.45 * max(len(checks), 1)))
     for y, check in enumerate(checks):
@@ -178,13 +179,13 @@ def figure_calibration(result: dict, path: str | Path) -> Path:
     sensor = f", {result['imager']} at {result['illuminance_lux']:g} lx" if result.get("imager") else ""
     axis.set(xlabel="false-alarm rate", title=f"{result['scene']}, {result['spp']} spp, {result['seeds']} seeds{sensor}")
     axis.legend(fontsize=7, loc="lower right")
-    return _save(figure, path)
+    return save_figure(figure, path)
 
 
 def figure_locus(polygon: NDArrayFloat, area: float, boundary: str, training: NDArrayFloat, training_label: str,
                  track: NDArrayFloat, track_label: str, title: str, path: str | Path) -> Path:
     """A skin locus (closed ``polygon`` in NCC r, g), its training points ``(N, 2)`` and a Planckian ``track`` ``(M, 2)``."""
-    plt = _pyplot()
+    plt = pyplot_agg()
     figure, axis = plt.subplots(figsize=(5.5, 5))
     axis.plot(*training.T, ".", ms=2, color="tab:orange", label=f"{training_label} ({len(training)} points)")
     closed = np.vstack([polygon, polygon[:1]])
@@ -192,12 +193,12 @@ def figure_locus(polygon: NDArrayFloat, area: float, boundary: str, training: ND
     axis.plot(*track.T, "k--", label=track_label)
     axis.set(xlabel="NCC r", ylabel="NCC g", title=title)
     axis.legend(fontsize=7)
-    return _save(figure, path)
+    return save_figure(figure, path)
 
 
 def figure_ptc(result: dict, path: str | Path) -> Path:
     """Photon transfer (``skinrender ptc``): temporal variance, DN², against dark-subtracted mean, DN, per channel."""
-    plt = _pyplot()
+    plt = pyplot_agg()
     figure, axis = plt.subplots(figsize=(6, 4.2))
     means = np.array([p["mean_dn"] for p in result["points"]])
     variances = np.array([p["variance_dn"] for p in result["points"]])
@@ -207,7 +208,7 @@ def figure_ptc(result: dict, path: str | Path) -> Path:
     axis.set(xlabel="mean − dark, DN", ylabel="temporal variance, DN²",
              title=f"Photon transfer: {result['camera']} through {result['imager']}")
     axis.legend(fontsize=7)
-    return _save(figure, path)
+    return save_figure(figure, path)
 
 
 def display_srgb(image: NDArrayFloat, scale: float = 255.0) -> NDArrayFloat:
@@ -267,7 +268,7 @@ def figure_chart(image: NDArrayFloat, boxes: list, names: list, skin: list, titl
     ``(x0, y0, x1, y1)`` per patch (end exclusive); ``names``, ``skin`` (bools) and ``fractions`` (0–1 or
     None) per patch.
     """
-    plt = _pyplot()
+    plt = pyplot_agg()
     from matplotlib.patches import Rectangle
 
     shown = display_srgb(image)
@@ -297,10 +298,10 @@ def figure_chart(image: NDArrayFloat, boxes: list, names: list, skin: list, titl
                       bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.85})
             if skin[i]:
                 axis.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, ec="tab:orange", lw=2, ls="--"))
-    return _save(figure, path)
+    return save_figure(figure, path)
 
 
-_LABEL_COLOURS = ("tab:blue", "tab:purple", "tab:cyan", "tab:olive", "tab:pink", "tab:brown", "tab:gray")
+LABEL_COLOURS = ("tab:blue", "tab:purple", "tab:cyan", "tab:olive", "tab:pink", "tab:brown", "tab:gray")
 """Outline colours of the props' labels (skin is outlined in white)."""
 
 
@@ -314,7 +315,7 @@ def figure_face(image: NDArrayFloat, labels: NDArrayFloat, label_names: dict, ti
     ``image``: ``(h, w, 3)`` output units (:func:`display_srgb`); ``labels``: ``(h, w)`` ints (0 background,
     1 skin, 2… props, named by ``label_names`` ``{name: id}``); ``mask``: ``(h, w)`` bools.
     """
-    plt = _pyplot()
+    plt = pyplot_agg()
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
@@ -334,7 +335,7 @@ def figure_face(image: NDArrayFloat, labels: NDArrayFloat, label_names: dict, ti
             tint[np.asarray(mask) & (labels >= 2)] = (0.95, 0.1, 0.1, 0.85)
             axis.imshow(tint, interpolation="nearest")
         for k, (name, ident) in enumerate((n, i) for n, i in label_names.items() if i > 0):
-            colour = "white" if ident == 1 else _LABEL_COLOURS[k % len(_LABEL_COLOURS)]
+            colour = "white" if ident == 1 else LABEL_COLOURS[k % len(LABEL_COLOURS)]
             if (labels == ident).any():
                 axis.contour(labels == ident, levels=[0.5], colors=[colour], linewidths=1.2)
                 handles[name] = Line2D([], [], color=colour, lw=2, label=f"label: {name}")
@@ -347,7 +348,7 @@ def figure_face(image: NDArrayFloat, labels: NDArrayFloat, label_names: dict, ti
                     label="detected on a prop"), Patch(color=(1.0, 0.9, 0.0), label="detected on background")]
     figure.suptitle(title, fontsize=11)
     legend = {"handles": handles, "ncol": 3 if mask is not None else 2, "frameon": True, "facecolor": "0.7"}
-    return _save(figure, path, legend if handles else None)  # a grey ground: the skin's outline is white
+    return save_figure(figure, path, legend if handles else None)  # a grey ground: the skin's outline is white
 
 
 def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFloat, title: str,
@@ -365,7 +366,7 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
     ``label_names``: ``{name: id}`` for the labels' legend; ``budget``: the detection budget (NCC), drawn as a
     circle around Eq. 4's skin.
     """
-    plt = _pyplot()
+    plt = pyplot_agg()
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
 
@@ -375,12 +376,15 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
     low = np.minimum(closed.min(axis=0), np.percentile(points, 0.5, axis=0))
     high = np.maximum(closed.max(axis=0), np.percentile(points, 99.5, axis=0))
     pad = 0.05 * (high - low).max() + 0.005
-    colours = ["black", "tab:orange", *_LABEL_COLOURS]
+    colours = ["black", "tab:orange", *LABEL_COLOURS]
     names = {0: "background", **{i: n for n, i in (label_names or {}).items() if i > 0}}
     labels_max = max(int(np.asarray(v["labels"]).max()) for v in levels)
     cmap = ListedColormap([colours[i % len(colours)] for i in range(max(labels_max, *names) + 1)])
     figure, axes = plt.subplots(len(levels), 4, figsize=(12, 3.0 * len(levels) + 0.6), squeeze=False)
     shown = lambda v: "—" if v is None else f"{v:.3f}"  # noqa: E731
+    from ..rendering.face.effects import PHYSICS_REGISTRY
+
+    base = PHYSICS_REGISTRY.base.name  # the level the changes are from
     for row, level in zip(axes, levels):
         labels = np.asarray(level["labels"])
         row[0].imshow(display_srgb(level["image"]), interpolation="nearest")
@@ -390,7 +394,7 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
         row[1].set_title("labels (the ground truth)", fontsize=9)
         row[2].imshow(np.asarray(level["detected"]), cmap="gray", vmin=0, vmax=1, interpolation="nearest")
         changes = ""
-        if level.get("tpr_change") is not None and level["name"] != "direct":
+        if level.get("tpr_change") is not None and level["name"] != base:  # the base: no change from itself
             changes = f" (Δ {level['tpr_change']:+.3f}, {level['fpr_change']:+.3f})" if level.get(
                 "fpr_change") is not None else f" (Δ {level['tpr_change']:+.3f})"
         row[2].set_title(f"detected: TPR {shown(level['tpr'])}, FPR {shown(level['fpr'])}{changes}", fontsize=9)
@@ -422,7 +426,7 @@ def figure_ladder(levels: list[dict], polygon: NDArrayFloat, analytic: NDArrayFl
         handle.set_markersize(6)
     handles = [Patch(color=cmap(i), label=names.get(i, f"label {i}")) for i in range(cmap.N)]
     figure.suptitle(title, fontsize=11)
-    return _save(figure, path, {"handles": handles, "ncol": min(len(handles), 6), "title": "labels"})
+    return save_figure(figure, path, {"handles": handles, "ncol": min(len(handles), 6), "title": "labels"})
 
 
 def figure_skin_model(wavelength: NDArrayFloat, reflectance: NDArrayFloat, label: str, measured: list[tuple],
@@ -431,7 +435,7 @@ def figure_skin_model(wavelength: NDArrayFloat, reflectance: NDArrayFloat, label
     The skin model's reflectance ``R(λ)`` (fraction, λ in nm) beside the range (min–max band and median) of each
     measured set in ``measured``: ``(name, wavelengths nm, values (n, n_wl))``.
     """
-    plt = _pyplot()
+    plt = pyplot_agg()
     figure, axis = plt.subplots(figsize=(6.4, 4.2))
     for (name, lam, values), colour in zip(measured, ("tab:orange", "tab:blue", "tab:green", "tab:purple")):
         axis.fill_between(lam, values.min(axis=0), values.max(axis=0), color=colour, alpha=0.2,
@@ -441,4 +445,4 @@ def figure_skin_model(wavelength: NDArrayFloat, reflectance: NDArrayFloat, label
     axis.set(xlabel="wavelength (nm)", ylabel="reflectance", xlim=(wavelength[0], wavelength[-1]), ylim=(0, None),
              title="Skin model against measured skin")
     axis.legend(fontsize=7)
-    return _save(figure, path)
+    return save_figure(figure, path)

@@ -9,7 +9,8 @@ result's ``.figure(path)`` and ``.save(…, figure=path)`` draw them.
 
 Only the studies layer draws (matplotlib stays out of ``rendering``): this
 module registers its drawers with :mod:`skinrender.rendering.outputs` when it
-is imported, and ``import skinrender`` imports it, so a
+is imported, and that module imports it (its ``FIGURE_MODULE``) on the first
+figure asked for, so a
 :class:`~skinrender.rendering.balance.Rendering` or
 :class:`~skinrender.rendering.face.render.FaceRendering` can draw itself
 without ``rendering`` importing ``studies``.

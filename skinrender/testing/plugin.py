@@ -18,6 +18,11 @@ Registered with the ``pytest11`` entry point, so any project with skinrender ins
 A missing reference fails its test with the command that writes it; a foreign or unreadable reference file
 fails it too and is never overwritten; a bad argument fails it with one line naming it (no traceback).
 
+The plugin is loaded by every pytest session where skinrender is installed, so it is thin: importing it imports
+pytest and :mod:`skinrender.errors` only (``import skinrender`` imports its names on first use); what a check
+needs (the renderer, Mitsuba) is imported by the fixture's :meth:`RenderRegression.check`, as pytest-regressions'
+plugin imports its fixtures' modules.
+
 Units: temperatures K (or ``A``, ``H``), illuminance lx, images in Eq. 4 output units.
 """
 
@@ -34,11 +39,12 @@ from pathlib import Path
 
 import pytest
 
+from typing import TYPE_CHECKING
+
 from ..errors import SkinrenderError
-from ..evaluation.verdict import ALPHA_DIFFERENCE
-from ..files import Output, write_outputs
-from .reference import ReferenceProblem, read_reference, reference_seed, shown, sidecar_of, state, write_reference
-from .regression import REFERENCE_SPP_FACTOR, Comparison, compare, measure, setting_notes
+
+if TYPE_CHECKING:
+    from .regression import Comparison
 
 __all__ = ["RenderRegression", "render_regression", "pytest_addoption", "pytest_terminal_summary", "safe_name",
            "claim_across_workers", "pytest_configure_node", "pytest_sessionfinish"]
@@ -91,7 +97,7 @@ class RenderRegression:
     def check(self, scene=None, *, camera=None, prevailing=None, calibration=None, spp: int | None = None,
               seed: int = 0, physics: str | None = None, skin: str | None = None, imager: str | None = None,
               illuminance: float | None = None, basename: str | None = None, size: int | None = None,
-              variant: str | None = None, alpha: float = ALPHA_DIFFERENCE, **unknown) -> Comparison | None:
+              variant: str | None = None, alpha: float | None = None, **unknown) -> Comparison | None:
         """
         Render ``scene`` and compare it with its stored reference; the test fails when they differ beyond
         their noise, or when the reference is missing, foreign or unreadable.
@@ -122,7 +128,8 @@ class RenderRegression:
         variant
             A Mitsuba variant (default: the fastest that works).
         alpha
-            Family-wise false-alarm rate over all compared values (Šidák).
+            Family-wise false-alarm rate over all compared values (Šidák); ``None``:
+            :data:`~skinrender.evaluation.verdict.ALPHA_DIFFERENCE` (0.01).
 
         Returns
         -------
@@ -169,6 +176,12 @@ class RenderRegression:
 
     def _check(self, scene, camera, prevailing, calibration, spp, seed, physics, skin, imager, illuminance,
                basename, size, variant, alpha, unknown) -> Comparison | None:
+        from ..evaluation.verdict import ALPHA_DIFFERENCE
+        from .reference import (ReferenceProblem, read_reference, reference_seed, shown, sidecar_of, state,
+                                write_reference)
+        from .regression import REFERENCE_SPP_FACTOR, compare, measure, setting_notes
+
+        alpha = ALPHA_DIFFERENCE if alpha is None else alpha
         if unknown:
             raise SkinrenderError(f"unknown option(s) {', '.join(sorted(unknown))}; known: scene, "
                                   f"{', '.join(_OPTIONS)}")
@@ -212,6 +225,9 @@ class RenderRegression:
         Several cameras seen through one spectral render (:mod:`skinrender.testing.spectral_checks`), each compared with
         its own reference ``<basename or test name>.<camera>.exr``; the test fails with every camera that differs.
         """
+        from .reference import ReferenceProblem, read_reference, reference_seed, shown, state, write_reference
+        from .regression import REFERENCE_SPP_FACTOR, compare, measure, setting_notes
+
         if not cameras:
             raise SkinrenderError("camera: name at least one camera")
         base = basename or self._request.node.name
@@ -243,6 +259,8 @@ class RenderRegression:
         return results
 
     def _failure(self, new, reference, result: Comparison) -> str:
+        from .reference import shown
+
         settings = new.settings
         beyond = result.beyond
         lines = [f"render_regression.check: {settings['scene']} through {settings['camera']} differs from its "
@@ -266,6 +284,8 @@ class RenderRegression:
 
     def _write_results(self, folder: Path, new, reference, result: Comparison) -> list[Path]:
         from .figures import difference_figure
+        from ..files import Output, write_outputs
+        from .reference import sidecar_of, write_reference
 
         folder = folder / safe_name(self._request.node.nodeid)
         folder.mkdir(parents=True, exist_ok=True)
@@ -346,6 +366,8 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config) -> None:
     """List the references ``--skinrender-regen`` wrote."""
     written = config.stash.get(_WRITTEN, [])
     if written:
+        from .reference import shown, sidecar_of
+
         terminalreporter.section("skinrender references written")
         for node, path in written:
             terminalreporter.write_line(f"{shown(path)} (+ {sidecar_of(path).name})  ← {node}")

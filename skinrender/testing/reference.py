@@ -264,11 +264,12 @@ def read_reference(path: Path, new: Measurement) -> Reference:
         raise ReferenceProblem(f"{shown(path)} is the reference of a {kind}, the check renders a {new.kind}: rerun with "
                                "--skinrender-regen if the scene changed on purpose")
     try:
-        stored = read_exr(path, (*channels, "label") if kind == "face" else channels)
+        labelled = new.labels is not None  # a face's (the reference's kind is the check's)
+        stored = read_exr(path, (*channels, "label") if labelled else channels)
     except Exception as error:  # OpenEXR raises bare exceptions for a damaged file
         raise ReferenceProblem(f"the reference render {shown(path)} is unreadable ({' '.join(str(error).split())}): "
                                "restore it, or delete it and its sidecar and rerun with --skinrender-regen") from None
-    image, labels = stored[..., :3], (stored[..., 3].astype(np.int32) if kind == "face" else None)
+    image, labels = stored[..., :3], (stored[..., 3].astype(np.int32) if labelled else None)
     if image.shape != new.image.shape:
         (h, w), (nh, nw) = image.shape[:2], new.image.shape[:2]
         raise ReferenceProblem(f"{shown(path)} is {w}×{h} pixels, the render now {nw}×{nh}: the scene or its size "

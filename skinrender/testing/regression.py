@@ -24,7 +24,7 @@ standard error is the pixel standard deviation over √n
 (:func:`~skinrender.rendering.balance.patch_statistics`), with ``n − 1``
 degrees of freedom. Every patch is divided by the rendered white reference
 (Eq. 4 with WP, Eq. 8), so the whites' relative standard errors add
-(:func:`_white_relative_variance`): ``SE² = SE_patch² + mean² ·
+(:func:`~skinrender.testing.kind_checks.white_relative_variance`): ``SE² = SE_patch² + mean² ·
 relative_k``.
 
 **Faces** (:func:`skinrender.rendering.face.render.render_face`): each labelled
@@ -53,14 +53,16 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import SkinrenderError
 from ..evaluation.verdict import ALPHA_DIFFERENCE, Verdict, difference, sidak
 from ..hints import NDArrayFloat
-from .replicates import measure_face, region_values
+from .kind_checks import SPP_CHART, SPP_FACE, ChartChecks, FaceChecks, white_relative_variance  # noqa: F401
+from .measurement import Measurement, named_argument
+from .replicates import region_values
 
 __all__ = ["REFERENCE_SPP_FACTOR", "SPP_CHART", "SPP_FACE", "SIZE_FACE",
            "ILLUMINANCE_DEFAULT_LUX", "Measurement", "Comparison", "scene_kind", "measure", "measure_spectral",
@@ -73,58 +75,12 @@ own noise then moves every later check's z by at most ``1/√5`` of its deviatio
 one unlucky reference does not raise the false-alarm rate of all the checks against it, as Mitsuba's high-spp
 references do not."""
 
-SPP_CHART = 64
-"""Samples per pixel of a chart check unless given (a check ~0.2 s after the first; a 2 nm shift at z > 10)."""
-
-SPP_FACE = 64
-"""Samples per pixel of a face check unless given, over all :data:`REPLICATES` (16 each)."""
-
 SIZE_FACE = 64
 """Image side of a face check unless given, pixels: a reference of ~60 kB."""
 
 ILLUMINANCE_DEFAULT_LUX = 500.0
 """A chart's illuminance through an ``imager`` unless given, lx (every door's:
 :data:`skinrender.rendering.request.ILLUMINANCE_DEFAULT`)."""
-
-
-@dataclass(frozen=True)
-class Measurement:
-    """
-    A render reduced to the values a regression compares.
-
-    Attributes
-    ----------
-    kind
-        ``chart`` or ``face``.
-    image
-        ``(height, width, 3)`` float32, output units (a face: the mean of its replicates).
-    labels
-        ``(height, width)`` int32 region labels of a face; ``None`` for a chart.
-    channels
-        The image's EXR channel names (by the camera).
-    regions
-        Patch names (chart) or ``{name: label}`` of the regions present (face).
-    items
-        One name per value: ``"<patch or region> / <channel>"``, ``"skin NCC / r"``.
-    mean, standard_error, dof
-        Per value (output units; NCC fractions); ``dof`` inf where the standard error is 0.
-    settings
-        What made it, JSON-ready: scene, camera and its curves' hash, temperatures, spp, seed, variant, …
-    scene
-        The :class:`~skinrender.rendering.scene.ChartScene` of a chart (its patch layout); ``None`` for a face.
-    """
-
-    kind: str
-    image: NDArrayFloat
-    labels: NDArrayFloat | None
-    channels: tuple[str, ...]
-    regions: tuple[str, ...] | dict
-    items: tuple[str, ...]
-    mean: NDArrayFloat
-    standard_error: NDArrayFloat
-    dof: NDArrayFloat
-    settings: dict = field(default_factory=dict)
-    scene: object = None
 
 
 def scene_kind(spec) -> str:
@@ -141,82 +97,13 @@ def scene_kind(spec) -> str:
     return kind_of(spec).name
 
 
-def _named(name: str, function, *args, **kwargs):
-    """``function(*args)``, its :class:`SkinrenderError` prefixed with the argument ``name`` unless it names it
-    already (its ``role`` is ``name``: ``camera 'x': …``)."""
-    try:
-        return function(*args, **kwargs)
-    except SkinrenderError as error:
-        if error.role == name:
-            raise
-        raise error.reworded(f"{name}: {error.message}", role=name) from None
-
-
 def _planckian(spec, name: str) -> float:
     from ..model.illuminant import illuminant
 
-    light = _named(name, illuminant, spec)
+    light = named_argument(name, illuminant, spec)
     if light.temperature is None:
         raise SkinrenderError(f"{name}: rendering needs a Planckian illuminant (kelvin, A or H), got {light}")
     return float(light.temperature)
-
-
-def _white_relative_variance(rendering) -> NDArrayFloat:
-    """
-    Per channel ``k``, the relative variance every patch of a chart render takes from its rendered whites.
-
-    The image is ``v · WP · P_k / C_k`` with ``WP = 3 / Σ_j r_j``, ``r_j = W_j / C_j`` (the white reference's
-    means under the prevailing and the calibration light), so ``δ ln image_k = δ ln P_k − Σ_j w_j δ ln W_j +
-    Σ_j (w_j − [j = k]) δ ln C_j`` with ``w_j = r_j / Σ r``: ``wᵀ Σ_W w + a_kᵀ Σ_C a_k``, ``a_k = w − e_k``, where
-    ``Σ_W``, ``Σ_C`` are the relative covariances of the whites' channel means (from their pixels: the channels
-    of a pixel share its wavelength samples and are correlated, and the calibration white enters twice and partly
-    cancels). At p = c (one render, ``WP = 1`` exactly) and for the other normalisations (a fixed ``F_p / F_c``)
-    it is ``Σ_C[k, k]``. Measured: adding the terms in quadrature without the covariances, as
-    :mod:`~skinrender.rendering.validation` does for its 5 σ, overstated the G channel's standard errors by ~16 %.
-    """
-
-    def relative_covariance(raw) -> NDArrayFloat:
-        rows, columns = rendering.scene.patch_pixels(rendering.scene.white_index)
-        pixels = raw.radiance[rows, columns].reshape(-1, 3)
-        mean = pixels.mean(axis=0)
-        return np.cov(pixels, rowvar=False) / len(pixels) / np.outer(mean, mean)
-
-    analytic = rendering.info.get("white_calibration") == "analytic"  # a spectral render's: computed, exact
-    sigma_c = 0.0 * relative_covariance(rendering.raw[-1]) if analytic else relative_covariance(rendering.raw[-1])
-    if rendering.normalization != "white" or rendering.prevailing == rendering.calibration:
-        return np.diagonal(sigma_c).copy()
-    sigma_w = relative_covariance(rendering.raw[0])
-    ratio = rendering.info["white_ratio"]
-    w = ratio / ratio.sum()
-    a = w[None, :] - np.eye(3)
-    return w @ sigma_w @ w + np.einsum("ki,ij,kj->k", a, sigma_c, a)
-
-
-def _chart(chart, cam, prevailing, calibration, spp, seed, imager, illuminance, variant) -> Measurement:
-    from ..rendering.kinds import CHART
-
-    request = CHART.request(chart, cam, prevailing, calibration, spp=spp, seed=seed, variant=variant, imager=imager,
-                            illuminance=illuminance)  # the one request of every door
-    rendering, imaged = CHART.render_imaged(request)
-    # through a sensor the balance's whites are noise-free; else the rendered whites' noise adds to every patch
-    relative = np.zeros(3) if imaged is not None else _white_relative_variance(rendering)
-    settings = {} if imaged is None else {"imager": imaged.imager.name, "illuminance_lux": imaged.illuminance_lux}
-    return _chart_values(chart, cam, rendering, relative, settings)
-
-
-def _chart_values(chart, cam, rendering, relative, settings: dict) -> Measurement:
-    """A chart render reduced to its patch means with their standard errors (``relative``: the whites' relative
-    variance per channel)."""
-    from ..rendering.renderer import channel_names
-
-    stats = rendering.patches
-    se = np.sqrt(stats.standard_error**2 + stats.mean**2 * relative[None, :])
-    dof = np.broadcast_to(stats.count[:, None] - 1.0, se.shape)
-    names = tuple(p.name for p in chart.patches)
-    items = tuple(f"{n} / {c}" for n in names for c in cam.channels)
-    settings = {"spp": int(rendering.raw[0].spp), "variant": rendering.variant, **settings}
-    return Measurement("chart", rendering.image, None, channel_names(cam), names, items, stats.mean.ravel(),
-                       se.ravel(), np.where(se.ravel() > 0, dof.ravel(), np.inf), settings)
 
 
 def _integer(value, name: str, low: int, high: int) -> int:
@@ -248,51 +135,36 @@ def measure(scene, camera, prevailing, calibration, spp: int | None = None, seed
     """
     from ..model.camera import camera as camera_of
     from ..rendering.exr import camera_attributes
-    from ..rendering.scene import load_chart_scene
+    from ..rendering.kinds import by_kind, scene_kind
     from ..rendering.settings import SEED_MAX, SPP_MAX
 
-    kind = scene_kind(scene)
-    if kind == "chart":  # the plugin's own refusals (it checks a chart at direct, a face at any level)
-        chart = _named("scene", load_chart_scene, scene)
-        given = [n for n, v in (("physics", physics not in (None, "direct")), ("skin", skin is not None),
-                                ("size", size is not None)) if v]
-        if given:
-            raise SkinrenderError(f"{', '.join(given)}: {'goes' if len(given) == 1 else 'go'} with a face scene "
-                                  "(e.g. 'face'), not a chart")
-        if illuminance is not None and imager is None:
-            raise SkinrenderError("illuminance sets the image sensor's exposure: it goes with imager")
+    kind = scene_kind(scene).name
+    checks = by_kind(scene, chart=ChartChecks, face=FaceChecks)(scene, physics, skin, size, imager, illuminance)
     several = isinstance(camera, (list, tuple))
-    cams = [_named("camera", camera_of, one) for one in (camera if several else [camera])]
+    cams = [named_argument("camera", camera_of, one) for one in (camera if several else [camera])]
     if not cams:
         raise SkinrenderError("camera: name at least one camera")
     for cam in cams:
-        _named("camera", cam.sensitivities)
-    cam = cams[0]
+        named_argument("camera", cam.sensitivities)
     p, c = _planckian(prevailing, "prevailing"), _planckian(calibration, "calibration")
-    spp = _integer(SPP_CHART if kind == "chart" and spp is None else SPP_FACE if spp is None else spp, "spp", 1,
-                   SPP_MAX + 1)
+    spp = _integer(checks.spp_default if spp is None else spp, "spp", 1, SPP_MAX + 1)
     seed = _integer(seed, "seed", 0, SEED_MAX + 1)  # the bound of every front door
     renders = seed if render_seed is None else _integer(render_seed, "render_seed", 0, SEED_MAX + 1)
     size = SIZE_FACE if size is None else size
     if several:
-        found = measure_spectral(kind, chart if kind == "chart" else scene, cams, p, c, spp * factor, renders, physics,
-                                 skin, imager, illuminance, size, variant)
-    elif kind == "chart":
-        found = [_chart(chart, cam, p, c, spp * factor, renders, imager, illuminance, variant)]
+        found = checks.spectral(cams, p, c, spp * factor, renders, physics, skin, imager, illuminance, size, variant)
     else:
-        found = [Measurement("face", *measure_face(scene, cam, p, c, spp * factor, renders, physics, skin, imager,
-                                                   illuminance, size, variant))]
+        found = [checks.one(cams[0], p, c, spp * factor, renders, physics, skin, imager, illuminance, size, variant)]
     from .. import __version__
 
     out = []
     for cam, one in zip(cams, found):
-        name = chart.name if kind == "chart" else one.settings.pop("scene_name")
-        settings = {"kind": kind, "scene": name, **camera_attributes(cam), "prevailing_K": p, "calibration_K": c,
-                    "spp_requested": spp, "seed": seed,
+        settings = {"kind": kind, "scene": checks.name(one), **camera_attributes(cam), "prevailing_K": p,
+                    "calibration_K": c, "spp_requested": spp, "seed": seed,
                     **({} if render_seed is None else {"reference_seed": renders}), **one.settings,
                     "skinrender_version": __version__}
         out.append(Measurement(one.kind, one.image, one.labels, one.channels, one.regions, one.items, one.mean,
-                               one.standard_error, one.dof, settings, chart if kind == "chart" else None))
+                               one.standard_error, one.dof, settings, checks.chart))
     return out if several else out[0]
 
 
@@ -300,43 +172,23 @@ def measure_spectral(kind: str, scene, cameras: list, prevailing: float, calibra
                      physics: str | None, skin: str | None, imager: str | None, illuminance: float | None, size: int,
                      variant: str | None) -> list:
     """
-    One :class:`Measurement` per camera of ``cameras`` from one spectral render of ``scene`` (a loaded chart, or a
-    face spec; a face: one per replicate seed) with :data:`~skinrender.rendering.bands.BANDS_DEFAULT` (arguments
-    as :func:`measure`; a chart through an ``imager`` is refused: its sensor records a camera's channels). The
+    One :class:`Measurement` per camera of ``cameras`` from one spectral render of ``scene`` (a chart, or a face
+    spec; a face: one per replicate seed) with :data:`~skinrender.rendering.bands.BANDS_DEFAULT` (arguments as
+    :func:`measure`; a chart through an ``imager`` is refused: its sensor records a camera's channels). The
     settings add ``spectral_bands_nm``, so that a reference made one render per camera is told apart in a
-    failure's notes.
+    failure's notes. ``kind``: the scene's (its checks are the kind's; kept for callers that name it).
     """
-    from ..rendering.bands import BANDS_DEFAULT, bands_text
-    from ..rendering.kinds import CHART, FACE
-    from .replicates import face_check_request, reduce_face, replicate_seeds
+    from ..rendering.kinds import by_kind
 
-    bands = {"spectral_bands_nm": bands_text(BANDS_DEFAULT)}
-    if kind == "chart":
-        if imager is not None:
-            raise SkinrenderError("imager: a chart's image sensor records one camera's render; check several cameras "
-                                  "without it, or one camera at a time")
-        image = CHART.render(CHART.request(scene, None, prevailing, None, spp=spp, seed=seed, variant=variant,
-                                           bands=BANDS_DEFAULT))
-        out = []
-        for cam in cameras:
-            rendering = image.through(cam, calibration)
-            out.append(_chart_values(scene, cam, rendering, _white_relative_variance(rendering), bands))
-        return out
-    request = face_check_request(scene, None, prevailing, None, spp, seed, physics, skin, imager, illuminance, size,
-                                 variant, BANDS_DEFAULT)
-    images = [FACE.render(request, s) for s in replicate_seeds(seed)]
-    out = []
-    for cam in cameras:
-        found = Measurement("face", *reduce_face([image.through(cam, calibration) for image in images], cam))
-        out.append(Measurement(found.kind, found.image, found.labels, found.channels, found.regions, found.items,
-                               found.mean, found.standard_error, found.dof, {**found.settings, **bands}))
-    return out
+    checks = by_kind(scene, chart=ChartChecks, face=FaceChecks)(scene, physics, skin, None, imager, illuminance)
+    return checks.spectral(cameras, prevailing, calibration, spp, seed, physics, skin, imager, illuminance, size,
+                           variant)
 
 
 def values_of(kind: str, image: NDArrayFloat, labels: NDArrayFloat | None, regions, scene=None) -> NDArrayFloat:
     """The compared means of a stored image: a chart's patch means (``scene`` its chart) or a face's region means
     and skin NCC (``regions`` ``{name: label}``), in :attr:`Measurement.items` order."""
-    if kind == "chart":
+    if labels is None:  # a chart's (a face's image has its labels)
         from ..rendering.balance import patch_statistics
 
         return patch_statistics(image, scene).mean.ravel()

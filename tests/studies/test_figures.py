@@ -131,18 +131,18 @@ def test_figure_pairs_has_one_panel_per_calibration(count, shape, tmp_path):
     temperatures = np.linspace(2000.0, 10000.0, count)
     volumes = np.random.default_rng(0).uniform(1.0, 2.0, (count, count))
     drawn = {}
-    close = figures._pyplot().close
+    close = figures.pyplot_agg().close
 
     def keep(figure):
         drawn["axes"] = [a for a in figure.axes if a.get_visible()]
         drawn["grid"] = figure.axes[0].get_subplotspec().get_gridspec().get_geometry()
         close(figure)
 
-    figures._pyplot().close = keep
+    figures.pyplot_agg().close = keep
     try:
         path = figures.figure_pairs(volumes, temperatures, "test", tmp_path / "pairs.png")
     finally:
-        figures._pyplot().close = close
+        figures.pyplot_agg().close = close
     assert png_size(path)[0] > 0
     assert drawn["grid"] == shape and len(drawn["axes"]) == count
     assert [a.get_title() for a in drawn["axes"]] == [f"calibration {t:g} K" for t in temperatures]

@@ -54,7 +54,7 @@ from ...hints import NDArrayFloat
 from ...model.camera import Camera
 from ...model.exposure import irradiance_planck
 from ...spectra import WavelengthGrid
-from ..renderer import EMITTER_REFINE, _separate, _spectrum, channel_names
+from ..renderer import EMITTER_REFINE, channels_separate, mitsuba_spectrum, channel_names
 from ..scene import reflectance_of
 from .labels import SHAPE_SKIN, prop_shape_id
 from .scene import MESH_HEAD, FaceScene, Light, skin_reflectance_of
@@ -65,7 +65,7 @@ __all__ = ["channel_groups", "film_dict", "light_irradiance", "channel_integral"
 
 def channel_groups(cam: Camera, grid: WavelengthGrid, channels: str = "auto") -> list[tuple[int, ...]]:
     """The render passes, as indices into R, G, B (one pass, or one per channel for narrow sensors)."""
-    return [(0,), (1,), (2,)] if _separate(cam, grid, channels) else [(0, 1, 2)]
+    return [(0,), (1,), (2,)] if channels_separate(cam, grid, channels) else [(0, 1, 2)]
 
 
 def film_dict(cam: Camera | None, grid: WavelengthGrid, group: tuple[int, ...], width: int, height: int,
@@ -81,7 +81,7 @@ def film_dict(cam: Camera | None, grid: WavelengthGrid, group: tuple[int, ...], 
         return {**film, **channels}
     curves, names = cam.sensitivities(grid), channel_names(cam)
     for k in group:
-        film[names[k]] = _spectrum(grid.wavelengths, curves[k])
+        film[names[k]] = mitsuba_spectrum(grid.wavelengths, curves[k])
     return film
 
 
@@ -237,10 +237,10 @@ def light_documents(scene: FaceScene, level, grid: WavelengthGrid, lights: dict[
         lam, irradiance = light_irradiance(light, grid)
         if light.position is None:
             out[f"light_{name}"] = {"type": "constant", "sampling_weight": float(light.illuminance),
-                                    "radiance": _spectrum(lam, irradiance / np.pi / scale)}
+                                    "radiance": mitsuba_spectrum(lam, irradiance / np.pi / scale)}
         else:  # the intensity of a point light that gives its irradiance at the target, in scene units
             squared = float(np.sum((np.asarray(at(light.position)) - target) ** 2))
             out[f"light_{name}"] = {"type": "point", "position": at(light.position),
                                     "sampling_weight": float(light.illuminance),
-                                    "intensity": _spectrum(lam, irradiance * squared / scale)}
+                                    "intensity": mitsuba_spectrum(lam, irradiance * squared / scale)}
     return out

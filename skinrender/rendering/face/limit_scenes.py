@@ -36,6 +36,7 @@ References
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -45,11 +46,15 @@ from ...spectra import GRID_DEFAULT
 from ..validation import FLOAT32_FLOOR
 from .document import channel_groups, channel_integral, film_dict, light_irradiance
 from .labels import LABEL_SKIN
-from .limits import ALPHA, LimitCheck, _ratio, critical_t, jackknife, rg, sphere_emission, two_part
-from .scene import FaceScene, Light, load_face_scene
+from .limits import ALPHA, LimitCheck, deviation_ratio, critical_t, jackknife, rg, sphere_emission, two_part
+from .scene import FaceScene, Light, load_face_scene, skin_reflectance_of
 
-__all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "furnace_radiance", "sphere_channels", "check_furnace",
-           "check_sphere"]
+if TYPE_CHECKING:
+    from ..physics import Level
+
+__all__ = ["FURNACE_SKY", "REPLICATES_DEFAULT", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "SPHERE_SPP",
+           "furnace_radiance", "sphere_channels", "check_furnace", "check_sphere", "limit_furnace", "limit_sphere",
+           "LIMITS_SCENE_FREE"]
 
 FURNACE_SKY = Light(temperature=5000.0, illuminance=500.0)
 """The white furnace's uniform environment: a 5000 K Planckian, 500 lx on a surface open to it."""
@@ -57,10 +62,22 @@ FURNACE_SKY = Light(temperature=5000.0, illuminance=500.0)
 REPLICATES_DEFAULT = 12
 """Seeds rendered unless named (:data:`skinrender.rendering.face.limits.REPLICATES`)."""
 
+FURNACE_SIZE = 32
+"""Image side of the white furnace, pixels (~300 head pixels in the bundled scene)."""
+
+FURNACE_SPP = 16
+"""Samples per pixel of each white-furnace replicate."""
+
+SPHERE_SIZE = 16
+"""Image side of the closed sphere, pixels (their mean is tested)."""
+
+SPHERE_SPP = 16
+"""Samples per pixel of each closed-sphere replicate."""
+
 
 def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=range(REPLICATES_DEFAULT),
                      size: int = 32,
-                     spp: int = 16, physics: str = "interreflection", variant: str | None = None,
+                     spp: int = 16, physics: str | Level = "interreflection", variant: str | None = None,
                      sky: Light = FURNACE_SKY, smooth: bool = False) -> tuple[NDArrayFloat, NDArrayFloat, NDArrayFloat]:
     """
     The white furnace rendered: the scene's mesh alone, reflectance 1, inside a uniform sky, flat shading
@@ -73,12 +90,13 @@ def furnace_radiance(cam: Camera | str, scene: FaceScene | str = "face", seeds=r
         size, 3)`` and the label image (specfilm units), and ``∫ (E / π) x_k dλ``,
         the sky's radiance through the camera, ``(3,)``.
     """
-    from .render import render_face
+    from .render import render_face_request
+    from .request import face_request
 
     furnace = replace(load_face_scene(scene), props=(), key=None, fill=None, environment=sky,
                       mesh_smooth=bool(smooth))
-    renders = [render_face(cam, furnace, skin="perfect", physics=physics, size=size, spp=spp, seed=int(s),
-                           variant=variant) for s in seeds]
+    request = face_request(furnace, cam, skin="perfect", physics=physics, size=size, spp=spp, variant=variant)
+    renders = [render_face_request(request, int(s)) for s in seeds]
     lam, irradiance = light_irradiance(sky, GRID_DEFAULT)
     expected = channel_integral(camera(cam), GRID_DEFAULT, lam, irradiance / np.pi)
     return np.array([r.radiance for r in renders]), renders[0].labels, expected
@@ -91,7 +109,7 @@ def sphere_channels(cam: Camera | str, rho: NDArrayFloat, depth: int, seeds=rang
     Mean channels of a closed emitting Lambertian sphere of reflectance ``rho`` (on the default grid),
     rendered from its centre to path depth ``depth`` (−1: every bounce); one row per seed, specfilm units.
     """
-    from ..renderer import _spectrum
+    from ..renderer import mitsuba_spectrum
     from ..variants import choose_variant, mitsuba
 
     mi = mitsuba(choose_variant(variant))
@@ -106,8 +124,8 @@ def sphere_channels(cam: Camera | str, rho: NDArrayFloat, depth: int, seeds=rang
                        "sampler": {"type": "independent", "sample_count": int(spp)},
                        "film": film_dict(cam, GRID_DEFAULT, group, size, size)},
             "sphere": {"type": "sphere", "radius": 1.0, "flip_normals": True,
-                       "emitter": {"type": "area", "radiance": _spectrum(lam, emission)},
-                       "bsdf": {"type": "diffuse", "reflectance": _spectrum(GRID_DEFAULT.wavelengths, rho)}},
+                       "emitter": {"type": "area", "radiance": mitsuba_spectrum(lam, emission)},
+                       "bsdf": {"type": "diffuse", "reflectance": mitsuba_spectrum(GRID_DEFAULT.wavelengths, rho)}},
         })
         for row, seed in enumerate(seeds):
             image = np.array(mi.render(scene, seed=int(seed)), dtype=np.float64)
@@ -129,10 +147,10 @@ def check_furnace(radiance: NDArrayFloat, labels: NDArrayFloat, expected: NDArra
     head = labels == LABEL_SKIN
     mean = radiance.mean(axis=0)
     error = radiance.std(axis=0, ddof=1) / np.sqrt(k)
-    t_pixel = _ratio(np.abs(mean - expected), np.hypot(error, FLOAT32_FLOOR * expected))
+    t_pixel = deviation_ratio(np.abs(mean - expected), np.hypot(error, FLOAT32_FLOOR * expected))
     pooled = radiance[:, head].mean(axis=1) if head.any() else radiance.reshape(k, -1, 3).mean(axis=1)
     pooled_error = pooled.std(axis=0, ddof=1) / np.sqrt(k)
-    t_pooled = _ratio(np.abs(pooled.mean(axis=0) - expected), np.hypot(pooled_error, FLOAT32_FLOOR * expected))
+    t_pooled = deviation_ratio(np.abs(pooled.mean(axis=0) - expected), np.hypot(pooled_error, FLOAT32_FLOOR * expected))
     outcome, statistic, test, details = two_part("white_furnace", t_pixel, t_pooled, k,
                                                  "each pixel's channels against the sky's",
                                                  "the head's mean channels")
@@ -180,3 +198,36 @@ def check_sphere(cam: Camera | str, rho: NDArrayFloat, every: NDArrayFloat, one:
                       {"worst_t": worst, "critical": critical, "saturation_t": saturation_t,
                        "distance_from_light": [float(far), float(near)]}, outcome="pass" if passed else "fail",
                       test=test)
+
+
+def limit_furnace(first, seeds, variant: str | None = None, say=lambda line: None) -> LimitCheck:
+    """white furnace: the scene's mesh, reflectance 1, every bounce, in a uniform sky
+
+    The check of the scene (and camera) of a validation's ``first`` render (a
+    :class:`~skinrender.rendering.face.render.FaceRendering`), ``seeds`` one per replicate, small
+    (:data:`FURNACE_SIZE`, :data:`FURNACE_SPP`); ``say``: a progress line."""
+    from .effects import PHYSICS_REGISTRY, Level
+    from .effects.interreflection import INTERREFLECTION
+
+    say(f"white furnace ({FURNACE_SIZE}² px, {len(seeds)} × {FURNACE_SPP} spp) …")
+    every_bounce = Level((PHYSICS_REGISTRY.base, INTERREFLECTION))
+    return check_furnace(*furnace_radiance(first.camera, first.scene, seeds, FURNACE_SIZE, FURNACE_SPP, every_bounce,
+                                           variant=variant))
+
+
+def limit_sphere(first, seeds, variant: str | None = None, say=lambda line: None) -> LimitCheck:
+    """closed Lambertian sphere of the skin's reflectance seen from inside, every bounce and one
+
+    The check of the skin of a validation's ``first`` render, as :func:`limit_furnace` (:data:`SPHERE_SIZE`,
+    :data:`SPHERE_SPP`)."""
+    say(f"closed sphere ({SPHERE_SIZE}² px, {len(seeds)} × {SPHERE_SPP} spp, two depths) …")
+    rho = skin_reflectance_of(first.skin, GRID_DEFAULT, "skin")
+    every = sphere_channels(first.camera, rho, -1, seeds, SPHERE_SPP, SPHERE_SIZE, variant)
+    one = sphere_channels(first.camera, rho, 2, seeds, SPHERE_SPP, SPHERE_SIZE, variant)
+    return check_sphere(first.camera, rho, every, one)
+
+
+LIMITS_SCENE_FREE = {"furnace": limit_furnace, "sphere": limit_sphere}
+"""The limits that hold whatever the level, name → the function ``(first, seeds, variant, say) → LimitCheck`` of
+a validation's first render; run small beside the level's own
+(:func:`~skinrender.rendering.face.validation.validate_face_request` dispatches)."""

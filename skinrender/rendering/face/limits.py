@@ -74,7 +74,8 @@ from .labels import LABEL_SKIN, interior
 from .scene import Light
 
 __all__ = ["ALPHA", "ALPHA_PART", "REPLICATES", "SPP_REPLICATE_MIN", "PIXELS_MIN", "LimitCheck", "critical_t",
-           "jackknife", "rg", "rounding_bias", "two_part", "check_shading", "check_dichromatic", "sphere_emission"]
+           "jackknife", "rg", "rounding_bias", "two_part", "check_shading", "check_dichromatic", "sphere_emission",
+           "deviation_ratio"]
 
 ALPHA = 0.01
 """Family-wise false-alarm rate of each check of an exact limit (its per-pixel and pooled parts together)."""
@@ -242,7 +243,7 @@ def rounding_bias(sigma_dn: NDArrayFloat, terms: int = 32) -> NDArrayFloat:
     return np.minimum(np.sum(np.exp(-2 * np.pi**2 * m**2 * sigma**2) / (np.pi * m), axis=-1), 0.5)
 
 
-def _ratio(deviation: NDArrayFloat, error: NDArrayFloat) -> NDArrayFloat:
+def deviation_ratio(deviation: NDArrayFloat, error: NDArrayFloat) -> NDArrayFloat:
     """``deviation / error``, 0 where both are 0 (a shadowed pixel is exactly black in every replicate)."""
     deviation, error = np.broadcast_arrays(np.asarray(deviation, dtype=np.float64), error)
     out = np.where(deviation > 0, np.inf, 0.0)
@@ -272,10 +273,10 @@ def _projected(values: NDArrayFloat, weights: NDArrayFloat, bias, floor, scale: 
     mean = projection.mean(axis=0)
     systematic, least = (np.broadcast_to(part, mean.shape) for part in _sensor(bias, floor, weights))
     error = np.maximum(projection.std(axis=0, ddof=1) / np.sqrt(k), least)
-    t_pixel = _ratio(np.maximum(np.abs(mean) - systematic, 0.0), np.hypot(error, FLOAT32_FLOOR * scale[:, None]))
+    t_pixel = deviation_ratio(np.maximum(np.abs(mean) - systematic, 0.0), np.hypot(error, FLOAT32_FLOOR * scale[:, None]))
     total = projection.sum(axis=1)
     total_error = np.maximum(total.std(axis=0, ddof=1) / np.sqrt(k), np.sqrt(np.sum(least**2, axis=0)))
-    t_pooled = _ratio(np.maximum(np.abs(total.mean(axis=0)) - systematic.sum(axis=0), 0.0),
+    t_pooled = deviation_ratio(np.maximum(np.abs(total.mean(axis=0)) - systematic.sum(axis=0), 0.0),
                       np.hypot(total_error, FLOAT32_FLOOR * scale.sum()))
     return t_pixel, t_pooled
 

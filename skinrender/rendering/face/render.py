@@ -65,8 +65,9 @@ from .effects import Frame, Level
 from .labels import label_names, render_labels, shape_labels
 from .scene import MESH_HEAD, FaceScene, prevailing_name
 
-__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "render_face_request", "finish_face",
-           "balanced_frame", "face_exr", "write_face_exr"]
+__all__ = ["FaceRendering", "planckian_temperature", "white_references", "render_face", "render_face_request",
+           "finish_face", "balanced_frame", "face_exr", "write_face_exr", "DocumentKey", "load_document",
+           "loaded_document"]
 
 LOADED_KEPT = 6
 """Face documents kept loaded in Mitsuba (the least recently used goes first)."""
@@ -190,7 +191,7 @@ def white_references(scene: FaceScene, cam: Camera, calibration: float, grid: Wa
 
 
 @dataclass(frozen=True)
-class _Document:
+class DocumentKey:
     """
     A face's Mitsuba document as a cache key: what it depends on (the camera by its curves, or a spectral
     render's bands on its grid; the level by the effects that change the document, the lights by name); the level
@@ -214,7 +215,7 @@ class _Document:
 
 
 @functools.lru_cache(maxsize=LOADED_KEPT)
-def _load(document: _Document):
+def load_document(document: DocumentKey):
     from ..bands import film_channels
 
     mi, scene = mitsuba(document.variant), document.scene
@@ -234,12 +235,13 @@ def _load(document: _Document):
                               f"{reason}") from None
 
 
-def _loaded(scene, cam, grid, level: Level, skin, group, spp, sampler, variant, lights, scale, bands=None):
+def loaded_document(scene, cam, grid, level: Level, skin, group, spp, sampler, variant, lights, scale,
+                    bands=None):
     """The face's document loaded into Mitsuba, reused across renders that share it (:data:`LOADED_KEPT` kept);
     ``bands``: a spectral render's film (``cam`` ``None``)."""
     key = None if cam is None else CameraKey.of(cam, grid)
-    return _load(_Document(scene, key, grid, bands, level.document_key, skin, group, spp, sampler, variant,
-                           tuple(sorted(lights.items())), scale, level, lights))
+    return load_document(DocumentKey(scene, key, grid, bands, level.document_key, skin, group, spp, sampler,
+                                     variant, tuple(sorted(lights.items())), scale, level, lights))
 
 
 def render_face(
@@ -338,7 +340,7 @@ def render_face_request(request, seed: int | None = None) -> FaceRendering:
     radiance = np.zeros((height, width, 3))
     spp_used, first = int(spp), None
     for group in groups:
-        loaded = _loaded(face, cam, grid, level, skin, group, int(spp), sampler, variant, lights, scale)
+        loaded = loaded_document(face, cam, grid, level, skin, group, int(spp), sampler, variant, lights, scale)
         first = first or loaded
         spp_used = int(loaded.sensors()[0].sampler().sample_count())
         values = np.array(mi.render(loaded, seed=seed), dtype=np.float64)

@@ -45,7 +45,7 @@ from ...spectra import WavelengthGrid
 from ..variants import mitsuba
 from .document import light_documents, skin_material
 from .labels import SHAPE_SKIN
-from .render import _Document, _load
+from .render import DocumentKey, load_document
 
 __all__ = ["KEPT", "spectral_loaded", "flattened", "release"]
 
@@ -154,9 +154,10 @@ def _revalue(loaded, plan) -> None:
 
 def _fresh(plan, bands: WavelengthGrid):
     """The plan's document loaded anew (outside the face renderer's cache: its values will change)."""
-    return _load.__wrapped__(_Document(plan.scene, None, plan.grid, bands, plan.level.document_key, plan.skin, (),
-                                       plan.spp, plan.sampler, plan.variant, tuple(sorted(plan.lights.items())),
-                                       plan.scale, plan.level, plan.lights))
+    return load_document.__wrapped__(DocumentKey(plan.scene, None, plan.grid, bands, plan.level.document_key,
+                                                 plan.skin, (), plan.spp, plan.sampler, plan.variant,
+                                                 tuple(sorted(plan.lights.items())), plan.scale, plan.level,
+                                                 plan.lights))
 
 
 def spectral_loaded(plan, bands: WavelengthGrid):

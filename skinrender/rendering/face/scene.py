@@ -61,10 +61,10 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import SkinrenderError
-from ...files import TOML_BYTES_MAX, exists, read_input
+from ...files import exists
 from ...hints import NDArrayFloat
 from ...spectra import GRID_DEFAULT, WavelengthGrid
-from ...toml_tables import entry, from_table
+from ...toml_tables import entry, from_table, read_toml
 from ..scene import PIXELS_MAX, ROOT_SCENES, check_mesh_file, read_scene_toml, reflectance_of
 
 __all__ = ["ROOT_FACE_SCENES", "MESH_HEAD", "PROP_SHAPES", "FaceCamera", "Light", "Prop", "FaceScene",
@@ -229,15 +229,13 @@ def _face_toml(path: Path) -> dict | None:
             return None
         stat = os.stat(path)
         return copy.deepcopy(_parsed(str(path.resolve()), stat.st_mtime_ns, stat.st_size))
-    except (SkinrenderError, UnicodeDecodeError, ValueError, OSError):  # tomllib's errors are ValueErrors
+    except (SkinrenderError, OSError):
         return None
 
 
 @functools.lru_cache(maxsize=16)
 def _parsed(path: str, mtime_ns: int, size: int) -> dict:
-    import tomllib
-
-    return tomllib.loads(read_input(Path(path), TOML_BYTES_MAX, "a scene TOML").decode("utf-8"))
+    return read_toml(path, "a scene TOML")
 
 
 def prevailing_name(scene: FaceScene) -> str:

@@ -60,7 +60,7 @@ from ...hints import NDArrayFloat
 from ...model.camera import Camera
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 from .labels import LABEL_SKIN, interior
-from .limits import PIXELS_MIN, LimitCheck, _ratio, critical_t, jackknife, rg
+from .limits import PIXELS_MIN, LimitCheck, deviation_ratio, critical_t, jackknife, rg
 
 __all__ = ["SKIN_SET_DEFAULT", "skin_set_name", "face_budget", "scored_skin", "eq4_shift", "budget_rates"]
 
@@ -172,7 +172,7 @@ def eq4_shift(images: NDArrayFloat, labels: NDArrayFloat, expected: NDArrayFloat
     shift_se = spread(leave_out)
     length, length_se = float(np.hypot(*shift)), float(spread(np.linalg.norm(leave_out - expected, axis=-1)))
     per_pixel, per_pixel_se = jackknife(samples, rg)
-    outside = np.any(_ratio(np.abs(per_pixel - expected), per_pixel_se) > critical_t(per_pixel.size, k), axis=-1)
+    outside = np.any(deviation_ratio(np.abs(per_pixel - expected), per_pixel_se) > critical_t(per_pixel.size, k), axis=-1)
     tolerance = None if budget is None else budget.budget
     details = {"shift": shift.tolist(), "shift_se": shift_se.tolist(), "ncc_mean": value.tolist(),
                "ncc_expected": expected.tolist(), "share_outside": float(outside.mean()),

@@ -42,7 +42,7 @@ from ..bands import BANDS_DEFAULT, bands_text, estimate, projection
 from ..variants import mitsuba
 from .document import light_irradiance
 from .labels import label_names, render_labels, shape_labels
-from .render import FaceRendering, _loaded, finish_face, planckian_temperature, white_references
+from .render import FaceRendering, finish_face, loaded_document, planckian_temperature, white_references
 
 __all__ = ["FacePlan", "render_face_spectral", "render_face_spectral_request", "face_through"]
 
@@ -80,8 +80,8 @@ class FacePlan:
 
     def loaded(self, bands: WavelengthGrid):
         """The plan's document with ``bands`` as its film (the face renderer's cache)."""
-        return _loaded(self.scene, None, self.grid, self.level, self.skin, (), self.spp, self.sampler, self.variant,
-                       self.lights, self.scale, bands)
+        return loaded_document(self.scene, None, self.grid, self.level, self.skin, (), self.spp, self.sampler,
+                               self.variant, self.lights, self.scale, bands)
 
     def render(self, loaded) -> tuple[NDArrayFloat, int]:
         """One render of ``loaded`` with the plan's seed: ``(height, width, n)`` float64 in absolute units (the

@@ -75,13 +75,14 @@ import numpy as np
 from ...errors import SkinrenderError
 from ...evaluation.detection_verdict import check_tolerance
 from ...evaluation.verdict import EXIT_STATUS, Verdict, combine, samples_needed
+from ...methods import method_of
 from ...model.chromaticity import ncc
 from ...spectra import GRID_DEFAULT
 from ..validation import analytic_reference
 from ..settings import seed_at
-from .effects import Level, Measured, Replicates
-from .limit_scenes import check_furnace, check_sphere, furnace_radiance, sphere_channels
 from .detection import detection_check
+from .effects import Level, Measured, Replicates
+from .limit_scenes import FURNACE_SIZE, FURNACE_SPP, LIMITS_SCENE_FREE, SPHERE_SIZE, SPHERE_SPP  # noqa: F401
 from .limits import REPLICATES, SPP_REPLICATE_MIN, LimitCheck
 from .render import FaceRendering, balanced_frame, render_face_request
 from .request import FaceRequest, face_request
@@ -92,25 +93,8 @@ __all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "S
            "FaceValidation", "Replicated", "replicated_of", "render_replicates", "render_replicates_request", "mean_rendering",
            "shift_against", "validate_face", "validate_face_request"]
 
-LIMITS_SCENE_FREE = {
-    "furnace": "white furnace: the scene's mesh, reflectance 1, every bounce, in a uniform sky",
-    "sphere": "closed Lambertian sphere of the skin's reflectance seen from inside, every bounce and one",
-}
-"""The limits that hold whatever the level, name → meaning; run small beside the level's own."""
-
-FURNACE_SIZE = 32
-"""Image side of the white furnace, pixels (~300 head pixels in the bundled scene)."""
-
-FURNACE_SPP = 16
-"""Samples per pixel of each white-furnace replicate."""
-
-SPHERE_SIZE = 16
-"""Image side of the closed sphere, pixels (their mean is tested)."""
-
-SPHERE_SPP = 16
-"""Samples per pixel of each closed-sphere replicate."""
-
-RENDER_OPTIONS = ("skin", "size", "sampler", "variant", "grid", "channels", "imager", "exposure", "illuminance", "translate_mm")
+RENDER_OPTIONS = ("skin", "size", "sampler", "variant", "grid", "channels", "imager", "exposure", "illuminance",
+                  "translate_mm")
 """:func:`validate_face`'s keywords that go to each replicate's :func:`~skinrender.rendering.face.render_face`."""
 
 
@@ -427,17 +411,9 @@ def validate_face_request(request: FaceRequest, spp: int | None = None, replicat
                                 skin_set, skin_reflectance_of(first.skin, replicated.grid, "skin"))
     detection, check_row = detection_check(replicated, locus, tolerance, seed=request.settings.seed)
     checks += [check_row, replace(shift_against(replicated, budget, locus), applies=False)]  # eq4_shift: a diagnostic
-    cam = first.camera
-    if "furnace" in limits:
-        say(f"white furnace ({FURNACE_SIZE}² px, {replicates} × {FURNACE_SPP} spp) …")
-        checks.append(check_furnace(*furnace_radiance(cam, first.scene, seeds, FURNACE_SIZE, FURNACE_SPP,
-                                                      variant=variant)))
-    if "sphere" in limits:
-        say(f"closed sphere ({SPHERE_SIZE}² px, {replicates} × {SPHERE_SPP} spp, two depths) …")
-        rho = skin_reflectance_of(first.skin, GRID_DEFAULT, "skin")
-        every = sphere_channels(cam, rho, -1, seeds, SPHERE_SPP, SPHERE_SIZE, variant)
-        one = sphere_channels(cam, rho, 2, seeds, SPHERE_SPP, SPHERE_SIZE, variant)
-        checks.append(check_sphere(cam, rho, every, one))
+    for name in limits:  # each checked (:data:`LIMITS_SCENE_FREE`), in the table's order
+        method_of(name, LIMITS_SCENE_FREE, "limits")
+    checks += [limit(first, seeds, variant, say) for name, limit in LIMITS_SCENE_FREE.items() if name in limits]
     info = {key: value for key, value in first.info.items() if key != "lights"}
     info["lights"] = first.info.get("lights", {})
     info["spp_per_replicate"] = int(first.spp)

@@ -29,10 +29,10 @@ from ...errors import SkinrenderError
 from ...spectra import GRID_DEFAULT, planck
 from ...execution import check_workers
 
-__all__ = ["machine", "bench_analytic", "bench_search", "bench_sweep", "bench_render"]
+__all__ = ["at_least_one", "machine", "bench_analytic", "bench_search", "bench_sweep", "bench_render"]
 
 
-def _at_least_one(value, flag: str) -> int:
+def at_least_one(value, flag: str) -> int:
     """An integer ≥ 1, or a one-line :class:`SkinrenderError` naming ``flag``."""
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
         raise SkinrenderError(f"{flag} must be an integer ≥ 1, got {value!r}", flag=flag)
@@ -81,7 +81,7 @@ def bench_analytic(camera_spec: str = "Nikon 5100 (NPL)", repeat: int = 3) -> di
     from colour.characterisation import RGB_CameraSensitivities, training_data_sds_to_RGB
     from colour.characterisation.aces_it import white_balance_multipliers
 
-    repeat = _at_least_one(repeat, "--repeat")
+    repeat = at_least_one(repeat, "--repeat")
     grid = GRID_DEFAULT
     cam = camera(camera_spec)
     munsell = reflectances("munsell")
@@ -167,7 +167,7 @@ def bench_search(
     """
 
     begun = time.perf_counter()
-    sample = _at_least_one(sample, "--sample")
+    sample = at_least_one(sample, "--sample")
     if workers is not None:
         workers = check_workers(workers)
 

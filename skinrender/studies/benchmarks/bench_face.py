@@ -51,7 +51,7 @@ from ...errors import SkinrenderError
 from ...model.camera import camera
 from ...model.chromaticity import ncc
 from ...rendering.face.effects import LEVELS_EACH, physics_level
-from .bench import _at_least_one, machine
+from .bench import at_least_one, machine
 
 __all__ = ["LEVELS_BENCH", "SPPS_BENCH", "SIZE_BENCH", "PRESET_THRESHOLDS", "fit_error", "spp_for", "presets_of",
            "bench_face"]
@@ -208,13 +208,13 @@ def bench_face(
 
     say = progress or (lambda line: None)
     start = time.perf_counter()
-    spps = [_at_least_one(s, "--spp-list") for s in spps]
+    spps = [at_least_one(s, "--spp-list") for s in spps]
     if not spps:
         raise SkinrenderError("--spp-list: name at least one spp", flag="--spp-list")
-    size = _at_least_one(size, "--size")
+    size = at_least_one(size, "--size")
     if len(set(spps)) < len(spps):
         raise SkinrenderError(f"--spp-list: each spp once, got {list(spps)}", flag="--spp-list")
-    reference_spp = _at_least_one(reference_spp or 4 * max(spps), "--reference-spp")
+    reference_spp = at_least_one(reference_spp or 4 * max(spps), "--reference-spp")
     if reference_spp <= max(spps):
         raise SkinrenderError(f"--reference-spp must be more than the largest of --spp-list ({max(spps)}), got "
                               f"{reference_spp}", flag="--reference-spp")

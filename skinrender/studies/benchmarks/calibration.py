@@ -92,11 +92,13 @@ def _face_run(*arguments, **options) -> dict:
 
 
 _face_run.seed_step = 12  # each validation renders its seed and the next 11 (face_calibration.SEED_STEP)
+_chart_run.levels = False  # it renders direct light only: it takes no level of physics
 
 CALIBRATION_PATHS: dict[str, Callable[..., dict]] = {"chart": _chart_run, "face": _face_run}
 """The validate path a calibration runs, by kind of scene (``chart``, ``face``): ``run(scene, camera, prevailing,
 calibration, spp, seed, imaging, mc_variance, tolerance, level)`` → ``{checks: {name: Verdict}, bound, seconds,
-spp}``; a run's ``seed_step`` (2 unless it says) is how far apart two independent runs' seeds are."""
+spp}``; a run's ``seed_step`` (2 unless it says) is how far apart two independent runs' seeds are, and its
+``levels`` (true unless it says) whether it takes a level of physics."""
 
 
 def calibration_path(kind: str, level: str | None = None) -> Callable[..., dict]:
@@ -105,7 +107,7 @@ def calibration_path(kind: str, level: str | None = None) -> Callable[..., dict]
     if kind not in CALIBRATION_PATHS:
         raise SkinrenderError(f"--scene: no calibration of a {kind} scene's checks is registered; known: "
                               f"{', '.join(CALIBRATION_PATHS)}", flag="--scene")
-    if kind == "chart" and level is not None:
+    if level is not None and not getattr(CALIBRATION_PATHS[kind], "levels", True):
         raise SkinrenderError(f"--level {level}: levels of physics go with a face scene; a chart has none (its "
                               "renders are direct lighting only)", flag="--level")
     return CALIBRATION_PATHS[kind]

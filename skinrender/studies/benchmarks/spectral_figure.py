@@ -20,14 +20,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..figures import _pyplot, _save
+from ..figures import pyplot_agg, save_figure
 
 __all__ = ["figure_spectral"]
 
 
 def figure_spectral(result: dict, path: str | Path) -> Path:
     """The bench's three panels (module docstring) from its JSON document ``result``; a PNG at ``path``."""
-    plt = _pyplot()
+    plt = pyplot_agg()
     figure, (time_axis, error_axis, basis_axis) = plt.subplots(1, 3, figsize=(15, 4.4))
     rows = result["rows"]
     counts = [row["cameras"] for row in rows]
@@ -60,4 +60,4 @@ def figure_spectral(result: dict, path: str | Path) -> Path:
     basis_axis.set(xlabel="band step, nm", ylabel="largest relative Eq. 4 error (Macbeth)",
                    title="basis error of curves off the band grid")
     basis_axis.legend(fontsize=6)
-    return _save(figure, path)
+    return save_figure(figure, path)

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..figures import _LABEL_COLOURS, _pyplot, _save
+from ..figures import LABEL_COLOURS, pyplot_agg, save_figure
 
 __all__ = ["figure_effects"]
 
@@ -28,12 +28,12 @@ def figure_effects(rows: list[dict], title: str, path: str | Path) -> Path:
     ``rows``: ``{"tone", "level", "eq4_shift", "eq4_shift_bound", "budget", "tpr_change", "fpr_change",
     "seconds"}`` (``None`` left out).
     """
-    plt = _pyplot()
+    plt = pyplot_agg()
     tones = list(dict.fromkeys(row["tone"] for row in rows))
     levels = list(dict.fromkeys(row["level"] for row in rows))
     width = 0.8 / max(len(tones), 1)
     figure, axes = plt.subplots(1, 4, figsize=(16, 4.2))
-    colours = ["#e8b88a", "#b07848", "#5a3820", *_LABEL_COLOURS]
+    colours = ["#e8b88a", "#b07848", "#5a3820", *LABEL_COLOURS]
     value = lambda row, key: np.nan if row.get(key) is None else row[key]  # noqa: E731
     for t, tone in enumerate(tones):
         mine = {row["level"]: row for row in rows if row["tone"] == tone}
@@ -57,4 +57,4 @@ def figure_effects(rows: list[dict], title: str, path: str | Path) -> Path:
     axes[0].set_yscale("symlog", linthresh=1e-3)
     axes[0].legend(fontsize=8)
     figure.suptitle(title, fontsize=11)
-    return _save(figure, path)
+    return save_figure(figure, path)

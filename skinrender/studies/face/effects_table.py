@@ -23,15 +23,15 @@ Units: NCC fractions; rates fractions; seconds s; temperatures K.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ...errors import SkinrenderError
 from ...evaluation.budget import BUDGET_FRACTION
-from ...evaluation.detection_verdict import DETECTION_TOLERANCE, findings_text
-from ...evaluation.verdict import Combined
+from ...evaluation.detection_verdict import DETECTION_TOLERANCE
 from ...rendering.face.shift import SKIN_SET_DEFAULT
 from ...rendering.face.effects import LEVELS_EACH, PHYSICS_REGISTRY
+from .detection_study import DetectionStudy
 from .ladder import REPLICATES_LADDER, ladder
 
 __all__ = ["SKIN_TONES", "ROW_KEYS", "EffectsTable", "effects_table"]
@@ -50,7 +50,7 @@ ROW_KEYS = ("skin_set", "detection", "seconds", "spp", "eq4_shift", "eq4_shift_b
 
 
 @dataclass(frozen=True)
-class EffectsTable(Combined):
+class EffectsTable(DetectionStudy):
     """
     The table: ``rows`` (one per skin tone and level: ``tone``, ``skin``, ``level``, the :data:`ROW_KEYS` and
     ``undefined``), ``skins`` (per tone its ``skin``, Eq. 4's NCC and the detection ``budget``), the settings,
@@ -65,17 +65,12 @@ class EffectsTable(Combined):
     levels: tuple
     skins: list
     rows: list
-    verdicts: list = field(default_factory=list, repr=False, compare=False)
-    skin_set: str = SKIN_SET_DEFAULT
-    detection_tolerance: float = DETECTION_TOLERANCE
 
     VERDICT_NAME = "effects table"
 
-    @property
-    def finding(self) -> str:
-        """Where Eq. 4 mispredicts detection, per skin and level, in words."""
-        return findings_text([(f"{row['tone']} {row['level']}", row["detection"]) for row in self.rows],
-                             self.detection_tolerance)
+    def detection_rows(self) -> list[tuple[str, dict]]:
+        """Each skin's and level's detection document, named by both (the table's :attr:`finding`)."""
+        return [(f"{row['tone']} {row['level']}", row["detection"]) for row in self.rows]
 
     def document(self) -> dict:
         """The JSON document."""
@@ -129,5 +124,5 @@ def effects_table(camera_, prevailing, calibration, skins: Mapping[str, str] | N
                          "undefined": row["undefined"]})
         verdicts.extend(replace(verdict, name=f"{tone} skin, {verdict.name}") for verdict in result.verdicts)
     return EffectsTable(result.camera, result.prevailing, result.calibration, result.size, int(spp),
-                        tuple(level.name for level in levels), described, rows, verdicts, result.skin_set,
-                        result.detection_tolerance)
+                        tuple(level.name for level in levels), described, rows, verdicts=verdicts,
+                        skin_set=result.skin_set, detection_tolerance=result.detection_tolerance)

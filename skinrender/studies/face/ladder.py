@@ -47,7 +47,6 @@ import numpy as np
 from ...errors import SkinrenderError
 from ...evaluation.budget import BUDGET_FRACTION
 from ...evaluation.detection import SCORED_MIN_OUTPUT
-from ...evaluation.verdict import Combined
 from ...hints import NDArrayFloat
 from ...model.camera import camera
 from ...model.chromaticity import ncc
@@ -56,7 +55,7 @@ from ...rendering.face.effects import LEVELS_LADDER, PHYSICS_REGISTRY, Level
 from ...rendering.face.labels import LABEL_SKIN
 from ...rendering.face.limits import REPLICATES
 from ...rendering.face.scene import load_face_scene, skin_reflectance_of
-from ...evaluation.detection_verdict import DETECTION_TOLERANCE, check_tolerance, findings_text
+from ...evaluation.detection_verdict import DETECTION_TOLERANCE, check_tolerance
 from ...rendering.face.detection import face_detection
 from ...rendering.face.shift import SKIN_SET_DEFAULT, face_budget, skin_set_name
 from ...rendering.settings import seed_at
@@ -66,6 +65,7 @@ from ...rendering.face.validation import mean_rendering, render_replicates_reque
 from ...rendering.validation import analytic_reference
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 from ...workload import duration_text
+from .detection_study import DetectionStudy
 
 __all__ = ["LEVELS_DEFAULT", "REPLICATES_LADDER", "SCORED_MIN_OUTPUT", "Ladder", "ladder", "ladders",
            "score_rendering", "score_frame"]
@@ -79,7 +79,7 @@ REPLICATES_LADDER = REPLICATES
 
 
 @dataclass(frozen=True)
-class Ladder(Combined):
+class Ladder(DetectionStudy):
     """
     The ladder's result.
 
@@ -128,16 +128,12 @@ class Ladder(Combined):
     locus_polygon: NDArrayFloat | None = field(default=None, repr=False, compare=False)
     label_names: dict = field(default_factory=dict)
     budget: dict = field(default_factory=dict)
-    verdicts: list = field(default_factory=list, repr=False, compare=False)
-    skin_set: str = SKIN_SET_DEFAULT
-    detection_tolerance: float = DETECTION_TOLERANCE
 
     VERDICT_NAME = "ladder"
 
-    @property
-    def finding(self) -> str:
-        """The ladder's finding in words: where Eq. 4 mispredicts detection (:func:`findings_text`)."""
-        return findings_text([(row["name"], row["detection"]) for row in self.levels], self.detection_tolerance)
+    def detection_rows(self) -> list[tuple[str, dict]]:
+        """Each level's name and detection document (the ladder's :attr:`finding`)."""
+        return [(row["name"], row["detection"]) for row in self.levels]
 
     def document(self) -> dict:
         """The JSON document (``levels``, the budget, the verdict and the settings)."""
@@ -416,8 +412,8 @@ def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: S
         _changes(mine)
         shape = (mean.scene.camera.width, mean.scene.camera.height)
         out.append(Ladder(cam.name, face.name, skin, p, c, shape, analytic.tolist(), float(locus.area), mine, drawn,
-                          np.asarray(locus.polygon), dict(mean.label_names), budget.document(), checked, set_name,
-                          detection_tolerance))
+                          np.asarray(locus.polygon), dict(mean.label_names), budget.document(), verdicts=checked,
+                          skin_set=set_name, detection_tolerance=detection_tolerance))
     return out
 
 

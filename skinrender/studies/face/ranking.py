@@ -56,7 +56,7 @@ from ...rendering.face.validation import render_replicates, replicated_of
 from ...rendering.settings import seed_at
 from ...rendering.variants import choose_variant
 from ...spectra import GRID_DEFAULT
-from .workers import run_renders
+from .workers import RenderRun, run_renders
 
 __all__ = ["LEVELS_RANK", "TOP_OVERLAP", "HALVES_RANK", "Ranking", "rank", "search_candidates", "candidate_renders",
            "triplet_camera", "rank_tasks"]
@@ -243,25 +243,19 @@ def _level_summary(level: str, names: list[str], eq4: np.ndarray, rendered: np.n
 
 
 @dataclass(frozen=True)
-class Ranking:
+class Ranking(RenderRun):
     """
     The ranking: ``levels`` (per level ``level``, ``candidates`` ``[{camera, score_eq4, score_rendered, score_bound,
     rank_eq4, rank_rendered}]``, ``kendall_tau``, ``kendall_tau_interval``, ``top_k``, ``top_k_overlap``,
-    ``same_best``, ``same_best_share``, ``best_eq4``, ``best_rendered``, ``undefined``), the settings and the time.
+    ``same_best``, ``same_best_share``, ``best_eq4``, ``best_rendered``, ``undefined``), the candidates, lights and
+    skins, and how its renders ran (:class:`~skinrender.studies.face.workers.RenderRun`'s keyword fields).
     """
 
     cameras: list
     lights: list
     skins: list
     skin_set: str
-    size: int
-    spp: int
-    seed: int
-    variant: str
-    workers: int
-    elapsed_s: float
     levels: list = field(default_factory=list)
-    dask: str | None = None
     candidates_from: dict | None = None
 
     def document(self) -> dict:
@@ -353,6 +347,7 @@ def rank(cameras, lights, skins, levels=LEVELS_RANK, size: int = 64, spp: int = 
         summaries.append(_level_summary(level.name, names, np.nanmean(eq4, axis=0), np.nanmean(rendered, axis=0),
                                         np.nanmean(halves_, axis=0).T, mine[0]["scores"][0]["factor"], undefined))
     spp_used = done[0]["scores"][0]["spp"]
-    return Ranking(names, [list(pair) for pair in pairs], skins, skin_set_name(skin_set), int(size), spp_used,
-                   int(seed), settings.variant, 1 if dask is not None else int(workers), time.perf_counter() - start,
-                   summaries, dask_name(dask), candidates_from)
+    return Ranking(names, [list(pair) for pair in pairs], skins, skin_set_name(skin_set), summaries, candidates_from,
+                   size=int(size), spp=spp_used, seed=int(seed), variant=settings.variant,
+                   workers=1 if dask is not None else int(workers), elapsed_s=time.perf_counter() - start,
+                   dask=dask_name(dask))

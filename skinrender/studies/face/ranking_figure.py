@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..figures import _pyplot, _save
+from ..figures import pyplot_agg, save_figure
 
 __all__ = ["figure_rank"]
 
@@ -25,7 +25,7 @@ def figure_rank(levels: list[dict], title: str, path: str | Path) -> Path:
     ``candidates`` with ``rank_eq4`` and ``rank_rendered``, ``kendall_tau``, ``kendall_tau_interval``,
     ``same_best``).
     """
-    plt = _pyplot()
+    plt = pyplot_agg()
     count = len(levels)
     columns = min(count, 5)
     rows = -(-count // columns)
@@ -50,4 +50,4 @@ def figure_rank(levels: list[dict], title: str, path: str | Path) -> Path:
     for ax in list(axes.flat)[count:]:
         ax.axis("off")
     figure.suptitle(title, fontsize=10)
-    return _save(figure, path)
+    return save_figure(figure, path)

@@ -65,7 +65,7 @@ from ...rendering.validation import analytic_reference
 from ...rendering.variants import choose_variant
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 from ...workload import duration_text
-from .workers import run_renders
+from .workers import RenderRun, run_renders
 from .ladder import score_rendering
 
 __all__ = ["REPLICATES_SWEEP", "RENDERS_MAX", "SWEEP_SAMPLES_MAX", "SECONDS_PER_RENDER", "SAMPLES_PER_S", "CSV_COLUMNS",
@@ -236,9 +236,11 @@ def estimate_seconds(renders: int, pixels: int, spp: int, cores: int = 2, levels
 
 
 @dataclass(frozen=True)
-class FaceSweep:
+class FaceSweep(RenderRun):
     """
-    The sweep's result.
+    The sweep's result: a row per combination of camera, light pair, skin and level, and how its renders ran
+    (:class:`~skinrender.studies.face.workers.RenderRun`'s keyword fields: size, spp, seed, variant, workers,
+    ``elapsed_s``, ``dask``).
 
     Attributes
     ----------
@@ -253,14 +255,7 @@ class FaceSweep:
     """
 
     scene: object
-    size: int
-    spp: int
-    seed: int
-    variant: str
-    workers: int
-    elapsed_s: float
     combinations: list = field(default_factory=list)
-    dask: str | None = None
     spectral: dict | None = None
 
     def document(self) -> dict:
@@ -435,6 +430,6 @@ def face_sweep(
     else:
         rows = run_renders(partial(_render_task, settings=settings), tasks, settings.variant, int(workers), dask,
                            progress, "face sweep")
-    return FaceSweep(face.name, int(size), int(spp), int(seed), settings.variant,
-                     1 if dask is not None else int(workers), time.perf_counter() - start, rows, dask_name(dask),
-                     about)
+    return FaceSweep(face.name, rows, about, size=int(size), spp=int(spp), seed=int(seed), variant=settings.variant,
+                     workers=1 if dask is not None else int(workers), elapsed_s=time.perf_counter() - start,
+                     dask=dask_name(dask))

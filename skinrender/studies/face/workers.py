@@ -5,11 +5,13 @@ Face renders on every core or a Dask cluster
 How the face studies (:mod:`~skinrender.studies.face.sweep`,
 :mod:`~skinrender.studies.face.locus`) run a list of tasks, each one render,
 in this process, in a pool of worker processes, or on a Dask cluster: on
-:func:`skinrender.execution.map`, as the Stage 3 search spreads its triplets,
+:func:`skinrender.execution.map_tasks`, as the Stage 3 search spreads its triplets,
 with workers set up for Mitsuba and the same numbers every way.
 
 -   :func:`run_renders`: the results of ``function(task)`` in task order.
 -   :data:`RENDER_THREADS`, :func:`set_threads`: one drjit thread per render.
+-   :class:`RenderRun`: how a study's renders ran (size, spp, seed, variant, workers, time, Dask), the fields the
+    sweep's and the ranking's results share.
 
 Determinism: every render uses the Mitsuba variant chosen once by the caller
 and :data:`RENDER_THREADS` drjit thread (the LLVM backend's sums over a
@@ -32,17 +34,50 @@ from __future__ import annotations
 import os
 import sys
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from functools import partial
 
 from ... import execution
 from ...execution import dask_name
 from ...rendering.variants import choose_variant, libllvm_path, mitsuba
 
-__all__ = ["RENDER_THREADS", "run_renders", "set_threads", "dask_name"]
+__all__ = ["RENDER_THREADS", "RenderRun", "run_renders", "set_threads", "dask_name"]
 
 RENDER_THREADS = 1
 """drjit threads per render, in every worker and in this process (restored after a one-worker run): the same
 split of the work everywhere gives the same numbers."""
+
+
+@dataclass(frozen=True, kw_only=True)
+class RenderRun:
+    """
+    How a face study's renders ran; its fields are keywords, after the study's own.
+
+    Attributes
+    ----------
+    size
+        Image side, pixels.
+    spp
+        Samples per pixel of each render (as the study reports it).
+    seed
+        The first seed.
+    variant
+        The Mitsuba variant every render used.
+    workers
+        Worker processes (1 on a Dask cluster).
+    elapsed_s
+        Wall time of the renders, s.
+    dask
+        The Dask scheduler's address, or ``None``.
+    """
+
+    size: int
+    spp: int
+    seed: int
+    variant: str
+    workers: int
+    elapsed_s: float
+    dask: str | None = None
 
 
 def set_threads(count: int = RENDER_THREADS) -> int:
@@ -82,7 +117,7 @@ def _threaded(function: Callable, task):
 def run_renders(function: Callable, tasks: Sequence, variant: str, workers: int = 1, dask=None, progress=None,
                 label: str = "renders") -> list:
     """
-    ``function(task)`` for every task, in task order (:func:`skinrender.execution.map`).
+    ``function(task)`` for every task, in task order (:func:`skinrender.execution.map_tasks`).
 
     Parameters
     ----------
@@ -110,7 +145,7 @@ def run_renders(function: Callable, tasks: Sequence, variant: str, workers: int 
     """
     before = set_threads(RENDER_THREADS) if dask is None and workers == 1 else None
     try:
-        return execution.map(partial(_threaded, function), tasks, workers=workers, dask=dask,
+        return execution.map_tasks(partial(_threaded, function), tasks, workers=workers, dask=dask,
                              initializer=_init_worker, initargs=(variant,), start="spawn", progress=progress,
                              label=label, unit="render")
     finally:

@@ -32,7 +32,7 @@ from ...errors import SkinrenderError
 from ...files import write_output
 from ...model.camera import Camera, camera
 from ...model.chromaticity import ncc
-from ...model.response import response_raw, white_coefficient
+from ...model.response import response_raw, uses_whites, white_coefficient
 from ...rendering.balance import render
 from ...rendering.scene import load_chart_scene
 from ...rendering.settings import RenderSettings
@@ -220,7 +220,7 @@ def table1(
             else:
                 model = analytic_reference(cam, reflectance, r.prevailing, r.calibration, normalization, False, grid)
             difference_ncc = rendered - ncc(model)
-            if normalization in (None, "white"):
+            if normalization is None or uses_whites(normalization):
                 full = analytic_reference(cam, chart.reflectances(grid), r.prevailing, r.calibration, "white", False,
                                           grid)
                 se = _ncc_standard_error(r.patches.mean[keep], noise_of(r, full)[keep])

@@ -125,7 +125,7 @@ def compute_volumes(
         if remaining[key] == 0:
             finished[key] = time.perf_counter() - start
 
-    execution.map(_chunk, [(b, index[part]) for b, part in jobs], workers=workers, dask=dask, shared=items,
+    execution.map_tasks(_chunk, [(b, index[part]) for b, part in jobs], workers=workers, dask=dask, shared=items,
                   progress=progress, label=label, unit="triplet", sizes=[len(part) for _, part in jobs],
                   on_start=on_start, on_result=store)
     return out, finished

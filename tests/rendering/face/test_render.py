@@ -185,21 +185,21 @@ def test_loaded_documents_are_reused_and_keyed_by_the_curves(tmp_path):
     """A face's Mitsuba document is loaded once per scene, camera curves and settings; a CSV camera rewritten under
     the same path is another camera, so its render sees the new curves (a hand-made cache keyed by the path alone
     would render the old ones)."""
-    from skinrender.rendering.face.render import _load
+    from skinrender.rendering.face.render import load_document
 
     wavelengths = GRID_DEFAULT.wavelengths
     curves = camera("gbell:9@450,540,610").sensitivities(GRID_DEFAULT)
     path = tmp_path / "cam.csv"
     np.savetxt(path, np.column_stack([wavelengths, curves.T]), delimiter=",", header="nm,R,G,B", comments="")
-    before = _load.cache_info()
+    before = load_document.cache_info()
     first = render_face(str(path), "face", 2856, 2856, spp=1, size=8, seed=1)
     again = render_face(str(path), "face", 2856, 2856, spp=1, size=8, seed=1)
-    middle = _load.cache_info()
+    middle = load_document.cache_info()
     assert middle.hits - before.hits >= middle.misses - before.misses > 0  # the second render reused the first's
     assert np.array_equal(first.image, again.image)
     np.savetxt(path, np.column_stack([wavelengths, curves[::-1].T]), delimiter=",", header="nm,R,G,B", comments="")
     swapped = render_face(str(path), "face", 2856, 2856, spp=1, size=8, seed=1)
-    assert _load.cache_info().misses > middle.misses
+    assert load_document.cache_info().misses > middle.misses
     assert not np.allclose(swapped.radiance, first.radiance)
 
 

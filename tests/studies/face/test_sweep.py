@@ -109,7 +109,7 @@ class TestFaceSweep:
         row = {"camera": "c", "prevailing_K": 2856.0, "calibration_K": 5900.0, "skin": "s", "level": "direct",
                "seconds": 1.0, "spp": 4, "skin_ncc_mean": None, "skin_ncc_std": None, "tpr": None, "fpr": 0.5,
                "skin_pixels": 0, "prop_pixels": 3, "skin_ncc_analytic": [0.5, 0.3, 0.2]}
-        path = FaceSweep("face", 8, 4, 0, "v", 1, 1.0, [row]).to_csv(tmp_path / "one.csv")
+        path = FaceSweep("face", [row], size=8, spp=4, seed=0, variant="v", workers=1, elapsed_s=1.0).to_csv(tmp_path / "one.csv")
         with open(path, encoding="utf-8", newline="") as handle:
             cells = dict(zip(CSV_COLUMNS, list(csv.reader(handle))[1]))
         assert cells["skin_ncc_mean_r"] == "" and cells["tpr"] == "" and cells["fpr"] == "0.5"

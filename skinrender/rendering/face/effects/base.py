@@ -61,7 +61,7 @@ from __future__ import annotations
 from ....hints import NDArrayFloat
 from ....spectra import WavelengthGrid
 from ...physics import Effect, Frame, Limits, Measured, Replicates, Setup
-from ...renderer import _spectrum
+from ...renderer import mitsuba_spectrum
 
 __all__ = ["Effect", "Limits", "Setup", "Frame", "Replicates", "Measured", "twosided", "spectrum"]
 
@@ -79,4 +79,4 @@ def twosided(bsdf: dict) -> dict:
 
 def spectrum(grid: WavelengthGrid, values: NDArrayFloat) -> dict:
     """A Mitsuba spectrum of ``values`` on the grid's wavelengths (nm), as the chart renderer writes them."""
-    return _spectrum(grid.wavelengths, values)
+    return mitsuba_spectrum(grid.wavelengths, values)

@@ -31,9 +31,9 @@ INTERREFLECTION = Effect(
     "interreflection",
     "every bounce (path tracing, Russian roulette: unbiased): light from the props and from the face onto itself",
     integrator=_integrator,
+    order=10,
     limits=Limits(holds=False, why="light reaches the skin from other surfaces (props, the face itself) and is "
                                    "no longer the light's spectrum: no analytic limit at this level"),
-    order=10,
 )
 
 EFFECT = INTERREFLECTION

