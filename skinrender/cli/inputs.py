@@ -263,8 +263,10 @@ def chart_flags(args) -> dict:
     :func:`chart_request_from` (absent ones their defaults)."""
     names = ("grid", "extrapolation", "normalization", "knee", "physics", "imager", "illuminance", "exposure",
              "sampler")
+    moved = translate_of(args)  # --translate-mm, checked: (x, y, z) mm or None
     return {"camera": args.camera, "prevailing": args.prevailing, "calibration": args.calibration,
-            **{name: getattr(args, name) for name in names if hasattr(args, name)}}
+            **{name: getattr(args, name) for name in names if hasattr(args, name)},
+            **({} if moved is None else {"translate_mm": moved})}
 
 
 def chart_request_of(args: argparse.Namespace, scene: ChartScene, settings: RenderSettings, **changes):

@@ -71,10 +71,11 @@ def check_face_range(scene: FaceScene, physics, skin: str, grid) -> float:
         Naming the scene.
     """
     level = physics_level(physics)
-    skin_walks = "subsurface-volume" in level
+    from .effects.subsurface import SUBSURFACE_VOLUME, face_media
+
+    skin_walks = SUBSURFACE_VOLUME in level.effects  # the level walks under the skin (skinvolpath)
     if skin_walks:
         from ..subsurface import mean_free_path
-        from .effects.subsurface import face_media
 
         smallest, what = mean_free_path(face_media(skin, grid).layers), f"the mean free path of its skin {skin!r}"
     else:
