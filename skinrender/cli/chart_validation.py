@@ -206,7 +206,7 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
         verdict = result.verdict
     else:
         document, lines = _chart_report(request, result, settings, requested, tolerance)
-        document.update(translate_key(args))
+        document.update(translate_key(getattr(args, "translate_mm", None)))
         verdict = result.verdict
         if args.gamut:
             verdict = _gamut(request, settings, tolerance, document, lines, verdict)

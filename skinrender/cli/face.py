@@ -91,12 +91,12 @@ def add_parsers(commands) -> None:
                    "the scene's); only the noise level sees it")
     p.add_argument("--variant",
                    help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral)")
+    add_translate(p)
     p.add_argument("--plot", metavar="PNG",
                    help="write the ladder's figure to this PNG: per level the render, the label mask, the "
                    "detected mask and the skin pixels' NCC over the analytic skin locus with the budget; with "
                    "--effects, the table's bars")
     add_detection_options(p)
-    add_translate(p)
     add_max_minutes(p, "the levels × --size² × --spp (with --effects, × the skins)")
     from .bands_flags import add_cameras_arguments
 
@@ -113,7 +113,7 @@ def face_flags(args) -> dict:
     """The flags of a face render (``render``, ``validate``, ``detect``) by the keywords of
     :func:`~skinrender.cli.face_inputs.face_request_from` (absent ones their defaults)."""
     names = ("normalization", "grid", "physics", "size", "skin", "imager", "illuminance", "exposure", "sampler")
-    moved = translate_of(args)  # --translate-mm, checked: (x, y, z) mm or None
+    moved = translate_of(getattr(args, "translate_mm", None))  # checked: (x, y, z) mm or None
     return {"camera": args.camera, "prevailing": args.prevailing, "calibration": args.calibration,
             **{name: getattr(args, name) for name in names if hasattr(args, name)},
             **({} if moved is None else {"translate_mm": moved})}
@@ -180,7 +180,7 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     from ..studies.face.effects_table import SKIN_TONES
 
     for skin in skins or (list(SKIN_TONES.values()) if args.effects else [None]):
-        moved = translated_face(args, scene, levels, skin)  # every level and skin checked: float32's range
+        moved = translated_face(args.translate_mm, scene, levels, skin)  # each level and skin: float32's range
     from ..studies.face.sweep import estimate_seconds
     from ..studies.face.ladder import REPLICATES_LADDER
     from ..workload import check_work
@@ -227,7 +227,7 @@ def command_ladder(args: argparse.Namespace) -> None:
         result = ladder(**inputs, skin=skins[0] if skins else None, progress=say)
         document = result.document()
         text = ladder_text(result, document)
-    document.update(translate_key(args))
+    document.update(translate_key(getattr(args, "translate_mm", None)))
     if plot is not None:
         write_output(plot, result.figure, "--plot")
         document["plot"] = str(plot)
@@ -302,7 +302,7 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
                 "knee": bool(getattr(args, "knee", False)),
                 "labels": result.label_names, "physics": result.physics, "skin": result.skin,
                 "size": [result.scene.camera.width, result.scene.camera.height], **result.info,
-                **translate_key(args)}
+                **translate_key(getattr(args, "translate_mm", None))}
     if figure is not None:
         document["figure"] = str(figure)
     labels = ", ".join(f"{k}={v}" for k, v in result.label_names.items())

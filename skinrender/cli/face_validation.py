@@ -127,7 +127,7 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
                                            [request.calibration])}
     result = flag("validate", FACE.validate, request, spp=settings.spp, limits=limits,
                   progress=lambda line: print(line, file=sys.stderr), **detection)
-    document = {**result.document(), **translate_key(args)}
+    document = {**result.document(), **translate_key(getattr(args, "translate_mm", None))}
     rows = [[c.name, c.outcome.replace("_", " ") + ("" if c.applies else " (diagnostic)"), _number(c.statistic),
              _number(c.tolerance), _number(c.bound), f"{c.alpha:g}", c.pixels] for c in result.checks]
     r, verdict = result.rendering, result.verdict

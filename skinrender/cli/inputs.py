@@ -151,7 +151,8 @@ class ChartInputs:
         from ..rendering.kinds import CHART
 
         keywords = {"normalization": self.normalization, "knee": self.knee, "grid": self.grid,
-                    "physics": self.physics, "translate_mm": translate_of(args), **sensor_flags(args),
+                    "physics": self.physics, "translate_mm": translate_of(getattr(args, "translate_mm", None)),
+                    **sensor_flags(args),
                     **settings_fields(args, settings), **changes}
         return flagged(REQUEST_FLAGS, CHART.request, self.scene, self.camera, self.prevailing, self.calibration,
                        **keywords)
@@ -263,7 +264,7 @@ def chart_flags(args) -> dict:
     :func:`chart_request_from` (absent ones their defaults)."""
     names = ("grid", "extrapolation", "normalization", "knee", "physics", "imager", "illuminance", "exposure",
              "sampler")
-    moved = translate_of(args)  # --translate-mm, checked: (x, y, z) mm or None
+    moved = translate_of(getattr(args, "translate_mm", None))  # checked: (x, y, z) mm or None
     return {"camera": args.camera, "prevailing": args.prevailing, "calibration": args.calibration,
             **{name: getattr(args, name) for name in names if hasattr(args, name)},
             **({} if moved is None else {"translate_mm": moved})}

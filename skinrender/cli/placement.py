@@ -28,30 +28,30 @@ def add_translate(parser: argparse.ArgumentParser) -> None:
                         "subsurface-volume) to test it where float32 is coarsest; refused beyond float32's useful range")
 
 
-def translate_of(args: argparse.Namespace) -> tuple[float, float, float] | None:
-    """``--translate-mm`` as ``(x, y, z)`` mm, or ``None`` when not given; a one-line error naming it otherwise."""
+def translate_of(value: str | None) -> tuple[float, float, float] | None:
+    """``--translate-mm``'s ``value`` (``"X,Y,Z"``) as ``(x, y, z)`` mm, or ``None`` when not given; a one-line
+    error naming the flag otherwise."""
     from ..rendering.placement import translation
 
-    value = getattr(args, "translate_mm", None)
     return None if value is None else translation(value, "--translate-mm")
 
 
-def translated_face(args: argparse.Namespace, scene, levels, skin: str | None):
+def translated_face(value: str | None, scene, levels, skin: str | None):
     """
-    The face ``scene`` moved by ``--translate-mm`` (unchanged without it), refused, naming it, where it lies
+    The face ``scene`` moved by ``--translate-mm``'s ``value`` (unchanged without it), refused, naming it, where it lies
     beyond float32's useful range at any of ``levels`` with ``skin`` (``None``: the scene's).
     """
     from ..rendering.face.reach import check_face_range
     from ..spectra import GRID_DEFAULT
 
-    translate = translate_of(args)
+    translate = translate_of(value)
     moved = scene if translate is None else scene.translated(translate)
     for level in levels:
         check_face_range(moved, level, moved.skin if skin is None else skin, GRID_DEFAULT)
     return moved
 
 
-def translate_key(args: argparse.Namespace) -> dict:
-    """``{"translate_mm": [x, y, z]}`` where ``--translate-mm`` was given, else ``{}``."""
-    translate = translate_of(args)
+def translate_key(value: str | None) -> dict:
+    """``{"translate_mm": [x, y, z]}`` where ``--translate-mm`` was given (its ``value``), else ``{}``."""
+    translate = translate_of(value)
     return {} if translate is None else {"translate_mm": list(translate)}

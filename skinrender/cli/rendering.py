@@ -144,7 +144,7 @@ def command_render_chart(args: argparse.Namespace, scene) -> None:
                 "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
                 "normalization": request.normalization, "knee": request.knee, **imaging_document(imaged),
-                **subsurface_keys(result), **translate_key(args)}
+                **subsurface_keys(result), **translate_key(getattr(args, "translate_mm", None))}
     if figure is not None:
         document["figure"] = str(figure)
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "

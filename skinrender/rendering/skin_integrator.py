@@ -216,13 +216,9 @@ def _integrator_class():
                 # the next direction: Fresnel splitting at smooth skin, else the BSDF's sample
                 smooth = skin & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Delta)
                 outside = si.wi.z > 0
-                split, chance, emitted = self._split(scene, si, sampler, smooth)
+                wo, b_weight, b_pdf, b_delta, chance, emitted = self._next_direction(scene, ctx, bsdf, si, sampler,
+                                                                                    smooth, active)
                 L[smooth] += weight * emitted
-                b_wo, b_weight, b_pdf, b_delta = self.boundary.sample(ctx, bsdf, si, sampler, active)
-                wo = si.to_world(b_wo)
-                wo[smooth] = split
-                b_weight[smooth] = 1.0
-                b_pdf[smooth] = 1.0
                 active &= b_pdf > 0
                 beta[active] *= b_weight
                 prev[active] = si
@@ -247,6 +243,18 @@ def _integrator_class():
                 first[enter] = out[4]
                 active &= ~enter | out[5]
             return L, mi.Bool(True), []
+
+        def _next_direction(self, scene, ctx, bsdf, si, sampler, smooth, active):
+            """The next direction at the skin's boundary (world), its weight, pdf and whether it is a delta:
+            Fresnel splitting where the boundary is smooth (weight and pdf 1), the boundary's sample elsewhere;
+            with the split's chance and the light met along the other branch (:meth:`_split`)."""
+            split, chance, emitted = self._split(scene, si, sampler, smooth)
+            b_wo, b_weight, b_pdf, b_delta = self.boundary.sample(ctx, bsdf, si, sampler, active)
+            wo = si.to_world(b_wo)
+            wo[smooth] = split
+            b_weight[smooth] = 1.0
+            b_pdf[smooth] = 1.0
+            return wo, b_weight, b_pdf, b_delta, chance, emitted
 
         def _split(self, scene, si, sampler, active):
             """At a smooth boundary: the branch taken (world direction), the other branch's, and the light met
@@ -394,13 +402,9 @@ def _integrator_class():
                     share = dr.select(q > 0, dr.mean(sampled) / dr.mean(sampled + dr.exp(log_r_start - top) * q), 1.0)
                 L[nee] += weight * value * em * share * dr.select(ds.delta, 1.0, power(ds.pdf, pdf_b))
                 smooth = boundary & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Delta)
-                split, chance, emitted = self._split(scene, hit, sampler, smooth)
+                wo, b_weight, b_pdf, b_delta, chance, emitted = self._next_direction(scene, ctx, bsdf, hit, sampler,
+                                                                                    smooth, boundary)
                 L[smooth] += weight * emitted
-                b_wo, b_weight, b_pdf, b_delta = self.boundary.sample(ctx, bsdf, hit, sampler, boundary)
-                wo = hit.to_world(b_wo)
-                wo[smooth] = split
-                b_weight[smooth] = 1.0
-                b_pdf[smooth] = 1.0
                 ok = boundary & (b_pdf > 0)
                 beta[ok] *= b_weight
                 leaves = ok & (dr.dot(wo, hit.n) > 0)
