@@ -15,7 +15,7 @@ docs/subsurface.md, each figure with the load average beside it:
 
 ``face`` runs ``skinrender ladder --levels direct,subsurface,interreflection+subsurface,subsurface-volume`` for the
 light, medium and dark skin of ``ladder --effects`` and prints, per tone, each level's eq4_shift (with its 95 %
-upper bound) and TPR, and the fast levels' differences from the volumetric reference (eq4_shift, TPR, the skin's
+upper bound) and TPR (of the replicates' mean image, and the detection verdict's with the noise separated), and the fast levels' differences from the volumetric reference (eq4_shift, TPR, the skin's
 mean NCC): the volumetric level path traces every bounce, so ``interreflection+subsurface`` is its like for like.
 """
 
@@ -194,8 +194,10 @@ def face(size: int = 32, spp: int = 48) -> None:
         line = [f"{tone} ({skin}, budget {document['budget']['budget']:.4f})"]
         for level in FACE_LEVELS:
             row = rows[level]
+            separated = (row.get("detection") or {}).get("tpr")
             line.append(f"{level}: eq4_shift {row['eq4_shift']:.4f} (≤ {row['eq4_shift_bound']:.4f}), "
-                        f"TPR {row['tpr']:.3f}, {row['seconds']:.1f} s")
+                        f"TPR {row['tpr']:.3f} (noise separated {'—' if separated is None else f'{separated:.3f}'}), "
+                        f"{row['seconds']:.1f} s")
         volume = rows["subsurface-volume"]
         for level in FACE_LEVELS[1:3]:
             fast = rows[level]
@@ -260,41 +262,65 @@ def sums(size: int = 32, spp: int = 128) -> None:
 
 def rough(spp: int = 64) -> None:
     """
-    The volumetric slab of the chart (two layers, at the origin, under a uniform sky, seen along the normal) with
-    its top boundary smooth (the chart's: its pixel is UR1) and rough (GGX α 0.35, the face's): each channel's mean
-    over adding-doubling's UR1, minus 1. A rough dielectric of one scattering off microfacets loses light at every
+    The volumetric slab of the chart (two layers, at the origin, under a uniform sky, seen along the normal,
+    ``skinvolpath``) with its top boundary smooth (the chart's: its pixel is UR1) and rough (GGX α 0.35, the
+    face's) as Mitsuba has it and with its lost light put back (``skinrender.rendering.rough_boundary``): each
+    channel's mean over adding-doubling's UR1, minus 1; then the white furnace: the same layers with no absorption,
+    0.6 mm thick, both faces the top's, inside the sky on every side (no floor), whose pixel is the sky's radiance
+    exactly when every boundary conserves energy, whatever its roughness. A rough dielectric of one scattering off
+    microfacets (Mitsuba's ``roughdielectric``) loses the light its microfacets would scatter again, at every
     crossing and internal reflection, and light in skin meets its boundary from inside many times.
     """
+    from dataclasses import replace
+
     from skinrender.datasets.skin_model import SkinParameters, skin_layers
     from skinrender.model.camera import camera
     from skinrender.rendering.face.document import channel_integral
     from skinrender.rendering.face.effects.subsurface import SUBSURFACE_ALPHA
     from skinrender.rendering.renderer import emitter_grid
-    from skinrender.rendering.subsurface import SkinMedia, slab_reflectance
+    from skinrender.rendering.skin_integrator import register
+    from skinrender.rendering.subsurface import SkinMedia, slab_reflectance, subsurface_variant
     from skinrender.rendering.subsurface_chart import slab_document
     from skinrender.rendering.variants import mitsuba
+
     from skinrender.spectra import GRID_DEFAULT, planck
 
-    mi, grid, cam = mitsuba("scalar_spectral"), GRID_DEFAULT, camera(CAMERA)
-    sky = planck(emitter_grid(grid), 2856.0)
+    mi, grid, cam = mitsuba(subsurface_variant()), GRID_DEFAULT, camera(CAMERA)
+    register(mi)
+    t = mi.ScalarTransform4f
+    lam = emitter_grid(grid)
+    sky = planck(lam, 2856.0)
     sky = sky / sky.max()
-    print(f"the chart's slab at the origin under a uniform sky, 16 × 16 px, {spp} spp ({_load()})")
+    print(f"the chart's slab at the origin under a uniform sky, 16 × 16 px, {spp} spp, skinvolpath ({_load()})")
     for tone, melanin in SKINS.items():
         layers = skin_layers(grid.wavelengths, SkinParameters(melanin=melanin))
-        media = SkinMedia(f"melanin {melanin}", None, None, layers, grid.wavelengths)
-        lam = emitter_grid(grid)
-        expected = channel_integral(cam, grid, lam, np.interp(lam, grid.wavelengths, slab_reflectance(layers)) * sky)
-        for alpha in (0.0, SUBSURFACE_ALPHA):
-            document = slab_document(mi, media, None, cam, grid, (0, 1, 2), 16, spp, "independent", sky)
-            if alpha > 0:
-                document["top"]["bsdf"] = {"type": "roughdielectric", "distribution": "ggx", "alpha": alpha,
-                                           "int_ior": float(layers[0].n), "ext_ior": 1.0}
-            start = time.perf_counter()
-            image = np.array(mi.render(mi.load_dict(document), seed=1), dtype=np.float64).reshape(-1, 3)
-            mean, se = image.mean(axis=0), image.std(axis=0, ddof=1) / np.sqrt(len(image))
-            print(f"{tone}, top boundary {'smooth' if alpha == 0 else f'GGX α {alpha}'}: mean/UR1 − 1 "
-                  f"{np.round(mean / expected - 1, 4).tolist()} (± {np.round(2 * se / expected, 4).tolist()} at 2 SE); "
-                  f"{time.perf_counter() - start:.0f} s")
+        for furnace in (False, True):
+            if furnace:
+                layers = tuple(replace(layer, mu_a_per_mm=np.zeros_like(layer.mu_a_per_mm)) for layer in layers)
+                expected = channel_integral(cam, grid, lam, sky)
+            else:
+                expected = channel_integral(cam, grid, lam, np.interp(lam, grid.wavelengths,
+                                                                      slab_reflectance(layers)) * sky)
+            media = SkinMedia(f"melanin {melanin}", None, None, layers, grid.wavelengths)
+            for alpha, compensated in ((0.0, False), (SUBSURFACE_ALPHA, False), (SUBSURFACE_ALPHA, True)):
+                document = slab_document(mi, media, None, cam, grid, (0, 1, 2), 16, spp, "independent", sky)
+                if alpha > 0:
+                    document["top"]["bsdf"] = {"type": "roughdielectric", "distribution": "ggx", "alpha": alpha,
+                                               "int_ior": float(layers[0].n), "ext_ior": 1.0}
+                    document["integrator"]["boundary_alpha"] = alpha if compensated else 0.0
+                if furnace:  # both faces alike (a smooth face's crossings carry no radiance factor η²), no floor
+                    del document["floor"]
+                    document["bottom"].update(bsdf=document["top"]["bsdf"], interior=document["top"]["interior"])
+                    document["bottom"]["to_world"] = (t().translate([0, 0, -0.6]) @ t().rotate([1, 0, 0], 180)
+                                                      @ t().scale([1000.0, 1000.0, 1.0]))
+                start = time.perf_counter()
+                image = np.array(mi.render(mi.load_dict(document), seed=1), dtype=np.float64).reshape(-1, 3)
+                mean, se = image.mean(axis=0), image.std(axis=0, ddof=1) / np.sqrt(len(image))
+                what = "white furnace (no absorption, 0.6 mm, no floor): mean/sky" if furnace else "mean/UR1"
+                top = "smooth" if alpha == 0 else f"GGX α {alpha}{', compensated' if compensated else ''}"
+                print(f"{tone}, top boundary {top}, {what} − 1 "
+                      f"{np.round(mean / expected - 1, 4).tolist()} (± {np.round(2 * se / expected, 4).tolist()} at "
+                      f"2 SE); {time.perf_counter() - start:.0f} s ({_load()})", flush=True)
 
 
 if __name__ == "__main__":

@@ -22,6 +22,7 @@ import sys
 
 from ..errors import SkinrenderError
 from .common import SPP_MAX, emit, flag, interruptible, settings_from, table
+from .placement import translate_key
 
 __all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "SIGMAS_DEPRECATED", "add_check_arguments", "add_verdict_arguments",
            "tolerance_of", "tolerance_from", "spp_of", "spp_auto_from", "command_validate", "command_validate_chart",
@@ -205,6 +206,7 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
         verdict = result.verdict
     else:
         document, lines = _chart_report(request, result, settings, requested, tolerance)
+        document.update(translate_key(getattr(args, "translate_mm", None)))
         verdict = result.verdict
         if args.gamut:
             verdict = _gamut(request, settings, tolerance, document, lines, verdict)

@@ -23,6 +23,7 @@ from .face_inputs import (SIZE_MAX, check_lights_seen, face_flags_from, face_pix
                           level_names, levels_of, noise_sensor_from, planckian_flag)
 from .inputs import check_request_work, figure_from
 from .ladder_text import ladder_text  # noqa: F401 - its old place
+from .placement import add_translate, translate_key, translate_of, translated_face
 
 __all__ = ["add_parsers", "add_face_arguments", "check_figure", "check_face_flags", "face_request_of", "is_face_scene", "level_names", "levels_of", "noise_sensor", "planckian_flag", "command_ladder", "command_render_face", "ladder_text", "command_ladders",
            "SIZE_MAX", "LADDER_SPP_DEFAULT", "LADDER_SIZE_DEFAULT"]
@@ -90,6 +91,7 @@ def add_parsers(commands) -> None:
                    "the scene's); only the noise level sees it")
     p.add_argument("--variant",
                    help="force a Mitsuba variant (llvm_ad_spectral, cuda_ad_spectral, scalar_spectral)")
+    add_translate(p)
     p.add_argument("--plot", metavar="PNG",
                    help="write the ladder's figure to this PNG: per level the render, the label mask, the "
                    "detected mask and the skin pixels' NCC over the analytic skin locus with the budget; with "
@@ -111,8 +113,10 @@ def face_flags(args) -> dict:
     """The flags of a face render (``render``, ``validate``, ``detect``) by the keywords of
     :func:`~skinrender.cli.face_inputs.face_request_from` (absent ones their defaults)."""
     names = ("normalization", "grid", "physics", "size", "skin", "imager", "illuminance", "exposure", "sampler")
+    moved = translate_of(getattr(args, "translate_mm", None))  # checked: (x, y, z) mm or None
     return {"camera": args.camera, "prevailing": args.prevailing, "calibration": args.calibration,
-            **{name: getattr(args, name) for name in names if hasattr(args, name)}}
+            **{name: getattr(args, name) for name in names if hasattr(args, name)},
+            **({} if moved is None else {"translate_mm": moved})}
 
 
 def check_face_flags(args: argparse.Namespace, spectral: bool = False) -> tuple:
@@ -174,6 +178,9 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
     variant_of(args.variant)
     imager, lux = noise_sensor_from(args.imager, args.illuminance, levels)
     from ..studies.face.effects_table import SKIN_TONES
+
+    for skin in skins or (list(SKIN_TONES.values()) if args.effects else [None]):
+        moved = translated_face(args.translate_mm, scene, levels, skin)  # each level and skin: float32's range
     from ..studies.face.sweep import estimate_seconds
     from ..studies.face.ladder import REPLICATES_LADDER
     from ..workload import check_work
@@ -191,7 +198,7 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
                fewer="lower --spp or --size, or name fewer --levels")
     return {"cameras": cams, "bands": bands, "prevailing": temperatures["prevailing"],
             "calibration": temperatures["calibration"],
-            "levels": levels, "spp": spp, "seed": seed, "size": size, "scene": scene, "variant": args.variant,
+            "levels": levels, "spp": spp, "seed": seed, "size": size, "scene": moved, "variant": args.variant,
             "imager": imager, "illuminance": lux, "skins": skins,
             "skin_set": [skin_set_from(args.skin_set, cam, [temperatures["calibration"]]) for cam in cams][-1],
             "detection_tolerance": detection_tolerance_from(args.detection_tolerance)}
@@ -220,6 +227,7 @@ def command_ladder(args: argparse.Namespace) -> None:
         result = ladder(**inputs, skin=skins[0] if skins else None, progress=say)
         document = result.document()
         text = ladder_text(result, document)
+    document.update(translate_key(getattr(args, "translate_mm", None)))
     if plot is not None:
         write_output(plot, result.figure, "--plot")
         document["plot"] = str(plot)
@@ -293,7 +301,8 @@ def command_render_face(args: argparse.Namespace, scene) -> None:
                 "calibration_K": result.calibration, "normalization": "white",
                 "knee": bool(getattr(args, "knee", False)),
                 "labels": result.label_names, "physics": result.physics, "skin": result.skin,
-                "size": [result.scene.camera.width, result.scene.camera.height], **result.info}
+                "size": [result.scene.camera.width, result.scene.camera.height], **result.info,
+                **translate_key(getattr(args, "translate_mm", None))}
     if figure is not None:
         document["figure"] = str(figure)
     labels = ", ".join(f"{k}={v}" for k, v in result.label_names.items())

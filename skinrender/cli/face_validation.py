@@ -106,6 +106,7 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
     from .face import face_flags
     from .face_inputs import SIZE_MAX, face_pixels, face_request_from
     from .inputs import check_request_work
+    from .placement import translate_key
 
     refuse_chart_verdict_flags(args.spp, getattr(args, "tolerance", None), getattr(args, "spectral", False))
     settings = settings_from(args.quality, args.spp, args.sampler, args.seed, args.variant, args.channels)
@@ -126,7 +127,7 @@ def command_validate_face(args: argparse.Namespace, scene) -> None:
                                            [request.calibration])}
     result = flag("validate", FACE.validate, request, spp=settings.spp, limits=limits,
                   progress=lambda line: print(line, file=sys.stderr), **detection)
-    document = result.document()
+    document = {**result.document(), **translate_key(getattr(args, "translate_mm", None))}
     rows = [[c.name, c.outcome.replace("_", " ") + ("" if c.applies else " (diagnostic)"), _number(c.statistic),
              _number(c.tolerance), _number(c.bound), f"{c.alpha:g}", c.pixels] for c in result.checks]
     r, verdict = result.rendering, result.verdict

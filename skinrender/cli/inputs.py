@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING
 
 from ..errors import SkinrenderError
 from .common import camera_from, check_output, flag, flagged, grid_from
+from .placement import translate_of
 
 if TYPE_CHECKING:
     from ..model.camera import Camera
@@ -58,7 +59,7 @@ REQUEST_FLAGS = {"scene": "SCENE", "camera": "--camera", "prevailing": "--prevai
                  "physics": "--physics", "spp": "--spp", "seed": "--seed", "sampler": "--sampler",
                  "variant": "--variant", "channels": "--channels", "imager": "--imager", "illuminance": "--illuminance",
                  "exposure": "--exposure", "skin": "--skin", "size": "--size", "normalization": "--normalization",
-                 "knee": "--knee", "grid": "--grid", "bands": "--bands"}
+                 "knee": "--knee", "grid": "--grid", "bands": "--bands", "translate_mm": "--translate-mm"}
 """The flag of each argument of a request (an error's ``role`` → the flag a refusal names)."""
 
 
@@ -150,7 +151,9 @@ class ChartInputs:
         from ..rendering.kinds import CHART
 
         keywords = {"normalization": self.normalization, "knee": self.knee, "grid": self.grid,
-                    "physics": self.physics, **sensor_flags(args), **settings_fields(args, settings), **changes}
+                    "physics": self.physics, "translate_mm": translate_of(getattr(args, "translate_mm", None)),
+                    **sensor_flags(args),
+                    **settings_fields(args, settings), **changes}
         return flagged(REQUEST_FLAGS, CHART.request, self.scene, self.camera, self.prevailing, self.calibration,
                        **keywords)
 
@@ -261,8 +264,10 @@ def chart_flags(args) -> dict:
     :func:`chart_request_from` (absent ones their defaults)."""
     names = ("grid", "extrapolation", "normalization", "knee", "physics", "imager", "illuminance", "exposure",
              "sampler")
+    moved = translate_of(getattr(args, "translate_mm", None))  # checked: (x, y, z) mm or None
     return {"camera": args.camera, "prevailing": args.prevailing, "calibration": args.calibration,
-            **{name: getattr(args, name) for name in names if hasattr(args, name)}}
+            **{name: getattr(args, name) for name in names if hasattr(args, name)},
+            **({} if moved is None else {"translate_mm": moved})}
 
 
 def chart_request_of(args: argparse.Namespace, scene: ChartScene, settings: RenderSettings, **changes):

@@ -20,6 +20,7 @@ from .inputs import (by_kind, chart_flags, chart_request_from, check_request_wor
                      imaging_notes, refuse_face_flags, scene_from)
 from .bands_flags import add_spectral_arguments, bands_from
 from .spectral_commands import command_render_spectral
+from .placement import add_translate, translate_key
 from .subsurface import subsurface_keys
 
 
@@ -50,6 +51,7 @@ def add_parsers(commands) -> None:
         from .face import add_face_arguments
 
         add_face_arguments(p)
+        add_translate(p)
         if name == "render":
             p.add_argument("-o", "--output", default="render.exr",
                            help="output EXR (float32, Eq. 4 output units, channels named by the camera); a PNG "
@@ -142,7 +144,7 @@ def command_render_chart(args: argparse.Namespace, scene) -> None:
                 "elapsed_s": result.seconds, "scene": result.scene.name, "camera": result.camera.name,
                 "prevailing_K": result.prevailing, "calibration_K": result.calibration,
                 "normalization": request.normalization, "knee": request.knee, **imaging_document(imaged),
-                **subsurface_keys(result)}
+                **subsurface_keys(result), **translate_key(getattr(args, "translate_mm", None))}
     if figure is not None:
         document["figure"] = str(figure)
     text = (f"{result.scene.name} through {result.camera.name}, {result.prevailing:g} K white-balanced to "

@@ -10,7 +10,9 @@ reflectance as a BSDF: :mod:`~skinrender.rendering.slab_chart`),
 ``subsurface-volume`` (the same layers as media, path traced, the volumetric
 reference: :mod:`~skinrender.rendering.subsurface_chart`) and the image sensor, ``noise``
 (added by an ``imager``, not named in ``--physics``: a chart records through a
-sensor with ``--imager``). ``direct`` and the two subsurface levels supply the ``chart``
+sensor with ``--imager``). ``subsurface-volume`` has options too
+(:class:`~skinrender.rendering.subsurface_chart.SlabOptions`: ``translate_mm``,
+the slabs moved away from the origin). ``direct`` and the two subsurface levels supply the ``chart``
 part, the source of a level's raw renders (``source.raw(temperature, seed,
 skins)``, ``source.info``) that :func:`~skinrender.rendering.balance.render_balanced`
 balances; the sensor supplies its options, and a request that holds them is
@@ -31,7 +33,7 @@ from ..errors import SkinrenderError
 from .physics import SAMPLES_PER_S_DIRECT, Effect
 from .registry import Registry
 from .sensor import NoiseOptions
-from .subsurface_chart import SAMPLER_SUBSURFACE, SAMPLES_PER_S_SLAB
+from .subsurface_chart import SAMPLER_SUBSURFACE, SAMPLES_PER_S_SLAB, SlabOptions
 
 __all__ = ["CHART_DIRECT", "CHART_SUBSURFACE", "CHART_SUBSURFACE_VOLUME", "CHART_NOISE", "CHART_EFFECTS",
            "CHART_REGISTRY", "prepare_slabs"]
@@ -58,13 +60,13 @@ class _Slabs:
     slabs_as = ""
 
     def __init__(self, request):
-        self.renderer = self.renderer_of(request.scene, request.camera, request.settings, request.grid)
+        self.renderer = self.renderer_of(request)
         chart = self.renderer.chart
         self.info = {"physics": request.level.name, "reflectances": chart.reflectances, "skin_model": chart.rows(),
                      "slabs_as": self.slabs_as}
 
     @staticmethod
-    def renderer_of(scene, camera, settings, grid):
+    def renderer_of(request):
         raise NotImplementedError
 
     def raw(self, temperature: float, seed: int, skins: bool = True):
@@ -77,10 +79,10 @@ class _SlabTables(_Slabs):
     slabs_as = "their slab's angular reflectance (a BSDF)"
 
     @staticmethod
-    def renderer_of(scene, camera, settings, grid):
+    def renderer_of(request):
         from .slab_chart import slab_renderer
 
-        return slab_renderer(scene, camera, settings, grid)
+        return slab_renderer(request.scene, request.camera, request.settings, request.grid)
 
 
 class _SlabMedia(_Slabs):
@@ -90,10 +92,11 @@ class _SlabMedia(_Slabs):
     slabs_as = "media, path traced"
 
     @staticmethod
-    def renderer_of(scene, camera, settings, grid):
+    def renderer_of(request):
         from .subsurface_chart import subsurface_renderer
 
-        return subsurface_renderer(scene, camera, settings, grid)
+        return subsurface_renderer(request.scene, request.camera, request.settings, request.grid,
+                                   request.options[CHART_SUBSURFACE_VOLUME.name].translate_mm)
 
 
 def prepare_slabs(request) -> None:
@@ -114,6 +117,11 @@ def _skin_patches(request) -> None:
     if request.sensor is not None:
         raise SkinrenderError(f"imager: a chart at physics {physics} is rendered without an image sensor; drop it "
                               "(or use physics direct)", role="imager")
+    slabs = request.options.get(CHART_SUBSURFACE_VOLUME.name)  # the volumetric level's options: translate_mm
+    if slabs is not None and any(slabs.translate_mm):  # float32's range against its skins' mean free paths
+        from .subsurface_chart import check_chart_range, subsurface_chart
+
+        check_chart_range(subsurface_chart(scene, request.grid), slabs.translate_mm)
 
 
 def _fits(scene) -> int:
@@ -186,8 +194,8 @@ CHART_SUBSURFACE_VOLUME = Effect(
     "traced (the volumetric reference; minutes), lit by a uniform sky, against their slab's adding-doubling "
     "reflectance",
     short="volumetric subsurface scattering", chart=_SlabMedia, sampler=SAMPLER_SUBSURFACE, refuse=_skin_patches,
-    samples_per_s=SAMPLES_PER_S_SLAB, estimate=_slab_seconds, prepare=_fit_skin_patches, order=35,
-    refuses=_REFUSES_SLABS,
+    samples_per_s=SAMPLES_PER_S_SLAB, options=SlabOptions, estimate=_slab_seconds, prepare=_fit_skin_patches,
+    order=35, refuses=_REFUSES_SLABS,
     excludes=("subsurface",), by_default=False,
 )
 """The skin patches as slabs of media (:mod:`~skinrender.rendering.subsurface_chart`)."""

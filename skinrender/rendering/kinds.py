@@ -125,7 +125,7 @@ class ChartKind(_Kind):
 
     name = "chart"
     render_options = ("normalization", "knee", "spp", "seed", "sampler", "variant", "channels", "settings", "grid",
-                      "cache", "emitter", "physics", "imager", "illuminance", "exposure")
+                      "cache", "emitter", "physics", "imager", "illuminance", "exposure", "translate_mm")
     validate_options = (*render_options, "rendering", "tolerance", "alpha", "alpha_difference")
     lights_required = True
 
@@ -215,7 +215,7 @@ class FaceKind(_Kind):
 
     name = "face"
     render_options = ("skin", "physics", "spp", "seed", "size", "sampler", "variant", "grid", "channels", "imager",
-                      "exposure", "illuminance")
+                      "exposure", "illuminance", "translate_mm")
     validate_options = (*render_options, "replicates", "limits", "progress", "budget_fraction")
     lights_required = False
 

@@ -250,7 +250,7 @@ class ChartRequest(Request):
 def chart_request(scene, camera, prevailing, calibration, *, normalization: str = "white", knee: bool = False,
                   settings: RenderSettings | None = None, grid: WavelengthGrid = GRID_DEFAULT,
                   emitter: str = "tabulated", physics="direct", imager=None, illuminance=None, exposure=None,
-                  bands=None, **fields) -> ChartRequest:
+                  bands=None, translate_mm=None, **fields) -> ChartRequest:
     """
     A chart's :class:`ChartRequest`, each argument parsed once and checked, a refusal naming it (its ``role``).
 
@@ -276,6 +276,10 @@ def chart_request(scene, camera, prevailing, calibration, *, normalization: str 
     bands
         A spectral render's band grid (``START:END:STEP`` nm or a grid, :mod:`~skinrender.rendering.bands`):
         then no camera and no calibration (``None``; applied afterwards), nor Eq. 4's normalisation or knee.
+    translate_mm
+        The ``subsurface`` level's option (:class:`~skinrender.rendering.subsurface_chart.SlabOptions`): every
+        skin patch's scene moved ``(x, y, z)`` mm from the origin; refused at any other level (a Lambertian chart
+        is laid out in pixels).
     """
     from .chart_effects import CHART_REGISTRY
     from .scene import load_chart_scene
@@ -293,7 +297,7 @@ def chart_request(scene, camera, prevailing, calibration, *, normalization: str 
         p, c = planckian(prevailing, "prevailing"), planckian(calibration, "calibration")
     level = CHART_REGISTRY.level(physics if isinstance(physics, Level) else str(physics).strip())
     level, options = CHART_REGISTRY.with_options(level, {"imager": imager, "illuminance": illuminance,
-                                                         "exposure": exposure})
+                                                         "exposure": exposure, "translate_mm": translate_mm})
     return ChartRequest(chart, cam, p, c, level, settings_for(level, settings, **fields), grid, options,
                         normalization, knee, emitter, bands)
 

@@ -2,13 +2,14 @@
 Skin as participating media under a dielectric boundary
 =======================================================
 
-Mitsuba 3 has no BSSRDF: subsurface scattering in skin is rendered as
-homogeneous participating media inside a dielectric boundary of the skin's
-refractive index, path traced by ``volpathmis``. This module holds what the
-chart's slabs (:mod:`~skinrender.rendering.subsurface_chart`) and the face
-(:mod:`skinrender.rendering.face.effects.subsurface`) share: the skin model's
-layers of a skin spec, the slab rendered and its adding-doubling reflectance,
-the one effective medium of the face, the Mitsuba media and integrator.
+Mitsuba 3 has no BSSRDF: subsurface scattering in skin is rendered as the
+skin model's layers inside a dielectric boundary of the skin's refractive
+index, path traced by the project's own integrator
+(:mod:`~skinrender.rendering.skin_integrator`, ``skinvolpath``). This module
+holds what the chart's slabs (:mod:`~skinrender.rendering.subsurface_chart`)
+and the face (:mod:`skinrender.rendering.face.effects.subsurface`) share: the
+skin model's layers of a skin spec, the slab rendered and its
+adding-doubling reflectance, the Mitsuba media and integrator.
 
 -   :class:`SkinMedia`, :func:`skin_media_of`: the layers of a skin spec, from
     the skin model's parameters (``skin-model:melanin=…``) or fitted to a
@@ -18,31 +19,35 @@ the one effective medium of the face, the Mitsuba media and integrator.
     (the dermis :data:`SLAB_DERMIS_MM` thick, air below) and its adding-doubling
     reflectance.
 -   :func:`effective_layer`: one semi-infinite medium of the two layers'
-    reflectance.
--   :func:`medium_dict`, :data:`INTEGRATOR_SUBSURFACE`,
-    :func:`truncation_bound`, :func:`subsurface_variant`: the Mitsuba pieces.
+    reflectance (what the face rendered before it had two layers; kept for
+    the measurements of ``docs/subsurface.md``).
+-   :func:`medium_dict`, :func:`integrator_dict`, :func:`truncation_bound`,
+    :func:`mean_free_path`, :func:`subsurface_variant`: the Mitsuba pieces.
 
 Choices, each measured (``docs/subsurface.md`` has the commands)
 -----------------------------------------------------------------
--   ``volpathmis`` over ``volpath``: with the same settings, a flat skin slab's
-    pixel standard deviation at 16 spp was 27–36 % against 36–53 %.
--   Russian roulette off (:data:`DEPTH_MAX_SUBSURFACE`): Mitsuba's roulette
-    keeps a path with probability at most 0.95 per bounce and divides by it,
-    but light in skin scatters hundreds of times with an albedo of ~0.999, so
-    the few surviving paths carry weights of 0.95⁻ⁿ that a render rarely
-    draws: at 64 spp a slab's mean came out 21 %, 7.6 % and 2.5 % low (R, G,
-    B) with Mitsuba's default (roulette from depth 5), pixel standard
-    deviation 32–51 %, against within 0.6 % and 14–15 % without. Paths end
-    where they leave the skin, or at :data:`DEPTH_MAX_SUBSURFACE`
-    interactions, where what they carry is below :func:`truncation_bound`.
--   The variant: without a GPU, ``scalar_spectral`` (each path runs to its own
-    end) rendered a slab 2.5× faster than ``llvm_ad_spectral`` (whose SIMD
-    packets wait for their longest path; the times in ``docs/subsurface.md``).
+-   The integrator: Mitsuba starts a ray leaving a surface ``(1 + max|p|) ·
+    8.9e-5`` scene units off it (float32), and a ray leaving a medium
+    interaction not off it at all, so with ``volpathmis`` a path entering the
+    skin, or reflected inside it, skipped that much of it: a slab 100 mm from
+    the origin rendered 6–16 % dark. ``skinvolpath`` samples every free flight
+    from the true point (the offset origin serves only the intersection
+    query) and so renders a slab alike at 0, 100 and 200 mm, and tilted.
+-   Layers by depth: the epidermis is the skin within
+    ``epidermis_mm`` of its surface along the normal where the path last
+    touched it (locally flat layers), so the face has its two layers without
+    an offset mesh.
+-   No roulette by bounce: light in skin scatters hundreds of times with an
+    albedo of ~0.999, and Mitsuba's roulette (at most 0.95 a bounce) left a
+    slab 21 % dark at 64 spp; the walk's roulette plays on its weight only
+    (:data:`~skinrender.rendering.skin_integrator.RR_WEIGHT`). A walk ends at
+    :data:`DEPTH_MAX_SUBSURFACE` events, where what it carries is below
+    :func:`truncation_bound`.
+-   The variant: ``llvm_ad_spectral`` (``cuda_ad_spectral`` on a GPU): the
+    integrator is Python traced into one kernel, which a scalar variant cannot
+    run.
 -   Lengths: the media's coefficients are per mm and scaled to the scene's
-    unit (``scale``). Mitsuba starts a ray leaving a surface
-    ``(1 + max|p|) · 8.9e-5`` scene units off it (float32), so a ray entering
-    the skin skips that much of the medium: a thin epidermis is only rendered
-    near the origin (the chart's slabs, in mm, within a few mm of it).
+    unit (``scale``).
 
 Units: coefficients mm⁻¹, thicknesses mm, wavelengths nm, reflectance fractions.
 
@@ -67,9 +72,9 @@ from .renderer import mitsuba_spectrum
 from .scene import reflectance_of, skin_parameters_of
 from .variants import choose_variant
 
-__all__ = ["SLAB_DERMIS_MM", "FIT_RMS_MAX", "FIT_STEP_NM", "DEPTH_MAX_SUBSURFACE", "INTEGRATOR_SUBSURFACE",
-           "TRUNCATION_MAX", "SkinMedia", "skin_media_of", "chart_skin_media", "slab_layers", "slab_reflectance", "effective_layer",
-           "medium_dict", "truncation_bound", "check_truncation", "subsurface_variant"]
+__all__ = ["SLAB_DERMIS_MM", "FIT_RMS_MAX", "FIT_STEP_NM", "DEPTH_MAX_SUBSURFACE", "TRUNCATION_MAX", "SkinMedia",
+           "skin_media_of", "chart_skin_media", "slab_layers", "slab_reflectance", "effective_layer", "medium_dict",
+           "integrator_dict", "truncation_bound", "check_truncation", "mean_free_path", "subsurface_variant"]
 
 SLAB_DERMIS_MM = 5.0
 """Thickness of the rendered dermis, mm, standing for the model's semi-infinite one. Since the skin model absorbs
@@ -89,13 +94,13 @@ FIT_STEP_NM = 3.0
 """A measured reflectance is fitted every this many nm of its grid within 400–700 nm (the NIST fits' spacing)."""
 
 DEPTH_MAX_SUBSURFACE = 2**16
-"""Interactions a path may have (and Russian roulette's start: never before the cap)."""
+"""Events (scatterings and boundary contacts) a walk under the skin may have."""
 
 TRUNCATION_MAX = 1e-6
 """Largest :func:`truncation_bound` a render accepts (a fraction of the light)."""
 
-INTEGRATOR_SUBSURFACE = {"type": "volpathmis", "max_depth": DEPTH_MAX_SUBSURFACE, "rr_depth": DEPTH_MAX_SUBSURFACE}
-"""The integrator of skin media: ``volpathmis``, Russian roulette off (module docstring)."""
+RR_DEPTH_AIR = 5
+"""Bounces in air from which the integrator's Russian roulette plays on a path's weight (Mitsuba's default)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -279,6 +284,38 @@ def medium_dict(layer, grid: WavelengthGrid, mm_per_unit: float = 1.0) -> dict:
             "phase": {"type": "hg", "g": float(layer.g)}}
 
 
+def integrator_dict(layers, grid: WavelengthGrid, mm_per_unit: float = 1.0, hide_emitters: bool = False,
+                    boundary_alpha: float = 0.0) -> dict:
+    """
+    The Mitsuba integrator of skin (:mod:`~skinrender.rendering.skin_integrator`): the epidermis and the dermis
+    of ``layers`` as media (:func:`medium_dict`), the epidermis' thickness in scene units (a scene unit is
+    ``mm_per_unit`` mm), the boundary's index ``n``, walks of at most :data:`DEPTH_MAX_SUBSURFACE` events, its
+    depths (the re-anchoring's and the point lights' connections') in scene units too;
+    ``hide_emitters``: the emitters seen straight from the camera left out (the background black);
+    ``boundary_alpha``: the GGX roughness of a rough skin boundary, whose lost light the integrator puts back
+    (:mod:`~skinrender.rendering.rough_boundary`; 0: a smooth boundary).
+    """
+    from .skin_integrator import PLUGIN, REANCHOR_DEPTH_MM, THROUGH_DEPTH_MM
+
+    epidermis, dermis = layers
+    return {"type": PLUGIN, "epidermis": medium_dict(epidermis, grid, mm_per_unit),
+            "dermis": medium_dict(dermis, grid, mm_per_unit),
+            "epidermis_thickness": float(epidermis.thickness_mm) / float(mm_per_unit), "eta": float(dermis.n),
+            "max_walk": DEPTH_MAX_SUBSURFACE, "rr_depth": RR_DEPTH_AIR, "hide_emitters": bool(hide_emitters),
+            "reanchor_depth": REANCHOR_DEPTH_MM / float(mm_per_unit), "nee_depth": THROUGH_DEPTH_MM / float(mm_per_unit),
+            "boundary_alpha": float(boundary_alpha)}
+
+
+def mean_free_path(layers) -> float:
+    """The shortest mean free path ``1 / (μa + μs)`` of ``layers`` over their wavelengths, mm.
+
+    >>> from skinrender.datasets.skin_model import skin_layers
+    >>> 0.01 < mean_free_path(skin_layers([450.0, 650.0])) < 0.05
+    True
+    """
+    return float(min(1.0 / np.max(np.asarray(layer.mu_a_per_mm) + np.asarray(layer.mu_s_per_mm)) for layer in layers))
+
+
 def truncation_bound(layers, depth: int = DEPTH_MAX_SUBSURFACE) -> float:
     """
     The largest fraction of the light a path cut at ``depth`` interactions can have carried: light scattered
@@ -308,10 +345,19 @@ def check_truncation(media: SkinMedia, where: str) -> float:
 
 def subsurface_variant(requested: str | None = None) -> str:
     """
-    The Mitsuba variant for skin media: ``requested`` if given; else ``cuda_ad_spectral`` where it runs, else
-    ``scalar_spectral`` (faster than ``llvm_ad_spectral`` for long random walks, module docstring).
+    The Mitsuba variant for skin media: ``requested`` if given, else the fastest here
+    (:func:`~skinrender.rendering.variants.choose_variant`); a JIT variant (``llvm_ad_spectral``,
+    ``cuda_ad_spectral``), as the integrator is Python traced into one kernel.
+
+    Raises
+    ------
+    SkinrenderError
+        A scalar variant, requested or the only one here (``role`` ``variant``).
     """
-    if requested is not None:
-        return choose_variant(requested)
-    chosen = choose_variant(None)
-    return chosen if chosen.startswith("cuda") else choose_variant("scalar_spectral")
+    chosen = choose_variant(requested)
+    if chosen.startswith("scalar"):
+        why = "asked" if requested is not None else "the only variant that runs here"
+        raise SkinrenderError(f"variant {chosen} ({why}): the subsurface-volume level renders in llvm_ad_spectral or "
+                              "cuda_ad_spectral (its integrator is traced into one kernel; llvm needs libLLVM ≥ 16)",
+                              role="variant")
+    return chosen

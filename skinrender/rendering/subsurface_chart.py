@@ -22,14 +22,16 @@ The geometry and the light, and why the check is exact
 ------------------------------------------------------
 Each patch is rendered on its own: its slab (the epidermis over a dermis
 :data:`~skinrender.rendering.subsurface.SLAB_DERMIS_MM` thick, a smooth
-dielectric of the layers' ``n`` on top and below, the layers index-matched)
-is centred at the scene's origin (scene unit 1 mm, the rectangles 2 m wide: a
-laterally infinite slab), a black floor 1 mm under it, seen straight down by
-an orthographic camera whose film is the patch's pixels over a footprint of
+dielectric of the layers' ``n`` on top and below; the layers by depth below
+the top, :mod:`~skinrender.rendering.skin_integrator`) is centred at the
+scene's origin (scene unit 1 mm, the rectangles 2 m wide: a laterally infinite
+slab), a black floor 1 mm under it, seen straight down by an orthographic
+camera whose film is the patch's pixels over a footprint of
 :data:`FOOTPRINT_MM`. The slab is uniform laterally, so any footprint sees the
-same; a small one keeps the surfaces the paths meet within a few mm of the
-origin, where Mitsuba's ray offset, ``(1 + |p|) · 8.9e-5`` mm, is below 0.4 %
-of the 0.1 mm epidermis.
+same. ``translate_mm`` moves the whole scene (slab, floor, camera) away from
+the origin: the integrator samples every free flight from the true point, so
+the answer does not change (``docs/subsurface.md`` measures it at 0, 100 and
+200 mm, and tilted 45°).
 
 The light is a uniform sky of radiance ``L(λ)`` (a ``constant`` emitter), not
 the chart renderer's directional light along the view axis. Looking down the
@@ -58,7 +60,7 @@ renderer's light has irradiance ``P``), so a white reads the same in both.
 Non-skin patches render with the ``direct`` integrator sampling the BSDF only
 (a cosine-sampled Lambertian patch under a uniform sky: ``ρ L`` with no noise
 but the wavelengths'); skin patches with
-:data:`~skinrender.rendering.subsurface.INTEGRATOR_SUBSURFACE`. Each patch
+:func:`~skinrender.rendering.subsurface.integrator_dict`'s integrator. Each patch
 has its own seed (from the render's seed and its index), so patches' noise is
 independent; a patch's pixels are independent (box filter).
 
@@ -81,14 +83,16 @@ from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .renderer import (SAMPLES_MAX, CameraKey, RawRender, emitter_peak, channels_separate, mitsuba_spectrum, channel_names,
                        emitter_grid)
 from .scene import ChartScene, load_chart_scene
+from .placement import check_float32_range, translation
 from .settings import RenderSettings
-from .subsurface import (INTEGRATOR_SUBSURFACE, SLAB_DERMIS_MM, SkinMedia, chart_skin_media, check_truncation,
-                         medium_dict, slab_reflectance, subsurface_variant)
+from .skin_integrator import register
+from .subsurface import (SLAB_DERMIS_MM, SkinMedia, chart_skin_media, check_truncation, integrator_dict,
+                         mean_free_path, slab_reflectance, subsurface_variant)
 from .variants import mitsuba
 
 __all__ = ["FOOTPRINT_MM", "SLAB_HALF_WIDTH_MM", "SAMPLES_PER_S_SLAB", "SAMPLER_SUBSURFACE", "SECONDS_PER_FIT",
            "SubsurfaceChart", "subsurface_chart", "SubsurfaceChartRenderer", "subsurface_renderer",
-           "estimate_seconds", "slab_document"]
+           "estimate_seconds", "slab_document", "SlabOptions", "check_chart_range"]
 
 FOOTPRINT_MM = 1.0
 """Width of the scene a patch's film sees, mm."""
@@ -96,9 +100,10 @@ FOOTPRINT_MM = 1.0
 SLAB_HALF_WIDTH_MM = 1000.0
 """Half the width of the slab's (and the floor's) rectangles, mm: laterally infinite for light in skin."""
 
-SAMPLES_PER_S_SLAB = 500.0
-"""Samples (paths) per second of a skin slab on one core (scalar_spectral), the estimates' rate: measured
-(``docs/subsurface.md``) on this shared 2-core machine."""
+SAMPLES_PER_S_SLAB = 10000.0
+"""Samples (paths) per second of a skin slab on one core (``llvm_ad_spectral``), the estimates' rate: the 30 slabs of
+``skin_patches`` at 32 spp, 1.4 × 10⁵ paths in 12 CPU seconds with every patch's own scene (``docs/subsurface.md``;
+a light slab alone 2.4 × 10⁴ paths per CPU second, a dark one 6.6 × 10⁴)."""
 
 SAMPLER_SUBSURFACE = "independent"
 """The sampler of a subsurface-volume chart unless one is named (``validate``, ``render``, ``detect``; Python: where no
@@ -113,11 +118,10 @@ SECONDS_PER_FIT = 1.3
 """Seconds to fit the skin model to one measured skin patch (one core, ~101 wavelengths), the estimates'."""
 
 
-
 @dataclass(frozen=True, eq=False)
 class SubsurfaceChart:
     """
-    A chart's patches at ``subsurface``: per patch its :class:`~skinrender.rendering.subsurface.SkinMedia`
+    A chart's patches at ``subsurface-volume``: per patch its :class:`~skinrender.rendering.subsurface.SkinMedia`
     (``None``: Lambertian) and ``reflectances`` ``(patches, grid.size)``, the reflectance Eq. 4 is checked with:
     the slab's adding-doubling reflectance for a skin patch, the patch's own for the others.
     """
@@ -163,13 +167,49 @@ def _subsurface_chart(chart: ChartScene, grid: WavelengthGrid) -> SubsurfaceChar
     return SubsurfaceChart(chart, grid, media, reflectances)
 
 
+@dataclass(frozen=True)
+class SlabOptions:
+    """
+    The options of a chart's ``subsurface-volume`` level.
+
+    Parameters
+    ----------
+    translate_mm
+        ``(x, y, z)`` mm, or ``X,Y,Z`` text: every skin patch's scene (slab, floor, camera) moved that far from the
+        origin (:func:`~skinrender.rendering.placement.translation`).
+
+    Examples
+    --------
+    >>> SlabOptions("0,100,0").translate_mm
+    (0.0, 100.0, 0.0)
+    """
+
+    translate_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "translate_mm", translation(self.translate_mm, "translate_mm"))
+
+
+def check_chart_range(chart: SubsurfaceChart, translate_mm) -> None:
+    """
+    Refuse ``chart``'s patches moved by ``translate_mm`` (x, y, z mm) beyond float32's useful range for any of
+    its skins (:func:`~skinrender.rendering.placement.check_float32_range`: the slab's top, where its walks start,
+    and the camera 10 mm above it, against the skin's mean free path), naming the chart.
+    """
+    reach = max(abs(float(v)) for v in translate_mm) + 10.0 + FOOTPRINT_MM
+    for media in chart.media:
+        if media is not None:
+            check_float32_range(chart.scene.source or chart.scene.name, reach, mean_free_path(media.layers),
+                                f"the mean free path of its skin {media.spec!r}")
+
+
 def estimate_seconds(scene: ChartScene, spp: int, fits: int = 0) -> float:
     """
     Seconds one subsurface render of ``scene`` should take on one core: its skin patches' paths at
     :data:`SAMPLES_PER_S_SLAB` and ``fits`` fits at :data:`SECONDS_PER_FIT` (the Lambertian patches are free).
 
-    >>> round(estimate_seconds(load_chart_scene("skin_patches"), 16))
-    188
+    >>> round(estimate_seconds(load_chart_scene("skin_patches"), 16), 1)
+    9.4
     """
     skins = sum(p.skin for p in scene.patches)
     return skins * scene.patch_px**2 * int(spp) / SAMPLES_PER_S_SLAB + fits * SECONDS_PER_FIT
@@ -185,18 +225,21 @@ def _film(cam: Camera, grid: WavelengthGrid, group: tuple[int, ...], size: int) 
 
 
 def slab_document(mi, media: SkinMedia | None, reflectance: NDArrayFloat, cam: Camera, grid: WavelengthGrid,
-                  group: tuple[int, ...], size: int, spp: int, sampler: str, sky: NDArrayFloat) -> dict:
+                  group: tuple[int, ...], size: int, spp: int, sampler: str, sky: NDArrayFloat,
+                  to_world=None) -> dict:
     """
     The Mitsuba scene of one patch (module docstring): the slab of ``media`` under the sky (``media`` ``None``: a
     Lambertian rectangle of ``reflectance``), ``size`` × ``size`` pixels; ``sky`` the radiance on
-    :func:`~skinrender.rendering.renderer.emitter_grid` (scaled as the caller chooses).
+    :func:`~skinrender.rendering.renderer.emitter_grid` (scaled as the caller chooses); ``to_world`` (a
+    ``ScalarTransform4f``, mm) places the whole scene (``None``: at the origin).
     """
     t = mi.ScalarTransform4f
+    place = t() if to_world is None else to_world
     wide = t().scale([SLAB_HALF_WIDTH_MM, SLAB_HALF_WIDTH_MM, 1.0])
     document = {
         "type": "scene",
         "sensor": {"type": "orthographic", "near_clip": 1e-3, "far_clip": 1e3,
-                   "to_world": t().look_at(origin=[0, 0, 10.0], target=[0, 0, 0], up=[0, 1, 0])
+                   "to_world": place @ t().look_at(origin=[0, 0, 10.0], target=[0, 0, 0], up=[0, 1, 0])
                    @ t().scale([FOOTPRINT_MM / 2, FOOTPRINT_MM / 2, 1]),
                    "sampler": {"type": sampler, "sample_count": int(spp), "seed": 0},
                    "film": _film(cam, grid, group, size)},
@@ -204,22 +247,20 @@ def slab_document(mi, media: SkinMedia | None, reflectance: NDArrayFloat, cam: C
     }
     if media is None:
         document["integrator"] = {"type": "direct", "emitter_samples": 0, "bsdf_samples": 1}
-        document["patch"] = {"type": "rectangle", "to_world": wide,
+        document["patch"] = {"type": "rectangle", "to_world": place @ wide,
                              "bsdf": {"type": "diffuse", "reflectance": mitsuba_spectrum(grid.wavelengths, reflectance)}}
         return document
     epidermis, dermis = media.layers
     boundary = {"type": "dielectric", "int_ior": float(dermis.n), "ext_ior": 1.0}
+    depth = float(epidermis.thickness_mm) + SLAB_DERMIS_MM
     document.update({
-        "integrator": dict(INTEGRATOR_SUBSURFACE),
-        "epidermis": medium_dict(epidermis, grid), "dermis": medium_dict(dermis, grid),
-        "top": {"type": "rectangle", "to_world": wide, "bsdf": boundary,
-                "interior": {"type": "ref", "id": "epidermis"}},
-        "junction": {"type": "rectangle", "to_world": t().translate([0, 0, -epidermis.thickness_mm]) @ wide,
-                     "bsdf": {"type": "null"}, "interior": {"type": "ref", "id": "dermis"},
-                     "exterior": {"type": "ref", "id": "epidermis"}},
-        "bottom": {"type": "rectangle", "bsdf": boundary, "interior": {"type": "ref", "id": "dermis"},
-                   "to_world": t().translate([0, 0, -SLAB_DERMIS_MM]) @ t().rotate([1, 0, 0], 180) @ wide},
-        "floor": {"type": "rectangle", "to_world": t().translate([0, 0, -SLAB_DERMIS_MM - 1.0]) @ wide,
+        "integrator": integrator_dict(media.layers, grid),
+        # the skin's surface: its interior medium marks it (the integrator takes the layers)
+        "top": {"type": "rectangle", "to_world": place @ wide, "bsdf": boundary,
+                "interior": integrator_dict(media.layers, grid)["epidermis"]},
+        "bottom": {"type": "rectangle", "bsdf": boundary,
+                   "to_world": place @ t().translate([0, 0, -depth]) @ t().rotate([1, 0, 0], 180) @ wide},
+        "floor": {"type": "rectangle", "to_world": place @ t().translate([0, 0, -depth - 1.0]) @ wide,
                   "bsdf": {"type": "diffuse", "reflectance": {"type": "uniform", "value": 0.0}}},
     })
     return document
@@ -238,10 +279,13 @@ class SubsurfaceChartRenderer:
     (:class:`~skinrender.rendering.settings.RenderSettings`) gives the spp, sampler, variant and channel passes
     (the defaults where ``None``, with :data:`SAMPLER_SUBSURFACE`); each render takes its own seed.
     ``raw(temperature, seed, skins=False)`` renders only the Lambertian patches (what a white balance reads; the
-    skin patches stay 0): the calibration render.
+    skin patches stay 0): the calibration render. ``translate_mm`` moves every patch's scene that far from the
+    origin (x, y, z, mm; refused where float32 cannot resolve the skin there:
+    :func:`~skinrender.rendering.placement.check_float32_range`).
     """
 
-    def __init__(self, scene, camera_, settings: RenderSettings | None = None, grid: WavelengthGrid = GRID_DEFAULT):
+    def __init__(self, scene, camera_, settings: RenderSettings | None = None, grid: WavelengthGrid = GRID_DEFAULT,
+                 translate_mm=(0.0, 0.0, 0.0)):
         self.scene = load_chart_scene(scene)
         self.camera = camera(camera_)
         settings = RenderSettings(sampler=SAMPLER_SUBSURFACE) if settings is None else RenderSettings.of(settings)
@@ -249,7 +293,9 @@ class SubsurfaceChartRenderer:
         if spp * self.scene.patch_px**2 > SAMPLES_MAX:
             raise SkinrenderError(f"spp {spp} × {self.scene.patch_px**2} pixels is more than {SAMPLES_MAX:.3g} "
                                   "samples per pass", role="spp")
+        self.translate_mm = translation(translate_mm, "translate_mm")
         self.chart = subsurface_chart(self.scene, grid)
+        check_chart_range(self.chart, self.translate_mm)
         self.sampler, self.grid, self.requested_spp = settings.sampler, grid, spp
         self.variant = subsurface_variant(settings.variant)
         self.groups = [(0,), (1,), (2,)] if channels_separate(self.camera, grid, settings.channels) else [(0, 1, 2)]
@@ -263,6 +309,8 @@ class SubsurfaceChartRenderer:
             raise SkinrenderError(f"seed must be an integer in [0, 2^32) (Mitsuba's seeds are 32-bit), got {seed!r}",
                                   role="seed")
         mi = mitsuba(self.variant)
+        register(mi)
+        place = mi.ScalarTransform4f().translate(list(self.translate_mm))
         start = time.perf_counter()
         radiance = planck(emitter_grid(self.grid), temperature)
         peak = emitter_peak(radiance)
@@ -275,7 +323,7 @@ class SubsurfaceChartRenderer:
             x0, y0, x1, y1 = self.scene.patch_box(index)
             for group in self.groups:
                 document = slab_document(mi, media, chart.reflectances[index], self.camera, self.grid, group, size,
-                                         self.requested_spp, self.sampler, radiance / peak)
+                                         self.requested_spp, self.sampler, radiance / peak, place)
                 loaded = mi.load_dict(document)
                 self.spp = int(loaded.sensors()[0].sampler().sample_count())
                 values = np.array(mi.render(loaded, seed=_patch_seed(seed, index)), dtype=np.float32)
@@ -285,15 +333,16 @@ class SubsurfaceChartRenderer:
 
 
 @lru_cache(maxsize=4)
-def _renderer(chart: ChartScene, key: CameraKey, settings: RenderSettings) -> SubsurfaceChartRenderer:
-    return SubsurfaceChartRenderer(chart, key.camera, settings, key.grid)
+def _renderer(chart: ChartScene, key: CameraKey, settings: RenderSettings,
+              translate_mm: tuple[float, float, float]) -> SubsurfaceChartRenderer:
+    return SubsurfaceChartRenderer(chart, key.camera, settings, key.grid, translate_mm)
 
 
 def subsurface_renderer(scene, camera_, settings: RenderSettings | None = None, grid: WavelengthGrid = GRID_DEFAULT,
-                        **options) -> SubsurfaceChartRenderer:
+                        translate_mm=(0.0, 0.0, 0.0), **options) -> SubsurfaceChartRenderer:
     """
     A :class:`SubsurfaceChartRenderer`, reused across calls with the same chart, camera curves, settings (but the
-    seed) and grid (a few kept); ``options``: the fields of ``settings``
+    seed), grid and ``translate_mm`` (a few kept); ``options``: the fields of ``settings``
     (:meth:`~skinrender.rendering.settings.RenderSettings.of`), the sampler :data:`SAMPLER_SUBSURFACE` unless
     ``settings`` or ``options`` name one.
     """
@@ -301,4 +350,4 @@ def subsurface_renderer(scene, camera_, settings: RenderSettings | None = None, 
     if settings is None:
         options = {"sampler": SAMPLER_SUBSURFACE, **options}
     settings = RenderSettings.of(settings, **options).replace(seed=0)  # the seed is each render's
-    return _renderer(chart, CameraKey.of(cam, grid), settings)
+    return _renderer(chart, CameraKey.of(cam, grid), settings, translation(translate_mm, "translate_mm"))

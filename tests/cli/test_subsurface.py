@@ -90,9 +90,10 @@ def test_what_does_not_go_with_it_is_refused(chart, physics, extra, names, capsy
 
 
 @pytest.mark.parametrize("physics, spp, minutes", [("subsurface", "1000000", "0.5"),
-                                                  ("subsurface-volume", "100000", "30")])
+                                                  ("subsurface-volume", "100000", "0.1")])
 def test_too_many_samples_are_refused_with_the_estimate(chart, physics, spp, minutes, capsys):
-    """Each level's estimate (its own rate) refuses beyond --max-minutes, before anything renders."""
+    """Each level's estimate (its own rate) refuses beyond --max-minutes, before anything renders (subsurface-volume:
+    64 px × 100000 spp at 10⁴ samples/s, ~11 min on one core)."""
     assert_refused(["validate", chart, "--camera", CAM, *LIGHTS, "--physics", physics, "--spp", spp,
                     "--max-minutes", minutes], ("--spp", f"{spp} spp", "--max-minutes"), capsys)
 
@@ -116,11 +117,11 @@ def test_a_chart_without_skin_and_other_levels(physics, capsys):
 
 
 def test_the_default_spp_of_skin_patches_is_refused_with_its_estimate(capsys):
-    """256 spp (the standard preset) on the 30 skin patches as media would take about 50 min on one core: refused
-    beyond --max-minutes 10 with its estimate, before any fit or render; the fast level's estimate (its tables and
-    fits, ~1 min) is not."""
+    """256 spp (the standard preset) on the 30 skin patches as media would take about 2 min on one core: refused
+    beyond --max-minutes 0.02 (1.2 s, short of it on up to ~90 cores) with its estimate, before any fit or render;
+    the fast level's estimate (its tables and fits, ~1 min) is refused beyond 0.1 min too."""
     line = assert_refused(["validate", "skin_patches", "--camera", CAM, *LIGHTS, "--physics", "subsurface-volume",
-                           "--max-minutes", "10"], ("--spp", "256 spp", "--max-minutes"), capsys)
+                           "--max-minutes", "0.02"], ("--spp", "256 spp", "--max-minutes"), capsys)
     assert "30 skin patches" in line and "estimated" in line
     line = assert_refused(["validate", "skin_patches", "--camera", CAM, *LIGHTS, "--physics", "subsurface",
                            "--max-minutes", "0.1"], ("--spp", "256 spp", "--max-minutes"), capsys)

@@ -11,10 +11,10 @@ import pytest
 from skinrender.datasets.skin_model import SkinParameters, reflectance_of_layers, skin_layers
 from skinrender.errors import SkinrenderError
 from skinrender.rendering import subsurface
-from skinrender.rendering.subsurface import (DEPTH_MAX_SUBSURFACE, FIT_RMS_MAX, INTEGRATOR_SUBSURFACE, SLAB_DERMIS_MM,
-                                             TRUNCATION_MAX, check_truncation, effective_layer, medium_dict,
-                                             skin_media_of, slab_layers, slab_reflectance, subsurface_variant,
-                                             truncation_bound)
+from skinrender.rendering.subsurface import (DEPTH_MAX_SUBSURFACE, FIT_RMS_MAX, SLAB_DERMIS_MM, TRUNCATION_MAX,
+                                             check_truncation, effective_layer, integrator_dict, mean_free_path,
+                                             medium_dict, skin_media_of, slab_layers, slab_reflectance,
+                                             subsurface_variant, truncation_bound)
 from skinrender.spectra import GRID_DEFAULT, WavelengthGrid
 
 pytest.importorskip("skinoptics")
@@ -110,9 +110,23 @@ class TestMitsubaPieces:
         with pytest.raises(SkinrenderError, match="extinction"):
             medium_dict(clear, COARSE)
 
-    def test_russian_roulette_off_until_the_cap(self):
-        assert INTEGRATOR_SUBSURFACE["type"] == "volpathmis"
-        assert INTEGRATOR_SUBSURFACE["rr_depth"] >= INTEGRATOR_SUBSURFACE["max_depth"] == DEPTH_MAX_SUBSURFACE
+    def test_the_integrator_takes_both_layers(self):
+        """The project's integrator with the epidermis and the dermis as media (scaled to the document's unit), the
+        epidermis' thickness in scene units, the boundary's index and the walk's cap."""
+        layers = skin_layers(COARSE.wavelengths, SkinParameters(melanin=0.1, epidermis_mm=0.08))
+        document = integrator_dict(layers, COARSE, 0.5, hide_emitters=True)
+        assert document["type"] == "skinvolpath" and document["max_walk"] == DEPTH_MAX_SUBSURFACE
+        assert document["epidermis"] == medium_dict(layers[0], COARSE, 0.5)
+        assert document["dermis"] == medium_dict(layers[1], COARSE, 0.5)
+        assert document["epidermis_thickness"] == pytest.approx(0.16) and document["eta"] == 1.4
+        assert document["hide_emitters"] is True and integrator_dict(layers, COARSE)["hide_emitters"] is False
+        assert document["boundary_alpha"] == 0.0 and integrator_dict(layers, COARSE, boundary_alpha=0.35)[
+            "boundary_alpha"] == 0.35  # a rough boundary's lost light put back (rough_boundary)
+
+    def test_mean_free_path(self):
+        layers = skin_layers(COARSE.wavelengths, SkinParameters(melanin=0.3))
+        extinction = [np.asarray(layer.mu_a_per_mm) + np.asarray(layer.mu_s_per_mm) for layer in layers]
+        assert mean_free_path(layers) == pytest.approx(1 / max(e.max() for e in extinction))
 
     def test_truncation(self):
         """The depth cap cuts nothing of skin: bloodless skin, the least absorbing (water and the background only),
@@ -127,10 +141,13 @@ class TestMitsubaPieces:
             check_truncation(milky, "patch 'p'")
 
     def test_variant(self, monkeypatch):
-        chosen = []
-        monkeypatch.setattr(subsurface, "choose_variant", lambda name=None: chosen.append(name) or
-                            {None: "llvm_ad_spectral"}.get(name, name))
-        assert subsurface_variant() == "scalar_spectral" and subsurface_variant("llvm_ad_spectral") == \
-            "llvm_ad_spectral"
-        monkeypatch.setattr(subsurface, "choose_variant", lambda name=None: name or "cuda_ad_spectral")
-        assert subsurface_variant() == "cuda_ad_spectral"
+        """The fastest variant here or the one asked; a scalar variant is refused (the integrator is traced)."""
+        monkeypatch.setattr(subsurface, "choose_variant", lambda name=None: name or "llvm_ad_spectral")
+        assert subsurface_variant() == "llvm_ad_spectral" and subsurface_variant("cuda_ad_spectral") == \
+            "cuda_ad_spectral"
+        with pytest.raises(SkinrenderError, match="scalar_spectral \\(asked\\).*llvm_ad_spectral") as raised:
+            subsurface_variant("scalar_spectral")
+        assert raised.value.role == "variant"
+        monkeypatch.setattr(subsurface, "choose_variant", lambda name=None: name or "scalar_spectral")
+        with pytest.raises(SkinrenderError, match="the only variant that runs here"):
+            subsurface_variant()

@@ -58,6 +58,7 @@ from ...spectra import GRID_DEFAULT, WavelengthGrid, planck
 from ..exr import camera_attributes, write_exr, write_preview
 from ..outputs import draw_figure, save_result
 from ..renderer import CameraKey, channel_names
+from ..skin_integrator import PLUGIN, register
 from ..variants import mitsuba
 from .document import channel_groups, channel_integral, face_document, light_irradiance
 from .effects import Frame, Level
@@ -222,6 +223,8 @@ def load_document(document: DocumentKey):
     cam = None if document.camera is None else document.camera.camera
     built = face_document(mi, scene, cam, document.grid, document.level, document.skin, document.group,
                           document.spp, 0, document.sampler, document.lights, document.scale, channels)
+    if built["integrator"]["type"] == PLUGIN:
+        register(mi)
     try:
         return mi.load_dict(built)
     except RuntimeError as error:  # the checks of load_face_scene passed, yet Mitsuba refused the user's mesh
@@ -258,6 +261,7 @@ def render_face(
     imager: str | None = None,
     exposure=None,
     illuminance: float | None = None,
+    translate_mm=None,
 ) -> FaceRendering:
     """
     Render a face scene through a camera, white balanced to ``calibration``.
@@ -289,6 +293,11 @@ def render_face(
         ``noise`` to the level), ``auto`` or seconds, and the key light's illuminance at the target, lx (every
         light scaled with it; ``None`` keeps the scene's; Eq. 4 cancels a common scale of the lights). Without
         ``noise`` (or an imager) ``exposure`` and ``illuminance`` are refused.
+    translate_mm
+        ``(x, y, z)`` mm (or ``X,Y,Z`` text): the whole scene moved that far
+        (:meth:`~skinrender.rendering.face.scene.FaceScene.translated`); ``None``: where it is. A scene beyond
+        float32's useful range at its level is refused, naming it
+        (:func:`~skinrender.rendering.face.reach.check_face_range`).
 
     Returns
     -------
@@ -304,7 +313,7 @@ def render_face(
 
     request = face_request(scene, camera_, prevailing, calibration, skin=skin, physics=physics, size=size, spp=spp,
                            seed=seed, sampler=sampler, variant=variant, grid=grid, channels=channels, imager=imager,
-                           exposure=exposure, illuminance=illuminance)
+                           exposure=exposure, illuminance=illuminance, translate_mm=translate_mm)
     return render_face_request(request)
 
 

@@ -23,9 +23,11 @@ from ...model.camera import camera as camera_of
 from ...model.imager import is_integer
 from ...spectra import GRID_DEFAULT, WavelengthGrid
 from ..physics import Level
+from ..placement import translation
 from ..request import Request, named, planckian, settings_for
 from ..settings import RenderSettings
 from .effects import PHYSICS_REGISTRY
+from .reach import check_face_range
 from .scene import FaceScene, load_face_scene, prevailing_name, skin_reflectance_of
 
 __all__ = ["FaceRequest", "face_request", "SPP_FACE_DEFAULT"]
@@ -58,6 +60,7 @@ class FaceRequest(Request):
             raise SkinrenderError(f"scene must be a face scene (a FaceScene), got {self.scene!r}", role="scene")
         named("skin", skin_reflectance_of, self.skin, self.grid, "skin")
         self.level.lights(self.scene)  # a level's lights the scene lacks (mixed without a fill) refused
+        check_face_range(self.scene, self.level, self.skin, self.grid)  # float32's useful range at the level
         spp, pixels = self.settings.spp, self.pixels
         if spp * pixels > SAMPLES_MAX:
             raise SkinrenderError(f"spp {spp} × {pixels} pixels = {spp * pixels:.3g} samples per pass, more than "
@@ -82,7 +85,7 @@ def _sized(face: FaceScene, size) -> FaceScene:
 def face_request(scene="face", camera=None, prevailing=None, calibration=None, *, skin: str | None = None,
                  physics="direct", size=None, settings: RenderSettings | None = None,
                  grid: WavelengthGrid = GRID_DEFAULT, imager=None, illuminance=None, exposure=None,
-                 spp: int | None = None, bands=None, **fields) -> FaceRequest:
+                 spp: int | None = None, bands=None, translate_mm=None, **fields) -> FaceRequest:
     """
     A face's :class:`FaceRequest`, each argument parsed once and checked, a refusal naming it (its ``role``).
 
@@ -110,8 +113,15 @@ def face_request(scene="face", camera=None, prevailing=None, calibration=None, *
     bands
         A spectral render's band grid (``START:END:STEP`` nm or a grid, :mod:`~skinrender.rendering.bands`):
         then no camera and no calibration (``None``; applied afterwards, the sensor of ``noise`` per camera).
+    translate_mm
+        ``(x, y, z)`` mm (or ``X,Y,Z`` text): the whole scene moved that far from the origin
+        (:meth:`~skinrender.rendering.face.scene.FaceScene.translated`); ``None``: where it is. Any face request
+        beyond float32's useful range at its level is refused, naming the scene
+        (:func:`~skinrender.rendering.face.reach.check_face_range`).
     """
     face = named("scene", load_face_scene, scene)
+    if translate_mm is not None:
+        face = face.translated(translation(translate_mm, "translate_mm"))
     if bands is not None:
         from ..bands import parse_bands
         from ..request import spectral_only

@@ -161,6 +161,25 @@ class FaceScene:
         """The scene at another image size, pixels (the field of view kept)."""
         return replace(self, camera=replace(self.camera, width=int(width), height=int(height or width)))
 
+    def translated(self, translate_mm) -> FaceScene:
+        """
+        The whole scene moved by ``translate_mm`` (x, y, z, mm): the camera (position and target), the mesh, the
+        props and the point lights; the skies are uniform and stay as they are.
+        """
+        offset = np.asarray(translate_mm, dtype=np.float64) / 1000.0
+
+        def moved(point):
+            return None if point is None else tuple(float(v) for v in np.add(point, offset))
+
+        def light(item: Light | None) -> Light | None:
+            return None if item is None else replace(item, position=moved(item.position))
+
+        return replace(self, camera=replace(self.camera, position=moved(self.camera.position),
+                                            target=moved(self.camera.target)),
+                       mesh_translate=moved(self.mesh_translate), key=light(self.key), fill=light(self.fill),
+                       environment=light(self.environment),
+                       props=tuple(replace(prop, position=moved(prop.position)) for prop in self.props))
+
 
 def skin_reflectance_of(spec: str, grid: WavelengthGrid = GRID_DEFAULT, where: str = "skin") -> NDArrayFloat:
     """

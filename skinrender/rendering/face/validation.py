@@ -93,7 +93,8 @@ __all__ = ["LIMITS_SCENE_FREE", "FURNACE_SIZE", "FURNACE_SPP", "SPHERE_SIZE", "S
            "FaceValidation", "Replicated", "replicated_of", "render_replicates", "render_replicates_request", "mean_rendering",
            "shift_against", "validate_face", "validate_face_request"]
 
-RENDER_OPTIONS = ("skin", "size", "sampler", "variant", "grid", "channels", "imager", "exposure", "illuminance")
+RENDER_OPTIONS = ("skin", "size", "sampler", "variant", "grid", "channels", "imager", "exposure", "illuminance",
+                  "translate_mm")
 """:func:`validate_face`'s keywords that go to each replicate's :func:`~skinrender.rendering.face.render_face`."""
 
 
@@ -342,7 +343,7 @@ def validate_face(
     **render_options
         The render's own, to each replicate's :func:`skinrender.rendering.face.render_face`: ``skin``,
         ``size`` (image side, pixels; ``None``: the scene's), ``sampler``, ``variant``, ``channels``, ``grid``
-        (nm), ``imager``, ``exposure`` (s or ``auto``), ``illuminance`` (lx).
+        (nm), ``imager``, ``exposure`` (s or ``auto``), ``illuminance`` (lx), ``translate_mm`` (x, y, z mm).
 
     Returns
     -------

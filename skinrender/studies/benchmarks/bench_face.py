@@ -60,9 +60,8 @@ LEVELS_BENCH = tuple(level for level in LEVELS_EACH
                      if physics_level(level).samples_per_s >= physics_level("direct").samples_per_s)
 """The levels timed unless named: the analytic model's world and each effect alone (read from the registry of
 effects, :data:`skinrender.rendering.face.effects.LEVELS_EACH`) but those slower per sample than the base
-(``subsurface-volume``, not a default level either: its reference alone would take hours at :data:`SIZE_BENCH`):
-name them (``--levels subsurface-volume``)
-at a smaller size."""
+(``subsurface-volume``, not a default level either: its reference alone would take ~40 min on one core at
+:data:`SIZE_BENCH`): name them (``--levels subsurface-volume``), at a smaller size."""
 
 SPPS_BENCH = (4, 16, 64, 256)
 """Samples per pixel of the curve."""

@@ -288,6 +288,7 @@ def ladder(
     budget_fraction: float = BUDGET_FRACTION,
     skin_set=SKIN_SET_DEFAULT,
     detection_tolerance: float = DETECTION_TOLERANCE,
+    translate_mm=None,
 ) -> Ladder:
     """
     Render the face at each level of physics, score skin detection there and test Eq. 4's error.
@@ -329,6 +330,10 @@ def ladder(
     detection_tolerance
         How far Eq. 4 may be off in TPR and in FPR (fractions in (0, 1)): each level's ``detection`` verdict
         (:func:`~skinrender.rendering.face.detection.face_detection`).
+    translate_mm
+        ``(x, y, z)`` mm: the whole scene moved that far from the origin (``None``: where it is); a scene beyond
+        float32's useful range at any of the levels is refused before anything renders
+        (:func:`~skinrender.rendering.face.request.face_request`).
 
     Returns
     -------
@@ -337,7 +342,7 @@ def ladder(
 
     return ladders([camera_], prevailing, calibration, skin, levels, spp, seed, size, scene, variant, grid, imager,
                    illuminance, progress, replicates, budget_fraction, bands=None, skin_set=skin_set,
-                   detection_tolerance=detection_tolerance)[0]
+                   detection_tolerance=detection_tolerance, translate_mm=translate_mm)[0]
 
 
 def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: Sequence[str] = LEVELS_DEFAULT,
@@ -345,13 +350,13 @@ def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: S
             grid: WavelengthGrid = GRID_DEFAULT, imager: str | None = None, illuminance: float | None = None,
             progress: Callable[[str], None] | None = None, replicates: int = REPLICATES_LADDER,
             budget_fraction: float = BUDGET_FRACTION, bands=BANDS_DEFAULT, skin_set=SKIN_SET_DEFAULT,
-            detection_tolerance: float = DETECTION_TOLERANCE) -> list:
+            detection_tolerance: float = DETECTION_TOLERANCE, translate_mm=None) -> list:
     """
     :func:`ladder` for every camera of ``cameras`` (arguments as there): each level's replicates rendered once
     spectrally with ``bands`` (``START:END:STEP`` nm; one render per seed, seen through every camera:
     :mod:`~skinrender.rendering.face.spectral_face`), or, with ``bands=None``, once per camera. A spectral
     level's seconds are shared equally by the cameras (each adds its own projections). One :class:`Ladder` per
-    camera, in their order.
+    camera, in their order. ``translate_mm``: as :func:`ladder`.
     """
     cams = [camera(c) for c in cameras]
     if not cams:
@@ -374,7 +379,7 @@ def ladders(cameras, prevailing, calibration, skin: str | None = None, levels: S
     ways = [None] if bands is not None else cams  # a spectral request per level, or one per camera and level
     requests = {(way and way.name, level.name): face_request(
         face, way, p, None if way is None else c, skin=skin, physics=level, size=size, spp=each, seed=seed,
-        variant=variant, grid=grid, bands=None if way is not None else bands,
+        variant=variant, grid=grid, bands=None if way is not None else bands, translate_mm=translate_mm,
         **PHYSICS_REGISTRY.options_for(level, sensor)) for way in ways for level in levels}  # checked first
     seconds = sum(request.level.seconds(request.pixels * each * replicates) for request in requests.values())
     if progress is not None and seconds > 60:  # subsurface-volume: minutes (the command line refuses beyond --max-minutes)
