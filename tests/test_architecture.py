@@ -7,6 +7,7 @@ own, and a core that runs without the optional extras.
 
 from __future__ import annotations
 
+import functools
 import importlib
 import json
 import pkgutil
@@ -219,8 +220,10 @@ def test_the_pytest_plugin_imports_neither_mitsuba_nor_the_renderer():
     assert seen["skinrender"] == ["skinrender", "skinrender._interrupt"]  # and the Ctrl-C guard (standard library)
 
 
+@functools.cache
 def _parsed_modules():
-    """Every module of the package, parsed: ``(dotted name, syntax tree)``."""
+    """Every module of the package, parsed: ``(dotted name, syntax tree)``; parsed once per session (the tests
+    only read the trees)."""
     import ast
 
     return [(module, ast.parse(source_of(module).read_text(encoding="utf-8"))) for module in ["skinrender", *modules()]]
