@@ -211,6 +211,24 @@ def definitions_found_when_asked():
     ModuleAnalyzer.find_tags = find_tags_when_asked
 
 
+GC_FIRST_GENERATION = 100_000
+"""Allocations between two collections of the youngest objects in the build's process (Python's default: 700)."""
+
+
+def fewer_garbage_collections():
+    """
+    A build makes millions of long-lived objects (docutils nodes, the environment) and few cycles to free: at
+    Python's default threshold the cyclic collector runs every 700 allocations and keeps walking the growing
+    older generations, ~15 % of the build's CPU. Collect the youngest generation every
+    :data:`GC_FIRST_GENERATION` allocations instead (the pages are the same; the process holds a little more
+    memory between collections).
+    """
+    import gc
+
+    _, older, oldest = gc.get_threshold()
+    gc.set_threshold(max(GC_FIRST_GENERATION, gc.get_threshold()[0]), older, oldest)
+
+
 OTHER_PAGES = "OTHER_PAGES"
 """The line of ``index.md``'s "Guides" toctree that stands for every page no toctree of ``index.md`` names."""
 
@@ -241,4 +259,5 @@ def setup(app):
     search_words_stemmed_once()
     log_records_only_when_shown(app)
     definitions_found_when_asked()
+    fewer_garbage_collections()
     app.connect("builder-inited", typehints_recorded_only_when_shown)
