@@ -132,7 +132,7 @@ def pybtex_plugins_found_once():
 def search_words_stemmed_once():
     """
     The HTML search index stems every word of every page (``SearchEnglish.stem``, the Python Snowball stemmer):
-    ~60 000 calls for a few thousand distinct words, ~10 % of the build. A word's stem depends on the word
+    ~60 000 calls for a few thousand distinct words, ~9 % of the build under cProfile. A word's stem depends on the word
     alone: stem each distinct word once (the index is the same).
     """
     import functools
@@ -158,8 +158,9 @@ def log_records_only_when_shown(app):
     """
     Sphinx sets its logger to DEBUG whatever the verbosity and leaves the level to its handlers, so every debug
     message (one per event emitted, one per object autodoc imports: ~40 000 a build) becomes a log record that
-    every handler then drops, ~4 % of the build. Set the logger to the lowest level a handler shows at this
-    verbosity (``sphinx.util.logging.setup``'s own map): the messages shown, warnings included, are the same.
+    every handler then drops, ~3 % of the build under cProfile. Set the logger to the lowest level a handler
+    shows at this verbosity (``sphinx.util.logging.setup``'s own map): the messages shown, warnings included, are
+    the same.
     """
     import logging
 
@@ -172,7 +173,8 @@ def typehints_recorded_only_when_shown(app):
     """
     autodoc records every documented callable's type hints (its signature, each annotation as text) for
     ``autodoc_typehints = "description"`` or ``"both"``, and reads them nowhere else (``_merge_typehints``); with
-    ``"none"`` the work (~3 % of the build) is thrown away. Skip it then (builder-inited: the configuration is read).
+    ``"none"`` the work (~2 % of the build under cProfile) is thrown away. Skip it then (builder-inited: the
+    configuration is read).
     """
     if app.config.autodoc_typehints in {"both", "description"}:
         return
@@ -187,7 +189,8 @@ def definitions_found_when_asked():
     Sphinx's module analyser parses each documented module twice: its syntax tree for the attributes' comments
     and the members' source order (what autodoc reads), and a token pass for the lines each definition spans,
     ``find_tags``, which only ``viewcode`` and ``literalinclude :pyobject:`` ask for (neither here) and which takes
-    ~8 % of the build. Make the token pass when ``find_tags`` is first asked for, not with every analysis.
+    ~8 % of the build under cProfile. Make the token pass when ``find_tags`` is first asked for, not with every
+    analysis.
     """
     from sphinx.pycode import ModuleAnalyzer
     from sphinx.pycode import parser as pycode
@@ -219,14 +222,14 @@ def fewer_garbage_collections():
     """
     A build makes millions of long-lived objects (docutils nodes, the environment) and few cycles to free: at
     Python's default threshold the cyclic collector runs every 700 allocations and keeps walking the growing
-    older generations, ~15 % of the build's CPU. Collect the youngest generation every
+    older generations, ~16 % of the build's CPU (measured without a profiler). Collect the youngest generation every
     :data:`GC_FIRST_GENERATION` allocations instead (the pages are the same; the process holds a little more
     memory between collections).
     """
     import gc
 
-    _, older, oldest = gc.get_threshold()
-    gc.set_threshold(max(GC_FIRST_GENERATION, gc.get_threshold()[0]), older, oldest)
+    youngest, older, oldest = gc.get_threshold()
+    gc.set_threshold(max(GC_FIRST_GENERATION, youngest), older, oldest)
 
 
 OTHER_PAGES = "OTHER_PAGES"
