@@ -169,51 +169,6 @@ def log_records_only_when_shown(app):
     logging.getLogger(NAMESPACE).setLevel(VERBOSITY_MAP[max(app.verbosity, 0)])
 
 
-def typehints_recorded_only_when_shown(app):
-    """
-    autodoc records every documented callable's type hints (its signature, each annotation as text) for
-    ``autodoc_typehints = "description"`` or ``"both"``, and reads them nowhere else (``_merge_typehints``); with
-    ``"none"`` the work (~2 % of the build under cProfile) is thrown away. Skip it then (builder-inited: the
-    configuration is read).
-    """
-    if app.config.autodoc_typehints in {"both", "description"}:
-        return
-    from sphinx.ext.autodoc._dynamic import _signatures
-
-    if hasattr(_signatures, "_record_typehints"):
-        _signatures._record_typehints = lambda **_: None
-
-
-def definitions_found_when_asked():
-    """
-    Sphinx's module analyser parses each documented module twice: its syntax tree for the attributes' comments
-    and the members' source order (what autodoc reads), and a token pass for the lines each definition spans,
-    ``find_tags``, which only ``viewcode`` and ``literalinclude :pyobject:`` ask for (neither here) and which takes
-    ~8 % of the build under cProfile. Make the token pass when ``find_tags`` is first asked for, not with every
-    analysis.
-    """
-    from sphinx.pycode import ModuleAnalyzer
-    from sphinx.pycode import parser as pycode
-
-    if getattr(ModuleAnalyzer.find_tags, "when_asked", False):
-        return
-
-    def parse(self) -> None:
-        self.parse_comments()  # the definitions: find_tags_when_asked
-
-    def find_tags_when_asked(self):
-        self.analyze()
-        if not getattr(self, "tags_found", False):
-            finder = pycode.DefinitionFinder(pycode.filter_whitespace(self.code).splitlines(True))
-            finder.parse()
-            self.tags, self.tags_found = finder.definitions, True
-        return self.tags
-
-    find_tags_when_asked.when_asked = True
-    pycode.Parser.parse = parse
-    ModuleAnalyzer.find_tags = find_tags_when_asked
-
-
 GC_FIRST_GENERATION = 100_000
 """Allocations between two collections of the youngest objects in the build's process (Python's default: 700)."""
 
@@ -261,6 +216,4 @@ def setup(app):
     pybtex_plugins_found_once()
     search_words_stemmed_once()
     log_records_only_when_shown(app)
-    definitions_found_when_asked()
     fewer_garbage_collections()
-    app.connect("builder-inited", typehints_recorded_only_when_shown)
