@@ -44,6 +44,7 @@ References
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -215,9 +216,16 @@ def critical_z(alpha: float, tests: int = 1, sides: int = 2, dof: float | None =
     >>> round(critical_z(0.05, 1, sides=1), 3)
     1.645
     """
+    level = sidak(alpha, tests) / (2 if sides == 2 else 1)
+    return _isf(level, None if dof is None else float(dof))
+
+
+@functools.lru_cache(maxsize=1024)
+def _isf(level: float, dof: float | None) -> float:
+    """The standard normal's (or Student t's with ``dof`` degrees of freedom) upper ``level`` quantile, kept: a
+    verdict over many seeds or draws asks for the same few (scipy's ``isf`` costs ~0.1 ms a call)."""
     from scipy import stats
 
-    level = sidak(alpha, tests) / (2 if sides == 2 else 1)
     return float(stats.norm.isf(level) if dof is None else stats.t.isf(level, dof))
 
 

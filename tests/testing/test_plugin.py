@@ -121,11 +121,24 @@ def test_regen_pass_and_a_shifted_camera_fails_with_its_files(project, monkeypat
     assert (project.path / "results" / "test_scenes.py__test_face" / "test_face.difference.png").exists()
 
 
+WRITTEN: dict[str, bytes] = {}
+"""The files ``--skinrender-regen -k chart`` wrote in the first project (name → content), for the next ones."""
+
+
 @pytest.fixture
 def written(project):
-    """The project with its references written."""
-    run(project, "--skinrender-regen", "-k", "chart").assert_outcomes(passed=1)
-    return project, project.path / "test_scenes" / "test_chart.exr"
+    """The project with its references written: by ``--skinrender-regen`` in the first test that asks, copied byte
+    for byte into the next ones (the same test file, chart and camera: the regen writes the same files, and each test
+    damages its own copy)."""
+    folder = project.path / "test_scenes"
+    if not WRITTEN:
+        run(project, "--skinrender-regen", "-k", "chart").assert_outcomes(passed=1)
+        WRITTEN.update({path.name: path.read_bytes() for path in folder.iterdir()})
+    else:
+        folder.mkdir()
+        for name, content in WRITTEN.items():
+            (folder / name).write_bytes(content)
+    return project, folder / "test_chart.exr"
 
 
 @pytest.mark.parametrize("damage, message", [
