@@ -164,6 +164,8 @@ def _answer(level: dict) -> str:
     tau, interval = level["kendall_tau"], level["kendall_tau_interval"]
     said = "τ —" if tau is None else f"τ {tau:.2f}" + ("" if interval is None else
                                                         f" [{interval[0]:.2f}, {interval[1]:.2f}]")
+    if level["top_k_overlap"] is None:
+        return f"{level['level']}: undecided ({level['undefined']['level']})"
     return (f"{level['level']}: {same} ({said}; top-{level['top_k']} overlap {level['top_k_overlap']:.2f}; "
             f"Eq. 4's best {', '.join(level['best_eq4'])}, rendered best {level['best_rendered']})")
 

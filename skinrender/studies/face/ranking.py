@@ -195,6 +195,33 @@ def _kendall(a: np.ndarray, b: np.ndarray) -> float | None:
     return None if not np.isfinite(tau) else float(tau)
 
 
+def _level_from_scenes(level: str, names: list[str], mine: list[dict]) -> dict:
+    """One level's summary from its scenes' scores (each a :func:`_scene_task`'s result): every camera averaged
+    over the scenes scored for every camera (``null`` scores with the reason where there are none)."""
+    eq4 = np.array([[np.nan if s["eq4"] is None else s["eq4"] for s in d["scores"]] for d in mine])
+    rendered = np.array([[np.nan if s["rendered"] is None else s["rendered"] for s in d["scores"]] for d in mine])
+    halves = np.array([[[np.nan if v is None else v for v in s["halves"]] for s in d["scores"]] for d in mine])
+    undefined = {}
+    complete = ~(np.isnan(eq4).any(axis=1) | np.isnan(rendered).any(axis=1) | np.isnan(halves).any(axis=(1, 2)))
+    if not complete.all():  # every camera averaged over the same scenes, or the ranks compare unlike samples
+        undefined["scenes"] = (f"{int((~complete).sum())} of {len(complete)} scenes had no scored skin or prop "
+                               "pixel for some camera: left out for every camera")
+    if not complete.any():
+        return _level_unscored(level, names, undefined)
+    return _level_summary(level, names, eq4[complete].mean(axis=0), rendered[complete].mean(axis=0),
+                          halves[complete].mean(axis=0).T, mine[0]["scores"][0]["factor"], undefined)
+
+
+def _level_unscored(level: str, names: list[str], undefined: dict) -> dict:
+    """A level where no scene was scored for every camera: its scores, ranks and answers ``null``, with the reason."""
+    candidates = [{"camera": name, "score_eq4": None, "score_rendered": None, "score_bound": None, "rank_eq4": None,
+                   "rank_rendered": None} for name in names]
+    reason = "no scene had scored skin and prop pixels for every camera"
+    return {"level": level, "candidates": candidates, "undefined": {**undefined, "level": reason},
+            "kendall_tau": None, "kendall_tau_interval": None, "top_k": min(TOP_OVERLAP, len(names)),
+            "top_k_overlap": None, "same_best_share": None, "best_eq4": [], "best_rendered": None, "same_best": None}
+
+
 def _level_summary(level: str, names: list[str], eq4: np.ndarray, rendered: np.ndarray, halves: np.ndarray,
                    factor: float, undefined: dict) -> dict:
     """One level's candidates, τ and its interval, the top-k overlap and same_best."""
@@ -220,7 +247,7 @@ def _level_summary(level: str, names: list[str], eq4: np.ndarray, rendered: np.n
             out["kendall_tau_interval"] = None
             out["undefined"]["kendall_tau_interval"] = "the half-samples' scores do not order the cameras"
         else:
-            spread = Z_95 * np.sqrt(factor * np.var(taus, ddof=1))
+            spread = Z_95 * np.std(taus, ddof=1)  # the halves carry the factor already (above)
             out["kendall_tau_interval"] = [max(-1.0, tau - spread), min(1.0, tau + spread)]
     k = min(TOP_OVERLAP, len(names))
     top_eq4 = set(np.argsort(-eq4, kind="stable")[:k].tolist())
@@ -335,17 +362,8 @@ def rank(cameras, lights, skins, levels=LEVELS_RANK, size: int = 64, spp: int = 
     done = run_renders(partial(_scene_task, settings=settings), rank_tasks(pairs, skins, levels), settings.variant,
                        int(workers), dask, progress, "rank")
     names = [cam.name for cam in cams]
-    summaries = []
-    for level in levels:
-        mine = [d for d in done if d["task"][3].name == level.name]
-        eq4 = np.array([[np.nan if s["eq4"] is None else s["eq4"] for s in d["scores"]] for d in mine])
-        rendered = np.array([[np.nan if s["rendered"] is None else s["rendered"] for s in d["scores"]] for d in mine])
-        halves_ = np.array([[[np.nan if v is None else v for v in s["halves"]] for s in d["scores"]] for d in mine])
-        undefined = {}
-        if np.isnan(eq4).any() or np.isnan(rendered).any():
-            undefined["scenes"] = "some scene had no scored skin or prop pixel for some camera: its J is left out"
-        summaries.append(_level_summary(level.name, names, np.nanmean(eq4, axis=0), np.nanmean(rendered, axis=0),
-                                        np.nanmean(halves_, axis=0).T, mine[0]["scores"][0]["factor"], undefined))
+    summaries = [_level_from_scenes(level.name, names, [d for d in done if d["task"][3].name == level.name])
+                 for level in levels]
     spp_used = done[0]["scores"][0]["spp"]
     return Ranking(names, [list(pair) for pair in pairs], skins, skin_set_name(skin_set), summaries, candidates_from,
                    size=int(size), spp=spp_used, seed=int(seed), variant=settings.variant,

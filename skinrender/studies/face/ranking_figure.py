@@ -31,8 +31,8 @@ def figure_rank(levels: list[dict], title: str, path: str | Path) -> Path:
     rows = -(-count // columns)
     figure, axes = plt.subplots(rows, columns, figsize=(3.3 * columns, 3.4 * rows + 0.6), squeeze=False)
     for ax, level in zip(axes.flat, levels):
-        a = [c["rank_eq4"] for c in level["candidates"]]
-        b = [c["rank_rendered"] for c in level["candidates"]]
+        a = [float("nan") if c["rank_eq4"] is None else c["rank_eq4"] for c in level["candidates"]]  # unscored
+        b = [float("nan") if c["rank_rendered"] is None else c["rank_rendered"] for c in level["candidates"]]
         n = len(a)
         ax.plot([0.5, n + 0.5], [0.5, n + 0.5], color="0.75", lw=1, zorder=1)
         ax.scatter(a, b, s=22, color="#b07848", zorder=2)

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from skinrender.errors import SkinrenderError
-from skinrender.studies.face.ranking import _level_summary, rank, search_candidates, triplet_camera
+from skinrender.studies.face.ranking import _level_from_scenes, _level_summary, rank, search_candidates, triplet_camera
 
 CAMERAS = ["gbell:9@450,540,610", "gbell:9@560,570,590", "Nikon 5100 (NPL)"]
 
@@ -57,6 +57,24 @@ def test_the_summary_on_known_scores():
     assert leaning["same_best"] is False and leaning["same_best_share"] == 0.0  # the halves' spread, not their lean
     tied = _level_summary("x", names, np.full(4, 0.5), eq4, np.tile(eq4, (24, 1)), 1.0, {})
     assert tied["kendall_tau"] is None and "every candidate scores the same" in tied["undefined"]["kendall_tau"]
+
+
+def test_cameras_are_averaged_over_the_scenes_scored_for_every_camera():
+    """A scene that one camera could not score is left out for every camera (else each camera's mean covers other
+    scenes); a level with no such scene has null scores and answers with the reason (a NaN would rank first and make
+    the JSON invalid)."""
+    def scene(scores):
+        return {"scores": [{"eq4": e, "rendered": r, "halves": [r] * 4, "factor": 1.0} for e, r in scores]}
+
+    names = ["a", "b"]
+    level = _level_from_scenes("x", names, [scene([(0.9, 0.9), (0.5, 0.5)]), scene([(0.1, 0.1), (None, None)])])
+    assert [c["score_eq4"] for c in level["candidates"]] == [0.9, 0.5]  # the second scene left out for both
+    assert level["best_rendered"] == "a" and "1 of 2 scenes" in level["undefined"]["scenes"]
+    json.dumps(level, allow_nan=False)
+    none = _level_from_scenes("x", names, [scene([(0.9, 0.9), (None, None)])])
+    assert none["kendall_tau"] is None and none["same_best"] is None and none["best_rendered"] is None
+    assert all(c["rank_eq4"] is None for c in none["candidates"]) and "every camera" in none["undefined"]["level"]
+    json.dumps(none, allow_nan=False)
 
 
 def test_the_searchs_candidates():
