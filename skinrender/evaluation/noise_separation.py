@@ -203,8 +203,11 @@ def separate_noise(chromaticity: ArrayLike, noise: ArrayLike, groups: ArrayLike,
             continue
         d = c[members] - mean
         physics, tested = _spread(d, average, z)
-        scale = _root(physics, 0.5)[None] @ _root(physics[None] + cov[members], -0.5)
-        out[members] = centre + np.einsum("nij,nj->ni", scale, d)
+        if not physics.any():  # no spread kept: every pixel to the material's mean (its scale is 0)
+            out[members] = centre
+        else:
+            scale = _root(physics, 0.5)[None] @ _root(physics[None] + cov[members], -0.5)
+            out[members] = centre + np.einsum("nij,nj->ni", scale, d)
         spreads[keyed] = Spread(n, tuple(centre.tolist()), tuple(average.ravel().tolist()),
                                 tuple(physics.ravel().tolist()), **tested)
     return out, spreads
