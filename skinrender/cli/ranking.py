@@ -93,6 +93,7 @@ def _checked(args: argparse.Namespace) -> dict:
     """Every flag checked, before the search and any render."""
     from ..design.bank import positions_grid
     from ..execution import WORKERS_MAX, check_workers
+    from ..studies.face.ranking import triplet_camera
     from ..model.camera import camera
     from ..rendering.face.scene import load_face_scene
     from ..spectra import GRID_DEFAULT
@@ -136,8 +137,8 @@ def _checked(args: argparse.Namespace) -> dict:
         raise SkinrenderError("--dask: expected a scheduler address (tcp://host:8786), got an empty one", flag="--dask")
     for cam in extra:
         skin_set_from(args.skin_set, cam, [c for _, c in pairs])
-    skins_set = skin_set_from(args.skin_set, extra[0] if extra else camera(f"gbell:{sensor:g}@450,540,610"),
-                            [c for _, c in pairs])
+    probe = extra[0] if extra else camera(triplet_camera(sensor, (450, 540, 610), slope))  # the search's kind
+    skins_set = skin_set_from(args.skin_set, probe, [c for _, c in pairs])
     cores = min(check_workers(workers), os.cpu_count() or 1) if args.dask is None else os.cpu_count() or 1
     candidates = top + len(extra)
     each = -(-spp // REPLICATES)
