@@ -43,7 +43,7 @@ import numpy as np
 from ...errors import SkinrenderError
 from ...evaluation.locus import skin_locus
 from ...execution import dask_name
-from ...model.camera import Camera, camera
+from ...model.camera import camera
 from ...rendering.face import planckian_temperature
 from ...rendering.face.detection import detection_rates
 from ...rendering.face.effects import PHYSICS_REGISTRY, Level
