@@ -2,14 +2,16 @@
 """
 Measure the skin model's fits to measured skin (``docs/skin-model.md``): the numbers behind its defaults.
 
-    python tools/measure_skin_fits.py background [--every N] [--only NAME]   # the background calibration
+    python tools/measure_skin_fits.py calibrate [--every N]       # background and melanin power, together
+    python tools/measure_skin_fits.py background [--every N] [--only NAME]   # the background alone
     python tools/measure_skin_fits.py variants [--every N] [--only NAME,…]   # the alternatives compared
     python tools/measure_skin_fits.py refit [--every N]        # = skinrender skin --fit (summary)
     python tools/measure_skin_fits.py diagnose [--subjects S006,…]   # what the fits on a bound ask for
 
-``background``: the 100 NIST skins fitted with the dermis' scattering held at Jacques 2013's skin average
-(a = 46 cm⁻¹) and ``background`` fitted with melanin, blood, oxygenation and b: the median of the fitted
-background is ``BACKGROUND_PER_CM``. ``variants``: the full fit (a, b free) at the defaults and under
+``calibrate``: the 100 NIST skins fitted with the dermis' scattering held at Jacques 2013's skin average
+(a = 46 cm⁻¹) and ``background`` and ``melanin_power`` fitted with melanin, blood, oxygenation and b: the
+medians of the fitted background and power are ``BACKGROUND_PER_CM`` and ``MELANIN_POWER`` (two digits).
+``background``: the same with the melanin power held (at its default, or a variant's spectrum). ``variants``: the full fit (a, b free) at the defaults and under
 sourced alternatives (:data:`VARIANTS`, from ``skin_alternatives.py`` beside this file: other absorption levels,
 vessel radii, melanin and blood spectra, fat, a Rayleigh part of the scattering, the instrument's lateral loss) —
 to show what the fitted parameters follow; ``--only`` picks some by name. ``refit``: the fit at the defaults, the
@@ -59,7 +61,7 @@ def _fit(label, lam, values, names, held, fitted=None):
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[1])
-    parser.add_argument("what", choices=("background", "variants", "refit", "diagnose"))
+    parser.add_argument("what", choices=("calibrate", "background", "variants", "refit", "diagnose"))
     parser.add_argument("--subjects", default="S006,S061,S096,S011,S051",
                         help="diagnose: NIST subjects (default: three on b = 0 and two light ones)")
     parser.add_argument("--every", type=int, default=1, help="fit every Nth NIST skin (default 1: all 100)")
@@ -77,7 +79,11 @@ def main(argv=None) -> int:
     keep = (measured.wavelengths >= 400) & (measured.wavelengths <= 700)
     lam, values = measured.wavelengths[keep], measured.values[::args.every, keep]
     names = measured.names[::args.every]
-    if args.what == "background":  # --only: one variant's substitution (its held changes but the background)
+    if args.what == "calibrate":
+        _fit("background and melanin power fitted, a held at 46 cm⁻¹", lam, values, names,
+             replace(SkinParameters(), scattering=46.0),
+             ("melanin", "blood", "oxygenation", "scattering_power", "background", "melanin_power"))
+    elif args.what == "background":  # --only: one variant's substitution (its held changes but the background)
         from skin_alternatives import VARIANTS, substituted
 
         if args.only and args.only not in VARIANTS:

@@ -139,12 +139,49 @@ def _fat_in_dermis(skin_model, fraction: float):
     return with_fat
 
 
+def _melanin_free_corneum(skin_model, skin_fit, corneum_mm: float, scattering_ratio: float) -> list:
+    """The epidermis split into a melanin-free stratum corneum of ``corneum_mm`` on top (water-only absorption,
+    ``scattering_ratio`` × the epidermis' scattering) over a living epidermis holding all of the epidermis'
+    melanin (its absorption optical depth kept: μa,living = (μa,epi·d − μa,corneum·d_c) / (d − d_c));
+    Meglinski & Matcher 2002 put the melanin in the living epidermis, none in the stratum corneum."""
+    from skinrender.datasets.adding_doubling import Slab, stack_reflectance
+
+    def three_layers(coefficients, base, quad_pts):
+        mu_a_e, mu_a_d, mu_s_e, mu_s_d = coefficients
+        depth = float(base.epidermis_mm)
+        lam_water = skin_model.WATER_EPIDERMIS * skin_model.water_absorption(_three_layers_lam[0])
+        mu_a_c = np.broadcast_to(lam_water, np.shape(mu_a_e))
+        mu_a_living = (mu_a_e * depth - mu_a_c * corneum_mm) / (depth - corneum_mm)
+        slabs = [Slab(mu_a_c, scattering_ratio * mu_s_e, skin_model.G_SKIN, corneum_mm),
+                 Slab(mu_a_living, mu_s_e, skin_model.G_SKIN, depth - corneum_mm),
+                 Slab(mu_a_d, mu_s_d, skin_model.G_SKIN, None)]
+        return stack_reflectance(slabs, n=float(base.n), quad_pts=quad_pts)
+
+    model = skin_fit._model
+
+    def fitted_model(method_name, lam, x, names, base, quad_pts):
+        _three_layers_lam[0] = lam
+        return model(method_name, lam, x, names, base, quad_pts)
+
+    def reflectance(lam, parameters):
+        lam = np.asarray(lam, dtype=np.float64)
+        _three_layers_lam[0] = lam
+        return three_layers(skin_model.layer_coefficients(lam, asdict(parameters)), parameters,
+                            skin_model.QUAD_PTS_DEFAULT)
+
+    return [(skin_fit.FIT_MODELS, "adding-doubling", three_layers), (skin_fit, "_model", fitted_model),
+            (skin_model.SKIN_REFLECTANCE_METHODS, "adding-doubling", reflectance)]
+
+
+_three_layers_lam = [None]
+
+
 def _substitution(name: str | None) -> list:
     """``[(module or dict, attribute or key, replacement)]`` for the variant ``name``."""
     from skinrender.datasets import skin_fit, skin_model
 
-    def melanin(spectrum):
-        return [(skin_model, "melanosome_absorption", spectrum)]
+    def melanin(spectrum):  # the substitute replaces the power law, so it ignores the model's melanin_power
+        return [(skin_model, "melanosome_absorption", lambda wavelength, power=None: spectrum(wavelength))]
 
     builders = {
         "sarna-eumelanin": lambda: melanin(_melanin_shape(1.0)),
@@ -155,6 +192,7 @@ def _substitution(name: str | None) -> list:
         "rayleigh": lambda: _rayleigh_part(skin_model, skin_fit, 0.409),
         "lateral-loss": lambda: _with_lateral_loss(skin_model, skin_fit, 2.5),
         "lateral-loss-3.48": lambda: _with_lateral_loss(skin_model, skin_fit, 2.5) + melanin(_melanin_348),
+        "corneum": lambda: _melanin_free_corneum(skin_model, skin_fit, 0.02, 1.0),
     }
     return builders[name]() if name else []
 
@@ -202,6 +240,10 @@ VARIANTS = {
     "rayleigh": ("scattering with a Rayleigh part f_Ray 0.409 (Jacques 2013)", {}, "rayleigh"),
     "lateral-loss": ("the 5 mm port's lateral loss, water only", {"background": 0.0}, "lateral-loss"),
     "lateral-loss-3.48": ("the same, melanin 1.70e12 λ^−3.48", {"background": 0.0}, "lateral-loss-3.48"),
+    "corneum": ("a melanin-free stratum corneum 20 µm (Meglinski & Matcher 2002)", {}, "corneum"),
+    "melanin-power-3.33": ("melanin λ^−3.33 (Jacques 1998, the model before its calibration)", {"melanin_power": 3.33},
+                           None),
+    "melanin-power-4.0": ("melanin λ^−4.0 (steeper than the calibration's 3.66)", {"melanin_power": 4.0}, None),
 }
 """name → (label, held parameter changes, substitution name or None)."""
 
@@ -232,7 +274,7 @@ def diagnose(lam, values, names, subjects) -> None:
         skin_fit.FIT_BOUNDS["scattering_power"], skin_model.PARAMETER_RANGES["scattering_power"] = low, limits
     at_500 = float(skin_absorbers.melanosome_absorption(500.0))
     for power in (4.0, 3.33, 2.5, 2.0, 1.5):
-        def melanin(wavelength, power=power):
+        def melanin(wavelength, _model_power=None, power=power):
             return at_500 * (np.asarray(wavelength, dtype=np.float64) / 500.0) ** -power
 
         skin_model.melanosome_absorption, saved = melanin, skin_model.melanosome_absorption

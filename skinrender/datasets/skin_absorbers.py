@@ -53,8 +53,8 @@ from ..errors import SkinrenderError
 from ..extras import require
 from ..hints import ArrayLike, NDArrayFloat
 
-__all__ = ["BLOOD_G_PER_L", "HAEMOGLOBIN_G_PER_MOL", "WATER_EPIDERMIS", "WATER_DERMIS", "melanosome_absorption",
-           "haemoglobin_extinction", "whole_blood_absorption", "water_absorption", "packaging_factor"]
+__all__ = ["BLOOD_G_PER_L", "HAEMOGLOBIN_G_PER_MOL", "WATER_EPIDERMIS", "WATER_DERMIS", "MELANOSOME_AT_500_PER_MM",
+           "MELANIN_POWER_JACQUES", "melanosome_absorption", "haemoglobin_extinction", "whole_blood_absorption", "water_absorption", "packaging_factor"]
 
 BLOOD_G_PER_L = 150.0
 """Haemoglobin of whole blood, g/L (Prahl's typical value)."""
@@ -89,14 +89,24 @@ def _on_table(table: NDArrayFloat, wavelength: ArrayLike, what: str) -> NDArrayF
     return lam
 
 
-def melanosome_absorption(wavelength: ArrayLike) -> NDArrayFloat:
-    """
-    Absorption coefficient of a melanosome, mm⁻¹ at ``wavelength`` (nm): ``6.6e11 λ^−3.33`` cm⁻¹ (Jacques 1998).
+MELANOSOME_AT_500_PER_MM = 6.6e11 * 500.0 ** -3.33 / 10
+"""A melanosome's absorption coefficient at 500 nm, mm⁻¹: Jacques 1998's ``6.6e11 λ^−3.33`` cm⁻¹ there (67.9)."""
+MELANIN_POWER_JACQUES = 3.33
+"""The power of Jacques 1998's melanosome spectrum, ``λ^−3.33``."""
 
-    >>> round(float(melanosome_absorption(500.0)), 1)
-    67.9
+
+def melanosome_absorption(wavelength: ArrayLike, power: ArrayLike = MELANIN_POWER_JACQUES) -> NDArrayFloat:
     """
-    return 6.6e11 * np.asarray(wavelength, dtype=np.float64) ** -3.33 / 10
+    Absorption coefficient of a melanosome, mm⁻¹ at ``wavelength`` (nm, last axis):
+    :data:`MELANOSOME_AT_500_PER_MM` ``(λ / 500 nm)^−power``; at the default ``power`` 3.33 this is Jacques
+    1998's ``6.6e11 λ^−3.33`` cm⁻¹. ``power`` broadcasts over leading axes.
+
+    >>> round(float(melanosome_absorption(500.0)), 1), round(float(melanosome_absorption(700.0, 4.0)), 2)
+    (67.9, 17.68)
+    """
+    lam = np.asarray(wavelength, dtype=np.float64)
+    q = np.asarray(power, dtype=np.float64)[..., None] if np.ndim(power) else float(power)
+    return MELANOSOME_AT_500_PER_MM * (lam / 500.0) ** -q
 
 
 def haemoglobin_extinction(wavelength: ArrayLike) -> tuple[NDArrayFloat, NDArrayFloat]:

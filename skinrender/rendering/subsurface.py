@@ -135,7 +135,7 @@ class SkinMedia:
         """JSON values: ``spec``, ``source`` (``parameters`` or ``fit``), ``parameters``, ``fit_rms``, ``bounds_hit``."""
         p = self.parameters
         names = ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "epidermis_mm", "n",
-                 "background", "vessel_min_um", "vessel_max_um", "epidermis_scattering")
+                 "background", "vessel_min_um", "vessel_max_um", "epidermis_scattering", "melanin_power")
         return {"spec": self.spec, "source": "parameters" if self.fit_rms is None else "fit",
                 "parameters": {name: float(getattr(p, name)) for name in names}, "fit_rms": self.fit_rms,
                 "bounds_hit": dict(self.bounds_hit)}

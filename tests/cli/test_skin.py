@@ -159,6 +159,7 @@ def test_no_column_converged_exits_1_with_the_whole_document(tmp_path, capsys, m
     (["--vessel-max-um", "1"], ("--vessel-max-um", "at most vessel_max_um")),
     (["--vessel-min-um", "50", "--vessel-max-um", "10"], ("--vessel-min-um", "50 > 10")),
     (["--epidermis-scattering", "0"], "--epidermis-scattering"),
+    (["--melanin-power", "-1"], ("--melanin-power", "[0, 10]")),
     (["--method", "monte-carlo"], ("--method", "adding-doubling, kubelka-munk")),
     (["--surface", "0.05"], ("--surface", "kubelka-munk")),
     (["--grid", "700:400:10"], "--grid"),

@@ -70,8 +70,9 @@ class TestFitSkinSpectrum:
     def test_background_and_packaging_are_held_and_can_be_fitted(self):
         """``fitted`` names what is fitted: the background's calibration (a held at 46 cm⁻¹, the background
         fitted) recovers a model spectrum's background."""
-        truth = SkinParameters(melanin=0.03, blood=0.02, scattering_power=1.1, background=0.12)
-        fitted = fit_skin_spectrum(LAMBDA, skin_reflectance(LAMBDA, truth), start=SkinParameters(), scan=True,
+        truth = SkinParameters(melanin=0.03, blood=0.02, scattering=46.0, scattering_power=1.1, background=0.12)
+        fitted = fit_skin_spectrum(LAMBDA, skin_reflectance(LAMBDA, truth), start=SkinParameters(scattering=46.0),
+                                   scan=True,
                                    fitted=("melanin", "blood", "oxygenation", "scattering_power", "background"))
         assert fitted.parameters.scattering == 46.0 and fitted.rms < 1e-4
         assert fitted.parameters.background == pytest.approx(0.12, rel=0.03)

@@ -58,6 +58,23 @@ class TestSkinLayers:
         assert not np.allclose(skin_reflectance(LAMBDA, SkinParameters(epidermis_scattering=1.6)),
                                skin_reflectance(LAMBDA))
 
+    def test_melanin_power_steepens_the_melanosome_about_500_nm(self):
+        """``melanin_power`` p: the melanosome's ``67.9 (λ/500)^−p`` mm⁻¹, Jacques 1998's ``6.6e11 λ^−3.33`` cm⁻¹ at
+        3.33; a steeper melanin absorbs less in the red and more in the blue, the same at 500 nm."""
+        from skinrender.datasets.skin_absorbers import melanosome_absorption, water_absorption
+
+        jacques, _ = skin_layers(LAMBDA, SkinParameters(melanin=0.2, melanin_power=3.33))
+        water = (1 - 0.2) * 0.75 * water_absorption(LAMBDA)
+        np.testing.assert_allclose(jacques.mu_a_per_mm, 0.2 * 6.6e11 * LAMBDA ** -3.33 / 10 + water, rtol=1e-12)
+        steep, _ = skin_layers(LAMBDA, SkinParameters(melanin=0.2, melanin_power=4.0))
+        at_500, red, blue = LAMBDA == 500, LAMBDA > 500, LAMBDA < 500
+        np.testing.assert_allclose(steep.mu_a_per_mm[at_500], jacques.mu_a_per_mm[at_500], rtol=1e-12)
+        assert np.all(steep.mu_a_per_mm[red] < jacques.mu_a_per_mm[red])
+        assert np.all(steep.mu_a_per_mm[blue] > jacques.mu_a_per_mm[blue])
+        np.testing.assert_allclose(melanosome_absorption([[500.0, 700.0]], np.array([3.33, 4.0]))[:, 1],
+                                   [melanosome_absorption(700.0, 3.33), melanosome_absorption(700.0, 4.0)])
+        assert SkinParameters().melanin_power == 3.7
+
     def test_background_darkens_the_red_and_packaging_brightens_the_haemoglobin_bands(self):
         red, band = LAMBDA >= 650, (LAMBDA >= 535) & (LAMBDA <= 580)
         base = skin_reflectance(LAMBDA, SkinParameters(melanin=0.02))
@@ -151,6 +168,7 @@ class TestSkinReflectance:
         ({"vessel_min_um": 0}, r"vessel_min_um must be in \(0,"),
         ({"vessel_min_um": 200.0}, "vessel_min_um must be at most vessel_max_um, got 200 > 100"),
         ({"epidermis_scattering": 0}, r"epidermis_scattering must be in \(0,"),
+        ({"melanin_power": 11}, r"melanin_power must be in \[0, 10\]"),
     ])
     def test_parameters_outside_their_physical_range_are_refused_before_computing(self, parameters, match):
         with warnings.catch_warnings():

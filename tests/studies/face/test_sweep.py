@@ -64,9 +64,13 @@ class TestFaceSweep:
         light, dark = rows[0], rows[2]
         for row in (light, dark):
             assert np.abs(np.subtract(row["skin_ncc_mean"], row["skin_ncc_analytic"])).max() < 3 * max(row["skin_ncc_std"])
+        # (the channels whose analytic shift is beyond 3 standard errors of the two means; the dark skin's
+        # chromaticity nears the flat surface reflection's, so not every channel moves: here the blue)
         shift = np.subtract(dark["skin_ncc_analytic"], light["skin_ncc_analytic"])
-        assert np.abs(shift).max() > 0.02
-        assert np.all(np.sign(np.subtract(dark["skin_ncc_mean"], light["skin_ncc_mean"])) == np.sign(shift))
+        error = sum(np.asarray(row["skin_ncc_std"]) / np.sqrt(row["skin_pixels"]) for row in (light, dark))
+        moved = np.abs(shift) > 3 * error
+        assert moved.any()
+        assert np.all(np.sign(np.subtract(dark["skin_ncc_mean"], light["skin_ncc_mean"]))[moved] == np.sign(shift)[moved])
         assert dark["skin_pixels"] < light["skin_pixels"]
         assert rows[1]["imager"] == "sony-icx418" and "imager" not in rows[0]
 
