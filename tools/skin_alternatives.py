@@ -243,6 +243,7 @@ VARIANTS = {
     "corneum": ("a melanin-free stratum corneum 20 µm (Meglinski & Matcher 2002)", {}, "corneum"),
     "melanin-power-3.33": ("melanin λ^−3.33 (Jacques 1998, the model before its calibration)", {"melanin_power": 3.33},
                            None),
+    "melanin-power-3.8": ("melanin λ^−3.8 (steeper than the calibration's 3.66)", {"melanin_power": 3.8}, None),
     "melanin-power-4.0": ("melanin λ^−4.0 (steeper than the calibration's 3.66)", {"melanin_power": 4.0}, None),
 }
 """name → (label, held parameter changes, substitution name or None)."""
