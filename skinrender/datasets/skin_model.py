@@ -98,7 +98,7 @@ from ..hints import ArrayLike, NDArrayFloat
 from ..methods import validate_method
 from .adding_doubling import QUAD_PTS_DEFAULT, Slab, stack_reflectance
 from .registry import REGISTRY_REFLECTANCES, SpectralSet, read_bundled_csv, register
-from .skin_absorbers import (BLOOD_G_PER_L, HAEMOGLOBIN_G_PER_MOL, MELANIN_POWER_JACQUES,  # noqa: F401
+from .skin_absorbers import (BLOOD_G_PER_L, HAEMOGLOBIN_G_PER_MOL,  # noqa: F401
                              WATER_DERMIS, WATER_EPIDERMIS,
                              haemoglobin_extinction, melanosome_absorption, packaging_factor, water_absorption,
                              whole_blood_absorption)
