@@ -176,8 +176,7 @@ CHART_DIRECT = Effect(
 )
 """The base: the chart the analytic model describes."""
 
-_REFUSES_SLABS = {"gamut": "the gamut volumes are compared on the Lambertian chart",
-                  "spp_auto": "it picks spp from the Lambertian chart's pilot renders; give spp N"}
+_REFUSES_SLABS = {"gamut": "the gamut volumes are compared on the Lambertian chart"}
 
 CHART_SUBSURFACE = Effect(
     "subsurface",

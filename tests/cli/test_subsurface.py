@@ -78,12 +78,27 @@ def test_render_and_detect_take_it(chart, physics, tmp_path, capsys):
     assert json.loads(out)["physics"] == physics
 
 
+@pytest.mark.parametrize("physics, sampler, exponent", [("subsurface", "multijitter", None),
+                                                        ("subsurface-volume", "independent", 0.5)])
+def test_spp_auto_pilots_the_level_itself(chart, physics, sampler, exponent, capsys):
+    """``--spp auto`` renders its two pilots at the level asked (their bounds are the slabs', not a Lambertian
+    chart's) and validates at the spp chosen; the independent sampler's bound is taken to fall as spp^-½."""
+    status, out, err = run(["validate", chart, "--camera", CAM, *LIGHTS, "--spp", "auto", "--physics", physics,
+                            "--tolerance", "0.3", "--json"], capsys)
+    assert status in (0, 3), err[-500:]
+    document = json.loads(out)
+    choice = document["spp_auto"]
+    assert [pilot["spp"] for pilot in choice["pilots"]] == [16, 64] and document["sampler"] == sampler
+    assert document["spp"] == choice["spp"] and document["physics"] == physics
+    assert exponent is None or choice["exponent"] == exponent
+    assert all(pilot["bound"] > 0 for pilot in choice["pilots"])
+
+
 @pytest.mark.parametrize("physics", ["subsurface", "subsurface-volume"])
 @pytest.mark.parametrize("extra, names", [
     (["--imager", "sony-icx418"], "--imager"),
     (["--illuminance", "100"], "--illuminance"),
     (["--gamut"], "--gamut"),
-    (["--spp", "auto", "--tolerance", "0.1"], "--spp auto"),
 ])
 def test_what_does_not_go_with_it_is_refused(chart, physics, extra, names, capsys):
     assert_refused(["validate", chart, "--camera", CAM, *LIGHTS, "--physics", physics, *extra], names, capsys)
