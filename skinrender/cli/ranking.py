@@ -185,7 +185,12 @@ def command_rank(args: argparse.Namespace) -> None:
         cameras = [camera(spec) for spec in search_candidates(options["top"], options["sensor"], options["positions"],
                                                               options["slope"], options["workers"], options["dask"],
                                                               progress=progress)]
-    cameras += [cam for cam in options["extra"] if cam.name not in {c.name for c in cameras}]
+    searched = {c.name for c in cameras}
+    cameras += [cam for cam in options["extra"] if cam.name not in searched]
+    if len(cameras) < 2:  # only the search tells that a --camera is one of its triplets
+        same = ", ".join(cam.name for cam in options["extra"] if cam.name in searched)
+        raise SkinrenderError(f"--camera: {same} is the search's own triplet (--top {options['top']}): a ranking needs "
+                              "two or more distinct candidates; raise --top or name another --camera", flag="--camera")
     result = rank(cameras, options["lights"], options["skins"], options["levels"], options["size"], options["spp"],
                   options["seed"], options["scene"], options["skin_set"], options["variant"], options["imager"],
                   options["illuminance"], options["workers"], options["dask"], progress,

@@ -56,3 +56,16 @@ def test_two_cameras_at_direct(capsys, tmp_path):
     status, out, err = run(["rank", "--top", "0", "--camera", CAM, "--camera", "Nikon 5100 (NPL)", *SMALL,
                             "--spp", "16"], capsys)
     assert "would Eq. 4 still choose the same camera?" in out and "direct: " in out.splitlines()[-1]
+
+
+def test_a_camera_the_search_also_found_leaves_too_few_and_is_named(capsys, tmp_path, monkeypatch):
+    """Only the search tells that a ``--camera`` is one of its triplets: with ``--top 1`` that leaves one candidate,
+    refused naming --camera before any render (the search stubbed: its best triplet is the camera given)."""
+    import skinrender.studies.face.ranking as ranking
+
+    monkeypatch.setattr(ranking, "search_candidates", lambda *args, **kwargs: [CAM])
+    monkeypatch.setattr(ranking, "rank", lambda *args, **kwargs: pytest.fail("rendered"))
+    status, out, err = run(["rank", "--top", "1", "--camera", CAM, *SMALL, "--json"], capsys)
+    last = err.strip().splitlines()[-1]  # after the estimate's line: the search ran
+    assert status == 2 and out == "" and "Traceback" not in err
+    assert "--camera" in last and "search's own triplet" in last and "--top 1" in last
