@@ -30,7 +30,8 @@ PARAMETER_FLAGS = {
     "vessel_min_um": ("--vessel-min-um", "smallest radius of the dermis' blood vessels, µm (> 0)"),
     "vessel_max_um": ("--vessel-max-um", "largest radius of the dermis' blood vessels, µm (≥ --vessel-min-um)"),
     "epidermis_scattering": ("--epidermis-scattering", "the epidermis' reduced scattering over the dermis' (> 0)"),
-    "melanin_power": ("--melanin-power", "power p of the melanosome's absorption 67.9 (λ/500 nm)^-p mm⁻¹, in [0, 10]"),
+    "melanin_power": ("--melanin-power",
+                      "power p of the melanosome's absorption 67.9 (λ/500 nm)^-p mm⁻¹, in [0, 10]"),
 }
 """SkinParameters field → (flag, help)."""
 HELD_IN_FIT = ("epidermis_mm", "n", "background", "vessel_min_um", "vessel_max_um", "epidermis_scattering",

@@ -5,7 +5,9 @@ Absorbers of the skin model
 The absorption spectra the skin model (:mod:`.skin_model`) composes its layers
 from, each with its source, all in mm⁻¹ on wavelengths in nm:
 
--   :func:`melanosome_absorption`: a melanosome, ``6.6e11 λ^−3.33`` cm⁻¹ :cite:`Jacques1998`.
+-   :func:`melanosome_absorption`: a melanosome, ``67.9 (λ / 500 nm)^−p`` mm⁻¹, its value at 500 nm that of
+    :cite:`Jacques1998`'s ``6.6e11 λ^−3.33`` cm⁻¹ (``p`` 3.33 gives it back; the skin model's ``p`` is its
+    ``melanin_power``).
 -   :func:`haemoglobin_extinction`, :func:`whole_blood_absorption`: oxy- and
     deoxy-haemoglobin's molar extinction compiled by Prahl :cite:`Prahl1999`;
     whole blood of :data:`BLOOD_G_PER_L` g/L at a saturation.
@@ -54,7 +56,8 @@ from ..extras import require
 from ..hints import ArrayLike, NDArrayFloat
 
 __all__ = ["BLOOD_G_PER_L", "HAEMOGLOBIN_G_PER_MOL", "WATER_EPIDERMIS", "WATER_DERMIS", "MELANOSOME_AT_500_PER_MM",
-           "MELANIN_POWER_JACQUES", "melanosome_absorption", "haemoglobin_extinction", "whole_blood_absorption", "water_absorption", "packaging_factor"]
+           "MELANIN_POWER_JACQUES", "melanosome_absorption", "haemoglobin_extinction", "whole_blood_absorption",
+           "water_absorption", "packaging_factor"]
 
 BLOOD_G_PER_L = 150.0
 """Haemoglobin of whole blood, g/L (Prahl's typical value)."""

@@ -23,19 +23,20 @@ melanin volume fraction. The layers' optical properties (absorbers in
     renderer's ``hg`` phase function takes it as it is), and ``n = 1.4`` (between
     the epidermis' ~1.43 and the dermis' ~1.39 in the visible :cite:`Ding2006`).
 
-The background. Reflectance fixes the dermis' absorption relative to its
-scattering, not either alone: a semi-infinite dermis of ``k μa`` and ``k μs`` reflects
-the same. Only an absorber of known absolute strength sets the scale of the fitted
-scattering. Water alone (0.002–0.006 cm⁻¹ in the red) puts most NIST skins' fitted
-``a`` on its lower bound 10 cm⁻¹, Jacques 1998's bloodless baseline (0.244 cm⁻¹ in the
-red) near 107 cm⁻¹ (``docs/skin-model.md``); neither is the literature's skin
-(Jacques 2013: 46 cm⁻¹). ``background`` (default :data:`BACKGROUND_PER_CM`) and the melanosome's
-power (:data:`MELANIN_POWER`) are the values at which the fits to the 100 NIST skins, their scattering
-held at Jacques 2013's 46 cm⁻¹ and both fitted with melanin, blood, saturation and b, agree (their
-medians, 0.073 cm⁻¹ and 3.66): the scale is taken from the literature, the rest from the spectra. It stands for what the composition
-leaves out (proteins such as collagen, the tissue under the dermis that red light
-reaches, a contact instrument's lateral loss) and lies between water's absorption and
-the bloodless baselines.
+The background. Reflectance fixes the dermis' absorption relative to its scattering,
+not either alone: a semi-infinite dermis of ``k μa`` and ``k μs`` reflects the same.
+Only an absorber of known absolute strength sets the scale of the fitted scattering.
+Water alone (0.002–0.006 cm⁻¹ in the red) puts most NIST skins' fitted ``a`` on its
+lower bound 10 cm⁻¹, Jacques 1998's bloodless baseline (0.244 cm⁻¹ in the red) near
+107 cm⁻¹ (``docs/skin-model.md``); neither is the literature's skin (Jacques 2013:
+46 cm⁻¹). ``background`` (default :data:`BACKGROUND_PER_CM`) and the melanosome's
+power (:data:`MELANIN_POWER`) are the values at which the fits to the 100 NIST
+skins, their scattering held at Jacques 2013's 46 cm⁻¹ and both fitted with melanin,
+blood, saturation and b, agree (their medians, 0.073 cm⁻¹ and 3.66): the scale is
+taken from the literature, the rest from the spectra. The background stands for what the
+composition leaves out (proteins such as collagen, the tissue under the dermis that
+red light reaches, a contact instrument's lateral loss) and lies between water's
+absorption and the bloodless baselines.
 
 Carotene and bilirubin are left out: the mean residual of the fits to the NIST
 skins changes sign within their band (``docs/skin-model.md``), which one more
@@ -107,7 +108,7 @@ __all__ = ["SkinParameters", "PARAMETER_RANGES", "check_parameters", "SkinLayer"
            "layer_coefficients", "reflectance_of_layers", "kubelka_munk_two_layers", "SKIN_REFLECTANCE_METHODS",
            "skin_reflectance", "skin_reflectance_adding_doubling", "skin_reflectance_kubelka_munk",
            "haemoglobin_extinction", "MELANIN_FRACTIONS", "sds_skin_model", "G_SKIN", "N_SKIN",
-           "SURFACE_KUBELKA_MUNK", "BACKGROUND_PER_CM", "LAYER_KEYS"]
+           "SURFACE_KUBELKA_MUNK", "BACKGROUND_PER_CM", "MELANIN_POWER", "LAYER_KEYS"]
 
 G_SKIN = 0.8
 """Henyey–Greenstein anisotropy of both layers (dermis 0.81 at 633 nm, Jacques, Alter & Prahl 1987)."""
@@ -199,7 +200,7 @@ PARAMETER_RANGES = {"melanin": (0.0, 1.0, False, "a volume fraction"),
 """Physical range of each :class:`SkinParameters` field, ``(low, high, low excluded, what it is)``: fractions in
 [0, 1], the reduced scattering ``a`` > 0 (skin: tens to a few hundred cm⁻¹; up to 10⁴ accepted), the scattering
 power between the geometric-optics limit 0 and the Rayleigh limit 4, a thickness > 0, an index ≥ 1, an absorption
-≥ 0, vessel radii > 0 (up to 1 cm) and a scattering ratio > 0."""
+≥ 0, vessel radii > 0 (up to 1 cm), a scattering ratio > 0 and the melanosome's spectral power in [0, 10]."""
 
 
 def check_parameters(parameters: SkinParameters) -> None:
@@ -257,7 +258,8 @@ def layer_coefficients(wavelength: ArrayLike, values) -> tuple[NDArrayFloat, NDA
     blood_per_mm = whole_blood_absorption(lam, values["oxygenation"])
     packed = blood_per_mm * packaging_factor(blood_per_mm, values["vessel_min_um"], values["vessel_max_um"])
     water = water_absorption(lam)
-    mu_a_epidermis = v["melanin"] * melanosome_absorption(lam, values["melanin_power"]) + (1.0 - v["melanin"]) * WATER_EPIDERMIS * water
+    mu_a_epidermis = (v["melanin"] * melanosome_absorption(lam, values["melanin_power"])
+                      + (1.0 - v["melanin"]) * WATER_EPIDERMIS * water)
     mu_a_dermis = v["blood"] * packed + (1.0 - v["blood"]) * (WATER_DERMIS * water + v["background"] / 10)
     mu_s_dermis = v["scattering"] / 10 * (lam / 500.0) ** -v["scattering_power"] / (1.0 - G_SKIN)
     return np.broadcast_arrays(mu_a_epidermis, mu_a_dermis, v["epidermis_scattering"] * mu_s_dermis, mu_s_dermis)

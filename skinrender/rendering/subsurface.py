@@ -79,15 +79,17 @@ __all__ = ["SLAB_DERMIS_MM", "FIT_RMS_MAX", "FIT_STEP_NM", "DEPTH_MAX_SUBSURFACE
 SLAB_DERMIS_MM = 5.0
 """Thickness of the rendered dermis, mm, standing for the model's semi-infinite one. Since the skin model absorbs
 only ~0.1 cm⁻¹ in the red (water, packaged blood and a 0.073 cm⁻¹ background, ``docs/skin-model.md``), red light
-diffuses centimetres: the 5 mm slab's adding-doubling reflectance is up to 1.5 % (relative, 400–700 nm, melanin
-0.01–0.3, blood 0.003–0.0095) below the semi-infinite model's, 0.03 % at 10 mm, 2e-6 at 20 mm. A chart's skin
+diffuses centimetres: the 5 mm slab's adding-doubling reflectance is up to 2.1 % (relative, 400–700 nm, melanin
+0.01–0.3, blood 0.003–0.0092; 1.5 % before the melanin power's calibration) below the semi-infinite model's,
+0.13 % at 10 mm, 5e-6 at 20 mm. A chart's skin
 patch is checked against its own slab's reflectance (:func:`slab_reflectance`), so the check stays exact; a
 thicker slab renders slower (20 mm: ~2× the time of 5 mm for a light skin, measured once on a loaded machine)."""
 
 FIT_RMS_MAX = 0.03
 """A measured reflectance rendered as skin media must fit the skin model to this RMS (fraction) or better
-(:data:`~skinrender.datasets.skin_fit.SKIN_RMS_MAX`, the same number), and with at most half its parameters on a
-bound (:func:`~skinrender.datasets.skin_fit.skin_verdict`); otherwise the spectrum is not skin as the model knows
+(:data:`~skinrender.datasets.skin_fit.SKIN_RMS_MAX`, the same number), with no more of its parameters on a bound
+than :data:`~skinrender.datasets.skin_fit.SKIN_BOUNDS_MAX` allows, and with melanin and blood
+(:func:`~skinrender.datasets.skin_fit.skin_verdict`); otherwise the spectrum is not skin as the model knows
 it."""
 
 FIT_STEP_NM = 3.0
