@@ -23,20 +23,17 @@ melanin volume fraction. The layers' optical properties (absorbers in
     renderer's ``hg`` phase function takes it as it is), and ``n = 1.4`` (between
     the epidermis' ~1.43 and the dermis' ~1.39 in the visible :cite:`Ding2006`).
 
-The background. Reflectance fixes the dermis' absorption relative to its scattering,
-not either alone: a semi-infinite dermis of ``k μa`` and ``k μs`` reflects the same.
-Only an absorber of known absolute strength sets the scale of the fitted scattering.
-Water alone (0.002–0.006 cm⁻¹ in the red) puts most NIST skins' fitted ``a`` on its
-lower bound 10 cm⁻¹, Jacques 1998's bloodless baseline (0.244 cm⁻¹ in the red) near
-107 cm⁻¹ (``docs/skin-model.md``); neither is the literature's skin (Jacques 2013:
-46 cm⁻¹). ``background`` (default :data:`BACKGROUND_PER_CM`) and the melanosome's
-power (:data:`MELANIN_POWER`) are the values at which the fits to the 100 NIST
-skins, their scattering held at Jacques 2013's 46 cm⁻¹ and both fitted with melanin,
-blood, saturation and b, agree (their medians, 0.073 cm⁻¹ and 3.66): the scale is
-taken from the literature, the rest from the spectra. The background stands for what the
-composition leaves out (proteins such as collagen, the tissue under the dermis that
-red light reaches, a contact instrument's lateral loss) and lies between water's
-absorption and the bloodless baselines.
+The background. Reflectance fixes the dermis' absorption relative to its scattering, not either alone: a
+semi-infinite dermis of ``k μa`` and ``k μs`` reflects the same. Only an absorber of known absolute strength
+sets the scale of the fitted scattering. Water alone (0.002–0.006 cm⁻¹ in the red) puts most NIST skins'
+fitted ``a`` on its lower bound 10 cm⁻¹, Jacques 1998's bloodless baseline (0.244 cm⁻¹ in the red) near 107
+cm⁻¹ (``docs/skin-model.md``); neither is the literature's skin (Jacques 2013: 46 cm⁻¹). ``background``
+(default :data:`BACKGROUND_PER_CM`) and the melanosome's power (:data:`MELANIN_POWER`) are the values at which
+the fits to the 100 NIST skins, their scattering held at Jacques 2013's 46 cm⁻¹ and both fitted with melanin,
+blood, saturation and b, agree (their medians, 0.073 cm⁻¹ and 3.66): the scale is taken from the literature,
+the rest from the spectra. The background stands for what the composition leaves out (proteins such as
+collagen, the tissue under the dermis that red light reaches, a contact instrument's lateral loss) and lies
+between water's absorption and the bloodless baselines.
 
 Carotene and bilirubin are left out: the mean residual of the fits to the NIST
 skins changes sign within their band (``docs/skin-model.md``), which one more
