@@ -85,6 +85,14 @@ def kept_fraction(mu_a, mu_s, radius_mm: float, g: float = 0.8, n: float = 1.4):
     return inside / total
 
 
+def _fitted_values(skin_model, base, x, names) -> dict:
+    """The layer parameters of the fit's rows ``x`` (``(m, len(names))``): ``base``'s, the fitted ``names`` from ``x``
+    (as ``skin_fit._model`` builds them)."""
+    values = {name: getattr(base, name) for name in skin_model.LAYER_KEYS}
+    values.update({name: x[:, i] for i, name in enumerate(names)})
+    return values
+
+
 def _with_lateral_loss(skin_model, skin_fit, radius_mm: float) -> list:
     """The fitted model seen through a port of ``radius_mm``: the diffuse part (all but the surface's Fresnel
     reflection) times :func:`kept_fraction` of the dermis."""
@@ -97,9 +105,7 @@ def _with_lateral_loss(skin_model, skin_fit, radius_mm: float) -> list:
                                                                    skin_model.N_SKIN)
 
     def fitted_model(method_name, lam, x, names, base, quad_pts):
-        values = {name: getattr(base, name) for name in skin_model.LAYER_KEYS}
-        values.update({name: x[:, i] for i, name in enumerate(names)})
-        return seen(model(method_name, lam, x, names, base, quad_pts), lam, values)
+        return seen(model(method_name, lam, x, names, base, quad_pts), lam, _fitted_values(skin_model, base, x, names))
 
     def reflectance(lam, parameters):
         return seen(method(lam, parameters), lam, asdict(parameters))
@@ -146,11 +152,11 @@ def _melanin_free_corneum(skin_model, skin_fit, corneum_mm: float, scattering_ra
     Meglinski & Matcher 2002 put the melanin in the living epidermis, none in the stratum corneum."""
     from skinrender.datasets.adding_doubling import Slab, stack_reflectance
 
-    def three_layers(coefficients, base, quad_pts):
-        mu_a_e, mu_a_d, mu_s_e, mu_s_d = coefficients
+    def three_layers(lam, values, base, quad_pts):
+        mu_a_e, mu_a_d, mu_s_e, mu_s_d = skin_model.layer_coefficients(lam, values)
         depth = float(base.epidermis_mm)
-        lam_water = skin_model.WATER_EPIDERMIS * skin_model.water_absorption(_three_layers_lam[0])
-        mu_a_c = np.broadcast_to(lam_water, np.shape(mu_a_e))
+        water = skin_model.WATER_EPIDERMIS * skin_model.water_absorption(lam)
+        mu_a_c = np.broadcast_to(water, np.shape(mu_a_e))
         mu_a_living = (mu_a_e * depth - mu_a_c * corneum_mm) / (depth - corneum_mm)
         slabs = [Slab(mu_a_c, scattering_ratio * mu_s_e, skin_model.G_SKIN, corneum_mm),
                  Slab(mu_a_living, mu_s_e, skin_model.G_SKIN, depth - corneum_mm),
@@ -160,20 +166,16 @@ def _melanin_free_corneum(skin_model, skin_fit, corneum_mm: float, scattering_ra
     model = skin_fit._model
 
     def fitted_model(method_name, lam, x, names, base, quad_pts):
-        _three_layers_lam[0] = lam
-        return model(method_name, lam, x, names, base, quad_pts)
+        if method_name != "adding-doubling":
+            return model(method_name, lam, x, names, base, quad_pts)
+        return three_layers(lam, _fitted_values(skin_model, base, x, names), base, quad_pts)
 
     def reflectance(lam, parameters):
-        lam = np.asarray(lam, dtype=np.float64)
-        _three_layers_lam[0] = lam
-        return three_layers(skin_model.layer_coefficients(lam, asdict(parameters)), parameters,
+        return three_layers(np.asarray(lam, dtype=np.float64), asdict(parameters), parameters,
                             skin_model.QUAD_PTS_DEFAULT)
 
-    return [(skin_fit.FIT_MODELS, "adding-doubling", three_layers), (skin_fit, "_model", fitted_model),
+    return [(skin_fit, "_model", fitted_model),
             (skin_model.SKIN_REFLECTANCE_METHODS, "adding-doubling", reflectance)]
-
-
-_three_layers_lam = [None]
 
 
 def _substitution(name: str | None) -> list:
@@ -241,8 +243,8 @@ VARIANTS = {
     "lateral-loss": ("the 5 mm port's lateral loss, water only", {"background": 0.0}, "lateral-loss"),
     "lateral-loss-3.48": ("the same, melanin 1.70e12 λ^−3.48", {"background": 0.0}, "lateral-loss-3.48"),
     "corneum": ("a melanin-free stratum corneum 20 µm (Meglinski & Matcher 2002)", {}, "corneum"),
-    "melanin-power-3.33": ("melanin λ^−3.33 (Jacques 1998, the model before its calibration)", {"melanin_power": 3.33},
-                           None),
+    "melanin-power-3.33": ("melanin λ^−3.33 (Jacques 1998, the model before its calibration)",
+                           {"melanin_power": 3.33}, None),
     "melanin-power-3.8": ("melanin λ^−3.8 (steeper than the calibration's 3.66)", {"melanin_power": 3.8}, None),
     "melanin-power-4.0": ("melanin λ^−4.0 (steeper than the calibration's 3.66)", {"melanin_power": 4.0}, None),
 }
