@@ -3,14 +3,18 @@
 Measure the skin model's fits to measured skin (``docs/skin-model.md``): the numbers behind its defaults.
 
     python tools/measure_skin_fits.py calibrate [--every N]       # background and melanin power, together
+    python tools/measure_skin_fits.py calibrate --port-mm 5       # melanin power, through the NIST port
     python tools/measure_skin_fits.py background [--every N] [--only NAME]   # the background alone
     python tools/measure_skin_fits.py variants [--every N] [--only NAME,…]   # the alternatives compared
-    python tools/measure_skin_fits.py refit [--every N]        # = skinrender skin --fit (summary)
+    python tools/measure_skin_fits.py refit [--every N] [--port-mm D] [--power P]   # = skinrender skin --fit
     python tools/measure_skin_fits.py diagnose [--subjects S006,…]   # what the fits on a bound ask for
 
 ``calibrate``: the 100 NIST skins fitted with the dermis' scattering held at Jacques 2013's skin average
 (a = 46 cm⁻¹) and ``background`` and ``melanin_power`` fitted with melanin, blood, oxygenation and b: the
 medians of the fitted background and power are ``BACKGROUND_PER_CM`` and ``MELANIN_POWER`` (two digits).
+``calibrate --port-mm 5``: the NIST skins read through their instrument's ~5 mm port (``skinrender.datasets.
+port_loss``), water the dermis' only absorber besides blood (background 0), so that the port's lateral loss sets
+the scattering's scale: the melanin power fitted with melanin, blood, oxygenation, a and b.
 ``background``: the same with the melanin power held (at its default, or a variant's spectrum). ``variants``: the full fit (a, b free) at the defaults and under
 sourced alternatives (:data:`VARIANTS`, from ``skin_alternatives.py`` beside this file: other absorption levels,
 vessel radii, melanin and blood spectra, fat, a Rayleigh part of the scattering, the instrument's lateral loss) —
@@ -50,13 +54,29 @@ def _summary(label: str, fits, names, seconds: float) -> None:
           f"{len(hits)} on a bound {counts}; {sum(f.converged for f in fits)} converged")
 
 
-def _fit(label, lam, values, names, held, fitted=None):
+def _fit(label, lam, values, names, held, fitted=None, port_mm=None):
     from skinrender.datasets.skin_fit import FIT_PARAMETERS, fit_skin_spectra
 
     start = time.perf_counter()
-    fits = fit_skin_spectra(lam, values, names, workers=None, held=held, fitted=fitted)
+    fits = fit_skin_spectra(lam, values, names, workers=None, held=held, fitted=fitted, port_mm=port_mm)
     _summary(label, fits, fitted or FIT_PARAMETERS["adding-doubling"], time.perf_counter() - start)
     return fits
+
+
+def _apertures(fits) -> None:
+    """The fits' median skin read through 5 and 11 mm ports: Takiwaki et al. 2002 measured skin up to ~10 %
+    darker at 700 nm through a 5 mm aperture than through an 11 mm one (an independent check of the loss)."""
+    import numpy as np
+
+    from skinrender.datasets.skin_fit import measured_reflectance
+
+    names = ("melanin", "blood", "oxygenation", "scattering", "scattering_power")
+    median = replace(fits[0].parameters, **{n: float(np.median([getattr(f.parameters, n) for f in fits]))
+                                            for n in names})
+    lam = np.array([450.0, 500.0, 550.0, 600.0, 650.0, 700.0])
+    ratio = measured_reflectance(lam, median, port_mm=5.0) / measured_reflectance(lam, median, port_mm=11.0)
+    print("  the median skin through 5 mm over 11 mm: "
+          + ", ".join(f"{w:g} nm {r:.3f}" for w, r in zip(lam, ratio)))
 
 
 def main(argv=None) -> int:
@@ -66,6 +86,10 @@ def main(argv=None) -> int:
                         help="diagnose: NIST subjects (default: three on b = 0 and two light ones)")
     parser.add_argument("--every", type=int, default=1, help="fit every Nth NIST skin (default 1: all 100)")
     parser.add_argument("--only", default="", help="variants: comma-separated names (default: all); background: one")
+    parser.add_argument("--port-mm", type=float, default=None,
+                        help="calibrate, refit: the instrument's sample port diameter, mm (default none); with it "
+                             "the background is held at 0 (water only)")
+    parser.add_argument("--power", type=float, default=None, help="refit: the melanin power held (default the model's)")
     args = parser.parse_args(argv)
     sys.path.insert(0, str(ROOT))
     sys.path.insert(0, str(ROOT / "tools"))
@@ -79,7 +103,11 @@ def main(argv=None) -> int:
     keep = (measured.wavelengths >= 400) & (measured.wavelengths <= 700)
     lam, values = measured.wavelengths[keep], measured.values[::args.every, keep]
     names = measured.names[::args.every]
-    if args.what == "calibrate":
+    if args.what == "calibrate" and args.port_mm is not None:
+        _fit(f"melanin power fitted through a {args.port_mm:g} mm port, water only", lam, values, names,
+             replace(SkinParameters(), background=0.0),
+             ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "melanin_power"), args.port_mm)
+    elif args.what == "calibrate":
         _fit("background and melanin power fitted, a held at 46 cm⁻¹", lam, values, names,
              replace(SkinParameters(), scattering=46.0),
              ("melanin", "blood", "oxygenation", "scattering_power", "background", "melanin_power"))
@@ -90,10 +118,11 @@ def main(argv=None) -> int:
             print(f"--only: unknown variant {args.only!r}; choose from {sorted(VARIANTS)}", file=sys.stderr)
             return 2
         label, changes, substitution = VARIANTS[args.only] if args.only else ("", {}, None)
-        held = replace(SkinParameters(), **{k: v for k, v in changes.items() if k != "background"}, scattering=46.0)
+        held = replace(SkinParameters(), **{k: v for k, v in changes.items() if k not in ("background", "port_mm")},
+                       scattering=46.0)
         with substituted(substitution):
             _fit(f"background fitted, a held at 46 cm⁻¹ {label}", lam, values, names, held,
-                 ("melanin", "blood", "oxygenation", "scattering_power", "background"))
+                 ("melanin", "blood", "oxygenation", "scattering_power", "background"), changes.get("port_mm"))
     elif args.what == "variants":
         from skin_alternatives import VARIANTS, substituted
 
@@ -104,14 +133,21 @@ def main(argv=None) -> int:
             return 2
         for name in chosen:
             label, changes, substitution = VARIANTS[name]
+            held = replace(SkinParameters(), **{k: v for k, v in changes.items() if k != "port_mm"})
             with substituted(substitution):
-                _fit(f"{name}: {label}", lam, values, names, replace(SkinParameters(), **changes))
+                _fit(f"{name}: {label}", lam, values, names, held, port_mm=changes.get("port_mm"))
     elif args.what == "diagnose":
         from skin_alternatives import diagnose
 
         diagnose(lam, measured.values[:, keep], measured.names, args.subjects.split(","))
     else:
-        _fit("refit at the defaults", lam, values, names, SkinParameters())
+        held = SkinParameters() if args.port_mm is None else replace(SkinParameters(), background=0.0)
+        held = held if args.power is None else replace(held, melanin_power=args.power)
+        port = "" if args.port_mm is None else f" through a {args.port_mm:g} mm port, water only"
+        fits = _fit(f"refit, melanin power {held.melanin_power:g}{port}", lam, values, names, held,
+                    port_mm=args.port_mm)
+        if args.port_mm is not None:
+            _apertures(fits)
     return 0
 
 

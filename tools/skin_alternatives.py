@@ -22,10 +22,9 @@ reads its own):
   held at its 429 nm value below (stated: the variant tests fat's size, 10 % of the dermis an upper end).
 - Jacques 2013 (Phys. Med. Biol. 58:R37): skin's μs' = a' [f_Ray (λ/500)^−4 + (1 − f_Ray)(λ/500)^−b_Mie],
   f_Ray 0.409 (b then plays b_Mie).
-- Cooksey & Allen 2013 (Proc. SPIE 8734:87340N): the NIST skins were measured on a spot ~5 mm across; Farrell,
-  Patterson & Wilson 1992 (Med. Phys. 19:879): the diffusion model of the light leaving the skin at a distance
-  from a pencil beam, whose integral over a disc has a closed form (:func:`kept_fraction`). The lateral loss is
-  the instrument's, not the skin's: it is applied to the fitted model only. The beam assumed at the port's centre.
+- Cooksey & Allen 2013 (Proc. SPIE 8734:87340N): the NIST skins were measured on a spot ~5 mm across; the
+  lateral loss through such a port is the package's own (``skin --fit … --port-mm 5``,
+  ``skinrender.datasets.port_loss``): a variant's ``port_mm`` is passed to the fit, not to the model.
 """
 
 from __future__ import annotations
@@ -66,52 +65,12 @@ def _bosschaart_blood(wavelength, oxygenation):
     return s * oxy + (1.0 - s) * deoxy
 
 
-def kept_fraction(mu_a, mu_s, radius_mm: float, g: float = 0.8, n: float = 1.4):
-    """
-    The fraction of a semi-infinite medium's diffuse reflectance (pencil beam, Farrell et al. 1992's diffusion
-    model) that leaves within ``radius_mm`` of the beam: ``Σ_i [e^(−μeff z_i) − z_i e^(−μeff r_i)/r_i] / Σ_i
-    e^(−μeff z_i)`` over the source and its image (``z_0 = 1/μt'``, ``z_0 + 2 z_b``), ``r_i = √(z_i² + ρ²)``
-    (``∫ R(r) 2πr dr`` in closed form). ``mu_a``, ``mu_s`` in mm⁻¹.
-    """
-    mut = mu_a + mu_s * (1 - g)
-    mueff = np.sqrt(3 * mu_a * mut)
-    r_eff = -1.440 / n**2 + 0.710 / n + 0.668 + 0.0636 * n  # Groenhuis et al. 1983
-    z0 = 1 / mut
-    total = inside = 0.0
-    for z in (z0, z0 + 4 * (1 + r_eff) / (1 - r_eff) / (3 * mut)):
-        r = np.sqrt(z * z + radius_mm**2)
-        total = total + np.exp(-mueff * z)
-        inside = inside + np.exp(-mueff * z) - z * np.exp(-mueff * r) / r
-    return inside / total
-
-
 def _fitted_values(skin_model, base, x, names) -> dict:
     """The layer parameters of the fit's rows ``x`` (``(m, len(names))``): ``base``'s, the fitted ``names`` from ``x``
     (as ``skin_fit._model`` builds them)."""
     values = {name: getattr(base, name) for name in skin_model.LAYER_KEYS}
     values.update({name: x[:, i] for i, name in enumerate(names)})
     return values
-
-
-def _with_lateral_loss(skin_model, skin_fit, radius_mm: float) -> list:
-    """The fitted model seen through a port of ``radius_mm``: the diffuse part (all but the surface's Fresnel
-    reflection) times :func:`kept_fraction` of the dermis."""
-    model, method = skin_fit._model, skin_model.SKIN_REFLECTANCE_METHODS["adding-doubling"]
-    specular = ((skin_model.N_SKIN - 1) / (skin_model.N_SKIN + 1)) ** 2
-
-    def seen(reflectance, lam, values):
-        _, mu_a, _, mu_s = skin_model.layer_coefficients(lam, values)
-        return specular + (reflectance - specular) * kept_fraction(mu_a, mu_s, radius_mm, skin_model.G_SKIN,
-                                                                   skin_model.N_SKIN)
-
-    def fitted_model(method_name, lam, x, names, base, quad_pts):
-        return seen(model(method_name, lam, x, names, base, quad_pts), lam, _fitted_values(skin_model, base, x, names))
-
-    def reflectance(lam, parameters):
-        return seen(method(lam, parameters), lam, asdict(parameters))
-
-    return [(skin_fit, "_model", fitted_model),
-            (skin_model.SKIN_REFLECTANCE_METHODS, "adding-doubling", reflectance)]
 
 
 def _rayleigh_part(skin_model, skin_fit, f_ray: float) -> list:
@@ -165,7 +124,9 @@ def _melanin_free_corneum(skin_model, skin_fit, corneum_mm: float, scattering_ra
 
     model = skin_fit._model
 
-    def fitted_model(method_name, lam, x, names, base, quad_pts):
+    def fitted_model(method_name, lam, x, names, base, quad_pts, port_mm=None):
+        if port_mm is not None:
+            raise ValueError("the stratum-corneum variant takes no sample port")
         if method_name != "adding-doubling":
             return model(method_name, lam, x, names, base, quad_pts)
         return three_layers(lam, _fitted_values(skin_model, base, x, names), base, quad_pts)
@@ -192,8 +153,7 @@ def _substitution(name: str | None) -> list:
         "bosschaart-blood": lambda: [(skin_model, "whole_blood_absorption", _bosschaart_blood)],
         "fat": lambda: [(skin_model, "water_absorption", _fat_in_dermis(skin_model, 0.10))],
         "rayleigh": lambda: _rayleigh_part(skin_model, skin_fit, 0.409),
-        "lateral-loss": lambda: _with_lateral_loss(skin_model, skin_fit, 2.5),
-        "lateral-loss-3.48": lambda: _with_lateral_loss(skin_model, skin_fit, 2.5) + melanin(_melanin_348),
+        "lateral-loss-3.48": lambda: melanin(_melanin_348),
         "corneum": lambda: _melanin_free_corneum(skin_model, skin_fit, 0.02, 1.0),
     }
     return builders[name]() if name else []
@@ -240,15 +200,16 @@ VARIANTS = {
     "bosschaart-blood": ("blood: Bosschaart 2014's whole blood", {}, "bosschaart-blood"),
     "fat": ("fat 10 % of the dermis (van Veen)", {}, "fat"),
     "rayleigh": ("scattering with a Rayleigh part f_Ray 0.409 (Jacques 2013)", {}, "rayleigh"),
-    "lateral-loss": ("the 5 mm port's lateral loss, water only", {"background": 0.0}, "lateral-loss"),
-    "lateral-loss-3.48": ("the same, melanin 1.70e12 λ^−3.48", {"background": 0.0}, "lateral-loss-3.48"),
+    "lateral-loss": ("the 5 mm port's lateral loss, water only", {"background": 0.0, "port_mm": 5.0}, None),
+    "lateral-loss-3.48": ("the same, melanin 1.70e12 λ^−3.48", {"background": 0.0, "port_mm": 5.0},
+                          "lateral-loss-3.48"),
     "corneum": ("a melanin-free stratum corneum 20 µm (Meglinski & Matcher 2002)", {}, "corneum"),
     "melanin-power-3.33": ("melanin λ^−3.33 (Jacques 1998, the model before its calibration)",
                            {"melanin_power": 3.33}, None),
     "melanin-power-3.8": ("melanin λ^−3.8 (steeper than the calibration's 3.66)", {"melanin_power": 3.8}, None),
     "melanin-power-4.0": ("melanin λ^−4.0 (steeper than the calibration's 3.66)", {"melanin_power": 4.0}, None),
 }
-"""name → (label, held parameter changes, substitution name or None)."""
+"""name → (label, held parameter changes (``port_mm``: the fit's sample port, mm), substitution name or None)."""
 
 
 def diagnose(lam, values, names, subjects) -> None:

@@ -68,6 +68,12 @@ def add_parsers(commands) -> None:
                         "reflectance set name such as skin) over its own wavelengths in --fit-range")
     p.add_argument("--fit-range", default="400:700", metavar="START:END",
                    help="with --fit: the wavelengths fitted, nm (default 400:700)")
+    p.add_argument("--port-mm", metavar="D",
+                   help="the contact instrument's sample port (the spot measured) diameter, mm (> 0): the model is "
+                        "read as through it, the light that leaves the skin outside it lost (lateral loss, "
+                        "Farrell et al. 1992's diffusion, a beam at the port's centre); with --fit the fitted "
+                        "parameters are then the skin's, the loss the instrument's (the NIST skins: 5). Default: "
+                        "none, an area much larger than the light's spread, as a camera sees skin")
     p.add_argument("--workers", help="with --fit: processes (default: every core)")
     p.add_argument("--max-spectra", default=str(SPECTRA_MAX),
                    help=f"with --fit: refuse tables of more spectra than this (default {SPECTRA_MAX}; the estimate "
@@ -99,6 +105,20 @@ def parameters_of(args: argparse.Namespace, names=tuple(PARAMETER_FLAGS)):
     return parameters
 
 
+def _port(args: argparse.Namespace) -> float | None:
+    """``--port-mm``: a diameter in mm > 0, or ``None``."""
+    if args.port_mm is None:
+        return None
+    try:
+        value = float(args.port_mm)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise SkinrenderError(f"--port-mm must be a sample port's diameter in mm > 0, got {args.port_mm!r}",
+                              flag="--port-mm")
+    return value
+
+
 def _method(args: argparse.Namespace) -> str:
     from ..datasets.skin_model import SKIN_REFLECTANCE_METHODS
     from ..methods import validate_method
@@ -113,9 +133,11 @@ def command_skin(args: argparse.Namespace) -> None:
                             ("quiet", False)):  # --quiet silences the fit's progress: nothing else has one
         if getattr(args, option) != default:
             raise SkinrenderError(f"--{option.replace('_', '-')} goes with --fit", flag=f"--{option.replace('_', '-')}")
-    from ..datasets.skin_model import skin_layers, skin_reflectance
+    from ..datasets.skin_fit import measured_reflectance
+    from ..datasets.skin_model import skin_layers
 
     method = _method(args)
+    port_mm = _port(args)
     check_output(args.plot, "--plot", (".png",))
     if args.plot is None and args.compare is not None:  # given at all: even its default's value is a request
         raise SkinrenderError("--compare names the measured sets drawn with --plot: give --plot FILE.png",
@@ -137,19 +159,21 @@ def command_skin(args: argparse.Namespace) -> None:
     lam = grid.wavelengths
     layers = flag("--grid", skin_layers, lam, parameters)
     with np.errstate(all="ignore"):
-        reflectance = flag("--grid", skin_reflectance, lam, parameters, method)
+        reflectance = flag("--grid", measured_reflectance, lam, parameters, method, port_mm)
     if not np.all(np.isfinite(reflectance)):
         raise SkinrenderError(f"the parameters give no finite reflectance ({method})")
-    document = {"method": method, "parameters": _parameters_dict(parameters), "wavelength_nm": lam.tolist(),
-                "reflectance": reflectance.tolist(), "layers": [layer.as_dict() for layer in layers]}
+    document = {"method": method, "parameters": _parameters_dict(parameters), "port_mm": port_mm,
+                "wavelength_nm": lam.tolist(), "reflectance": reflectance.tolist(),
+                "layers": [layer.as_dict() for layer in layers]}
     if args.plot:
         from ..studies.figures import figure_skin_model
 
         write_output(args.plot, lambda stream: figure_skin_model(  # whole or not at all, its failure naming --plot
-            lam, reflectance, f"skin model ({method}), melanin {parameters.melanin:g}, blood {parameters.blood:g}",
+            lam, reflectance, f"skin model ({method}), melanin {parameters.melanin:g}, blood {parameters.blood:g}"
+            + ("" if port_mm is None else f", through a {port_mm:g} mm port"),
             compare, stream), "--plot")
         document["plot"] = args.plot
-    emit(args, document, _text(method, parameters, lam, reflectance, layers, args.plot))
+    emit(args, document, _text(method, parameters, lam, reflectance, layers, args.plot, port_mm))
 
 
 def _compare_sets(args: argparse.Namespace) -> list[tuple]:
@@ -170,7 +194,7 @@ def _parameters_dict(parameters) -> dict:
     return asdict(parameters)
 
 
-def _text(method, parameters, lam, reflectance, layers, plot) -> str:
+def _text(method, parameters, lam, reflectance, layers, plot, port_mm) -> str:
     step = max(1, int(math.ceil(lam.size / 13)))
     rows = [[f"{lam[i]:g}", f"{reflectance[i]:.4f}", f"{layers[0].mu_a_per_mm[i]:.4g}",
              f"{layers[1].mu_a_per_mm[i]:.4g}", f"{layers[1].mu_s_per_mm[i]:.4g}"] for i in range(0, lam.size, step)]
@@ -178,7 +202,8 @@ def _text(method, parameters, lam, reflectance, layers, plot) -> str:
     lines = [f"skin model ({method}): {described}",
              f"layers: epidermis {layers[0].thickness_mm:g} mm over a semi-infinite dermis, g {layers[0].g:g}, "
              f"n {layers[0].n:g}",
-             table(rows, ["nm", "R", "epidermis μa /mm", "dermis μa /mm", "μs /mm"])]
+             table(rows, ["nm", "R" if port_mm is None else f"R through a {port_mm:g} mm port",
+                          "epidermis μa /mm", "dermis μa /mm", "μs /mm"])]
     if plot:
         lines.append(f"plot: {plot}")
     return "\n".join(lines)
@@ -206,6 +231,7 @@ def _command_fit(args: argparse.Namespace) -> None:
         raise SkinrenderError("--n is the refractive index of adding-doubling's Fresnel boundary; kubelka-munk has "
                               "none", flag="--n")
     held = parameters_of(args, HELD_IN_FIT)
+    port_mm = _port(args)
     start, end = _fit_range(args.fit_range)
     workers = check_workers(None if args.workers is None else integer_in(args.workers, "--workers", 1), "--workers")
     limit = integer_in(args.max_spectra, "--max-spectra", 1)
@@ -223,14 +249,14 @@ def _command_fit(args: argparse.Namespace) -> None:
                               f"~{fit_seconds(1, lam.size, method):.2g} s per spectrum); raise the limit or fit fewer",
                               flag="--fit")
     fits = flag("--fit", fit_skin_spectra, lam, measured.values[:, keep], measured.names, method, workers,
-                None if args.quiet else sys.stderr, held)
+                None if args.quiet else sys.stderr, held, port_mm=port_mm)
     rms = np.array([f.rms for f in fits if f.converged])
     summary = ({"median": float(np.median(rms)), "p95": float(np.percentile(rms, 95)), "max": float(rms.max())}
                if rms.size else None)
     skins = sum(not f.not_skin for f in fits)
     document = {"method": method, "source": measured.name, "wavelength_nm": lam.tolist(),
                 "bounds": {k: list(FIT_BOUNDS[k][:2]) + [FIT_BOUNDS[k][2]] for k in FIT_PARAMETERS[method]},
-                "held": {k: getattr(held, k) for k in HELD_IN_FIT},
+                "held": {k: getattr(held, k) for k in HELD_IN_FIT}, "port_mm": port_mm,
                 "fits": [f.as_dict(method) for f in fits], "converged": int(sum(f.converged for f in fits)),
                 "skin": int(skins), "rms": summary}
     rows = [[f.name[:32], f"{f.rms:.4f}" if math.isfinite(f.rms) else "—",
@@ -240,7 +266,8 @@ def _command_fit(args: argparse.Namespace) -> None:
             for f in fits]
     refused = [f"not skin: {f.name}: {f.not_skin_reason}" for f in fits if f.not_skin]
     text = (f"{method} fit of {measured.count} spectra from {measured.name}, {lam.size} wavelengths "
-            f"{lam[0]:g}–{lam[-1]:g} nm\n"
+            f"{lam[0]:g}–{lam[-1]:g} nm" + ("" if port_mm is None else f", read through a {port_mm:g} mm port")
+            + "\n"
             + table(rows, ["spectrum", "RMS", *FIT_PARAMETERS[method], "on a bound", "converged", "skin"]) + "\n"
             + "".join(line + "\n" for line in refused)
             + (f"RMS median {summary['median']:.4f}, 95th percentile {summary['p95']:.4f}, max {summary['max']:.4f}; "

@@ -35,6 +35,8 @@ time, measured on 12 NIST skins); the reported RMS is the model's
 -   :class:`SkinFit`: one column's result.
 -   :func:`fit_skin_spectrum`: one spectrum; :func:`fit_skin`, its parameters and RMS.
 -   :func:`fit_skin_spectra`: every spectrum of a table, on worker processes.
+-   :func:`measured_reflectance`: the model as a contact instrument of a sample port reads it (``port_mm``, the
+    lateral loss of :mod:`.port_loss`): a fit to such a measurement sees the model through the same port.
 -   :func:`fit_seconds`: the time a fit of a table should take.
 -   :func:`skin_verdict`, :data:`SKIN_RMS_MAX`, :data:`SKIN_BOUNDS_MAX`: when a fit says the spectrum is not
     skin: an RMS beyond the measured skins', or most of its parameters on a bound (a black patch fits to RMS
@@ -66,12 +68,13 @@ from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import method_of, takes, validate_method
 from .adding_doubling import QUAD_PTS_DEFAULT, Slab, stack_reflectance
+from .port_loss import check_port, through_port
 from .skin_model import (G_SKIN, LAYER_KEYS, SKIN_REFLECTANCE_METHODS, SURFACE_KUBELKA_MUNK, SkinParameters,
                          kubelka_munk_two_layers, layer_coefficients, skin_reflectance)
 
 __all__ = ["FIT_BOUNDS", "FIT_PARAMETERS", "FIT_MODELS", "fit_model_adding_doubling", "fit_model_kubelka_munk",
            "SECONDS_PER_FIT", "SKIN_RMS_MAX", "SKIN_BOUNDS_MAX", "SKIN_NEEDS", "SkinFit", "skin_verdict", "fit_skin",
-           "fit_skin_spectrum", "fit_skin_spectra", "fit_seconds"]
+           "fit_skin_spectrum", "fit_skin_spectra", "fit_seconds", "measured_reflectance"]
 
 FIT_BOUNDS = {
     "melanin": (0.0, 0.5, "epidermal melanosome fractions up to 43 % (Jacques 1998)"),
@@ -210,30 +213,69 @@ name → ``(coefficients, base, quad_pts | surface) → reflectances``: a model 
 from a coarse quadrature, one that takes ``surface`` fits it (:data:`FIT_PARAMETERS`)."""
 
 
+def _specular(method: str, base: SkinParameters, surface) -> NDArrayFloat | float:
+    """The part of ``method``'s reflectance the surface reflects: adding-doubling's Fresnel reflection at
+    normal incidence (index ``base.n``), Kubelka–Munk's flat ``surface`` (rows, or ``None``: its default)."""
+    if takes(FIT_MODELS[method], "quad_pts"):
+        return ((float(base.n) - 1.0) / (float(base.n) + 1.0)) ** 2
+    surface = SURFACE_KUBELKA_MUNK if surface is None else surface
+    return np.asarray(surface, dtype=np.float64)[..., None] if np.ndim(surface) else float(surface)
+
+
+def _seen(method: str, reflectance, coefficients: tuple, base: SkinParameters, surface, port_mm: float | None):
+    """``reflectance`` as read through a sample port of ``port_mm`` (mm; ``None``: itself), the diffuse part's
+    lateral loss from the dermis' ``coefficients`` (:mod:`.port_loss`)."""
+    if port_mm is None:
+        return reflectance
+    return through_port(reflectance, _specular(method, base, surface), coefficients[1], coefficients[3], port_mm,
+                        G_SKIN, float(base.n))
+
+
 def _model(method: str, lam: NDArrayFloat, x: NDArrayFloat, names: tuple, base: SkinParameters,
-           quad_pts: int) -> NDArrayFloat:
-    """The model at parameter rows ``x`` ``(m, len(names))``: reflectances ``(m, len(lam))``."""
+           quad_pts: int, port_mm: float | None = None) -> NDArrayFloat:
+    """The model at parameter rows ``x`` ``(m, len(names))``: reflectances ``(m, len(lam))``, read through a
+    sample port of ``port_mm`` (mm; ``None``: none)."""
     values = {name: getattr(base, name) for name in (*LAYER_KEYS, "surface")}
     values.update({name: x[:, i] for i, name in enumerate(names)})
     coefficients = layer_coefficients(lam, values)
     model = method_of(method, FIT_MODELS, "method")
-    return model(coefficients, base, **({"quad_pts": quad_pts} if takes(model, "quad_pts")
-                                        else {"surface": values["surface"]}))
+    reflectance = model(coefficients, base, **({"quad_pts": quad_pts} if takes(model, "quad_pts")
+                                               else {"surface": values["surface"]}))
+    return _seen(method, reflectance, coefficients, base, values["surface"], port_mm)
 
 
-def _least_squares(method, lam, target, x0, names, base, quad_pts, low, high):
+def measured_reflectance(wavelength: ArrayLike, parameters: SkinParameters, method: str = "adding-doubling",
+                         port_mm: float | None = None) -> NDArrayFloat:
+    """
+    The skin model's reflectance (:func:`~skinrender.datasets.skin_model.skin_reflectance`) as a contact
+    instrument of sample port diameter ``port_mm`` (mm) reads it: the diffuse part's lateral loss removed
+    (:mod:`.port_loss`); ``None``: the model's own, as a camera sees skin. Fractions on ``wavelength`` (nm).
+    """
+    lam = np.asarray(wavelength, dtype=np.float64)
+    port_mm = check_port(port_mm)
+    with np.errstate(all="ignore"):
+        reflectance = skin_reflectance(lam, parameters, method)
+    if port_mm is None:
+        return reflectance
+    from dataclasses import asdict
+
+    return _seen(method, reflectance, layer_coefficients(lam, asdict(parameters)), parameters, parameters.surface,
+                 port_mm)
+
+
+def _least_squares(method, lam, target, x0, names, base, quad_pts, low, high, port_mm=None):
     from scipy.optimize import least_squares  # here: importing scipy.optimize costs every command ~0.6 s
 
     steps = np.array([1e-4 * _SCALE[name] for name in names])
 
     def residual(x):
-        return _model(method, lam, x[None, :], names, base, quad_pts)[0] - target
+        return _model(method, lam, x[None, :], names, base, quad_pts, port_mm)[0] - target
 
     def jacobian(x):
         # forward differences, stepping back at an upper bound; the point and its steps in one batched call
         h = np.where(x + steps > high, -steps, steps)
         rows = np.vstack([x, x + np.diag(h)])
-        values = _model(method, lam, rows, names, base, quad_pts)
+        values = _model(method, lam, rows, names, base, quad_pts, port_mm)
         return ((values[1:] - values[0]) / h[:, None]).T
 
     scale = np.array([_SCALE[name] for name in names])
@@ -243,7 +285,7 @@ def _least_squares(method, lam, target, x0, names, base, quad_pts, low, high):
 
 def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str = "adding-doubling",
                       start: SkinParameters | None = None, name: str = "", scan: bool | None = None,
-                      fitted: tuple[str, ...] | None = None) -> SkinFit:
+                      fitted: tuple[str, ...] | None = None, port_mm: float | None = None) -> SkinFit:
     """
     Fit the skin model to one measured spectrum within :data:`FIT_BOUNDS`.
 
@@ -266,12 +308,16 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
     fitted
         The parameters fitted, melanin first (``None``: :data:`FIT_PARAMETERS` of ``method``); each needs
         :data:`FIT_BOUNDS`. The others are held at ``start``'s values.
+    port_mm
+        The measuring instrument's sample port diameter, mm: the model is read through it
+        (:func:`measured_reflectance`; its lateral loss is the instrument's, the fitted parameters the skin's).
+        ``None`` (default): an area much larger than the light's spread.
 
     Returns
     -------
     :class:`SkinFit`
-        The RMS is the model's (:func:`~skinrender.datasets.skin_model.skin_reflectance`) against the
-        measurement on every wavelength given.
+        The RMS is the model's (:func:`measured_reflectance`, through ``port_mm``) against the measurement on
+        every wavelength given.
     """
     validate_method(method, SKIN_REFLECTANCE_METHODS, "method")
     lam = np.asarray(wavelength, dtype=np.float64)
@@ -281,6 +327,7 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
     names = FIT_PARAMETERS[method] if fitted is None else tuple(fitted)
     if not names or names[0] != "melanin" or any(n not in FIT_BOUNDS for n in names):
         raise SkinrenderError(f"fitted must name parameters of {sorted(FIT_BOUNDS)}, melanin first, got {names}")
+    port_mm = check_port(port_mm)
     base = start or SkinParameters()
     corrected = takes(FIT_MODELS[method], "quad_pts")  # adding-doubling: from 8 quadrature points to 16
     if not takes(FIT_MODELS[method], "surface"):  # its surface is the Fresnel boundary
@@ -292,20 +339,21 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
     if (start is None) if scan is None else scan:  # the melanin of the best of a scan, light to very dark
         rows = np.repeat(np.clip(x0, low, high)[None, :], len(_MELANIN_SCAN), axis=0)
         rows[:, 0] = _MELANIN_SCAN
-        errors = np.mean((_model(method, lam, rows, names, base, quad) - target) ** 2, axis=1)
+        errors = np.mean((_model(method, lam, rows, names, base, quad, port_mm) - target) ** 2, axis=1)
         x0[0] = _MELANIN_SCAN[int(np.argmin(errors))]
     evaluations = 0
     try:
         with np.errstate(all="ignore"):
-            found = _least_squares(method, lam, target, x0, names, base, quad, low, high)
+            found = _least_squares(method, lam, target, x0, names, base, quad, low, high, port_mm)
             evaluations += found.nfev
             for _ in range(CORRECTIONS if corrected else 0):
                 # defect correction: the fit to 8 points' model, its target shifted by what 16 points change
                 # at the current parameters, converges on the 16-point fit in half its time
                 rows = found.x[None, :]
-                defect = (_model(method, lam, rows, names, base, QUAD_PTS_DEFAULT)
-                          - _model(method, lam, rows, names, base, quad))[0]
-                found = _least_squares(method, lam, target - defect, found.x, names, base, quad, low, high)
+                defect = (_model(method, lam, rows, names, base, QUAD_PTS_DEFAULT, port_mm)
+                          - _model(method, lam, rows, names, base, quad, port_mm))[0]
+                found = _least_squares(method, lam, target - defect, found.x, names, base, quad, low, high,
+                                       port_mm)
                 evaluations += found.nfev + 2
     except SkinrenderError:
         raise  # bad input (wavelengths beyond the absorbers' data …), not a fit that failed
@@ -314,8 +362,7 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
                        skin_verdict(math.nan, {}, method, False))
     x = np.clip(found.x, low, high)
     fitted = replace(base, **{n: float(v) for n, v in zip(names, x)})
-    with np.errstate(all="ignore"):
-        model = skin_reflectance(lam, fitted, method)
+    model = measured_reflectance(lam, fitted, method, port_mm)
     rms = float(np.sqrt(np.mean((model - target) ** 2)))
     span = high - low
     hit = {n: side for n, v, lo, hi, s in zip(names, x, low, high, span)
@@ -326,18 +373,19 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
 
 
 def fit_skin(wavelength: ArrayLike, reflectance: ArrayLike, start: SkinParameters | None = None,
-             method: str = "adding-doubling") -> tuple[SkinParameters, float]:
+             method: str = "adding-doubling", port_mm: float | None = None) -> tuple[SkinParameters, float]:
     """
     Fit the model to one measured spectrum within :data:`FIT_BOUNDS`: the fitted :class:`SkinParameters` and
-    the RMS reflectance error (fraction); :func:`fit_skin_spectrum` gives the whole report.
+    the RMS reflectance error (fraction); ``port_mm``: the instrument's sample port diameter, mm
+    (:func:`fit_skin_spectrum`, which gives the whole report).
     """
-    fitted = fit_skin_spectrum(wavelength, reflectance, method=method, start=start)
+    fitted = fit_skin_spectrum(wavelength, reflectance, method=method, start=start, port_mm=port_mm)
     return fitted.parameters, fitted.rms
 
 
 def _fit_one(job):
-    lam, values, name, method, held, fitted = job
-    return fit_skin_spectrum(lam, values, method, start=held, name=name, scan=True, fitted=fitted)
+    lam, values, name, method, held, fitted, port_mm = job
+    return fit_skin_spectrum(lam, values, method, start=held, name=name, scan=True, fitted=fitted, port_mm=port_mm)
 
 
 def fit_seconds(count: int, wavelengths: int, method: str, workers: int = 1) -> float:
@@ -353,17 +401,19 @@ def fit_seconds(count: int, wavelengths: int, method: str, workers: int = 1) -> 
 
 def fit_skin_spectra(wavelength: ArrayLike, values: ArrayLike, names, method: str = "adding-doubling",
                      workers: int | None = 1, progress=None, held: SkinParameters | None = None,
-                     fitted: tuple[str, ...] | None = None) -> list[SkinFit]:
+                     fitted: tuple[str, ...] | None = None, port_mm: float | None = None) -> list[SkinFit]:
     """
     Fit every spectrum (rows of ``values``, on ``wavelength`` in nm) on ``workers`` processes (``None``: every
     core), each started from a melanin scan; ``progress``: a stream for a progress bar, or ``None``; ``held``:
     the values of the parameters not fitted (``None``: the defaults); ``fitted``: as in
-    :func:`fit_skin_spectrum`. Results in the order of the rows.
+    :func:`fit_skin_spectrum`; ``port_mm``: the instrument's sample port diameter, mm (``None``: none;
+    :func:`fit_skin_spectrum`). Results in the order of the rows.
     """
     validate_method(method, SKIN_REFLECTANCE_METHODS, "method")
+    port_mm = check_port(port_mm)
     lam = np.asarray(wavelength, dtype=np.float64)
     values = np.atleast_2d(np.asarray(values, dtype=np.float64))
-    jobs = [(lam, row, str(name), method, held, fitted) for row, name in zip(values, names)]
+    jobs = [(lam, row, str(name), method, held, fitted, port_mm) for row, name in zip(values, names)]
     workers = min(len(jobs), workers or os.cpu_count() or 1)
     bar = None
     if progress is not None:

@@ -95,6 +95,31 @@ def test_fit_of_model_spectra_and_a_white_that_is_not_skin(tmp_path, capsys):
     assert set(document["bounds"]) == set(light["parameters"]) and document["rms"]["max"] == white["rms"]
 
 
+def test_port_reads_the_model_through_a_sample_port_and_fits_through_it(tmp_path, capsys):
+    """--port-mm: the forward model as a 5 mm port reads it (darker in the red), and a fit of that reading
+    through the same port gives the skin's parameters back."""
+    from skinrender.datasets.skin_fit import measured_reflectance
+    from skinrender.datasets.skin_model import SkinParameters
+
+    status, out, err = run(["skin", "--grid", "400:700:20", "--background", "0", "--port-mm", "5", "--json"], capsys)
+    assert status == 0, err
+    document = json.loads(out)
+    lam = np.array(document["wavelength_nm"])
+    truth = SkinParameters(background=0.0)
+    np.testing.assert_allclose(document["reflectance"], measured_reflectance(lam, truth, port_mm=5.0), rtol=1e-12)
+    assert document["port_mm"] == 5.0 and document["reflectance"][-1] < 0.9 * measured_reflectance(lam, truth)[-1]
+    status, out, err = run(["skin", "--fit", fit_csv(tmp_path, {"seen": document["reflectance"]}, lam),
+                            "--background", "0", "--port-mm", "5", "--workers", "1", "--json"], capsys)
+    assert status == 0, err
+    fitted = json.loads(out)
+    assert fitted["port_mm"] == 5.0 and fitted["fits"][0]["rms"] < 1e-4
+    assert fitted["fits"][0]["parameters"]["blood"] == pytest.approx(truth.blood, rel=0.03)
+    status, out, err = run(["skin", "--fit", fit_csv(tmp_path, {"seen": document["reflectance"]}, lam),
+                            "--background", "0", "--port-mm", "5", "--workers", "1"], capsys)
+    assert status == 0, err
+    assert "read through a 5 mm port" in out.splitlines()[0]
+
+
 def test_fit_text_says_which_sit_on_a_bound_and_which_are_not_skin(tmp_path, capsys):
     lam = np.arange(400.0, 701.0, 10.0)
     status, out, err = run(["skin", "--fit", fit_csv(tmp_path, {"white": np.full(lam.size, 0.9)}, lam),
@@ -182,6 +207,9 @@ def test_no_column_converged_exits_1_with_the_whole_document(tmp_path, capsys, m
     (["--fit", "skin", "--max-spectra", "10"], ("--max-spectra", "30 spectra", "min")),
     (["--fit", "skin", "--workers", "0"], "--workers"),
     (["--fit", "skin", "--method", "x"], "--method"),
+    (["--port-mm", "0"], ("--port-mm", "mm > 0")),
+    (["--port-mm", "x"], "--port-mm"),
+    (["--fit", "skin", "--port-mm", "-5"], ("--port-mm", "got '-5'")),
 ])
 def test_bad_input_is_refused_in_one_line(argv, names, capsys, tmp_path):
     assert_refused(["skin", *argv], names, capsys, output=tmp_path)

