@@ -123,23 +123,12 @@ def _summary(name: str, verdict) -> list[str]:
 
 
 def _auto_spp(request, tolerance) -> dict:
-    """``--spp auto``: the pilots and the spp chosen (:func:`~skinrender.rendering.spp_choice.spp_for_tolerance`)."""
-    import dataclasses
-
+    """``--spp auto``: the pilots and the spp chosen (:meth:`~skinrender.rendering.kinds.ChartKind.choose_spp`,
+    as ``skinrender.validate(…, spp="auto")``), with a line on stderr before and after."""
     from ..rendering.kinds import CHART
-    from ..rendering.renderer import SAMPLES_MAX
-    from ..rendering.spp_choice import spp_for_tolerance
-
-    settings = request.settings
-
-    def at(spp, seed):
-        pilot = dataclasses.replace(request, settings=settings.replace(spp=spp, seed=seed))
-        return CHART.validate(pilot, tolerance=tolerance)
 
     print(f"spp auto: pilot renders of {request.scene.name} …", file=sys.stderr)
-    # the choice is held to both limits --spp has: SPP_MAX, and one pass's samples (Mitsuba's 32-bit wavefront)
-    choice = spp_for_tolerance(at, tolerance, settings.seed, spp_max=min(SPP_MAX, SAMPLES_MAX // request.pixels),
-                               sampler=settings.sampler)
+    choice = CHART.choose_spp(request, tolerance)
     print(f"spp auto: {choice['spp']} spp ({choice['why']})", file=sys.stderr)
     return choice
 

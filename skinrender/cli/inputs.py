@@ -85,8 +85,10 @@ def scene_from(spec: str, name: str = "SCENE") -> ChartScene | FaceScene:
 
 
 def is_auto(spp) -> bool:
-    """Whether ``--spp`` is ``auto`` (the spp's spelling, not a number)."""
-    return spp is not None and str(spp).strip().lower() == "auto"
+    """Whether ``--spp`` is ``auto`` (:func:`~skinrender.rendering.spp_choice.is_auto`)."""
+    from ..rendering.spp_choice import is_auto as auto
+
+    return auto(spp)
 
 
 def figure_from(path: str | None, *taken) -> Path | None:

@@ -24,6 +24,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Protocol
 
+from ..errors import SkinrenderError
 from .physics import SECONDS_PER_RENDER
 
 __all__ = ["SceneKind", "ChartKind", "FaceKind", "CHART", "FACE", "SCENE_KINDS", "scene_kind", "by_kind"]
@@ -197,15 +198,58 @@ class ChartKind(_Kind):
                                    rendering.prevailing, grid=grid) / 255.0
         return validate_imaged(imaged, ratio, grid=grid, tolerance=tolerance)
 
+    def choose_spp(self, request, tolerance: float) -> dict:
+        """
+        ``spp="auto"`` (``validate --spp auto``): the smallest spp at which the request's validation is expected
+        to pass ``tolerance`` (relative), from two pilot renders
+        (:func:`~skinrender.rendering.spp_choice.spp_for_tolerance`, its dict: ``spp``, ``pilots``, ``exponent``,
+        ``margin``, ``why``), held to ``SPP_MAX`` and to one pass's samples (Mitsuba's 32-bit wavefront).
+        """
+        import dataclasses
+
+        from .renderer import SAMPLES_MAX
+        from .settings import SPP_MAX
+        from .spp_choice import spp_for_tolerance
+
+        settings = request.settings
+
+        def at(spp, seed):
+            pilot = dataclasses.replace(request, settings=settings.replace(spp=spp, seed=seed))
+            return self.validate(pilot, tolerance=tolerance)
+
+        return spp_for_tolerance(at, tolerance, settings.seed, spp_max=min(SPP_MAX, SAMPLES_MAX // request.pixels),
+                                 sampler=settings.sampler)
+
     def validate_of(self, scene, camera, prevailing, calibration, **options):  # noqa: D102
+        import dataclasses
+
+        from .spp_choice import PILOT_SPP, is_auto
+
         checks = {name: options.pop(name) for name in ("tolerance", "alpha", "alpha_difference", "cache")
                   if name in options}
         rendering = options.pop("rendering", None)
+        auto = is_auto(options.get("spp"))
+        if auto and (rendering is not None or checks.get("tolerance") is None):
+            raise SkinrenderError("spp='auto' renders at the smallest spp expected to pass tolerance: give "
+                                  "tolerance=REL" + (", and no rendering" if rendering is not None else ""))
         if rendering is not None:  # a render given to check: the chart's own check of it
             from .validation import validate
 
             return validate(scene, camera, prevailing, calibration, rendering=rendering, **checks, **options)
-        return self.validate(self.request(scene, camera, prevailing, calibration, **options), **checks)
+        if auto:
+            options["spp"] = PILOT_SPP[0]  # stands in until the pilots have chosen
+        request = self.request(scene, camera, prevailing, calibration, **options)
+        if not auto:
+            return self.validate(request, **checks)
+        refused = request.level.refused("spp_auto")
+        if refused is not None:
+            raise SkinrenderError(f"spp='auto' does not go with physics {refused[0].name!r}: {refused[1]}")
+        from .agreement import check_tolerance
+
+        choice = self.choose_spp(request, check_tolerance(checks["tolerance"], "tolerance"))
+        result = self.validate(dataclasses.replace(request, settings=request.settings.replace(spp=choice["spp"])),
+                               **checks)
+        return dataclasses.replace(result, spp_auto=choice)
 
 
 
@@ -261,6 +305,11 @@ class FaceKind(_Kind):
 
     def validate_of(self, scene, camera, prevailing, calibration, **options):  # noqa: D102
         from .face.validation import validate_face
+        from .spp_choice import is_auto
+
+        if is_auto(options.get("spp")):  # as the CLI's --spp auto: a chart's
+            raise SkinrenderError("spp='auto' goes with a chart's validation (tolerance=REL); a face's gives the "
+                                  "spp it needs (spp_needed): give spp=N")
 
         return validate_face(camera, scene, prevailing, calibration, **options)
 

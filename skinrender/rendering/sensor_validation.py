@@ -77,7 +77,8 @@ class ImagedValidation:
     Carlo spread as the sensor sees it, DN), the z statistic of the mean, the p-values of the mean and variance
     tests, the Šidák ``level``, which tests were ``exact``; ``difference`` (every mean and variance test),
     ``checks`` (``mean``, ``variance``, ``equivalence``), ``verdict`` (equivalence and variance combined),
-    the equivalence's ``upper`` bounds and ``tolerance`` (output units), ``spp_needed``.
+    the equivalence's ``upper`` bounds and ``tolerance`` (output units), ``spp_needed``; ``spp_auto``: with
+    ``spp="auto"``, how the spp was chosen (:meth:`~skinrender.rendering.kinds.ChartKind.choose_spp`).
     """
 
     imaged: ImagedRendering
@@ -102,6 +103,7 @@ class ImagedValidation:
     spp_reason: str = ""
     saturated: NDArrayFloat | None = None
     saturation: Verdict | None = None
+    spp_auto: dict | None = None
 
     @property
     def rendering(self):

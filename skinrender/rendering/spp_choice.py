@@ -7,7 +7,9 @@ chart's validation is expected to pass, from two cheap pilot renders.
 
 -   :data:`PILOT_SPP`, :data:`SPP_AUTO_MARGIN`, :data:`EXPONENT_RANGE`, :data:`EXPONENT_RANGES`.
 -   :func:`bound_exponent`: how fast the bound falls between two spp.
--   :func:`spp_for_tolerance`: the pilots, the fit and the spp chosen.
+-   :func:`spp_for_tolerance`: the pilots, the fit and the spp chosen; :func:`is_auto`: ``spp`` asks for it
+    (``validate --spp auto``, ``skinrender.validate(…, spp="auto", tolerance=T)``: both through
+    :meth:`~skinrender.rendering.kinds.ChartKind.choose_spp`).
 
 Notes
 -----
@@ -46,8 +48,8 @@ from ..errors import SkinrenderError
 from ..methods import method_of
 from .settings import SAMPLERS
 
-__all__ = ["PILOT_SPP", "SPP_AUTO_MARGIN", "EXPONENT_RANGE", "EXPONENT_RANGES", "square_spp", "bound_exponent",
-           "spp_for_tolerance"]
+__all__ = ["PILOT_SPP", "SPP_AUTO_MARGIN", "EXPONENT_RANGE", "EXPONENT_RANGES", "is_auto", "square_spp",
+           "bound_exponent", "spp_for_tolerance"]
 
 PILOT_SPP = (16, 64)
 """The pilot renders' samples per pixel (the draft preset and 4 × it: ~0.2 and ~0.5 s on the Macbeth chart)."""
@@ -62,6 +64,16 @@ EXPONENT_RANGE = (0.5, 1.5)
 EXPONENT_RANGES = {"independent": (0.5, 0.5)}
 """Sampler → the range its fitted exponent is held within, where not :data:`EXPONENT_RANGE`: independent samples'
 standard error falls as ``spp^-½`` (module notes)."""
+
+
+def is_auto(spp) -> bool:
+    """
+    Whether ``spp`` asks for the smallest spp expected to pass (``auto``, any case), not a number.
+
+    >>> is_auto("auto"), is_auto(" AUTO "), is_auto(64), is_auto(None)
+    (True, True, False, False)
+    """
+    return isinstance(spp, str) and spp.strip().lower() == "auto"
 
 
 def square_spp(spp: float, sampler: str = "multijitter") -> int:

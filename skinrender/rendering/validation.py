@@ -154,6 +154,9 @@ class Validation:
         A perfect white's brightest channel in this render's output units (Eq. 4 of a reflectance of 1 under
         the prevailing light, with the render's normalisation and knee): 255 at p = c with ``white``, ~3.5 with
         ``none`` (:func:`white_level`). A channel below ``DARK_LEVEL`` of it is dark.
+    spp_auto
+        With ``spp="auto"``: how the spp was chosen (``spp``, ``pilots``, ``exponent``, ``margin``, ``why``;
+        :meth:`~skinrender.rendering.kinds.ChartKind.choose_spp`); ``None`` otherwise.
     """
 
     rendering: Rendering
@@ -170,6 +173,7 @@ class Validation:
     spp_needed: int | None
     skewness: NDArrayFloat | None = None
     white_level: float = CONSTANT_OUTPUT_SCALE
+    spp_auto: dict | None = None
 
     @property
     def error(self) -> NDArrayFloat:

@@ -89,7 +89,32 @@ def test_validate_a_chart_from_python_as_before():
     assert result.bound == same.bound and result.spp_needed == same.spp_needed > 4
 
 
+def test_validate_a_chart_with_spp_auto_from_python_as_the_cli_does(capsys):
+    """``spp="auto"`` with a tolerance: the pilots and the spp chosen, as ``validate --spp auto`` (it was refused:
+    "spp must be a positive integer")."""
+    import json
+
+    from skinrender.cli import main
+
+    result = sr.validate("macbeth", CAMERA, 2856, 2300, spp="auto", tolerance=0.05, seed=3)
+    choice = result.spp_auto
+    assert [p["spp"] for p in choice["pilots"]] == [16, 64] and "pilots at 16 and 64 spp" in choice["why"]
+    assert result.rendering.raw[0].spp == choice["spp"] and result.verdict.outcome in ("pass", "inconclusive")
+    capsys.readouterr()
+    status = main(["validate", "macbeth", "--camera", CAMERA, "--prevailing", "2856", "--calibration", "2300",
+                   "--spp", "auto", "--tolerance", "0.05", "--seed", "3", "--json"])
+    cli = json.loads(capsys.readouterr().out)
+    def timeless(chosen):  # the pilots' seconds are wall times
+        return {**chosen, "pilots": [{k: v for k, v in p.items() if k != "seconds"} for p in chosen["pilots"]]}
+
+    assert timeless(cli["spp_auto"]) == timeless(choice) and cli["verdict"] == result.verdict.outcome
+    assert status == cli["exit_status"]
+    assert sr.validate("macbeth", CAMERA, 2856, 2300, spp=12, tolerance=0.05).spp_auto is None
+
+
 @pytest.mark.parametrize("kwargs, message", [
+    ({"scene": "macbeth", "spp": "auto"}, "spp='auto' renders at the smallest spp expected to pass tolerance"),
+    ({"scene": "face", "spp": "auto"}, "spp='auto' goes with a chart's validation"),
     ({"scene": "face", "tolerance": 0.1}, "validate: tolerance is not an option of a face scene; its options: skin"),
     ({"scene": "macbeth", "skin": "skin:#0"}, "validate: skin is not an option of a chart scene"),
     ({"scene": "macbeth", "physics": "sheen"}, "physics (of a chart) must be one of direct, subsurface, "
