@@ -18,9 +18,8 @@ The standard error of a patch channel
 error together with the white references' errors carried through the white
 balance and WP (Eq. 8), linearised with their channel covariances; a value
 whose error is too skewed for the normal law is held to distribution-free
-(Cantelli, Chebyshev) bounds instead. The pixels of a
-patch are independent (a box filter), so the standard errors have
-``pixels − 1`` degrees of freedom (Student t). The difference test allows a
+(Cantelli, Chebyshev) bounds instead. The pixels of a patch are independent
+(a box filter), so the standard errors have ``pixels − 1`` degrees of freedom (Student t). The difference test allows a
 float32 floor (:func:`float32_floor`) beyond the noise. At p = c the whites
 are one render and WP is exactly 1. Renders of p and c use different seeds, so
 their noise is independent.
@@ -155,8 +154,7 @@ class Validation:
         the prevailing light, with the render's normalisation and knee): 255 at p = c with ``white``, ~3.5 with
         ``none`` (:func:`white_level`). A channel below ``DARK_LEVEL`` of it is dark.
     spp_auto
-        With ``spp="auto"``: how the spp was chosen (``spp``, ``pilots``, ``exponent``, ``margin``, ``why``;
-        :meth:`~skinrender.rendering.kinds.ChartKind.choose_spp`); ``None`` otherwise.
+        With ``spp="auto"``: how the spp was chosen (:meth:`~skinrender.rendering.kinds.ChartKind.choose_spp`).
     """
 
     rendering: Rendering
