@@ -21,7 +21,7 @@ import dataclasses
 import sys
 
 from ..errors import SkinrenderError
-from .common import SPP_MAX, emit, flag, interruptible, settings_from, table
+from .common import emit, flag, interruptible, settings_from, table
 from .placement import translate_key
 
 __all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "SIGMAS_DEPRECATED", "add_check_arguments", "add_verdict_arguments",

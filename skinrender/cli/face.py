@@ -15,9 +15,8 @@ from pathlib import Path
 
 from ..errors import SkinrenderError
 from ..files import Output, write_output, write_outputs
-from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, camera_from,
-                     check_output, check_seed, choices_help, emit, flag, integer_in, interruptible, settings_from,
-                     table, variant_of)
+from .common import (HELP_CAMERA, HELP_PLANCKIAN, SEED_MAX, SPP_MAX, add_common, add_max_minutes, check_output,
+                     check_seed, choices_help, emit, flag, integer_in, interruptible, settings_from, variant_of)
 from .detection_options import add_detection_options, detection_tolerance_from, skin_set_from
 from .face_inputs import (SIZE_MAX, check_lights_seen, face_flags_from, face_pixels, face_request_from,  # noqa: F401
                           level_names, levels_of, noise_sensor_from, planckian_flag)

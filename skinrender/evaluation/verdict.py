@@ -51,7 +51,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import SkinrenderError
-from ..hints import ArrayLike, NDArrayFloat
+from ..hints import ArrayLike
 
 __all__ = ["OUTCOMES", "EXIT_STATUS", "ALPHA_EQUIVALENCE", "ALPHA_DIFFERENCE", "Verdict", "combine", "Combined", "sidak",
            "critical_z", "equivalence", "difference", "samples_needed", "binomial_interval"]

@@ -55,12 +55,12 @@ from ..hints import NDArrayFloat
 from ..model.camera import Camera
 from ..model.exposure import (AUTO_EXPOSURE_FRACTION, AUTO_EXPOSURE_MAX_S, auto_exposure,
                               auto_exposure_note, electrons_mean, irradiance_planck)
-from ..model.imager import Imager, imager
+from ..model.imager import Imager
 from ..model.noise import clipping_counts, clipping_note, simulate_dn_clipped, statistics_dn
 from ..spectra import GRID_DEFAULT, WavelengthGrid, planck
 from .balance import Rendering, pair_gain, patch_statistics
-from .renderer import RawRender, emitter_grid, render_raw
-from .scene import ChartScene, load_chart_scene
+from .renderer import RawRender, emitter_grid
+from .scene import ChartScene
 from .settings import RenderSettings
 
 __all__ = ["AUTO_EXPOSURE_FRACTION", "ImagedRendering", "electrons_per_radiance", "check_exposure", "exposure_for",

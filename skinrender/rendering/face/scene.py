@@ -55,7 +55,7 @@ import math
 import copy
 import dataclasses
 import functools
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np

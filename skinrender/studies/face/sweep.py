@@ -41,7 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import SkinrenderError
-from ...execution import WORKERS_MAX, check_workers, dask_name
+from ...execution import check_workers, dask_name
 from ...evaluation.locus import skin_locus
 from ...files import write_output
 from ...model.camera import camera
