@@ -72,8 +72,9 @@ def add_parsers(commands) -> None:
                    help="the contact instrument's sample port (the spot measured) diameter, mm (> 0): the model is "
                         "read as through it, the light that leaves the skin outside it lost (lateral loss, "
                         "Farrell et al. 1992's diffusion, a beam at the port's centre); with --fit the fitted "
-                        "parameters are then the skin's, the loss the instrument's (the NIST skins: 5). Default: "
-                        "none, an area much larger than the light's spread, as a camera sees skin")
+                        "parameters are then the skin's, the loss the instrument's (the NIST skins: 5, with "
+                        "--background 0: the default background stands in part for this loss). Default: none, an "
+                        "area much larger than the light's spread, as a camera sees skin")
     p.add_argument("--workers", help="with --fit: processes (default: every core)")
     p.add_argument("--max-spectra", default=str(SPECTRA_MAX),
                    help=f"with --fit: refuse tables of more spectra than this (default {SPECTRA_MAX}; the estimate "

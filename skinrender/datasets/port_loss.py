@@ -57,15 +57,16 @@ __all__ = ["kept_fraction", "through_port", "check_port"]
 
 
 def check_port(port_mm) -> float | None:
-    """``port_mm`` as a float, ``None`` for none; a finite diameter > 0 mm, else an error naming it."""
+    """``port_mm`` as a float, ``None`` for none; a finite diameter > 0 mm (not a bool), else an error naming it."""
     if port_mm is None:
         return None
     try:
-        value = float(port_mm)
+        value = math.nan if isinstance(port_mm, bool) else float(port_mm)
     except (TypeError, ValueError):
-        raise SkinrenderError(f"port_mm must be a sample port's diameter in mm, got {port_mm!r}") from None
+        value = math.nan
     if not (math.isfinite(value) and value > 0):
-        raise SkinrenderError(f"port_mm must be a finite diameter > 0 mm, got {port_mm!r}")
+        raise SkinrenderError(f"port_mm must be a sample port's diameter, finite mm > 0, got {port_mm!r}",
+                              role="port_mm")
     return value
 
 

@@ -198,12 +198,13 @@ class ChartKind(_Kind):
                                    rendering.prevailing, grid=grid) / 255.0
         return validate_imaged(imaged, ratio, grid=grid, tolerance=tolerance)
 
-    def choose_spp(self, request, tolerance: float) -> dict:
+    def choose_spp(self, request, tolerance: float, name: str = "--tolerance") -> dict:
         """
         ``spp="auto"`` (``validate --spp auto``): the smallest spp at which the request's validation is expected
         to pass ``tolerance`` (relative), from two pilot renders
         (:func:`~skinrender.rendering.spp_choice.spp_for_tolerance`, its dict: ``spp``, ``pilots``, ``exponent``,
-        ``margin``, ``why``), held to ``SPP_MAX`` and to one pass's samples (Mitsuba's 32-bit wavefront).
+        ``margin``, ``why``), held to ``SPP_MAX`` and to one pass's samples (Mitsuba's 32-bit wavefront); a
+        refusal names the tolerance as ``name`` (the CLI's flag, or ``tolerance`` from Python).
         """
         import dataclasses
 
@@ -218,7 +219,7 @@ class ChartKind(_Kind):
             return self.validate(pilot, tolerance=tolerance)
 
         return spp_for_tolerance(at, tolerance, settings.seed, spp_max=min(SPP_MAX, SAMPLES_MAX // request.pixels),
-                                 sampler=settings.sampler)
+                                 sampler=settings.sampler, name=name)
 
     def validate_of(self, scene, camera, prevailing, calibration, **options):  # noqa: D102
         import dataclasses
@@ -229,9 +230,12 @@ class ChartKind(_Kind):
                   if name in options}
         rendering = options.pop("rendering", None)
         auto = is_auto(options.get("spp"))
-        if auto and (rendering is not None or checks.get("tolerance") is None):
+        if auto and rendering is not None:
+            raise SkinrenderError("spp='auto' chooses the spp of a render to come: it does not go with rendering "
+                                  "(a render given to check)", role="spp")
+        if auto and checks.get("tolerance") is None:
             raise SkinrenderError("spp='auto' renders at the smallest spp expected to pass tolerance: give "
-                                  "tolerance=REL" + (", and no rendering" if rendering is not None else ""))
+                                  "tolerance=REL", role="tolerance")
         if rendering is not None:  # a render given to check: the chart's own check of it
             from .validation import validate
 
@@ -243,10 +247,10 @@ class ChartKind(_Kind):
             return self.validate(request, **checks)
         refused = request.level.refused("spp_auto")
         if refused is not None:
-            raise SkinrenderError(f"spp='auto' does not go with physics {refused[0].name!r}: {refused[1]}")
+            raise SkinrenderError(f"spp='auto' does not go with physics {refused[0].name!r}: {refused[1]}", role="spp")
         from .agreement import check_tolerance
 
-        choice = self.choose_spp(request, check_tolerance(checks["tolerance"], "tolerance"))
+        choice = self.choose_spp(request, check_tolerance(checks["tolerance"], "tolerance"), "tolerance")
         result = self.validate(dataclasses.replace(request, settings=request.settings.replace(spp=choice["spp"])),
                                **checks)
         return dataclasses.replace(result, spp_auto=choice)
@@ -309,7 +313,7 @@ class FaceKind(_Kind):
 
         if is_auto(options.get("spp")):  # as the CLI's --spp auto: a chart's
             raise SkinrenderError("spp='auto' goes with a chart's validation (tolerance=REL); a face's gives the "
-                                  "spp it needs (spp_needed): give spp=N")
+                                  "spp it needs (spp_needed): give spp=N", role="spp")
 
         return validate_face(camera, scene, prevailing, calibration, **options)
 

@@ -111,8 +111,13 @@ def bound_exponent(spps: tuple[int, int], bounds: tuple[float, float], sampler: 
     return min(max(a, low), high)
 
 
+def _named(name: str) -> dict:
+    """A refusal's fields naming the tolerance: its ``role``, and the flag where ``name`` is one."""
+    return {"role": "tolerance", "flag": name if name.startswith("--") else None}
+
+
 def spp_for_tolerance(validate_at, tolerance: float, seed: int = 0, pilots: tuple[int, int] = PILOT_SPP,
-                      spp_max: int | None = None, sampler: str = "multijitter") -> dict:
+                      spp_max: int | None = None, sampler: str = "multijitter", name: str = "--tolerance") -> dict:
     """
     The smallest spp expected to pass ``tolerance``.
 
@@ -127,14 +132,18 @@ def spp_for_tolerance(validate_at, tolerance: float, seed: int = 0, pilots: tupl
         The pilots use ``seed + 2`` and ``seed + 4`` (the validation itself ``seed`` and ``seed + 1``), so the
         choice does not pick the validation's own noise.
     spp_max
-        Refuse (naming ``--tolerance``) a choice above this.
+        Refuse (naming ``name``) a choice above this.
     sampler
         The sampler (``multijitter``: the count rounded up to a square, :func:`square_spp`).
+    name
+        How a refusal names the tolerance: ``--tolerance`` (the CLI's flag) or ``tolerance`` (the Python
+        argument); its ``role`` is ``tolerance`` either way.
 
     Returns
     -------
     dict
-        ``spp`` (chosen), ``pilots`` (``[{spp, bound, seconds}]``), ``exponent``, ``margin``, ``why`` (one line).
+        ``spp`` (chosen: never below the first pilot's, where nothing below was measured), ``pilots`` (``[{spp,
+        bound, seconds}]``), ``exponent``, ``margin``, ``why`` (one line).
     """
 
     rows, runs = [], []
@@ -146,8 +155,8 @@ def spp_for_tolerance(validate_at, tolerance: float, seed: int = 0, pilots: tupl
     if hasattr(last, "spp_reason"):  # through a sensor: the bound has the sensor's floor
         if last.spp_needed is None:
             bound = " has no bound" if last.bound is None else f"'s bound is {last.bound:.3g}"  # None: saturated
-            raise SkinrenderError(f"--tolerance {tolerance:g}: no spp is expected to pass it: {last.spp_reason} "
-                                  f"(the {rows[-1]['spp']}-spp pilot{bound})", flag="--tolerance")
+            raise SkinrenderError(f"{name} {tolerance:g}: no spp is expected to pass it: {last.spp_reason} "
+                                  f"(the {rows[-1]['spp']}-spp pilot{bound})", **_named(name))
         chosen = square_spp(last.spp_needed * SPP_AUTO_MARGIN, sampler)
         exponent = None
         why = (f"the {rows[-1]['spp']}-spp pilot's bound {last.bound:.3g} (sensor and render noise) is expected to "
@@ -159,7 +168,10 @@ def spp_for_tolerance(validate_at, tolerance: float, seed: int = 0, pilots: tupl
         why = (f"pilots at {rows[0]['spp']} and {rows[1]['spp']} spp gave bounds {rows[0]['bound']:.3g} and "
                f"{rows[1]['bound']:.3g} (falling as spp^-{exponent:.2f}); the bound is expected to meet {tolerance:g} "
                f"at {at:.0f} spp; × {SPP_AUTO_MARGIN:g} margin{how}")
+    if chosen < rows[0]["spp"]:  # below the pilots nothing was measured: multijitter's variance rises faster
+        chosen = rows[0]["spp"]   # than 1/spp there (a sensor's 64-spp pilot asked for 2 spp, which failed)
+        why += f"; held at the first pilot's {chosen} spp (nothing below it measured)"
     if spp_max is not None and chosen > spp_max:
-        raise SkinrenderError(f"--tolerance {tolerance:g}: about {chosen} spp would be needed ({why}), more than "
-                              f"{spp_max} a render may take; ask for a larger tolerance", flag="--tolerance")
+        raise SkinrenderError(f"{name} {tolerance:g}: about {chosen} spp would be needed ({why}), more than "
+                              f"{spp_max} a render may take; ask for a larger tolerance", **_named(name))
     return {"spp": int(chosen), "pilots": rows, "exponent": exponent, "margin": SPP_AUTO_MARGIN, "why": why}

@@ -59,8 +59,9 @@ def test_through_port_keeps_the_specular_part_and_none_is_the_reflectance_itself
     assert np.all(seen < reflectance)
 
 
-@pytest.mark.parametrize("port", [0, -1, float("nan"), float("inf"), "x"])
+@pytest.mark.parametrize("port", [0, -1, float("nan"), float("inf"), "x", "", True, [5]])
 def test_check_port_refuses_what_is_no_diameter(port):
-    with pytest.raises(SkinrenderError, match="port_mm"):
+    with pytest.raises(SkinrenderError, match="port_mm") as error:
         check_port(port)
+    assert error.value.role == "port_mm"
     assert check_port(None) is None and check_port("5") == 5.0

@@ -112,9 +112,20 @@ def test_validate_a_chart_with_spp_auto_from_python_as_the_cli_does(capsys):
     assert sr.validate("macbeth", CAMERA, 2856, 2300, spp=12, tolerance=0.05).spp_auto is None
 
 
+@pytest.mark.parametrize("kwargs, message, role", [
+    ({"scene": "macbeth", "spp": "auto"}, "spp='auto' renders at the smallest spp expected to pass tolerance",
+     "tolerance"),
+    ({"scene": "face", "spp": "auto"}, "spp='auto' goes with a chart's validation", "spp"),
+    ({"scene": "macbeth", "spp": "auto", "tolerance": 1e-7}, "tolerance 1e-07: about", "tolerance"),
+])
+def test_spp_auto_refusals_name_their_argument(kwargs, message, role):
+    arguments = {"camera": CAMERA, "prevailing": 2856, "calibration": 2856, **kwargs}
+    with pytest.raises(sr.SkinrenderError) as error:
+        sr.validate(**arguments)
+    assert str(error.value).startswith(message) and error.value.role == role
+
+
 @pytest.mark.parametrize("kwargs, message", [
-    ({"scene": "macbeth", "spp": "auto"}, "spp='auto' renders at the smallest spp expected to pass tolerance"),
-    ({"scene": "face", "spp": "auto"}, "spp='auto' goes with a chart's validation"),
     ({"scene": "face", "tolerance": 0.1}, "validate: tolerance is not an option of a face scene; its options: skin"),
     ({"scene": "macbeth", "skin": "skin:#0"}, "validate: skin is not an option of a chart scene"),
     ({"scene": "macbeth", "physics": "sheen"}, "physics (of a chart) must be one of direct, subsurface, "

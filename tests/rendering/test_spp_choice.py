@@ -51,6 +51,29 @@ def test_through_a_sensor_the_pilots_spp_needed_is_used_or_the_tolerance_refused
         spp_for_tolerance(_simulated(1.0, floor=0.01), 0.001)
 
 
+def test_never_below_the_first_pilot_where_nothing_was_measured():
+    """A sensor's 64-spp pilot asked for 2 spp (its render noise extrapolated as 1/spp), which failed at 4 spp
+    (bound 0.10 against 0.05): below the pilots the choice is held at the first's."""
+    def sensor_pilot(spp, seed):
+        run = _simulated(1.0)(spp, seed)
+        run.spp_reason, run.spp_needed = "", 2
+        return run
+
+    choice = spp_for_tolerance(sensor_pilot, 0.05)
+    assert choice["spp"] == 16 and "held at the first pilot's 16 spp" in choice["why"]
+    assert spp_for_tolerance(_simulated(1.0), 0.5)["spp"] == 16  # the fitted law would have said 1
+
+
+def test_a_refusal_names_the_tolerance_as_its_door_does():
+    with pytest.raises(SkinrenderError) as error:
+        spp_for_tolerance(_simulated(0.5), 1e-9, spp_max=10**6, name="tolerance")
+    assert str(error.value).startswith("tolerance 1e-09: about") and error.value.role == "tolerance"
+    assert error.value.flag is None
+    with pytest.raises(SkinrenderError) as error:
+        spp_for_tolerance(_simulated(1.0, floor=0.01), 0.001)
+    assert error.value.flag == "--tolerance" and error.value.role == "tolerance"
+
+
 def test_too_many_spp_refused_with_the_estimate():
     with pytest.raises(SkinrenderError, match="--tolerance 1e-09: about .* spp would be needed"):
         spp_for_tolerance(_simulated(0.5), 1e-9, spp_max=10**6)
