@@ -3,7 +3,7 @@
 Measure the skin model's fits to measured skin (``docs/skin-model.md``): the numbers behind its defaults.
 
     python tools/measure_skin_fits.py calibrate [--every N]       # background and melanin power, together
-    python tools/measure_skin_fits.py calibrate --port-mm 5       # melanin power, through the NIST port
+    python tools/measure_skin_fits.py calibrate --port-mm 5 [--only NAME]   # the power through the NIST port
     python tools/measure_skin_fits.py background [--every N] [--only NAME]   # the background alone
     python tools/measure_skin_fits.py variants [--every N] [--only NAME,…]   # the alternatives compared
     python tools/measure_skin_fits.py refit [--every N] [--port-mm D] [--power P]   # = skinrender skin --fit
@@ -85,7 +85,8 @@ def main(argv=None) -> int:
     parser.add_argument("--subjects", default="S006,S061,S096,S011,S051",
                         help="diagnose: NIST subjects (default: three on b = 0 and two light ones)")
     parser.add_argument("--every", type=int, default=1, help="fit every Nth NIST skin (default 1: all 100)")
-    parser.add_argument("--only", default="", help="variants: comma-separated names (default: all); background: one")
+    parser.add_argument("--only", default="",
+                        help="variants: comma-separated names (default: all); background, calibrate --port-mm: one")
     parser.add_argument("--port-mm", type=float, default=None,
                         help="calibrate, refit: the instrument's sample port diameter, mm (default none); with it "
                              "the background is held at 0 (water only)")
@@ -103,10 +104,19 @@ def main(argv=None) -> int:
     keep = (measured.wavelengths >= 400) & (measured.wavelengths <= 700)
     lam, values = measured.wavelengths[keep], measured.values[::args.every, keep]
     names = measured.names[::args.every]
-    if args.what == "calibrate" and args.port_mm is not None:
-        _fit(f"melanin power fitted through a {args.port_mm:g} mm port, water only", lam, values, names,
-             replace(SkinParameters(), background=0.0),
-             ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "melanin_power"), args.port_mm)
+    if args.what == "calibrate" and args.port_mm is not None:  # --only: under a variant's substitution
+        from skin_alternatives import VARIANTS, substituted
+
+        if args.only and args.only not in VARIANTS:
+            print(f"--only: unknown variant {args.only!r}; choose from {sorted(VARIANTS)}", file=sys.stderr)
+            return 2
+        label, changes, substitution = VARIANTS[args.only] if args.only else ("", {}, None)
+        held = replace(SkinParameters(), **{k: v for k, v in changes.items() if k not in ("melanin_power", "port_mm")},
+                       background=0.0)
+        with substituted(substitution):
+            _fit(f"melanin power fitted through a {args.port_mm:g} mm port, water only {label}", lam, values, names,
+                 held, ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "melanin_power"),
+                 args.port_mm)
     elif args.what == "calibrate":
         _fit("background and melanin power fitted, a held at 46 cm⁻¹", lam, values, names,
              replace(SkinParameters(), scattering=46.0),

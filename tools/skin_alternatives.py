@@ -139,6 +139,43 @@ def _melanin_free_corneum(skin_model, skin_fit, corneum_mm: float, scattering_ra
             (skin_model.SKIN_REFLECTANCE_METHODS, "adding-doubling", reflectance)]
 
 
+BLOOD_PROFILE = ((0.15, 0.04), (0.08, 0.30), (None, 0.04))
+"""The dermis below the epidermis in Meglinski & Matcher 2002's layers, top first: (thickness mm, None:
+semi-infinite; blood volume fraction): the papillary dermis (150 µm, 4 %), the upper blood net (80 µm, 30 %), the
+reticular dermis (4 %), here semi-infinite (their deeper layers left out)."""
+
+
+def _blood_profile(skin_model, skin_fit) -> list:
+    """The dermis as :data:`BLOOD_PROFILE`'s layers, their blood fractions scaled by the fitted ``blood`` (which
+    is the papillary and reticular dermis' fraction, Meglinski & Matcher's 4 %; each layer's capped at 1), the
+    layers' scattering, packaging and the rest the dermis'. A port's lateral loss is taken from the reticular
+    dermis' coefficients (the fit's own :func:`~skinrender.datasets.skin_fit._seen`)."""
+    from skinrender.datasets.adding_doubling import Slab, stack_reflectance
+
+    def layered(lam, values, base, quad_pts):
+        coefficients = skin_model.layer_coefficients(lam, values)
+        blood = np.asarray(values["blood"], dtype=np.float64)
+        slabs = [Slab(coefficients[0], coefficients[2], skin_model.G_SKIN, float(base.epidermis_mm))]
+        for depth, fraction in BLOOD_PROFILE:
+            layer = skin_model.layer_coefficients(lam, {**values, "blood": np.minimum(blood * fraction / 0.04, 1)})
+            slabs.append(Slab(layer[1], layer[3], skin_model.G_SKIN, depth))
+        return stack_reflectance(slabs, n=float(base.n), quad_pts=quad_pts), coefficients
+
+    def fitted_model(method_name, lam, x, names, base, quad_pts, port_mm=None):
+        if method_name != "adding-doubling":
+            raise ValueError("the blood-profile variant is adding-doubling's")
+        values = _fitted_values(skin_model, base, x, names)
+        reflectance, coefficients = layered(lam, values, base, quad_pts)
+        return skin_fit._seen(method_name, reflectance, coefficients, base, None, port_mm)
+
+    def reflectance(lam, parameters):
+        return layered(np.asarray(lam, dtype=np.float64), asdict(parameters), parameters,
+                       skin_model.QUAD_PTS_DEFAULT)[0]
+
+    return [(skin_fit, "_model", fitted_model),
+            (skin_model.SKIN_REFLECTANCE_METHODS, "adding-doubling", reflectance)]
+
+
 def _substitution(name: str | None) -> list:
     """``[(module or dict, attribute or key, replacement)]`` for the variant ``name``."""
     from skinrender.datasets import skin_fit, skin_model
@@ -155,6 +192,7 @@ def _substitution(name: str | None) -> list:
         "rayleigh": lambda: _rayleigh_part(skin_model, skin_fit, 0.409),
         "lateral-loss-3.48": lambda: melanin(_melanin_348),
         "corneum": lambda: _melanin_free_corneum(skin_model, skin_fit, 0.02, 1.0),
+        "blood-profile": lambda: _blood_profile(skin_model, skin_fit),
     }
     return builders[name]() if name else []
 
@@ -204,6 +242,12 @@ VARIANTS = {
     "lateral-loss-3.48": ("the same, melanin 1.70e12 λ^−3.48", {"background": 0.0, "port_mm": 5.0},
                           "lateral-loss-3.48"),
     "corneum": ("a melanin-free stratum corneum 20 µm (Meglinski & Matcher 2002)", {}, "corneum"),
+    "blood-profile": ("the dermis' blood in Meglinski & Matcher 2002's layers (blood: the papillary dermis')", {},
+                      "blood-profile"),
+    "blood-profile-port": ("the same through the NIST 5 mm port, water only, melanin λ^−3.8",
+                           {"background": 0.0, "melanin_power": 3.8, "port_mm": 5.0}, "blood-profile"),
+    "blood-profile-port-3.7": ("the same, melanin λ^−3.7 (its own calibration through the port: 3.73)",
+                               {"background": 0.0, "melanin_power": 3.7, "port_mm": 5.0}, "blood-profile"),
     "melanin-power-3.33": ("melanin λ^−3.33 (Jacques 1998, the model before its calibration)",
                            {"melanin_power": 3.33}, None),
     "melanin-power-3.8": ("melanin λ^−3.8 (steeper than the calibration's 3.66)", {"melanin_power": 3.8}, None),
