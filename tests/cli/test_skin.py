@@ -210,6 +210,10 @@ def test_no_column_converged_exits_1_with_the_whole_document(tmp_path, capsys, m
     (["--port-mm", "0"], ("--port-mm", "mm > 0")),
     (["--port-mm", "x"], "--port-mm"),
     (["--fit", "skin", "--port-mm", "-5"], ("--port-mm", "got '-5'")),
+    (["--port-mm", "nan"], "--port-mm"),
+    (["--port-mm", "inf", "--method", "kubelka-munk"], "--port-mm"),
+    (["--port-mm", "1e309"], "--port-mm"),
+    (["--port-mm", ""], "--port-mm"),
 ])
 def test_bad_input_is_refused_in_one_line(argv, names, capsys, tmp_path):
     assert_refused(["skin", *argv], names, capsys, output=tmp_path)
