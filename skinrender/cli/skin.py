@@ -107,17 +107,12 @@ def parameters_of(args: argparse.Namespace, names=tuple(PARAMETER_FLAGS)):
 
 
 def _port(args: argparse.Namespace) -> float | None:
-    """``--port-mm``: a diameter in mm > 0, or ``None``."""
-    if args.port_mm is None:
-        return None
-    try:
-        value = float(args.port_mm)
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and value > 0):
-        raise SkinrenderError(f"--port-mm must be a sample port's diameter in mm > 0, got {args.port_mm!r}",
-                              flag="--port-mm")
-    return value
+    """``--port-mm``: a diameter in mm > 0, or ``None`` (:func:`~skinrender.datasets.port_loss.check_port`, its
+    refusal worded with the flag)."""
+    from ..datasets.port_loss import check_port
+    from .common import flagged
+
+    return flagged({"port_mm": "--port-mm"}, check_port, args.port_mm)
 
 
 def _method(args: argparse.Namespace) -> str:

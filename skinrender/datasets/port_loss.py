@@ -24,8 +24,9 @@ closed form):
 over ``z₀`` and ``z₀ + 2 z_b``, ``z_b = 2 (1 + R_eff) / (3 μt' (1 − R_eff))`` (``R_eff`` of
 :cite:`Groenhuis1983` at the skin's index), ``μeff = √(3 μa μt')``, ``μt' = μa + μs (1 − g)``.
 The dermis' coefficients stand for the whole skin: the epidermis (0.1 mm) is thin
-against the millimetres the red light spreads, and where the epidermis absorbs
-most (the blue) the loss is under 0.1 %.
+against the millimetres the red light spreads, and the loss is small where the
+epidermis absorbs most (the blue: a 5 mm port keeps 99.6 % of the default skin's
+diffuse reflectance at 450 nm, 80 % at 700 nm).
 
 -   :func:`kept_fraction`: the fraction a port of a radius keeps.
 -   :func:`through_port`: a reflectance as an instrument of a port diameter reads it.
