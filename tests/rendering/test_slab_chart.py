@@ -19,26 +19,9 @@ from skinrender.rendering.slab_chart import (SECONDS_PER_TABLE, estimate_seconds
                                              slab_renderer)
 from skinrender.rendering.validation import analytic_reference, validate  # noqa: E402
 
-CAMERA = "gbell:9@450,540,610"
+from .test_subsurface_chart import TWO  # noqa: E402 - the same light, dark and grey patches
 
-TWO = """
-name = "two"
-columns = 3
-patch_px = 12
-gap_px = 2
-border_px = 0
-[[patch]]
-name = "light"
-reflectance = "skin-model:melanin=0.02"
-skin = true
-[[patch]]
-name = "dark"
-reflectance = "skin-model:melanin=0.3"
-skin = true
-[[patch]]
-name = "grey"
-reflectance = "grey:0.4"
-"""
+CAMERA = "gbell:9@450,540,610"
 
 TOLERANCE = 0.02
 """The check's tolerance: the table is exact for the flat slab under the sky (its grid returns UR1 as the BSDF reads
@@ -49,7 +32,7 @@ standard error is 0.1–0.4 % and its family-wise 95 % bound under 2 %."""
 @pytest.fixture(scope="module")
 def two(tmp_path_factory):
     path = tmp_path_factory.mktemp("charts") / "two.toml"
-    path.write_text(TWO)
+    path.write_text(TWO.format(px=12))
     return str(path)
 
 
