@@ -264,7 +264,8 @@ class FaceKind(_Kind):
     name = "face"
     render_options = ("skin", "physics", "spp", "seed", "size", "sampler", "variant", "grid", "channels", "imager",
                       "exposure", "illuminance", "translate_mm")
-    validate_options = (*render_options, "replicates", "limits", "progress", "budget_fraction")
+    validate_options = (*render_options, "replicates", "limits", "progress", "budget_fraction", "skin_set",
+                        "detection_tolerance")
     lights_required = False
 
     @property

@@ -79,6 +79,15 @@ def test_validate_a_face_from_python_with_its_verdict_bound_and_spp_needed():
     assert same.bound == result.bound
 
 
+def test_validate_a_face_takes_the_clis_skin_set_and_detection_tolerance():
+    """``validate face --skin-set … --detection-tolerance …`` from Python (they were "not an option of a face
+    scene", though :func:`validate_face` takes both)."""
+    result = sr.validate("face", CAMERA, 2856, 2856, physics="direct", spp=8, size=8, skin_set="skin-tones",
+                         detection_tolerance=0.05)
+    document = result.document()
+    assert document["skin_set"] == "skin-tones" and document["detection"]["tolerance"] == 0.05
+
+
 def test_validate_a_chart_from_python_as_before():
     from skinrender.rendering.validation import Validation
     from skinrender.rendering.validation import validate as validate_chart
