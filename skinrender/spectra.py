@@ -210,7 +210,10 @@ def as_grid(grid, name: str = "grid") -> WavelengthGrid:
     if isinstance(grid, WavelengthGrid):
         return grid
     if isinstance(grid, str):
-        return WavelengthGrid.parse(grid)
+        try:
+            return WavelengthGrid.parse(grid)
+        except SkinrenderError as error:  # its message names the grid; its role, the argument
+            raise (error if error.role else error.reworded(role=name)) from None
     raise SkinrenderError(f"{name} must be a WavelengthGrid or 'START:END:STEP' in nm, got {grid!r}", role=name)
 
 

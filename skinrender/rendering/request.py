@@ -36,7 +36,7 @@ from ..methods import validate_method
 from ..model.camera import Camera, camera as camera_of
 from ..model.illuminant import illuminant
 from ..model.response import NORMALISATIONS, uses_whites
-from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid
 from .physics import Level
 from .settings import RenderSettings
 
@@ -133,6 +133,7 @@ class Request:
     options: Mapping[str, object] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "grid", as_grid(self.grid))  # its text START:END:STEP (nm) too, as --grid
         self._check_bands()
         for name, kind, what in (("camera", Camera, "a Camera (skinrender.camera(spec) makes one)"),
                                  ("level", Level, "a Level (of the scene kind's registry of effects)"),

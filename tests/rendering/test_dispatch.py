@@ -88,6 +88,21 @@ def test_validate_a_face_takes_the_clis_skin_set_and_detection_tolerance():
     assert document["skin_set"] == "skin-tones" and document["detection"]["tolerance"] == 0.05
 
 
+def test_a_grid_as_text_as_the_cli_takes_it():
+    """``grid="400:700:5"`` as ``--grid 400:700:5`` (it was refused, and with ``spectral=True`` it raised a bare
+    AttributeError)."""
+    text = sr.render("macbeth", CAMERA, 5900, 2856, spp=4, grid="400:700:5")
+    grid = sr.render("macbeth", CAMERA, 5900, 2856, spp=4, grid=sr.WavelengthGrid(400, 700, 5))
+    assert np.array_equal(text.image, grid.image)
+    spectral = sr.render("macbeth", None, 5900, spp=4, grid="400:700:5", spectral=True)
+    assert spectral.grid == sr.WavelengthGrid(400, 700, 5)
+    for spectral in (False, True):
+        with pytest.raises(sr.SkinrenderError) as error:
+            sr.render("macbeth", None if spectral else CAMERA, 5900, None if spectral else 2856, spp=4,
+                      grid="400:700", spectral=spectral)
+        assert error.value.role == "grid" and str(error.value).startswith("grid must be START:END:STEP")
+
+
 def test_validate_a_chart_from_python_as_before():
     from skinrender.rendering.validation import Validation
     from skinrender.rendering.validation import validate as validate_chart
