@@ -38,6 +38,7 @@ from ..model.response import response
 from ..spectra import GRID_DEFAULT, WavelengthGrid, float_array
 
 __all__ = [
+    "illuminant_temperatures",
     "TOLERANCE_GAMUT_FLATNESS",
     "COORDINATE_MAX",
     "Gamut",
@@ -184,7 +185,7 @@ def gamut_calibration(
     uncanonical ones.
     """
 
-    prevailing = np.asarray(illuminants, dtype=np.float64)
+    prevailing = illuminant_temperatures(illuminants, camera_)
     return gamut(response(camera_, reflectance, prevailing, calibration, normalization, knee, grid))
 
 
@@ -197,5 +198,22 @@ def gamut_all_calibrations(
     grid: WavelengthGrid = GRID_DEFAULT,
 ) -> Gamut:
     """All calibrations: the hull of the union over every (prevailing, calibration) pair of the set."""
-    t = np.asarray(illuminants, dtype=np.float64)
+    t = illuminant_temperatures(illuminants, camera_)
     return gamut(response(camera_, reflectance, t[:, None], t[None, :], normalization, knee, grid))
+
+
+def illuminant_temperatures(illuminants, camera_=None) -> NDArrayFloat:
+    """
+    An illuminant set's temperatures, K: its text as ``--illuminants`` takes it (``paper``, ``auto`` for
+    ``camera_``, ``2000,3300,A``; :func:`~skinrender.model.stage1.illuminant_set`), or numbers as they are; a
+    refusal names ``illuminants``.
+    """
+    if isinstance(illuminants, str):
+        from ..model.stage1 import illuminant_set
+
+        try:
+            return illuminant_set(illuminants, camera_)
+        except SkinrenderError as error:
+            named = error.message if error.message.startswith("illuminants") else f"illuminants: {error.message}"
+            raise error.reworded(named, role="illuminants") from None
+    return float_array(illuminants, "illuminants")

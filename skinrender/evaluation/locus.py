@@ -40,7 +40,8 @@ from ..methods import method_of
 from ..model.camera import Camera
 from ..model.chromaticity import ncc
 from ..model.response import response
-from ..spectra import GRID_DEFAULT, WavelengthGrid, float_array
+from ..spectra import GRID_DEFAULT, WavelengthGrid
+from .gamut import illuminant_temperatures
 
 __all__ = ["BOUNDARIES", "boundary_hull", "boundary_quadratic", "locus_points", "SkinLocus", "skin_locus", "false_positive_rate", "hull_locus"]
 
@@ -72,7 +73,7 @@ def locus_points(
     cam: Camera | str,
     reflectance,
     illuminants: ArrayLike = TEMPERATURES_PAPER,
-    calibration: float | None = None,
+    calibration: float | str | None = None,
     grid: WavelengthGrid = GRID_DEFAULT,
 ) -> NDArrayFloat:
     """
@@ -83,14 +84,34 @@ def locus_points(
     the set. Shape ``(n, 2)``.
     """
 
-    t = float_array(illuminants, "illuminants")
+    t = illuminant_temperatures(illuminants, cam)
     if t.ndim != 1:
         raise SkinrenderError(f"illuminants must be a list of kelvin, got {illuminants!r}", role="illuminants")
     if calibration is None:
         rgb = response(cam, reflectance, t[:, None], t[None, :], grid=grid)
     else:
-        rgb = response(cam, reflectance, t, float(calibration), grid=grid)
+        rgb = response(cam, reflectance, t, calibration_kelvin(calibration), grid=grid)
     return ncc(rgb).reshape(-1, 3)[:, :2]
+
+
+def calibration_kelvin(calibration) -> float:
+    """
+    A locus' one white balancing as a temperature, K: a number, or a Planckian light as ``--calibration`` takes
+    it (``3300``, ``"3300K"``, ``"A"``); a measured light or anything else is refused naming ``calibration``.
+
+    >>> calibration_kelvin("A"), calibration_kelvin(5900)
+    (2856.0, 5900.0)
+    """
+    from ..model.illuminant import illuminant
+
+    try:
+        kelvin = illuminant(calibration).temperature
+    except SkinrenderError as error:
+        raise error.reworded(f"calibration: {error.message}", role="calibration") from None
+    if kelvin is None:
+        raise SkinrenderError(f"calibration: a locus balances to a Planckian light (kelvin or A), got {calibration!r}",
+                              role="calibration")
+    return float(kelvin)
 
 
 @dataclass(frozen=True)
@@ -181,7 +202,7 @@ def skin_locus(
     cam: Camera | str,
     skin="skin",
     illuminants: ArrayLike = TEMPERATURES_PAPER,
-    calibration: float | None = None,
+    calibration: float | str | None = None,
     boundary: str = "hull",
     grid: WavelengthGrid = GRID_DEFAULT,
 ) -> SkinLocus:
@@ -195,10 +216,11 @@ def skin_locus(
     skin
         Skin reflectance set (name, CSV, :class:`SpectralSet` or array on ``grid``).
     illuminants
-        Illuminant set, K (the paper's ten by default).
+        Illuminant set, K (the paper's ten by default), or its text as ``--illuminants`` takes it (``paper``,
+        ``auto``, ``2000,3300,A``).
     calibration
-        One white balancing at this temperature (K), or ``None`` for every
-        calibration of the set (the locus for several white balancings).
+        One white balancing at this temperature (K, or a Planckian light's name such as ``A``), or ``None`` for
+        every calibration of the set (the locus for several white balancings).
     boundary
         ``hull`` (convex hull, default) or ``quadratic`` (two quadratics in r,
         tighter on the curved skin locus; it contains every training point).
@@ -206,7 +228,8 @@ def skin_locus(
 
     shaped = method_of(boundary, BOUNDARIES, "boundary")
     points = locus_points(cam, skin, illuminants, calibration, grid)
-    illuminants = np.asarray(illuminants, dtype=np.float64)
+    illuminants = illuminant_temperatures(illuminants, cam)
+    calibration = None if calibration is None else calibration_kelvin(calibration)
     locus = hull_locus(points, illuminants, calibration)
     if locus is None:  # degenerate is not an error: a locus of no area, which contains nothing
         return SkinLocus(np.unique(points.round(12), axis=0), 0.0, boundary, illuminants, calibration,

@@ -87,3 +87,18 @@ class TestCases:
         ratio = gamut_calibration("Nikon 5100 (NPL)", "skin", 3300).volume / gamut_calibration(
             "Nikon 5100 (NPL)", "munsell", 3300).volume
         assert 0 < ratio < 1
+
+
+def test_an_illuminant_set_as_text_as_the_cli_takes_it():
+    """``illuminants="paper" | "auto" | "2000,3300,A"`` as ``--illuminants`` (they raised a bare ValueError)."""
+    from skinrender.model.stage1 import select_illuminants
+
+    cam = "gbell:9@450,540,610"
+    assert gamut_calibration(cam, "macbeth", 3300, "paper").volume == gamut_calibration(cam, "macbeth", 3300).volume
+    auto = gamut_calibration(cam, "macbeth", 3300, select_illuminants(cam)).volume
+    assert gamut_calibration(cam, "macbeth", 3300, "auto").volume == auto
+    listed = gamut_all_calibrations(cam, "macbeth", "2000,3300,A").volume
+    assert listed == gamut_all_calibrations(cam, "macbeth", [2000.0, 3300.0, 2856.0]).volume
+    with pytest.raises(SkinrenderError) as error:
+        gamut_calibration(cam, "macbeth", 3300, "2000,,3300")
+    assert error.value.role == "illuminants" and str(error.value).startswith("illuminants")

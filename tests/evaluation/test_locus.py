@@ -65,3 +65,16 @@ def test_detection_rates_on_a_synthetic_chart():
 def test_bad_boundary():
     with pytest.raises(SkinrenderError, match="boundary"):
         skin_locus(CAMERA, boundary="circle")
+
+
+def test_a_locus_takes_its_lights_as_text_as_the_cli_does():
+    """``calibration="A"`` and ``illuminants="2000,3300,5900"`` as ``locus --calibration A --illuminants …`` (a bare
+    ValueError, or "illuminants must be numbers", before)."""
+    by_name = skin_locus(CAMERA, calibration="A", illuminants="2000,3300,5900")
+    by_number = skin_locus(CAMERA, calibration=2856, illuminants=[2000, 3300, 5900])
+    assert by_name.calibration == 2856.0 and np.array_equal(by_name.polygon, by_number.polygon)
+    assert by_name.illuminants.tolist() == [2000.0, 3300.0, 5900.0]
+    for calibration in ("nosuch", -5):
+        with pytest.raises(SkinrenderError) as error:
+            skin_locus(CAMERA, calibration=calibration)
+        assert error.value.role == "calibration" and str(error.value).startswith("calibration")
