@@ -8,7 +8,6 @@ from __future__ import annotations
 import argparse
 import sys
 
-import numpy as np
 
 from ..errors import SkinrenderError
 from ..files import Output, write_outputs
@@ -123,13 +122,7 @@ def command_render_chart(args: argparse.Namespace, scene) -> None:
     check_request_work(args.max_minutes, request)
     settings = request.settings
     print(f"rendering {request.scene.name} at {settings.spp} spp …", file=sys.stderr)
-    result, imaged = CHART.render_imaged(request)
-    if imaged is not None and args.knee:  # the knee on the sensor's image (the request's renders it on radiance)
-        from dataclasses import replace
-
-        from ..model.response import knee
-
-        result = replace(result, image=knee(result.image).astype(np.float32), knee=True)
+    result, imaged = CHART.render_imaged(request)  # through a sensor, the knee on its image (the kind's)
     spp = result.raw[0].spp
     names = channel_names(result.camera)
     preview = output.with_suffix(".png")

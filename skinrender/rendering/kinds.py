@@ -165,12 +165,22 @@ class ChartKind(_Kind):
     def render_imaged(self, request, cache: dict | None = None) -> tuple:
         """``(rendering, imaged)``: the render and, where the request records through an image sensor
         (:attr:`~skinrender.rendering.request.Request.sensor`), its
-        :class:`~skinrender.rendering.imaging.ImagedRendering` (``None`` without)."""
+        :class:`~skinrender.rendering.imaging.ImagedRendering` (``None`` without). Through a sensor the request's
+        ``knee`` (Eq. 10) is applied to the Eq. 4 image of its codes (it is the rendering's ``knee``)."""
         if request.sensor is not None:
             from .imaging import render_imaged_request
 
             imaged = render_imaged_request(request)
-            return imaged.rendering, imaged
+            rendering = imaged.rendering
+            if request.knee and not rendering.knee:
+                import dataclasses
+
+                import numpy as np
+
+                from ..model.response import knee
+
+                rendering = dataclasses.replace(rendering, image=knee(rendering.image).astype(np.float32), knee=True)
+            return rendering, imaged
         from .balance import render_balanced
 
         return render_balanced(request, request.level.chart(request), cache), None
@@ -186,6 +196,9 @@ class ChartKind(_Kind):
         from .validation import analytic_reference, validate_rendering
 
         tolerance = TOLERANCE_DEFAULT if tolerance is None else check_tolerance(tolerance, "tolerance")
+        if request.sensor is not None and request.knee:  # before any render, as validate --imager --knee
+            raise SkinrenderError("knee: a validation through an image sensor tests its linear codes (DN) against "
+                                  "its model; drop knee", role="knee")
         rendering, imaged = self.render_imaged(request, cache)
         if imaged is None:
             return validate_rendering(rendering, tolerance, ALPHA_EQUIVALENCE if alpha is None else alpha,

@@ -103,6 +103,20 @@ def test_a_grid_as_text_as_the_cli_takes_it():
         assert error.value.role == "grid" and str(error.value).startswith("grid must be START:END:STEP")
 
 
+def test_the_knee_through_an_image_sensor_as_render_imager_knee_applies_it():
+    """``knee=True`` with an ``imager``: the knee on the sensor's Eq. 4 image, as ``render --imager --knee`` (Python
+    dropped it silently); a validation through a sensor refuses it, as ``validate --imager --knee`` does."""
+    from skinrender.model.response import knee
+
+    plain = sr.render("macbeth", CAMERA, 5900, 2856, spp=4, imager="sony-imx174")
+    kneed = sr.render("macbeth", CAMERA, 5900, 2856, spp=4, imager="sony-imx174", knee=True)
+    assert kneed.knee and not plain.knee and plain.image.max() > 255
+    np.testing.assert_array_equal(kneed.image, knee(plain.image).astype(np.float32))
+    with pytest.raises(sr.SkinrenderError) as error:
+        sr.validate("macbeth", CAMERA, 5900, 2856, spp=4, imager="sony-imx174", knee=True)
+    assert error.value.role == "knee"
+
+
 def test_validate_a_chart_from_python_as_before():
     from skinrender.rendering.validation import Validation
     from skinrender.rendering.validation import validate as validate_chart
