@@ -8,7 +8,6 @@ from __future__ import annotations
 import argparse
 import sys
 
-
 from ..errors import SkinrenderError
 from ..files import Output, write_outputs
 from ..studies.labelled import chart_figure
