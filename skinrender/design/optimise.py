@@ -32,6 +32,7 @@ from ..methods import method_of, takes
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from .bank import sensor_bank
 from .criteria import triplet_false_positive_rates, triplet_volumes_fast
+from .inputs import design_inputs
 from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, exposure_capped, triplet_noisy_rates
 
 __all__ = ["OBJECTIVES", "objective_detection", "objective_ratio", "objective", "Design", "optimise_camera", "noisy_report"]
@@ -148,7 +149,8 @@ def optimise_camera(
     kind
         ``ratio`` or ``detection``.
     skin, munsell
-        Reflectances on ``grid``.
+        Reflectances on ``grid``, or reflectance sets (names, CSV paths, ``SpectralSet``); ``illuminants``: K, or
+        their ``--illuminants`` text.
     starts
         Starting peak triplets, nm.
     fwhm, slope
@@ -167,6 +169,7 @@ def optimise_camera(
     """
 
     _objective_of(kind, noisy)
+    skin, munsell, illuminants = design_inputs(skin, munsell, illuminants, grid, noisy)
     if noisy is not None:
         calibration_index(np.asarray(illuminants, dtype=np.float64), noisy.calibration)
     if not (isinstance(max_evaluations, (int, np.integer)) and max_evaluations >= 1):

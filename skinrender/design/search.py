@@ -39,6 +39,7 @@ from ..methods import method_of
 from ..spectra import GRID_DEFAULT, WavelengthGrid
 from ..workload import duration_text
 from .bank import positions_grid, sensor_bank, triplets
+from .inputs import design_inputs
 from .criteria import triplet_false_positive_rates, triplet_volumes_many, triplet_volumes_naive
 from .noise_aware import TPR_MIN, NoisySetting, bank_rates, calibration_index, exposure_capped, triplet_noisy_rates
 
@@ -259,11 +260,11 @@ def search(
     sensor
         1 (impulse) or gbell N (FWHM N·10 nm).
     skin, munsell
-        Reflectances on ``grid``, shape ``(N, grid.size)``.
+        Reflectances on ``grid``, shape ``(N, grid.size)``, or reflectance sets (names, CSV paths, ``SpectralSet``).
     positions
         Peak positions (``"400:700:10"`` nm gives the paper's 31, 4495 triplets).
     illuminants
-        The prevailing/calibration set (K).
+        The prevailing/calibration set (K), or its ``--illuminants`` text (``paper``, ``2000,3300,A``).
     slope
         gbell slope *b*.
     normalization, knee
@@ -298,6 +299,7 @@ def search(
     """
 
     volumes = method_of(method, SEARCH_METHODS, "method")
+    skin, munsell, illuminants = design_inputs(skin, munsell, illuminants, grid, noisy)
     where = positions_grid(positions)
     count = where.size * (where.size - 1) * (where.size - 2) // 6
     if count > max_triplets:
