@@ -126,7 +126,7 @@ class ChartKind(_Kind):
 
     name = "chart"
     render_options = ("normalization", "knee", "spp", "seed", "sampler", "variant", "channels", "settings", "grid",
-                      "cache", "emitter", "physics", "imager", "illuminance", "exposure", "translate_mm")
+                      "cache", "emitter", "physics", "imager", "illuminance", "exposure", "translate_mm", "quality")
     validate_options = (*render_options, "rendering", "tolerance", "alpha", "alpha_difference")
     lights_required = True
 
@@ -276,7 +276,7 @@ class FaceKind(_Kind):
 
     name = "face"
     render_options = ("skin", "physics", "spp", "seed", "size", "sampler", "variant", "grid", "channels", "imager",
-                      "exposure", "illuminance", "translate_mm")
+                      "exposure", "illuminance", "translate_mm", "quality")
     validate_options = (*render_options, "replicates", "limits", "progress", "budget_fraction", "skin_set",
                         "detection_tolerance")
     lights_required = False
@@ -328,6 +328,12 @@ class FaceKind(_Kind):
         if is_auto(options.get("spp")):  # as the CLI's --spp auto: a chart's
             raise SkinrenderError("spp='auto' goes with a chart's validation (tolerance=REL); a face's gives the "
                                   "spp it needs (spp_needed): give spp=N", role="spp")
+        if options.get("quality") is not None:  # as --quality: its spp (in all) and sampler unless given
+            from .settings import RenderSettings
+
+            preset = RenderSettings.preset(options.pop("quality"))
+            options.setdefault("spp", preset.spp)
+            options.setdefault("sampler", preset.sampler)
 
         return validate_face(camera, scene, prevailing, calibration, **options)
 

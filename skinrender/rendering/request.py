@@ -83,8 +83,15 @@ def settings_for(level: Level, settings: RenderSettings | None = None, **fields)
     The render settings of a request at ``level``: ``settings`` (the defaults where ``None``) with ``fields``
     (``spp``, ``seed``, ``sampler``, ``variant``, ``channels``; ``None`` values not given); the level's own sampler
     (:attr:`~skinrender.rendering.physics.Level.sampler`: a subsurface-volume chart's) where neither names one.
+    ``quality`` (a :data:`~skinrender.rendering.settings.QUALITY_PRESETS` name, as ``--quality``) stands for
+    ``settings``: its spp and sampler, the other fields given overriding them.
     """
     fields = {key: value for key, value in fields.items() if value is not None}
+    quality = fields.pop("quality", None)
+    if quality is not None:
+        if settings is not None:
+            raise SkinrenderError("quality names preset settings: give quality or settings, not both", role="quality")
+        settings = RenderSettings.preset(quality)
     if settings is None and "sampler" not in fields and level.sampler is not None:
         fields["sampler"] = level.sampler
     return RenderSettings.of(settings, **fields)

@@ -117,6 +117,17 @@ def test_the_knee_through_an_image_sensor_as_render_imager_knee_applies_it():
     assert error.value.role == "knee"
 
 
+def test_quality_as_the_cli_takes_it():
+    """``quality="draft"`` as ``--quality draft``: the preset's spp unless spp is given; not with settings."""
+    assert sr.render("macbeth", CAMERA, 5900, 2856, quality="draft").raw[0].spp == 16
+    assert sr.render("macbeth", CAMERA, 5900, 2856, quality="draft", spp=8).raw[0].spp == 8
+    assert sr.render("face", CAMERA, 2856, 2856, quality="draft", size=8).spp == 16
+    for keywords in ({"quality": "best"}, {"quality": "draft", "settings": sr.RenderSettings(spp=4)}):
+        with pytest.raises(sr.SkinrenderError) as error:
+            sr.render("macbeth", CAMERA, 5900, 2856, **keywords)
+        assert error.value.role == "quality"
+
+
 def test_validate_a_chart_from_python_as_before():
     from skinrender.rendering.validation import Validation
     from skinrender.rendering.validation import validate as validate_chart

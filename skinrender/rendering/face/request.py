@@ -137,7 +137,7 @@ def face_request(scene="face", camera=None, prevailing=None, calibration=None, *
     level = PHYSICS_REGISTRY.level(physics if isinstance(physics, Level) else str(physics).strip())
     level, options = PHYSICS_REGISTRY.with_options(level, {"imager": imager, "illuminance": illuminance,
                                                            "exposure": exposure})
-    if settings is None and spp is None:
+    if settings is None and spp is None and fields.get("quality") is None:
         spp = SPP_FACE_DEFAULT
     settings = settings_for(level, settings, spp=spp, **fields)
     face = level.scene(_sized(face, size), options)  # e.g. noise: the lights at its illuminance
