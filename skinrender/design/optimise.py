@@ -29,7 +29,7 @@ from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import method_of, takes
-from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid
 from .bank import sensor_bank
 from .criteria import triplet_false_positive_rates, triplet_volumes_fast
 from .inputs import design_inputs
@@ -169,6 +169,7 @@ def optimise_camera(
     """
 
     _objective_of(kind, noisy)
+    grid = as_grid(grid)
     skin, munsell, illuminants = design_inputs(skin, munsell, illuminants, grid, noisy)
     if noisy is not None:
         calibration_index(np.asarray(illuminants, dtype=np.float64), noisy.calibration)

@@ -36,7 +36,7 @@ from ..files import write_output
 from ..evaluation.hull import HULL_KERNEL, notice_kernel
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import method_of
-from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid
 from ..workload import duration_text
 from .bank import positions_grid, sensor_bank, triplets
 from .inputs import design_inputs
@@ -299,6 +299,7 @@ def search(
     """
 
     volumes = method_of(method, SEARCH_METHODS, "method")
+    grid = as_grid(grid)
     skin, munsell, illuminants = design_inputs(skin, munsell, illuminants, grid, noisy)
     where = positions_grid(positions)
     count = where.size * (where.size - 1) * (where.size - 2) // 6

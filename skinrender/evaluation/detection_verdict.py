@@ -68,7 +68,8 @@ def check_tolerance(value, flag: str = "tolerance") -> float:
         number = float("nan")
     if isinstance(value, bool) or not 0 < number < 1:
         raise SkinrenderError(f"{flag}: a rate as a fraction in (0, 1) (e.g. 0.02 for two percentage points), got "
-                              f"{value!r}", flag=flag if flag.startswith("--") else None)
+                              f"{value!r}", flag=flag if flag.startswith("--") else None,
+                              role=None if flag.startswith("--") else flag)
     return number
 
 

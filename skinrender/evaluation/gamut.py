@@ -198,7 +198,7 @@ def gamut_all_calibrations(
     grid: WavelengthGrid = GRID_DEFAULT,
 ) -> Gamut:
     """All calibrations: the hull of the union over every (prevailing, calibration) pair of the set."""
-    t = illuminant_temperatures(illuminants, camera_)
+    t = np.atleast_1d(illuminant_temperatures(illuminants, camera_))
     return gamut(response(camera_, reflectance, t[:, None], t[None, :], normalization, knee, grid))
 
 

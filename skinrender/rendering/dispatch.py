@@ -268,7 +268,7 @@ def render_cameras(scene, cameras, prevailing=None, calibration=None, bands=BAND
     ['gbell:9@450,540,610', 'Nikon 5100 (NPL)']
     """
     from ..model.camera import camera
-    from ..spectra import GRID_DEFAULT
+    from ..spectra import GRID_DEFAULT, as_grid
     from .bands import parse_bands, projection
     from .request import planckian
 
@@ -276,6 +276,8 @@ def render_cameras(scene, cameras, prevailing=None, calibration=None, bands=BAND
     if not cams:
         raise SkinrenderError("cameras: name at least one camera", role="camera")
     bands = parse_bands(bands)
+    if "grid" in options:
+        options["grid"] = as_grid(options["grid"])  # its text too, as --grid
     for cam in cams:  # every camera checked against the bands before the render
         projection(cam, bands, options.get("grid", GRID_DEFAULT))
     if calibration is not None:

@@ -47,3 +47,10 @@ def test_a_design_takes_them_too():
     design = optimise_camera("ratio", "skin", "munsell", starts=((450.0, 540.0, 610.0),), max_evaluations=3,
                              illuminants="2000,3300,5900")
     assert design.peaks.shape == (3,)
+
+
+def test_a_search_takes_its_grid_as_text():
+    """``grid="400:700:10"`` as ``--grid`` (a bare AttributeError before)."""
+    text = search(9, "skin", "munsell", grid="400:700:10", positions="450:650:50", workers=1)
+    grid = search(9, "skin", "munsell", grid=WavelengthGrid(400, 700, 10), positions="450:650:50", workers=1)
+    assert np.array_equal(text.skin, grid.skin)

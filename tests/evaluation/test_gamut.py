@@ -102,3 +102,10 @@ def test_an_illuminant_set_as_text_as_the_cli_takes_it():
     with pytest.raises(SkinrenderError) as error:
         gamut_calibration(cam, "macbeth", 3300, "2000,,3300")
     assert error.value.role == "illuminants" and str(error.value).startswith("illuminants")
+
+
+def test_one_illuminant_for_all_calibrations_is_its_one_pair():
+    """A single temperature (a bare IndexError before) is the set of one: the canonical case."""
+    cam = "gbell:9@450,540,610"
+    one = gamut_calibration(cam, "macbeth", 3300, [3300]).volume
+    assert gamut_all_calibrations(cam, "macbeth", 3300).volume == one

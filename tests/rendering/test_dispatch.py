@@ -86,6 +86,11 @@ def test_validate_a_face_takes_the_clis_skin_set_and_detection_tolerance():
                          detection_tolerance=0.05)
     document = result.document()
     assert document["skin_set"] == "skin-tones" and document["detection"]["tolerance"] == 0.05
+    for keywords, role in (({"skin_set": "nosuch"}, "skin_set"), ({"detection_tolerance": 2.0}, "detection_tolerance"),
+                           ({"limits": ("nosuch",)}, "limits")):  # refused before any render, naming the argument
+        with pytest.raises(sr.SkinrenderError) as error:
+            sr.validate("face", CAMERA, 2856, 2856, physics="direct", spp=48, size=16, **keywords)
+        assert error.value.role == role and str(error.value).startswith(role)
 
 
 def test_a_grid_as_text_as_the_cli_takes_it():
@@ -207,6 +212,12 @@ def test_a_spectral_render_of_a_chart_and_a_face():
 def test_a_spectral_render_refuses_what_it_does_not_take(call, message):
     with pytest.raises(sr.SkinrenderError, match=message):
         sr.render("macbeth", **{"prevailing": 2856, "spp": 1, **call}, spectral=True)
+
+
+def test_render_cameras_takes_its_grid_as_text():
+    faces = sr.render_cameras("macbeth", [CAMERA], 5900, 2856, spp=2, grid="400:700:5")
+    same = sr.render_cameras("macbeth", [CAMERA], 5900, 2856, spp=2, grid=sr.WavelengthGrid(400, 700, 5))
+    assert np.array_equal(faces[0].image, same[0].image)
 
 
 def test_render_cameras_renders_once_for_every_camera():

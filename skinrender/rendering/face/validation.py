@@ -393,6 +393,17 @@ def validate_face_request(request: FaceRequest, spp: int | None = None, replicat
     spp = each * replicates if spp is None else int(spp)
     seeds = [seed_at(request.settings.seed, k) for k in range(replicates)]
     variant = request.settings.variant
+    # the checks' arguments before any render, as the CLI's flags are
+    tolerance = check_tolerance(detection_tolerance, "detection_tolerance")  # None: the default
+    if isinstance(skin_set, str):
+        from ...datasets import reflectances
+
+        try:
+            reflectances(skin_set)
+        except SkinrenderError as error:
+            raise error.reworded(f"skin_set: {error.message}", role="skin_set") from None
+    for name in limits:  # each checked (:data:`LIMITS_SCENE_FREE`), in the table's order
+        method_of(name, LIMITS_SCENE_FREE, "limits")
     say(f"rendering the face ({level.name}) {replicates} times at {each} spp …")
     replicated = render_replicates_request(request, seeds)
     first, measured = replicated.first, replicated.measured
@@ -405,14 +416,11 @@ def validate_face_request(request: FaceRequest, spp: int | None = None, replicat
         if row is not None and row.outcome == "inconclusive":
             checks[0] = replace(row, reason=f"{row.reason}; {measured.note}")
         checks = [replace(c, details={**c.details, **measured.excluded}) for c in checks]
-    tolerance = check_tolerance(detection_tolerance, "detection_tolerance")  # None: the default
     fraction = BUDGET_FRACTION if budget_fraction is None else budget_fraction
     budget, locus = face_budget(first.camera, replicated.expected, first.calibration, fraction, replicated.grid,
                                 skin_set, skin_reflectance_of(first.skin, replicated.grid, "skin"))
     detection, check_row = detection_check(replicated, locus, tolerance, seed=request.settings.seed)
     checks += [check_row, replace(shift_against(replicated, budget, locus), applies=False)]  # eq4_shift: a diagnostic
-    for name in limits:  # each checked (:data:`LIMITS_SCENE_FREE`), in the table's order
-        method_of(name, LIMITS_SCENE_FREE, "limits")
     checks += [limit(first, seeds, variant, say) for name, limit in LIMITS_SCENE_FREE.items() if name in limits]
     info = {key: value for key, value in first.info.items() if key != "lights"}
     info["lights"] = first.info.get("lights", {})
