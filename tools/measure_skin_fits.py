@@ -79,6 +79,17 @@ def _apertures(fits) -> None:
           + ", ".join(f"{w:g} nm {r:.3f}" for w, r in zip(lam, ratio)))
 
 
+def _variant(only: str):
+    """``--only``'s one variant ``(label, changes, substitution)`` (none given: no change), or ``None`` after saying
+    it is unknown."""
+    from skin_alternatives import VARIANTS
+
+    if only and only not in VARIANTS:
+        print(f"--only: unknown variant {only!r}; choose from {sorted(VARIANTS)}", file=sys.stderr)
+        return None
+    return VARIANTS[only] if only else ("", {}, None)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[1])
     parser.add_argument("what", choices=("calibrate", "background", "variants", "refit", "diagnose"))
@@ -105,12 +116,12 @@ def main(argv=None) -> int:
     lam, values = measured.wavelengths[keep], measured.values[::args.every, keep]
     names = measured.names[::args.every]
     if args.what == "calibrate" and args.port_mm is not None:  # --only: under a variant's substitution
-        from skin_alternatives import VARIANTS, substituted
+        from skin_alternatives import substituted
 
-        if args.only and args.only not in VARIANTS:
-            print(f"--only: unknown variant {args.only!r}; choose from {sorted(VARIANTS)}", file=sys.stderr)
+        variant = _variant(args.only)
+        if variant is None:
             return 2
-        label, changes, substitution = VARIANTS[args.only] if args.only else ("", {}, None)
+        label, changes, substitution = variant
         held = replace(SkinParameters(), **{k: v for k, v in changes.items() if k not in ("melanin_power", "port_mm")},
                        background=0.0)
         with substituted(substitution):
@@ -122,12 +133,12 @@ def main(argv=None) -> int:
              replace(SkinParameters(), scattering=46.0),
              ("melanin", "blood", "oxygenation", "scattering_power", "background", "melanin_power"))
     elif args.what == "background":  # --only: one variant's substitution (its held changes but the background)
-        from skin_alternatives import VARIANTS, substituted
+        from skin_alternatives import substituted
 
-        if args.only and args.only not in VARIANTS:
-            print(f"--only: unknown variant {args.only!r}; choose from {sorted(VARIANTS)}", file=sys.stderr)
+        variant = _variant(args.only)
+        if variant is None:
             return 2
-        label, changes, substitution = VARIANTS[args.only] if args.only else ("", {}, None)
+        label, changes, substitution = variant
         held = replace(SkinParameters(), **{k: v for k, v in changes.items() if k not in ("background", "port_mm")},
                        scattering=46.0)
         with substituted(substitution):
