@@ -4,6 +4,7 @@ Measure the skin model's fits to measured skin (``docs/skin-model.md``): the num
 
     python tools/measure_skin_fits.py calibrate [--every N]       # background and melanin power, together
     python tools/measure_skin_fits.py calibrate --port-mm 5 [--only NAME]   # the power through the NIST port
+    python tools/measure_skin_fits.py calibrate --port-mm 5 --only melanin-power-prior   # the power per subject
     python tools/measure_skin_fits.py background [--every N] [--only NAME]   # the background alone
     python tools/measure_skin_fits.py variants [--every N] [--only NAME,…]   # the alternatives compared
     python tools/measure_skin_fits.py refit [--every N] [--port-mm D] [--power P]   # = skinrender skin --fit
@@ -122,8 +123,8 @@ def main(argv=None) -> int:
         if variant is None:
             return 2
         label, changes, substitution = variant
-        held = replace(SkinParameters(), **{k: v for k, v in changes.items() if k not in ("melanin_power", "port_mm")},
-                       background=0.0)
+        held = replace(SkinParameters(), **{k: v for k, v in changes.items()
+                                            if k not in ("melanin_power", "port_mm", "background")}, background=0.0)
         with substituted(substitution):
             _fit(f"melanin power fitted through a {args.port_mm:g} mm port, water only {label}", lam, values, names,
                  held, ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "melanin_power"),

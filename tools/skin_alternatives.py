@@ -176,6 +176,41 @@ def _blood_profile(skin_model, skin_fit) -> list:
             (skin_model.SKIN_REFLECTANCE_METHODS, "adding-doubling", reflectance)]
 
 
+MELANIN_POWER_PRIOR = (3.78, 0.3)
+"""The per-subject melanin power's Gaussian prior (mean, standard deviation): the mean the NIST calibration through
+the 5 mm port (``measure_skin_fits.py calibrate --port-mm 5``), the deviation about its spread between subjects
+(Zonios & Dimou 2008 report melanin's in vivo spectral decay varying between subjects)."""
+
+
+def _melanin_power_prior(skin_fit, mean: float, deviation: float, sigma: float = 0.005) -> list:
+    """The fit's least squares with one more residual, ``sigma / deviation · (p − mean)`` for the melanin power p
+    when it is fitted: a maximum a posteriori fit under a Gaussian prior, the spectrum's residuals taken as
+    independent with standard deviation ``sigma`` (the fits' median RMS)."""
+    weight = sigma / deviation
+
+    def least_squares_with_prior(method, lam, target, x0, names, base, quad_pts, low, high, port_mm=None):
+        from scipy.optimize import least_squares
+
+        k = names.index("melanin_power")
+        steps = np.array([1e-4 * skin_fit._SCALE[n] for n in names])
+
+        def residual(x):
+            r = skin_fit._model(method, lam, x[None, :], names, base, quad_pts, port_mm)[0] - target
+            return np.append(r, weight * (x[k] - mean))
+
+        def jacobian(x):
+            h = np.where(x + steps > high, -steps, steps)
+            values = skin_fit._model(method, lam, np.vstack([x, x + np.diag(h)]), names, base, quad_pts, port_mm)
+            prior = np.zeros((1, len(names)))
+            prior[0, k] = weight
+            return np.vstack([((values[1:] - values[0]) / h[:, None]).T, prior])
+
+        return least_squares(residual, np.clip(x0, low, high), jac=jacobian, bounds=(low, high),
+                             x_scale=np.array([skin_fit._SCALE[n] for n in names]), method="trf", max_nfev=200)
+
+    return [(skin_fit, "_least_squares", least_squares_with_prior)]
+
+
 def _substitution(name: str | None) -> list:
     """``[(module or dict, attribute or key, replacement)]`` for the variant ``name``."""
     from skinrender.datasets import skin_fit, skin_model
@@ -193,6 +228,7 @@ def _substitution(name: str | None) -> list:
         "lateral-loss-3.48": lambda: melanin(_melanin_348),
         "corneum": lambda: _melanin_free_corneum(skin_model, skin_fit, 0.02, 1.0),
         "blood-profile": lambda: _blood_profile(skin_model, skin_fit),
+        "melanin-power-prior": lambda: _melanin_power_prior(skin_fit, *MELANIN_POWER_PRIOR),
     }
     return builders[name]() if name else []
 
@@ -248,6 +284,12 @@ VARIANTS = {
                            {"background": 0.0, "melanin_power": 3.8, "port_mm": 5.0}, "blood-profile"),
     "blood-profile-port-3.7": ("the same, melanin λ^−3.7 (its own calibration through the port: 3.73)",
                                {"background": 0.0, "melanin_power": 3.7, "port_mm": 5.0}, "blood-profile"),
+    "sarna-mix-port": ("74 % eu-, 26 % pheomelanin (Sarna) through the NIST 5 mm port, water only",
+                       {"background": 0.0, "port_mm": 5.0}, "sarna-mix"),
+    "sarna-eumelanin-port": ("Sarna's eumelanin through the NIST 5 mm port, water only",
+                             {"background": 0.0, "port_mm": 5.0}, "sarna-eumelanin"),
+    "melanin-power-prior": ("the melanin power per subject, Gaussian prior 3.78 ± 0.3 (calibrate --port-mm 5 "
+                            "--only melanin-power-prior)", {"background": 0.0, "port_mm": 5.0}, "melanin-power-prior"),
     "melanin-power-3.33": ("melanin λ^−3.33 (Jacques 1998, the model before its calibration)",
                            {"melanin_power": 3.33}, None),
     "melanin-power-3.8": ("melanin λ^−3.8 (steeper than the calibration's 3.66)", {"melanin_power": 3.8}, None),
