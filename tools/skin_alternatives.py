@@ -179,7 +179,7 @@ def _blood_profile(skin_model, skin_fit) -> list:
 MELANIN_POWER_PRIOR = (3.78, 0.3)
 """The per-subject melanin power's Gaussian prior (mean, standard deviation): the mean the NIST calibration through
 the 5 mm port (``measure_skin_fits.py calibrate --port-mm 5``), the deviation about its spread between subjects
-(Zonios & Dimou 2008 report melanin's in vivo spectral decay varying between subjects)."""
+(a hypothesis: melanin's in vivo slope, steeper than in vitro (Zonios et al. 2008), varying between subjects)."""
 
 
 def _melanin_power_prior(skin_fit, mean: float, deviation: float, sigma: float = 0.005) -> list:
