@@ -38,5 +38,5 @@ def design_inputs(skin, munsell, illuminants, grid: WavelengthGrid = GRID_DEFAUL
     if noisy is not None and not isinstance(noisy, NoisySetting):
         raise SkinrenderError(f"noisy must be a NoisySetting (skinrender.design.noise_aware) or None, got {noisy!r}",
                               role="noisy")
-    temperatures = illuminant_temperatures(illuminants) if isinstance(illuminants, str) else illuminants
+    temperatures = illuminant_temperatures(illuminants)
     return on_grid(skin, "skin"), on_grid(munsell, "munsell"), temperatures

@@ -214,6 +214,13 @@ def illuminant_temperatures(illuminants, camera_=None) -> NDArrayFloat:
         try:
             return illuminant_set(illuminants, camera_)
         except SkinrenderError as error:
-            named = error.message if error.message.startswith("illuminants") else f"illuminants: {error.message}"
+            if error.message.startswith("--illuminants auto"):  # the CLI's words: a caller here passes no flag
+                named = ("illuminants: 'auto' (Stage 1) needs a camera; give kelvin (2000,3300,A) or 'paper'"
+                         if camera_ is None else f"illuminants: {error.message}")
+            else:
+                named = error.message if error.message.startswith("illuminants") else f"illuminants: {error.message}"
             raise error.reworded(named, role="illuminants") from None
-    return float_array(illuminants, "illuminants")
+    temperatures = float_array(illuminants, "illuminants")
+    if temperatures.size == 0 or not np.all(np.isfinite(temperatures) & (temperatures > 0)):
+        raise SkinrenderError(f"illuminants must be kelvin > 0, got {temperatures.tolist()}", role="illuminants")
+    return temperatures

@@ -43,6 +43,15 @@ def test_sets_by_name_and_illuminants_as_text_as_the_cli_takes_them():
         assert error.value.role == role
 
 
+@pytest.mark.parametrize("illuminants", ["auto", [2000, "x"], [2000, -1], []])
+def test_bad_illuminants_are_refused_in_the_callers_words(illuminants):
+    """A search has no camera for Stage 1's ``auto`` (the refusal named the CLI's ``--camera`` before); a list with
+    text or a non-positive kelvin was a bare ValueError or named no argument."""
+    with pytest.raises(SkinrenderError) as error:
+        search(9, "skin", "munsell", positions="450:650:50", workers=1, illuminants=illuminants)
+    assert error.value.role == "illuminants" and "--" not in str(error.value)
+
+
 def test_a_design_takes_them_too():
     design = optimise_camera("ratio", "skin", "munsell", starts=((450.0, 540.0, 610.0),), max_evaluations=3,
                              illuminants="2000,3300,5900")
