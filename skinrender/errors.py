@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import copy
 
-__all__ = ["SkinrenderError", "naming", "flag_of"]
+__all__ = ["SkinrenderError", "naming", "flag_of", "check_flag"]
 
 
 class SkinrenderError(ValueError):
@@ -58,6 +58,23 @@ class SkinrenderError(ValueError):
         for key, value in fields.items():
             setattr(new, key, value)
         return new
+
+
+def check_flag(value, name: str) -> bool:
+    """
+    ``value`` as a bool where it is one (Python's or numpy's), else an error naming ``name``: a text such as
+    ``"no"`` is not taken as true.
+
+    >>> check_flag(True, "knee")
+    True
+    >>> check_flag("no", "knee")
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: knee must be True or False, got 'no'
+    """
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        return bool(value)
+    raise SkinrenderError(f"{name} must be True or False, got {value!r}", role=name)
 
 
 def flag_of(name: str) -> str | None:

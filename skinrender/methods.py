@@ -39,7 +39,8 @@ def validate_method(name: object, methods: Mapping[str, object], what: str, role
     """
     ``name`` if it is a key of ``methods``, else a :class:`SkinrenderError`
     naming ``what`` and listing the choices (its ``role``: ``role``, the
-    argument at fault, for the command line to name its flag).
+    argument at fault, for the command line to name its flag; by default
+    ``what`` where it is an argument's name, ``extrapolation``).
 
     Examples
     --------
@@ -52,6 +53,7 @@ def validate_method(name: object, methods: Mapping[str, object], what: str, role
     """
 
     if not isinstance(name, str) or name not in methods:
+        role = role if role is not None else what if what.isidentifier() else None
         raise SkinrenderError(f"{what} must be one of {', '.join(methods)}, got {name!r}", role=role)
     return name
 

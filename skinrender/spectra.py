@@ -188,7 +188,7 @@ def float_array(value, name: str) -> NDArrayFloat:
     ...
     skinrender.errors.SkinrenderError: temperature must be numbers, got 'x'
     """
-    error = value is None
+    error = value is None or isinstance(value, bool)  # True is not the number 1 here
     if not error:
         try:
             return np.asarray(value, dtype=np.float64)
@@ -197,6 +197,20 @@ def float_array(value, name: str) -> NDArrayFloat:
     shown = repr(value)
     raise SkinrenderError(f"{name} must be numbers, got {shown if len(shown) <= 60 else shown[:57] + '...'}",
                           role=name)
+
+
+def broadcast(*named) -> tuple:
+    """The broadcast shape of ``(name, array)`` pairs, or an error naming the first two and their shapes.
+
+    >>> broadcast(("wavelength", np.zeros(3)), ("peak", np.zeros(1)))
+    (3,)
+    """
+    try:
+        return np.broadcast_shapes(*(np.shape(array) for _, array in named))
+    except ValueError:
+        shown = ", ".join(f"{name} {np.shape(array)}" for name, array in named)
+        raise SkinrenderError(f"{named[0][0]} and {named[1][0]} must broadcast together, got shapes {shown}",
+                              role=named[0][0]) from None
 
 
 def as_grid(grid, name: str = "grid") -> WavelengthGrid:
@@ -324,9 +338,11 @@ def planck(wavelength: ArrayLike, temperature: ArrayLike) -> NDArrayFloat:
     if np.any(~np.isfinite(t)) or np.any(t <= 0) or np.any(t > TEMPERATURE_MAX):
         bad = t[~(np.isfinite(t) & (t > 0) & (t <= TEMPERATURE_MAX))]
         raise SkinrenderError(f"temperature must be a finite number of kelvin in (0, {TEMPERATURE_MAX:g}], "
-                              f"got {float(np.ravel(bad)[0])!r}")
+                              f"got {float(np.ravel(bad)[0])!r}", role="temperature")
     if np.any(~np.isfinite(lam)) or np.any(lam <= 0):
-        raise SkinrenderError(f"wavelength must be a finite number of nm > 0, got {show_values(lam)}")
+        raise SkinrenderError(f"wavelength must be a finite number of nm > 0, got {show_values(lam)}",
+                              role="wavelength")
+    broadcast(("wavelength", lam), ("temperature", t))
     lam_m = lam * 1e-9
     with np.errstate(divide="ignore", over="ignore", under="ignore", invalid="ignore"):  # T → 0: x → inf, radiance 0
         x = CONSTANT_H * CONSTANT_C / (lam_m * CONSTANT_K_B * t)
@@ -387,9 +403,10 @@ def gbell(
     if np.any(~np.isfinite(lam)) or np.any(~np.isfinite(peak)):
         raise SkinrenderError("wavelength and peak must be finite numbers of nm", role="wavelength")
     if np.any(~(a > 0)) or np.any(~np.isfinite(a)):
-        raise SkinrenderError(f"fwhm must be a finite number of nm > 0, got {show_values(2 * a)}")
+        raise SkinrenderError(f"fwhm must be a finite number of nm > 0, got {show_values(2 * a)}", role="fwhm")
     if np.any(~(b > 0)) or np.any(~np.isfinite(b)):
-        raise SkinrenderError(f"slope b must be a finite number > 0, got {show_values(b)}")
+        raise SkinrenderError(f"slope b must be a finite number > 0, got {show_values(b)}", role="slope")
+    broadcast(("wavelength", lam), ("peak", peak), ("fwhm", a), ("slope", b))
     with np.errstate(over="ignore"):
         return 1.0 / (1.0 + np.abs((lam - peak) / a) ** (2.0 * b))
 

@@ -9,6 +9,7 @@ is refused with the file, line and column named.
 
 -   :class:`SpectraTable`, :func:`read_spectra_csv`: a CSV of spectra.
 -   :func:`validate_spectra`: the checks on wavelengths and values.
+-   :func:`measured_spectrum`: one spectrum given as arrays, checked alike.
 
 Units: wavelength in nm; values in the file's unit (unitless reflectances and
 sensitivities, W·m⁻²·sr⁻¹·nm⁻¹ for illuminants).
@@ -27,8 +28,9 @@ import numpy as np
 from .errors import SkinrenderError
 from .files import read_input
 from .hints import Literal, NDArrayFloat
+from .spectra import float_array
 
-__all__ = ["CSV_BYTES_MAX", "SpectraTable", "read_spectra_csv", "validate_spectra"]
+__all__ = ["CSV_BYTES_MAX", "SpectraTable", "measured_spectrum", "read_spectra_csv", "validate_spectra"]
 
 CSV_BYTES_MAX = 64_000_000
 """Largest spectral CSV read, bytes: a 1 nm table of 10 000 spectra is ~30 MB."""
@@ -42,6 +44,30 @@ class SpectraTable:
     names: tuple[str, ...]
     values: NDArrayFloat
     source: str
+
+
+def measured_spectrum(wavelength, reflectance, least: int = 2) -> tuple[NDArrayFloat, NDArrayFloat]:
+    """
+    A measured reflectance spectrum as arrays: at least ``least`` finite fractions in [0, 1.5] (as
+    :func:`validate_spectra` takes reflectances: a table in percent is refused, not rescaled) on as many finite,
+    strictly increasing ``wavelength`` (nm); else an error naming ``wavelength`` or ``reflectance``.
+
+    >>> measured_spectrum([400, 500], [0.2, 40.0])
+    Traceback (most recent call last):
+    ...
+    skinrender.errors.SkinrenderError: reflectance must be fractions in [0, 1.5], got 0.2 to 40 (percent? divide by 100)
+    """
+    lam, values = float_array(wavelength, "wavelength"), float_array(reflectance, "reflectance")
+    if lam.ndim != 1 or lam.shape != values.shape or lam.size < least or not np.all(np.isfinite(values)):
+        raise SkinrenderError(f"reflectance must be finite on at least {least} wavelengths, one per wavelength, got "
+                              f"shapes {values.shape} and {lam.shape}", role="reflectance")
+    if not (np.all(np.isfinite(lam)) and np.all(np.diff(lam) > 0)):
+        raise SkinrenderError("wavelength must be finite nm, strictly increasing", role="wavelength")
+    if np.any((values < 0) | (values > 1.5)):
+        percent = " (percent? divide by 100)" if 1.5 < values.max() <= 100 else ""
+        raise SkinrenderError(f"reflectance must be fractions in [0, 1.5], got {values.min():.4g} to "
+                              f"{values.max():.4g}{percent}", role="reflectance")
+    return lam, values
 
 
 def validate_spectra(

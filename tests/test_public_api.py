@@ -127,3 +127,70 @@ def test_a_bad_argument_is_a_skinrender_error_naming_it(name):
     call, named = BAD_ARGUMENTS[name]
     with pytest.raises(sr.SkinrenderError, match=named):
         call()
+
+
+ROLES = {
+    # a survey of the Python API with bad input (this session): each was a bare exception, a silent inf, NaN or
+    # wrong value, a text taken as True, or a refusal with no role (or the wrong one)
+    "white_coefficient no light": (lambda: sr.white_coefficient(CAMERA, 1, 2300), "prevailing"),
+    "white_coefficient calibration": (lambda: sr.white_coefficient(CAMERA, 2856, 1), "calibration"),
+    "response calibration 1 K": (lambda: sr.response(CAMERA, "macbeth", 2856, 1), "calibration"),
+    "response lights' shapes": (lambda: sr.response(CAMERA, "macbeth", [2000, 3000], [2000, 3000, 4000]),
+                                "prevailing"),
+    "response light text": (lambda: sr.response(CAMERA, "macbeth", [2856, "x"], 2300), "prevailing"),
+    "response light dict": (lambda: sr.response(CAMERA, "macbeth", 2856, {}), "calibration"),
+    "response scale 0": (lambda: sr.response(CAMERA, "macbeth", 2856, 2856, scale=0), "scale"),
+    "gain factor 0": (lambda: sr.gain([1, 2, 4], [1, 2, 4], "none", 1, 0), "factor_c"),
+    "gain factor NaN": (lambda: sr.gain([1, 2, 4], [1, 2, 4], "none", np.nan, 1), "factor_p"),
+    "gain black white": (lambda: sr.gain([0, 0, 0], [1, 2, 4]), "white_p"),
+    "gain subnormal white": (lambda: sr.gain([1, 2, 4], [1e-320] * 3), "white_c"),
+    "gain shapes": (lambda: sr.gain(np.ones((2, 3)), np.ones((3, 3))), "white_p"),
+    "normalisation_factor white": (lambda: sr.normalisation_factor(2856, "white"), "method"),
+    "illuminant True": (lambda: sr.illuminant(True), "illuminant"),
+    "illuminant_set dict": (lambda: sr.illuminant_set({}), "illuminants"),
+    "illuminant_set text in a list": (lambda: sr.illuminant_set([2000, "x"]), "illuminants"),
+    "illuminant_track text": (lambda: sr.illuminant_track(CAMERA, temperatures="x"), "temperatures"),
+    "planck True": (lambda: sr.planck(560, True), "temperature"),
+    "planck shapes": (lambda: sr.planck([500, 600], [3000, 4000, 5000]), "wavelength"),
+    "gbell shapes": (lambda: sr.gbell(np.arange(400.0, 701.0), [450, 540], 90), "wavelength"),
+    "knee point NaN": (lambda: sr.knee([250.0], point=np.nan), "point"),
+    "knee point over the ceiling": (lambda: sr.knee([250.0], point=300, ceiling=255), "point"),
+    "search knee text": (lambda: sr.search(9, "skin", "munsell", positions="450:650:50", knee="no"), "knee"),
+    "search detection text": (lambda: sr.search(9, "skin", "munsell", positions="450:650:50", detection="yes"),
+                              "detection"),
+    "search max_triplets 0": (lambda: sr.search(9, "skin", "munsell", max_triplets=0), "max_triplets"),
+    "optimise free_shape text": (lambda: sr.optimise_camera("ratio", "skin", "munsell", free_shape="yes"),
+                                 "free_shape"),
+    "optimise max_evaluations 0": (lambda: sr.optimise_camera("ratio", "skin", "munsell", max_evaluations=0),
+                                   "max_evaluations"),
+    "camera extrapolation": (lambda: sr.camera("Nikon 5100 (NPL)", extrapolation="bogus"), "extrapolation"),
+    "reflectances extrapolation": (lambda: sr.reflectances("macbeth", extrapolation="bogus"), "extrapolation"),
+    "table1 low NaN": (lambda: sr.table1(CAMERA, low=np.nan), "low"),
+    "table1 fraction 0": (lambda: sr.table1(CAMERA, fraction=0), "fraction"),
+}
+
+
+@pytest.mark.parametrize("name", list(ROLES))
+def test_a_bad_argument_is_refused_with_its_role(name):
+    call, role = ROLES[name]
+    with pytest.raises(sr.SkinrenderError) as error:
+        call()
+    assert error.value.role == role, str(error.value)
+
+
+@pytest.mark.parametrize("call", [
+    lambda grid: sr.white_coefficient(CAMERA, 2856, 2300, grid=grid),
+    lambda grid: sr.normalisation_factor(2856, "euclidean", grid=grid),
+    lambda grid: sr.response_raw(CAMERA, np.full(61, 0.5), 2856, normalization="560nm", grid=grid),
+    lambda grid: sr.illuminant_track(CAMERA, grid=grid).measures,
+    lambda grid: sr.select_illuminants(CAMERA, count=5, grid=grid),
+])
+def test_every_function_with_a_grid_takes_its_text(call):
+    """``grid="400:700:5"`` as ``--grid`` (a bare AttributeError before in these five)."""
+    assert np.array_equal(call("400:700:5"), call(sr.WavelengthGrid(400, 700, 5)))
+
+
+def test_an_empty_skin_set_has_a_degenerate_locus_not_an_error():
+    """Degenerate is not an error (a bare ValueError from Qhull before): an empty set's locus contains nothing."""
+    locus = sr.skin_locus(CAMERA, skin=np.zeros((0, grid.size)))
+    assert locus.area == 0.0 and "empty" in locus.degenerate and not locus.contains([[0.4, 0.3]]).any()

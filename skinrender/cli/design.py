@@ -288,7 +288,7 @@ def command_design(args: argparse.Namespace) -> None:
     check_work(evaluations * each, "--evaluations", f"{len(starts)} starts × {args.evaluations} evaluations",
                args.max_minutes, fewer="ask for fewer --evaluations or --starts")
     # the argument at fault by the flag the user gave it (its error's role)
-    result = flag({"starts": "--starts", "evaluations": "--evaluations", "slope": "--slope", "fwhm": "--sensor"},
+    result = flag({"starts": "--starts", "max_evaluations": "--evaluations", "slope": "--slope", "fwhm": "--sensor"},
                   optimise_camera, args.objective, skin.on(grid), munsell.on(grid), starts, args.sensor * 10.0,
                   args.slope, args.free_shape, args.evaluations, noisy=noisy)
     document = {"objective": args.objective, "camera": result.camera_spec, "peaks": result.peaks.tolist(),

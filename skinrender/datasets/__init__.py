@@ -95,6 +95,7 @@ def reflectances(spec: str | SpectralSet, extrapolation: str = "refuse") -> Spec
     [0.0, 0.4, 0.45, 0.5, 0.55, 0.6, 0.0]
     """
 
+    validate_method(extrapolation, EXTRAPOLATIONS, "extrapolation")  # a bundled set's own rule is its dataset's
     if isinstance(spec, SpectralSet):
         return spec
     spec = str(spec).strip()

@@ -99,8 +99,16 @@ def kept_fraction(mu_a: ArrayLike, mu_s: ArrayLike, radius_mm: float, g: float, 
     >>> round(float(kept_fraction(0.01, 20.0, 1e4, 0.8, 1.4)), 6)
     1.0
     """
-    mu_a = np.asarray(mu_a, dtype=np.float64)
-    transport = mu_a + np.asarray(mu_s, dtype=np.float64) * (1.0 - g)
+    mu_a, mu_s, radius_mm = (_checked(value, name, low) for value, name, low in
+                             ((mu_a, "mu_a", 0.0), (mu_s, "mu_s", 0.0), (radius_mm, "radius_mm", 0.0)))
+    g, n = _checked(g, "g", -1.0), _checked(n, "n", 1.0)
+    if g.ndim or n.ndim or not -1.0 < float(g) < 1.0:
+        name = "g" if g.ndim or not -1.0 < float(g) < 1.0 else "n"
+        raise SkinrenderError(f"{name} must be one number (g an anisotropy in (−1, 1), n ≥ 1)", role=name)
+    g, n = float(g), float(n)
+    if np.any(mu_a + mu_s * (1.0 - g) <= 0):
+        raise SkinrenderError("mu_a and mu_s must not both be 0: the medium has no transport length", role="mu_a")
+    transport = mu_a + mu_s * (1.0 - g)
     effective = np.sqrt(3.0 * mu_a * transport)
     r_eff = -1.440 / n**2 + 0.710 / n + 0.668 + 0.0636 * n  # Groenhuis et al. 1983
     z0 = 1.0 / transport
@@ -110,6 +118,17 @@ def kept_fraction(mu_a: ArrayLike, mu_s: ArrayLike, radius_mm: float, g: float, 
         total = total + np.exp(-effective * z)
         inside = inside + np.exp(-effective * z) - z * np.exp(-effective * r) / r
     return np.clip(inside / total, 0.0, 1.0)
+
+
+def _checked(value, name: str, low: float) -> NDArrayFloat:
+    """``value`` as finite float(s) ≥ ``low``, else an error naming ``name``."""
+    try:
+        array = np.asarray(value, dtype=np.float64) if not isinstance(value, bool) else np.array(math.nan)
+    except (TypeError, ValueError):
+        array = np.array(math.nan)
+    if array.size == 0 or not np.all(np.isfinite(array) & (array >= low)):
+        raise SkinrenderError(f"{name} must be finite and ≥ {low:g}, got {value!r}", role=name)
+    return array
 
 
 def through_port(reflectance: ArrayLike, specular: ArrayLike, mu_a: ArrayLike, mu_s: ArrayLike,
@@ -125,8 +144,9 @@ def through_port(reflectance: ArrayLike, specular: ArrayLike, mu_a: ArrayLike, m
     >>> round(float(through_port(0.5, 0.03, 0.01, 20.0, 5.0, 0.8, 1.4)), 3)
     0.434
     """
-    reflectance = np.asarray(reflectance, dtype=np.float64)
+    reflectance = _checked(reflectance, "reflectance", 0.0)
+    port_mm = check_port(port_mm)
     if port_mm is None:
         return reflectance
-    specular = np.asarray(specular, dtype=np.float64)
+    specular = _checked(specular, "specular", 0.0)
     return specular + (reflectance - specular) * kept_fraction(mu_a, mu_s, port_mm / 2.0, g, n)

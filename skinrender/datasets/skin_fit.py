@@ -64,8 +64,9 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..errors import SkinrenderError
+from ..errors import SkinrenderError, check_flag
 from ..hints import ArrayLike, NDArrayFloat
+from ..spectral_csv import measured_spectrum
 from ..methods import method_of, takes, validate_method
 from .adding_doubling import QUAD_PTS_DEFAULT, Slab, stack_reflectance
 from .port_loss import check_port, through_port
@@ -320,13 +321,18 @@ def fit_skin_spectrum(wavelength: ArrayLike, reflectance: ArrayLike, method: str
         every wavelength given.
     """
     validate_method(method, SKIN_REFLECTANCE_METHODS, "method")
-    lam = np.asarray(wavelength, dtype=np.float64)
-    target = np.asarray(reflectance, dtype=np.float64)
-    if lam.ndim != 1 or lam.shape != target.shape or lam.size < 8 or not np.all(np.isfinite(target)):
-        raise SkinrenderError("a skin fit needs finite reflectances on at least 8 wavelengths")
+    lam, target = measured_spectrum(wavelength, reflectance, least=8)
+    if scan is not None:
+        scan = check_flag(scan, "scan")
+    if start is not None and not isinstance(start, SkinParameters):
+        raise SkinrenderError(f"start must be SkinParameters or None, got {type(start).__name__}", role="start")
+    if isinstance(fitted, str):
+        raise SkinrenderError(f"fitted must be a sequence of parameter names, melanin first, got {fitted!r}",
+                              role="fitted")
     names = FIT_PARAMETERS[method] if fitted is None else tuple(fitted)
     if not names or names[0] != "melanin" or any(n not in FIT_BOUNDS for n in names):
-        raise SkinrenderError(f"fitted must name parameters of {sorted(FIT_BOUNDS)}, melanin first, got {names}")
+        raise SkinrenderError(f"fitted must name parameters of {sorted(FIT_BOUNDS)}, melanin first, got {names}",
+                              role="fitted")
     port_mm = check_port(port_mm)
     base = start or SkinParameters()
     corrected = takes(FIT_MODELS[method], "quad_pts")  # adding-doubling: from 8 quadrature points to 16

@@ -35,16 +35,14 @@ the rest from the spectra. The background stands for what the composition leaves
 collagen, the tissue under the dermis that red light reaches, a contact instrument's lateral loss) and lies
 between water's absorption and the bloodless baselines.
 
-Carotene and bilirubin are left out: the mean residual of the fits to the NIST
-skins changes sign within their band (``docs/skin-model.md``), which one more
-absorber there would not remove.
+Carotene and bilirubin are left out: the mean residual of the fits to the NIST skins changes sign within their
+band (``docs/skin-model.md``), which one more absorber there would not remove.
 
-Two methods compute the reflectance from the same layers (:data:`SKIN_REFLECTANCE_METHODS`):
-``adding-doubling`` (the default; total reflectance for collimated light at normal
-incidence, the surface's Fresnel reflection included, :mod:`.adding_doubling`)
-and ``kubelka-munk`` (two Kubelka–Munk layers, ``K = 2 μa``, ``S = 0.75 μs'``
-:cite:`KubelkaMunk1931`, plus a flat surface reflectance ``surface`` and no boundary:
-the model before adding-doubling, kept for comparison).
+Two methods compute the reflectance from the same layers (:data:`SKIN_REFLECTANCE_METHODS`): ``adding-doubling``
+(the default; total reflectance for collimated light at normal incidence, the surface's Fresnel reflection
+included, :mod:`.adding_doubling`) and ``kubelka-munk`` (two Kubelka–Munk layers, ``K = 2 μa``, ``S = 0.75 μs'``
+:cite:`KubelkaMunk1931`, plus a flat surface reflectance ``surface`` and no boundary: the model before
+adding-doubling, kept for comparison).
 
 -   :class:`SkinParameters`, :func:`check_parameters`: the model's parameters.
 -   :class:`SkinLayer`, :func:`skin_layers`: the layers' optical properties.
@@ -93,6 +91,7 @@ import numpy as np
 
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
+from ..spectra import float_array
 from ..methods import validate_method
 from .adding_doubling import QUAD_PTS_DEFAULT, Slab, stack_reflectance
 from .registry import REGISTRY_REFLECTANCES, SpectralSet, read_bundled_csv, register
@@ -215,12 +214,14 @@ def check_parameters(parameters: SkinParameters) -> None:
     ...
     skinrender.errors.SkinrenderError: melanin must be in [0, 1] (a volume fraction), got 1.0000001
     """
+    if not isinstance(parameters, SkinParameters):
+        raise SkinrenderError(f"parameters must be SkinParameters, got {parameters!r}"[:120], role="parameters")
     for name, (low, high, open_low, what) in PARAMETER_RANGES.items():
         value = getattr(parameters, name)
         if value is None and name == "surface":
             continue
         try:
-            value = float(value)
+            value = math.nan if isinstance(value, (bool, str)) else float(value)
         except (TypeError, ValueError):
             raise SkinrenderError(f"{name} must be a number, got {value!r}", role=name) from None
         if not (math.isfinite(value) and (value > low if open_low else value >= low) and value <= high):
@@ -409,9 +410,9 @@ def skin_reflectance(wavelength: ArrayLike, parameters: SkinParameters = SkinPar
     """
     validate_method(method, SKIN_REFLECTANCE_METHODS, "method")
     check_parameters(parameters)
-    lam = np.asarray(wavelength, dtype=np.float64)
+    lam = float_array(wavelength, "wavelength")
     if lam.ndim != 1:
-        raise SkinrenderError("wavelengths must be a 1-D array of nm")
+        raise SkinrenderError("wavelength must be a 1-D array of nm", role="wavelength")
     return _cached(tuple(lam.tolist()), parameters, method).copy()
 
 

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..constants import TEMPERATURES_PAPER
-from ..errors import SkinrenderError
+from ..errors import SkinrenderError, check_flag
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import method_of, takes
 from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid
@@ -173,9 +173,11 @@ def optimise_camera(
     skin, munsell, illuminants = design_inputs(skin, munsell, illuminants, grid, noisy)
     if noisy is not None:
         calibration_index(np.asarray(illuminants, dtype=np.float64), noisy.calibration)
-    if not (isinstance(max_evaluations, (int, np.integer)) and max_evaluations >= 1):
-        raise SkinrenderError(f"evaluations must be an integer ≥ 1 per start, got {max_evaluations!r}",
-                              role="evaluations")
+    free_shape = check_flag(free_shape, "free_shape")
+    if isinstance(max_evaluations, bool) or not (isinstance(max_evaluations, (int, np.integer))
+                                                 and max_evaluations >= 1):
+        raise SkinrenderError(f"max_evaluations must be an integer ≥ 1 per start, got {max_evaluations!r}",
+                              role="max_evaluations")
     if not (np.isfinite(fwhm) and fwhm > 0):
         raise SkinrenderError(f"sensor width must be a finite FWHM > 0 nm (sensor N > 0), got {fwhm!r}", role="fwhm")
     if not (np.isfinite(slope) and slope > 0):

@@ -30,7 +30,7 @@ import numpy as np
 
 from .. import execution
 from ..constants import TEMPERATURES_PAPER
-from ..errors import SkinrenderError
+from ..errors import SkinrenderError, check_flag
 from ..execution import DASK_TIMEOUT_S, WORKERS_MAX, check_workers, dask_client, stop_pool  # noqa: F401 (their earlier home)
 from ..files import write_output
 from ..evaluation.hull import HULL_KERNEL, notice_kernel
@@ -299,6 +299,9 @@ def search(
     """
 
     volumes = method_of(method, SEARCH_METHODS, "method")
+    knee, detection = check_flag(knee, "knee"), check_flag(detection, "detection")
+    if isinstance(max_triplets, bool) or not isinstance(max_triplets, (int, np.integer)) or max_triplets < 1:
+        raise SkinrenderError(f"max_triplets must be an integer ≥ 1, got {max_triplets!r}", role="max_triplets")
     grid = as_grid(grid)
     skin, munsell, illuminants = design_inputs(skin, munsell, illuminants, grid, noisy)
     where = positions_grid(positions)

@@ -230,6 +230,9 @@ def skin_locus(
     points = locus_points(cam, skin, illuminants, calibration, grid)
     illuminants = illuminant_temperatures(illuminants, cam)
     calibration = None if calibration is None else calibration_kelvin(calibration)
+    if points.shape[0] == 0:  # degenerate is not an error: an empty skin set's locus contains nothing
+        return SkinLocus(np.empty((0, 2)), 0.0, boundary, illuminants, calibration,
+                         degenerate="the skin set is empty: no chromaticities to bound")
     locus = hull_locus(points, illuminants, calibration)
     if locus is None:  # degenerate is not an error: a locus of no area, which contains nothing
         return SkinLocus(np.unique(points.round(12), axis=0), 0.0, boundary, illuminants, calibration,

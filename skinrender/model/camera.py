@@ -197,6 +197,7 @@ def camera(spec: str | Camera, extrapolation: str = "refuse") -> Camera:
     [0.0, 0.0, 0.1, 0.2, 0.6, 1.0, 1.0]
     """
 
+    validate_method(extrapolation, EXTRAPOLATIONS, "extrapolation")  # a bundled camera's own rule is its dataset's
     if isinstance(spec, Camera):
         return spec
     text = str(spec).strip()
@@ -221,8 +222,15 @@ def camera(spec: str | Camera, extrapolation: str = "refuse") -> Camera:
             f"camera {text!r}: expected 'gbell:N@P1,P2,P3', 'gbell:N,b=B@P1,P2,P3' or 'impulse@P1,P2,P3'",
             role="camera",
         )
+    try:
+        return _measured_camera(text, extrapolation)
+    except SkinrenderError as error:  # a file's or a name's fault: the camera argument's
+        raise (error if error.role else error.reworded(role="camera")) from None
+
+
+def _measured_camera(text: str, extrapolation: str) -> Camera:
+    """A camera from a CSV path or a bundled camera's name."""
     if looks_like_path(text):
-        validate_method(extrapolation, EXTRAPOLATIONS, "extrapolation")
         table = read_spectra_csv(text, kind="sensitivity", expected_columns=3)
         if np.any(table.values.max(axis=1) <= 0):
             raise SkinrenderError(f"{text}: a channel is zero at every wavelength")

@@ -25,7 +25,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, Literal, NDArrayFloat
 from ..methods import method_of
-from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid
 from .illuminant import Illuminant, illuminants_array
 
 __all__ = ["NORMALISATIONS", "QUADRATURES", "factor_none", "factor_560nm", "factor_euclidean", "factor_white",
@@ -118,7 +118,8 @@ def illuminant_factors(
     :class:`numpy.ndarray` or None
         Shape of ``illuminants``; unit the inverse of the SPD's.
     """
-    items, shape = illuminants_array(illuminants)
+    grid = as_grid(grid)
+    items, shape = illuminants_array(illuminants, "illuminants")
     factor = method_of(normalization, NORMALISATIONS, "normalization")(items, grid)
     return None if factor is None else np.asarray(factor, dtype=np.float64).reshape(shape)
 
@@ -157,9 +158,10 @@ def normalisation_factor(
     :class:`numpy.ndarray`
         Shape of ``illuminants``; unit the inverse of the SPD's.
     """
+    grid = as_grid(grid)
     factor = illuminant_factors(illuminants, method, grid) if method in NORMALISATIONS else None
     if factor is None:
         per = ", ".join(name for name in NORMALISATIONS if not uses_whites(name))
-        raise SkinrenderError(f"normalization must be one of {per} (white has no per-illuminant factor), "
-                              f"got {method!r}")
+        raise SkinrenderError(f"method (a normalization) must be one of {per} (white has no per-illuminant "
+                              f"factor), got {method!r}", role="method")
     return factor

@@ -125,6 +125,9 @@ def illuminant(spec: Illuminant | float | str) -> Illuminant:
 
     if isinstance(spec, Illuminant):
         return spec
+    if isinstance(spec, (bool, np.bool_)) or spec is None or isinstance(spec, (dict, set)):
+        raise SkinrenderError(f"illuminant must be kelvin, A, H, a CSV path or an Illuminant, got {spec!r}",
+                              role="illuminant")
     if isinstance(spec, (int, float, np.integer, np.floating)):
         return _planckian(float(spec))
     text = str(spec).strip()
@@ -145,18 +148,30 @@ def illuminant(spec: Illuminant | float | str) -> Illuminant:
     )
 
 
-def illuminants_array(spec) -> tuple[list[Illuminant], tuple[int, ...]]:
+def illuminants_array(spec, role: str = "illuminant") -> tuple[list[Illuminant], tuple[int, ...]]:
     """
-    Any illuminant spec, list or array of kelvin, as a flat list and its shape.
+    Any illuminant spec, list or array of kelvin, as a flat list and its shape; a refusal's role is ``role``
+    (the caller's argument: ``prevailing``, ``calibration`` …).
 
     A single spec has shape ``()``.
     """
+    try:
+        return _illuminants_array(spec)
+    except SkinrenderError as error:
+        raise (error if error.role not in (None, "illuminant") else error.reworded(role=role)) from None
 
-    if isinstance(spec, (str, Illuminant)) or np.isscalar(spec):
+
+def _illuminants_array(spec) -> tuple[list[Illuminant], tuple[int, ...]]:
+    if isinstance(spec, (str, Illuminant)) or np.isscalar(spec) or spec is None or isinstance(spec, (dict, set)):
         return [illuminant(spec)], ()
-    if isinstance(spec, list) and spec and all(isinstance(s, (str, Illuminant)) for s in spec):
+    if isinstance(spec, (list, tuple)) and spec and all(isinstance(s, (str, Illuminant)) or np.isscalar(s)
+                                                        for s in spec):
         return [illuminant(s) for s in spec], (len(spec),)
-    values = np.asarray(spec, dtype=np.float64)
+    try:
+        values = np.asarray(spec, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise SkinrenderError(f"illuminant must be kelvin, A, H, a CSV path, an Illuminant or an array of kelvin, "
+                              f"got {spec!r}"[:200], role="illuminant") from None
     if values.size == 0:
         raise SkinrenderError("illuminants: expected at least one temperature (K), got none")
     return [_planckian(float(t)) for t in values.ravel()], values.shape

@@ -71,7 +71,8 @@ __all__ = [
 
 def check_light(cam: Camera, items: list[Illuminant], spds: NDArrayFloat, grid: WavelengthGrid, role: str) -> None:
     """
-    Refuse illuminants that give a channel of ``cam`` no light on ``grid``
+    Refuse illuminants that give a channel of ``cam`` no light on ``grid`` (the error's role: ``role``'s first
+    word, e.g. ``prevailing`` of ``prevailing illuminant``)
     (Planck underflows below ~40 K over 400–700 nm; an all-zero CSV), and a
     camera with a channel that is zero over the grid: Eq. 4 divides by the
     white's response, which would be 0.
@@ -91,7 +92,7 @@ def check_light(cam: Camera, items: list[Illuminant], spds: NDArrayFloat, grid: 
                                       f"the responses to {role} {item} underflow to 0 (every one would be 0/0); "
                                       "scale them up", role="camera")
             raise SkinrenderError(f"{role} {item} gives no light in the sensors' range ({grid}) of camera "
-                                  f"{cam.name}: every response would be 0/0", role="illuminant")
+                                  f"{cam.name}: every response would be 0/0", role=role.split()[0])
 
 
 def gain(
@@ -135,19 +136,42 @@ def gain(
     """
 
     validate_method(normalization, NORMALISATIONS, "normalization")
+    scale = _positive(scale, "scale")
     white_p, white_c = float_array(white_p, "white_p"), float_array(white_c, "white_c")
-    for name, white, low in (("white_p", white_p, "≥ 0"), ("white_c", white_c, "> 0")):
-        ok = np.isfinite(white) & ((white >= 0) if name == "white_p" else (white > 0))
+    tiny = np.finfo(np.float64).tiny  # 1 / a subnormal white overflows
+    for name, white, low in (("white_p", white_p, "≥ 0"), ("white_c", white_c, f"≥ {tiny:.3g}")):
+        ok = np.isfinite(white) & ((white >= 0) if name == "white_p" else (white >= tiny))
         if white.shape[-1:] != (3,) or not np.all(ok):
             raise SkinrenderError(f"{name} must be a white's three channel responses, finite and {low}, got "
                                   f"{np.ravel(white)[:6].tolist()} (shape {white.shape})", role=name)
+    try:
+        np.broadcast_shapes(white_p.shape, white_c.shape)
+    except ValueError:
+        raise SkinrenderError(f"white_p and white_c must broadcast together, got shapes {white_p.shape} and "
+                              f"{white_c.shape}", role="white_p") from None
     if uses_whites(normalization):  # WP (Eq. 8): the pair's, from the whites
+        if np.any(np.sum(white_p, axis=-1) <= 0):
+            raise SkinrenderError("white_p must have light in some channel: a white that is black under the "
+                                  "prevailing light makes WP (Eq. 8) infinite", role="white_p")
         factor = white_coefficient_from_whites(white_p, white_c)
     else:
         if factor_p is None or factor_c is None:
-            raise SkinrenderError(f"normalization {normalization!r} needs the factors F_p and F_c (Eqs. 5–7)")
-        factor = np.asarray(factor_p, dtype=np.float64) / np.asarray(factor_c, dtype=np.float64)
-    return scale * np.asarray(factor)[..., None] / white_c
+            raise SkinrenderError(f"normalization {normalization!r} needs the factors F_p and F_c (Eqs. 5–7)",
+                                  role="factor_p" if factor_p is None else "factor_c")
+        factor = _positive(factor_p, "factor_p") / _positive(factor_c, "factor_c")
+    try:
+        return scale * np.asarray(factor)[..., None] / white_c
+    except ValueError:
+        raise SkinrenderError(f"factor_p, factor_c (shape {np.shape(factor)}) must broadcast against the whites "
+                              f"without their channel axis (shape {white_c.shape[:-1]})", role="factor_p") from None
+
+
+def _positive(value, name: str):
+    """``value`` as finite float(s) > 0, else an error naming ``name``."""
+    array = float_array(value, name) if not isinstance(value, bool) else np.array(np.nan)
+    if array.size == 0 or not np.all(np.isfinite(array) & (array > 0)):
+        raise SkinrenderError(f"{name} must be finite and > 0, got {value!r}", role=name)
+    return array if array.ndim else float(array)
 
 
 def white_coefficient_from_whites(white_p: ArrayLike, white_c: ArrayLike) -> NDArrayFloat:
@@ -182,14 +206,26 @@ def white_coefficient(
         Shape: ``prevailing`` broadcast against ``calibration``; unitless.
     """
 
+    grid = as_grid(grid)
     cam = camera(camera_)
-    p_items, p_shape = illuminants_array(prevailing)
-    c_items, c_shape = illuminants_array(calibration)
+    p_items, p_shape = illuminants_array(prevailing, "prevailing")
+    c_items, c_shape = illuminants_array(calibration, "calibration")
     x = cam.sensitivities(grid)
-    white_p = spds_on(p_items, grid) @ x.T
-    white_c = spds_on(c_items, grid) @ x.T
-    pi, ci = np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape))
-    return white_coefficient_from_whites(white_p[pi], white_c[ci])
+    spd_p, spd_c = spds_on(p_items, grid), spds_on(c_items, grid)
+    check_light(cam, p_items, spd_p, grid, "prevailing illuminant")
+    check_light(cam, c_items, spd_c, grid, "calibration illuminant")
+    pi, ci = pair_indices(p_items, p_shape, c_items, c_shape)
+    return white_coefficient_from_whites((spd_p @ x.T)[pi], (spd_c @ x.T)[ci])
+
+
+def pair_indices(p_items, p_shape, c_items, c_shape) -> tuple:
+    """The prevailing and calibration lights' indices broadcast against each other, or an error naming both."""
+    try:
+        return np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape),
+                                   np.arange(len(c_items)).reshape(c_shape))
+    except ValueError:
+        raise SkinrenderError(f"prevailing and calibration must broadcast together, got shapes {tuple(p_shape)} and "
+                              f"{tuple(c_shape)}", role="prevailing") from None
 
 
 def _reflectance_values(reflectance, grid: WavelengthGrid) -> NDArrayFloat:
@@ -245,9 +281,10 @@ def response_raw(
         W·m⁻²·sr⁻¹ times the sensitivity's unit (a Riemann sum over nm).
     """
 
+    grid = as_grid(grid)
     cam = camera(camera_)
     o = _reflectance_values(reflectance, grid)
-    items, shape = illuminants_array(illuminant)
+    items, shape = illuminants_array(illuminant, "illuminant")
     check_light(cam, items, spds_on(items, grid), grid, "illuminant")
     factor = normalisation_factor(items, normalization, grid)
     weighted = spds_on(items, grid)[:, None, :] * cam.sensitivities(grid)[None, :, :] * grid.step
@@ -322,8 +359,8 @@ def response(
         raise SkinrenderError(f"knee must be True or False, got {knee!r}", role="knee")
     cam = camera(camera_)
     o = _reflectance_values(reflectance, grid)
-    p_items, p_shape = illuminants_array(prevailing)
-    c_items, c_shape = illuminants_array(calibration)
+    p_items, p_shape = illuminants_array(prevailing, "prevailing")
+    c_items, c_shape = illuminants_array(calibration, "calibration")
     x = cam.sensitivities(grid)
     spd_p = spds_on(p_items, grid)
     spd_c = spds_on(c_items, grid)
@@ -334,7 +371,7 @@ def response(
     white_c = spd_c @ x.T  # (C, 3)
     check_light(cam, p_items, spd_p, grid, "prevailing illuminant")
     check_light(cam, c_items, spd_c, grid, "calibration illuminant")
-    pi, ci = np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape))
+    pi, ci = pair_indices(p_items, p_shape, c_items, c_shape)
     factor_p, factor_c = (illuminant_factors(items, normalization, grid) for items in (p_items, c_items))
     factors = (None, None) if factor_p is None else (factor_p[pi], factor_c[ci])  # None: WP, from the whites
     gains = gain(white_p[pi], white_c[ci], normalization, *factors, scale=scale)
@@ -379,10 +416,17 @@ def knee(
     """
 
     x = float_array(x, "x")
+    for name, value in (("a", a), ("point", point), ("ceiling", ceiling)):
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
+                or not np.isfinite(value):
+            raise SkinrenderError(f"{name} must be one finite number, got {value!r}", role=name)
     if not 0 < a <= 1:
-        raise SkinrenderError(f"knee factor a must be in (0, 1], got {a}")
+        raise SkinrenderError(f"a (the knee factor) must be in (0, 1], got {a}", role="a")
+    if not point < ceiling:
+        raise SkinrenderError(f"point must be below the ceiling, got point {point:g}, ceiling {ceiling:g}",
+                              role="point")
     if not np.all(np.isfinite(x)):
-        raise SkinrenderError("knee expects finite responses, got NaN or inf")
+        raise SkinrenderError("x: knee expects finite responses, got NaN or inf", role="x")
     return np.where(x <= point, x, np.minimum(point * (1.0 - a) + a * x, ceiling))
 
 

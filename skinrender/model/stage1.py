@@ -26,7 +26,7 @@ from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import RangeWords, range_steps
-from ..spectra import GRID_DEFAULT, WavelengthGrid
+from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid, float_array
 from .camera import Camera, camera
 from .illuminant import illuminant
 from .chromaticity import measure, ncc
@@ -105,7 +105,8 @@ def illuminant_track(
     cancel in Eq. 2.
     """
 
-    temperatures = temperature_range() if temperatures is None else np.asarray(temperatures, dtype=np.float64)
+    grid = as_grid(grid)
+    temperatures = temperature_range() if temperatures is None else float_array(temperatures, "temperatures")
     white = np.ones((1, grid.size))
     rgb = response_raw(camera(camera_), white, temperatures, "none", grid)[..., 0, :]
     chromaticities = ncc(rgb)
@@ -245,9 +246,12 @@ def illuminant_set(spec: str | ArrayLike | None = None, camera_: Camera | str | 
                 f"illuminants must be 'paper', 'auto' or comma-separated kelvin (e.g. 2000,3300,A), got {spec!r}"
             )
         return _distinct(np.array([item.temperature for item in items]))
-    values = np.asarray(spec, dtype=np.float64).ravel()
+    if isinstance(spec, dict) or np.ndim(spec) > 1:
+        raise SkinrenderError(f"illuminants must be text or a 1-D sequence of kelvin, got {spec!r}"[:200],
+                              role="illuminants")
+    values = float_array(spec, "illuminants").ravel()
     if values.size == 0 or not np.all(np.isfinite(values) & (values > 0)):
-        raise SkinrenderError(f"illuminant temperatures must be kelvin > 0, got {values.tolist()}")
+        raise SkinrenderError(f"illuminants must be kelvin > 0, got {values.tolist()}", role="illuminants")
     return _distinct(values)
 
 

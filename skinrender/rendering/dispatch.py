@@ -274,7 +274,7 @@ def render_cameras(scene, cameras, prevailing=None, calibration=None, bands=BAND
 
     cams = [camera(cam) for cam in cameras] if not isinstance(cameras, (str, bytes)) else [camera(cameras)]
     if not cams:
-        raise SkinrenderError("cameras: name at least one camera", role="camera")
+        raise SkinrenderError("cameras: name at least one camera", role="cameras")
     bands = parse_bands(bands)
     if "grid" in options:
         options["grid"] = as_grid(options["grid"])  # its text too, as --grid

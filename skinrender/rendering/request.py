@@ -174,10 +174,7 @@ class Request:
             return
         for role in ("prevailing", "calibration"):
             item = illuminant(getattr(self, role))
-            try:
-                check_light(self.camera, [item], spds_on([item], self.grid), self.grid, f"{role} illuminant")
-            except SkinrenderError as error:
-                raise error.reworded(role=role if error.role == "illuminant" else error.role) from None
+            check_light(self.camera, [item], spds_on([item], self.grid), self.grid, f"{role} illuminant")
 
     def _check(self) -> None:
         """The checks of a scene kind's request (its own fields)."""

@@ -65,3 +65,28 @@ def test_check_port_refuses_what_is_no_diameter(port):
         check_port(port)
     assert error.value.role == "port_mm"
     assert check_port(None) is None and check_port("5") == 5.0
+
+
+@pytest.mark.parametrize("arguments, role", [
+    ((0.5, 0.03, 0.01, 20.0, -1.0, 0.8, 1.4), "port_mm"),  # was read as +1 mm
+    ((0.5, 0.03, 0.01, 20.0, True, 0.8, 1.4), "port_mm"),  # was read as 1 mm
+    ((0.5, 0.03, 0.01, 20.0, float("nan"), 0.8, 1.4), "port_mm"),  # was NaN
+    ((-0.5, 0.03, 0.01, 20.0, 5.0, 0.8, 1.4), "reflectance"),
+])
+def test_through_port_checks_its_port_and_reflectance(arguments, role):
+    with pytest.raises(SkinrenderError) as error:
+        through_port(*arguments)
+    assert error.value.role == role
+
+
+@pytest.mark.parametrize("arguments, role", [
+    ((0.01, 20.0, -1.0, 0.8, 1.4), "radius_mm"),  # was 0.60
+    ((-1.0, 20.0, 1.0, 0.8, 1.4), "mu_a"),  # was NaN
+    ((0.0, 0.0, 1.0, 0.8, 1.4), "mu_a"),  # no transport length: was NaN
+    ((0.01, 20.0, 1.0, 1.0, 1.4), "g"),
+    ((0.01, 20.0, 1.0, 0.8, 0.0), "n"),  # was a bare ZeroDivisionError
+])
+def test_kept_fraction_checks_the_medium(arguments, role):
+    with pytest.raises(SkinrenderError) as error:
+        kept_fraction(*arguments)
+    assert error.value.role == role

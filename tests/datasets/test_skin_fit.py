@@ -127,7 +127,7 @@ class TestFitSkinSpectrum:
 
     @pytest.mark.parametrize("values", [np.full(LAMBDA.size, np.nan), np.ones(5)])
     def test_bad_spectra_are_refused(self, values):
-        with pytest.raises(SkinrenderError, match="finite reflectances on at least 8"):
+        with pytest.raises(SkinrenderError, match="reflectance must be finite on at least 8"):
             fit_skin_spectrum(LAMBDA[:values.size], values)
 
     def test_a_failing_optimiser_is_reported_not_raised(self, monkeypatch):
@@ -161,3 +161,33 @@ def test_fit_skin_returns_parameters_and_rms():
     lam = np.arange(400.0, 701.0, 10.0)
     fitted, rms = fit_skin(lam, skin_reflectance(lam, truth, "kubelka-munk"), method="kubelka-munk")
     assert rms < 1e-5 and fitted.melanin == pytest.approx(truth.melanin, rel=1e-3)
+
+
+@pytest.mark.parametrize("change, role", [
+    ({"reflectance": 5.0}, "reflectance"),  # percent-like: fitted to the bounds before
+    ({"reflectance": -1.0}, "reflectance"),
+    ({"wavelength": "reversed"}, "wavelength"),
+    ({"scan": "yes"}, "scan"),  # taken as True before
+    ({"fitted": "melanin"}, "fitted"),  # read letter by letter before
+    ({"start": "x"}, "start"),  # a bare TypeError before
+])
+def test_a_fit_refuses_what_it_cannot_fit_naming_it(change, role):
+    lam = np.arange(400.0, 701.0, 10.0)
+    arguments = {"wavelength": lam, "reflectance": skin_reflectance(lam)}
+    if "reflectance" in change:
+        arguments["reflectance"] = arguments["reflectance"] * change.pop("reflectance")
+    if change.get("wavelength") == "reversed":
+        arguments["wavelength"] = lam[::-1]
+        change.pop("wavelength")
+    with pytest.raises(SkinrenderError) as error:
+        fit_skin_spectrum(**arguments, **change)
+    assert error.value.role == role
+
+
+def test_the_model_refuses_parameters_that_are_not_parameters():
+    with pytest.raises(SkinrenderError) as error:
+        skin_reflectance([500.0], None)
+    assert error.value.role == "parameters"
+    with pytest.raises(SkinrenderError) as error:
+        skin_reflectance([500.0], SkinParameters(melanin="0.1"))
+    assert error.value.role == "melanin"

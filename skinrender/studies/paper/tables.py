@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 from pathlib import Path
 
 import numpy as np
@@ -190,6 +191,14 @@ def table1(
     if isinstance(tolerance, bool) or not (isinstance(tolerance, (int, float)) and TOLERANCE_MIN <= tolerance < 1):
         raise SkinrenderError(f"tolerance must be an NCC difference in [{TOLERANCE_MIN:.3g}, 1) (its lower end is "
                               f"float32's resolution), got {tolerance!r}", role="tolerance")
+    for name, value in (("low", low), ("high", high), ("fraction", fraction)):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise SkinrenderError(f"{name} must be a finite number, got {value!r}", role=name)
+    if not 0 <= low < high:
+        raise SkinrenderError(f"low and high must bound the pixel values kept, 0 ≤ low < high (output units), got "
+                              f"{low!r} and {high!r}", role="low" if not 0 <= low else "high")
+    if not 0 < fraction <= 1:
+        raise SkinrenderError(f"fraction must be in (0, 1], got {fraction!r}", role="fraction")
     chart = load_chart_scene("macbeth")
     cam = camera(camera_)
     cache: dict = {}
