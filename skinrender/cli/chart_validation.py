@@ -35,11 +35,7 @@ HELP_TOLERANCE = (
     "family-wise 95 %% confidence; fail: one shown outside it; inconclusive: the samples cannot tell (spp_needed "
     "says how many would)")
 
-SIGMAS_DEPRECATED = (
-    "deprecated, to be removed in a later release: the tolerance is no longer k standard errors (k was 5) but "
-    "relative (--tolerance); 'sigmas' is now the equivalence's critical value c, the standard errors added in each "
-    "bound |error| + c·SE: read checks.equivalence.critical")
-"""The JSON's ``deprecated.sigmas``: why ``sigmas`` is kept and what to read instead."""
+from ..rendering.chart_document import SIGMAS_DEPRECATED  # noqa: E402, F401 - the JSON's (re-exported)
 
 EPILOG_VALIDATE = ("exit status: 0 pass, 1 fail, 3 inconclusive (a chart: the verdict of --tolerance; a face: its "
                    "checks' verdicts combined, detection held to --detection-tolerance; eq4_shift against the "
@@ -214,24 +210,12 @@ def command_validate_chart(args: argparse.Namespace, scene) -> None:
 
 def _chart_report(inputs, result, settings, requested, tolerance) -> tuple[dict, list[str]]:
     """A chart validation's document and text lines: per patch and channel the values, error, bound, tolerance."""
-    from ..rendering.agreement import DARK_LEVEL
     from ..rendering.renderer import channel_names
     from .common import SPP_MAX
-    from .subsurface import subsurface_keys, subsurface_lines
+    from .subsurface import subsurface_lines
 
     r = result.rendering
-    checks = {"equivalence": result.verdict, "difference": result.difference}
-    document = {"scene": r.scene.name, "camera": r.camera.name, "prevailing_K": r.prevailing,
-                "calibration_K": r.calibration, "normalization": inputs.normalization, "knee": inputs.knee,
-                "spp": r.raw[0].spp, "spp_requested": requested, "sampler": settings.sampler,
-                "seed": settings.seed, "variant": r.variant, "elapsed_s": r.seconds, "tolerance": tolerance,
-                "white_level": result.white_level, "dark_floor_output": tolerance * DARK_LEVEL * result.white_level,
-                "sigmas": result.verdict.details.get("critical"), "deprecated": {"sigmas": SIGMAS_DEPRECATED},
-                "bound": result.bound, "spp_needed": result.spp_needed,
-                "checks": {name: v.document() for name, v in checks.items()}, "patches": result.patches(),
-                "worst": result.worst(), "max_rel_error": float(result.rel_error.max()),
-                "quadrature_rel_difference": result.quadrature}
-    document.update(subsurface_keys(r, document["patches"]))  # subsurface: each skin patch's slab
+    document = result.document(requested)  # the one document, Python's too (rendering.chart_document)
     names = channel_names(r.camera)
     rows = [[p["name"], names[k], _number(p["analytic"][k]), _number(p["rendered"][k]), f"{p['error'][k]:+.3g}",
              f"{p['bound'][k]:.3g}", f"{p['tolerance'][k]:.3g}", p["shown"][k]]

@@ -12,7 +12,7 @@ a dielectric boundary, path traced
 (:mod:`skinrender.rendering.subsurface_chart`), each checked by ``validate``
 against Eq. 4 of its slab's adding-doubling reflectance.
 
--   :func:`subsurface_keys`: what the JSON of a subsurface chart adds.
+-   :func:`subsurface_keys`: what the JSON of a subsurface chart adds (:mod:`skinrender.rendering.chart_document`).
 -   :func:`subsurface_lines`: the text lines it adds.
 """
 
@@ -20,27 +20,7 @@ from __future__ import annotations
 
 __all__ = ["subsurface_keys", "subsurface_lines"]
 
-
-def subsurface_keys(rendering, rows: list[dict] | None = None) -> dict:
-    """
-    The keys a subsurface chart's JSON adds (``{}`` at ``direct``): ``physics``, ``light`` (the sky), and per
-    patch ``skin_model``: the layers' ``spec``, ``source`` (``parameters`` or ``fit``), ``parameters``,
-    ``fit_rms``, ``bounds_hit`` and ``dermis_mm`` (the rendered dermis' thickness at ``subsurface-volume``;
-    ``None`` at ``subsurface``, whose table is the model's semi-infinite dermis) (``None`` for a Lambertian
-    patch), as a list in the scene's order, or, given the document's per-patch ``rows``, added to each row.
-    """
-    if "skin_model" not in rendering.info:  # the chart's level renders no slab
-        return {}
-    models = rendering.info["skin_model"]
-    keys = {"physics": rendering.info["physics"],
-            "light": "a uniform sky of radiance P(λ)/π (Planck's P at the prevailing temperature), seen straight "
-                     "down: a skin patch's analytic value is Eq. 4 of its slab's adding-doubling reflectance (total, "
-                     "collimated normal incidence)"}
-    if rows is None:
-        return {**keys, "skin_model": models}
-    for row, model in zip(rows, models):
-        row["skin_model"] = model
-    return keys
+from ..rendering.chart_document import subsurface_keys  # noqa: E402 - moved to the rendering layer (re-exported)
 
 
 def subsurface_lines(rendering) -> list[str]:

@@ -2,27 +2,23 @@
 Render validation against the analytic model
 ============================================
 
--   :func:`analytic_reference`: Eq. 4 as the renderer integrates it — the
-    spectra linearly interpolated between grid samples, Planck evaluated
-    exactly, integrated on a refined grid (the paper's Σ differs from this by
-    a quadrature term that :func:`quadrature_difference` reports).
--   :func:`validate`, :class:`Validation`: every patch's rendered mean against
-    the reference (:func:`validate_rendering`: the check of a render): shown within a relative tolerance (equivalence, the verdict)
-    and no difference detected (a calibrated difference test), both from the
-    measured noise (:mod:`skinrender.rendering.agreement`).
--   :func:`validate_gamut`: gamut volumes of a rendered chart against the
-    analytic ones, with the same two verdicts.
+-   :func:`analytic_reference`: Eq. 4 as the renderer integrates it — the spectra linearly interpolated between
+    grid samples, Planck evaluated exactly, integrated on a refined grid (the paper's Σ differs from this by a
+    quadrature term that :func:`quadrature_difference` reports).
+-   :func:`validate`, :class:`Validation`: every patch's rendered mean against the reference
+    (:func:`validate_rendering`: the check of a render): shown within a relative tolerance (equivalence, the
+    verdict) and no difference detected (a calibrated difference test), both from the measured noise
+    (:mod:`skinrender.rendering.agreement`); :meth:`Validation.document`: the JSON ``validate`` prints
+    (:mod:`.chart_document`).
+-   :func:`validate_gamut`: gamut volumes of a rendered chart against the analytic ones, with the same two verdicts.
 
-The standard error of a patch channel
-(:func:`~skinrender.rendering.patch_errors.error_law`) is the patch's standard
-error together with the white references' errors carried through the white
-balance and WP (Eq. 8), linearised with their channel covariances; a value
-whose error is too skewed for the normal law is held to distribution-free
-(Cantelli, Chebyshev) bounds instead. The pixels of a patch are independent
-(a box filter), so the standard errors have ``pixels − 1`` degrees of freedom (Student t). The difference test allows a
-float32 floor (:func:`float32_floor`) beyond the noise. At p = c the whites
-are one render and WP is exactly 1. Renders of p and c use different seeds, so
-their noise is independent.
+The standard error of a patch channel (:func:`~skinrender.rendering.patch_errors.error_law`) is the patch's
+standard error together with the white references' errors carried through the white balance and WP (Eq. 8),
+linearised with their channel covariances; a value whose error is too skewed for the normal law is held to
+distribution-free (Cantelli, Chebyshev) bounds instead. The pixels of a patch are independent (a box filter), so
+the standard errors have ``pixels − 1`` degrees of freedom (Student t). The difference test allows a float32 floor
+(:func:`float32_floor`) beyond the noise. At p = c the whites are one render and WP is exactly 1. Renders of p
+and c use different seeds, so their noise is independent.
 """
 
 from __future__ import annotations
@@ -195,6 +191,11 @@ class Validation:
         """The smallest relative tolerance that would pass (:attr:`verdict`'s bound)."""
         return self.verdict.bound
 
+    def document(self, spp_requested=None) -> dict:
+        """The JSON document ``validate CHART --json`` prints (:func:`~.chart_document.chart_document`)."""
+        from .chart_document import chart_document
+        return chart_document(self, spp_requested)
+
     @property
     def passed(self) -> bool:
         """The verdict is a pass: every patch channel shown within its tolerance."""
@@ -223,13 +224,9 @@ class Validation:
             lower = np.abs(self.error[i]) - (self.upper[i] - np.abs(self.error[i]))
             outside = lower > self.tolerance[i]
             rows.append({
-                "name": patch.name,
-                "rendered": self.rendered[i].tolist(),
-                "analytic": self.analytic[i].tolist(),
-                "rel_error": self.rel_error[i].tolist(),
-                "tolerance": self.tolerance[i].tolist(),
-                "error": self.error[i].tolist(),
-                "bound": self.upper[i].tolist(),
+                "name": patch.name, "rendered": self.rendered[i].tolist(), "analytic": self.analytic[i].tolist(),
+                "rel_error": self.rel_error[i].tolist(), "tolerance": self.tolerance[i].tolist(),
+                "error": self.error[i].tolist(), "bound": self.upper[i].tolist(),
                 "relative_bound": (self.upper[i] / scale[i]).tolist(),
                 "sigma": self.sigma[i].tolist(),
                 "z": self.z[i].tolist(),
