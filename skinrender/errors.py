@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import copy
 
-__all__ = ["SkinrenderError", "naming", "flag_of", "check_flag"]
+__all__ = ["SkinrenderError", "naming", "naming_role", "flag_of", "check_flag"]
 
 
 class SkinrenderError(ValueError):
@@ -75,6 +75,20 @@ def check_flag(value, name: str) -> bool:
     if isinstance(value, bool) or type(value).__name__ == "bool_":
         return bool(value)
     raise SkinrenderError(f"{name} must be True or False, got {value!r}", role=name)
+
+
+def naming_role(role: str, function, *args, **kwargs):
+    """
+    ``function(*args, **kwargs)``, its :class:`SkinrenderError` about a reflectance (role ``reflectance``, or none)
+    given the caller's argument ``role`` (``skin``, ``munsell``): which of two sets is at fault.
+    """
+    try:
+        return function(*args, **kwargs)
+    except SkinrenderError as error:
+        if error.role not in (None, "reflectance"):
+            raise
+        raise error.reworded(error.message if error.message.startswith(role) else f"{role}: {error.message}",
+                             role=role) from None
 
 
 def flag_of(name: str) -> str | None:

@@ -44,7 +44,7 @@ from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wai
 
 import numpy as np
 
-from .errors import SkinrenderError
+from .errors import SkinrenderError, flag_of
 from .extras import require
 from .workload import announce, progress_bar
 
@@ -74,7 +74,7 @@ def check_workers(workers: int | None, flag: str = "--workers") -> int:
         return os.cpu_count() or 1
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or not 1 <= workers <= WORKERS_MAX:
         raise SkinrenderError(f"{flag} must be an integer in [1, {WORKERS_MAX}] (processes), got {workers!r}",
-                              flag=flag)
+                              flag=flag_of(flag), role=flag.lstrip("-"))
     return int(workers)
 
 
@@ -135,7 +135,7 @@ def check_dask_address(address, flag: str = "--dask", timeout: float | None = No
     text = str(address).strip() if isinstance(address, str) else ""
     if not text:
         raise SkinrenderError(f"{flag}: expected a Dask scheduler address (tcp://host:8786), got {address!r}",
-                              flag=flag)
+                              flag=flag_of(flag), role=flag.lstrip("-"))
     try:
         scheme, location = parse_address(text, strict=False)
         host, port = parse_host_port(location, 8786) if scheme == "tcp" else (None, None)

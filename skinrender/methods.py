@@ -124,9 +124,11 @@ def parse_range(text: str, what: str, example: str = "400:700:10") -> tuple[floa
             raise ValueError
         values = tuple(float(part) for part in parts)
     except ValueError:
-        raise SkinrenderError(f"{what} must be START:END:STEP in nm (e.g. {example}), got {text!r}") from None
+        raise SkinrenderError(f"{what} must be START:END:STEP in nm (e.g. {example}), got {text!r}",
+                              role=what if what.isidentifier() else None) from None
     if not all(math.isfinite(value) for value in values):
-        raise SkinrenderError(f"{what} must be finite numbers of nm, got {text!r}")
+        raise SkinrenderError(f"{what} must be finite numbers of nm, got {text!r}",
+                              role=what if what.isidentifier() else None)
     return values  # type: ignore[return-value]
 
 
@@ -161,11 +163,12 @@ class RangeWords:
     whole: Callable[[Steps], str]
 
 
-def range_steps(start: float, end: float, step: float, most: int, words: RangeWords, text: str = "") -> int:
+def range_steps(start: float, end: float, step: float, most: int, words: RangeWords, text: str = "",
+                role: str | None = None) -> int:
     """
     The number of steps of the range ``start, start + step, …, end`` (``end`` included): ``end`` above
     ``start``, ``step`` > 0, at most ``most`` values and ``end`` a whole number of steps from ``start`` (to
-    1e-9 relative); otherwise a :class:`SkinrenderError` worded by ``words``.
+    1e-9 relative); otherwise a :class:`SkinrenderError` worded by ``words``, its role ``role``.
 
     Examples
     --------
@@ -180,11 +183,11 @@ def range_steps(start: float, end: float, step: float, most: int, words: RangeWo
     skinrender.errors.SkinrenderError: 400:690:50: 690 is not START + whole steps
     """
     if not (step > 0 and end > start):
-        raise SkinrenderError(words.order(Steps(start, end, step, math.nan, text)))
+        raise SkinrenderError(words.order(Steps(start, end, step, math.nan, text)), role=role)
     count = (end - start) / step
     steps = Steps(start, end, step, count + 1, text)
     if count + 1 > most:
-        raise SkinrenderError(words.count(steps))
+        raise SkinrenderError(words.count(steps), role=role)
     if abs(count - round(count)) > 1e-9 * max(1.0, count):
-        raise SkinrenderError(words.whole(steps))
+        raise SkinrenderError(words.whole(steps), role=role)
     return int(round(count))

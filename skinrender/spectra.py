@@ -131,16 +131,16 @@ class WavelengthGrid:
         for name in ("start", "end", "step"):
             value = getattr(self, name)
             try:
-                finite = np.isfinite(float(value))
+                finite = not isinstance(value, (str, bool)) and np.isfinite(float(value))
             except (TypeError, ValueError, OverflowError):
                 finite = False
             if not finite:
-                raise SkinrenderError(f"grid {name} must be a finite number of nm, got {value!r}")
+                raise SkinrenderError(f"grid {name} must be a finite number of nm, got {value!r}", role="grid")
         if self.start <= 0:
-            raise SkinrenderError(f"grid start must be > 0 nm, got {self.start}")
+            raise SkinrenderError(f"grid start must be > 0 nm, got {self.start}", role="grid")
         if self.step <= 0:
-            raise SkinrenderError(f"grid step must be > 0 nm, got {self.step}")
-        range_steps(self.start, self.end, self.step, GRID_SIZE_MAX, _GRID_WORDS)
+            raise SkinrenderError(f"grid step must be > 0 nm, got {self.step}", role="grid")
+        range_steps(self.start, self.end, self.step, GRID_SIZE_MAX, _GRID_WORDS, role="grid")
 
     @property
     def size(self) -> int:
@@ -155,11 +155,11 @@ class WavelengthGrid:
     def index_of(self, wavelength: float) -> int:
         """Index of a wavelength that lies on the grid; an error otherwise."""
         position = (wavelength - self.start) / self.step
-        index = int(round(position))
+        index = int(round(position)) if np.isfinite(position) else -1
         if abs(position - index) > 1e-6 or not 0 <= index < self.size:
             raise SkinrenderError(
                 f"wavelength {wavelength} nm is not a sample of the grid "
-                f"{self.start:g}:{self.end:g}:{self.step:g} nm"
+                f"{self.start:g}:{self.end:g}:{self.step:g} nm", role="wavelength"
             )
         return index
 
@@ -200,11 +200,7 @@ def float_array(value, name: str) -> NDArrayFloat:
 
 
 def broadcast(*named) -> tuple:
-    """The broadcast shape of ``(name, array)`` pairs, or an error naming the first two and their shapes.
-
-    >>> broadcast(("wavelength", np.zeros(3)), ("peak", np.zeros(1)))
-    (3,)
-    """
+    """The broadcast shape of ``(name, array)`` pairs, or an error naming the first two and their shapes."""
     try:
         return np.broadcast_shapes(*(np.shape(array) for _, array in named))
     except ValueError:
@@ -275,10 +271,9 @@ def resample(
         raise SkinrenderError(f"{source}: expected wavelengths (1-D), spectra (…, n) and a grid, got shapes "
                               f"{x.shape}, {y.shape}, {target.shape}")
     rule = method_of(extrapolation, EXTRAPOLATIONS, "extrapolation")
-    if x.ndim != 1 or x.size != y.shape[-1]:
-        raise SkinrenderError(
-            f"{source}: {x.size} wavelengths but spectra of length {y.shape[-1]}"
-        )
+    if x.ndim != 1 or x.size != y.shape[-1] or x.size == 0:
+        raise SkinrenderError(f"{source}: {x.size} wavelengths but spectra of length {y.shape[-1]} (at least one "
+                              "each)", role="values" if x.size else "wavelengths")
     if x.size >= 2 and np.any(np.diff(x) <= 0):
         raise SkinrenderError(f"{source}: wavelengths must be strictly increasing")
     tolerance = 1e-9
@@ -436,7 +431,12 @@ def impulse(grid: WavelengthGrid, peak: float) -> NDArrayFloat:
 
     grid = as_grid(grid)
     values = np.zeros(grid.size)
-    values[grid.index_of(float(float_array(peak, "peak")))] = 1.0 / grid.step
+    try:
+        values[grid.index_of(float(float_array(peak, "peak")))] = 1.0 / grid.step
+    except SkinrenderError as error:  # off the grid or NaN: the peak's fault
+        raise error.reworded(role="peak") from None
+    except TypeError:  # not one number
+        raise SkinrenderError(f"peak must be one wavelength of the grid {grid}, got {peak!r}", role="peak") from None
     return values
 
 

@@ -108,7 +108,7 @@ def reflectances(spec: str | SpectralSet, extrapolation: str = "refuse") -> Spec
         )
     entry = lookup(REGISTRY_REFLECTANCES, spec)
     if entry is None:
-        raise unknown(REGISTRY_REFLECTANCES, spec, "reflectance set", "or give a CSV path")
+        raise unknown(REGISTRY_REFLECTANCES, spec, "reflectance set", "or give a CSV path").reworded(role="reflectance")
     return entry.load()
 
 

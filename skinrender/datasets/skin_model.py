@@ -331,7 +331,7 @@ def skin_reflectance_adding_doubling(wavelength: ArrayLike,
     """
     if parameters.surface is not None:
         raise SkinrenderError("surface is the Kubelka–Munk method's flat surface reflectance; the adding-doubling "
-                              "method's surface is its Fresnel boundary (set n instead)")
+                              "method's surface is its Fresnel boundary (set n instead)", role="surface")
     return reflectance_of_layers(skin_layers(wavelength, parameters))
 
 

@@ -33,7 +33,8 @@ def design_inputs(skin, munsell, illuminants, grid: WavelengthGrid = GRID_DEFAUL
         try:
             return reflectances(reflectance).on(grid)
         except SkinrenderError as error:
-            raise (error if error.role else error.reworded(f"{name}: {error.message}", role=name)) from None
+            raise (error.reworded(role=name) if error.role == "reflectance" else error if error.role
+                   else error.reworded(f"{name}: {error.message}", role=name)) from None
 
     if noisy is not None and not isinstance(noisy, NoisySetting):
         raise SkinrenderError(f"noisy must be a NoisySetting (skinrender.design.noise_aware) or None, got {noisy!r}",

@@ -29,7 +29,7 @@ from ..constants import TEMPERATURES_PAPER
 from ..errors import SkinrenderError, check_flag
 from ..hints import ArrayLike, NDArrayFloat
 from ..methods import method_of, takes
-from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid
+from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid, float_array
 from .bank import sensor_bank
 from .criteria import triplet_false_positive_rates, triplet_volumes_fast
 from .inputs import design_inputs
@@ -178,11 +178,11 @@ def optimise_camera(
                                                  and max_evaluations >= 1):
         raise SkinrenderError(f"max_evaluations must be an integer ≥ 1 per start, got {max_evaluations!r}",
                               role="max_evaluations")
-    if not (np.isfinite(fwhm) and fwhm > 0):
-        raise SkinrenderError(f"sensor width must be a finite FWHM > 0 nm (sensor N > 0), got {fwhm!r}", role="fwhm")
-    if not (np.isfinite(slope) and slope > 0):
-        raise SkinrenderError(f"slope must be a finite number > 0, got {slope!r}", role="slope")
-    starts = np.atleast_2d(np.asarray(starts, dtype=np.float64))
+    for name, value in (("fwhm", fwhm), ("slope", slope)):
+        if isinstance(value, (bool, str)) or not (np.ndim(value) == 0 and np.isfinite(value) and value > 0):
+            raise SkinrenderError(f"{name} must be a finite number > 0 (fwhm: nm, sensor N·10), got {value!r}",
+                                  role=name)
+    starts = np.atleast_2d(float_array(starts, "starts"))
     if starts.ndim != 2 or starts.shape[1] != 3 or len(starts) == 0:
         raise SkinrenderError(f"starts must be triplets of peaks in nm, got shape {starts.shape}", role="starts")
     for start in starts:

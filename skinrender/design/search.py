@@ -30,7 +30,7 @@ import numpy as np
 
 from .. import execution
 from ..constants import TEMPERATURES_PAPER
-from ..errors import SkinrenderError, check_flag
+from ..errors import SkinrenderError, check_flag, naming_role
 from ..execution import DASK_TIMEOUT_S, WORKERS_MAX, check_workers, dask_client, stop_pool  # noqa: F401 (their earlier home)
 from ..files import write_output
 from ..evaluation.hull import HULL_KERNEL, notice_kernel
@@ -312,9 +312,8 @@ def search(
                               "triplet per core); raise the limit (--max-triplets) or use fewer positions",
                               role="positions")
     workers = check_workers(workers, "workers")
-    banks = tuple(
-        sensor_bank(sensor, values, where, illuminants, slope, normalization, knee, grid) for values in (skin, munsell)
-    )
+    banks = tuple(naming_role(name, sensor_bank, sensor, values, where, illuminants, slope, normalization, knee, grid)
+                  for name, values in (("skin", skin), ("munsell", munsell)))
     index = triplets(where.size)
     start = time.perf_counter()
     notice_kernel(notice)  # the compiled kernel's absence, said once

@@ -109,7 +109,8 @@ def gamut_hull(points: ArrayLike) -> tuple[Gamut, np.ndarray]:
 
     cloud = float_array(points, "points")
     if cloud.shape[-1:] != (3,):
-        raise SkinrenderError(f"gamut points must have three channels on the last axis, got shape {cloud.shape}")
+        raise SkinrenderError(f"points (gamut) must have three channels on the last axis, got shape {cloud.shape}",
+                              role="points")
     cloud = cloud.reshape(-1, 3)
     if not np.all(np.isfinite(cloud)):
         raise SkinrenderError("gamut points contain NaN or inf")

@@ -75,9 +75,10 @@ def locus_points(
     illuminants: ArrayLike = TEMPERATURES_PAPER,
     calibration: float | str | None = None,
     grid: WavelengthGrid = GRID_DEFAULT,
+    role: str = "reflectance",
 ) -> NDArrayFloat:
     """
-    NCC (r, g) of ``reflectance`` under every illuminant of the set.
+    NCC (r, g) of ``reflectance`` under every illuminant of the set (a refusal of it has the role ``role``).
 
     ``calibration`` (K) fixes one white balancing (every prevailing light
     balanced to it); ``None`` takes every (prevailing, calibration) pair of
@@ -87,10 +88,13 @@ def locus_points(
     t = illuminant_temperatures(illuminants, cam)
     if t.ndim != 1:
         raise SkinrenderError(f"illuminants must be a list of kelvin, got {illuminants!r}", role="illuminants")
-    if calibration is None:
-        rgb = response(cam, reflectance, t[:, None], t[None, :], grid=grid)
-    else:
-        rgb = response(cam, reflectance, t, calibration_kelvin(calibration), grid=grid)
+    try:
+        if calibration is None:
+            rgb = response(cam, reflectance, t[:, None], t[None, :], grid=grid)
+        else:
+            rgb = response(cam, reflectance, t, calibration_kelvin(calibration), grid=grid)
+    except SkinrenderError as error:  # the caller's argument: skin_locus' skin, a false-positive rate's nonskin
+        raise (error.reworded(role=role) if error.role == "reflectance" else error) from None
     return ncc(rgb).reshape(-1, 3)[:, :2]
 
 
@@ -227,7 +231,7 @@ def skin_locus(
     """
 
     shaped = method_of(boundary, BOUNDARIES, "boundary")
-    points = locus_points(cam, skin, illuminants, calibration, grid)
+    points = locus_points(cam, skin, illuminants, calibration, grid, role="skin")
     illuminants = illuminant_temperatures(illuminants, cam)
     calibration = None if calibration is None else calibration_kelvin(calibration)
     if points.shape[0] == 0:  # degenerate is not an error: an empty skin set's locus contains nothing

@@ -48,7 +48,7 @@ def ncc(rgb: ArrayLike) -> NDArrayFloat:
 
     rgb = float_array(rgb, "rgb")
     if rgb.shape[-1:] != (3,):
-        raise SkinrenderError(f"ncc expects three channels on the last axis, got shape {rgb.shape}")
+        raise SkinrenderError(f"rgb: ncc expects three channels on the last axis, got shape {rgb.shape}", role="rgb")
     if not np.all(np.isfinite(rgb)) or np.any(rgb < 0):
         raise SkinrenderError("ncc expects finite, non-negative responses (Eq. 2 is defined for light, not for "
                               "NaN, inf or negative values)")
@@ -83,7 +83,7 @@ def measure(chromaticity: ArrayLike, pair: str = "gb") -> NDArrayFloat:
 
     pair = str(pair).lower()
     if len(pair) != 2 or any(c not in _CHANNEL_INDEX for c in pair) or pair[0] == pair[1]:
-        raise SkinrenderError(f"pair must be two of r, g, b (e.g. 'gb'), got {pair!r}")
+        raise SkinrenderError(f"pair must be two of r, g, b (e.g. 'gb'), got {pair!r}", role="pair")
     c = float_array(chromaticity, "chromaticity")
     if c.shape[-1:] != (3,):
         raise SkinrenderError(f"measure expects NCC chromaticities with three channels on the last axis, got shape "

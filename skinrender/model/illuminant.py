@@ -75,7 +75,7 @@ class Illuminant:
 def _planckian(temperature: float, name: str | None = None) -> Illuminant:
     if not (np.isfinite(temperature) and 0 < temperature <= TEMPERATURE_MAX):
         raise SkinrenderError(f"illuminant temperature must be a finite number of kelvin in (0, {TEMPERATURE_MAX:g}], "
-                              f"got {temperature:g}")
+                              f"got {temperature:g}", role="illuminant")
     return Illuminant(name or f"{temperature:g}K", float(temperature))
 
 
@@ -144,7 +144,7 @@ def illuminant(spec: Illuminant | float | str) -> Illuminant:
         table = read_spectra_csv(text, kind="spd", expected_columns=1)
         return Illuminant(Path(text).name, None, tuple(table.wavelengths), tuple(table.values[0]))
     raise SkinrenderError(
-        f"illuminant {text!r} not understood: expected kelvin (3300 or 3300K), A, H or a CSV path"
+        f"illuminant {text!r} not understood: expected kelvin (3300 or 3300K), A, H or a CSV path", role="illuminant"
     )
 
 

@@ -229,9 +229,16 @@ def pair_indices(p_items, p_shape, c_items, c_shape) -> tuple:
 
 
 def _reflectance_values(reflectance, grid: WavelengthGrid) -> NDArrayFloat:
+    try:
+        return _reflectance_array(reflectance, grid)
+    except SkinrenderError as error:  # a set's name, file or array: the reflectance argument's
+        raise (error if error.role else error.reworded(role="reflectance")) from None
+
+
+def _reflectance_array(reflectance, grid: WavelengthGrid) -> NDArrayFloat:
     if isinstance(reflectance, (str, SpectralSet)):
         return reflectances(reflectance).on(grid)
-    values = np.asarray(reflectance, dtype=np.float64)
+    values = float_array(reflectance, "reflectance")
     if values.shape[-1:] != (grid.size,):
         raise SkinrenderError(
             f"reflectance array must have the grid's {grid.size} samples ({grid}) on its last axis, "

@@ -59,9 +59,10 @@ _CANDIDATES_WORDS = RangeWords(
 def temperature_range(start: float = 2000.0, end: float = 10000.0, step: float = 100.0) -> NDArrayFloat:
     """Temperatures ``start, start + step, …, end`` in K (``end`` included)."""
     for name, value in (("start", start), ("end", end), ("step", step)):
-        if not (np.isfinite(value) and value > 0):
-            raise SkinrenderError(f"temperature {name} must be a finite number of kelvin > 0, got {value}")
-    return start + step * np.arange(range_steps(start, end, step, CANDIDATES_MAX, _CANDIDATES_WORDS) + 1)
+        if isinstance(value, (bool, str)) or not (np.ndim(value) == 0 and np.isfinite(value) and value > 0):
+            raise SkinrenderError(f"{name} (temperature) must be a finite number of kelvin > 0, got {value!r}",
+                                  role=name)
+    return start + step * np.arange(range_steps(start, end, step, CANDIDATES_MAX, _CANDIDATES_WORDS, role="end") + 1)
 
 
 @dataclass(frozen=True)
@@ -180,11 +181,11 @@ def illuminant_selection(
     """
 
     if not (isinstance(count, (int, np.integer)) or (isinstance(count, float) and count.is_integer())) or count < 2:
-        raise SkinrenderError(f"count must be an integer ≥ 2, got {count}")
+        raise SkinrenderError(f"count must be an integer ≥ 2, got {count!r}", role="count")
     candidates = temperature_range(start, end, step)
     if count > candidates.size:
         raise SkinrenderError(f"count {int(count)} is more than the {candidates.size} candidate temperatures "
-                              f"({start:g}–{end:g} K every {step:g} K)")
+                              f"({start:g}–{end:g} K every {step:g} K)", role="count")
     track = illuminant_track(camera_, candidates, grid, pair)
     m = track.measures
     if not np.all(np.isfinite(m)) or abs(m[-1] - m[0]) <= 1e-12 * max(1.0, abs(m[0])):
@@ -233,18 +234,22 @@ def illuminant_set(spec: str | ArrayLike | None = None, camera_: Camera | str | 
         text = spec.strip()
         if text.lower() == "auto":
             if camera_ is None:
-                raise SkinrenderError("--illuminants auto needs a camera (--camera)", flag="--illuminants")
+                raise SkinrenderError("--illuminants auto needs a camera (--camera)", flag="--illuminants",
+                                      role="illuminants")
             return select_illuminants(camera_)
 
         parts = text.split(",")
         if not all(part.strip() for part in parts):
             raise SkinrenderError(f"illuminants must be comma-separated kelvin (e.g. 2000,3300,A), none empty, "
-                                  f"got {spec!r}")
-        items = [illuminant(part) for part in parts]
+                                  f"got {spec!r}", role="illuminants")
+        try:
+            items = [illuminant(part) for part in parts]
+        except SkinrenderError as error:
+            raise error.reworded(role="illuminants") from None
         if any(item.temperature is None for item in items):
             raise SkinrenderError(
-                f"illuminants must be 'paper', 'auto' or comma-separated kelvin (e.g. 2000,3300,A), got {spec!r}"
-            )
+                f"illuminants must be 'paper', 'auto' or comma-separated kelvin (e.g. 2000,3300,A), got {spec!r}",
+                role="illuminants")
         return _distinct(np.array([item.temperature for item in items]))
     if isinstance(spec, dict) or np.ndim(spec) > 1:
         raise SkinrenderError(f"illuminants must be text or a 1-D sequence of kelvin, got {spec!r}"[:200],

@@ -57,7 +57,10 @@ def load_scene(spec):
     """
     from .kinds import scene_kind  # here: importing skinrender need not load the face
 
-    return scene_kind(spec).load(spec)
+    try:
+        return scene_kind(spec).load(spec)
+    except SkinrenderError as error:  # a file's or a name's fault: the scene argument's
+        raise (error if error.role else error.reworded(role="scene")) from None
 
 
 def _camera_of(camera, options: dict, what: str):

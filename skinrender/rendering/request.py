@@ -60,6 +60,15 @@ def named(role: str, function, *args, **kwargs):
         raise error.reworded(words, role=role.lstrip("-"), flag=flag_of(role)) from None
 
 
+def _light(spec):
+    """:func:`~skinrender.model.illuminant.illuminant` of ``spec``, a refusal left without a role: its argument is
+    the caller's (``prevailing``, ``calibration``), which :func:`named` gives it."""
+    try:
+        return illuminant(spec)
+    except SkinrenderError as error:
+        raise (error.reworded(role=None) if error.role == "illuminant" else error) from None
+
+
 def planckian(spec, name: str) -> float:
     """
     The temperature, K, of a Planckian light spec (kelvin, ``A`` or ``H``); a one-line error naming ``name`` (its
@@ -71,7 +80,7 @@ def planckian(spec, name: str) -> float:
     if isinstance(spec, bool):
         raise SkinrenderError(f"{name}: a Planckian light (kelvin, A or H), got {spec!r}", role=name.lstrip("-"),
                               flag=flag_of(name))
-    light = named(name, illuminant, spec)
+    light = named(name, _light, spec)
     if light.temperature is None:
         raise SkinrenderError(f"{name}: rendering needs a Planckian illuminant (kelvin, A or H), got {spec!r}",
                               role=name.lstrip("-"), flag=flag_of(name))

@@ -60,10 +60,10 @@ class Measurement:
 
 def named_argument(name: str, function, *args, **kwargs):
     """``function(*args)``, its :class:`SkinrenderError` prefixed with the argument ``name`` unless it names it
-    already (its ``role`` is ``name``: ``camera 'x': …``)."""
+    already (its message begins with ``name``: ``camera 'x': …``)."""
     try:
         return function(*args, **kwargs)
     except SkinrenderError as error:
-        if error.role == name:
-            raise
+        if error.message.startswith(name):
+            raise error if error.role == name else error.reworded(role=name) from None
         raise error.reworded(f"{name}: {error.message}", role=name) from None
