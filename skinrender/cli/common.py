@@ -64,13 +64,17 @@ class Once(argparse.Action):
         setattr(namespace, self.dest, values)
 
 
-def add_grid(parser: argparse.ArgumentParser) -> None:
-    """``--grid`` and ``--extrapolation``."""
+def add_grid(parser: argparse.ArgumentParser, named_sets: bool = False) -> None:
+    """``--grid`` and ``--extrapolation`` (``named_sets``: it applies to bundled reflectance sets too, as
+    ``search`` and ``reproduce`` take it; ``args.extrapolates_named``)."""
     from ..spectra import EXTRAPOLATIONS
 
     parser.add_argument("--grid", default="400:700:1", help=HELP_GRID)
+    which = ("for reflectance sets (bundled ones too) and CSV cameras" if named_sets
+             else "for CSV cameras and reflectances")
     parser.add_argument("--extrapolation", default="refuse", choices=list(EXTRAPOLATIONS),
-                        help="for CSV cameras and reflectances that do not cover the grid: " + choices_help(EXTRAPOLATIONS))
+                        help=f"{which} that do not cover the grid: " + choices_help(EXTRAPOLATIONS))
+    parser.set_defaults(extrapolates_named=named_sets)
 
 
 def add_model(parser: argparse.ArgumentParser) -> None:
@@ -364,6 +368,10 @@ def coverage_hint(error, args: argparse.Namespace) -> str:
         return str(error)
     message = error.message
     grid, extrapolation = hasattr(args, "grid"), getattr(args, "extrapolation", None)
+    bundled = not message.split(": measured over")[0].strip().lower().endswith(".csv")
+    if grid and extrapolation == "refuse" and bundled and not getattr(args, "extrapolates_named", False):
+        # this command's --extrapolation applies to CSV files only: not advised for a bundled set
+        return message + "; choose a --grid inside the data (a bundled set is not extrapolated)"
     if grid and extrapolation == "refuse":
         return message + "; choose a --grid inside the data or an --extrapolation ('zero' or 'constant')"
     if grid and extrapolation is not None:

@@ -96,7 +96,7 @@ def add_parsers(commands) -> None:
                    help="relative difference under which two values tie (default 1e-9); ties are all listed")
     p.add_argument("--illuminants", default="paper",
                    help="illuminant set: 'paper' (the ten, default) or comma-separated kelvin")
-    add_grid(p)
+    add_grid(p, named_sets=True)
     add_common(p)
 
     p = commands.add_parser("design", run=command_design,
@@ -188,7 +188,8 @@ def command_search(args: argparse.Namespace) -> None:
         **best,
         "elapsed_s": result.elapsed_s,
         "csv": args.csv,
-        "notes": search_notes(result, best, None if args.sensor != 1 else args.slope),
+        "notes": search_notes(result, best, None if args.sensor != 1 else args.slope)
+        + extrapolation_notes((("--skin", skin), ("--munsell", munsell)), grid, args.extrapolation),
     }
     lines = [f"sensor {args.sensor:g}: {len(result.triplets)} triplets in {result.elapsed_s:.1f} s "
              f"({result.method}, {result.workers} workers); volumes in output units³"]
@@ -222,6 +223,18 @@ def check_search_time(args: argparse.Namespace, positions: int, noisy, max_tripl
                fewer="use fewer positions" + ("" if noisy is None else " or --noise-samples"))
 
 
+def extrapolation_notes(sets, grid, rule: str) -> list[str]:
+    """One note per reflectance set (``(flag, SpectralSet)``) that ``--extrapolation`` ``rule`` extended to the
+    ``grid`` (nm): it was measured over less (nothing is extrapolated without a word)."""
+    notes = []
+    for flag, spectra in sets:
+        low, high = float(spectra.wavelengths[0]), float(spectra.wavelengths[-1])
+        if rule != "refuse" and (low > grid.start or high < grid.end):
+            notes.append(f"{flag} {spectra.name}: measured over {low:g}–{high:g} nm, extrapolated "
+                         f"('{rule}') to the grid {grid.start:g}–{grid.end:g} nm")
+    return notes
+
+
 def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
     """
     What a search's tables do not show by themselves: a ``--slope`` given for the impulse (which has none), gamuts
@@ -238,7 +251,8 @@ def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
         for columns, cases in ((slice(0, -1), "one-calibration"), (slice(-1, None), "all-calibration")):
             if volumes.size and not np.any(volumes[:, columns] > 0):
                 notes.append(f"every {cases} {label} gamut has zero volume (degenerate: a --grid too coarse for "
-                             "the sensors, or channels that coincide); the tables list every triplet as tied")
+                             "the sensors, channels that coincide, or spectra all alike); the tables list every "
+                             "triplet as tied")
     if result.info.get("exposure_note"):
         notes.append(result.info["exposure_note"])
     if result.noisy is not None and not best.get("min_noisy_fpr"):

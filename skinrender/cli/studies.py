@@ -50,7 +50,7 @@ def add_parsers(commands) -> None:
     p.add_argument("--camera", default="Nikon 5100 (NPL)",
                    help="Stage 2 camera for Figs. 3–7 (the paper's Sony is not public); " + HELP_CAMERA)
     p.add_argument("--slope", type=float, default=2.0, help="gbell slope b, not given by the paper (default 2)")
-    add_grid(p)
+    add_grid(p, named_sets=True)
     p.add_argument("--illuminants", default="paper", help="illuminant set: 'paper' (its ten, default), 'auto' "
                    "(Stage 1 for --stage1-camera) or comma-separated kelvin")
     p.add_argument("--stage1-camera", help="camera of --illuminants auto (default: --camera); " + HELP_CAMERA)

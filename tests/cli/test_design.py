@@ -85,7 +85,11 @@ def test_search_extrapolates_named_sets_when_told(capsys):
     status, out, err = run(SEARCH + ["--positions", "400:700:100", "--grid", "380:780:5", "--extrapolation", "constant",
                                      "--json"], capsys)
     assert status == 0, err
-    assert json.loads(out)["triplets"] == 4
+    document = json.loads(out)
+    assert document["triplets"] == 4
+    # said, not silent: the set and the ranges (the helper's survey found notes: [])
+    assert document["notes"] == ["--skin skin: measured over 390–730 nm, extrapolated ('constant') to the grid "
+                                 "380–780 nm"]
 
 
 @pytest.mark.parametrize("extra, expected", [

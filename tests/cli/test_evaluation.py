@@ -98,3 +98,15 @@ def test_the_locus_names_its_skin_set(capsys):
     assert set(areas) == {"skin", "skin-tones"} and areas["skin-tones"] > areas["skin"]
     for argv, name in ((["--skin-set", ""], "--skin-set"), (["--skin-set", "skin", "--skin", "skin"], "--skin")):
         assert_refused(["locus", "--camera", "gbell:9@450,540,610", *argv], name, capsys)
+
+
+def test_a_bundled_set_off_the_grid_is_not_told_to_extrapolate(capsys):
+    """``gamut``'s --extrapolation applies to CSV files: for the bundled skin set (390–730 nm) on 380–780 nm the
+    advice was '--extrapolation', which the command then refused; ``search`` takes it for bundled sets (and says so
+    in its notes), so there the advice stands."""
+    gamut = ["gamut", "--camera", "gbell:9@450,540,610", "--calibration", "2856", "--reflectances", "skin",
+             "--grid", "380:780:5"]
+    line = assert_refused(gamut, ("--reflectances", "does not cover", "a bundled set is not extrapolated"), capsys)
+    assert "--extrapolation" not in line
+    search = ["search", "--sensor", "9", "--positions", "400:700:100", "--grid", "380:780:5"]
+    assert "--extrapolation ('zero' or 'constant')" in assert_refused(search, ("--skin", "does not cover"), capsys)
