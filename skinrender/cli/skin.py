@@ -66,8 +66,9 @@ def add_parsers(commands) -> None:
     p.add_argument("--fit", metavar="FILE.csv",
                    help="fit every column of a reflectance table (CSV: wavelength nm, one column per sample; or a "
                         "reflectance set name such as skin) over its own wavelengths in --fit-range")
-    p.add_argument("--fit-range", default="400:700", metavar="START:END",
-                   help="with --fit: the wavelengths fitted, nm (default 400:700)")
+    p.add_argument("--fit-range", default=None, metavar="START:END",
+                   help="with --fit: the wavelengths fitted, nm (default 400:700); a range wider than the table's "
+                        "fits the table's wavelengths within it, and says so")
     p.add_argument("--port-mm", metavar="D",
                    help="the contact instrument's sample port (the spot measured) diameter, mm (> 0): the model is "
                         "read as through it, the light that leaves the skin outside it lost (lateral loss, "
@@ -125,7 +126,7 @@ def _method(args: argparse.Namespace) -> str:
 def command_skin(args: argparse.Namespace) -> None:
     if args.fit is not None:
         return _command_fit(args)
-    for option, default in (("fit_range", "400:700"), ("workers", None), ("max_spectra", str(SPECTRA_MAX)),
+    for option, default in (("fit_range", None), ("workers", None), ("max_spectra", str(SPECTRA_MAX)),
                             ("quiet", False)):  # --quiet silences the fit's progress: nothing else has one
         if getattr(args, option) != default:
             raise SkinrenderError(f"--{option.replace('_', '-')} goes with --fit", flag=f"--{option.replace('_', '-')}")
@@ -228,7 +229,7 @@ def _command_fit(args: argparse.Namespace) -> None:
                               "none", flag="--n")
     held = parameters_of(args, HELD_IN_FIT)
     port_mm = _port(args)
-    start, end = _fit_range(args.fit_range)
+    start, end = _fit_range("400:700" if args.fit_range is None else args.fit_range)
     workers = check_workers(None if args.workers is None else integer_in(args.workers, "--workers", 1), "--workers")
     limit = integer_in(args.max_spectra, "--max-spectra", 1)
     measured = flag("--fit", reflectances, args.fit)
@@ -254,7 +255,11 @@ def _command_fit(args: argparse.Namespace) -> None:
                 "bounds": {k: list(FIT_BOUNDS[k][:2]) + [FIT_BOUNDS[k][2]] for k in FIT_PARAMETERS[method]},
                 "held": {k: getattr(held, k) for k in HELD_IN_FIT}, "port_mm": port_mm,
                 "fits": [f.as_dict(method) for f in fits], "converged": int(sum(f.converged for f in fits)),
-                "skin": int(skins), "rms": summary}
+                "skin": int(skins), "rms": summary, "fit_range_nm": [start, end], "notes": []}
+    if start < measured.wavelengths[0] or end > measured.wavelengths[-1]:  # said, not clipped silently
+        document["notes"].append(f"--fit-range {start:g}–{end:g} nm is wider than {measured.name}'s "
+                                 f"{measured.wavelengths[0]:g}–{measured.wavelengths[-1]:g} nm: fitted over "
+                                 f"{lam[0]:g}–{lam[-1]:g} nm")
     rows = [[f.name[:32], f"{f.rms:.4f}" if math.isfinite(f.rms) else "—",
              *(f"{getattr(f.parameters, k):.4g}" for k in FIT_PARAMETERS[method]),
              ", ".join(f"{k} {v}" for k, v in f.bounds_hit.items()) or "-", "yes" if f.converged else "NO",
@@ -265,7 +270,7 @@ def _command_fit(args: argparse.Namespace) -> None:
             f"{lam[0]:g}–{lam[-1]:g} nm" + ("" if port_mm is None else f", read through a {port_mm:g} mm port")
             + "\n"
             + table(rows, ["spectrum", "RMS", *FIT_PARAMETERS[method], "on a bound", "converged", "skin"]) + "\n"
-            + "".join(line + "\n" for line in refused)
+            + "".join(line + "\n" for line in refused + [f"note: {n}" for n in document["notes"]])
             + (f"RMS median {summary['median']:.4f}, 95th percentile {summary['p95']:.4f}, max {summary['max']:.4f}; "
                if summary else "")
             + f"{document['converged']} of {len(fits)} converged; "

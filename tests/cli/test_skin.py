@@ -240,3 +240,15 @@ def test_a_plot_that_cannot_be_written_names_plot(tmp_path, capsys, monkeypatch)
     assert status == 1 and out == "" and len(lines) == 1
     assert lines[0].startswith("skinrender skin: error: --plot ") and "no space left" in lines[0]
     assert not (tmp_path / "full").exists()
+
+
+def test_a_fit_range_wider_than_the_table_is_said_not_clipped_silently(capsys):
+    """``--fit-range 300:900`` on the skin set (390–730 nm) fitted 390–730 nm without a word; and ``--fit-range``
+    at its default value without ``--fit`` was taken (the check compared it with the default)."""
+    status, out, err = run(["skin", "--fit", "skin", "--method", "kubelka-munk", "--fit-range", "300:900",
+                            "--max-spectra", "30", "--json", "--quiet"], capsys)
+    document = json.loads(out)
+    assert status == 0, err
+    assert document["fit_range_nm"] == [300.0, 900.0] and document["wavelength_nm"][0] >= 390
+    assert document["notes"] == ["--fit-range 300–900 nm is wider than skin's 390–730 nm: fitted over 390–730 nm"]
+    assert_refused(["skin", "--fit-range", "400:700"], "--fit-range", capsys)
