@@ -79,14 +79,36 @@ def commands(parser: argparse.ArgumentParser | None = None) -> dict:
     return {name: command.run for name, command in _subparsers(parser or build_parser()).items()}
 
 
+def _negative_triples(words: list[str]) -> list[str]:
+    """``--translate-mm -100,0,0`` as ``--translate-mm=-100,0,0``: argparse reads a value starting with ``-`` that is
+    not one number as a flag ("expected one argument")."""
+    out = []
+    for word in words:
+        if out and out[-1] == "--translate-mm" and str(word).startswith("-") and "," in str(word):
+            out[-1] = f"--translate-mm={word}"
+        else:
+            out.append(word)
+    return out
+
+
+def _flagged_by_role(error: SkinrenderError, command) -> SkinrenderError:
+    """``error`` worded with the command's flag of its role where it names the argument instead (``skin: …`` →
+    ``--skin: …``, from a layer that knows no flags); as it is where it has a flag, or the command no such flag."""
+    flag = f"--{error.role.replace('_', '-')}" if error.role and error.flag is None else None
+    if flag is None or command is None or flag not in command._option_string_actions:
+        return error
+    words = error.message[len(error.role) + 1:].lstrip() if error.message.startswith(f"{error.role}:") else error.message
+    return error.reworded(f"{flag}: {words}", flag=flag)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     hand_back()  # Ctrl-C raises KeyboardInterrupt again: handled below, from the first parse on
-    name, args = "skinrender", argparse.Namespace()
+    name, args, command = "skinrender", argparse.Namespace(), None
     try:
-        words = sys.argv[1:] if argv is None else argv
+        words = _negative_triples(list(sys.argv[1:] if argv is None else argv))
         parser = build_parser(words[0] if len(words) else None)  # the command's group, where it is known
-        args, extra = parser.parse_known_args(argv)
+        args, extra = parser.parse_known_args(words)
         name = f"skinrender {args.command}"
         command = _subparsers(parser)[args.command]
         if extra:  # argparse's own message would name the top-level program: name the command and its help
@@ -100,6 +122,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         sys.stdout.flush()
         return _status_of(stop)
     except SkinrenderError as error:
+        error = _flagged_by_role(error, command)
         print(f"{name}: error: {' '.join(coverage_hint(error, args).split())}", file=sys.stderr)
         return error.status
     except KeyboardInterrupt:

@@ -22,8 +22,7 @@ __all__ = [
     "Parser", "flag", "flagged", "imaging_options", "camera_of", "check_output", "check_seed", "SEED_MAX",
     "HELP_CAMERA", "HELP_ILLUMINANT", "HELP_PLANCKIAN", "HELP_GRID", "add_common", "add_grid", "add_model", "add_search",
     "add_render", "emit", "table", "range_text", "grid_of", "grid_from", "settings_of", "settings_from",
-    "camera_from", "choices_help", "coverage_hint",
-    "interruptible", "add_max_minutes",
+    "camera_from", "choices_help", "coverage_hint", "interruptible", "add_max_minutes",
 ]
 
 HELP_CAMERA = (
@@ -65,15 +64,13 @@ class Once(argparse.Action):
 
 
 def add_grid(parser: argparse.ArgumentParser, named_sets: bool = False) -> None:
-    """``--grid`` and ``--extrapolation`` (``named_sets``: it applies to bundled reflectance sets too, as
-    ``search`` and ``reproduce`` take it; ``args.extrapolates_named``)."""
+    """``--grid`` and ``--extrapolation`` (``named_sets``: for bundled sets too, ``args.extrapolates_named``)."""
     from ..spectra import EXTRAPOLATIONS
 
     parser.add_argument("--grid", default="400:700:1", help=HELP_GRID)
-    which = ("for reflectance sets (bundled ones too) and CSV cameras" if named_sets
-             else "for CSV cameras and reflectances")
+    which = "reflectance sets (bundled ones too) and CSV cameras" if named_sets else "CSV cameras and reflectances"
     parser.add_argument("--extrapolation", default="refuse", choices=list(EXTRAPOLATIONS),
-                        help=f"{which} that do not cover the grid: " + choices_help(EXTRAPOLATIONS))
+                        help=f"for {which} that do not cover the grid: " + choices_help(EXTRAPOLATIONS))
     parser.set_defaults(extrapolates_named=named_sets)
 
 
@@ -354,9 +351,9 @@ def camera_from(spec: str, extrapolation: str = "refuse", grid=None, name: str =
 
 def coverage_hint(error, args: argparse.Namespace) -> str:
     """
-    The line of a refusal: for spectra that do not cover the grid (``error.cause == "coverage"``) its advice
-    kept to the flags the command has (``--grid``, ``--extrapolation``; an ``--extrapolation`` that was given
-    and still refused does not apply to those spectra, so it is not advised); any other error as it is.
+    The line of a refusal: for spectra that do not cover the grid (``error.cause == "coverage"``) its advice kept
+    to the flags the command has and that apply (``--grid``; ``--extrapolation`` unless given and still refused, or
+    the set is bundled and the command extrapolates CSV files only); any other error as it is.
 
     >>> import argparse
     >>> from skinrender.errors import SkinrenderError
@@ -368,9 +365,8 @@ def coverage_hint(error, args: argparse.Namespace) -> str:
         return str(error)
     message = error.message
     grid, extrapolation = hasattr(args, "grid"), getattr(args, "extrapolation", None)
-    bundled = not message.split(": measured over")[0].strip().lower().endswith(".csv")
-    if grid and extrapolation == "refuse" and bundled and not getattr(args, "extrapolates_named", False):
-        # this command's --extrapolation applies to CSV files only: not advised for a bundled set
+    csv = message.split(": measured over")[0].strip().lower().endswith(".csv")
+    if grid and extrapolation == "refuse" and not csv and not getattr(args, "extrapolates_named", False):
         return message + "; choose a --grid inside the data (a bundled set is not extrapolated)"
     if grid and extrapolation == "refuse":
         return message + "; choose a --grid inside the data or an --extrapolation ('zero' or 'constant')"

@@ -224,13 +224,13 @@ def check_search_time(args: argparse.Namespace, positions: int, noisy, max_tripl
 
 
 def extrapolation_notes(sets, grid, rule: str) -> list[str]:
-    """One note per reflectance set (``(flag, SpectralSet)``) that ``--extrapolation`` ``rule`` extended to the
+    """One note per reflectance set (``(option, SpectralSet)``) that ``--extrapolation`` ``rule`` extended to the
     ``grid`` (nm): it was measured over less (nothing is extrapolated without a word)."""
     notes = []
-    for flag, spectra in sets:
+    for option, spectra in sets:
         low, high = float(spectra.wavelengths[0]), float(spectra.wavelengths[-1])
         if rule != "refuse" and (low > grid.start or high < grid.end):
-            notes.append(f"{flag} {spectra.name}: measured over {low:g}–{high:g} nm, extrapolated "
+            notes.append(f"{option} {spectra.name}: measured over {low:g}–{high:g} nm, extrapolated "
                          f"('{rule}') to the grid {grid.start:g}–{grid.end:g} nm")
     return notes
 
@@ -252,7 +252,7 @@ def search_notes(result, best: dict, impulse_slope: float | None) -> list[str]:
             if volumes.size and not np.any(volumes[:, columns] > 0):
                 notes.append(f"every {cases} {label} gamut has zero volume (degenerate: a --grid too coarse for "
                              "the sensors, channels that coincide, or spectra all alike); the tables list every "
-                             "triplet as tied")
+                             f"triplet as tied, and min_ratio has no {cases} row: the ratio is undefined there")
     if result.info.get("exposure_note"):
         notes.append(result.info["exposure_note"])
     if result.noisy is not None and not best.get("min_noisy_fpr"):

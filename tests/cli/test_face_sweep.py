@@ -173,3 +173,14 @@ def test_the_sensors_flags_reach_the_noise_level(capsys):
     assert status == 0, err[-500:]
     row = json.loads(out)["combinations"][0]
     assert row["illuminance_lux"] == 500 and row["imager"] == "sony-imx174"
+
+
+def test_a_sweep_estimated_beyond_max_minutes_is_refused_with_its_estimate(capsys):
+    """A subsurface-volume sweep at 512 px and 2048 spp (about 10 h) started without a word: face-sweep had no
+    --max-minutes (an hour by default, as ladder's)."""
+    from .refusal import assert_refused
+
+    line = assert_refused(["face-sweep", "--camera", "gbell:9@450,540,610", "--lights", "2856/5900", "--levels",
+                           "subsurface-volume", "--size", "512", "--spp", "2048"],
+                          ("--max-minutes", "would take about", "more than the cap of 60 min"), capsys)
+    assert " h (estimated)" in line

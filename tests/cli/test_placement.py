@@ -78,3 +78,16 @@ def test_a_face_beyond_float32s_range_is_refused_naming_it(argv, capsys):
     lights = LIGHTS if command != "ladder" else ["--prevailing", "2856", "--calibration", "5900"]
     assert_refused([command, *rest, "--camera", CAM, *lights, "--skin", "skin-model:melanin=0.3", "--translate-mm",
                     "3000,0,0"], ("face.toml: it reaches", "mean free path"), capsys)
+
+
+def test_a_negative_translation_is_taken_as_a_value(capsys):
+    """``--translate-mm -100,0,0`` was argparse's "expected one argument" (only ``--translate-mm=-100,0,0`` worked):
+    the face moved -100 mm renders, and its JSON says so."""
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as folder:
+        status, out, err = run(["render", "face", "--camera", CAM, *LIGHTS, "--size", "8", "--spp", "12",
+                                "--translate-mm", "-100,0,0", "-o", Path(folder) / "n.exr", "--json"], capsys)
+    assert status == 0, err
+    assert json.loads(out)["translate_mm"] == [-100.0, 0.0, 0.0]

@@ -56,3 +56,17 @@ def test_findings_in_words():
     text = findings_text([("direct", {"verdict": "pass"}), ("mixed", mixed), ("sheen", {"verdict": "inconclusive"})])
     assert text == ("Eq. 4 mispredicts detection (by more than 0.02) at: mixed (FPR +0.41); it holds at: direct; "
                     "undecided (more samples needed) at: sheen")
+
+
+def test_a_rate_of_too_few_pixels_is_undefined_not_a_finding():
+    """``ladder --size 1``: one skin pixel, classified alike in every replicate (standard error 0), made a finding
+    "Eq. 4 mispredicts detection … TPR −1.00" and exit 1; eq4_shift said the same pixels were too few."""
+    from skinrender.evaluation.detection_verdict import PIXELS_MIN
+
+    one = detection_verdict((0.0, None), (0.0, None), (1.0, None), [(0.0, None)] * 12, pixels={"skin": 1, "prop": 0})
+    document, verdict = one
+    assert verdict.outcome == "not_applicable" and document["tpr"] is None
+    assert f"only 1 scored skin pixels, fewer than {PIXELS_MIN}" in document["undefined"]["tpr"]
+    enough = detection_verdict((0.0, None), (0.0, None), (1.0, None), [(0.0, None), (0.1, None)] * 6,
+                               pixels={"skin": PIXELS_MIN, "prop": 0})
+    assert enough[1].outcome == "fail" and enough[0]["tpr_change"] == -1.0

@@ -47,3 +47,13 @@ def test_the_documents_unit_is_taken_into_account():
     """In metres (unit 1000 mm) the spacing at 0.3 m is float32's there, times 1000 mm."""
     assert check_float32_range("x", 300.0, 1.9, "a pixel", unit_mm=1000.0) == pytest.approx(
         float(np.spacing(np.float32(0.3))) * 1000)
+
+
+def test_the_spawn_offset_grows_with_the_distance_and_is_refused_past_its_limit():
+    from skinrender.rendering.placement import RAY_EPSILON, SPAWN_OFFSET_MAX_MM, check_spawn_offset, spawn_offset_mm
+
+    assert spawn_offset_mm(0.0, 1000.0) == pytest.approx(RAY_EPSILON * 1000.0)  # a face at the origin: ~0.09 mm
+    assert spawn_offset_mm(300.0, 1.0) == pytest.approx(301 * RAY_EPSILON)  # the same in a mm document
+    assert check_spawn_offset("face", 5000.0, 1000.0) < SPAWN_OFFSET_MAX_MM
+    with pytest.raises(SkinrenderError, match=r"face: it reaches 2e\+04 mm .* keep it within 1\.0\d*e\+04 mm"):
+        check_spawn_offset("face", 20_000.0, 1000.0)

@@ -89,8 +89,7 @@ REPLICATES = 12
 SPP_REPLICATE_MIN = 16
 """Fewest samples per pixel of one replicate: ``validate`` renders each replicate with at least this many."""
 
-PIXELS_MIN = 10
-"""Fewer tested pixels than this and a check is inconclusive: too small an image or too little light."""
+from ...evaluation.detection_verdict import PIXELS_MIN  # noqa: E402, F401 - one minimum for every check (re-exported)
 
 
 def sphere_emission(grid: WavelengthGrid = GRID_DEFAULT) -> tuple[NDArrayFloat, NDArrayFloat]:

@@ -22,7 +22,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..placement import check_float32_range
+from ..placement import check_float32_range, check_spawn_offset
 from .document import transform
 from .effects import physics_level
 from .scene import MESH_HEAD, FaceScene
@@ -74,6 +74,8 @@ def check_face_range(scene: FaceScene, physics, skin: str, grid) -> float:
     from .effects.subsurface import SUBSURFACE_VOLUME, face_media
 
     skin_walks = SUBSURFACE_VOLUME in level.effects  # the level walks under the skin (skinvolpath)
+    if any(effect.name.startswith("subsurface") for effect in level.effects):  # the fast level's too: the skin's
+        face_media(skin, grid)  # fit refused before any level renders (a ladder rendered the others first)
     if skin_walks:
         from ..subsurface import mean_free_path
 
@@ -83,5 +85,6 @@ def check_face_range(scene: FaceScene, physics, skin: str, grid) -> float:
         distance = float(np.linalg.norm(np.subtract(c.target, c.position)))
         smallest = 2000.0 * distance * np.tan(np.radians(c.fov) / 2) / c.width
         what = "a pixel's footprint at the camera target"
-    return check_float32_range(scene.source or scene.name, face_reach_mm(scene, props=not skin_walks), smallest, what,
-                               1000.0 / level.scene_scale)
+    where, unit_mm = scene.source or scene.name, 1000.0 / level.scene_scale
+    check_spawn_offset(where, face_reach_mm(scene), unit_mm)  # occlusion: the mesh's and the props' surfaces
+    return check_float32_range(where, face_reach_mm(scene, props=not skin_walks), smallest, what, unit_mm)

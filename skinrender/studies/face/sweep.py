@@ -64,7 +64,7 @@ from ...rendering.settings import check_seed, seed_at
 from ...rendering.validation import analytic_reference
 from ...rendering.variants import choose_variant
 from ...spectra import GRID_DEFAULT, WavelengthGrid
-from ...workload import duration_text
+from ...workload import check_work, duration_text
 from .workers import RenderRun, run_renders
 from .ladder import score_rendering
 
@@ -285,9 +285,10 @@ class FaceSweep(RenderRun):
 
 
 def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples: float, cores: int,
-                levels=None, bands=None, skins: int = 1) -> None:
+                levels=None, bands=None, skins: int = 1, max_minutes: float | None = None) -> None:
     """Refuse a sweep too large (``levels``: each render's level; a slower level's samples count at its cost;
-    ``bands``: spectral renders, each sample at the bands' cost; ``skins``: how many)."""
+    ``bands``: spectral renders, each sample at the bands' cost; ``skins``: how many; ``max_minutes``: the cap of
+    its estimated time, ``None`` none)."""
     pixels = size * size
     if pixels > PIXELS_MAX:
         raise SkinrenderError(f"size {size} pixels gives {pixels} pixels per image, more than {PIXELS_MAX}")
@@ -314,6 +315,9 @@ def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples
         raise SkinrenderError(f"{renders} renders × {pixels} pixels × {spp} spp = {weighted:.3g} samples{counted} "
                               f"is more than max_samples = {max_samples:.3g} ({about}); raise "
                               "the limit (--max-samples) or lower the size or spp")
+    if max_minutes is not None:
+        check_work(seconds, "--max-minutes", f"{renders} renders of {pixels} pixels at {spp} spp {on}", max_minutes,
+                   fewer="lower --size or --spp, or sweep fewer combinations")
 
 
 def face_sweep(
@@ -334,6 +338,7 @@ def face_sweep(
     progress=None,
     max_renders: int = RENDERS_MAX,
     max_samples: float = SWEEP_SAMPLES_MAX,
+    max_minutes: float | None = None,
     spectral: bool | None = None,
     bands: WavelengthGrid | str = BANDS_DEFAULT,
     skin_set="skin",
@@ -367,9 +372,10 @@ def face_sweep(
         A Dask scheduler address (``tcp://host:8786``) or a ``distributed.Client``: the renders run there.
     progress
         A stream (``sys.stderr``) for a progress bar (shown on a terminal only), or ``None``.
-    max_renders, max_samples
-        Refuse a sweep of more renders, or more samples (renders × pixels × spp), than these; the message
-        carries an estimate of the time.
+    max_renders, max_samples, max_minutes
+        Refuse a sweep of more renders, or more samples (renders × pixels × spp), than these, or estimated to take
+        longer than ``max_minutes`` (``None``: no cap of time; the command line's default is an hour); the
+        message carries the estimate.
     spectral, bands
         Render once per prevailing light, skin and level with ``bands`` (``START:END:STEP`` nm) as the film and
         see every camera and calibration through it (:mod:`~skinrender.rendering.face.spectral_face`), rather
@@ -411,10 +417,10 @@ def face_sweep(
             projection(cam, bands, grid)
         renders = spectral_tasks(cams, pairs, skins, levels)
         _check_size(len(renders), int(size), int(spp), max_renders, max_samples, cores, [t[2] for t in renders],
-                    bands, len(set(skins)))
+                    bands, len(set(skins)), max_minutes)
     else:
         _check_size(len(tasks), int(size), int(spp), max_renders, max_samples, cores, [t[-1] for t in tasks],
-                    skins=len(set(skins)))
+                    skins=len(set(skins)), max_minutes=max_minutes)
     face = load_face_scene(scene)
     settings = _Settings(scene, int(size), int(spp), int(seed), choose_variant(variant), grid, imager, illuminance,
                          skin_set, check_tolerance(detection_tolerance, "detection_tolerance"))

@@ -48,5 +48,18 @@ def test_beyond_float32s_useful_range_is_refused_naming_the_scene():
         check_face_range(far, "interreflection+subsurface-volume", SKIN, GRID_DEFAULT)
     assert raised.value.flag == "--translate-mm"
     assert check_face_range(far, "direct", SKIN, GRID_DEFAULT) < 0.019
-    with pytest.raises(SkinrenderError, match="a pixel's footprint at the camera target"):
-        check_face_range(face.translated((0, 3e5, 0)), "sheen", SKIN, GRID_DEFAULT)
+
+
+@pytest.mark.parametrize("level", ["direct", "sheen", "subsurface"])
+def test_beyond_a_millimetre_of_spawn_offset_is_refused_at_every_level(level):
+    """Mitsuba starts a ray spawned at a surface (1 + max|p|)·8.9e-5 units off it: 1 mm at ~10 m from the origin,
+    where the face's skin measured 0.25 % brighter (1.3 % at 100 m, 5.1 % at 1 km: occlusion lost), within
+    float32's useful range for a pixel's footprint (256 m at 256 px), which let it through before (at
+    subsurface-volume the skin's mean free path bounds it first: 2–4 m)."""
+    face = load_face_scene("face")
+    skin = "skin-model:melanin=0.02"
+    assert check_face_range(face.translated((0, 9000, 0)), level, skin, GRID_DEFAULT) < 0.01
+    with pytest.raises(SkinrenderError, match=r"face\.toml: it reaches .* spawns at a surface .* off it, more than "
+                                              r"1 mm") as raised:
+        check_face_range(face.translated((0, 11_000, 0)), level, skin, GRID_DEFAULT)
+    assert raised.value.flag == "--translate-mm" and raised.value.role == "translate_mm"
