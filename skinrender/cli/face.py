@@ -227,6 +227,11 @@ def command_ladder(args: argparse.Namespace) -> None:
         document = result.document()
         text = ladder_text(result, document)
     document.update(translate_key(getattr(args, "translate_mm", None)))
+    used = sorted({row["spp"] for row in document.get("levels", []) if isinstance(row, dict) and "spp" in row})
+    document["spp_requested"] = inputs["spp"]
+    if used and used != [inputs["spp"]]:  # replicates of ⌈spp / K⌉: said, as face-sweep says it
+        text = (f"note: --spp {inputs['spp']} rendered as {', '.join(map(str, used))} spp (whole replicates of "
+                "⌈spp / replicates⌉ each)\n" + text)  # first: the last lines are the finding and the verdict
     if plot is not None:
         write_output(plot, result.figure, "--plot")
         document["plot"] = str(plot)

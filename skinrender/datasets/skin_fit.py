@@ -422,10 +422,11 @@ def fit_skin_spectra(wavelength: ArrayLike, values: ArrayLike, names, method: st
     jobs = [(lam, row, str(name), method, held, fitted, port_mm) for row, name in zip(values, names)]
     workers = min(len(jobs), workers or os.cpu_count() or 1)
     bar = None
-    if progress is not None:
-        from tqdm import tqdm
+    if progress is not None:  # a bar on a terminal, one line elsewhere (a log, a pipe: no carriage returns)
+        from ..workload import announce, progress_bar
 
-        bar = tqdm(total=len(jobs), file=progress, desc=f"fitting ({method})", unit="spectrum", leave=False)
+        announce(progress, f"fitting ({method})", len(jobs), "fit")
+        bar = progress_bar(len(jobs), f"fitting ({method})", progress, "fit")
     results = []
     try:
         if workers <= 1:

@@ -416,3 +416,17 @@ def test_a_skin_the_fast_level_cannot_render_is_refused_before_any_level_renders
                            "direct,subsurface", "--size", "16", "--spp", "12", "--skin", "macbeth:#3"],
                           ("--skin", "not skin as the skin model knows it"), capsys)
     assert line.split("error: ")[1].startswith("--skin: 'macbeth:#3'")
+
+
+def test_a_ladder_says_when_its_spp_was_rounded_up_to_whole_replicates(capsys):
+    """``ladder --spp 1`` rendered 12 spp (12 replicates of 1) without a word: the text says so, first (its last
+    lines stay the finding and the verdict), and the JSON keeps what was asked."""
+    from .refusal import run
+
+    arguments = ["ladder", "--camera", CAM, "--prevailing", "A", "--calibration", "5900", "--levels", "direct",
+                 "--size", "8", "--spp", "1"]
+    status, out, err = run(arguments, capsys)
+    assert out.startswith("note: --spp 1 rendered as 12 spp") and out.strip().splitlines()[-1].startswith("verdict:")
+    status, out, err = run(arguments + ["--json"], capsys)
+    document = json.loads(out)
+    assert document["spp_requested"] == 1 and [level["spp"] for level in document["levels"]] == [12]

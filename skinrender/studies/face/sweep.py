@@ -291,10 +291,11 @@ def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples
     its estimated time, ``None`` none)."""
     pixels = size * size
     if pixels > PIXELS_MAX:
-        raise SkinrenderError(f"size {size} pixels gives {pixels} pixels per image, more than {PIXELS_MAX}")
+        raise SkinrenderError(f"size {size} pixels gives {pixels} pixels per image, more than {PIXELS_MAX}",
+                              role="size")
     if spp * pixels > SAMPLES_MAX:
         raise SkinrenderError(f"spp {spp} × {pixels} pixels is more than {SAMPLES_MAX:.3g} samples per render; at "
-                              f"most {SAMPLES_MAX // pixels} spp at this size")
+                              f"most {SAMPLES_MAX // pixels} spp at this size", role="spp")
     each = -(-spp // REPLICATES_SWEEP)  # every combination is rendered as replicates of ⌈spp / K⌉
     seconds = estimate_seconds(renders * REPLICATES_SWEEP, pixels, each, cores,
                                None if levels is None else [level for level in levels for _ in range(REPLICATES_SWEEP)],
@@ -303,7 +304,7 @@ def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples
     about = f"about {duration_text(seconds)} {on}"
     if renders > max_renders:
         raise SkinrenderError(f"{renders} renders is more than max_renders = {max_renders} ({about}); raise "
-                              "the limit (--max-renders) or sweep fewer combinations")
+                              "the limit (--max-renders) or sweep fewer combinations", role="max_renders")
     costs = [1.0] * renders if levels is None else [SAMPLES_PER_S / physics_level(level).samples_per_s
                                                      for level in levels]
     weighted = sum(costs) * pixels * spp
@@ -314,7 +315,7 @@ def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples
                    if slower else "")
         raise SkinrenderError(f"{renders} renders × {pixels} pixels × {spp} spp = {weighted:.3g} samples{counted} "
                               f"is more than max_samples = {max_samples:.3g} ({about}); raise "
-                              "the limit (--max-samples) or lower the size or spp")
+                              "the limit (--max-samples) or lower the size or spp", role="max_samples")
     if max_minutes is not None:
         check_work(seconds, "--max-minutes", f"{renders} renders of {pixels} pixels at {spp} spp {on}", max_minutes,
                    fewer="lower --size or --spp, or sweep fewer combinations")
