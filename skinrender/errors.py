@@ -72,20 +72,20 @@ def check_flag(value, name: str) -> bool:
     ...
     skinrender.errors.SkinrenderError: knee must be True or False, got 'no'
     """
-    if isinstance(value, bool) or type(value).__name__ == "bool_":
+    if isinstance(value, bool) or (type(value).__module__ == "numpy" and type(value).__name__ in ("bool", "bool_")):
         return bool(value)
     raise SkinrenderError(f"{name} must be True or False, got {value!r}", role=name)
 
 
 def naming_role(role: str, function, *args, **kwargs):
     """
-    ``function(*args, **kwargs)``, its :class:`SkinrenderError` about a reflectance (role ``reflectance``, or none)
-    given the caller's argument ``role`` (``skin``, ``munsell``): which of two sets is at fault.
+    ``function(*args, **kwargs)``, its :class:`SkinrenderError` about a reflectance (role ``reflectance``) given the
+    caller's argument ``role`` (``skin``, ``munsell``): which of two sets is at fault; any other error as it is.
     """
     try:
         return function(*args, **kwargs)
     except SkinrenderError as error:
-        if error.role not in (None, "reflectance"):
+        if error.role != "reflectance":
             raise
         raise error.reworded(error.message if error.message.startswith(role) else f"{role}: {error.message}",
                              role=role) from None

@@ -48,9 +48,9 @@ class SpectraTable:
 
 def measured_spectrum(wavelength, reflectance, least: int = 2) -> tuple[NDArrayFloat, NDArrayFloat]:
     """
-    A measured reflectance spectrum as arrays: at least ``least`` finite fractions in [0, 1.5] (as
-    :func:`validate_spectra` takes reflectances: a table in percent is refused, not rescaled) on as many finite,
-    strictly increasing ``wavelength`` (nm); else an error naming ``wavelength`` or ``reflectance``.
+    A measured reflectance spectrum as arrays, in increasing wavelength: at least ``least`` finite fractions in
+    [0, 1.5] (as :func:`validate_spectra` takes reflectances: a table in percent is refused, not rescaled) on as
+    many finite, strictly monotonic ``wavelength`` (nm); else an error naming ``wavelength`` or ``reflectance``.
 
     >>> measured_spectrum([400, 500], [0.2, 40.0])
     Traceback (most recent call last):
@@ -61,8 +61,10 @@ def measured_spectrum(wavelength, reflectance, least: int = 2) -> tuple[NDArrayF
     if lam.ndim != 1 or lam.shape != values.shape or lam.size < least or not np.all(np.isfinite(values)):
         raise SkinrenderError(f"reflectance must be finite on at least {least} wavelengths, one per wavelength, got "
                               f"shapes {values.shape} and {lam.shape}", role="reflectance")
+    if np.all(np.diff(lam) < 0):  # decreasing: the same spectrum, read the other way
+        lam, values = lam[::-1], values[::-1]
     if not (np.all(np.isfinite(lam)) and np.all(np.diff(lam) > 0)):
-        raise SkinrenderError("wavelength must be finite nm, strictly increasing", role="wavelength")
+        raise SkinrenderError("wavelength must be finite nm, strictly monotonic", role="wavelength")
     if np.any((values < 0) | (values > 1.5)):
         percent = " (percent? divide by 100)" if 1.5 < values.max() <= 100 else ""
         raise SkinrenderError(f"reflectance must be fractions in [0, 1.5], got {values.min():.4g} to "

@@ -221,3 +221,17 @@ def test_an_empty_skin_set_has_a_degenerate_locus_not_an_error():
     """Degenerate is not an error (a bare ValueError from Qhull before): an empty set's locus contains nothing."""
     locus = sr.skin_locus(CAMERA, skin=np.zeros((0, grid.size)))
     assert locus.area == 0.0 and "empty" in locus.degenerate and not locus.contains([[0.4, 0.3]]).any()
+
+
+def test_a_numpy_bool_is_a_flag():
+    """numpy 2 names its bool ``bool`` (not ``bool_``): ``check_flag(np.False_)`` was refused (the review)."""
+    from skinrender.errors import check_flag
+
+    assert check_flag(np.False_, "knee") is False and check_flag(np.bool_(True), "knee") is True
+
+
+def test_a_search_blames_the_set_only_for_a_reflectances_fault():
+    """``naming_role`` blamed every unnamed error of the skin bank on ``skin`` (a light giving none was one)."""
+    with pytest.raises(sr.SkinrenderError) as error:
+        sr.search(9, "skin", "munsell", "400:700:100", [2000, 20])
+    assert error.value.role != "skin" and "20K" in str(error.value)

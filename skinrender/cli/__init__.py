@@ -84,8 +84,9 @@ def _negative_triples(words: list[str]) -> list[str]:
     not one number as a flag ("expected one argument")."""
     out = []
     for word in words:
-        if out and out[-1] == "--translate-mm" and str(word).startswith("-") and "," in str(word):
-            out[-1] = f"--translate-mm={word}"
+        flag = str(out[-1]) if out else ""  # argparse takes an abbreviation (--translate) too
+        if len(flag) > 6 and "--translate-mm".startswith(flag) and str(word).startswith("-") and "," in str(word):
+            out[-1] = f"{flag}={word}"
         else:
             out.append(word)
     return out
@@ -95,7 +96,7 @@ def _flagged_by_role(error: SkinrenderError, command) -> SkinrenderError:
     """``error`` worded with the command's flag of its role where it names the argument instead (``skin: …`` →
     ``--skin: …``, from a layer that knows no flags); as it is where it has a flag, or the command no such flag."""
     flag = f"--{error.role.replace('_', '-')}" if error.role and error.flag is None else None
-    if flag is None or command is None or flag not in command._option_string_actions:
+    if flag is None or command is None or flag not in command._option_string_actions or error.message.startswith(flag):
         return error
     words = error.message[len(error.role) + 1:].lstrip() if error.message.startswith(f"{error.role}:") else error.message
     return error.reworded(f"{flag}: {words}", flag=flag)

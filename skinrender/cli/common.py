@@ -351,9 +351,8 @@ def camera_from(spec: str, extrapolation: str = "refuse", grid=None, name: str =
 
 def coverage_hint(error, args: argparse.Namespace) -> str:
     """
-    The line of a refusal: for spectra that do not cover the grid (``error.cause == "coverage"``) its advice kept
-    to the flags the command has and that apply (``--grid``; ``--extrapolation`` unless given and still refused, or
-    the set is bundled and the command extrapolates CSV files only); any other error as it is.
+    The line of a refusal: for spectra that do not cover the grid (``cause`` ``coverage``), advice kept to the flags
+    that apply (``--grid``; ``--extrapolation`` unless refused already, or for a bundled set); any other as it is.
 
     >>> import argparse
     >>> from skinrender.errors import SkinrenderError
@@ -363,10 +362,11 @@ def coverage_hint(error, args: argparse.Namespace) -> str:
     """
     if not isinstance(error, SkinrenderError) or error.cause != "coverage":
         return str(error)
-    message = error.message
-    grid, extrapolation = hasattr(args, "grid"), getattr(args, "extrapolation", None)
-    csv = message.split(": measured over")[0].strip().lower().endswith(".csv")
-    if grid and extrapolation == "refuse" and not csv and not getattr(args, "extrapolates_named", False):
+    from ..datasets.registry import is_bundled
+
+    message, grid, extrapolation = error.message, hasattr(args, "grid"), getattr(args, "extrapolation", None)
+    bundled = is_bundled(message.split(": measured over")[0].split(": ")[-1])  # else a user's file
+    if grid and extrapolation == "refuse" and bundled and not getattr(args, "extrapolates_named", False):
         return message + "; choose a --grid inside the data (a bundled set is not extrapolated)"
     if grid and extrapolation == "refuse":
         return message + "; choose a --grid inside the data or an --extrapolation ('zero' or 'constant')"

@@ -41,10 +41,11 @@ def command_detect_face(args: argparse.Namespace, scene) -> None:
     temperatures = {"prevailing": request.prevailing, "calibration": request.calibration}
     locus_skin = getattr(args, "locus_skin", None) or "skin"
     skin = flag("--locus-skin", reflectances, locus_skin)
+    # before the render: a set that does not cover the grid was refused after it (and blamed on --skin)
+    locus = flag("--locus-skin", skin_locus, cam, skin, calibration=temperatures["calibration"], boundary=args.boundary)
     check_request_work(args, request)
     print(f"rendering the face ({request.level.name}) at {settings.spp} spp …", file=sys.stderr)
     result = FACE.render(request)
-    locus = skin_locus(cam, skin, calibration=temperatures["calibration"], boundary=args.boundary)
     scores, frame = score_frame(result, locus, clip_negative=True)  # scored as the ladder: too dark has no chromaticity
     mask, scored = frame["inside"], frame["scored"]
     tpr, fpr = scores["tpr"], scores["fpr"]

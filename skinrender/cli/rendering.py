@@ -185,13 +185,15 @@ def command_detect_chart(args: argparse.Namespace, scene) -> None:
     check_output(str(output.with_name(output.stem + "_preview.png")), "--output (its preview)", (".png",))
     figure = figure_from(args.figure, output, output.with_name(output.stem + "_preview.png"))
     request = chart_request_from(scene, settings, **chart_flags(args))
-    skin = flag("--locus-skin" if args.skin is None else "--skin", reflectances, locus_skin)
+    which = "--locus-skin" if args.skin is None else "--skin"
+    skin = flag(which, reflectances, locus_skin)
+    # the camera is white-balanced to the calibration light: the locus of that one balancing (before the render: a
+    # set that does not cover the grid was refused after it)
+    locus = flag(which, skin_locus, request.camera, skin, calibration=request.calibration, boundary=args.boundary)
     check_request_work(args.max_minutes, request)
     settings = request.settings
     print(f"rendering {request.scene.name} at {settings.spp} spp …", file=sys.stderr)
     rendering, imaged = CHART.render_imaged(request)
-    # the camera is white-balanced to the calibration light: the locus of that one balancing
-    locus = skin_locus(rendering.camera, skin, calibration=rendering.calibration, boundary=args.boundary)
     result = detect(rendering, locus, scored_min=SCORED_MIN_OUTPUT)  # scored as on a face: too dark has no colour
     preview = output.with_name(output.stem + "_preview.png")
     rate = lambda value, key: "undefined (" + result.undefined[key] + ")" if value is None else f"{value:.3f}"  # noqa: E731

@@ -37,6 +37,7 @@ __all__ = [
     "REGISTRY_CAMERAS",
     "register",
     "lookup",
+    "is_bundled",
     "unknown",
     "read_bundled_csv",
 ]
@@ -166,6 +167,12 @@ def register(registry: dict[str, DatasetEntry], name: str, source: str, licence:
         return loader
 
     return decorate
+
+
+def is_bundled(name: str) -> bool:
+    """Whether ``name`` is a bundled reflectance set's or camera's (not a user's file)."""
+    name = str(name).strip()
+    return lookup(REGISTRY_REFLECTANCES, name) is not None or lookup(REGISTRY_CAMERAS, name) is not None
 
 
 def lookup(registry: dict[str, DatasetEntry], name: str) -> DatasetEntry | None:

@@ -221,7 +221,7 @@ def check_parameters(parameters: SkinParameters) -> None:
         if value is None and name == "surface":
             continue
         try:
-            value = math.nan if isinstance(value, (bool, str)) else float(value)
+            value = float(value if not isinstance(value, (bool, str)) else "refused")  # text or a bool: no number
         except (TypeError, ValueError):
             raise SkinrenderError(f"{name} must be a number, got {value!r}", role=name) from None
         if not (math.isfinite(value) and (value > low if open_low else value >= low) and value <= high):

@@ -179,9 +179,11 @@ def optimise_camera(
         raise SkinrenderError(f"max_evaluations must be an integer ≥ 1 per start, got {max_evaluations!r}",
                               role="max_evaluations")
     for name, value in (("fwhm", fwhm), ("slope", slope)):
-        if isinstance(value, (bool, str)) or not (np.ndim(value) == 0 and np.isfinite(value) and value > 0):
+        if value is None or isinstance(value, (bool, str)) or np.size(value) != 1 \
+                or not (np.isfinite(float_array(value, name)).all() and float(np.ravel(value)[0]) > 0):
             raise SkinrenderError(f"{name} must be a finite number > 0 (fwhm: nm, sensor N·10), got {value!r}",
                                   role=name)
+    fwhm, slope = float(np.ravel(fwhm)[0]), float(np.ravel(slope)[0])
     starts = np.atleast_2d(float_array(starts, "starts"))
     if starts.ndim != 2 or starts.shape[1] != 3 or len(starts) == 0:
         raise SkinrenderError(f"starts must be triplets of peaks in nm, got shape {starts.shape}", role="starts")

@@ -136,7 +136,12 @@ def detection_verdict(rendered: Sequence, separated: Sequence, eq4: Sequence, sa
                          f"{key}_change_se": se, f"{key}_rendered": float(raw)})
         errors.append(change)
         ses.append(se)
-    if errors and np.all(np.isfinite(ses)):
+    few = [reason for key, reason in undefined.items() if key in RATES and reason.startswith("only ")]
+    if few:  # pixels there, too few to judge: undecided (exit 3), as eq4_shift says of them, never a pass
+        verdict = Verdict(name, "inconclusive", alpha, "equivalence of the rates' changes with the tolerance (not "
+                          "run)", reason="; ".join(few))
+        uppers = iter([None] * len(errors))
+    elif errors and np.all(np.isfinite(ses)):
         verdict, bounds = equivalence(errors, ses, tolerance, alpha, name=name)
         uppers = iter(np.atleast_1d(bounds["upper"]).tolist())
     else:

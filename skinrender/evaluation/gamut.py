@@ -220,7 +220,7 @@ def illuminant_temperatures(illuminants, camera_=None) -> NDArrayFloat:
                          if camera_ is None else f"illuminants: {error.message}")
             else:
                 named = error.message if error.message.startswith("illuminants") else f"illuminants: {error.message}"
-            raise error.reworded(named, role="illuminants") from None
+            raise error.reworded(named, role="illuminants", flag=None) from None
     temperatures = float_array(illuminants, "illuminants")
     if temperatures.size == 0 or not np.all(np.isfinite(temperatures) & (temperatures > 0)):
         raise SkinrenderError(f"illuminants must be kelvin > 0, got {temperatures.tolist()}", role="illuminants")

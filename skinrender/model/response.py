@@ -424,8 +424,7 @@ def knee(
 
     x = float_array(x, "x")
     for name, value in (("a", a), ("point", point), ("ceiling", ceiling)):
-        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
-                or not np.isfinite(value):
+        if isinstance(value, (bool, str)) or np.ndim(value) != 0 or not np.isfinite(float_array(value, name)):
             raise SkinrenderError(f"{name} must be one finite number, got {value!r}", role=name)
     if not 0 < a <= 1:
         raise SkinrenderError(f"a (the knee factor) must be in (0, 1], got {a}", role="a")

@@ -59,7 +59,8 @@ _CANDIDATES_WORDS = RangeWords(
 def temperature_range(start: float = 2000.0, end: float = 10000.0, step: float = 100.0) -> NDArrayFloat:
     """Temperatures ``start, start + step, …, end`` in K (``end`` included)."""
     for name, value in (("start", start), ("end", end), ("step", step)):
-        if isinstance(value, (bool, str)) or not (np.ndim(value) == 0 and np.isfinite(value) and value > 0):
+        if value is None or isinstance(value, (bool, str)) or not (np.ndim(value) == 0 and np.isfinite(value)
+                                                                   and value > 0):
             raise SkinrenderError(f"{name} (temperature) must be a finite number of kelvin > 0, got {value!r}",
                                   role=name)
     return start + step * np.arange(range_steps(start, end, step, CANDIDATES_MAX, _CANDIDATES_WORDS, role="end") + 1)

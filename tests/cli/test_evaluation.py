@@ -110,3 +110,13 @@ def test_a_bundled_set_off_the_grid_is_not_told_to_extrapolate(capsys):
     assert "--extrapolation" not in line
     search = ["search", "--sensor", "9", "--positions", "400:700:100", "--grid", "380:780:5"]
     assert "--extrapolation ('zero' or 'constant')" in assert_refused(search, ("--skin", "does not cover"), capsys)
+
+
+def test_a_users_file_not_named_csv_is_still_told_to_extrapolate(tmp_path, capsys):
+    """Only a bundled set is kept from the --extrapolation advice: a user's narrow.txt takes --extrapolation (the
+    review found it told 'a bundled set is not extrapolated', going by the .csv suffix)."""
+    narrow = tmp_path / "narrow.txt"
+    narrow.write_text("wavelength,a\n450,0.3\n550,0.35\n650,0.5\n")
+    gamut = ["gamut", "--camera", "gbell:9@450,540,610", "--calibration", "2856", "--reflectances", str(narrow)]
+    line = assert_refused(gamut, ("--reflectances", "does not cover"), capsys)
+    assert "--extrapolation ('zero' or 'constant')" in line and "bundled" not in line

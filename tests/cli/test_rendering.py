@@ -337,3 +337,20 @@ def test_a_render_out_of_bounds_is_refused_before_its_progress_line(extra, names
     or exposure of 1e308 overflowed into a warning and an unflagged error."""
     assert_refused(["render", "macbeth", "--camera", CAM, *LIGHTS, "-o", tmp_path / "r.exr", *extra], names, capsys,
                    output=tmp_path)
+
+
+def test_a_locus_skin_that_does_not_cover_the_grid_is_refused_before_the_render_naming_it(tmp_path, capsys,
+                                                                                          monkeypatch):
+    """``detect … --locus-skin narrow.csv`` rendered, then refused the set as ``--skin`` (the locus now carries the
+    role skin): refused first, naming --locus-skin."""
+    from skinrender.rendering import kinds
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("rendered before the locus' skin set was checked")
+
+    monkeypatch.setattr(kinds.ChartKind, "render_imaged", refuse)
+    narrow = tmp_path / "narrow.csv"
+    narrow.write_text("wavelength,a,b\n450,0.3,0.4\n550,0.35,0.45\n650,0.5,0.6\n")
+    line = assert_refused(["detect", "macbeth", "--camera", CAM, *LIGHTS, "--locus-skin", narrow, "--spp", "8",
+                           "-o", tmp_path / "d.png"], ("--locus-skin", "does not cover"), capsys)
+    assert "--skin:" not in line

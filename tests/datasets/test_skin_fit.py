@@ -166,7 +166,7 @@ def test_fit_skin_returns_parameters_and_rms():
 @pytest.mark.parametrize("change, role", [
     ({"reflectance": 5.0}, "reflectance"),  # percent-like: fitted to the bounds before
     ({"reflectance": -1.0}, "reflectance"),
-    ({"wavelength": "reversed"}, "wavelength"),
+    ({"wavelength": "shuffled"}, "wavelength"),
     ({"scan": "yes"}, "scan"),  # taken as True before
     ({"fitted": "melanin"}, "fitted"),  # read letter by letter before
     ({"start": "x"}, "start"),  # a bare TypeError before
@@ -176,8 +176,8 @@ def test_a_fit_refuses_what_it_cannot_fit_naming_it(change, role):
     arguments = {"wavelength": lam, "reflectance": skin_reflectance(lam)}
     if "reflectance" in change:
         arguments["reflectance"] = arguments["reflectance"] * change.pop("reflectance")
-    if change.get("wavelength") == "reversed":
-        arguments["wavelength"] = lam[::-1]
+    if change.get("wavelength") == "shuffled":
+        arguments["wavelength"] = np.roll(lam, 3)
         change.pop("wavelength")
     with pytest.raises(SkinrenderError) as error:
         fit_skin_spectrum(**arguments, **change)
@@ -191,3 +191,11 @@ def test_the_model_refuses_parameters_that_are_not_parameters():
     with pytest.raises(SkinrenderError) as error:
         skin_reflectance([500.0], SkinParameters(melanin="0.1"))
     assert error.value.role == "melanin"
+
+
+def test_a_spectrum_in_decreasing_wavelength_fits_as_the_same_spectrum():
+    """The order of the samples does not matter to the fit (the review: refusing it refused a valid input)."""
+    lam = np.arange(400.0, 701.0, 10.0)
+    reflectance = skin_reflectance(lam)
+    forward, backward = fit_skin_spectrum(lam, reflectance), fit_skin_spectrum(lam[::-1], reflectance[::-1])
+    assert backward.rms == forward.rms and backward.parameters == forward.parameters

@@ -65,7 +65,7 @@ def test_a_rate_of_too_few_pixels_is_undefined_not_a_finding():
 
     one = detection_verdict((0.0, None), (0.0, None), (1.0, None), [(0.0, None)] * 12, pixels={"skin": 1, "prop": 0})
     document, verdict = one
-    assert verdict.outcome == "not_applicable" and document["tpr"] is None
+    assert verdict.outcome == "inconclusive" and document["tpr"] is None  # exit 3: undecided, never a pass
     assert f"only 1 scored skin pixels, fewer than {PIXELS_MIN}" in document["undefined"]["tpr"]
     enough = detection_verdict((0.0, None), (0.0, None), (1.0, None), [(0.0, None), (0.1, None)] * 6,
                                pixels={"skin": PIXELS_MIN, "prop": 0})

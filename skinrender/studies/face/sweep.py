@@ -32,6 +32,7 @@ from __future__ import annotations
 import csv
 import io
 import itertools
+import math
 import os
 import time
 from dataclasses import dataclass, field
@@ -317,8 +318,15 @@ def _check_size(renders: int, size: int, spp: int, max_renders: int, max_samples
                               f"is more than max_samples = {max_samples:.3g} ({about}); raise "
                               "the limit (--max-samples) or lower the size or spp", role="max_samples")
     if max_minutes is not None:
-        check_work(seconds, "--max-minutes", f"{renders} renders of {pixels} pixels at {spp} spp {on}", max_minutes,
-                   fewer="lower --size or --spp, or sweep fewer combinations")
+        if isinstance(max_minutes, bool) or not (isinstance(max_minutes, (int, float)) and math.isfinite(max_minutes)
+                                                 and max_minutes > 0):
+            raise SkinrenderError(f"max_minutes must be a finite number of minutes > 0, got {max_minutes!r}",
+                                  role="max_minutes")
+        try:
+            check_work(seconds, "--max-minutes", f"{renders} renders of {pixels} pixels at {spp} spp {on}",
+                       max_minutes, fewer="lower --size or --spp, or sweep fewer combinations")
+        except SkinrenderError as error:
+            raise error.reworded(role="max_minutes") from None
 
 
 def face_sweep(
