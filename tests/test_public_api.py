@@ -234,4 +234,4 @@ def test_a_search_blames_the_set_only_for_a_reflectances_fault():
     """``naming_role`` blamed every unnamed error of the skin bank on ``skin`` (a light giving none was one)."""
     with pytest.raises(sr.SkinrenderError) as error:
         sr.search(9, "skin", "munsell", "400:700:100", [2000, 20])
-    assert error.value.role != "skin" and "20K" in str(error.value)
+    assert error.value.role == "illuminants" and "20K" in str(error.value)

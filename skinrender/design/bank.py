@@ -175,7 +175,7 @@ def sensor_bank(
     for item, row in zip(items, white):
         if not np.all(np.isfinite(row) & (row > 1e-300)):
             raise SkinrenderError(f"illuminant {item} gives no light in the sensors' range ({grid}) at every position: "
-                                  "every response would be 0/0")
+                                  "every response would be 0/0", role="illuminants")
     factor = illuminant_factors(items, normalization, grid)  # None: WP (Eq. 8), the pair's
     temperatures = np.array([item.temperature if item.temperature is not None else np.nan for item in items])
     return SensorBank(positions, temperatures, signal, white, factor, knee=knee, diagonal=sensor == 1,
