@@ -29,7 +29,7 @@ __all__ = ["HELP_TOLERANCE", "EPILOG_VALIDATE", "SIGMAS_DEPRECATED", "add_check_
            "command_validate_spectral"]
 
 HELP_TOLERANCE = (
-    "relative tolerance REL in [6e-8, 1) on each lit patch channel (default 0.01, 1 %%); a channel darker than 1 %% of "
+    "relative tolerance REL in [5.96e-08 (2^-24), 1) on each lit patch channel (default 0.01, 1 %%); a channel darker than 1 %% of "
     "white (a perfect white's brightest channel under the prevailing light: 255 output units at p = c with the "
     "white normalisation) is held to the absolute floor REL × 1 %% of that white. pass: every patch channel shown within it at "
     "family-wise 95 %% confidence; fail: one shown outside it; inconclusive: the samples cannot tell (spp_needed "
