@@ -26,6 +26,7 @@ from __future__ import annotations
 import argparse
 import errno
 import os
+import re
 import sys
 from collections.abc import Sequence
 
@@ -84,19 +85,21 @@ def _negative_triples(words: list[str]) -> list[str]:
     not one number as a flag ("expected one argument")."""
     out = []
     for word in words:
-        flag = str(out[-1]) if out else ""  # argparse takes an abbreviation (--translate) too
-        if len(flag) > 6 and "--translate-mm".startswith(flag) and str(word).startswith("-") and "," in str(word):
+        flag = str(out[-1]) if out else ""  # argparse takes an abbreviation (--t, --translate) too
+        if len(flag) > 2 and "--translate-mm".startswith(flag) and re.match(r"-[\d.]", str(word)) and "," in str(word):
             out[-1] = f"{flag}={word}"
         else:
             out.append(word)
     return out
 
 
-def _flagged_by_role(error: SkinrenderError, command) -> SkinrenderError:
+def _flagged_by_role(error: SkinrenderError, command, args) -> SkinrenderError:
     """``error`` worded with the command's flag of its role where it names the argument instead (``skin: …`` →
-    ``--skin: …``, from a layer that knows no flags); as it is where it has a flag, or the command no such flag."""
+    ``--skin: …``, from a layer that knows no flags) and the user gave that flag; as it is otherwise (a scene's own
+    skin is not ``--skin``'s)."""
     flag = f"--{error.role.replace('_', '-')}" if error.role and error.flag is None else None
-    if flag is None or command is None or flag not in command._option_string_actions or error.message.startswith(flag):
+    action = None if flag is None or command is None else command._option_string_actions.get(flag)
+    if action is None or error.message.startswith(flag) or getattr(args, action.dest, None) in (None, action.default):
         return error
     words = error.message[len(error.role) + 1:].lstrip() if error.message.startswith(f"{error.role}:") else error.message
     return error.reworded(f"{flag}: {words}", flag=flag)
@@ -123,7 +126,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         sys.stdout.flush()
         return _status_of(stop)
     except SkinrenderError as error:
-        error = _flagged_by_role(error, command)
+        error = _flagged_by_role(error, command, args)
         print(f"{name}: error: {' '.join(coverage_hint(error, args).split())}", file=sys.stderr)
         return error.status
     except KeyboardInterrupt:

@@ -171,6 +171,11 @@ def _ladder_inputs(args: argparse.Namespace) -> dict:
         skin_reflectance_of(skin, GRID_DEFAULT, "--skin")
     default = ",".join(levels_each() if args.effects else levels_ladder())  # as registered now
     levels = levels_of(default if args.levels is None else args.levels)
+    if any(effect.name.startswith("subsurface") for level in levels for effect in level.effects):
+        from ..rendering.subsurface import skin_media_of
+
+        for skin in skins:  # the user's skin the subsurface levels fit, refused naming --skin before any render
+            skin_media_of(skin, GRID_DEFAULT, "--skin")
     if args.effects and all(level.names for level in levels):
         raise SkinrenderError(f"--levels: the effects table compares each effect with direct; add it, got "
                               f"{','.join(level.name for level in levels)!r}")
@@ -214,7 +219,8 @@ def command_ladder(args: argparse.Namespace) -> None:
     cams, bands = inputs.pop("cameras"), inputs.pop("bands")
     if len(cams) > 1:
         skins = inputs.pop("skins")
-        return command_ladders(args.json, {**inputs, "skin": skins[0] if skins else None}, cams, bands, plot)
+        return command_ladders(args.json, {**inputs, "skin": skins[0] if skins else None}, cams, bands, plot,
+                               getattr(args, "translate_mm", None))
     inputs["camera_"] = cams[0]
     skins = inputs.pop("skins")
     say = lambda line: print(line, file=sys.stderr)  # noqa: E731
@@ -227,11 +233,7 @@ def command_ladder(args: argparse.Namespace) -> None:
         document = result.document()
         text = ladder_text(result, document)
     document.update(translate_key(getattr(args, "translate_mm", None)))
-    used = sorted({row["spp"] for row in document.get("levels", []) if isinstance(row, dict) and "spp" in row})
-    document["spp_requested"] = inputs["spp"]
-    if used and used != [inputs["spp"]]:  # replicates of ⌈spp / K⌉: said, as face-sweep says it
-        text = (f"note: --spp {inputs['spp']} rendered as {', '.join(map(str, used))} spp (whole replicates of "
-                "⌈spp / replicates⌉ each)\n" + text)  # first: the last lines are the finding and the verdict
+    text = _spp_said(document, [document], inputs["spp"]) + text
     if plot is not None:
         write_output(plot, result.figure, "--plot")
         document["plot"] = str(plot)
@@ -242,7 +244,19 @@ def command_ladder(args: argparse.Namespace) -> None:
         raise SystemExit(document["exit_status"])
 
 
-def command_ladders(as_json: bool, inputs: dict, cameras: list, bands, plot) -> None:
+def _spp_said(document: dict, ladders: list, requested: int) -> str:
+    """``spp_requested`` put in ``document``, and the note (first: a ladder's last lines are its finding and verdict)
+    where the ``ladders``' levels or rows rendered another spp: whole replicates of ⌈spp / replicates⌉."""
+    document["spp_requested"] = requested
+    used = sorted({row["spp"] for ladder in ladders for row in ladder.get("levels", []) + ladder.get("rows", [])
+                   if isinstance(row, dict) and "spp" in row})
+    if not used or used == [requested]:
+        return ""
+    return (f"note: --spp {requested} rendered as {', '.join(map(str, used))} spp (whole replicates of ⌈spp / "
+            "replicates⌉)\n")
+
+
+def command_ladders(as_json: bool, inputs: dict, cameras: list, bands, plot, translate=None) -> None:
     """``ladder`` with several ``--camera``: each level's replicates rendered once spectrally (or, ``--direct``,
     per camera) and seen through every camera; one ladder per camera, the verdict their combination
     (``as_json``: ``--json``)."""
@@ -257,8 +271,9 @@ def command_ladders(as_json: bool, inputs: dict, cameras: list, bands, plot) -> 
     documents = [result.document() for result in results]
     verdict = combine([result.verdict for result in results], "ladders")
     spectral = None if bands is None else {"bands_nm": bands_text(bands), "bands": bands.size, "basis": "hat"}
-    document = {"cameras": documents, "spectral": spectral, **verdict.summary()}
-    text = "\n\n".join(ladder_text(result, doc) for result, doc in zip(results, documents))
+    document = {"cameras": documents, "spectral": spectral, **verdict.summary(), **translate_key(translate)}
+    text = _spp_said(document, documents, inputs["spp"])
+    text += "\n\n".join(ladder_text(result, doc) for result, doc in zip(results, documents))
     text += (f"\nverdict over {len(results)} cameras: {verdict.outcome.upper().replace('_', ' ')} (exit status "
              f"{document['exit_status']})")
     emit(as_json, document, text)

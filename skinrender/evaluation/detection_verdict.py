@@ -137,11 +137,11 @@ def detection_verdict(rendered: Sequence, separated: Sequence, eq4: Sequence, sa
         errors.append(change)
         ses.append(se)
     few = [reason for key, reason in undefined.items() if key in RATES and reason.startswith("only ")]
-    if few:  # pixels there, too few to judge: undecided (exit 3), as eq4_shift says of them, never a pass
+    if few and not errors:  # pixels there, too few to judge either rate: undecided (exit 3), never not applicable
         verdict = Verdict(name, "inconclusive", alpha, "equivalence of the rates' changes with the tolerance (not "
                           "run)", reason="; ".join(few))
-        uppers = iter([None] * len(errors))
-    elif errors and np.all(np.isfinite(ses)):
+        uppers = iter([])
+    elif errors and np.all(np.isfinite(ses)):  # the rates with pixels enough; one too few is left out, as one none
         verdict, bounds = equivalence(errors, ses, tolerance, alpha, name=name)
         uppers = iter(np.atleast_1d(bounds["upper"]).tolist())
     else:

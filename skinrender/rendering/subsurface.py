@@ -163,9 +163,10 @@ def skin_media_of(spec: str, grid: WavelengthGrid, where: str = "skin") -> SkinM
 
 
 def _role(where: str) -> str | None:
-    """The role of a refusal about ``where``: the argument's name (``skin``), ``None`` for a patch's words."""
+    """The role of a refusal about ``where``: a flag's argument (``--skin``: ``skin``); ``None`` for words (a
+    patch's, or ``skin``, which may be a scene's own skin and not the user's flag)."""
     name = str(where).lstrip("-").replace("-", "_")
-    return name if name.isidentifier() else None
+    return name if str(where).startswith("--") and name.isidentifier() else None
 
 
 @lru_cache(maxsize=256)

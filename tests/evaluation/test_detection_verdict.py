@@ -70,3 +70,13 @@ def test_a_rate_of_too_few_pixels_is_undefined_not_a_finding():
     enough = detection_verdict((0.0, None), (0.0, None), (1.0, None), [(0.0, None), (0.1, None)] * 6,
                                pixels={"skin": PIXELS_MIN, "prop": 0})
     assert enough[1].outcome == "fail" and enough[0]["tpr_change"] == -1.0
+
+
+def test_a_rate_of_too_few_pixels_is_left_out_as_one_of_none():
+    """One rate too few to judge, the other fine: the fine one is tested (a clear fail is a fail), as when the
+    other had no pixel at all (the review: 5 prop pixels made it inconclusive where 0 gave the TPR's verdict)."""
+    samples = [(0.5, 0.1), (0.5001, 0.1)] * 6
+    verdicts = [detection_verdict((0.5, 0.1), (0.5, fpr), (1.0, fpr), samples, pixels={"skin": 100, "prop": prop})
+                for prop, fpr in ((0, None), (5, 0.1))]
+    assert [v.outcome for _, v in verdicts] == ["fail", "fail"]
+    assert verdicts[1][0]["tpr_change_bound"] is not None and "only 5 scored prop" in verdicts[1][0]["undefined"]["fpr"]

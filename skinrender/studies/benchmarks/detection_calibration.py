@@ -141,6 +141,9 @@ def detection_calibration(level: str = PHYSICS_BASE, seeds: int = 40, camera_="g
     if not exact:
         row["undefined"] = ("Eq. 4 does not hold exactly at this level: a fail is a finding (the rates changed), not "
                             "a false alarm")
+    elif not any(o in ("pass", "fail") for o in outcomes):  # no false alarm, but no test either: nothing shown
+        row["consistent"] = None
+        row["undefined"] = "no run was decided (every one inconclusive: too few pixels or samples): nothing is tested"
     return {"machine": machine(), "level": effects.name, "scene": face.name, "camera": cam.name, "prevailing_K": p,
             "calibration_K": c, "spp_requested": int(spp), "spp": each * REPLICATES, "size": size,
             "skin": skin or face.skin, "skin_set": skin_set_name(skin_set), "detection_tolerance": tolerance,
