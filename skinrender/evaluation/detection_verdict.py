@@ -36,8 +36,8 @@ import numpy as np
 from ..errors import SkinrenderError
 from .verdict import ALPHA_EQUIVALENCE, Verdict, equivalence
 
-__all__ = ["PIXELS_MIN", "DETECTION_TOLERANCE", "HALVES_DETECTION", "DETECTION_KEYS", "check_tolerance", "detection_verdict",
-           "finding", "findings_text"]
+__all__ = ["PIXELS_MIN", "DETECTION_TOLERANCE", "HALVES_DETECTION", "DETECTION_KEYS", "check_tolerance",
+           "detection_verdict", "finding", "findings_text"]
 
 DETECTION_TOLERANCE = 0.02
 """How far, as a fraction, Eq. 4 may be off in TPR and in FPR unless told (``--detection-tolerance``)."""
@@ -52,8 +52,10 @@ DETECTION_KEYS = ("tpr", "fpr", "tpr_eq4", "fpr_eq4", "tpr_change", "fpr_change"
 RATES = ("tpr", "fpr")
 
 PIXELS_MIN = 10
-"""Fewer tested pixels than this and a check is inconclusive: too small an image or too little light (a rate of
-one pixel is 0 or 1, its resampled standard error 0; ``rendering.face.limits`` and ``eq4_shift`` take it too)."""
+"""Fewer tested pixels than this and a check has nothing to judge (too small an image, too little light): a rate
+of one pixel is 0 or 1, its resampled standard error 0. Such a rate is left out of the detection test, as one of
+no pixel (inconclusive where neither rate is judged); ``rendering.face.limits`` and ``eq4_shift`` hold their
+checks inconclusive below it."""
 
 
 def check_tolerance(value, flag: str = "tolerance") -> float:
