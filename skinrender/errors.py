@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import copy
 
-__all__ = ["SkinrenderError", "naming", "naming_role", "flag_of", "check_flag"]
+__all__ = ["SkinrenderError", "naming", "naming_role", "given_role", "flag_of", "check_flag"]
 
 
 class SkinrenderError(ValueError):
@@ -75,6 +75,25 @@ def check_flag(value, name: str) -> bool:
     if isinstance(value, bool) or (type(value).__module__ == "numpy" and type(value).__name__ in ("bool", "bool_")):
         return bool(value)
     raise SkinrenderError(f"{name} must be True or False, got {value!r}", role=name)
+
+
+def given_role(role: str, function, *args, **kwargs):
+    """
+    ``function(*args, **kwargs)``, its :class:`SkinrenderError` given the ``role`` where it has none (a file's or a
+    name's fault, found below the argument's caller: ``camera``, ``scene``, ``grid`` …).
+
+    >>> def read(path):
+    ...     raise SkinrenderError(f"{path}: no such file")
+    >>> try:
+    ...     given_role("camera", read, "cam.csv")
+    ... except SkinrenderError as error:
+    ...     error.role, error.message
+    ('camera', 'cam.csv: no such file')
+    """
+    try:
+        return function(*args, **kwargs)
+    except SkinrenderError as error:
+        raise (error if error.role else error.reworded(role=role)) from None
 
 
 def naming_role(role: str, function, *args, **kwargs):

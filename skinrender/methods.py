@@ -35,6 +35,12 @@ from .errors import SkinrenderError
 __all__ = ["validate_method", "method_of", "describe", "takes", "parse_range", "Steps", "RangeWords", "range_steps"]
 
 
+def _argument(what: str) -> str | None:
+    """A refusal's role from how it names the thing at fault: ``what`` where it is an argument's name
+    (``extrapolation``), ``None`` for words or a flag (``--grid``)."""
+    return what if what.isidentifier() else None
+
+
 def validate_method(name: object, methods: Mapping[str, object], what: str, role: str | None = None) -> str:
     """
     ``name`` if it is a key of ``methods``, else a :class:`SkinrenderError`
@@ -53,7 +59,7 @@ def validate_method(name: object, methods: Mapping[str, object], what: str, role
     """
 
     if not isinstance(name, str) or name not in methods:
-        role = role if role is not None else what if what.isidentifier() else None
+        role = role if role is not None else _argument(what)
         raise SkinrenderError(f"{what} must be one of {', '.join(methods)}, got {name!r}", role=role)
     return name
 
@@ -125,10 +131,9 @@ def parse_range(text: str, what: str, example: str = "400:700:10") -> tuple[floa
         values = tuple(float(part) for part in parts)
     except ValueError:
         raise SkinrenderError(f"{what} must be START:END:STEP in nm (e.g. {example}), got {text!r}",
-                              role=what if what.isidentifier() else None) from None
+                              role=_argument(what)) from None
     if not all(math.isfinite(value) for value in values):
-        raise SkinrenderError(f"{what} must be finite numbers of nm, got {text!r}",
-                              role=what if what.isidentifier() else None)
+        raise SkinrenderError(f"{what} must be finite numbers of nm, got {text!r}", role=_argument(what))
     return values  # type: ignore[return-value]
 
 

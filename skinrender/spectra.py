@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .constants import CONSTANT_C, CONSTANT_H, CONSTANT_K_B, TEMPERATURE_MAX
-from .errors import SkinrenderError
+from .errors import SkinrenderError, given_role
 from .hints import ArrayLike, Literal, NDArrayFloat
 from .methods import RangeWords, method_of, parse_range, range_steps
 
@@ -220,10 +220,7 @@ def as_grid(grid, name: str = "grid") -> WavelengthGrid:
     if isinstance(grid, WavelengthGrid):
         return grid
     if isinstance(grid, str):
-        try:
-            return WavelengthGrid.parse(grid)
-        except SkinrenderError as error:  # its message names the grid; its role, the argument
-            raise (error if error.role else error.reworded(role=name)) from None
+        return given_role(name, WavelengthGrid.parse, grid)  # its message names the grid; its role, the argument
     raise SkinrenderError(f"{name} must be a WavelengthGrid or 'START:END:STEP' in nm, got {grid!r}", role=name)
 
 

@@ -119,14 +119,16 @@ def detection_verdict(rendered: Sequence, separated: Sequence, eq4: Sequence, sa
     if draws.ndim != 2 or draws.shape[0] < 2:
         raise SkinrenderError(f"samples: the rates with each of two or more replicates left out, got {len(samples)}")
     variance = float(variance_factor) * np.var(draws, axis=0, ddof=1)
-    document, errors, ses, undefined = {}, [], [], {}
+    document, errors, ses, undefined, few = {}, [], [], {}, []
     for j, key in enumerate(RATES):
         value, predicted, raw = separated[j], eq4[j], rendered[j]
         kind = "skin" if key == "tpr" else "prop"
         count = (pixels or {}).get(kind)
-        if value is None or predicted is None or (count is not None and count < PIXELS_MIN):
-            reason = (f"no scored {kind} pixel (one material, brightest channel ≥ 10)" if value is None or predicted
-                      is None else f"only {count} scored {kind} pixels, fewer than {PIXELS_MIN}: too few for a rate")
+        too_few = value is not None and predicted is not None and count is not None and count < PIXELS_MIN
+        if value is None or predicted is None or too_few:
+            reason = (f"only {count} scored {kind} pixels, fewer than {PIXELS_MIN}: too few for a rate" if too_few
+                      else f"no scored {kind} pixel (one material, brightest channel ≥ 10)")
+            few += [reason] if too_few else []
             undefined.update({name_: reason for name_ in (key, f"{key}_eq4", f"{key}_change", f"{key}_change_bound",
                                                           f"{key}_change_se", f"{key}_rendered")})
             document.update({key: None, f"{key}_eq4": None, f"{key}_change": None, f"{key}_change_se": None,
@@ -138,7 +140,6 @@ def detection_verdict(rendered: Sequence, separated: Sequence, eq4: Sequence, sa
                          f"{key}_change_se": se, f"{key}_rendered": float(raw)})
         errors.append(change)
         ses.append(se)
-    few = [reason for key, reason in undefined.items() if key in RATES and reason.startswith("only ")]
     if few and not errors:  # pixels there, too few to judge either rate: undecided (exit 3), never not applicable
         verdict = Verdict(name, "inconclusive", alpha, "equivalence of the rates' changes with the tolerance (not "
                           "run)", reason="; ".join(few))

@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from ..datasets import SpectralSet, camera_sensitivities, looks_like_path
-from ..errors import SkinrenderError
+from ..errors import SkinrenderError, given_role
 from ..hints import ArrayLike, Literal, NDArrayFloat
 from ..methods import validate_method
 from ..spectra import EXTRAPOLATIONS, GRID_DEFAULT, WavelengthGrid, as_grid, gbell, impulse
@@ -222,10 +222,7 @@ def camera(spec: str | Camera, extrapolation: str = "refuse") -> Camera:
             f"camera {text!r}: expected 'gbell:N@P1,P2,P3', 'gbell:N,b=B@P1,P2,P3' or 'impulse@P1,P2,P3'",
             role="camera",
         )
-    try:
-        return _measured_camera(text, extrapolation)
-    except SkinrenderError as error:  # a file's or a name's fault: the camera argument's
-        raise (error if error.role else error.reworded(role="camera")) from None
+    return given_role("camera", _measured_camera, text, extrapolation)  # a file's or a name's fault: the camera's
 
 
 def _measured_camera(text: str, extrapolation: str) -> Camera:

@@ -37,10 +37,10 @@ from ..constants import (
     CONSTANT_OUTPUT_SCALE,
 )
 from ..datasets import SpectralSet, reflectances
-from ..errors import SkinrenderError
+from ..errors import SkinrenderError, given_role
 from ..hints import ArrayLike, Literal, NDArrayFloat
 from ..methods import method_of, validate_method
-from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid, float_array
+from ..spectra import GRID_DEFAULT, WavelengthGrid, as_grid, broadcast, float_array
 from .camera import Camera, camera
 from .factors import (NORMALISATIONS, QUADRATURES, factor_560nm, factor_euclidean, factor_none,  # noqa: F401
                       factor_white, illuminant_factors, normalisation_factor, spds_on, sum_weights,
@@ -144,11 +144,7 @@ def gain(
         if white.shape[-1:] != (3,) or not np.all(ok):
             raise SkinrenderError(f"{name} must be a white's three channel responses, finite and {low}, got "
                                   f"{np.ravel(white)[:6].tolist()} (shape {white.shape})", role=name)
-    try:
-        np.broadcast_shapes(white_p.shape, white_c.shape)
-    except ValueError:
-        raise SkinrenderError(f"white_p and white_c must broadcast together, got shapes {white_p.shape} and "
-                              f"{white_c.shape}", role="white_p") from None
+    broadcast(("white_p", white_p), ("white_c", white_c))
     if uses_whites(normalization):  # WP (Eq. 8): the pair's, from the whites
         if np.any(np.sum(white_p, axis=-1) <= 0):
             raise SkinrenderError("white_p must have light in some channel: a white that is black under the "
@@ -220,19 +216,13 @@ def white_coefficient(
 
 def pair_indices(p_items, p_shape, c_items, c_shape) -> tuple:
     """The prevailing and calibration lights' indices broadcast against each other, or an error naming both."""
-    try:
-        return np.broadcast_arrays(np.arange(len(p_items)).reshape(p_shape),
-                                   np.arange(len(c_items)).reshape(c_shape))
-    except ValueError:
-        raise SkinrenderError(f"prevailing and calibration must broadcast together, got shapes {tuple(p_shape)} and "
-                              f"{tuple(c_shape)}", role="prevailing") from None
+    p, c = np.arange(len(p_items)).reshape(p_shape), np.arange(len(c_items)).reshape(c_shape)
+    broadcast(("prevailing", p), ("calibration", c))
+    return np.broadcast_arrays(p, c)
 
 
 def _reflectance_values(reflectance, grid: WavelengthGrid) -> NDArrayFloat:
-    try:
-        return _reflectance_array(reflectance, grid)
-    except SkinrenderError as error:  # a set's name, file or array: the reflectance argument's
-        raise (error if error.role else error.reworded(role="reflectance")) from None
+    return given_role("reflectance", _reflectance_array, reflectance, grid)  # a set's name, file or array
 
 
 def _reflectance_array(reflectance, grid: WavelengthGrid) -> NDArrayFloat:

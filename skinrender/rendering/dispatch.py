@@ -28,7 +28,7 @@ Units: temperatures K; images in Eq. 4 output units (255 for white at p = c).
 
 from __future__ import annotations
 
-from ..errors import SkinrenderError
+from ..errors import SkinrenderError, given_role
 from .bands import BANDS_DEFAULT
 
 __all__ = ["load_scene", "render", "validate", "render_spectral", "render_cameras", "SPECTRAL_OMITTED"]
@@ -57,10 +57,7 @@ def load_scene(spec):
     """
     from .kinds import scene_kind  # here: importing skinrender need not load the face
 
-    try:
-        return scene_kind(spec).load(spec)
-    except SkinrenderError as error:  # a file's or a name's fault: the scene argument's
-        raise (error if error.role else error.reworded(role="scene")) from None
+    return given_role("scene", lambda: scene_kind(spec).load(spec))  # a file's or a name's fault: the scene's
 
 
 def _camera_of(camera, options: dict, what: str):

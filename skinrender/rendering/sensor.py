@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import SkinrenderError
+from ..errors import SkinrenderError, given_role
 from ..model.imager import Imager, imager as load_imager, is_integer
 
 __all__ = ["EXPOSURE_MAX", "ILLUMINANCE_MAX", "NoiseOptions"]
@@ -89,7 +89,7 @@ class NoiseOptions:
             if not isinstance(self.imager, (str, Path)):
                 raise SkinrenderError(f"imager must be a preset's name, a TOML path or an Imager, got {self.imager!r}",
                                       role="imager")
-            object.__setattr__(self, "imager", _named("imager", load_imager, self.imager))
+            object.__setattr__(self, "imager", given_role("imager", load_imager, self.imager))
         if self.illuminance is not None:
             lux = _number(self.illuminance)
             if lux is None or not (math.isfinite(lux) and 0 < lux <= ILLUMINANCE_MAX):
@@ -105,11 +105,3 @@ class NoiseOptions:
             raise SkinrenderError(f"exposure must be auto or a finite number of seconds > 0 and ≤ {EXPOSURE_MAX:g}, "
                                   f"got {exposure!r}", role="exposure")
         object.__setattr__(self, "exposure", seconds)
-
-
-def _named(role: str, function, *args):
-    """``function(*args)``, its error given the ``role`` where it has none."""
-    try:
-        return function(*args)
-    except SkinrenderError as error:
-        raise (error if error.role else error.reworded(role=role)) from None
