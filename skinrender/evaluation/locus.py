@@ -231,9 +231,9 @@ def skin_locus(
     """
 
     shaped = method_of(boundary, BOUNDARIES, "boundary")
-    points = locus_points(cam, skin, illuminants, calibration, grid, role="skin")
-    illuminants = illuminant_temperatures(illuminants, cam)
+    illuminants = illuminant_temperatures(illuminants, cam)  # once: 'auto' runs Stage 1
     calibration = None if calibration is None else calibration_kelvin(calibration)
+    points = locus_points(cam, skin, illuminants, calibration, grid, role="skin")
     if points.shape[0] == 0:  # degenerate is not an error: an empty skin set's locus contains nothing
         return SkinLocus(np.empty((0, 2)), 0.0, boundary, illuminants, calibration,
                          degenerate="the skin set is empty: no chromaticities to bound")
