@@ -2,9 +2,10 @@
 """
 Measure the skin model's fits to measured skin (``docs/skin-model.md``): the numbers behind its defaults.
 
-    python tools/measure_skin_fits.py calibrate [--every N]       # background and melanin power, together
+    python tools/measure_skin_fits.py calibrate [--every N] [--only NAME]   # background and melanin power, together
     python tools/measure_skin_fits.py calibrate --port-mm 5 [--only NAME]   # the power through the NIST port
     python tools/measure_skin_fits.py calibrate --port-mm 5 --only melanin-power-prior   # the power per subject
+    python tools/measure_skin_fits.py calibrate [--port-mm 5] --only melanin-exponential   # the in vivo law's p
     python tools/measure_skin_fits.py background [--every N] [--only NAME]   # the background alone
     python tools/measure_skin_fits.py variants [--every N] [--only NAME,…]   # the alternatives compared
     python tools/measure_skin_fits.py refit [--every N] [--port-mm D] [--power P]   # = skinrender skin --fit
@@ -129,10 +130,16 @@ def main(argv=None) -> int:
             _fit(f"melanin power fitted through a {args.port_mm:g} mm port, water only {label}", lam, values, names,
                  held, ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "melanin_power"),
                  args.port_mm)
-    elif args.what == "calibrate":
-        _fit("background and melanin power fitted, a held at 46 cm⁻¹", lam, values, names,
-             replace(SkinParameters(), scattering=46.0),
-             ("melanin", "blood", "oxygenation", "scattering_power", "background", "melanin_power"))
+    elif args.what == "calibrate":  # --only: under a variant's substitution
+        from skin_alternatives import substituted
+
+        variant = _variant(args.only)
+        if variant is None:
+            return 2
+        with substituted(variant[2]):
+            _fit(f"background and melanin power fitted, a held at 46 cm⁻¹ {variant[0]}", lam, values, names,
+                 replace(SkinParameters(), scattering=46.0),
+                 ("melanin", "blood", "oxygenation", "scattering_power", "background", "melanin_power"))
     elif args.what == "background":  # --only: one variant's substitution (its held changes but the background)
         from skin_alternatives import substituted
 

@@ -56,6 +56,10 @@ def add_parsers(commands) -> None:
         default = getattr(defaults, name)
         p.add_argument(option, dest=name, metavar="X",
                        help=text + (f" (default {default:g})" if default is not None else ""))
+    p.add_argument("--melanin-law", metavar="LAW",
+                   help="the melanosome's spectral law, --melanin-power p being its logarithmic slope at 500 nm: "
+                        "power (default): 67.9 (λ/500 nm)^-p mm⁻¹; exponential: 67.9 exp(-p (λ - 500 nm)/500 nm) "
+                        "mm⁻¹, in vivo melanin's form (Zonios et al. 2008); held with --fit")
     p.add_argument("--method", default="adding-doubling",
                    help="reflectance method: " + "; ".join(f"{k}: {v}" for k, v in METHOD_MEANINGS.items()))
     p.add_argument("--grid", default="400:700:1", help="wavelengths START:END:STEP in nm (default 400:700:1)")
@@ -102,6 +106,9 @@ def parameters_of(args: argparse.Namespace, names=tuple(PARAMETER_FLAGS)):
             raise SkinrenderError(f"{option} must be a number, got {text!r}", flag=option) from None
         one = replace(SkinParameters(), **{name: values[name]})
         flag(option, check_parameters, one)
+    if args.melanin_law is not None:  # a name, not a number
+        values["melanin_law"] = args.melanin_law
+        flag("--melanin-law", check_parameters, replace(SkinParameters(), melanin_law=args.melanin_law))
     parameters = SkinParameters(**values)
     flag("--vessel-min-um", check_parameters, parameters)  # the one check across flags: min ≤ max
     return parameters
@@ -195,7 +202,8 @@ def _text(method, parameters, lam, reflectance, layers, plot, port_mm) -> str:
     step = max(1, int(math.ceil(lam.size / 13)))
     rows = [[f"{lam[i]:g}", f"{reflectance[i]:.4f}", f"{layers[0].mu_a_per_mm[i]:.4g}",
              f"{layers[1].mu_a_per_mm[i]:.4g}", f"{layers[1].mu_s_per_mm[i]:.4g}"] for i in range(0, lam.size, step)]
-    described = ", ".join(f"{k} {v:g}" for k, v in _parameters_dict(parameters).items() if v is not None)
+    described = ", ".join(f"{k} {v:g}" if not isinstance(v, str) else f"{k} {v}"
+                          for k, v in _parameters_dict(parameters).items() if v is not None)
     lines = [f"skin model ({method}): {described}",
              f"layers: epidermis {layers[0].thickness_mm:g} mm over a semi-infinite dermis, g {layers[0].g:g}, "
              f"n {layers[0].n:g}",
@@ -253,7 +261,7 @@ def _command_fit(args: argparse.Namespace) -> None:
     skins = sum(not f.not_skin for f in fits)
     document = {"method": method, "source": measured.name, "wavelength_nm": lam.tolist(),
                 "bounds": {k: list(FIT_BOUNDS[k][:2]) + [FIT_BOUNDS[k][2]] for k in FIT_PARAMETERS[method]},
-                "held": {k: getattr(held, k) for k in HELD_IN_FIT}, "port_mm": port_mm,
+                "held": {k: getattr(held, k) for k in (*HELD_IN_FIT, "melanin_law")}, "port_mm": port_mm,
                 "fits": [f.as_dict(method) for f in fits], "converged": int(sum(f.converged for f in fits)),
                 "skin": int(skins), "rms": summary, "fit_range_nm": [start, end], "notes": []}
     if start < measured.wavelengths[0] or end > measured.wavelengths[-1]:  # said, not clipped silently

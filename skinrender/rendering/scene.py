@@ -119,6 +119,11 @@ class ChartScene:
         return np.array([reflectance_of(p.reflectance, grid, f"{self.source}: patch {p.name!r}") for p in self.patches])
 
 
+TEXT_PARAMETERS = ("melanin_law",)
+"""The :class:`~skinrender.datasets.skin_model.SkinParameters` fields a ``skin-model:`` spec gives as names, not
+numbers (``melanin_law=exponential``)."""
+
+
 def skin_parameters_of(spec: str, where: str = "reflectance"):
     """
     The :class:`~skinrender.datasets.skin_model.SkinParameters` of a ``skin-model:NAME=VALUE,…`` spec (the
@@ -146,6 +151,9 @@ def skin_parameters_of(spec: str, where: str = "reflectance"):
         if key in values:
             raise SkinrenderError(f"{where}: {text!r}: {key} is given twice; give each parameter once",
                                   flag=flag_of(where))
+        if key in TEXT_PARAMETERS:  # a name, checked with the rest below
+            values[key] = value.strip()
+            continue
         try:
             values[key] = float(value)
         except ValueError:

@@ -139,8 +139,8 @@ class SkinMedia:
         names = ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "epidermis_mm", "n",
                  "background", "vessel_min_um", "vessel_max_um", "epidermis_scattering", "melanin_power")
         return {"spec": self.spec, "source": "parameters" if self.fit_rms is None else "fit",
-                "parameters": {name: float(getattr(p, name)) for name in names}, "fit_rms": self.fit_rms,
-                "bounds_hit": dict(self.bounds_hit)}
+                "parameters": {**{name: float(getattr(p, name)) for name in names}, "melanin_law": p.melanin_law},
+                "fit_rms": self.fit_rms, "bounds_hit": dict(self.bounds_hit)}
 
 
 def skin_media_of(spec: str, grid: WavelengthGrid, where: str = "skin") -> SkinMedia:

@@ -120,6 +120,33 @@ def test_port_reads_the_model_through_a_sample_port_and_fits_through_it(tmp_path
     assert "read through a 5 mm port" in out.splitlines()[0]
 
 
+def test_melanin_law_is_held_in_a_fit_and_recovers_its_own_skin(tmp_path, capsys):
+    """--melanin-law exponential: the forward model is the layers' (its JSON says the law); a fit holding the same
+    law recovers the skin (RMS < 1e-4, melanin within 1 %), one holding the power law does not fit it as well."""
+    from skinrender.datasets.skin_model import SkinParameters, skin_reflectance
+
+    status, out, err = run(["skin", "--grid", "400:700:10", "--melanin", "0.08", "--melanin-power", "4",
+                            "--melanin-law", "exponential", "--json"], capsys)
+    assert status == 0, err
+    document = json.loads(out)
+    lam = np.array(document["wavelength_nm"])
+    truth = SkinParameters(melanin=0.08, melanin_power=4.0, melanin_law="exponential")
+    assert document["parameters"]["melanin_law"] == "exponential"
+    np.testing.assert_allclose(document["reflectance"], skin_reflectance(lam, truth), rtol=1e-12)
+    table = fit_csv(tmp_path, {"seen": document["reflectance"]}, lam)
+    rms = {}
+    for law in ("exponential", "power"):
+        status, out, err = run(["skin", "--fit", table, "--melanin-power", "4", "--melanin-law", law,
+                                "--workers", "1", "--json"], capsys)
+        assert status == 0, err
+        fitted = json.loads(out)
+        assert fitted["held"]["melanin_law"] == law
+        rms[law] = fitted["fits"][0]["rms"]
+        if law == "exponential":
+            assert fitted["fits"][0]["parameters"]["melanin"] == pytest.approx(0.08, rel=0.01)
+    assert rms["exponential"] < 1e-4 < rms["power"]
+
+
 def test_fit_text_says_which_sit_on_a_bound_and_which_are_not_skin(tmp_path, capsys):
     lam = np.arange(400.0, 701.0, 10.0)
     status, out, err = run(["skin", "--fit", fit_csv(tmp_path, {"white": np.full(lam.size, 0.9)}, lam),
@@ -185,6 +212,7 @@ def test_no_column_converged_exits_1_with_the_whole_document(tmp_path, capsys, m
     (["--vessel-min-um", "50", "--vessel-max-um", "10"], ("--vessel-min-um", "50 > 10")),
     (["--epidermis-scattering", "0"], "--epidermis-scattering"),
     (["--melanin-power", "-1"], ("--melanin-power", "[0, 10]")),
+    (["--melanin-law", "gaussian"], ("--melanin-law", "power, exponential")),
     (["--method", "monte-carlo"], ("--method", "adding-doubling, kubelka-munk")),
     (["--surface", "0.05"], ("--surface", "kubelka-munk")),
     (["--grid", "700:400:10"], "--grid"),

@@ -41,6 +41,27 @@ def test_melanosome_is_jacques_power_law():
     assert float(melanosome_absorption(400.0) / melanosome_absorption(800.0)) == pytest.approx(2**3.33)
 
 
+def test_the_exponential_law_shares_the_value_and_the_log_slope_at_500_nm_and_falls_faster_beyond():
+    """Zonios et al. 2008's in vivo form, ``67.9 exp(−p (λ − 500)/500)``: equal to the power law at 500 nm, the same
+    logarithmic slope ``−p`` there (a central difference), under it at longer and shorter wavelengths alike
+    (``exp(x) ≥ 1 + x`` against the power law's convexity), and ``exp(−k Δλ)`` with ``k = p / 500`` nm⁻¹."""
+    lam = np.array([400.0, 499.0, 500.0, 501.0, 600.0, 700.0])
+    power, exponential = (melanosome_absorption(lam, 4.0, law) for law in ("power", "exponential"))
+    assert exponential[2] == pytest.approx(power[2], rel=1e-12)
+    slope = np.log(exponential[3] / exponential[1]) / np.log(501.0 / 499.0)
+    assert slope == pytest.approx(-4.0, rel=1e-4)
+    assert exponential[4] < power[4] and exponential[5] < power[5] and exponential[0] < power[0]
+    assert exponential[5] / exponential[4] == pytest.approx(np.exp(-4.0 / 500.0 * 100.0), rel=1e-12)
+    rows = melanosome_absorption([[500.0, 700.0]], np.array([3.7, 4.0]), "exponential")  # powers broadcast
+    np.testing.assert_allclose(rows[:, 1], [melanosome_absorption(700.0, p, "exponential") for p in (3.7, 4.0)])
+
+
+def test_an_unknown_melanin_law_is_refused_naming_it():
+    with pytest.raises(SkinrenderError, match="melanin_law must be one of power, exponential") as caught:
+        melanosome_absorption(500.0, 3.7, "gaussian")
+    assert caught.value.role == "melanin_law"
+
+
 class TestPackaging:
     def test_the_closed_form_is_the_average_over_log_radii(self):
         for mu in (0.1, 3.0, 30.0, 300.0):

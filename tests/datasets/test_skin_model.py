@@ -75,6 +75,25 @@ class TestSkinLayers:
                                    [melanosome_absorption(700.0, 3.33), melanosome_absorption(700.0, 4.0)])
         assert SkinParameters().melanin_power == 3.7
 
+    def test_melanin_law_exponential_is_the_in_vivo_form_in_the_epidermis_alone(self):
+        """``melanin_law="exponential"``: the epidermis absorbs by Zonios' in vivo form, less than the power law away
+        from 500 nm; the dermis is unchanged; the skin reflects more in the red (where in vivo melanin has fallen
+        further), the same parameters otherwise; the default stays the power law."""
+        from skinrender.datasets.skin_absorbers import melanosome_absorption, water_absorption
+
+        p = SkinParameters(melanin=0.2, melanin_power=4.0, melanin_law="exponential")
+        epidermis, dermis = skin_layers(LAMBDA, p)
+        water = (1 - 0.2) * 0.75 * water_absorption(LAMBDA)
+        np.testing.assert_allclose(epidermis.mu_a_per_mm,
+                                   0.2 * melanosome_absorption(LAMBDA, 4.0, "exponential") + water, rtol=1e-12)
+        power_epidermis, power_dermis = skin_layers(LAMBDA, SkinParameters(melanin=0.2, melanin_power=4.0))
+        np.testing.assert_array_equal(dermis.mu_a_per_mm, power_dermis.mu_a_per_mm)
+        assert np.all(epidermis.mu_a_per_mm[LAMBDA > 550] < power_epidermis.mu_a_per_mm[LAMBDA > 550])
+        red = LAMBDA >= 650
+        assert np.all(skin_reflectance(LAMBDA, p)[red]
+                      > skin_reflectance(LAMBDA, SkinParameters(melanin=0.2, melanin_power=4.0))[red])
+        assert SkinParameters().melanin_law == "power"
+
     def test_background_darkens_the_red_and_packaging_brightens_the_haemoglobin_bands(self):
         red, band = LAMBDA >= 650, (LAMBDA >= 535) & (LAMBDA <= 580)
         base = skin_reflectance(LAMBDA, SkinParameters(melanin=0.02))
@@ -169,6 +188,8 @@ class TestSkinReflectance:
         ({"vessel_min_um": 200.0}, "vessel_min_um must be at most vessel_max_um, got 200 > 100"),
         ({"epidermis_scattering": 0}, r"epidermis_scattering must be in \(0,"),
         ({"melanin_power": 11}, r"melanin_power must be in \[0, 10\]"),
+        ({"melanin_law": "gaussian"}, "melanin_law must be one of power, exponential, got 'gaussian'"),
+        ({"melanin_law": 3}, "melanin_law must be one of"),
     ])
     def test_parameters_outside_their_physical_range_are_refused_before_computing(self, parameters, match):
         with warnings.catch_warnings():

@@ -162,6 +162,8 @@ class TestSkinReflectanceOf:
         light = skin_reflectance_of("skin-model:melanin=0.02")
         dark = skin_reflectance_of("skin-model:melanin=0.3,blood=0.02")
         assert np.all(dark <= light) and dark.mean() < 0.5 * light.mean()
+        in_vivo = skin_reflectance_of("skin-model:melanin=0.3,blood=0.02,melanin_law=exponential")
+        assert in_vivo[-1] > dark[-1]  # the exponential law: in vivo melanin has fallen further in the red
 
     @pytest.mark.parametrize("spec, match", [
         ("skin-model:melanin=-0.1", "melanin"), ("skin-model:melanin=inf", "melanin"),
@@ -176,7 +178,8 @@ class TestSkinReflectanceOf:
         ("skin-model:oxygenation=7,blood=3", "must be in"),
         ("skin-model:oxygenation=7", r"oxygenation must be in \[0, 1\]"),
         ("skin-model:scattering=0", "scattering must be in"),
-        ("skin-model:n=0.5", r"n must be in \[1, 3\]"),  # (scattering=1e-300, refused by Kubelka–Munk's 0/0,
+        ("skin-model:n=0.5", r"n must be in \[1, 3\]"),
+        ("skin-model:melanin_law=gaussian", "melanin_law must be one of power, exponential, got 'gaussian'"),  # (scattering=1e-300, refused by Kubelka–Munk's 0/0,
         # is a clear medium to adding-doubling: its Fresnel reflection, finite)
     ])
     def test_skin_model_parameters_out_of_range_refused_without_warnings(self, spec, match):
