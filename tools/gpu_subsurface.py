@@ -14,6 +14,7 @@ Writes ``$OUT/gpu_subsurface.json`` (or ./gpu_subsurface.json) and prints a line
 """
 import json
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -57,17 +58,21 @@ def main(variants: list[str]) -> None:
             for attempt in ("first", "second")[:1 if name.startswith("chart") else 2]:
                 command = [sys.executable, "-m", "skinrender", *args, "--variant", variant]
                 start = time.perf_counter()
+                process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                           start_new_session=True)  # its own group: a stop ends its workers too
                 try:
-                    done = subprocess.run(command, capture_output=True, text=True, timeout=LIMIT_S)
+                    stdout, stderr = process.communicate(timeout=LIMIT_S)
                 except subprocess.TimeoutExpired:
+                    os.killpg(process.pid, signal.SIGKILL)
+                    process.communicate()
                     row = {"variant": variant, "run": name, "attempt": attempt, "stopped_after_s": LIMIT_S}
                 else:
                     row = {"variant": variant, "run": name, "attempt": attempt,
-                           "wall_s": time.perf_counter() - start, "rc": done.returncode}
+                           "wall_s": time.perf_counter() - start, "rc": process.returncode}
                     try:
-                        row.update(summary(name, json.loads(done.stdout)))
+                        row.update(summary(name, json.loads(stdout)))
                     except (ValueError, KeyError) as error:
-                        row["error"] = f"{error}: {done.stdout[-300:]} {done.stderr[-600:]}"
+                        row["error"] = f"{error}: {stdout[-300:]} {stderr[-600:]}"
                 out["runs"].append(row)
                 print(json.dumps(row), flush=True)
                 with open(os.path.join(os.environ.get("OUT", "."), "gpu_subsurface.json"), "w") as handle:

@@ -136,9 +136,11 @@ def main(argv=None) -> int:
         variant = _variant(args.only)
         if variant is None:
             return 2
-        with substituted(variant[2]):
-            _fit(f"background and melanin power fitted, a held at 46 cm⁻¹ {variant[0]}", lam, values, names,
-                 replace(SkinParameters(), scattering=46.0),
+        label, changes, substitution = variant
+        held = replace(SkinParameters(), **{k: v for k, v in changes.items()
+                                            if k not in ("melanin_power", "port_mm", "background")}, scattering=46.0)
+        with substituted(substitution):
+            _fit(f"background and melanin power fitted, a held at 46 cm⁻¹ {label}", lam, values, names, held,
                  ("melanin", "blood", "oxygenation", "scattering_power", "background", "melanin_power"))
     elif args.what == "background":  # --only: one variant's substitution (its held changes but the background)
         from skin_alternatives import substituted

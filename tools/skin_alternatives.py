@@ -24,10 +24,10 @@ reads its own):
   f_Ray 0.409 (b then plays b_Mie).
 - Zonios et al. 2008 (J. Biomed. Opt. 13:014017; Zonios & Dimou 2008, Opt. Express 16:8263): in vivo, melanin's
   absorption falls exponentially with wavelength, μa ∝ exp(−k λ), more steeply than in vitro, k varying between
-  subjects as a normal variable. Its decay constant is not in the sources here: the variant
-  ``melanin-exponential`` keeps the model's melanosome at 500 nm and reads the model's ``melanin_power`` p as the
-  same slope there, k = p / 500 nm (so that ``calibrate --only melanin-exponential`` calibrates k as it
-  calibrates p).
+  subjects as a normal variable. Its decay constant is not in the sources here: the variants
+  ``melanin-exponential…`` hold the model's ``melanin_law="exponential"`` (its melanosome at 500 nm kept,
+  ``melanin_power`` p the same log slope there, k = p / 500 nm), so that ``calibrate --only melanin-exponential``
+  calibrates k as it calibrates p.
 - Cooksey & Allen 2013 (Proc. SPIE 8734:87340N): the NIST skins were measured on a spot ~5 mm across; the
   lateral loss through such a port is the package's own (``skin --fit … --port-mm 5``,
   ``skinrender.datasets.port_loss``): a variant's ``port_mm`` is passed to the fit, not to the model.
@@ -74,7 +74,7 @@ def _bosschaart_blood(wavelength, oxygenation):
 def _fitted_values(skin_model, base, x, names) -> dict:
     """The layer parameters of the fit's rows ``x`` (``(m, len(names))``): ``base``'s, the fitted ``names`` from ``x``
     (as ``skin_fit._model`` builds them)."""
-    values = {name: getattr(base, name) for name in skin_model.LAYER_KEYS}
+    values = {name: getattr(base, name) for name in (*skin_model.LAYER_KEYS, "melanin_law")}
     values.update({name: x[:, i] for i, name in enumerate(names)})
     return values
 
@@ -96,16 +96,6 @@ def _rayleigh_part(skin_model, skin_fit, f_ray: float) -> list:
 def _melanin_348(wavelength):
     """Jacques' skin melanosome, omlc: 1.70e12 λ^−3.48 cm⁻¹, in mm⁻¹."""
     return 1.70e12 * np.asarray(wavelength, dtype=np.float64) ** -3.48 / 10
-
-
-def _melanin_exponential(wavelength, power=3.33, law=None):
-    """The model's melanosome at 500 nm falling as ``exp(−k (λ − 500 nm))``, ``k = power / 500 nm`` (the power law's
-    slope at 500 nm), mm⁻¹; ``power`` broadcasts over leading axes as the model's does."""
-    from skinrender.datasets.skin_absorbers import MELANOSOME_AT_500_PER_MM
-
-    lam = np.asarray(wavelength, dtype=np.float64)
-    q = np.asarray(power, dtype=np.float64)[..., None] if np.ndim(power) else float(power)
-    return MELANOSOME_AT_500_PER_MM * np.exp(-q / 500.0 * (lam - 500.0))
 
 
 def _fat_in_dermis(skin_model, fraction: float):
@@ -245,7 +235,6 @@ def _substitution(name: str | None) -> list:
         "corneum": lambda: _melanin_free_corneum(skin_model, skin_fit, 0.02, 1.0),
         "blood-profile": lambda: _blood_profile(skin_model, skin_fit),
         "melanin-power-prior": lambda: _melanin_power_prior(skin_fit, *MELANIN_POWER_PRIOR),
-        "melanin-exponential": lambda: [(skin_model, "melanosome_absorption", _melanin_exponential)],
     }
     return builders[name]() if name else []
 
@@ -308,13 +297,15 @@ VARIANTS = {
     "melanin-power-prior": ("the melanin power per subject, Gaussian prior 3.78 ± 0.3 (calibrate --port-mm 5 "
                             "--only melanin-power-prior)", {"background": 0.0, "port_mm": 5.0}, "melanin-power-prior"),
     "melanin-exponential": ("melanin exp(−k (λ − 500 nm)), k = melanin_power / 500 nm (Zonios 2008's in vivo form)",
-                            {}, "melanin-exponential"),
+                            {"melanin_law": "exponential"}, None),
     "melanin-exponential-calibrated": ("the same, no port, k 0.0084 nm⁻¹ and background 0.13 cm⁻¹ (their calibration, "
                                        "calibrate --only melanin-exponential: p 4.19, background 0.127)",
-                                       {"background": 0.13, "melanin_power": 4.2}, "melanin-exponential"),
+                                       {"background": 0.13, "melanin_power": 4.2, "melanin_law": "exponential"},
+                                       None),
     "melanin-exponential-port": ("the same through the NIST 5 mm port, water only, k 0.0080 nm⁻¹ (its calibration "
                                  "there, calibrate --port-mm 5 --only melanin-exponential: p 3.98)",
-                                 {"background": 0.0, "port_mm": 5.0, "melanin_power": 4.0}, "melanin-exponential"),
+                                 {"background": 0.0, "port_mm": 5.0, "melanin_power": 4.0,
+                                  "melanin_law": "exponential"}, None),
     "melanin-power-3.33": ("melanin λ^−3.33 (Jacques 1998, the model before its calibration)",
                            {"melanin_power": 3.33}, None),
     "melanin-power-3.8": ("melanin λ^−3.8 (steeper than the calibration's 3.66)", {"melanin_power": 3.8}, None),

@@ -31,7 +31,8 @@ PARAMETER_FLAGS = {
     "vessel_max_um": ("--vessel-max-um", "largest radius of the dermis' blood vessels, µm (≥ --vessel-min-um)"),
     "epidermis_scattering": ("--epidermis-scattering", "the epidermis' reduced scattering over the dermis' (> 0)"),
     "melanin_power": ("--melanin-power",
-                      "power p of the melanosome's absorption 67.9 (λ/500 nm)^-p mm⁻¹, in [0, 10]"),
+                      "power p of the melanosome's absorption 67.9 (λ/500 nm)^-p mm⁻¹, in [0, 10] (its log slope "
+                      "at 500 nm, which --melanin-law exponential keeps)"),
 }
 """SkinParameters field → (flag, help)."""
 HELD_IN_FIT = ("epidermis_mm", "n", "background", "vessel_min_um", "vessel_max_um", "epidermis_scattering",
@@ -59,7 +60,8 @@ def add_parsers(commands) -> None:
     p.add_argument("--melanin-law", metavar="LAW",
                    help="the melanosome's spectral law, --melanin-power p being its logarithmic slope at 500 nm: "
                         "power (default): 67.9 (λ/500 nm)^-p mm⁻¹; exponential: 67.9 exp(-p (λ - 500 nm)/500 nm) "
-                        "mm⁻¹, in vivo melanin's form (Zonios et al. 2008); held with --fit")
+                        "mm⁻¹, in vivo melanin's form (Zonios et al. 2008), calibrated with --melanin-power 4.2 "
+                        "--background 0.13 (through a 5 mm port: 4.0 and 0); held with --fit")
     p.add_argument("--method", default="adding-doubling",
                    help="reflectance method: " + "; ".join(f"{k}: {v}" for k, v in METHOD_MEANINGS.items()))
     p.add_argument("--grid", default="400:700:1", help="wavelengths START:END:STEP in nm (default 400:700:1)")
@@ -174,6 +176,7 @@ def command_skin(args: argparse.Namespace) -> None:
 
         write_output(args.plot, lambda stream: figure_skin_model(  # whole or not at all, its failure naming --plot
             lam, reflectance, f"skin model ({method}), melanin {parameters.melanin:g}, blood {parameters.blood:g}"
+            + ("" if parameters.melanin_law == "power" else f", melanin law {parameters.melanin_law}")
             + ("" if port_mm is None else f", through a {port_mm:g} mm port"),
             compare, stream), "--plot")
         document["plot"] = args.plot
@@ -276,6 +279,8 @@ def _command_fit(args: argparse.Namespace) -> None:
     refused = [f"not skin: {f.name}: {f.not_skin_reason}" for f in fits if f.not_skin]
     text = (f"{method} fit of {measured.count} spectra from {measured.name}, {lam.size} wavelengths "
             f"{lam[0]:g}–{lam[-1]:g} nm" + ("" if port_mm is None else f", read through a {port_mm:g} mm port")
+            + f"; held: melanin law {held.melanin_law}, melanin power {held.melanin_power:g}, "
+              f"background {held.background:g} cm⁻¹"
             + "\n"
             + table(rows, ["spectrum", "RMS", *FIT_PARAMETERS[method], "on a bound", "converged", "skin"]) + "\n"
             + "".join(line + "\n" for line in refused + [f"note: {n}" for n in document["notes"]])

