@@ -117,31 +117,23 @@ def main(argv=None) -> int:
     keep = (measured.wavelengths >= 400) & (measured.wavelengths <= 700)
     lam, values = measured.wavelengths[keep], measured.values[::args.every, keep]
     names = measured.names[::args.every]
-    if args.what == "calibrate" and args.port_mm is not None:  # --only: under a variant's substitution
+    if args.what == "calibrate":  # --only: under a variant's substitution, its held changes kept
         from skin_alternatives import substituted
 
         variant = _variant(args.only)
         if variant is None:
             return 2
         label, changes, substitution = variant
+        if args.port_mm is None:  # the scattering's scale from the literature, the background fitted
+            title, fixed = "background and melanin power fitted, a held at 46 cm⁻¹", {"scattering": 46.0}
+            fitted = ("melanin", "blood", "oxygenation", "scattering_power", "background", "melanin_power")
+        else:  # the port's loss sets the scale: water only, a fitted
+            title, fixed = f"melanin power fitted through a {args.port_mm:g} mm port, water only", {"background": 0.0}
+            fitted = ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "melanin_power")
         held = replace(SkinParameters(), **{k: v for k, v in changes.items()
-                                            if k not in ("melanin_power", "port_mm", "background")}, background=0.0)
+                                            if k not in ("melanin_power", "port_mm", "background")}, **fixed)
         with substituted(substitution):
-            _fit(f"melanin power fitted through a {args.port_mm:g} mm port, water only {label}", lam, values, names,
-                 held, ("melanin", "blood", "oxygenation", "scattering", "scattering_power", "melanin_power"),
-                 args.port_mm)
-    elif args.what == "calibrate":  # --only: under a variant's substitution
-        from skin_alternatives import substituted
-
-        variant = _variant(args.only)
-        if variant is None:
-            return 2
-        label, changes, substitution = variant
-        held = replace(SkinParameters(), **{k: v for k, v in changes.items()
-                                            if k not in ("melanin_power", "port_mm", "background")}, scattering=46.0)
-        with substituted(substitution):
-            _fit(f"background and melanin power fitted, a held at 46 cm⁻¹ {label}", lam, values, names, held,
-                 ("melanin", "blood", "oxygenation", "scattering_power", "background", "melanin_power"))
+            _fit(f"{title} {label}", lam, values, names, held, fitted, args.port_mm)
     elif args.what == "background":  # --only: one variant's substitution (its held changes but the background)
         from skin_alternatives import substituted
 
